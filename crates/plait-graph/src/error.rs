@@ -1,0 +1,134 @@
+//! Errors with the place in a pipeline file (or the command-line flag) they come from.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Where a value came from: a position in a file, or a command-line override.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(tag = "origin", rename_all = "snake_case")]
+pub enum Location {
+    /// 1-based line and column in a file.
+    File { path: PathBuf, line: u32, column: u32 },
+    /// A `--set key=value` flag (the whole flag text).
+    Flag { flag: String },
+    /// Built in defaults (a pass type's default param, the default scene…).
+    Builtin,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::File { path, line, column } => {
+                write!(f, "{}:{line}:{column}", path.display())
+            }
+            Location::Flag { flag } => write!(f, "--set {flag}"),
+            Location::Builtin => f.write_str("<builtin>"),
+        }
+    }
+}
+
+/// A value with the place it was written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spanned<T> {
+    pub value: T,
+    pub location: Location,
+}
+
+impl<T> Spanned<T> {
+    pub fn new(value: T, location: Location) -> Self {
+        Spanned { value, location }
+    }
+}
+
+impl<T> std::ops::Deref for Spanned<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        &self.value
+    }
+}
+
+/// One problem found in a pipeline, printed as `file:line:col: message`.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{location}: {kind}")]
+pub struct Error {
+    pub location: Location,
+    pub kind: ErrorKind,
+}
+
+impl Error {
+    pub fn new(location: Location, kind: ErrorKind) -> Self {
+        Error { location, kind }
+    }
+}
+
+/// What went wrong. Variants carry the names involved so a message can say
+/// exactly which pass, resource or param is at fault.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ErrorKind {
+    #[error("cannot read file: {0}")]
+    Io(String),
+    #[error("TOML syntax error: {0}")]
+    Syntax(String),
+    #[error("{0}")]
+    Schema(String),
+    #[error("`extends` chain loops back to {0}")]
+    ExtendsCycle(PathBuf),
+    #[error("malformed --set `{flag}`: {reason}")]
+    MalformedSet { flag: String, reason: String },
+    #[error("`${{{0}}}` is not defined in [params]")]
+    UndefinedParam(String),
+    #[error("unknown pass type `{name}` (known: {known})")]
+    UnknownPassType { name: String, known: String },
+    #[error("pass `{pass}` of type `{pass_type}` has no param `{param}` (it has: {known})")]
+    UnknownParam { pass: String, pass_type: String, param: String, known: String },
+    #[error("param `{param}` of pass `{pass}`: {reason}")]
+    BadParam { pass: String, param: String, reason: String },
+    #[error("pass `{pass}` of type `{pass_type}` has no {direction} slot `{slot}` (it has: {known})")]
+    UnknownSlot { pass: String, pass_type: String, direction: &'static str, slot: String, known: String },
+    #[error("pass `{pass}` does not bind its required {direction} slot `{slot}`")]
+    MissingSlot { pass: String, direction: &'static str, slot: String },
+    #[error("resource `{0}` is used but not declared in [resources]")]
+    UndeclaredResource(String),
+    #[error("resource `{resource}` is read by pass `{reader}` but no pass writes it")]
+    NeverWritten { resource: String, reader: String },
+    #[error("resource `{resource}` is written by passes `{first}` and `{second}` with no order between them")]
+    UnorderedWriters { resource: String, first: String, second: String },
+    #[error("cycle between passes: {}", .0.join(" -> "))]
+    Cycle(Vec<String>),
+    #[error("resource `{resource}` has format {declared}, but pass `{pass}` slot `{slot}` accepts {accepted}")]
+    FormatMismatch { resource: String, declared: String, pass: String, slot: String, accepted: String },
+    #[error("resource `{resource}` is a {declared}, but pass `{pass}` slot `{slot}` needs a {expected}")]
+    KindMismatch { resource: String, declared: String, pass: String, slot: String, expected: String },
+    #[error("output `{0}` is not a declared resource")]
+    UnknownOutput(String),
+    #[error("output `{0}` is not written by any pass")]
+    OutputNeverWritten(String),
+    #[error("shader {path}: {message}")]
+    Shader { path: PathBuf, message: String },
+    #[error("pass `{pass}`: shader binding `{binding}` (group {group}, binding {index}) is not provided by the pipeline file")]
+    MissingBinding { pass: String, binding: String, group: u32, index: u32 },
+    #[error("pass `{pass}`: {message}")]
+    Pass { pass: String, message: String },
+}
+
+/// Every problem found in one load or compile; `Display` prints one per line.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub struct Errors(pub Vec<Error>);
+
+impl fmt::Display for Errors {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, e) in self.0.iter().enumerate() {
+            if i > 0 {
+                writeln!(f)?;
+            }
+            write!(f, "error: {e}")?;
+        }
+        Ok(())
+    }
+}
+
+impl From<Error> for Errors {
+    fn from(e: Error) -> Self {
+        Errors(vec![e])
+    }
+}

@@ -1,0 +1,19 @@
+//! plait's pipeline files, checked and compiled without a GPU.
+//!
+//! `load` reads a pipeline file (following `extends`, applying `--set`
+//! overrides and `${param}` substitution, keeping the source location of every
+//! value); `compile` checks it against a [`Registry`] of pass types and builds
+//! the petgraph schedule, resource lifetimes and the memory plan; `dot` prints
+//! the schedule as Graphviz.
+
+pub mod error;
+pub mod format;
+pub mod schedule;
+pub mod spec;
+pub mod value;
+
+pub use error::{Error, ErrorKind, Errors, Location, Spanned};
+pub use format::Format;
+pub use schedule::*;
+pub use spec::*;
+pub use value::Value;

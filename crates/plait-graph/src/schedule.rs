@@ -1,0 +1,177 @@
+//! The compiled form of a pipeline: plain data, free of wgpu, that the GPU
+//! crate turns into command buffers (vello's `Recording` → engine split).
+
+use indexmap::IndexMap;
+use std::path::PathBuf;
+
+use crate::error::Location;
+use crate::format::Format;
+use crate::spec::{Access, PassShape, ResourceKind};
+use crate::value::Value;
+
+/// Index into [`Schedule::resources`].
+pub type ResourceId = usize;
+/// Index into [`Schedule::physical`].
+pub type PhysicalId = usize;
+
+/// A resource's size and format after every `${param}` and `screen` is resolved.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ResourceDesc {
+    Texture { format: Format, width: u32, height: u32, layers: u32, samples: u32 },
+    Buffer { size: u64 },
+}
+
+impl ResourceDesc {
+    pub fn kind(&self) -> ResourceKind {
+        match self {
+            ResourceDesc::Texture { .. } => ResourceKind::Texture,
+            ResourceDesc::Buffer { .. } => ResourceKind::Buffer,
+        }
+    }
+
+    pub fn bytes(&self) -> u64 {
+        match *self {
+            ResourceDesc::Texture { format, width, height, layers, samples } => {
+                format.bytes_per_texel() * width as u64 * height as u64 * layers as u64 * samples as u64
+            }
+            ResourceDesc::Buffer { size } => size,
+        }
+    }
+
+    /// `rgba16float 1280x720` / `buffer 4194304 B`, for graphs and tables.
+    pub fn label(&self) -> String {
+        match *self {
+            ResourceDesc::Texture { format, width, height, layers, samples } => {
+                let mut s = format!("{format} {width}x{height}");
+                if layers > 1 {
+                    s += &format!("x{layers}");
+                }
+                if samples > 1 {
+                    s += &format!(" {samples}xMSAA");
+                }
+                s
+            }
+            ResourceDesc::Buffer { size } => format!("buffer {size} B"),
+        }
+    }
+}
+
+/// One slot of a scheduled pass bound to a resource.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Binding {
+    pub slot: String,
+    pub resource: ResourceId,
+    pub access: Access,
+    /// Keeps previous contents (see `SlotSpec::loads`).
+    pub loads: bool,
+    #[serde(skip)]
+    pub location: Location,
+}
+
+/// A pass, resolved against its type and placed in the schedule.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ScheduledPass {
+    pub name: String,
+    pub type_name: String,
+    pub shape: PassShape,
+    /// `light` or `camera` for raster passes.
+    pub view: Option<String>,
+    /// `hair` or `opaque` for raster passes.
+    pub draw: Option<String>,
+    pub reads: Vec<Binding>,
+    pub writes: Vec<Binding>,
+    /// Every param of the type, defaults filled in, values checked.
+    pub params: IndexMap<String, Value>,
+    /// Resolved against the directory of the file that named it.
+    pub shader: Option<PathBuf>,
+    #[serde(skip)]
+    pub shader_location: Option<Location>,
+    #[serde(skip)]
+    pub location: Location,
+}
+
+/// Why a pass does not run.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct CulledPass {
+    pub pass: ScheduledPass,
+    pub reason: String,
+}
+
+/// A declared resource with its lifetime in the schedule.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ResolvedResource {
+    pub name: String,
+    pub desc: ResourceDesc,
+    /// Index in `Schedule::passes` of the first and last pass that touch it.
+    pub first_use: usize,
+    pub last_use: usize,
+    pub physical: PhysicalId,
+    #[serde(skip)]
+    pub location: Location,
+}
+
+/// One GPU allocation; several resources with identical descriptors and
+/// disjoint lifetimes share it (wgpu cannot alias memory of different shapes).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PhysicalResource {
+    pub desc: ResourceDesc,
+    pub users: Vec<ResourceId>,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct MemoryReport {
+    /// Bytes of all physical allocations (with sharing).
+    pub peak_bytes: u64,
+    /// Bytes if every resource had its own allocation.
+    pub unpooled_bytes: u64,
+}
+
+/// The compiled pipeline.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Schedule {
+    pub name: String,
+    pub description: String,
+    /// The pipeline file and every file it extends, child first.
+    pub files: Vec<PathBuf>,
+    /// Resolved `[params]` (after `--set`), for passes that read pipeline-wide values.
+    pub params: IndexMap<String, Value>,
+    /// Live passes in execution order.
+    pub passes: Vec<ScheduledPass>,
+    pub culled: Vec<CulledPass>,
+    pub resources: Vec<ResolvedResource>,
+    pub physical: Vec<PhysicalResource>,
+    pub outputs: Vec<ResourceId>,
+    pub memory: MemoryReport,
+}
+
+impl Schedule {
+    pub fn resource(&self, name: &str) -> Option<ResourceId> {
+        self.resources.iter().position(|r| r.name == name)
+    }
+
+    /// Names of other resources sharing `id`'s physical allocation.
+    pub fn shares_memory_with(&self, id: ResourceId) -> Vec<&str> {
+        let phys = &self.physical[self.resources[id].physical];
+        phys.users
+            .iter()
+            .filter(|&&u| u != id)
+            .map(|&u| self.resources[u].name.as_str())
+            .collect()
+    }
+}
+
+/// What compile needs to know about the run that is not in the file.
+#[derive(Clone, Debug)]
+pub struct CompileOptions {
+    /// Render size, what `size = "screen"` means.
+    pub screen: (u32, u32),
+    /// The adapter's `max_texture_dimension_2d` (8192 when checking without a GPU, WebGPU's default).
+    pub max_texture_dimension: u32,
+}
+
+impl Default for CompileOptions {
+    fn default() -> Self {
+        CompileOptions { screen: (960, 720), max_texture_dimension: 8192 }
+    }
+}

@@ -1,0 +1,173 @@
+//! Pass type declarations: what a pass type reads, writes and accepts as params.
+//!
+//! The pass library (a crate with GPU code) registers one [`PassTypeSpec`] per
+//! pass type; the graph crate checks pipeline files against these specs without
+//! touching a GPU.
+
+use indexmap::IndexMap;
+
+use crate::format::Format;
+use crate::value::Value;
+
+/// Texture or buffer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ResourceKind {
+    Texture,
+    Buffer,
+}
+
+impl std::fmt::Display for ResourceKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ResourceKind::Texture => "texture",
+            ResourceKind::Buffer => "buffer",
+        })
+    }
+}
+
+/// How a pass touches a resource bound to one of its slots. The GPU crate
+/// derives texture/buffer usage flags from this; the scheduler derives order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Access {
+    /// Read in a shader through a sampled texture binding.
+    Sampled,
+    /// Read-only storage buffer or storage texture.
+    StorageRead,
+    /// Written (and possibly read) as storage, e.g. with atomics.
+    StorageWrite,
+    /// Rendered into as a colour attachment.
+    ColorTarget,
+    /// Rendered into as a depth attachment.
+    DepthTarget,
+    /// Read as a uniform buffer.
+    Uniform,
+}
+
+impl Access {
+    pub fn is_write(self) -> bool {
+        matches!(self, Access::StorageWrite | Access::ColorTarget | Access::DepthTarget)
+    }
+}
+
+/// Which formats a texture slot accepts.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Formats {
+    Any,
+    OneOf(Vec<Format>),
+}
+
+impl Formats {
+    pub fn accepts(&self, f: Format) -> bool {
+        match self {
+            Formats::Any => true,
+            Formats::OneOf(list) => list.contains(&f),
+        }
+    }
+}
+
+impl std::fmt::Display for Formats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Formats::Any => f.write_str("any format"),
+            Formats::OneOf(list) => {
+                let names: Vec<_> = list.iter().map(|f| f.name()).collect();
+                f.write_str(&names.join(" | "))
+            }
+        }
+    }
+}
+
+/// One named input or output of a pass type.
+#[derive(Clone, Debug)]
+pub struct SlotSpec {
+    pub name: String,
+    pub kind: ResourceKind,
+    pub access: Access,
+    /// Texture formats accepted (ignored for buffers).
+    pub formats: Formats,
+    /// An output slot with `loads = true` keeps and adds to the previous
+    /// contents (blending, atomics on a cleared buffer): it must run after
+    /// the pass that wrote those contents.
+    pub loads: bool,
+    pub optional: bool,
+    pub doc: String,
+}
+
+/// The type of a pass param.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamType {
+    Int { min: i64, max: i64 },
+    Float { min: f64, max: f64 },
+    Bool,
+    Str,
+    Enum(Vec<String>),
+    /// An RGB or XYZ triple of floats.
+    Vec3,
+}
+
+#[derive(Clone, Debug)]
+pub struct ParamSpec {
+    pub name: String,
+    pub ty: ParamType,
+    /// `None` makes the param required.
+    pub default: Option<Value>,
+    pub doc: String,
+}
+
+/// Whether a pass type takes `view = "light" | "camera"` and `draw = "hair" | "opaque"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PassShape {
+    /// Rasterizes scene geometry from a view: needs `view` and `draw`.
+    Raster,
+    /// One triangle covering the target: no `view`/`draw`.
+    Fullscreen,
+    /// A compute dispatch.
+    Compute,
+}
+
+/// The declaration of a pass type. Registered by the pass library.
+#[derive(Clone, Debug)]
+pub struct PassTypeSpec {
+    pub name: String,
+    pub description: String,
+    /// Paper and section the pass implements, e.g. `000_785589f319b01ef5.txt §3.1`.
+    pub source: String,
+    pub shape: PassShape,
+    pub inputs: Vec<SlotSpec>,
+    pub outputs: Vec<SlotSpec>,
+    pub params: Vec<ParamSpec>,
+    /// Data-only pass types (`fullscreen`, `compute`) take any slot names:
+    /// their slots are the shader's bindings, checked by naga reflection.
+    pub dynamic_slots: bool,
+    /// Data-only pass types need `shader = "…"`.
+    pub needs_shader: bool,
+    /// Optional GPU features the pass needs (names as in `wgpu::Features`).
+    pub required_features: Vec<String>,
+}
+
+/// All pass types known to a run, by name.
+#[derive(Clone, Debug, Default)]
+pub struct Registry {
+    pub types: IndexMap<String, PassTypeSpec>,
+}
+
+impl Registry {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub fn register(&mut self, spec: PassTypeSpec) {
+        self.types.insert(spec.name.clone(), spec);
+    }
+
+    pub fn get(&self, name: &str) -> Option<&PassTypeSpec> {
+        self.types.get(name)
+    }
+
+    pub fn names(&self) -> Vec<&str> {
+        self.types.keys().map(String::as_str).collect()
+    }
+}

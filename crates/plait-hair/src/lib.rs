@@ -1,0 +1,1 @@
+//! Strand geometry (issue 3).
