@@ -109,6 +109,14 @@ pub enum ErrorKind {
     MissingBinding { pass: String, binding: String, group: u32, index: u32 },
     #[error("pass `{pass}`: {message}")]
     Pass { pass: String, message: String },
+    #[error("params refer to each other in a loop: {}", .0.join(" -> "))]
+    ParamCycle(Vec<String>),
+    #[error("pass `{pass}` does not set its required param `{param}` (no default)")]
+    MissingParam { pass: String, param: String },
+    #[error("texture `{resource}` is {width}x{height}; each side must be between 1 and the device limit {limit}")]
+    TextureSize { resource: String, width: i64, height: i64, limit: u32 },
+    #[error("resource `{resource}`: {reason}")]
+    BadResource { resource: String, reason: String },
 }
 
 /// Every problem found in one load or compile; `Display` prints one per line.

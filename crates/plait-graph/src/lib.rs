@@ -4,9 +4,14 @@
 //! overrides and `${param}` substitution, keeping the source location of every
 //! value); `compile` checks it against a [`Registry`] of pass types and builds
 //! the petgraph schedule, resource lifetimes and the memory plan; `dot` prints
-//! the schedule as Graphviz.
+//! the schedule as Graphviz (or SVG) and `snapshot` as stable text.
 
+pub mod compile;
+pub mod dot;
 pub mod error;
+pub mod expr;
+pub mod load;
+pub mod snapshot;
 pub mod format;
 pub mod schedule;
 pub mod spec;
@@ -17,3 +22,8 @@ pub use format::Format;
 pub use schedule::*;
 pub use spec::*;
 pub use value::Value;
+
+pub use compile::compile;
+pub use dot::{to_dot, to_svg};
+pub use load::{load, load_str, PassDecl, Pipeline, ResourceDecl, SizeDecl};
+pub use snapshot::schedule_text;

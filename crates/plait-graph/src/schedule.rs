@@ -11,6 +11,9 @@ use crate::value::Value;
 
 /// Index into [`Schedule::resources`].
 pub type ResourceId = usize;
+/// The `resource` of a culled pass's binding whose resource was dropped
+/// because only culled passes use it (see [`Binding::resource_name`]).
+pub const DROPPED_RESOURCE: ResourceId = usize::MAX;
 /// Index into [`Schedule::physical`].
 pub type PhysicalId = usize;
 
@@ -61,9 +64,15 @@ impl ResourceDesc {
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Binding {
     pub slot: String,
+    /// [`DROPPED_RESOURCE`] in a culled pass when the resource was dropped.
     pub resource: ResourceId,
+    /// The resource's name as written in the file.
+    pub resource_name: String,
     pub access: Access,
-    /// Keeps previous contents (see `SlotSpec::loads`).
+    /// Keeps previous contents (see `SlotSpec::loads`). Compile sets it to
+    /// `false` on the first writer of a resource even if its slot loads:
+    /// with nothing written before, "accumulate" means "clear, then
+    /// accumulate", so the GPU side must clear there.
     pub loads: bool,
     #[serde(skip)]
     pub location: Location,
@@ -140,6 +149,8 @@ pub struct Schedule {
     pub passes: Vec<ScheduledPass>,
     pub culled: Vec<CulledPass>,
     pub resources: Vec<ResolvedResource>,
+    /// Declared resources used only by culled passes (or by nothing), not allocated.
+    pub dropped_resources: Vec<String>,
     pub physical: Vec<PhysicalResource>,
     pub outputs: Vec<ResourceId>,
     pub memory: MemoryReport,

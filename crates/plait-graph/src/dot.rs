@@ -1,0 +1,123 @@
+//! The schedule as a picture: Graphviz DOT, or SVG drawn in-process with
+//! `layout-rs` (no Graphviz install needed).
+//!
+//! Passes are nodes in execution order; an edge goes from the pass that
+//! produced the version of a resource a pass sees to that pass, labelled with
+//! the resource. Culled passes and their edges are dashed; outputs flow into
+//! a final `output` node.
+
+use std::fmt::Write as _;
+
+use crate::schedule::{Binding, Schedule, ScheduledPass, DROPPED_RESOURCE};
+
+/// Graphviz DOT of the schedule (for `dot -Tsvg`).
+pub fn to_dot(schedule: &Schedule) -> String {
+    render(schedule, Dialect::Graphviz)
+}
+
+/// Why an SVG could not be drawn.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("cannot draw the schedule as SVG: {0}")]
+pub struct SvgError(pub String);
+
+/// An SVG picture of the schedule, laid out by `layout-rs`.
+pub fn to_svg(schedule: &Schedule) -> Result<String, SvgError> {
+    use layout::backends::svg::SVGWriter;
+    use layout::gv::{DotParser, GraphBuilder};
+
+    let dot = render(schedule, Dialect::LayoutRs);
+    let mut parser = DotParser::new(&dot);
+    let graph = parser.process().map_err(SvgError)?;
+    // layout-rs is a young crate; a panic inside it must not take the caller down.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let mut builder = GraphBuilder::new();
+        builder.visit_graph(&graph);
+        let mut visual = builder.get();
+        let mut svg = SVGWriter::new();
+        visual.do_it(false, false, false, &mut svg);
+        svg.finalize()
+    }))
+    .map_err(|_| SvgError("layout-rs failed to lay the graph out".into()))
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Dialect {
+    /// Full DOT with ordering hints.
+    Graphviz,
+    /// The subset layout-rs understands (no invisible ordering edges, which
+    /// it would draw).
+    LayoutRs,
+}
+
+fn quote(s: &str) -> String {
+    format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
+}
+
+fn resource_label(schedule: &Schedule, binding: &Binding) -> String {
+    match schedule.resources.get(binding.resource).filter(|_| binding.resource != DROPPED_RESOURCE) {
+        Some(r) => format!("{}\\n{}", binding.resource_name, r.desc.label()),
+        None => binding.resource_name.clone(),
+    }
+}
+
+fn render(schedule: &Schedule, dialect: Dialect) -> String {
+    // Live passes in execution order, then culled ones; `p{i}` node ids.
+    let all: Vec<(&ScheduledPass, bool)> = schedule
+        .passes
+        .iter()
+        .map(|p| (p, false))
+        .chain(schedule.culled.iter().map(|c| (&c.pass, true)))
+        .collect();
+
+    let mut out = String::new();
+    let _ = writeln!(out, "digraph {} {{", quote(&schedule.name));
+    let _ = writeln!(out, "  rankdir=TB;");
+    if dialect == Dialect::Graphviz {
+        let _ = writeln!(out, "  node [shape=box, fontname=\"sans-serif\"];");
+        let _ = writeln!(out, "  edge [fontname=\"sans-serif\", fontsize=10];");
+    }
+    for (i, (pass, culled)) in all.iter().enumerate() {
+        let label = format!("{}\\n{}{}", pass.name, pass.type_name, if *culled { " (culled)" } else { "" });
+        let style = if *culled { ", style=dashed" } else { "" };
+        let _ = writeln!(out, "  p{i} [shape=box, label={}{style}];", quote_label(&label));
+    }
+    let _ = writeln!(out, "  output [shape=doublecircle, label=\"output\"];");
+
+    for (i, (pass, culled)) in all.iter().enumerate() {
+        // What this pass sees of a resource was made by the latest earlier writer.
+        let consumed = pass.reads.iter().chain(pass.writes.iter().filter(|b| b.loads));
+        let mut seen = Vec::new();
+        for binding in consumed {
+            if seen.contains(&&binding.resource_name) {
+                continue;
+            }
+            seen.push(&binding.resource_name);
+            let writer = (0..i).rev().find(|&w| all[w].0.writes.iter().any(|b| b.resource_name == binding.resource_name));
+            if let Some(w) = writer {
+                let dashed = *culled || all[w].1;
+                let style = if dashed { ", style=dashed" } else { "" };
+                let _ = writeln!(out, "  p{w} -> p{i} [label={}{style}];", quote_label(&resource_label(schedule, binding)));
+            }
+        }
+    }
+    for &output in &schedule.outputs {
+        let name = &schedule.resources[output].name;
+        let writer = (0..schedule.passes.len()).rev().find(|&w| schedule.passes[w].writes.iter().any(|b| &b.resource_name == name));
+        if let Some(w) = writer {
+            let label = format!("{name}\\n{}", schedule.resources[output].desc.label());
+            let _ = writeln!(out, "  p{w} -> output [label={}];", quote_label(&label));
+        }
+    }
+    if dialect == Dialect::Graphviz && schedule.passes.len() > 1 {
+        // Heavy invisible edges keep the execution order top-down.
+        let chain: Vec<String> = (0..schedule.passes.len()).map(|i| format!("p{i}")).collect();
+        let _ = writeln!(out, "  {} [style=invis, weight=10];", chain.join(" -> "));
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// Quotes a label that already contains `\n` escapes, escaping only quotes.
+fn quote_label(label: &str) -> String {
+    format!("\"{}\"", label.replace('"', "\\\""))
+}

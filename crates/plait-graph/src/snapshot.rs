@@ -1,0 +1,102 @@
+//! A stable, human-readable dump of a [`Schedule`], committed next to each
+//! pipeline file so a change to the compiler or to a pipeline shows up as a
+//! reviewable text diff (naga's `tests/in` → `tests/out` practice).
+//!
+//! Only deterministic data goes in: no hash-map iteration order, no absolute
+//! paths beyond what the caller passed in.
+
+use std::fmt::Write as _;
+
+use crate::schedule::{Binding, Schedule, DROPPED_RESOURCE};
+
+/// The schedule as text: passes in order, culled passes with reasons,
+/// resources with descriptor, bytes, lifetime and physical slot, memory.
+pub fn schedule_text(s: &Schedule) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "pipeline {}", s.name);
+    if !s.description.is_empty() {
+        let _ = writeln!(out, "  {}", s.description);
+    }
+    let files: Vec<String> = s.files.iter().map(|f| f.display().to_string()).collect();
+    let _ = writeln!(out, "files: {}", files.join(" extends "));
+    if !s.params.is_empty() {
+        let _ = writeln!(out, "\nparams:");
+        for (k, v) in &s.params {
+            let _ = writeln!(out, "  {k} = {v}");
+        }
+    }
+
+    let _ = writeln!(out, "\npasses (execution order):");
+    for (i, p) in s.passes.iter().enumerate() {
+        pass_text(&mut out, &format!("{i:>3}"), p, s);
+    }
+    if !s.culled.is_empty() {
+        let _ = writeln!(out, "\nculled:");
+        for c in &s.culled {
+            pass_text(&mut out, "  -", &c.pass, s);
+            let _ = writeln!(out, "        culled: {}", c.reason);
+        }
+    }
+
+    let _ = writeln!(out, "\nresources:");
+    for (id, r) in s.resources.iter().enumerate() {
+        let shared = s.shares_memory_with(id);
+        let shared = if shared.is_empty() { String::new() } else { format!(" (shared with {})", shared.join(", ")) };
+        let output = if s.outputs.contains(&id) { " [output]" } else { "" };
+        let _ = writeln!(
+            out,
+            "  {}{output}: {}, {} B, passes {}..={}, physical #{}{shared}",
+            r.name,
+            r.desc.label(),
+            r.desc.bytes(),
+            r.first_use,
+            r.last_use,
+            r.physical
+        );
+    }
+    if !s.dropped_resources.is_empty() {
+        let _ = writeln!(out, "  dropped (only culled passes use them): {}", s.dropped_resources.join(", "));
+    }
+    let _ = writeln!(
+        out,
+        "\nmemory: {} physical allocations, peak {} B, unpooled {} B",
+        s.physical.len(),
+        s.memory.peak_bytes,
+        s.memory.unpooled_bytes
+    );
+    out
+}
+
+fn pass_text(out: &mut String, prefix: &str, p: &crate::schedule::ScheduledPass, s: &Schedule) {
+    let mut head = format!("{prefix} {} [{}]", p.name, p.type_name);
+    if let Some(view) = &p.view {
+        head += &format!(" view={view}");
+    }
+    if let Some(draw) = &p.draw {
+        head += &format!(" draw={draw}");
+    }
+    let _ = writeln!(out, "{head}");
+    if let Some(shader) = &p.shader {
+        let _ = writeln!(out, "        shader: {}", shader.display());
+    }
+    if !p.params.is_empty() {
+        let params: Vec<String> = p.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let _ = writeln!(out, "        params: {}", params.join(", "));
+    }
+    let bindings = |list: &[Binding]| -> String {
+        list.iter()
+            .map(|b| {
+                let dropped = if b.resource == DROPPED_RESOURCE || b.resource >= s.resources.len() { " (dropped)" } else { "" };
+                let loads = if b.loads { ", loads" } else { "" };
+                format!("{}={}{dropped} ({:?}{loads})", b.slot, b.resource_name, b.access)
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if !p.reads.is_empty() {
+        let _ = writeln!(out, "        reads:  {}", bindings(&p.reads));
+    }
+    if !p.writes.is_empty() {
+        let _ = writeln!(out, "        writes: {}", bindings(&p.writes));
+    }
+}
