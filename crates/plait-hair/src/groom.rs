@@ -140,7 +140,7 @@ impl Default for GroomSpec {
             strands: 1000,
             segments: 16,
             seed: 1,
-            length: 2.4,
+            length: 2.0,
             length_variation: 0.15,
             thickness: 0.006,
             thickness_variation: 0.2,
@@ -281,15 +281,27 @@ fn head_point(spec: &GroomSpec, dir: Vec3) -> (Vec3, Vec3) {
 }
 
 /// Grows one strand centerline of `segments + 1` points from `root` along
-/// `normal`, bending toward -Y and kept outside the (slightly inflated) head.
-fn grow(spec: &GroomSpec, root: Vec3, normal: Vec3, length: f32, gravity: f32, lift: f32) -> Vec<Vec3> {
+/// `start_dir`, bending toward -Y and kept outside the (slightly inflated) head.
+/// Horizontal unit vector of azimuth `v` (0 = +Z, the face).
+fn azimuth_dir(v: f32) -> Vec3 {
+    let phi = v * std::f32::consts::TAU;
+    Vec3::new(phi.sin(), 0.0, phi.cos())
+}
+
+/// The direction a strand leaves the scalp: the normal, combed outward
+/// along its azimuth so crown strands part instead of standing up.
+fn comb(normal: Vec3, v: f32) -> Vec3 {
+    (normal + azimuth_dir(v) * 0.6).normalize_or(normal)
+}
+
+fn grow(spec: &GroomSpec, root: Vec3, start_dir: Vec3, length: f32, gravity: f32, lift: f32) -> Vec<Vec3> {
     let n = spec.segments.max(1) as usize;
     let step = length / n as f32;
     let center = Vec3::from(spec.head.center);
     let r = Vec3::from(spec.head.radii).abs().max(Vec3::splat(1e-6));
     let mut pts = Vec::with_capacity(n + 1);
     let mut p = root;
-    let mut d = normal;
+    let mut d = start_dir;
     pts.push(p);
     for k in 0..n {
         d = (d + Vec3::NEG_Y * gravity * step).normalize_or(Vec3::NEG_Y);
@@ -360,7 +372,7 @@ pub fn generate(spec: &GroomSpec) -> Strands {
                 let (u, v) = sample_root(spec, &mut rng);
                 let lk = look(spec, &mut rng);
                 let (root, normal) = head_point(spec, scalp_dir(spec, u, v));
-                let mut pts = grow(spec, root, normal, lk.length, spec.gravity, lift_of(u));
+                let mut pts = grow(spec, root, comb(normal, v), lk.length, spec.gravity, lift_of(u));
                 add_waves(spec, &mut pts, lk.phase);
                 push(&mut strands, spec, &pts, &lk);
             }
@@ -402,7 +414,7 @@ fn interpolate_from_guides(spec: &GroomSpec, g: u32, strands: &mut Strands, lift
             let mut rng = SplitMix64::stream(spec.seed ^ 0x6D1D_E5, (i * cols + j) as u64);
             let phase = rng.range(0.0, std::f32::consts::TAU);
             let (root, normal) = head_point(spec, scalp_dir(spec, u, v));
-            let mut pts = grow(spec, root, normal, spec.length, spec.gravity, lift_of(u));
+            let mut pts = grow(spec, root, comb(normal, v), spec.length, spec.gravity, lift_of(u));
             add_waves(spec, &mut pts, phase);
             guides.push(pts);
         }
@@ -501,9 +513,11 @@ mod tests {
 
     #[test]
     fn wavy_and_curly_wiggle_more_than_straight() {
-        let st = mean_deviation_from_chord(&generate(&spec(Style::Straight)));
-        let wv = mean_deviation_from_chord(&generate(&spec(Style::Wavy)));
-        let cu = mean_deviation_from_chord(&generate(&spec(Style::Curly)));
+        // enough segments to resolve the curl period
+        let fine = |style| GroomSpec { segments: 64, ..spec(style) };
+        let st = mean_deviation_from_chord(&generate(&fine(Style::Straight)));
+        let wv = mean_deviation_from_chord(&generate(&fine(Style::Wavy)));
+        let cu = mean_deviation_from_chord(&generate(&fine(Style::Curly)));
         assert!(wv > st * 1.2, "wavy {wv} vs straight {st}");
         assert!(cu > wv, "curly {cu} vs wavy {wv}");
     }
@@ -513,15 +527,16 @@ mod tests {
         let s = GroomSpec { stray_strands: 5, ..spec(Style::Straight) };
         let h = generate(&s);
         assert_eq!(h.strand_count(), 205);
-        let main = Strands {
-            offsets: h.offsets[..=200].to_vec(),
-            points: h.points[..200 * 13].to_vec(),
-            ..Strands::default()
-        };
-        let main_max_level = main.points.iter().map(|p| head_level(&s, *p)).fold(0.0f32, f32::max);
+        let main = &h.points[..200 * 13];
         for i in 200..205 {
-            let far = h.strand(i).iter().map(|p| head_level(&s, *p)).fold(0.0f32, f32::max);
-            assert!(far > main_max_level, "stray {i} reaches {far}, main volume {main_max_level}");
+            // the farthest point of the stray from the main volume
+            let off = h
+                .strand(i)
+                .iter()
+                .map(|p| main.iter().map(|q| (*p - *q).length()).fold(f32::INFINITY, f32::min))
+                .fold(0.0f32, f32::max);
+            assert!(off > 0.2, "stray {i} only {off} away from the main volume");
+            assert!((head_level(&s, h.strand(i)[0]) - 1.0).abs() < 1e-3, "stray roots on the scalp");
         }
     }
 

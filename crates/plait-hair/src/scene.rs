@@ -450,7 +450,7 @@ impl Scene {
                 strands: 10_000,
                 segments: 32,
                 seed: 1,
-                length: 2.4,
+                length: 2.0,
                 length_variation: 0.15,
                 thickness: 0.006,
                 thickness_variation: 0.2,
@@ -468,10 +468,10 @@ impl Scene {
                 guides: None,
             }),
             head: Some(Head { center: head.center, radii: head.radii, albedo: [0.75, 0.55, 0.45] }),
-            ground: Some(Ground { height: -2.2, half_size: 6.0, albedo: [0.6, 0.6, 0.6] }),
+            ground: Some(Ground { height: -2.7, half_size: 6.0, albedo: [0.6, 0.6, 0.6] }),
             camera: Camera {
-                eye: [1.6, 0.6, 6.2],
-                target: [0.0, -0.45, 0.0],
+                eye: [2.0, 0.5, 7.6],
+                target: [0.0, -0.6, 0.0],
                 up: [0.0, 1.0, 0.0],
                 fov_y_degrees: 35.0,
                 near: 0.1,
@@ -639,7 +639,7 @@ mod tests {
     #[test]
     fn light_frustum_fits_occluders_and_reaches_receivers() {
         let occ = Aabb::new(Vec3::new(-1.0, -1.0, -1.0), Vec3::new(1.0, 1.0, 1.0));
-        let rec = Aabb::new(Vec3::new(-6.0, -2.2, -6.0), Vec3::new(6.0, -2.2, 6.0));
+        let rec = Aabb::new(Vec3::new(-6.0, -2.7, -6.0), Vec3::new(6.0, -2.7, 6.0));
         let lights = [
             Light { kind: LightKind::Directional { direction: [-0.5, -1.0, -0.6] }, color: [1.0; 3], intensity: 1.0 },
             Light {
@@ -661,7 +661,7 @@ mod tests {
             // the nearest occluder is near depth 0
             assert!(proj.iter().map(|p| p.z).fold(f32::MAX, f32::min) < 0.05);
             // the ground under the hair is inside the depth range
-            let g = m.project_point3(Vec3::new(0.0, -2.2, 0.0));
+            let g = m.project_point3(Vec3::new(0.0, -2.7, 0.0));
             assert!((0.0..=1.0).contains(&g.z), "{g}");
         }
     }
