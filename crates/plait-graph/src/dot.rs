@@ -49,14 +49,25 @@ enum Dialect {
     LayoutRs,
 }
 
+/// Escapes one piece of label text for a DOT string.
+fn escape(s: &str) -> String {
+    s.replace('\\', "\\\\").replace('"', "\\\"")
+}
+
 fn quote(s: &str) -> String {
-    format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
+    format!("\"{}\"", escape(s))
+}
+
+/// A quoted multi-line label from raw (unescaped) lines.
+fn label(lines: &[&str]) -> String {
+    let escaped: Vec<String> = lines.iter().map(|l| escape(l)).collect();
+    format!("\"{}\"", escaped.join("\\n"))
 }
 
 fn resource_label(schedule: &Schedule, binding: &Binding) -> String {
     match schedule.resources.get(binding.resource).filter(|_| binding.resource != DROPPED_RESOURCE) {
-        Some(r) => format!("{}\\n{}", binding.resource_name, r.desc.label()),
-        None => binding.resource_name.clone(),
+        Some(r) => label(&[&binding.resource_name, &r.desc.label()]),
+        None => label(&[&binding.resource_name]),
     }
 }
 
@@ -77,9 +88,9 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
         let _ = writeln!(out, "  edge [fontname=\"sans-serif\", fontsize=10];");
     }
     for (i, (pass, culled)) in all.iter().enumerate() {
-        let label = format!("{}\\n{}{}", pass.name, pass.type_name, if *culled { " (culled)" } else { "" });
+        let kind = format!("{}{}", pass.type_name, if *culled { " (culled)" } else { "" });
         let style = if *culled { ", style=dashed" } else { "" };
-        let _ = writeln!(out, "  p{i} [shape=box, label={}{style}];", quote_label(&label));
+        let _ = writeln!(out, "  p{i} [shape=box, label={}{style}];", label(&[&pass.name, &kind]));
     }
     let _ = writeln!(out, "  output [shape=doublecircle, label=\"output\"];");
 
@@ -96,7 +107,7 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
             if let Some(w) = writer {
                 let dashed = *culled || all[w].1;
                 let style = if dashed { ", style=dashed" } else { "" };
-                let _ = writeln!(out, "  p{w} -> p{i} [label={}{style}];", quote_label(&resource_label(schedule, binding)));
+                let _ = writeln!(out, "  p{w} -> p{i} [label={}{style}];", resource_label(schedule, binding));
             }
         }
     }
@@ -104,8 +115,8 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
         let name = &schedule.resources[output].name;
         let writer = (0..schedule.passes.len()).rev().find(|&w| schedule.passes[w].writes.iter().any(|b| &b.resource_name == name));
         if let Some(w) = writer {
-            let label = format!("{name}\\n{}", schedule.resources[output].desc.label());
-            let _ = writeln!(out, "  p{w} -> output [label={}];", quote_label(&label));
+            let text = label(&[name, &schedule.resources[output].desc.label()]);
+            let _ = writeln!(out, "  p{w} -> output [label={text}];");
         }
     }
     if dialect == Dialect::Graphviz && schedule.passes.len() > 1 {
@@ -115,9 +126,4 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
     }
     out.push_str("}\n");
     out
-}
-
-/// Quotes a label that already contains `\n` escapes, escaping only quotes.
-fn quote_label(label: &str) -> String {
-    format!("\"{}\"", label.replace('"', "\\\""))
 }

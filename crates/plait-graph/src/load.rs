@@ -109,9 +109,7 @@ pub fn load_str(path_for_messages: &Path, text: &str, overrides: &[String]) -> R
     let mut root = load_chain(path_for_messages, text, &mut chain, &mut files)?;
     let mut errors = Vec::new();
     for flag in overrides {
-        if let Err(e) = apply_override(&mut root, flag) {
-            errors.push(e);
-        }
+        apply_override(&mut root, flag, &mut errors);
     }
     if !errors.is_empty() {
         return Err(Errors(errors));
@@ -308,24 +306,24 @@ fn load_chain(path: &Path, text: &str, chain: &mut Vec<PathBuf>, files: &mut Vec
 // ---------------------------------------------------------------------------
 // --set
 
-fn apply_override(root: &mut Spanned<Node>, flag: &str) -> Result<(), Error> {
+fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>) {
     let location = Location::Flag { flag: flag.to_owned() };
     let malformed = |reason: &str| {
         Error::new(location.clone(), ErrorKind::MalformedSet { flag: flag.to_owned(), reason: reason.to_owned() })
     };
     let Some((key, value_text)) = flag.split_once('=') else {
-        return Err(malformed("expected `key=value`, e.g. `params.slices=64`"));
+        return errors.push(malformed("expected `key=value`, e.g. `params.slices=64`"));
     };
     let path: Vec<&str> = key.trim().split('.').map(str::trim).collect();
     if path.iter().any(|p| p.is_empty()) {
-        return Err(malformed("the key has an empty part; write a dotted path like `passes.shade.params.color`"));
+        return errors.push(malformed("the key has an empty part; write a dotted path like `passes.shade.params.color`"));
     }
     // Every key on the way must be a table (or absent, then it is created).
     let mut cursor = &root.value;
     for (depth, part) in path.iter().enumerate() {
         let Node::Table(table) = cursor else {
             let prefix = path[..depth].join(".");
-            return Err(malformed(&format!("`{prefix}` is a value, not a table, so `{key}` cannot be set")));
+            return errors.push(malformed(&format!("`{prefix}` is a value, not a table, so `{key}` cannot be set")));
         };
         match table.get(*part) {
             Some(entry) => cursor = &entry.value.value,
@@ -339,7 +337,6 @@ fn apply_override(root: &mut Spanned<Node>, flag: &str) -> Result<(), Error> {
         node = Spanned::new(Node::Table(table), location.clone());
     }
     merge(root, node);
-    Ok(())
 }
 
 /// TOML if it parses (`64`, `0.5`, `[1, 2]`, `"x"`), else the bare text as
