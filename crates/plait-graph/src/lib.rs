@@ -5,6 +5,15 @@
 //! value); `compile` checks it against a [`Registry`] of pass types and builds
 //! the petgraph schedule, resource lifetimes and the memory plan; `dot` prints
 //! the schedule as Graphviz (or SVG) and `snapshot` as stable text.
+//!
+//! ```no_run
+//! # use plait_graph::*;
+//! # fn demo(registry: &Registry) -> Result<(), Errors> {
+//! let pipeline = load("pipelines/occupancy.toml".as_ref(), &["params.slices=64".into()])?;
+//! let schedule = compile(&pipeline, registry, &CompileOptions::default())?;
+//! println!("{}", schedule_text(&schedule));
+//! # Ok(()) }
+//! ```
 
 pub mod compile;
 pub mod dot;

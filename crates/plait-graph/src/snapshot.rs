@@ -55,7 +55,7 @@ pub fn schedule_text(s: &Schedule) -> String {
         );
     }
     if !s.dropped_resources.is_empty() {
-        let _ = writeln!(out, "  dropped (only culled passes use them): {}", s.dropped_resources.join(", "));
+        let _ = writeln!(out, "  dropped (no live pass uses them): {}", s.dropped_resources.join(", "));
     }
     let _ = writeln!(
         out,
