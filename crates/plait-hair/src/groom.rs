@@ -380,7 +380,7 @@ pub fn generate(spec: &GroomSpec) -> Strands {
         Some(g) => interpolate_from_guides(spec, g, &mut strands, lift_of),
     }
     for i in 0..spec.stray_strands {
-        let mut rng = SplitMix64::stream(spec.seed ^ 0x5712_A7, u64::from(i));
+        let mut rng = SplitMix64::stream(spec.seed ^ 0x0057_12A7, u64::from(i));
         // strays start near the crown and arc up and out of the volume
         let u = rng.range(0.05, 0.45);
         let v = rng.next_f32();
@@ -411,7 +411,7 @@ fn interpolate_from_guides(spec: &GroomSpec, g: u32, strands: &mut Strands, lift
         for j in 0..cols {
             let u = i as f32 / (rows - 1) as f32;
             let v = j as f32 / cols as f32;
-            let mut rng = SplitMix64::stream(spec.seed ^ 0x6D1D_E5, (i * cols + j) as u64);
+            let mut rng = SplitMix64::stream(spec.seed ^ 0x006D_1DE5, (i * cols + j) as u64);
             let phase = rng.range(0.0, std::f32::consts::TAU);
             let (root, normal) = head_point(spec, scalp_dir(spec, u, v));
             let mut pts = grow(spec, root, comb(normal, v), spec.length, spec.gravity, lift_of(u));

@@ -48,9 +48,10 @@ const KNOWN_FLAGS: u32 = FLAG_SEGMENTS | FLAG_POINTS | FLAG_THICKNESS | FLAG_TRA
 /// Everything that can make a `.hair` file unreadable.
 #[derive(Debug, thiserror::Error)]
 pub enum HairError {
-    /// Reading or writing the file failed.
+    /// Reading or writing the file failed. (Not a `source()`: the message
+    /// already says it, so `{:#}` chains do not repeat it.)
     #[error("{0}")]
-    Io(#[from] std::io::Error),
+    Io(std::io::Error),
     /// The file is shorter than the 128-byte header.
     #[error("file is {len} bytes, shorter than the 128-byte .hair header")]
     ShortHeader {
@@ -103,26 +104,34 @@ pub enum HairError {
     /// The data cannot be represented in the format (writing only).
     #[error("cannot write .hair data: {0}")]
     Unrepresentable(String),
-    /// Any of the above, for a named file.
-    #[error("{}: {source}", path.display())]
+    /// Any of the above, for a named file. The message is
+    /// `path: inner message`; `error` is deliberately not a `source()` so
+    /// that error chains (`anyhow`'s `{:#}`) do not print it twice.
+    #[error("{}: {error}", path.display())]
     InFile {
         /// The file.
         path: PathBuf,
         /// What went wrong.
-        source: Box<HairError>,
+        error: Box<HairError>,
     },
+}
+
+impl From<std::io::Error> for HairError {
+    fn from(e: std::io::Error) -> Self {
+        HairError::Io(e)
+    }
 }
 
 impl HairError {
     /// Wraps `self` with the file it came from.
     pub fn in_file(self, path: impl Into<PathBuf>) -> HairError {
-        HairError::InFile { path: path.into(), source: Box::new(self) }
+        HairError::InFile { path: path.into(), error: Box::new(self) }
     }
 
     /// The error without its file wrapper.
     pub fn root(&self) -> &HairError {
         match self {
-            HairError::InFile { source, .. } => source.root(),
+            HairError::InFile { error, .. } => error.root(),
             other => other,
         }
     }

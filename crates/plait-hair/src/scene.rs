@@ -26,12 +26,12 @@ use crate::strands::{Aabb, Strands};
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     /// The scene file could not be read.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {error}", path.display())]
     Io {
         /// The scene file.
         path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
+        /// The I/O error (in the message, not a `source()`).
+        error: std::io::Error,
     },
     /// TOML syntax or schema error, with its position.
     #[error("{}:{line}:{column}: {message}", path.display())]
@@ -54,7 +54,7 @@ pub enum SceneError {
         message: String,
     },
     /// The hair file could not be read (the error names it).
-    #[error("{0}")]
+    #[error(transparent)]
     Hair(#[from] HairError),
 }
 
@@ -513,7 +513,7 @@ impl Scene {
     /// Loads a scene file.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { path: path.to_path_buf(), error })?;
         Scene::from_toml_str(&text, path)
     }
 
@@ -533,12 +533,12 @@ impl Scene {
             return Err("camera.eye and camera.target must differ".into());
         }
         if let Some(h) = &self.head
-            && h.radii.iter().any(|r| !(*r > 0.0))
+            && h.radii.iter().any(|r| r.is_nan() || *r <= 0.0)
         {
             return Err("head.radii must be > 0".into());
         }
         if let Some(g) = &self.ground
-            && !(g.half_size > 0.0)
+            && (g.half_size.is_nan() || g.half_size <= 0.0)
         {
             return Err("ground.half_size must be > 0".into());
         }
