@@ -403,6 +403,35 @@ fn guide_grid(g: u32) -> (usize, usize) {
     (rows, cols)
 }
 
+/// The triangle of the guide grid that scalp parameter (u, v) falls in:
+/// grid corners `(row, col)` (col may equal `cols`, meaning column 0) and
+/// barycentric weights (≥ 0, summing to 1). Each grid cell is split along
+/// its anti-diagonal into two triangles.
+fn locate(u: f32, v: f32, rows: usize, cols: usize) -> ([(usize, usize); 3], [f32; 3]) {
+    let fu = u.clamp(0.0, 1.0) * (rows - 1) as f32;
+    let fv = v.clamp(0.0, 1.0) * cols as f32;
+    let i = (fu.floor() as usize).min(rows - 2);
+    let j = (fv.floor() as usize).min(cols - 1);
+    let (a, b) = ((fu - i as f32).clamp(0.0, 1.0), (fv - j as f32).clamp(0.0, 1.0));
+    if a + b <= 1.0 {
+        ([(i, j), (i + 1, j), (i, j + 1)], [1.0 - a - b, a, b])
+    } else {
+        ([(i + 1, j + 1), (i, j + 1), (i + 1, j)], [a + b - 1.0, 1.0 - a, 1.0 - b])
+    }
+}
+
+/// Barycentric blend of three guide strands (004 §2.5), translated so it
+/// starts at `root`, its offsets from the root scaled by `scale`.
+fn blend(tri: [&Vec<Vec3>; 3], w: [f32; 3], root: Vec3, scale: f32) -> Vec<Vec3> {
+    let n = tri.iter().map(|g| g.len()).min().unwrap_or(0);
+    if n == 0 {
+        return Vec::new();
+    }
+    let at = |k: usize| tri[0][k] * w[0] + tri[1][k] * w[1] + tri[2][k] * w[2];
+    let start = at(0);
+    (0..n).map(|k| root + (at(k) - start) * scale).collect()
+}
+
 fn interpolate_from_guides(spec: &GroomSpec, g: u32, strands: &mut Strands, lift_of: impl Fn(f32) -> f32) {
     let (rows, cols) = guide_grid(g);
     // Guides: grown with the mean length, with their own wave phase.
@@ -424,26 +453,10 @@ fn interpolate_from_guides(spec: &GroomSpec, g: u32, strands: &mut Strands, lift
         let mut rng = SplitMix64::stream(spec.seed, u64::from(s));
         let (u, v) = sample_root(spec, &mut rng);
         let lk = look(spec, &mut rng);
-        let fu = u * (rows - 1) as f32;
-        let fv = v * cols as f32;
-        let i = (fu.floor() as usize).min(rows - 2);
-        let j = (fv.floor() as usize).min(cols - 1);
-        let (a, b) = ((fu - i as f32).clamp(0.0, 1.0), (fv - j as f32).clamp(0.0, 1.0));
-        // cell (i,j)-(i+1,j+1) split along its diagonal into two triangles
-        let (tri, w) = if a + b <= 1.0 {
-            ([guide(i, j), guide(i + 1, j), guide(i, j + 1)], [1.0 - a - b, a, b])
-        } else {
-            ([guide(i + 1, j + 1), guide(i, j + 1), guide(i + 1, j)], [a + b - 1.0, 1.0 - a, 1.0 - b])
-        };
+        let (corners, w) = locate(u, v, rows, cols);
+        let tri = corners.map(|(i, j)| guide(i, j));
         let (root, _) = head_point(spec, scalp_dir(spec, u, v));
-        let blend0 = tri[0][0] * w[0] + tri[1][0] * w[1] + tri[2][0] * w[2];
-        let scale = lk.length / spec.length.max(1e-6);
-        let pts: Vec<Vec3> = (0..tri[0].len())
-            .map(|k| {
-                let p = tri[0][k] * w[0] + tri[1][k] * w[1] + tri[2][k] * w[2];
-                root + (p - blend0) * scale
-            })
-            .collect();
+        let pts = blend(tri, w, root, lk.length / spec.length.max(1e-6));
         push(strands, spec, &pts, &lk);
     }
 }
@@ -554,10 +567,45 @@ mod tests {
             assert!((head_level(&s, p[0]) - 1.0).abs() < 1e-3);
             assert!(p[p.len() - 1].y < p[0].y);
         }
-        // a strand whose root sits exactly on a guide root reproduces that
-        // guide (weights 1,0,0): check the blend on one cell corner directly
         let (rows, cols) = guide_grid(60);
         assert!(rows * cols >= 40 && rows >= 2 && cols >= 3);
+    }
+
+    #[test]
+    fn scalp_triangulation_gives_true_barycentric_coordinates() {
+        let (rows, cols) = (5, 8);
+        let mut rng = SplitMix64::new(3);
+        for _ in 0..1000 {
+            let (u, v) = (rng.next_f32(), rng.next_f32());
+            let (corners, w) = locate(u, v, rows, cols);
+            assert!(w.iter().all(|&x| x >= -1e-6), "{w:?}");
+            assert!((w.iter().sum::<f32>() - 1.0).abs() < 1e-5);
+            // the weighted corner parameters reproduce (u, v)
+            let mut pu = 0.0;
+            let mut pv = 0.0;
+            for ((i, j), wt) in corners.iter().zip(w) {
+                pu += wt * *i as f32 / (rows - 1) as f32;
+                pv += wt * *j as f32 / cols as f32;
+            }
+            assert!((pu - u).abs() < 1e-4 && (pv - v).abs() < 1e-4, "({u},{v}) -> ({pu},{pv})");
+        }
+    }
+
+    #[test]
+    fn blend_reproduces_guides_and_averages() {
+        let g0 = vec![Vec3::ZERO, Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.5, -2.0, 0.0)];
+        let g1 = vec![Vec3::X, Vec3::new(1.0, -1.0, 1.0), Vec3::new(1.0, -2.0, 2.0)];
+        let g2 = vec![Vec3::Z, Vec3::new(0.0, -1.0, 1.0), Vec3::new(0.0, -3.0, 1.0)];
+        // weight 1 on a guide: that guide, moved to the new root
+        let b = blend([&g0, &g1, &g2], [0.0, 1.0, 0.0], Vec3::X, 1.0);
+        assert_eq!(b, g1);
+        let b = blend([&g0, &g1, &g2], [1.0, 0.0, 0.0], Vec3::Y, 1.0);
+        assert_eq!(b, g0.iter().map(|p| *p + Vec3::Y).collect::<Vec<_>>());
+        // equal weights: the average shape
+        let w = 1.0 / 3.0;
+        let b = blend([&g0, &g1, &g2], [w, w, w], Vec3::ZERO, 1.0);
+        let avg_tip = (g0[2] + g1[2] + g2[2]) * w - (g0[0] + g1[0] + g2[0]) * w;
+        assert!((b[2] - avg_tip).length() < 1e-5);
     }
 
     #[test]
