@@ -1,1 +1,39 @@
-//! GPU executor.
+//! plait's wgpu executor: a compiled [`plait_graph::Schedule`] becomes command
+//! buffers. The device is headless and runs on whatever adapter exists (Mesa's
+//! lavapipe in CI); optional features are probed and used when present.
+
+pub mod device;
+pub mod executor;
+pub mod frame;
+pub mod geometry;
+pub mod pass;
+pub mod pool;
+pub mod readback;
+pub mod reflect;
+pub mod shader;
+
+pub use device::{Capabilities, Gpu, NO_ADAPTER_HELP};
+pub use executor::{FrameReport, PassTiming, Renderer};
+pub use pass::{PassLibrary, PassType};
+pub use shader::{Define, ShaderError, ShaderLibrary};
+
+/// Failures of the GPU side. Messages name the pass or shader at fault.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error("{0}")]
+    NoAdapter(String),
+    #[error("could not open the GPU device: {0}")]
+    Device(String),
+    #[error("pass `{pass}` needs the GPU feature {feature}, which adapter `{adapter}` lacks")]
+    MissingFeature { pass: String, feature: String, adapter: String },
+    #[error("resource `{resource}`: {message}")]
+    Resource { resource: String, message: String },
+    #[error("pass `{pass}`: {message}")]
+    Pass { pass: String, message: String },
+    #[error(transparent)]
+    Shader(#[from] ShaderError),
+    #[error("GPU validation error in pass `{pass}`: {message}")]
+    Validation { pass: String, message: String },
+    #[error("reading back `{resource}`: {message}")]
+    Readback { resource: String, message: String },
+}

@@ -1,1 +1,49 @@
-//! Pass library.
+//! plait's pass library: one Rust module and one WGSL file per pass type.
+//!
+//! [`library`] registers every pass type; [`check`] validates a compiled
+//! schedule against its shaders with naga (no GPU), which `plait check` and
+//! `plait render` both run before any GPU work.
+
+pub mod data_only;
+pub mod hair_shade;
+pub mod opaque_shade;
+pub mod shadow_map;
+pub mod spec_util;
+pub mod visibility;
+
+use plait_gpu::pass::{PassLibrary, check_pass};
+use plait_gpu::{ShaderError, ShaderLibrary};
+use plait_graph::{Errors, Schedule};
+
+/// Every pass type plait ships.
+pub fn library() -> PassLibrary {
+    let mut lib = PassLibrary::default();
+    lib.add(shadow_map::ShadowMap);
+    lib.add(opaque_shade::OpaqueShade);
+    lib.add(hair_shade::HairShade);
+    lib.add(data_only::Fullscreen);
+    lib.add(data_only::Compute);
+    lib
+}
+
+/// Check every pass (live and culled) against its shader with naga, and
+/// settle how the slots of data-only passes are accessed.
+pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Errors> {
+    let mut shaders = ShaderLibrary::new().map_err(shader_library_error)?;
+    let mut errors = Vec::new();
+    let resources = schedule.resources.clone();
+    let passes = schedule.passes.iter_mut().chain(schedule.culled.iter_mut().map(|c| &mut c.pass));
+    for pass in passes {
+        if let Some(t) = library.get(&pass.type_name) {
+            errors.extend(check_pass(t, pass, &resources, &mut shaders));
+        }
+    }
+    if errors.is_empty() { Ok(()) } else { Err(Errors(errors)) }
+}
+
+fn shader_library_error(e: ShaderError) -> Errors {
+    Errors(vec![plait_graph::Error::new(
+        plait_graph::Location::Builtin,
+        plait_graph::ErrorKind::Shader { path: e.path, message: e.message },
+    )])
+}

@@ -1,0 +1,108 @@
+//! A headless device on whatever adapter exists, with its optional features probed.
+
+use crate::GpuError;
+
+/// The message for a machine without any adapter: say how to get one.
+pub const NO_ADAPTER_HELP: &str = "no GPU adapter found. On a machine without a GPU install Mesa's \
+software Vulkan driver (lavapipe): `apt-get install -y mesa-vulkan-drivers` (Debian/Ubuntu). \
+`WGPU_BACKEND=gl` selects Mesa's llvmpipe OpenGL driver instead";
+
+/// Optional capabilities plait uses when the adapter has them.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct Capabilities {
+    /// Per-pass GPU timings (`TIMESTAMP_QUERY` + `TIMESTAMP_QUERY_INSIDE_ENCODERS`).
+    pub timestamps: bool,
+    /// Additive blending into 32-bit float targets (`FLOAT32_BLENDABLE`).
+    pub float32_blendable: bool,
+    /// `max_texture_dimension_2d` of the adapter.
+    pub max_texture_dimension: u32,
+}
+
+/// The device plait renders with.
+pub struct Gpu {
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub info: wgpu::AdapterInfo,
+    pub capabilities: Capabilities,
+}
+
+impl Gpu {
+    /// Open the best adapter: Vulkan first (lavapipe on CI), then GL; `WGPU_BACKEND` overrides.
+    pub fn new() -> Result<Gpu, GpuError> {
+        pollster::block_on(Self::new_async())
+    }
+
+    async fn new_async() -> Result<Gpu, GpuError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::VULKAN | wgpu::Backends::GL;
+        let instance = wgpu::Instance::new(desc.with_env());
+        let adapter = match instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: None,
+                apply_limit_buckets: false,
+            })
+            .await
+        {
+            Ok(a) => a,
+            Err(e) => return Err(GpuError::NoAdapter(format!("{NO_ADAPTER_HELP} ({e})"))),
+        };
+        let info = adapter.get_info();
+        let available = adapter.features();
+        let wanted = wgpu::Features::TIMESTAMP_QUERY
+            | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
+            | wgpu::Features::FLOAT32_BLENDABLE
+            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
+        let features = available & wanted;
+        let limits = adapter.limits();
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("plait"),
+                required_features: features,
+                required_limits: limits.clone(),
+                experimental_features: wgpu::ExperimentalFeatures::disabled(),
+                memory_hints: wgpu::MemoryHints::Performance,
+                trace: wgpu::Trace::Off,
+            })
+            .await
+            .map_err(|e| GpuError::Device(e.to_string()))?;
+        let timestamps = features.contains(
+            wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS,
+        );
+        let capabilities = Capabilities {
+            timestamps,
+            float32_blendable: features.contains(wgpu::Features::FLOAT32_BLENDABLE),
+            max_texture_dimension: limits.max_texture_dimension_2d,
+        };
+        Ok(Gpu { adapter, device, queue, info, capabilities })
+    }
+
+    /// `llvmpipe (LLVM 15.0.6, 256 bits)`.
+    pub fn adapter_name(&self) -> &str {
+        &self.info.name
+    }
+
+    /// `vulkan`, `gl`, …
+    pub fn backend_name(&self) -> String {
+        self.info.backend.to_str().to_owned()
+    }
+
+    /// Whether the adapter has a named optional feature (names as in `wgpu::Features`,
+    /// e.g. `FLOAT32_BLENDABLE`). Unknown names are reported as missing.
+    pub fn has_feature(&self, name: &str) -> bool {
+        match wgpu::Features::from_name(name) {
+            Some(f) => self.device.features().contains(f),
+            None => false,
+        }
+    }
+
+    /// Wait for all submitted work.
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| GpuError::Device(e.to_string()))
+    }
+}

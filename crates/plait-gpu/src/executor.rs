@@ -1,0 +1,248 @@
+//! Runs a compiled schedule: allocates the memory plan, builds every pass,
+//! records one command buffer with per-pass timestamps, reads outputs back.
+
+use std::path::Path;
+
+use plait_graph::{ResourceDesc, Schedule};
+use wgpu::util::DeviceExt;
+
+use crate::frame::FrameUniforms;
+use crate::geometry::SceneGeometry;
+use crate::pass::{BuildContext, PassLibrary, PreparedPass, RecordContext, frame_layout};
+use crate::pool::ResourcePool;
+use crate::readback::{TexelData, map_buffer, read_texture};
+use crate::shader::ShaderLibrary;
+use crate::{Gpu, GpuError};
+
+/// GPU time of one pass.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PassTiming {
+    pub name: String,
+    pub type_name: String,
+    /// `None` where the adapter has no timestamp queries.
+    pub gpu_ms: Option<f64>,
+}
+
+/// What one frame cost.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct FrameReport {
+    pub passes: Vec<PassTiming>,
+    /// First timestamp to last: the frame on the GPU (not the sum of passes,
+    /// which double-counts overlap on pipelined GPUs).
+    pub total_gpu_ms: Option<f64>,
+}
+
+struct Timestamps {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    period_ns: f32,
+}
+
+/// A schedule ready to render on a device.
+pub struct Renderer<'g> {
+    gpu: &'g Gpu,
+    schedule: Schedule,
+    pool: ResourcePool,
+    geometry: SceneGeometry,
+    frame_buffer: wgpu::Buffer,
+    frame_bind_group: wgpu::BindGroup,
+    passes: Vec<Box<dyn PreparedPass>>,
+    timestamps: Option<Timestamps>,
+}
+
+impl<'g> Renderer<'g> {
+    /// Allocate and build everything. `schedule` must have passed
+    /// [`crate::pass::check_pass`] for every pass (which settles dynamic slots).
+    pub fn new(
+        gpu: &'g Gpu,
+        schedule: Schedule,
+        library: &PassLibrary,
+        geometry: SceneGeometry,
+        frame: &FrameUniforms,
+        base_dir: &Path,
+    ) -> Result<Self, GpuError> {
+        let device = &gpu.device;
+        for r in &schedule.resources {
+            if let ResourceDesc::Texture { width, height, .. } = r.desc {
+                let max = gpu.capabilities.max_texture_dimension;
+                if width > max || height > max {
+                    return Err(GpuError::Resource {
+                        resource: r.name.clone(),
+                        message: format!("{width}x{height} exceeds the adapter's limit of {max}"),
+                    });
+                }
+            }
+        }
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let pool = ResourcePool::new(device, &schedule);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Resource { resource: "memory plan".into(), message: e.to_string() });
+        }
+        let frame_layout = frame_layout(device);
+        let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("plait frame"),
+            contents: bytemuck::bytes_of(frame),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let sampler = |filter, compare| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
+                mag_filter: filter,
+                min_filter: filter,
+                compare,
+                ..Default::default()
+            })
+        };
+        let linear = sampler(wgpu::FilterMode::Linear, None);
+        let nearest = sampler(wgpu::FilterMode::Nearest, None);
+        let shadow = sampler(wgpu::FilterMode::Linear, Some(wgpu::CompareFunction::LessEqual));
+        let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("plait frame"),
+            layout: &frame_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&linear) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&nearest) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&shadow) },
+            ],
+        });
+        let mut shaders = ShaderLibrary::new()?;
+        let mut passes = Vec::with_capacity(schedule.passes.len());
+        for pass in &schedule.passes {
+            let t = library.get(&pass.type_name).ok_or_else(|| GpuError::Pass {
+                pass: pass.name.clone(),
+                message: format!("no pass type `{}` in the library", pass.type_name),
+            })?;
+            let mut ctx = BuildContext {
+                device,
+                capabilities: &gpu.capabilities,
+                adapter_name: gpu.adapter_name(),
+                schedule: &schedule,
+                pool: &pool,
+                geometry: &geometry,
+                frame_layout: &frame_layout,
+                shaders: &mut shaders,
+                base_dir,
+            };
+            passes.push(t.build(pass, &mut ctx)?);
+        }
+        let timestamps = gpu.capabilities.timestamps.then(|| {
+            let count = (schedule.passes.len() as u32 + 1).max(2);
+            let size = count as u64 * 8;
+            Timestamps {
+                queries: device.create_query_set(&wgpu::QuerySetDescriptor {
+                    label: Some("pass timestamps"),
+                    ty: wgpu::QueryType::Timestamp,
+                    count,
+                }),
+                resolve: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("timestamp resolve"),
+                    size,
+                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                    mapped_at_creation: false,
+                }),
+                readback: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("timestamp readback"),
+                    size,
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                period_ns: gpu.queue.get_timestamp_period(),
+            }
+        });
+        Ok(Renderer { gpu, schedule, pool, geometry, frame_buffer, frame_bind_group, passes, timestamps })
+    }
+
+    pub fn schedule(&self) -> &Schedule {
+        &self.schedule
+    }
+
+    /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
+    pub fn set_frame(&self, frame: &FrameUniforms) {
+        self.gpu.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
+    }
+
+    /// Render one frame and wait for it; per-pass GPU times when the adapter has timestamps.
+    pub fn render(&self) -> Result<FrameReport, GpuError> {
+        let device = &self.gpu.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(&self.schedule.name) });
+        let ctx = RecordContext {
+            frame_bind_group: &self.frame_bind_group,
+            geometry: &self.geometry,
+            pool: &self.pool,
+            schedule: &self.schedule,
+        };
+        if let Some(ts) = &self.timestamps {
+            encoder.write_timestamp(&ts.queries, 0);
+        }
+        for (i, pass) in self.passes.iter().enumerate() {
+            encoder.push_debug_group(&self.schedule.passes[i].name);
+            pass.record(&ctx, &mut encoder);
+            encoder.pop_debug_group();
+            if let Some(ts) = &self.timestamps {
+                encoder.write_timestamp(&ts.queries, i as u32 + 1);
+            }
+        }
+        if let Some(ts) = &self.timestamps {
+            let n = self.passes.len() as u32 + 1;
+            encoder.resolve_query_set(&ts.queries, 0..n, &ts.resolve, 0);
+            encoder.copy_buffer_to_buffer(&ts.resolve, 0, &ts.readback, 0, n as u64 * 8);
+        }
+        self.gpu.queue.submit([encoder.finish()]);
+        self.gpu.wait()?;
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Validation { pass: self.schedule.name.clone(), message: e.to_string() });
+        }
+        let mut times: Option<Vec<u64>> = None;
+        if let Some(ts) = &self.timestamps {
+            let bytes = map_buffer(device, &ts.readback).map_err(|message| GpuError::Readback { resource: "timestamps".into(), message })?;
+            times = Some(bytes.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8]))).collect());
+        }
+        let ms = |a: u64, b: u64, period: f32| b.saturating_sub(a) as f64 * period as f64 / 1e6;
+        let period = self.timestamps.as_ref().map(|t| t.period_ns).unwrap_or(1.0);
+        let passes = self
+            .schedule
+            .passes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| PassTiming {
+                name: p.name.clone(),
+                type_name: p.type_name.clone(),
+                gpu_ms: times.as_ref().map(|t| ms(t[i], t[i + 1], period)),
+            })
+            .collect();
+        let total_gpu_ms = times.as_ref().map(|t| ms(t[0], t[self.passes.len()], period));
+        Ok(FrameReport { passes, total_gpu_ms })
+    }
+
+    /// Read a texture resource back (layer 0; multisampled textures cannot be read).
+    pub fn read_resource(&self, name: &str) -> Result<TexelData, GpuError> {
+        let id = self.schedule.resource(name).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "no such resource".into() })?;
+        let ResourceDesc::Texture { format, samples, .. } = self.schedule.resources[id].desc else {
+            return Err(GpuError::Readback { resource: name.into(), message: "only textures can be read back as images".into() });
+        };
+        if samples > 1 {
+            return Err(GpuError::Readback { resource: name.into(), message: "a multisampled texture must be resolved first".into() });
+        }
+        let (texture, _) = self.pool.texture(id).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "not a texture".into() })?;
+        read_texture(&self.gpu.device, &self.gpu.queue, texture, format, name)
+    }
+
+    /// Read a buffer resource back as bytes.
+    pub fn read_buffer(&self, name: &str) -> Result<Vec<u8>, GpuError> {
+        let id = self.schedule.resource(name).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "no such resource".into() })?;
+        let buffer = self.pool.buffer(id).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "not a buffer".into() })?;
+        let device = &self.gpu.device;
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("buffer readback"),
+            size: buffer.size(),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+        self.gpu.queue.submit([encoder.finish()]);
+        map_buffer(device, &staging).map_err(|message| GpuError::Readback { resource: name.into(), message })
+    }
+}

@@ -1,0 +1,138 @@
+//! The frame's standard inputs (group 0 of every pass), computed from the scene.
+
+use glam::{Mat4, Vec3};
+use plait_hair::Aabb;
+use plait_hair::scene::{Background, LightKind, Scene};
+
+/// Mirrors `struct Frame` in `shaders/lib/frame.wgsl`; every member is 16-byte
+/// aligned so the Rust and WGSL layouts agree without padding rules.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniforms {
+    pub camera_view_proj: [[f32; 4]; 4],
+    pub camera_view: [[f32; 4]; 4],
+    pub camera_inv_view_proj: [[f32; 4]; 4],
+    pub light_view_proj: [[f32; 4]; 4],
+    pub light_view: [[f32; 4]; 4],
+    pub camera_position: [f32; 4],
+    pub light_direction: [f32; 4],
+    pub light_position: [f32; 4],
+    pub light_color: [f32; 4],
+    pub hair_color: [f32; 4],
+    pub hair_shading: [f32; 4],
+    pub background: [f32; 4],
+    pub ambient: [f32; 4],
+    pub screen_size: [f32; 4],
+    pub jitter: [f32; 4],
+    pub near_far: [f32; 4],
+}
+
+/// Size of `FrameUniforms` in bytes (also checked against the WGSL struct by a test).
+pub const FRAME_UNIFORMS_SIZE: u64 = std::mem::size_of::<FrameUniforms>() as u64;
+
+fn v4(v: Vec3, w: f32) -> [f32; 4] {
+    [v.x, v.y, v.z, w]
+}
+
+impl FrameUniforms {
+    /// Standard inputs for rendering `scene` at `size`, with light maps fitted to
+    /// the hair (occluders) and the whole scene (receivers).
+    pub fn new(scene: &Scene, hair_bounds: Aabb, scene_bounds: Aabb, size: (u32, u32), frame_index: u32) -> Self {
+        let aspect = size.0 as f32 / size.1.max(1) as f32;
+        let view = scene.camera.view();
+        let proj = scene.camera.projection(aspect);
+        let view_proj = proj * view;
+        let light = LightFrustum::fit(scene, hair_bounds, scene_bounds);
+        let to_light = scene.light.direction_to_light();
+        let (light_dir_w, light_pos) = match &scene.light.kind {
+            LightKind::Directional { .. } => (0.0, Vec3::ZERO),
+            LightKind::Spot { position, .. } => (1.0, Vec3::from(*position)),
+        };
+        let light_color = Vec3::from(scene.light.color) * scene.light.intensity;
+        let m = &scene.material;
+        let background = match &scene.background {
+            Background::Color(c) => Vec3::from(*c),
+            Background::Image(_) => Vec3::ZERO,
+        };
+        FrameUniforms {
+            camera_view_proj: view_proj.to_cols_array_2d(),
+            camera_view: view.to_cols_array_2d(),
+            camera_inv_view_proj: view_proj.inverse().to_cols_array_2d(),
+            light_view_proj: (light.projection * light.view).to_cols_array_2d(),
+            light_view: light.view.to_cols_array_2d(),
+            camera_position: v4(Vec3::from(scene.camera.eye), 1.0),
+            light_direction: v4(to_light, light_dir_w),
+            light_position: v4(light_pos, 1.0),
+            light_color: v4(light_color, 1.0),
+            hair_color: v4(Vec3::from(m.color), m.alpha),
+            hair_shading: [m.diffuse, m.specular, m.specular_exponent, m.specular_shift],
+            background: v4(background, 1.0),
+            ambient: v4(Vec3::splat(scene.ambient), 1.0),
+            screen_size: [size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32],
+            jitter: [0.0, 0.0, 0.0, frame_index as f32],
+            near_far: [scene.camera.near, scene.camera.far, light.near, light.far],
+        }
+    }
+
+    pub fn camera_view_proj(&self) -> Mat4 {
+        Mat4::from_cols_array_2d(&self.camera_view_proj)
+    }
+}
+
+/// The light's view and projection, fitted tightly to the hair so the light
+/// maps spend their texels on it (Halén & Wester, 004_51cca5cde985008c.txt §5.7):
+/// x/y cover the occluders, depth runs from the nearest occluder to the farthest
+/// receiver so hair shadows reach the ground.
+#[derive(Clone, Copy, Debug)]
+pub struct LightFrustum {
+    pub view: Mat4,
+    pub projection: Mat4,
+    /// Distances from the light along its axis, in world units.
+    pub near: f32,
+    pub far: f32,
+}
+
+impl LightFrustum {
+    pub fn fit(scene: &Scene, occluders: Aabb, receivers: Aabb) -> Self {
+        let all = occluders.union(&receivers);
+        let radius = all.extent().length().max(1e-3);
+        let to_light = scene.light.direction_to_light().normalize_or(Vec3::Y);
+        let (eye, forward) = match &scene.light.kind {
+            LightKind::Directional { .. } => (occluders.center() + to_light * radius * 2.0, -to_light),
+            LightKind::Spot { position, .. } => {
+                let p = Vec3::from(*position);
+                (p, (occluders.center() - p).normalize_or(-to_light))
+            }
+        };
+        let up = if forward.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
+        let view = Mat4::look_to_rh(eye, forward, up);
+        let to_view = |p: Vec3| view.transform_point3(p);
+        let occ: Vec<Vec3> = occluders.corners().into_iter().map(to_view).collect();
+        let rec: Vec<Vec3> = receivers.corners().into_iter().map(to_view).collect();
+        let near = occ.iter().map(|p| -p.z).fold(f32::INFINITY, f32::min).max(1e-3);
+        let far = rec.iter().chain(occ.iter()).map(|p| -p.z).fold(0.0, f32::max).max(near + 1e-3);
+        let projection = match &scene.light.kind {
+            LightKind::Directional { .. } => {
+                let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+                for p in &occ {
+                    lo = lo.min(*p);
+                    hi = hi.max(*p);
+                }
+                // A small margin keeps strands on the border inside the map.
+                let pad = (hi - lo).max_element() * 0.02;
+                Mat4::orthographic_rh(lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad, near, far)
+            }
+            LightKind::Spot { cone_degrees, .. } => {
+                let fitted = occ
+                    .iter()
+                    .map(|p| (p.x.abs().max(p.y.abs()) / (-p.z).max(1e-3)).atan())
+                    .fold(0.0, f32::max)
+                    * 2.0
+                    * 1.04;
+                let fov = fitted.min(cone_degrees.to_radians()).max(1e-3);
+                Mat4::perspective_rh(fov, 1.0, near, far)
+            }
+        };
+        LightFrustum { view, projection, near, far }
+    }
+}

@@ -1,0 +1,103 @@
+//! Shader composition with naga_oil: `#import plait::frame`, `#ifdef`, params as defines.
+//!
+//! Library modules live in `shaders/lib/` and are compiled into the binary, so
+//! a pass shader anywhere on disk can import them. Errors carry the shader's
+//! path and naga's diagnostic with line and column.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use naga_oil::compose::{
+    ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue, ShaderLanguage,
+    ShaderType,
+};
+
+/// A WGSL module importable by every shader, as `(file name, source)`.
+pub const LIBRARY_MODULES: &[(&str, &str)] = &[
+    ("shaders/lib/frame.wgsl", include_str!("../../../shaders/lib/frame.wgsl")),
+    ("shaders/lib/kajiya_kay.wgsl", include_str!("../../../shaders/lib/kajiya_kay.wgsl")),
+    ("shaders/lib/shadow.wgsl", include_str!("../../../shaders/lib/shadow.wgsl")),
+    ("shaders/lib/visibility/none.wgsl", include_str!("../../../shaders/lib/visibility/none.wgsl")),
+    (
+        "shaders/lib/visibility/modified_shadow_map.wgsl",
+        include_str!("../../../shaders/lib/visibility/modified_shadow_map.wgsl"),
+    ),
+];
+
+/// A shader that failed to parse, compose or validate.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{message}")]
+pub struct ShaderError {
+    pub path: PathBuf,
+    /// naga's diagnostic, naming the file, line and column.
+    pub message: String,
+}
+
+/// A define passed to a shader: `#ifdef NAME` / `#if NAME == 3`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Define {
+    Bool(bool),
+    Int(i32),
+    UInt(u32),
+}
+
+/// The composer with plait's library modules loaded.
+pub struct ShaderLibrary {
+    composer: Composer,
+}
+
+impl ShaderLibrary {
+    pub fn new() -> Result<Self, ShaderError> {
+        let mut composer = Composer::default().with_capabilities(naga::valid::Capabilities::all());
+        composer.validate = true;
+        // Library modules import each other; naga_oil needs them added in dependency
+        // order, and LIBRARY_MODULES is kept in that order.
+        for (path, source) in LIBRARY_MODULES {
+            let added = composer.add_composable_module(ComposableModuleDescriptor {
+                    source,
+                    file_path: path,
+                    language: ShaderLanguage::Wgsl,
+                    as_name: None,
+                    additional_imports: &[],
+                    shader_defs: HashMap::new(),
+                });
+            if let Err(e) = added {
+                return Err(ShaderError { path: PathBuf::from(path), message: e.emit_to_string(&composer) });
+            }
+        }
+        Ok(ShaderLibrary { composer })
+    }
+
+    /// Compose and validate a shader. `path` is only used in messages.
+    pub fn compose(
+        &mut self,
+        path: &Path,
+        source: &str,
+        defines: &[(String, Define)],
+    ) -> Result<naga::Module, ShaderError> {
+        let shader_defs = defines
+            .iter()
+            .map(|(k, v)| {
+                let v = match *v {
+                    Define::Bool(b) => ShaderDefValue::Bool(b),
+                    Define::Int(i) => ShaderDefValue::Int(i),
+                    Define::UInt(u) => ShaderDefValue::UInt(u),
+                };
+                (k.clone(), v)
+            })
+            .collect();
+        let file_path = path.display().to_string();
+        self.composer
+            .make_naga_module(NagaModuleDescriptor {
+                source,
+                file_path: &file_path,
+                shader_type: ShaderType::Wgsl,
+                shader_defs,
+                additional_imports: &[],
+            })
+            .map_err(|e| ShaderError {
+                path: path.to_owned(),
+                message: e.emit_to_string(&self.composer),
+            })
+    }
+}

@@ -1,0 +1,37 @@
+//! `opaque_shade`: the head and the ground, Lambert-lit, shadowed by the opaque
+//! shadow map and by hair through the visibility provider
+//! (000_785589f319b01ef5.txt §3.5).
+
+use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_graph::{Access, PassShape, PassTypeSpec};
+
+use crate::spec_util::{DEPTH, HDR, texture};
+use crate::visibility;
+
+pub struct OpaqueShade;
+
+impl PassType for OpaqueShade {
+    fn spec(&self) -> PassTypeSpec {
+        let mut inputs = vec![texture("shadow_map", Access::Sampled, DEPTH, "opaque shadow map from the light")];
+        inputs.extend(visibility::slots());
+        PassTypeSpec {
+            name: "opaque_shade".into(),
+            description: "Lambert shading of opaque geometry with opaque and hair shadows.".into(),
+            source: "000_785589f319b01ef5.txt §3.5".into(),
+            shape: PassShape::Raster,
+            inputs,
+            outputs: vec![
+                texture("color", Access::ColorTarget, HDR, "linear premultiplied colour, alpha 1 on geometry"),
+                texture("depth", Access::DepthTarget, DEPTH, "camera depth of opaque geometry"),
+            ],
+            params: visibility::params(),
+            dynamic_slots: false,
+            needs_shader: false,
+            required_features: vec![],
+        }
+    }
+
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(("shaders/passes/opaque_shade.wgsl", include_str!("../../../shaders/passes/opaque_shade.wgsl")))
+    }
+}

@@ -1,0 +1,18 @@
+// compose_over: a data-only fullscreen pass (no Rust). The premultiplied scene
+// colour goes over the background colour; the sRGB target encodes the output.
+// Bindings are matched by name to the pass's `reads`; the output is the pass's
+// one colour target in `writes`.
+#import plait::frame::{frame, fullscreen_position}
+
+@group(1) @binding(0) var scene: texture_2d<f32>;
+
+@vertex
+fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
+    return fullscreen_position(index);
+}
+
+@fragment
+fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
+    let c = textureLoad(scene, vec2<i32>(pixel.xy), 0);
+    return vec4<f32>(c.rgb + (1.0 - c.a) * frame.background.rgb, 1.0);
+}

@@ -1,0 +1,79 @@
+// plait::frame — the standard inputs every pass gets at group 0.
+//
+// Keep in sync with `FrameUniforms` in crates/plait-gpu/src/frame.rs (a test
+// compares the two layouts through naga's reflection).
+#define_import_path plait::frame
+
+struct Frame {
+    camera_view_proj: mat4x4<f32>,
+    camera_view: mat4x4<f32>,
+    camera_inv_view_proj: mat4x4<f32>,
+    light_view_proj: mat4x4<f32>,
+    light_view: mat4x4<f32>,
+    // xyz: eye position in world space.
+    camera_position: vec4<f32>,
+    // xyz: unit vector from the scene towards a directional light; w = 1 for a spot light.
+    light_direction: vec4<f32>,
+    // xyz: position of a spot light.
+    light_position: vec4<f32>,
+    // rgb: light colour times intensity.
+    light_color: vec4<f32>,
+    // rgb: hair base colour; a: strand alpha scale.
+    hair_color: vec4<f32>,
+    // Kajiya-Kay: x = diffuse kd, y = specular ks, z = specular exponent, w = specular shift.
+    hair_shading: vec4<f32>,
+    // rgb: background colour.
+    background: vec4<f32>,
+    // rgb: ambient light.
+    ambient: vec4<f32>,
+    // xy: render size in pixels; zw: 1 / size.
+    screen_size: vec4<f32>,
+    // xy: sub-pixel jitter in light-map texels (000_785589f319b01ef5.txt Fig. 9); z: time in s; w: frame index.
+    jitter: vec4<f32>,
+    // x, y: camera near and far; z, w: light near and far (world units).
+    near_far: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var linear_sampler: sampler;
+@group(0) @binding(2) var nearest_sampler: sampler;
+@group(0) @binding(3) var shadow_sampler: sampler_comparison;
+
+// The view a raster pass draws from: the engine defines LIGHT_VIEW for `view = "light"`.
+fn view_proj() -> mat4x4<f32> {
+#ifdef LIGHT_VIEW
+    return frame.light_view_proj;
+#else
+    return frame.camera_view_proj;
+#endif
+}
+
+// Light-space texture coordinate (0..1, y down) and the depth a depth target
+// rendered from the light stores for a world-space point.
+fn light_uv_depth(world: vec3<f32>) -> vec3<f32> {
+    let clip = frame.light_view_proj * vec4<f32>(world, 1.0);
+    let ndc = clip.xyz / clip.w;
+    return vec3<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5, ndc.z);
+}
+
+// Distance along the light's axis, 0 at its near plane and 1 at its far plane.
+// Equal to the stored depth for a directional light (orthographic); linear for
+// a spot light too, where stored depth is not.
+fn light_linear_depth(world: vec3<f32>) -> f32 {
+    let view_z = -(frame.light_view * vec4<f32>(world, 1.0)).z;
+    return (view_z - frame.near_far.z) / (frame.near_far.w - frame.near_far.z);
+}
+
+// Unit vector from a world-space point towards the light.
+fn to_light(world: vec3<f32>) -> vec3<f32> {
+    if (frame.light_direction.w > 0.5) {
+        return normalize(frame.light_position.xyz - world);
+    }
+    return frame.light_direction.xyz;
+}
+
+// The vertex of a triangle covering the whole target (draw 3 vertices).
+fn fullscreen_position(vertex_index: u32) -> vec4<f32> {
+    let uv = vec2<f32>(f32((vertex_index << 1u) & 2u), f32(vertex_index & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}

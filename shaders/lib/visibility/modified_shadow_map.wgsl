@@ -1,0 +1,29 @@
+// plait::visibility::modified_shadow_map — one depth map of the nearest hair from
+// the light; transmittance exp(-k Δz) with Δz the distance behind that hair.
+// Halén & Wester 2007, 004_51cca5cde985008c.txt §3.3.2 ("modified shadow map").
+// Cheap (one depth texture), but it cannot tell sparse hair from dense hair.
+#define_import_path plait::visibility::modified_shadow_map
+
+#import plait::frame::{frame, light_uv_depth}
+
+// Nearest hair depth from the light (a `shadow_map` pass drawing hair).
+@group(1) @binding(8) var vis_depth: texture_depth_2d;
+
+struct VisibilityParams {
+    // Extinction per world unit of hair volume behind the first strand.
+    density: f32,
+}
+@group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
+
+fn hair_visibility(world: vec3<f32>) -> f32 {
+    let p = light_uv_depth(world);
+    if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
+        return 1.0;
+    }
+    let size = vec2<f32>(textureDimensions(vis_depth));
+    let texel = vec2<i32>(clamp(p.xy * size, vec2<f32>(0.0), size - 1.0));
+    let first = textureLoad(vis_depth, texel, 0);
+    // Orthographic light: stored depth is linear, so the difference scales to world units.
+    let behind = max(0.0, p.z - first) * (frame.near_far.w - frame.near_far.z);
+    return exp(-visibility_params.density * behind);
+}

@@ -1,0 +1,56 @@
+// hair_shade: Kajiya-Kay shading of hair fragments (004_51cca5cde985008c.txt §3.2.1),
+// shadowed by opaque objects (000_785589f319b01ef5.txt §3.5) and by the hair
+// itself through the visibility provider chosen by the `visibility` param,
+// blended into the colour target by the `blend` param.
+#import plait::frame::{frame, view_proj, to_light}
+#import plait::kajiya_kay::kajiya_kay
+#import plait::shadow::opaque_shadow
+#ifdef VISIBILITY_MODIFIED_SHADOW_MAP
+#import plait::visibility::modified_shadow_map::hair_visibility
+#else
+#import plait::visibility::none::hair_visibility
+#endif
+
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) thickness: f32,
+    @location(2) tangent: vec3<f32>,
+    @location(3) alpha: f32,
+    @location(4) color: vec3<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) tangent: vec3<f32>,
+    @location(2) color: vec3<f32>,
+    @location(3) alpha: f32,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.world = v.position;
+    out.tangent = v.tangent;
+    out.color = v.color;
+    out.alpha = v.alpha;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    let tangent = normalize(in.tangent);
+    let l = to_light(in.world);
+    let e = normalize(frame.camera_position.xyz - in.world);
+    let s = frame.hair_shading;
+    let kk = kajiya_kay(tangent, l, e, s.x, s.y, s.z, s.w);
+    let visibility = hair_visibility(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
+    let base = in.color * frame.hair_color.rgb;
+    let rgb = frame.light_color.rgb * (base * kk.x + vec3<f32>(kk.y)) * visibility + frame.ambient.rgb * base;
+    let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
+    // Premultiplied: the blend state composites "over" what is already there.
+    return vec4<f32>(rgb * alpha, alpha);
+}

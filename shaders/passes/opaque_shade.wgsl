@@ -1,0 +1,48 @@
+// opaque_shade: the head and the ground, Lambert-lit, shadowed by the opaque
+// shadow map and by the hair through the visibility provider
+// (000_785589f319b01ef5.txt §3.5: hair shadows on opaque objects come from the
+// same light maps the hair uses for itself).
+#import plait::frame::{frame, view_proj, to_light}
+#import plait::shadow::opaque_shadow
+#ifdef VISIBILITY_MODIFIED_SHADOW_MAP
+#import plait::visibility::modified_shadow_map::hair_visibility
+#else
+#import plait::visibility::none::hair_visibility
+#endif
+
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) albedo: vec3<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) albedo: vec3<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.world = v.position;
+    out.normal = v.normal;
+    out.albedo = v.albedo;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    let n = normalize(in.normal);
+    let l = to_light(in.world);
+    let lambert = max(dot(n, l), 0.0);
+    // Slope-scaled bias against acne on surfaces grazing the light.
+    let bias = 0.001 + 0.004 * (1.0 - lambert);
+    let visibility = opaque_shadow(shadow_map, in.world, bias) * hair_visibility(in.world);
+    let rgb = in.albedo * (frame.light_color.rgb * lambert * visibility + frame.ambient.rgb);
+    return vec4<f32>(rgb, 1.0);
+}

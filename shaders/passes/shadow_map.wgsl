@@ -1,0 +1,13 @@
+// shadow_map: depth of the drawn geometry from the pass's view, no colour.
+// Used for the opaque shadow map (000_785589f319b01ef5.txt §3.5) and, drawing
+// hair, for the modified shadow map's nearest-hair depth (004_51cca5cde985008c.txt §3.3.2).
+#import plait::frame::view_proj
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> @builtin(position) vec4<f32> {
+    return view_proj() * vec4<f32>(v.position, 1.0);
+}
