@@ -1,1 +1,60 @@
-fn main() {}
+//! `plait`: render, check, graph and compare strand-hair pipelines that are data.
+//!
+//! Every error a user can cause (a pipeline file, a shader, a scene, a `.hair`
+//! file, a flag) is printed as `error: …` naming the file and line or the flag,
+//! and exits with code 2; no output file is left half-written.
+
+mod hair_cmd;
+mod output;
+mod pipeline_cmd;
+mod render_cmd;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "plait", version, about = "Real-time strand-hair render pipelines as data")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a pipeline on a scene to a PNG and print per-pass GPU times.
+    Render(render_cmd::RenderArgs),
+    /// Validate pipeline files without a GPU (names, types, formats, cycles, shader bindings).
+    Check(pipeline_cmd::CheckArgs),
+    /// Print the compiled schedule as Graphviz DOT, or write it as SVG.
+    Graph(pipeline_cmd::GraphArgs),
+    /// List the registered pass types with their inputs, outputs and params.
+    Passes(pipeline_cmd::PassesArgs),
+    /// Inspect and generate `.hair` files.
+    Hair(hair_cmd::HairArgs),
+}
+
+fn main() {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            // clap exits 2 on usage errors and 0 for --help/--version.
+            e.exit();
+        }
+    };
+    let result = match cli.command {
+        Command::Render(args) => render_cmd::run(args),
+        Command::Check(args) => pipeline_cmd::check(args),
+        Command::Graph(args) => pipeline_cmd::graph(args),
+        Command::Passes(args) => pipeline_cmd::passes(args),
+        Command::Hair(args) => hair_cmd::run(args),
+    };
+    if let Err(e) = result {
+        // `Errors` already prefixes each line with `error:`.
+        let text = format!("{e:#}");
+        if text.starts_with("error:") {
+            eprintln!("{text}");
+        } else {
+            eprintln!("error: {text}");
+        }
+        std::process::exit(2);
+    }
+}

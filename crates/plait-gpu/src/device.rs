@@ -34,20 +34,41 @@ impl Gpu {
     }
 
     async fn new_async() -> Result<Gpu, GpuError> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::VULKAN | wgpu::Backends::GL;
-        let instance = wgpu::Instance::new(desc.with_env());
-        let adapter = match instance
-            .request_adapter(&wgpu::RequestAdapterOptions {
-                power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: false,
-                compatible_surface: None,
-                apply_limit_buckets: false,
-            })
-            .await
-        {
-            Ok(a) => a,
-            Err(e) => return Err(GpuError::NoAdapter(format!("{NO_ADAPTER_HELP} ({e})"))),
+        // Vulkan first (lavapipe on CI); GL (llvmpipe) only when Vulkan has no
+        // adapter, since probing EGL prints noise on headless machines.
+        // WGPU_BACKEND picks one explicitly.
+        let explicit = wgpu::Backends::from_env();
+        let tries = match explicit {
+            Some(b) => vec![b],
+            None => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
+        };
+        let mut last_error = String::from("no backend tried");
+        let mut found = None;
+        for backends in tries {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+            desc.backends = backends;
+            // Debug labels (VK_EXT_debug_utils) crash Mesa 22's lavapipe in
+            // vkCmdBeginDebugUtilsLabelEXT; they are opt-in with WGPU_DEBUG=1.
+            desc.flags = wgpu::InstanceFlags::empty().with_env();
+            let instance = wgpu::Instance::new(desc);
+            match instance
+                .request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::HighPerformance,
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    apply_limit_buckets: false,
+                })
+                .await
+            {
+                Ok(a) => {
+                    found = Some(a);
+                    break;
+                }
+                Err(e) => last_error = e.to_string(),
+            }
+        }
+        let Some(adapter) = found else {
+            return Err(GpuError::NoAdapter(format!("{NO_ADAPTER_HELP} ({last_error})")));
         };
         let info = adapter.get_info();
         let available = adapter.features();

@@ -91,12 +91,18 @@ fn storage_format(f: naga::StorageFormat) -> Option<Format> {
     })
 }
 
+/// naga_oil renames items imported from a module to `nameX_naga_oil_mod_X<path>X`;
+/// bindings are matched by the name the author wrote.
+pub fn plain_name(name: &str) -> &str {
+    name.split("X_naga_oil_mod_X").next().unwrap_or(name)
+}
+
 /// Every resource binding of a module, sorted by group and binding.
 pub fn bindings(module: &Module) -> Vec<ShaderBinding> {
     let mut out = Vec::new();
     for (_, var) in module.global_variables.iter() {
         let Some(rb) = &var.binding else { continue };
-        let name = var.name.clone().unwrap_or_default();
+        let name = plain_name(var.name.as_deref().unwrap_or_default()).to_owned();
         let inner = &module.types[var.ty].inner;
         let kind = match (var.space, inner) {
             (AddressSpace::Uniform, _) => BindingKind::Uniform { size: inner.size(module.to_ctx()) as u64 },
@@ -154,7 +160,7 @@ pub fn params_layout(module: &Module, name: &str) -> Option<(u64, Vec<ParamMembe
     let (_, var) = module
         .global_variables
         .iter()
-        .find(|(_, v)| v.name.as_deref() == Some(name) && v.space == AddressSpace::Uniform)?;
+        .find(|(_, v)| v.name.as_deref().map(plain_name) == Some(name) && v.space == AddressSpace::Uniform)?;
     let ty = &module.types[var.ty];
     let TypeInner::Struct { members, span } = &ty.inner else { return None };
     let mut out = Vec::new();

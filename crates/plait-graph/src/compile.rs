@@ -182,6 +182,12 @@ fn resolve_pass(
     let mut params = IndexMap::new();
     if let Some(spec) = spec {
         for (name, value) in &decl.params {
+            if spec.dynamic_slots {
+                // Data-only passes: params are whatever the shader's `params`
+                // uniform declares, checked against naga's reflection later.
+                params.insert(name.clone(), value.value.clone());
+                continue;
+            }
             let Some(param) = spec.params.iter().find(|p| &p.name == name) else {
                 let known: Vec<_> = spec.params.iter().map(|p| p.name.as_str()).collect();
                 errors.push(Error::new(
@@ -221,12 +227,14 @@ fn resolve_pass(
                 ));
             }
         }
-        params = ordered;
+        if !spec.dynamic_slots {
+            params = ordered;
+        }
 
         if spec.shape == PassShape::Raster {
             for (field, value) in [("view", &decl.view), ("draw", &decl.draw)] {
                 if value.is_none() {
-                    let hint = if field == "view" { "light | camera" } else { "hair | opaque | all" };
+                    let hint = if field == "view" { "light | camera" } else { "hair | opaque" };
                     errors.push(pass_error(
                         &decl.location,
                         format!("type `{}` rasterizes geometry and needs `{field} = ` {hint}", spec.name),

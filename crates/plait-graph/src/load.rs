@@ -496,7 +496,7 @@ const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
 const BUFFER_KEYS: &[&str] = &["kind", "size"];
 const PASS_KEYS: &[&str] = &["type", "view", "draw", "reads", "writes", "params", "shader", "enabled"];
 const VIEWS: &[&str] = &["light", "camera"];
-const DRAWS: &[&str] = &["hair", "opaque", "all"];
+const DRAWS: &[&str] = &["hair", "opaque"];
 
 struct Builder<'e> {
     errors: &'e mut Vec<Error>,

@@ -1,0 +1,43 @@
+//! Output files written all at once: a temporary file beside the target,
+//! renamed into place only when complete, so a failure or an interrupt never
+//! leaves a half-written file. The temporary file is created before any GPU
+//! work, so an unwritable path fails at once.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+
+pub struct PendingFile {
+    path: PathBuf,
+    temp: tempfile::NamedTempFile,
+}
+
+impl PendingFile {
+    /// Reserve `path`; `flag` names the option in the error (`--out`).
+    pub fn create(path: &Path, flag: &str) -> Result<Self> {
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        if path.is_dir() {
+            anyhow::bail!("{flag} {}: is a directory", path.display());
+        }
+        let temp = tempfile::Builder::new()
+            .prefix(".plait-")
+            .tempfile_in(&dir)
+            .with_context(|| format!("{flag} {}: cannot write in {}", path.display(), dir.display()))?;
+        Ok(PendingFile { path: path.to_path_buf(), temp })
+    }
+
+
+    /// Write the whole content and move it into place.
+    pub fn commit(mut self, bytes: &[u8]) -> Result<()> {
+        self.temp.write_all(bytes).with_context(|| format!("writing {}", self.path.display()))?;
+        self.temp.as_file().sync_all().ok();
+        self.temp
+            .persist(&self.path)
+            .map_err(|e| anyhow::anyhow!("cannot write {}: {}", self.path.display(), e.error))?;
+        Ok(())
+    }
+}

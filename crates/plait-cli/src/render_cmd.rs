@@ -1,0 +1,190 @@
+//! `plait render`: one pipeline, one scene, one PNG, a per-pass table.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use plait_gpu::frame::FrameUniforms;
+use plait_gpu::geometry::SceneGeometry;
+use plait_gpu::{FrameReport, Gpu, Renderer};
+use plait_graph::{CompileOptions, Schedule};
+use plait_hair::scene::Scene;
+
+use crate::output::PendingFile;
+use crate::pipeline_cmd::{SetArgs, compile_checked, resolve_pipeline};
+
+#[derive(Args)]
+pub struct RenderArgs {
+    /// Pipeline file (default: the occupancy-map pipeline).
+    pipeline: Option<PathBuf>,
+    /// Scene file (default: the built-in scene).
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Where to write the image.
+    #[arg(long, default_value = "plait.png")]
+    out: PathBuf,
+    /// Render size, `WIDTHxHEIGHT`.
+    #[arg(long, value_parser = parse_size, default_value = "960x720")]
+    size: (u32, u32),
+    /// Print one JSON object on standard output instead of the table.
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    set: SetArgs,
+}
+
+/// `--size 960x720`.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{text}` is not WIDTHxHEIGHT (e.g. 960x720)");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err(format!("`{text}`: width and height must be 1..=16384"));
+    }
+    Ok((w, h))
+}
+
+/// A rendered frame with everything the report needs.
+pub struct Rendered {
+    pub schedule: Schedule,
+    pub report: FrameReport,
+    pub image: image::RgbaImage,
+    pub adapter: String,
+    pub backend: String,
+}
+
+pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
+    match path {
+        Some(p) => Ok(Scene::load(p)?),
+        None => Ok(Scene::builtin_default()),
+    }
+}
+
+/// Render `pipeline` on `scene` at `size`: compile and check without the GPU
+/// first, then open the device, build, render one frame, read the first output.
+pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32)) -> Result<Rendered> {
+    // Everything that can fail without a GPU fails before one is opened.
+    compile_checked(pipeline, sets, &CompileOptions { screen: size, ..CompileOptions::default() })?;
+    let strands = scene.strands()?;
+    let meshes = scene.opaque_meshes();
+    let gpu = Gpu::new()?;
+    let opts = CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension };
+    let schedule = compile_checked(pipeline, sets, &opts)?;
+    let output = schedule
+        .outputs
+        .first()
+        .map(|&id| schedule.resources[id].name.clone())
+        .context("the pipeline has no output")?;
+    let hair_bounds = strands.bounds();
+    let scene_bounds = scene.opaque_bounds().union(&hair_bounds);
+    let frame = FrameUniforms::new(scene, hair_bounds, scene_bounds, size, 0);
+    let geometry = SceneGeometry::upload(&gpu.device, &strands, &meshes);
+    let base_dir = pipeline.parent().unwrap_or(Path::new("."));
+    let renderer = Renderer::new(&gpu, schedule.clone(), &plait_passes::library(), geometry, &frame, base_dir)?;
+    // The first frame includes pipeline warm-up in the driver; time the second.
+    renderer.render()?;
+    let report = renderer.render()?;
+    let image = renderer.read_resource(&output)?.to_image();
+    Ok(Rendered { schedule, report, image, adapter: gpu.adapter_name().to_owned(), backend: gpu.backend_name() })
+}
+
+pub fn run(args: RenderArgs) -> Result<()> {
+    let out = PendingFile::create(&args.out, "--out")?;
+    let pipeline = resolve_pipeline(args.pipeline.as_deref());
+    let scene = load_scene(args.scene.as_deref())?;
+    let r = render(&pipeline, &args.set.sets, &scene, args.size)?;
+    let mut png = Vec::new();
+    r.image
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .context("encoding PNG")?;
+    out.commit(&png)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report_json(&pipeline, &r, &args.out))?);
+    } else {
+        print_table(&pipeline, &r, &args.out);
+    }
+    Ok(())
+}
+
+fn names(schedule: &Schedule, bindings: &[plait_graph::Binding]) -> Vec<String> {
+    bindings
+        .iter()
+        .map(|b| schedule.resources.get(b.resource).map(|r| r.name.clone()).unwrap_or_else(|| b.resource_name.clone()))
+        .collect()
+}
+
+pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Value {
+    let s = &r.schedule;
+    let mut passes: Vec<serde_json::Value> = s
+        .passes
+        .iter()
+        .zip(&r.report.passes)
+        .map(|(p, t)| {
+            serde_json::json!({
+                "name": p.name, "type": p.type_name,
+                "reads": names(s, &p.reads), "writes": names(s, &p.writes),
+                "gpu_ms": t.gpu_ms, "culled": false,
+            })
+        })
+        .collect();
+    passes.extend(s.culled.iter().map(|c| {
+        serde_json::json!({
+            "name": c.pass.name, "type": c.pass.type_name,
+            "reads": names(s, &c.pass.reads), "writes": names(s, &c.pass.writes),
+            "gpu_ms": null, "culled": true, "culled_reason": c.reason,
+        })
+    }));
+    let resources: Vec<_> = s
+        .resources
+        .iter()
+        .enumerate()
+        .map(|(id, res)| {
+            let (kind, format) = match &res.desc {
+                plait_graph::ResourceDesc::Texture { format, .. } => ("texture", Some(format.name())),
+                plait_graph::ResourceDesc::Buffer { .. } => ("buffer", None),
+            };
+            serde_json::json!({
+                "name": res.name, "kind": kind, "format": format, "desc": res.desc.label(),
+                "bytes": res.desc.bytes(), "shares_memory_with": s.shares_memory_with(id),
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "pipeline": pipeline.display().to_string(),
+        "adapter": { "name": r.adapter, "backend": r.backend },
+        "size": [r.image.width(), r.image.height()],
+        "passes": passes,
+        "total_gpu_ms": r.report.total_gpu_ms,
+        "resources": resources,
+        "memory": { "peak_bytes": s.memory.peak_bytes, "unpooled_bytes": s.memory.unpooled_bytes },
+        "output": out.display().to_string(),
+    })
+}
+
+fn ms(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "n/a".into())
+}
+
+fn print_table(pipeline: &Path, r: &Rendered, out: &Path) {
+    let s = &r.schedule;
+    println!("{} on {} ({}), {}x{}", pipeline.display(), r.adapter, r.backend, r.image.width(), r.image.height());
+    println!("{:<20} {:<16} {:>10}", "pass", "type", "GPU ms");
+    for (p, t) in s.passes.iter().zip(&r.report.passes) {
+        println!("{:<20} {:<16} {:>10}", p.name, p.type_name, ms(t.gpu_ms));
+    }
+    for c in &s.culled {
+        println!("{:<20} {:<16} {:>10}  ({})", c.pass.name, c.pass.type_name, "culled", c.reason);
+    }
+    println!("{:<20} {:<16} {:>10}", "frame", "", ms(r.report.total_gpu_ms));
+    if r.report.total_gpu_ms.is_none() {
+        println!("(this adapter has no timestamp queries: GPU times are not available)");
+    }
+    println!(
+        "memory: {:.2} MiB in {} allocations ({:.2} MiB without sharing)",
+        s.memory.peak_bytes as f64 / 1048576.0,
+        s.physical.len(),
+        s.memory.unpooled_bytes as f64 / 1048576.0
+    );
+    println!("wrote {}", out.display());
+}
