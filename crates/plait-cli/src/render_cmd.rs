@@ -61,14 +61,41 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
     }
 }
 
-/// Render `pipeline` on `scene` at `size`: compile and check without the GPU
-/// first, then open the device, build, render one frame, read the first output.
-pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32)) -> Result<Rendered> {
-    // Everything that can fail without a GPU fails before one is opened.
-    compile_checked(pipeline, sets, &CompileOptions { screen: size, ..CompileOptions::default() })?;
-    let strands = scene.strands()?;
-    let meshes = scene.opaque_meshes();
-    let gpu = Gpu::new()?;
+/// A pipeline built on a device for one scene, ready to render frames.
+pub struct Prepared<'g> {
+    pub renderer: Renderer<'g>,
+    /// Name of the resource the PNG is read from (the first output).
+    pub output: String,
+}
+
+impl Prepared<'_> {
+    pub fn schedule(&self) -> &Schedule {
+        self.renderer.schedule()
+    }
+
+    /// Read the output back as an 8-bit sRGB image.
+    pub fn image(&self) -> Result<image::RgbaImage> {
+        Ok(self.renderer.read_resource(&self.output)?.to_image())
+    }
+}
+
+/// A scene's geometry on the CPU, built once and shared by every pipeline rendering it.
+pub struct SceneData {
+    pub scene: Scene,
+    pub strands: plait_hair::Strands,
+    pub meshes: Vec<plait_hair::mesh::Mesh>,
+}
+
+impl SceneData {
+    pub fn new(scene: Scene) -> Result<Self> {
+        let strands = scene.strands()?;
+        let meshes = scene.opaque_meshes();
+        Ok(SceneData { scene, strands, meshes })
+    }
+}
+
+/// Compile, check and build `pipeline` for `scene` at `size` on `gpu`.
+pub fn prepare<'g>(gpu: &'g Gpu, pipeline: &Path, sets: &[String], scene: &SceneData, size: (u32, u32)) -> Result<Prepared<'g>> {
     let opts = CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension };
     let schedule = compile_checked(pipeline, sets, &opts)?;
     let output = schedule
@@ -76,17 +103,34 @@ pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32))
         .first()
         .map(|&id| schedule.resources[id].name.clone())
         .context("the pipeline has no output")?;
-    let hair_bounds = strands.bounds();
-    let scene_bounds = scene.opaque_bounds().union(&hair_bounds);
-    let frame = FrameUniforms::new(scene, hair_bounds, scene_bounds, size, 0);
-    let geometry = SceneGeometry::upload(&gpu.device, &strands, &meshes);
+    let hair_bounds = scene.strands.bounds();
+    let scene_bounds = scene.scene.opaque_bounds().union(&hair_bounds);
+    let frame = FrameUniforms::new(&scene.scene, hair_bounds, scene_bounds, size, 0);
+    let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
-    let renderer = Renderer::new(&gpu, schedule.clone(), &plait_passes::library(), geometry, &frame, base_dir)?;
+    let renderer = Renderer::new(gpu, schedule, &plait_passes::library(), geometry, &frame, base_dir)?;
+    Ok(Prepared { renderer, output })
+}
+
+/// Render `pipeline` on `scene` at `size`: compile and check without the GPU
+/// first, then open the device, build, render, read the first output.
+pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32)) -> Result<Rendered> {
+    // Everything that can fail without a GPU fails before one is opened.
+    compile_checked(pipeline, sets, &CompileOptions { screen: size, ..CompileOptions::default() })?;
+    let data = SceneData::new(scene.clone())?;
+    let gpu = Gpu::new()?;
+    let prepared = prepare(&gpu, pipeline, sets, &data, size)?;
     // The first frame includes pipeline warm-up in the driver; time the second.
-    renderer.render()?;
-    let report = renderer.render()?;
-    let image = renderer.read_resource(&output)?.to_image();
-    Ok(Rendered { schedule, report, image, adapter: gpu.adapter_name().to_owned(), backend: gpu.backend_name() })
+    prepared.renderer.render()?;
+    let report = prepared.renderer.render()?;
+    let image = prepared.image()?;
+    Ok(Rendered {
+        schedule: prepared.schedule().clone(),
+        report,
+        image,
+        adapter: gpu.adapter_name().to_owned(),
+        backend: gpu.backend_name(),
+    })
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {

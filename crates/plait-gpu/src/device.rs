@@ -25,6 +25,7 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub capabilities: Capabilities,
+    uncaptured: std::sync::Arc<std::sync::Mutex<Vec<String>>>,
 }
 
 impl Gpu {
@@ -89,6 +90,15 @@ impl Gpu {
             })
             .await
             .map_err(|e| GpuError::Device(e.to_string()))?;
+        // Errors outside an error scope would panic inside wgpu; keep them for
+        // the next `take_uncaptured_errors` instead.
+        let uncaptured = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+        let sink = uncaptured.clone();
+        device.on_uncaptured_error(std::sync::Arc::new(move |e: wgpu::Error| {
+            if let Ok(mut list) = sink.lock() {
+                list.push(crate::describe_wgpu_error(&e));
+            }
+        }));
         let timestamps = features.contains(
             wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS,
         );
@@ -97,7 +107,7 @@ impl Gpu {
             float32_blendable: features.contains(wgpu::Features::FLOAT32_BLENDABLE),
             max_texture_dimension: limits.max_texture_dimension_2d,
         };
-        Ok(Gpu { adapter, device, queue, info, capabilities })
+        Ok(Gpu { adapter, device, queue, info, capabilities, uncaptured })
     }
 
     /// `llvmpipe (LLVM 15.0.6, 256 bits)`.
@@ -117,6 +127,11 @@ impl Gpu {
             Some(f) => self.device.features().contains(f),
             None => false,
         }
+    }
+
+    /// GPU errors raised outside any error scope since the last call.
+    pub fn take_uncaptured_errors(&self) -> Vec<String> {
+        self.uncaptured.lock().map(|mut l| std::mem::take(&mut *l)).unwrap_or_default()
     }
 
     /// Wait for all submitted work.

@@ -77,7 +77,7 @@ impl<'g> Renderer<'g> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pool = ResourcePool::new(device, &schedule);
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Resource { resource: "memory plan".into(), message: e.to_string() });
+            return Err(GpuError::Resource { resource: "memory plan".into(), message: crate::describe_wgpu_error(&e) });
         }
         let frame_layout = frame_layout(device);
         let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -125,6 +125,9 @@ impl<'g> Renderer<'g> {
                 base_dir,
             };
             passes.push(t.build(pass, &mut ctx)?);
+            if let Some(message) = gpu.take_uncaptured_errors().into_iter().next() {
+                return Err(GpuError::Validation { pass: pass.name.clone(), message });
+            }
         }
         let timestamps = gpu.capabilities.timestamps.then(|| {
             let count = (schedule.passes.len() as u32 + 1).max(2);
@@ -192,7 +195,10 @@ impl<'g> Renderer<'g> {
         self.gpu.queue.submit([encoder.finish()]);
         self.gpu.wait()?;
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Validation { pass: self.schedule.name.clone(), message: e.to_string() });
+            return Err(GpuError::Validation { pass: self.schedule.name.clone(), message: crate::describe_wgpu_error(&e) });
+        }
+        if let Some(message) = self.gpu.take_uncaptured_errors().into_iter().next() {
+            return Err(GpuError::Validation { pass: self.schedule.name.clone(), message });
         }
         let mut times: Option<Vec<u64>> = None;
         if let Some(ts) = &self.timestamps {

@@ -37,3 +37,18 @@ pub enum GpuError {
     #[error("reading back `{resource}`: {message}")]
     Readback { resource: String, message: String },
 }
+
+/// A wgpu error with its whole chain of causes on one line.
+pub fn describe_wgpu_error(e: &wgpu::Error) -> String {
+    let mut text = e.to_string().trim().to_owned();
+    let mut source = std::error::Error::source(e);
+    while let Some(s) = source {
+        let part = s.to_string();
+        if !text.contains(part.trim()) {
+            text.push_str(": ");
+            text.push_str(part.trim());
+        }
+        source = s.source();
+    }
+    text.replace("\n", " ")
+}

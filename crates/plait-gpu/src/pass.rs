@@ -397,8 +397,27 @@ pub fn build_shader_pass<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass, ctx:
         }
     }
     let (path, source) = shader_source_for_build(t, pass)?;
+    // Everything below is checked by wgpu; its errors name this pass.
+    let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let result = build_shader_pass_inner(t, pass, ctx, &spec, &path, &source);
+    let scoped = pollster::block_on(scope.pop());
+    let built = result?;
+    if let Some(e) = scoped {
+        return Err(GpuError::Validation { pass: pass.name.clone(), message: crate::describe_wgpu_error(&e) });
+    }
+    Ok(built)
+}
+
+fn build_shader_pass_inner<T: PassType + ?Sized>(
+    t: &T,
+    pass: &ScheduledPass,
+    ctx: &mut BuildContext<'_>,
+    spec: &PassTypeSpec,
+    path: &Path,
+    source: &str,
+) -> Result<Box<dyn PreparedPass>, GpuError> {
     let defines = t.defines(pass);
-    let module = ctx.shaders.compose(&path, &source, &defines)?;
+    let module = ctx.shaders.compose(path, source, &defines)?;
     let bindings = reflect::bindings(&module);
     let is_compute = spec.shape == PassShape::Compute;
     let device = ctx.device;
@@ -495,7 +514,6 @@ pub fn build_shader_pass<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass, ctx:
         .map(|b| b.resource)
         .collect();
 
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let kind = if is_compute {
         let entry = module.entry_points.iter().find(|e| e.stage == naga::ShaderStage::Compute).ok_or_else(|| pass_error(pass, "the shader has no @compute entry point"))?;
         let wg = entry.workgroup_size;
@@ -589,9 +607,6 @@ pub fn build_shader_pass<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass, ctx:
         });
         ShaderPassKind::Raster { pipeline, colors, depth, state, draw }
     };
-    if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(GpuError::Validation { pass: pass.name.clone(), message: e.to_string() });
-    }
     Ok(Box::new(ShaderPass { name: pass.name.clone(), kind, bind_group, clears }))
 }
 

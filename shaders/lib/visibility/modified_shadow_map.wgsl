@@ -4,7 +4,7 @@
 // Cheap (one depth texture), but it cannot tell sparse hair from dense hair.
 #define_import_path plait::visibility::modified_shadow_map
 
-#import plait::frame::{frame, light_uv_depth}
+#import plait::frame::{frame, light_uv_depth, nearest_sampler}
 
 // Nearest hair depth from the light (a `shadow_map` pass drawing hair).
 @group(1) @binding(8) var vis_depth: texture_depth_2d;
@@ -20,9 +20,8 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
         return 1.0;
     }
-    let size = vec2<f32>(textureDimensions(vis_depth));
-    let texel = vec2<i32>(clamp(p.xy * size, vec2<f32>(0.0), size - 1.0));
-    let first = textureLoad(vis_depth, texel, 0);
+    // Sampled, not loaded: GL cannot textureLoad depth textures.
+    let first = textureSampleLevel(vis_depth, nearest_sampler, p.xy, 0);
     // Orthographic light: stored depth is linear, so the difference scales to world units.
     let behind = max(0.0, p.z - first) * (frame.near_far.w - frame.near_far.z);
     return exp(-visibility_params.density * behind);
