@@ -1,36 +1,13 @@
 //! `plait check`, `plait graph`, `plait passes`: everything that needs no GPU.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use plait_graph::{CompileOptions, PassTypeSpec, Schedule};
+use plait::session::compile_checked;
+use plait_graph::{CompileOptions, PassTypeSpec};
 
 use crate::output::PendingFile;
-
-/// The pipeline `plait render` uses when none is given.
-pub const DEFAULT_PIPELINE: &str = "pipelines/forward.toml";
-
-/// Find a pipeline named on the command line, or the default one: relative to
-/// the working directory first, then to the plait checkout the binary was built from.
-pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
-    let candidate = given.map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from(DEFAULT_PIPELINE));
-    if candidate.exists() || candidate.is_absolute() {
-        return candidate;
-    }
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let in_repo = repo.join(&candidate);
-    if in_repo.exists() { in_repo } else { candidate }
-}
-
-/// Load, compile and check a pipeline against the pass library (no GPU).
-pub fn compile_checked(path: &Path, sets: &[String], opts: &CompileOptions) -> Result<Schedule> {
-    let library = plait_passes::library();
-    let pipeline = plait_graph::load(path, sets)?;
-    let mut schedule = plait_graph::compile(&pipeline, &library.registry(), opts)?;
-    plait_passes::check(&mut schedule, &library)?;
-    Ok(schedule)
-}
 
 /// `--set key=value` in one place for every command.
 #[derive(Args, Clone, Debug, Default)]

@@ -4,14 +4,13 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use plait_gpu::frame::FrameUniforms;
-use plait_gpu::geometry::SceneGeometry;
-use plait_gpu::{FrameReport, Gpu, Renderer};
+use plait::session::{SceneData, compile_checked, prepare, resolve_pipeline};
+use plait_gpu::{FrameReport, Gpu};
 use plait_graph::{CompileOptions, Schedule};
 use plait_hair::scene::Scene;
 
 use crate::output::PendingFile;
-use crate::pipeline_cmd::{SetArgs, compile_checked, resolve_pipeline};
+use crate::pipeline_cmd::SetArgs;
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -59,57 +58,6 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
         Some(p) => Ok(Scene::load(p)?),
         None => Ok(Scene::builtin_default()),
     }
-}
-
-/// A pipeline built on a device for one scene, ready to render frames.
-pub struct Prepared<'g> {
-    pub renderer: Renderer<'g>,
-    /// Name of the resource the PNG is read from (the first output).
-    pub output: String,
-}
-
-impl Prepared<'_> {
-    pub fn schedule(&self) -> &Schedule {
-        self.renderer.schedule()
-    }
-
-    /// Read the output back as an 8-bit sRGB image.
-    pub fn image(&self) -> Result<image::RgbaImage> {
-        Ok(self.renderer.read_resource(&self.output)?.to_image())
-    }
-}
-
-/// A scene's geometry on the CPU, built once and shared by every pipeline rendering it.
-pub struct SceneData {
-    pub scene: Scene,
-    pub strands: plait_hair::Strands,
-    pub meshes: Vec<plait_hair::mesh::Mesh>,
-}
-
-impl SceneData {
-    pub fn new(scene: Scene) -> Result<Self> {
-        let strands = scene.strands()?;
-        let meshes = scene.opaque_meshes();
-        Ok(SceneData { scene, strands, meshes })
-    }
-}
-
-/// Compile, check and build `pipeline` for `scene` at `size` on `gpu`.
-pub fn prepare<'g>(gpu: &'g Gpu, pipeline: &Path, sets: &[String], scene: &SceneData, size: (u32, u32)) -> Result<Prepared<'g>> {
-    let opts = CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension };
-    let schedule = compile_checked(pipeline, sets, &opts)?;
-    let output = schedule
-        .outputs
-        .first()
-        .map(|&id| schedule.resources[id].name.clone())
-        .context("the pipeline has no output")?;
-    let hair_bounds = scene.strands.bounds();
-    let scene_bounds = scene.scene.opaque_bounds().union(&hair_bounds);
-    let frame = FrameUniforms::new(&scene.scene, hair_bounds, scene_bounds, size, 0);
-    let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
-    let base_dir = pipeline.parent().unwrap_or(Path::new("."));
-    let renderer = Renderer::new(gpu, schedule, &plait_passes::library(), geometry, &frame, base_dir)?;
-    Ok(Prepared { renderer, output })
 }
 
 /// Render `pipeline` on `scene` at `size`: compile and check without the GPU

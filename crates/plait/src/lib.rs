@@ -1,0 +1,17 @@
+//! plait: real-time strand-hair render pipelines as data.
+//!
+//! This crate ties the pieces together for programs (the `plait` CLI, the
+//! test suite, the A/B runner): load and check a pipeline, build it on a
+//! device for a scene, render frames, read images back.
+//!
+//! - [`graph`]: pipeline files, checks, schedule, memory plan (no GPU);
+//! - [`hair`]: strands, `.hair` files, grooms, scenes;
+//! - [`gpu`]: the wgpu executor;
+//! - [`passes`]: the pass library.
+
+pub use plait_gpu as gpu;
+pub use plait_graph as graph;
+pub use plait_hair as hair;
+pub use plait_passes as passes;
+
+pub mod session;

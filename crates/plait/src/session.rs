@@ -1,0 +1,119 @@
+//! Load → check → build → render, the path every program takes.
+
+use std::path::{Path, PathBuf};
+
+use plait_gpu::frame::FrameUniforms;
+use plait_gpu::geometry::SceneGeometry;
+use plait_gpu::{GpuError, Gpu, Renderer};
+use plait_graph::{CompileOptions, Errors, Schedule};
+use plait_hair::scene::{Scene, SceneError};
+
+/// The pipeline `plait render` uses when none is given.
+pub const DEFAULT_PIPELINE: &str = "pipelines/forward.toml";
+
+/// Anything that can stop a render, each naming its file, pass or flag.
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    /// Pipeline file or shader problems, all of them, with file:line:column.
+    #[error("{0}")]
+    Pipeline(#[from] Errors),
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    #[error("the pipeline declares no output")]
+    NoOutput,
+}
+
+/// The checkout plait was built from (for finding `pipelines/` and `examples/`
+/// when run from elsewhere).
+pub fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// A pipeline named on the command line, or the default one: relative to the
+/// working directory first, then to the plait checkout.
+pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
+    let candidate = given.map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from(DEFAULT_PIPELINE));
+    if candidate.exists() || candidate.is_absolute() {
+        return candidate;
+    }
+    let in_repo = repo_root().join(&candidate);
+    if in_repo.exists() { in_repo } else { candidate }
+}
+
+/// Load, compile and check a pipeline against the pass library, shaders
+/// included (naga), without a GPU.
+pub fn compile_checked(path: &Path, sets: &[String], opts: &CompileOptions) -> Result<Schedule, Errors> {
+    let library = plait_passes::library();
+    let pipeline = plait_graph::load(path, sets)?;
+    let mut schedule = plait_graph::compile(&pipeline, &library.registry(), opts)?;
+    plait_passes::check(&mut schedule, &library)?;
+    Ok(schedule)
+}
+
+/// A scene's geometry on the CPU, built once and shared by every pipeline rendering it.
+pub struct SceneData {
+    pub scene: Scene,
+    pub strands: plait_hair::Strands,
+    pub meshes: Vec<plait_hair::mesh::Mesh>,
+}
+
+impl SceneData {
+    pub fn new(scene: Scene) -> Result<Self, SceneError> {
+        let strands = scene.strands()?;
+        let meshes = scene.opaque_meshes();
+        Ok(SceneData { scene, strands, meshes })
+    }
+
+    /// The scene file, or the built-in default scene.
+    pub fn load(path: Option<&Path>) -> Result<Self, SceneError> {
+        match path {
+            Some(p) => Self::new(Scene::load(p)?),
+            None => Self::new(Scene::builtin_default()),
+        }
+    }
+
+    /// Standard inputs for a frame of this scene at `size`.
+    pub fn frame(&self, size: (u32, u32), frame_index: u32) -> FrameUniforms {
+        let hair_bounds = self.strands.bounds();
+        let scene_bounds = self.scene.opaque_bounds().union(&hair_bounds);
+        FrameUniforms::new(&self.scene, hair_bounds, scene_bounds, size, frame_index)
+    }
+}
+
+/// A pipeline built on a device for one scene, ready to render frames.
+pub struct Prepared<'g> {
+    pub renderer: Renderer<'g>,
+    /// Name of the resource images are read from (the first output).
+    pub output: String,
+}
+
+impl Prepared<'_> {
+    pub fn schedule(&self) -> &Schedule {
+        self.renderer.schedule()
+    }
+
+    /// Read the output back as an 8-bit sRGB image.
+    pub fn image(&self) -> Result<image::RgbaImage, GpuError> {
+        Ok(self.renderer.read_resource(&self.output)?.to_image())
+    }
+}
+
+/// Compile, check and build `pipeline` for `scene` at `size` on `gpu`.
+pub fn prepare<'g>(
+    gpu: &'g Gpu,
+    pipeline: &Path,
+    sets: &[String],
+    scene: &SceneData,
+    size: (u32, u32),
+) -> Result<Prepared<'g>, SessionError> {
+    let opts = CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension };
+    let schedule = compile_checked(pipeline, sets, &opts)?;
+    let output = schedule.outputs.first().map(|&id| schedule.resources[id].name.clone()).ok_or(SessionError::NoOutput)?;
+    let frame = scene.frame(size, 0);
+    let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
+    let base_dir = pipeline.parent().unwrap_or(Path::new("."));
+    let renderer = Renderer::new(gpu, schedule, &plait_passes::library(), geometry, &frame, base_dir)?;
+    Ok(Prepared { renderer, output })
+}
