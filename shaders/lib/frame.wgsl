@@ -64,6 +64,24 @@ fn light_linear_depth(world: vec3<f32>) -> f32 {
     return (view_z - frame.near_far.z) / (frame.near_far.w - frame.near_far.z);
 }
 
+// Linear depth (0 at near, 1 at far) of a world-space point in the pass's
+// view: the light's for `view = "light"`, the camera's otherwise. The
+// occupancy maps slice this depth uniformly.
+fn view_linear_depth(world: vec3<f32>) -> f32 {
+#ifdef LIGHT_VIEW
+    return light_linear_depth(world);
+#else
+    let view_z = -(frame.camera_view * vec4<f32>(world, 1.0)).z;
+    return (view_z - frame.near_far.x) / (frame.near_far.y - frame.near_far.x);
+#endif
+}
+
+// Linear camera depth, whatever the pass's view.
+fn camera_linear_depth(world: vec3<f32>) -> f32 {
+    let view_z = -(frame.camera_view * vec4<f32>(world, 1.0)).z;
+    return (view_z - frame.near_far.x) / (frame.near_far.y - frame.near_far.x);
+}
+
 // Unit vector from a world-space point towards the light.
 fn to_light(world: vec3<f32>) -> vec3<f32> {
     if (frame.light_direction.w > 0.5) {

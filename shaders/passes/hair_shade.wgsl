@@ -7,11 +7,45 @@
 #import plait::shadow::opaque_shadow
 #ifdef VISIBILITY_MODIFIED_SHADOW_MAP
 #import plait::visibility::modified_shadow_map::hair_visibility
+#else ifdef VISIBILITY_OCCUPANCY
+#import plait::visibility::occupancy::hair_visibility
 #else
 #import plait::visibility::none::hair_visibility
 #endif
+#ifdef BLEND_OCCUPANCY_ORDER
+#import plait::frame::camera_linear_depth
+#import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, order_estimate}
+#endif
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
+
+#ifdef BLEND_OCCUPANCY_ORDER
+// Camera-view depth-range, occupancy and slab maps: the depth order of each
+// hair fragment among the pixel's fragments (000_785589f319b01ef5.txt §3.2, §3.4).
+@group(1) @binding(16) var order_range: texture_2d<f32>;
+@group(1) @binding(17) var<storage, read> order_bits: array<u32>;
+@group(1) @binding(18) var<storage, read> order_slabs: array<u32>;
+
+fn camera_order(pixel: vec2<u32>, depth: f32) -> f32 {
+    let size = textureDimensions(order_range);
+    let p = min(pixel, size - 1u);
+    var maps: TexelMaps;
+    let texels = size.x * size.y;
+    maps.words = min(arrayLength(&order_bits) / texels, MAX_WORDS);
+    maps.slabs = min(arrayLength(&order_slabs) / texels, MAX_WORDS);
+    let range = textureLoad(order_range, vec2<i32>(p), 0);
+    maps.near = range.x;
+    maps.far = range.y;
+    let index = p.y * size.x + p.x;
+    for (var i = 0u; i < maps.words; i++) {
+        maps.bits[i] = order_bits[index * maps.words + i];
+    }
+    for (var i = 0u; i < maps.slabs; i++) {
+        maps.counts[i] = order_slabs[index * maps.slabs + i];
+    }
+    return order_estimate(&maps, relative_depth(&maps, depth));
+}
+#endif
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -50,7 +84,17 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let visibility = hair_visibility(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
     let base = in.color * frame.hair_color.rgb;
     let rgb = frame.light_color.rgb * (base * kk.x + vec3<f32>(kk.y)) * visibility + frame.ambient.rgb * base;
+#ifdef BLEND_OCCUPANCY_ORDER
+    // Front-to-back weights from the estimated order o: (1-α)^o · α, added
+    // unsorted into a float target (§3.4). α is the material's, the same for
+    // every fragment, as the method assumes.
+    let alpha = clamp(frame.hair_color.a, 0.0, 1.0);
+    let order = camera_order(vec2<u32>(in.clip.xy), camera_linear_depth(in.world));
+    let weight = pow(1.0 - alpha, order) * alpha;
+    return vec4<f32>(rgb * weight, weight);
+#else
     let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
     // Premultiplied: the blend state composites "over" what is already there.
     return vec4<f32>(rgb * alpha, alpha);
+#endif
 }

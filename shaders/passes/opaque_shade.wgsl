@@ -6,6 +6,8 @@
 #import plait::shadow::opaque_shadow
 #ifdef VISIBILITY_MODIFIED_SHADOW_MAP
 #import plait::visibility::modified_shadow_map::hair_visibility
+#else ifdef VISIBILITY_OCCUPANCY
+#import plait::visibility::occupancy::hair_visibility
 #else
 #import plait::visibility::none::hair_visibility
 #endif

@@ -25,6 +25,11 @@ pub struct RenderArgs {
     /// Render size, `WIDTHxHEIGHT`.
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
+    /// Write this texture resource instead of the pipeline's output (look at
+    /// any intermediate: a light map, the hair image, …). Floats are shown as
+    /// linear values encoded to sRGB, single channels as grey.
+    #[arg(long, value_name = "RESOURCE")]
+    show: Option<String>,
     /// Print one JSON object on standard output instead of the table.
     #[arg(long)]
     json: bool,
@@ -62,12 +67,15 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
 
 /// Render `pipeline` on `scene` at `size`: compile and check without the GPU
 /// first, then open the device, build, render, read the first output.
-pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32)) -> Result<Rendered> {
+pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32), show: Option<&str>) -> Result<Rendered> {
     // Everything that can fail without a GPU fails before one is opened.
     compile_checked(pipeline, sets, &CompileOptions { screen: size, ..CompileOptions::default() })?;
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
-    let prepared = prepare(&gpu, pipeline, sets, &data, size)?;
+    let mut prepared = prepare(&gpu, pipeline, sets, &data, size)?;
+    if let Some(name) = show {
+        prepared.output = name.to_owned();
+    }
     // The first frame includes pipeline warm-up in the driver; time the second.
     prepared.renderer.render()?;
     let report = prepared.renderer.render()?;
@@ -85,7 +93,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let out = PendingFile::create(&args.out, "--out")?;
     let pipeline = resolve_pipeline(args.pipeline.as_deref());
     let scene = load_scene(args.scene.as_deref())?;
-    let r = render(&pipeline, &args.set.sets, &scene, args.size)?;
+    let r = render(&pipeline, &args.set.sets, &scene, args.size, args.show.as_deref())?;
     let mut png = Vec::new();
     r.image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)

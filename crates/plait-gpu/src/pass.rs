@@ -51,6 +51,11 @@ pub struct RasterState {
     pub clear_color: wgpu::Color,
     pub clear_depth: f32,
     pub alpha_to_coverage: bool,
+    /// Channels written per colour target, in target order; missing entries write all.
+    pub write_mask: Vec<wgpu::ColorWrites>,
+    /// Keep colour targets' contents even where the schedule says this pass
+    /// writes them first (the second draw of a pass that draws twice).
+    pub load_colors: bool,
 }
 
 impl Default for RasterState {
@@ -62,6 +67,8 @@ impl Default for RasterState {
             clear_color: wgpu::Color::TRANSPARENT,
             clear_depth: 1.0,
             alpha_to_coverage: false,
+            write_mask: Vec::new(),
+            load_colors: false,
         }
     }
 }
@@ -547,8 +554,9 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             };
             samples = s;
             let blend = state.blend.get(colors.len()).copied().flatten();
-            color_states.push(Some(wgpu::ColorTargetState { format: texture_format(format), blend, write_mask: wgpu::ColorWrites::ALL }));
-            colors.push((b.resource, b.loads));
+            let write_mask = state.write_mask.get(colors.len()).copied().unwrap_or(wgpu::ColorWrites::ALL);
+            color_states.push(Some(wgpu::ColorTargetState { format: texture_format(format), blend, write_mask }));
+            colors.push((b.resource, b.loads || state.load_colors));
         }
         let depth_binding = pass
             .writes

@@ -17,11 +17,13 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
     ("shaders/lib/frame.wgsl", include_str!("../../../shaders/lib/frame.wgsl")),
     ("shaders/lib/kajiya_kay.wgsl", include_str!("../../../shaders/lib/kajiya_kay.wgsl")),
     ("shaders/lib/shadow.wgsl", include_str!("../../../shaders/lib/shadow.wgsl")),
+    ("shaders/lib/occupancy.wgsl", include_str!("../../../shaders/lib/occupancy.wgsl")),
     ("shaders/lib/visibility/none.wgsl", include_str!("../../../shaders/lib/visibility/none.wgsl")),
     (
         "shaders/lib/visibility/modified_shadow_map.wgsl",
         include_str!("../../../shaders/lib/visibility/modified_shadow_map.wgsl"),
     ),
+    ("shaders/lib/visibility/occupancy.wgsl", include_str!("../../../shaders/lib/visibility/occupancy.wgsl")),
 ];
 
 /// A shader that failed to parse, compose or validate.

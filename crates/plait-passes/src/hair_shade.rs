@@ -2,15 +2,19 @@
 //! opaque objects (000_785589f319b01ef5.txt §3.5) and by the hair itself through
 //! the visibility provider, blended "over" the colour target.
 //!
-//! Without a transparency technique the strands are blended in draw order,
-//! not depth order: the error the occupancy-order blending of
-//! 000_785589f319b01ef5.txt §3.4 removes.
+//! Transparency by the `blend` param:
+//! - `over`: premultiplied "over" in draw order, not depth order — the error
+//!   occupancy-order blending removes;
+//! - `occupancy_order`: each fragment weighted (1-α)^o · α with o its depth
+//!   order estimated from camera-view occupancy maps (the `order_*` slots),
+//!   added unsorted into a float target (000_785589f319b01ef5.txt §3.4); the
+//!   `compose` pass applies the Λ correction.
 
-use plait_gpu::pass::{BuiltinShader, DepthMode, PassType, RasterState};
+use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
 use plait_gpu::Capabilities;
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
-use crate::spec_util::{DEPTH, HDR, SlotExt, texture};
+use crate::spec_util::{DEPTH, HDR, SlotExt, buffer, choice, texture};
 use crate::visibility;
 
 pub struct HairShade;
@@ -25,14 +29,21 @@ impl PassType for HairShade {
             texture("depth", Access::DepthTarget, DEPTH, "camera depth of opaque geometry (tested, not written)"),
         ];
         inputs.extend(visibility::slots());
+        inputs.extend([
+            texture("order_range", Access::Sampled, &[plait_graph::Format::Rg32Float], "occupancy_order: camera-view depth range").optional(),
+            buffer("order_bits", Access::StorageRead, "occupancy_order: camera-view occupancy bits").optional(),
+            buffer("order_slabs", Access::StorageRead, "occupancy_order: camera-view slab counts").optional(),
+        ]);
+        let mut params = visibility::params();
+        params.push(choice("blend", "over", &["over", "occupancy_order"], "transparency: draw-order `over`, or occupancy-order weights (§3.4)"));
         PassTypeSpec {
             name: "hair_shade".into(),
             description: "Kajiya-Kay hair shading with opaque and self shadows, blended over the target.".into(),
-            source: "004_51cca5cde985008c.txt §3.2.1; 000_785589f319b01ef5.txt §3.5".into(),
+            source: "004_51cca5cde985008c.txt §3.2.1; 000_785589f319b01ef5.txt §3.2-3.5".into(),
             shape: PassShape::Raster,
             inputs,
             outputs: vec![texture("color", Access::ColorTarget, HDR, "premultiplied colour, blended over").loads()],
-            params: visibility::params(),
+            params,
             dynamic_slots: false,
             needs_shader: false,
             required_features: vec![],
@@ -43,10 +54,14 @@ impl PassType for HairShade {
         Some(("shaders/passes/hair_shade.wgsl", include_str!("../../../shaders/passes/hair_shade.wgsl")))
     }
 
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+    fn raster_state(&self, pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+        let blend = match pass.params.get("blend").and_then(|v| v.as_str()) {
+            Some("occupancy_order") => ADDITIVE,
+            _ => OVER,
+        };
         Ok(RasterState {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
-            blend: vec![Some(OVER)],
+            blend: vec![Some(blend)],
             ..RasterState::default()
         })
     }

@@ -4,10 +4,14 @@
 //! schedule against its shaders with naga (no GPU), which `plait check` and
 //! `plait render` both run before any GPU work.
 
+pub mod compose;
 pub mod data_only;
+pub mod depth_range;
 pub mod hair_shade;
+pub mod occupancy;
 pub mod opaque_shade;
 pub mod shadow_map;
+pub mod slab;
 pub mod spec_util;
 pub mod visibility;
 
@@ -19,8 +23,12 @@ use plait_graph::{Errors, Schedule};
 pub fn library() -> PassLibrary {
     let mut lib = PassLibrary::default();
     lib.add(shadow_map::ShadowMap);
+    lib.add(depth_range::DepthRange);
+    lib.add(occupancy::Occupancy);
+    lib.add(slab::Slab);
     lib.add(opaque_shade::OpaqueShade);
     lib.add(hair_shade::HairShade);
+    lib.add(compose::Compose);
     lib.add(data_only::Fullscreen);
     lib.add(data_only::Compute);
     lib

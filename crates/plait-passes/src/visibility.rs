@@ -1,21 +1,24 @@
 //! Visibility providers: every self-shadowing technique answers one WGSL
 //! question, `hair_visibility(world) -> f32`, from its own light maps. A
-//! shading pass imports the provider its `visibility` param names, and binds
+//! shading pass imports the provider its `visibility` param names and binds
 //! the provider's maps under the `vis_*` slots; adding a provider is a WGSL
-//! module in `shaders/lib/visibility/` plus a line here, with no change to
-//! the shading passes.
+//! module in `shaders/lib/visibility/`, a line in the shading shaders' import
+//! switch, and its slots and params here — the shading passes' Rust is unchanged.
 
-use plait_graph::{Access, ParamSpec, SlotSpec};
+use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
-use crate::spec_util::{DEPTH, SlotExt, choice, float, texture};
+use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 
 /// The providers, by param value.
-pub const PROVIDERS: &[&str] = &["none", "modified_shadow_map"];
+pub const PROVIDERS: &[&str] = &["none", "modified_shadow_map", "occupancy"];
 
 /// The optional input slots any provider may need.
 pub fn slots() -> Vec<SlotSpec> {
     vec![
         texture("vis_depth", Access::Sampled, DEPTH, "modified_shadow_map: nearest hair depth from the light").optional(),
+        texture("vis_range", Access::Sampled, &[Format::Rg32Float], "occupancy: light-view depth range").optional(),
+        buffer("vis_bits", Access::StorageRead, "occupancy: light-view occupancy bits").optional(),
+        buffer("vis_slabs", Access::StorageRead, "occupancy: light-view slab counts").optional(),
     ]
 }
 
@@ -24,5 +27,6 @@ pub fn params() -> Vec<ParamSpec> {
     vec![
         choice("visibility", "none", PROVIDERS, "self-shadowing technique (visibility provider) used for hair shadows"),
         float("density", 40.0, 0.0, 1e6, "modified_shadow_map: extinction per world unit behind the first strand"),
+        float("shadow_weight", 0.05, 0.0, 100.0, "occupancy: opacity w added per hair fragment in front (§3.3)"),
     ]
 }

@@ -1,0 +1,36 @@
+//! `compose`: the occupancy-order blended hair over the scene
+//! (000_785589f319b01ef5.txt §3.4): scene × (1-α)^n + hair.rgb × Λ / hair.a,
+//! Λ = 1-(1-α)^n, n the pixel's hair fragments from the camera-view slab
+//! counts. The paper prints the correction as hair.a / Λ; the factor that
+//! restores the intensity the weights should have summed to is Λ / hair.a.
+
+use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec};
+
+use crate::spec_util::{HDR, buffer, texture};
+
+pub struct Compose;
+
+impl PassType for Compose {
+    fn spec(&self) -> PassTypeSpec {
+        PassTypeSpec {
+            name: "compose".into(),
+            description: "Order-blended hair over the scene with the Λ correction, to sRGB.".into(),
+            source: "000_785589f319b01ef5.txt §3.4".into(),
+            shape: PassShape::Fullscreen,
+            inputs: vec![
+                texture("hair", Access::Sampled, HDR, "additively blended hair: Σ (1-α)^o α (rgb, 1)"),
+                texture("scene", Access::Sampled, HDR, "opaque objects, premultiplied; background where alpha < 1"),
+                buffer("counts", Access::StorageRead, "camera-view slab counts (slab pass): n per pixel"),
+            ],
+            outputs: vec![texture("color", Access::ColorTarget, &[Format::Rgba8UnormSrgb, Format::Rgba8Unorm, Format::Rgba16Float], "final image")],
+            params: vec![],
+            dynamic_slots: false,
+            needs_shader: false,
+            required_features: vec![],
+        }
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(("shaders/passes/compose.wgsl", include_str!("../../../shaders/passes/compose.wgsl")))
+    }
+}

@@ -1,0 +1,98 @@
+// plait::occupancy — reading the occupancy, slab and depth-range maps of
+// Sintorn & Assarsson 2009 (000_785589f319b01ef5.txt §3.1–3.2).
+//
+// Per texel the maps hold: a depth range [near, far] (rg32float, linear depth
+// of the view), WORDS 32-bit words of occupancy bits (one bit per slice; slice
+// k covers relative depth [k, k+1) / (32 WORDS)), and WORDS fragment counts,
+// one per slab of 32 slices. WORDS = 4 gives the paper's 128 slices and 4 slabs.
+//
+// The order estimate is mirrored on the CPU by `plait_passes::occupancy::
+// order_estimate`; a GPU test runs this function and checks the two agree.
+#define_import_path plait::occupancy
+
+// Up to 1024 slices (8 × 128) and 1024 slabs per texel.
+const MAX_WORDS: u32 = 32u;
+
+struct TexelMaps {
+    // 32-bit words of occupancy bits: 32 · words slices.
+    words: u32,
+    // Fragment counters; each covers 32 · words / slabs consecutive slices.
+    slabs: u32,
+    near: f32,
+    far: f32,
+    bits: array<u32, 32>,
+    counts: array<u32, 32>,
+}
+
+// Relative depth of `depth` within the texel's range; < 0 in front of all
+// hair, > 1 behind it. Texels without hair have far < near.
+fn relative_depth(maps: ptr<function, TexelMaps>, depth: f32) -> f32 {
+    let range = (*maps).far - (*maps).near;
+    if (range <= 0.0) {
+        return select(-1.0, 2.0, depth > (*maps).far);
+    }
+    return (depth - (*maps).near) / range;
+}
+
+// Total fragments recorded in the texel: the sum of its slabs.
+fn total_fragments(maps: ptr<function, TexelMaps>) -> f32 {
+    var total = 0u;
+    for (var i = 0u; i < (*maps).slabs; i++) {
+        total += (*maps).counts[i];
+    }
+    return f32(total);
+}
+
+// Set bits among slices [first, last).
+fn count_bits(maps: ptr<function, TexelMaps>, first: u32, last: u32) -> u32 {
+    var n = 0u;
+    for (var w = first / 32u; w * 32u < last; w++) {
+        let lo = max(first, w * 32u) - w * 32u;
+        let hi = min(last, w * 32u + 32u) - w * 32u;
+        // Bits lo..hi of the word (hi may be 32).
+        var mask = 0xFFFFFFFFu;
+        if (hi < 32u) {
+            mask = (1u << hi) - 1u;
+        }
+        mask = mask & ~((1u << lo) - 1u);
+        n += countOneBits((*maps).bits[w] & mask);
+    }
+    return n;
+}
+
+// Estimated number of fragments in front of relative depth `rel` (§3.2):
+// the slabs before the fragment's slab count exactly; within its slab each
+// set bit stands for F_i / B_total fragments; inside its slice the estimate
+// is interpolated linearly between the slice's start and end. Exact at slab
+// boundaries; inside a slab off by at most that slab's count F_i.
+fn order_estimate(maps: ptr<function, TexelMaps>, rel: f32) -> f32 {
+    let words = (*maps).words;
+    let slabs = (*maps).slabs;
+    if (words == 0u || slabs == 0u || rel <= 0.0) {
+        return 0.0;
+    }
+    if (rel >= 1.0) {
+        return total_fragments(maps);
+    }
+    let slices = words * 32u;
+    let per_slab = max(slices / slabs, 1u);
+    let s = rel * f32(slices);
+    let slice = min(u32(floor(s)), slices - 1u);
+    let frac = clamp(s - f32(slice), 0.0, 1.0);
+    let slab = min(slice / per_slab, slabs - 1u);
+    var before = 0.0;
+    for (var i = 0u; i < slab; i++) {
+        before += f32((*maps).counts[i]);
+    }
+    let first = slab * per_slab;
+    let set_in_slab = count_bits(maps, first, first + per_slab);
+    var per_bit = 0.0;
+    if (set_in_slab > 0u) {
+        per_bit = f32((*maps).counts[slab]) / f32(set_in_slab);
+    }
+    let bits_before = count_bits(maps, first, slice);
+    let bits_through = count_bits(maps, first, slice + 1u);
+    let at_start = before + per_bit * f32(bits_before);
+    let at_end = before + per_bit * f32(bits_through);
+    return mix(at_start, at_end, frac);
+}
