@@ -32,6 +32,9 @@ struct Frame {
     jitter: vec4<f32>,
     // x, y: camera near and far; z, w: light near and far (world units).
     near_far: vec4<f32>,
+    // x: mean hair fragment alpha (material alpha × mean strand alpha), the
+    // constant α of order-based blending; y: strands; z: segments.
+    hair_stats: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -24,7 +24,8 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
     for (var i = 0u; i < slabs; i++) {
         n += counts[(p.y * size.x + p.x) * slabs + i];
     }
-    let alpha = clamp(frame.hair_color.a, 0.0, 1.0);
+    // ᾱ: the mean fragment alpha, the method's constant α.
+    let alpha = clamp(frame.hair_stats.x, 0.0, 0.999);
     let transmit = pow(1.0 - alpha, f32(n));
     let lambda = 1.0 - transmit;
     let h = textureLoad(hair, vec2<i32>(p), 0);

@@ -85,12 +85,14 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let base = in.color * frame.hair_color.rgb;
     let rgb = frame.light_color.rgb * (base * kk.x + vec3<f32>(kk.y)) * visibility + frame.ambient.rgb * base;
 #ifdef BLEND_OCCUPANCY_ORDER
-    // Front-to-back weights from the estimated order o: (1-α)^o · α, added
-    // unsorted into a float target (§3.4). α is the material's, the same for
-    // every fragment, as the method assumes.
-    let alpha = clamp(frame.hair_color.a, 0.0, 1.0);
+    // Front-to-back weights from the estimated order o: (1-ᾱ)^o · α, added
+    // unsorted into a float target (§3.4). The fragments in front are
+    // unknown, so they count with the mean alpha ᾱ — the method's
+    // "same alpha for every fragment" — while this fragment keeps its own.
+    let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
+    let mean_alpha = clamp(frame.hair_stats.x, 0.0, 0.999);
     let order = camera_order(vec2<u32>(in.clip.xy), camera_linear_depth(in.world));
-    let weight = pow(1.0 - alpha, order) * alpha;
+    let weight = pow(1.0 - mean_alpha, order) * alpha;
     return vec4<f32>(rgb * weight, weight);
 #else
     let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);

@@ -14,7 +14,7 @@ use crate::pipeline_cmd::SetArgs;
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Pipeline file (default: the occupancy-map pipeline).
+    /// Pipeline file (default: pipelines/occupancy.toml, the occupancy-map method).
     pipeline: Option<PathBuf>,
     /// Scene file (default: the built-in scene).
     #[arg(long)]

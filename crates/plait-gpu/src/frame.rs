@@ -1,7 +1,7 @@
 //! The frame's standard inputs (group 0 of every pass), computed from the scene.
 
 use glam::{Mat4, Vec3};
-use plait_hair::Aabb;
+use plait_hair::{Aabb, Strands};
 use plait_hair::scene::{Background, LightKind, Scene};
 
 /// Mirrors `struct Frame` in `shaders/lib/frame.wgsl`; every member is 16-byte
@@ -25,6 +25,7 @@ pub struct FrameUniforms {
     pub screen_size: [f32; 4],
     pub jitter: [f32; 4],
     pub near_far: [f32; 4],
+    pub hair_stats: [f32; 4],
 }
 
 /// Size of `FrameUniforms` in bytes (also checked against the WGSL struct by a test).
@@ -37,7 +38,13 @@ fn v4(v: Vec3, w: f32) -> [f32; 4] {
 impl FrameUniforms {
     /// Standard inputs for rendering `scene` at `size`, with light maps fitted to
     /// the hair (occluders) and the whole scene (receivers).
-    pub fn new(scene: &Scene, hair_bounds: Aabb, scene_bounds: Aabb, size: (u32, u32), frame_index: u32) -> Self {
+    pub fn new(scene: &Scene, strands: &Strands, scene_bounds: Aabb, size: (u32, u32), frame_index: u32) -> Self {
+        let hair_bounds = strands.bounds();
+        let mean_alpha = if strands.alpha.is_empty() {
+            1.0
+        } else {
+            strands.alpha.iter().sum::<f32>() / strands.alpha.len() as f32
+        };
         let aspect = size.0 as f32 / size.1.max(1) as f32;
         let view = scene.camera.view();
         let proj = scene.camera.projection(aspect);
@@ -71,6 +78,12 @@ impl FrameUniforms {
             screen_size: [size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32],
             jitter: [0.0, 0.0, 0.0, frame_index as f32],
             near_far: [scene.camera.near, scene.camera.far, light.near, light.far],
+            hair_stats: [
+                (mean_alpha * scene.material.alpha).clamp(0.0, 1.0),
+                strands.strand_count() as f32,
+                strands.segment_count() as f32,
+                0.0,
+            ],
         }
     }
 

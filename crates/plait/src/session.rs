@@ -9,7 +9,7 @@ use plait_graph::{CompileOptions, Errors, Schedule};
 use plait_hair::scene::{Scene, SceneError};
 
 /// The pipeline `plait render` uses when none is given.
-pub const DEFAULT_PIPELINE: &str = "pipelines/forward.toml";
+pub const DEFAULT_PIPELINE: &str = "pipelines/occupancy.toml";
 
 /// Anything that can stop a render, each naming its file, pass or flag.
 #[derive(Debug, thiserror::Error)]
@@ -76,9 +76,8 @@ impl SceneData {
 
     /// Standard inputs for a frame of this scene at `size`.
     pub fn frame(&self, size: (u32, u32), frame_index: u32) -> FrameUniforms {
-        let hair_bounds = self.strands.bounds();
-        let scene_bounds = self.scene.opaque_bounds().union(&hair_bounds);
-        FrameUniforms::new(&self.scene, hair_bounds, scene_bounds, size, frame_index)
+        let scene_bounds = self.scene.opaque_bounds().union(&self.strands.bounds());
+        FrameUniforms::new(&self.scene, &self.strands, scene_bounds, size, frame_index)
     }
 }
 
