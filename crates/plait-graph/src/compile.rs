@@ -312,6 +312,11 @@ fn bind_slots(
     };
     let mut bindings = Vec::new();
     for (slot_name, resource) in written {
+        // `slot = ""` unbinds a slot the base file bound: how a variant
+        // (`extends`) drops an input it does not need.
+        if resource.value.is_empty() {
+            continue;
+        }
         let Some(index) = pipeline.resources.get_index_of(&resource.value) else {
             errors.push(Error::new(resource.location.clone(), ErrorKind::UndeclaredResource(resource.value.clone())));
             continue;
