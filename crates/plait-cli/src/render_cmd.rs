@@ -56,6 +56,8 @@ pub struct Rendered {
     pub image: image::RgbaImage,
     pub adapter: String,
     pub backend: String,
+    /// What the renderer adapted to the adapter (format downgrades…).
+    pub notes: Vec<String>,
 }
 
 pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
@@ -86,6 +88,7 @@ pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32),
         image,
         adapter: gpu.adapter_name().to_owned(),
         backend: gpu.backend_name(),
+        notes: prepared.renderer.notes().to_vec(),
     })
 }
 
@@ -99,6 +102,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .context("encoding PNG")?;
     out.commit(&png)?;
+    for note in &r.notes {
+        eprintln!("note: {note}");
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report_json(&pipeline, &r, &args.out))?);
     } else {
@@ -159,6 +165,7 @@ pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Val
         "resources": resources,
         "memory": { "peak_bytes": s.memory.peak_bytes, "unpooled_bytes": s.memory.unpooled_bytes },
         "output": out.display().to_string(),
+        "notes": r.notes,
     })
 }
 

@@ -77,7 +77,17 @@ impl Gpu {
             | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
             | wgpu::Features::FLOAT32_BLENDABLE
             | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
-        let features = available & wanted;
+        let mut features = available & wanted;
+        // PLAIT_DISABLE_FEATURES=FLOAT32_BLENDABLE,TIMESTAMP_QUERY pretends the
+        // adapter lacks them: how the fallbacks for weaker adapters are tested here.
+        if let Ok(list) = std::env::var("PLAIT_DISABLE_FEATURES") {
+            for name in list.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+                match wgpu::Features::from_name(name) {
+                    Some(f) => features.remove(f),
+                    None => return Err(GpuError::Device(format!("PLAIT_DISABLE_FEATURES: unknown feature `{name}`"))),
+                }
+            }
+        }
         let limits = adapter.limits();
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {

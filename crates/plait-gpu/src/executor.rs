@@ -49,6 +49,7 @@ pub struct Renderer<'g> {
     frame_bind_group: wgpu::BindGroup,
     passes: Vec<Box<dyn PreparedPass>>,
     timestamps: Option<Timestamps>,
+    notes: Vec<String>,
 }
 
 impl<'g> Renderer<'g> {
@@ -74,6 +75,8 @@ impl<'g> Renderer<'g> {
                 }
             }
         }
+        let mut schedule = schedule;
+        let notes = downgrade_float32_blending(&mut schedule, library, &gpu.capabilities);
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pool = ResourcePool::new(device, &schedule);
         if let Some(e) = pollster::block_on(scope.pop()) {
@@ -153,11 +156,17 @@ impl<'g> Renderer<'g> {
                 period_ns: gpu.queue.get_timestamp_period(),
             }
         });
-        Ok(Renderer { gpu, schedule, pool, geometry, frame_buffer, frame_bind_group, passes, timestamps })
+        Ok(Renderer { gpu, schedule, pool, geometry, frame_buffer, frame_bind_group, passes, timestamps, notes })
     }
 
     pub fn schedule(&self) -> &Schedule {
         &self.schedule
+    }
+
+    /// What the renderer changed to fit the adapter (e.g. a 32-bit float
+    /// target blended in 16 bits), one sentence each.
+    pub fn notes(&self) -> &[String] {
+        &self.notes
     }
 
     /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
@@ -251,4 +260,57 @@ impl<'g> Renderer<'g> {
         self.gpu.queue.submit([encoder.finish()]);
         map_buffer(device, &staging).map_err(|message| GpuError::Readback { resource: name.into(), message })
     }
+}
+
+/// Blending into 32-bit float targets needs `FLOAT32_BLENDABLE`. Without it,
+/// every such target (and every resource sharing its memory) becomes the
+/// 16-bit float format with the same channels, and a note says so.
+fn downgrade_float32_blending(schedule: &mut Schedule, library: &PassLibrary, caps: &crate::Capabilities) -> Vec<String> {
+    use plait_graph::{Access, Format};
+    if caps.float32_blendable {
+        return Vec::new();
+    }
+    let mut physical_to_downgrade = Vec::new();
+    for pass in &schedule.passes {
+        let Some(t) = library.get(&pass.type_name) else { continue };
+        let Ok(state) = t.raster_state(pass, caps) else { continue };
+        for (i, b) in pass.writes.iter().filter(|b| b.access == Access::ColorTarget).enumerate() {
+            let blended = state.blend.get(i).copied().flatten().is_some();
+            let res = &schedule.resources[b.resource];
+            if let ResourceDesc::Texture { format: Format::R32Float | Format::Rg32Float | Format::Rgba32Float, .. } = res.desc
+                && blended
+            {
+                physical_to_downgrade.push((res.physical, pass.name.clone()));
+            }
+        }
+    }
+    let half = |f: Format| match f {
+        Format::R32Float => Format::R16Float,
+        Format::Rg32Float => Format::Rg16Float,
+        _ => Format::Rgba16Float,
+    };
+    let mut notes = Vec::new();
+    for (physical, pass) in physical_to_downgrade {
+        let phys = &mut schedule.physical[physical];
+        if let ResourceDesc::Texture { format, .. } = &mut phys.desc {
+            if !matches!(format, Format::R32Float | Format::Rg32Float | Format::Rgba32Float) {
+                continue;
+            }
+            let from = *format;
+            *format = half(from);
+            for &user in &phys.users {
+                if let ResourceDesc::Texture { format, .. } = &mut schedule.resources[user].desc {
+                    *format = half(from);
+                }
+                notes.push(format!(
+                    "`{}`: pass `{pass}` blends into it but the adapter lacks FLOAT32_BLENDABLE; using {} instead of {from}",
+                    schedule.resources[user].name,
+                    half(from)
+                ));
+            }
+        }
+    }
+    schedule.memory.peak_bytes = schedule.physical.iter().map(|p| p.desc.bytes()).sum();
+    schedule.memory.unpooled_bytes = schedule.resources.iter().map(|r| r.desc.bytes()).sum();
+    notes
 }
