@@ -145,7 +145,11 @@ pub fn passes(args: PassesArgs) -> Result<()> {
                     flags.push("loads");
                 }
                 let flags = if flags.is_empty() { String::new() } else { format!(" [{}]", flags.join(", ")) };
-                println!("    {:<12} {} {:?} ({}){flags} — {}", s.name, s.kind, s.access, s.formats, s.doc);
+                let formats = match s.kind {
+                    plait_graph::ResourceKind::Texture => format!(" ({})", s.formats),
+                    plait_graph::ResourceKind::Buffer => String::new(),
+                };
+                println!("    {:<12} {} {:?}{formats}{flags} — {}", s.name, s.kind, s.access, s.doc);
             }
         }
         if !spec.params.is_empty() {
