@@ -8,6 +8,14 @@
 #import plait::visibility::modified_shadow_map::hair_visibility
 #else ifdef VISIBILITY_OCCUPANCY
 #import plait::visibility::occupancy::hair_visibility
+#else ifdef VISIBILITY_DEEP_OPACITY
+#import plait::visibility::deep_opacity::hair_visibility
+#else ifdef VISIBILITY_OPACITY_SHADOW_MAPS
+#import plait::visibility::opacity_shadow_maps::hair_visibility
+#else ifdef VISIBILITY_DENSITY_CLUSTERING
+#import plait::visibility::density_clustering::hair_visibility
+#else ifdef VISIBILITY_EXACT
+#import plait::visibility::exact::hair_visibility
 #else
 #import plait::visibility::none::hair_visibility
 #endif

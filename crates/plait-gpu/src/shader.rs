@@ -24,6 +24,16 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/visibility/modified_shadow_map.wgsl"),
     ),
     ("shaders/lib/visibility/occupancy.wgsl", include_str!("../../../shaders/lib/visibility/occupancy.wgsl")),
+    ("shaders/lib/visibility/deep_opacity.wgsl", include_str!("../../../shaders/lib/visibility/deep_opacity.wgsl")),
+    (
+        "shaders/lib/visibility/opacity_shadow_maps.wgsl",
+        include_str!("../../../shaders/lib/visibility/opacity_shadow_maps.wgsl"),
+    ),
+    (
+        "shaders/lib/visibility/density_clustering.wgsl",
+        include_str!("../../../shaders/lib/visibility/density_clustering.wgsl"),
+    ),
+    ("shaders/lib/visibility/exact.wgsl", include_str!("../../../shaders/lib/visibility/exact.wgsl")),
 ];
 
 /// A shader that failed to parse, compose or validate.

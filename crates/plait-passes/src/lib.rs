@@ -6,10 +6,15 @@
 
 pub mod compose;
 pub mod data_only;
+pub mod deep_opacity;
+pub mod density_clustering;
+pub mod depth_lists;
 pub mod depth_range;
 pub mod hair_shade;
 pub mod occupancy;
+pub mod opacity_shadow_maps;
 pub mod opaque_shade;
+pub mod per_texel;
 pub mod shadow_map;
 pub mod slab;
 pub mod spec_util;
@@ -26,6 +31,10 @@ pub fn library() -> PassLibrary {
     lib.add(depth_range::DepthRange);
     lib.add(occupancy::Occupancy);
     lib.add(slab::Slab);
+    lib.add(deep_opacity::DeepOpacity);
+    lib.add(opacity_shadow_maps::OpacityShadowMaps);
+    lib.add(density_clustering::DensityClustering);
+    lib.add(depth_lists::DepthLists);
     lib.add(opaque_shade::OpaqueShade);
     lib.add(hair_shade::HairShade);
     lib.add(compose::Compose);

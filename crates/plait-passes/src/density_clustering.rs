@@ -1,0 +1,133 @@
+//! `density_clustering`: self-shadowing by density clustering (Mertens, Kautz,
+//! Bekaert & Van Reeth 2004, 002_82b70f3f3a265fe6.txt — the sketch's
+//! construction of V; as summarised in 004_51cca5cde985008c.txt §3.3.2).
+//!
+//! Per light texel the fragment depths along the line of sight are summarised
+//! into K = 4 clusters by k-means, iterated INSIDE this one pass by drawing the
+//! hair several times:
+//! - draw 0: the clusters are 4 uniform slices of the texel's hair range
+//!   (near/far from `depth_range`); each fragment adds itself (count, Σz,
+//!   Σz²) to its slice — "rendering uniform slices yielding the mean z-value
+//!   of each slice, one k-means iteration" (004 §3.3.2);
+//! - draws 1..=`iterations`: each fragment joins the cluster whose mean (from
+//!   the previous draw's sums) is nearest and adds itself there.
+//! Sums are fixed point (z relative to the texel range × 2^18) with
+//! `atomicAdd`, one stage of 4 × 3 u32 per texel per draw, so a draw reads the
+//! previous stage while writing its own (no read-write hazard inside a draw).
+//! The provider `plait::visibility::density_clustering` reads the last stage:
+//! each cluster becomes a histogram bin centred on its mean, 2√3·σ wide (the
+//! width of a uniform distribution of standard deviation σ: "bin widths
+//! proportional to the standard deviation of each cluster"), holding its
+//! fragment count; the density integrated up to z gives the fragment count
+//! in front, visibility exp(-w · ∫d) — piecewise linear, as in the paper.
+//! Mertens et al. found one refinement enough: `iterations = 1` (2 draws).
+//!
+//! Memory: (iterations + 1) × 4 × 3 × 4 B per texel = 24 MiB at 512² with
+//! one refinement, plus the 2 MiB depth range.
+
+use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, build_shader_pass};
+use plait_gpu::{Define, GpuError};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass, Value};
+
+use crate::per_texel::check_words;
+use crate::spec_util::{DEPTH, buffer, int, texture};
+
+pub struct DensityClustering;
+
+/// Clusters per texel (the paper's K = 4: one RGBA texel).
+pub const CLUSTERS: u64 = 4;
+/// u32 words per cluster per stage: count, Σz, Σz² (fixed point).
+pub const WORDS_PER_CLUSTER: u64 = 3;
+
+const SHADER: BuiltinShader = ("shaders/passes/density_clustering.wgsl", include_str!("../../../shaders/passes/density_clustering.wgsl"));
+
+fn spec() -> PassTypeSpec {
+    PassTypeSpec {
+        name: "density_clustering".into(),
+        description: "K = 4 k-means clusters of fragment depth per texel (count, Σz, Σz²), refined over several hair draws in one pass.".into(),
+        source: "002_82b70f3f3a265fe6.txt; 004_51cca5cde985008c.txt §3.3.2".into(),
+        shape: PassShape::Raster,
+        inputs: vec![
+            texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view (depth_range): initial uniform clusters"),
+            texture("depth", Access::DepthTarget, DEPTH, "opaque depth of the same view, tested not written"),
+        ],
+        outputs: vec![buffer("clusters", Access::StorageWrite, "(iterations + 1) stages × 4 clusters × (count, Σz, Σz²) u32 per texel")],
+        params: vec![int("iterations", 1, 0, 8, "k-means refinements after the uniform-slice draw (the paper: 1 is enough)")],
+        dynamic_slots: false,
+        needs_shader: false,
+        required_features: vec![],
+    }
+}
+
+/// One hair draw: accumulates stage `stage`.
+struct Draw {
+    stage: u32,
+}
+
+impl PassType for Draw {
+    fn spec(&self) -> PassTypeSpec {
+        spec()
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(SHADER)
+    }
+    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
+        let mut d = plait_gpu::pass::default_defines(pass);
+        d.push(("STAGE".into(), Define::UInt(self.stage)));
+        d
+    }
+}
+
+struct Draws(Vec<Box<dyn PreparedPass>>);
+
+impl PreparedPass for Draws {
+    fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        for d in &self.0 {
+            d.record(ctx, encoder);
+        }
+    }
+}
+
+impl PassType for DensityClustering {
+    fn spec(&self) -> PassTypeSpec {
+        spec()
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(SHADER)
+    }
+    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
+        let mut d = plait_gpu::pass::default_defines(pass);
+        d.push(("STAGE".into(), Define::UInt(0)));
+        d
+    }
+    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+        let iterations = match pass.params.get("iterations") {
+            Some(Value::Int(i)) => *i as u64,
+            _ => 1,
+        };
+        let per_stage = CLUSTERS * WORDS_PER_CLUSTER;
+        if let Some(words) = check_words(pass, ctx, "clusters", "range", per_stage, per_stage * 9)?
+            && words != per_stage * (iterations + 1)
+        {
+            return Err(GpuError::Pass {
+                pass: pass.name.clone(),
+                message: format!(
+                    "`clusters` holds {words} words per texel; iterations = {iterations} needs (iterations + 1) × {per_stage} = {}",
+                    per_stage * (iterations + 1)
+                ),
+            });
+        }
+        let mut draws = Vec::new();
+        for stage in 0..=iterations as u32 {
+            // Only the first draw clears the buffer; later draws add to it.
+            let mut p = pass.clone();
+            if stage > 0 {
+                for b in p.writes.iter_mut().filter(|b| b.slot == "clusters") {
+                    b.loads = true;
+                }
+            }
+            draws.push(build_shader_pass(&Draw { stage }, &p, ctx)?);
+        }
+        Ok(Box::new(Draws(draws)))
+    }
+}

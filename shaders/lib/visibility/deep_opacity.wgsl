@@ -1,0 +1,58 @@
+// plait::visibility::deep_opacity — deep opacity maps (Yuksel & Keyser 2008,
+// 001_68f346f76bfc3699.txt §3, step three). Per light texel: z0 (the near
+// depth of the light depth-range map) and K fragment counts, one per layer
+// [z0 + d_{k-1}, z0 + d_k), d_k = layer_size · k(k+1)/2 (linearly increasing
+// sizes; the last layer also holds everything beyond it). The opacity at a
+// layer's end is the prefix sum of the counts (a fragment counts in its
+// layer and every layer behind it); between the ends it is interpolated
+// linearly. Visibility = exp(-w · count), w = shadow_weight as in occupancy.
+#define_import_path plait::visibility::deep_opacity
+
+#import plait::frame::{frame, light_uv_depth, light_linear_depth}
+
+@group(1) @binding(9) var vis_range: texture_2d<f32>;
+@group(1) @binding(10) var<storage, read> vis_layers: array<u32>;
+
+struct VisibilityParams {
+    // Opacity added by one hair fragment in front (w of 000_… §3.3).
+    shadow_weight: f32,
+    // Thickness of the first layer, world units (same value as the deep_opacity pass's).
+    layer_size: f32,
+}
+@group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
+
+// Fragments in front of linear light depth `depth` at `texel`.
+fn deep_opacity_count(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
+    let range = textureLoad(vis_range, vec2<i32>(texel), 0);
+    if (range.y < range.x) {
+        return 0.0; // no hair in this texel
+    }
+    let count = arrayLength(&vis_layers) / (size.x * size.y);
+    let base = (texel.y * size.x + texel.x) * count;
+    let behind = (depth - range.x) * (frame.near_far.w - frame.near_far.z);
+    if (behind <= 0.0) {
+        return 0.0;
+    }
+    var before = 0.0;
+    var start = 0.0;
+    for (var k = 0u; k < count; k++) {
+        let end = visibility_params.layer_size * f32((k + 1u) * (k + 2u)) * 0.5;
+        let n = f32(vis_layers[base + k]);
+        if (behind < end) {
+            return before + n * (behind - start) / (end - start);
+        }
+        before += n;
+        start = end;
+    }
+    return before;
+}
+
+fn hair_visibility(world: vec3<f32>) -> f32 {
+    let p = light_uv_depth(world);
+    if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
+        return 1.0;
+    }
+    let size = textureDimensions(vis_range);
+    let texel = min(vec2<u32>(p.xy * vec2<f32>(size)), size - 1u);
+    return exp(-visibility_params.shadow_weight * deep_opacity_count(texel, size, light_linear_depth(world)));
+}

@@ -1,0 +1,52 @@
+// plait::visibility::exact — exact self-shadowing, the ground truth: the
+// number n of hair fragments in front of a point from the light
+// (000_785589f319b01ef5.txt §3, Fig. 5; the occupancy order o estimates it),
+// counted in the point's light texel over the depth lists of the depth_lists
+// pass. Visibility = exp(-w · n), w = shadow_weight. A point's own strand is
+// kept out by `exact_bias` (world units along the light). Where a list
+// overflowed, the dropped fragments are assumed distributed like the stored
+// ones (the pass's `overflow` buffer says whether that happened).
+#define_import_path plait::visibility::exact
+
+#import plait::frame::{frame, light_uv_depth, light_linear_depth}
+
+@group(1) @binding(9) var vis_range: texture_2d<f32>;
+@group(1) @binding(10) var<storage, read> vis_lists: array<u32>;
+@group(1) @binding(11) var<storage, read> vis_counts: array<u32>;
+
+struct VisibilityParams {
+    // Opacity added by one hair fragment in front (w of 000_… §3.3).
+    shadow_weight: f32,
+    // Depth tolerance (world units) below which a fragment is not "in front".
+    exact_bias: f32,
+}
+@group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
+
+// Hair fragments in front of linear light depth `depth` at `texel`.
+fn exact_count(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
+    let index = texel.y * size.x + texel.x;
+    let capacity = arrayLength(&vis_lists) / (size.x * size.y);
+    let total = vis_counts[index];
+    let stored = min(total, capacity);
+    let limit = depth - visibility_params.exact_bias / (frame.near_far.w - frame.near_far.z);
+    var n = 0u;
+    for (var i = 0u; i < stored; i++) {
+        if (bitcast<f32>(vis_lists[index * capacity + i]) < limit) {
+            n++;
+        }
+    }
+    if (stored == 0u) {
+        return 0.0;
+    }
+    return f32(n) * f32(total) / f32(stored);
+}
+
+fn hair_visibility(world: vec3<f32>) -> f32 {
+    let p = light_uv_depth(world);
+    if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
+        return 1.0;
+    }
+    let size = textureDimensions(vis_range);
+    let texel = min(vec2<u32>(p.xy * vec2<f32>(size)), size - 1u);
+    return exp(-visibility_params.shadow_weight * exact_count(texel, size, light_linear_depth(world)));
+}

@@ -1,0 +1,51 @@
+// plait::visibility::opacity_shadow_maps — opacity shadow maps (Kim & Neumann
+// 2001; 004_51cca5cde985008c.txt §3.3.2 formulas 3.1-3.2, §5.7 formula 5.1).
+// Per light texel: N fragment counts, one per uniform slice of the texel's
+// hair range [near, far] (per-texel range, from the light depth-range map).
+// σ(z_i) at slice boundary i is the sum of the slices before it; σ(z) is
+// interpolated linearly between the two closest boundaries (formula 5.1);
+// transmittance T = exp(-w · σ) (formula 3.1 with k = w = shadow_weight,
+// the opacity of one fragment, as in occupancy).
+#define_import_path plait::visibility::opacity_shadow_maps
+
+#import plait::frame::{light_uv_depth, light_linear_depth}
+
+@group(1) @binding(9) var vis_range: texture_2d<f32>;
+@group(1) @binding(10) var<storage, read> vis_slices: array<u32>;
+
+struct VisibilityParams {
+    // Opacity added by one hair fragment in front (w of 000_… §3.3).
+    shadow_weight: f32,
+}
+@group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
+
+// σ: fragments in front of linear light depth `depth` at `texel`.
+fn opacity_thickness(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
+    let range = textureLoad(vis_range, vec2<i32>(texel), 0);
+    if (range.y < range.x) {
+        return 0.0; // no hair in this texel
+    }
+    let n = arrayLength(&vis_slices) / (size.x * size.y);
+    let base = (texel.y * size.x + texel.x) * n;
+    let rel = (depth - range.x) / max(range.y - range.x, 1e-9);
+    if (rel <= 0.0) {
+        return 0.0;
+    }
+    let s = min(rel, 1.0) * f32(n);
+    let slice = min(u32(floor(s)), n - 1u);
+    var before = 0.0;
+    for (var i = 0u; i < slice; i++) {
+        before += f32(vis_slices[base + i]);
+    }
+    return before + f32(vis_slices[base + slice]) * clamp(s - f32(slice), 0.0, 1.0);
+}
+
+fn hair_visibility(world: vec3<f32>) -> f32 {
+    let p = light_uv_depth(world);
+    if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
+        return 1.0;
+    }
+    let size = textureDimensions(vis_range);
+    let texel = min(vec2<u32>(p.xy * vec2<f32>(size)), size - 1u);
+    return exp(-visibility_params.shadow_weight * opacity_thickness(texel, size, light_linear_depth(world)));
+}

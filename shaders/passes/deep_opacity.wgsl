@@ -1,0 +1,54 @@
+// deep_opacity: the opacity map of deep opacity maps (001_68f346f76bfc3699.txt
+// §3, step two). z0 = the texel's nearest hair (red of the depth_range map,
+// step one); layer k spans [z0 + d_{k-1}, z0 + d_k) with linearly increasing
+// sizes d_k - d_{k-1} = k · layer_size (world units); fragments beyond the last
+// layer go to the last. Each fragment counts itself in its layer (atomicAdd:
+// exact counts, the paper's additive blending). K = the `layers` buffer's u32
+// words per texel.
+#import plait::frame::{frame, view_proj, view_linear_depth}
+
+@group(1) @binding(0) var range: texture_2d<f32>;
+@group(1) @binding(1) var<storage, read_write> layers: array<atomic<u32>>;
+
+struct DomParams {
+    // Thickness of the first layer, world units.
+    layer_size: f32,
+}
+@group(1) @binding(2) var<uniform> dom_params: DomParams;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.world = v.position;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) {
+    let size = textureDimensions(range);
+    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
+    let z0 = textureLoad(range, vec2<i32>(texel), 0).x;
+    let count = arrayLength(&layers) / (size.x * size.y);
+    // Distance behind z0 in world units (linear depth × the light's depth span).
+    let behind = max(view_linear_depth(in.world) - z0, 0.0) * (frame.near_far.w - frame.near_far.z);
+    // Layer k (0-based) ends at d_{k+1} = layer_size · (k+1)(k+2)/2.
+    var k = 0u;
+    loop {
+        let end = dom_params.layer_size * f32((k + 1u) * (k + 2u)) * 0.5;
+        if (behind < end || k + 1u >= count) {
+            break;
+        }
+        k++;
+    }
+    atomicAdd(&layers[(texel.y * size.x + texel.x) * count + k], 1u);
+}

@@ -1,0 +1,62 @@
+// density_clustering: k-means (K = 4) of the fragment depths of each light
+// texel, one hair draw per iteration (002_82b70f3f3a265fe6.txt; summarised in
+// 004_51cca5cde985008c.txt §3.3.2). The pass defines STAGE per draw: stage 0
+// assigns fragments to 4 uniform slices of the texel's hair range; stage s > 0
+// assigns each to the nearest mean of stage s - 1. Each stage accumulates, per
+// cluster, (count, Σz, Σz²) of z = depth relative to the texel range, fixed
+// point × 2^18, with atomicAdd. Layout: [stage][texel][cluster][3] u32.
+#import plait::frame::{view_proj, view_linear_depth}
+
+@group(1) @binding(0) var range: texture_2d<f32>;
+@group(1) @binding(1) var<storage, read_write> clusters: array<atomic<u32>>;
+
+const K: u32 = 4u;
+const SCALE: f32 = 262144.0; // 2^18
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.world = v.position;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) {
+    let size = textureDimensions(range);
+    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
+    let texels = size.x * size.y;
+    let r = textureLoad(range, vec2<i32>(texel), 0);
+    let z = clamp((view_linear_depth(in.world) - r.x) / max(r.y - r.x, 1e-9), 0.0, 1.0);
+    let texel_index = texel.y * size.x + texel.x;
+    var best = min(u32(z * f32(K)), K - 1u);
+#if STAGE > 0
+    // Nearest mean of the previous stage (empty clusters never win).
+    let prev = ((#{STAGE}u - 1u) * texels + texel_index) * K * 3u;
+    var best_d = 2.0;
+    for (var k = 0u; k < K; k++) {
+        let n = atomicLoad(&clusters[prev + k * 3u]);
+        if (n > 0u) {
+            let mean = f32(atomicLoad(&clusters[prev + k * 3u + 1u])) / (SCALE * f32(n));
+            let d = abs(z - mean);
+            if (d < best_d) {
+                best_d = d;
+                best = k;
+            }
+        }
+    }
+#endif
+    let base = (#{STAGE}u * texels + texel_index) * K * 3u + best * 3u;
+    atomicAdd(&clusters[base], 1u);
+    atomicAdd(&clusters[base + 1u], u32(round(z * SCALE)));
+    atomicAdd(&clusters[base + 2u], u32(round(z * z * SCALE)));
+}

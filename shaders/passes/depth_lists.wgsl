@@ -1,0 +1,44 @@
+// depth_lists: every hair fragment's linear light depth in its texel's list
+// (the exact fragment count of 000_785589f319b01ef5.txt §3, Fig. 5). A slot
+// comes from atomicAdd on the texel's counter; past the capacity (the `lists`
+// buffer's words per texel) the fragment is dropped and counted in `overflow`.
+#import plait::frame::{view_proj, view_linear_depth}
+
+@group(1) @binding(0) var range: texture_2d<f32>;
+@group(1) @binding(1) var<storage, read_write> lists: array<u32>;
+@group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>>;
+@group(1) @binding(3) var<storage, read_write> overflow: array<atomic<u32>>;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.world = v.position;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) {
+    let size = textureDimensions(range);
+    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
+    let index = texel.y * size.x + texel.x;
+    let capacity = arrayLength(&lists) / (size.x * size.y);
+    let slot = atomicAdd(&counts[index], 1u);
+    if (slot < capacity) {
+        lists[index * capacity + slot] = bitcast<u32>(view_linear_depth(in.world));
+    } else {
+        atomicAdd(&overflow[0], 1u);
+        if (slot == capacity) {
+            atomicAdd(&overflow[1], 1u);
+        }
+    }
+}
