@@ -24,6 +24,18 @@
 #import plait::frame::camera_linear_depth
 #import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, order_estimate}
 #endif
+// Transparency modes of their own pass types (depth_peeling.rs, linked_list.rs,
+// weighted_average.rs, alpha_to_coverage.rs, opaque_hair.rs): each module hands
+// back the fragment's outputs from its shaded colour and alpha.
+#ifdef TRANSPARENCY_DEPTH_PEEL
+#import plait::transparency::depth_peel::{FragmentOut, hair_fragment}
+#else ifdef TRANSPARENCY_FRAGMENT_LIST
+#import plait::transparency::fragment_list::{FragmentOut, hair_fragment}
+#else ifdef TRANSPARENCY_WEIGHTED_AVERAGE
+#import plait::transparency::weighted_average::{FragmentOut, hair_fragment}
+#else ifdef TRANSPARENCY_COVERAGE
+#import plait::transparency::coverage::{FragmentOut, hair_fragment}
+#endif
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 
@@ -83,7 +95,11 @@ fn vs_main(v: VertexIn) -> VertexOut {
 }
 
 @fragment
+#ifdef TRANSPARENCY_MODULE
+fn fs_main(in: VertexOut) -> FragmentOut {
+#else
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+#endif
     let tangent = normalize(in.tangent);
     let l = to_light(in.world);
     let e = normalize(frame.camera_position.xyz - in.world);
@@ -92,7 +108,9 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let visibility = hair_visibility(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
     let base = in.color * frame.hair_color.rgb;
     let rgb = frame.light_color.rgb * (base * kk.x + vec3<f32>(kk.y)) * visibility + frame.ambient.rgb * base;
-#ifdef BLEND_OCCUPANCY_ORDER
+#ifdef TRANSPARENCY_MODULE
+    return hair_fragment(in.clip, rgb, clamp(in.alpha * frame.hair_color.a, 0.0, 1.0));
+#else ifdef BLEND_OCCUPANCY_ORDER
     // Front-to-back weights from the estimated order o: (1-ᾱ)^o · α, added
     // unsorted into a float target (§3.4). The fragments in front are
     // unknown, so they count with the mean alpha ᾱ — the method's

@@ -21,6 +21,9 @@ pub struct PassTiming {
     pub type_name: String,
     /// `None` where the adapter has no timestamp queries.
     pub gpu_ms: Option<f64>,
+    /// What the pass found out while recording ([`PreparedPass::stats`]), e.g. `layers`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stats: Vec<(String, f64)>,
 }
 
 /// What one frame cost.
@@ -180,6 +183,8 @@ impl<'g> Renderer<'g> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(&self.schedule.name) });
         let ctx = RecordContext {
+            device,
+            queue: &self.gpu.queue,
             frame_bind_group: &self.frame_bind_group,
             geometry: &self.geometry,
             pool: &self.pool,
@@ -225,6 +230,7 @@ impl<'g> Renderer<'g> {
                 name: p.name.clone(),
                 type_name: p.type_name.clone(),
                 gpu_ms: times.as_ref().map(|t| ms(t[i], t[i + 1], period)),
+                stats: self.passes[i].stats(),
             })
             .collect();
         let total_gpu_ms = times.as_ref().map(|t| ms(t[0], t[self.passes.len()], period));

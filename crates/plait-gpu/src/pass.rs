@@ -116,6 +116,12 @@ pub trait PassType: Send + Sync {
 /// GPU objects of one pass, ready to record every frame.
 pub trait PreparedPass {
     fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder);
+
+    /// Numbers the last `record` found out (e.g. the layers a depth-peeling
+    /// pass needed), reported per pass in the executor's `FrameReport`.
+    fn stats(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
 }
 
 /// What building a pass can use.
@@ -133,6 +139,13 @@ pub struct BuildContext<'a> {
 
 /// What recording a pass can use.
 pub struct RecordContext<'a> {
+    /// For passes that must see a GPU result mid-frame (an occlusion query):
+    /// they may finish the encoder they were given, submit it, wait, and go on
+    /// in a fresh one (`std::mem::replace`); the executor's timestamps stay valid.
+    /// The executor wraps each pass in a debug group named after the pass:
+    /// pop it before finishing the old encoder and push it on the new one.
+    pub device: &'a wgpu::Device,
+    pub queue: &'a wgpu::Queue,
     pub frame_bind_group: &'a wgpu::BindGroup,
     pub geometry: &'a SceneGeometry,
     pub pool: &'a ResourcePool,
@@ -373,6 +386,8 @@ pub enum ShaderPassKind {
     Raster {
         pipeline: wgpu::RenderPipeline,
         colors: Vec<(plait_graph::ResourceId, bool)>,
+        /// Per colour target: the single-sampled texture its samples resolve into.
+        resolves: Vec<Option<plait_graph::ResourceId>>,
         depth: Option<(plait_graph::ResourceId, bool, bool)>,
         state: RasterState,
         draw: DrawWhat,
@@ -396,6 +411,12 @@ fn pass_error(pass: &ScheduledPass, message: impl Into<String>) -> GpuError {
 
 /// The default `PassType::build`: compose, reflect, lay out, create the pipeline.
 pub fn build_shader_pass<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    Ok(Box::new(build_shader_pass_typed(t, pass, ctx)?))
+}
+
+/// [`build_shader_pass`] without the box, for passes that record it their own
+/// way (e.g. [`ShaderPass::record_with_query`]).
+pub fn build_shader_pass_typed<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<ShaderPass, GpuError> {
     let spec = t.spec();
     for feature in &spec.required_features {
         let has = wgpu::Features::from_name(feature).is_some_and(|f| ctx.device.features().contains(f));
@@ -422,7 +443,7 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
     spec: &PassTypeSpec,
     path: &Path,
     source: &str,
-) -> Result<Box<dyn PreparedPass>, GpuError> {
+) -> Result<ShaderPass, GpuError> {
     let defines = t.defines(pass);
     let module = ctx.shaders.compose(path, source, &defines)?;
     let bindings = reflect::bindings(&module);
@@ -548,7 +569,14 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
         let mut colors = Vec::new();
         let mut color_states = Vec::new();
         let mut samples = 1;
-        for b in pass.writes.iter().filter(|b| b.access == Access::ColorTarget) {
+        // A colour target `X` with a written slot `X_resolve` resolves its
+        // samples into that resource at the end of the pass (MSAA).
+        let is_resolve = |slot: &str| {
+            slot.strip_suffix("_resolve").is_some_and(|base| pass.writes.iter().any(|o| o.slot == base && o.access == Access::ColorTarget))
+        };
+        let mut resolves = Vec::new();
+        for b in pass.writes.iter().filter(|b| b.access == Access::ColorTarget && !is_resolve(&b.slot)) {
+            resolves.push(pass.writes.iter().find(|r| r.slot == format!("{}_resolve", b.slot)).map(|r| r.resource));
             let ResourceDesc::Texture { format, samples: s, .. } = ctx.schedule.resources[b.resource].desc else {
                 return Err(pass_error(pass, format!("colour target `{}` is not a texture", b.slot)));
             };
@@ -613,9 +641,9 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             multiview_mask: None,
             cache: None,
         });
-        ShaderPassKind::Raster { pipeline, colors, depth, state, draw }
+        ShaderPassKind::Raster { pipeline, colors, resolves, depth, state, draw }
     };
-    Ok(Box::new(ShaderPass { name: pass.name.clone(), kind, bind_group, clears }))
+    Ok(ShaderPass { name: pass.name.clone(), kind, bind_group, clears })
 }
 
 fn shader_source_for_build<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass) -> Result<(PathBuf, Cow<'static, str>), GpuError> {
@@ -629,6 +657,14 @@ fn shader_source_for_build<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass) ->
 
 impl PreparedPass for ShaderPass {
     fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        self.record_with_query(ctx, encoder, None);
+    }
+}
+
+impl ShaderPass {
+    /// Record the pass; a raster pass counts the samples that pass the depth
+    /// test in occlusion query `index` of `queries` (depth peeling's stop test).
+    pub fn record_with_query(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder, query: Option<(&wgpu::QuerySet, u32)>) {
         for &id in &self.clears {
             match ctx.pool.get(id) {
                 crate::pool::GpuResource::Buffer(b) => encoder.clear_buffer(b, 0, None),
@@ -645,15 +681,16 @@ impl PreparedPass for ShaderPass {
                 }
                 cpass.dispatch_workgroups(workgroups[0], workgroups[1], workgroups[2]);
             }
-            ShaderPassKind::Raster { pipeline, colors, depth, state, draw } => {
+            ShaderPassKind::Raster { pipeline, colors, resolves, depth, state, draw } => {
                 let color_attachments: Vec<_> = colors
                     .iter()
-                    .map(|&(id, loads)| {
+                    .zip(resolves)
+                    .map(|(&(id, loads), resolve)| {
                         let view = ctx.pool.texture(id).map(|(_, v)| v).expect("colour targets are textures (checked at build)");
                         Some(wgpu::RenderPassColorAttachment {
                             view,
                             depth_slice: None,
-                            resolve_target: None,
+                            resolve_target: resolve.and_then(|r| ctx.pool.texture(r)).map(|(_, v)| v),
                             ops: wgpu::Operations {
                                 load: if loads { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(state.clear_color) },
                                 store: wgpu::StoreOp::Store,
@@ -677,9 +714,12 @@ impl PreparedPass for ShaderPass {
                     color_attachments: &color_attachments,
                     depth_stencil_attachment: depth_attachment,
                     timestamp_writes: None,
-                    occlusion_query_set: None,
+                    occlusion_query_set: query.map(|(q, _)| q),
                     multiview_mask: None,
                 });
+                if let Some((_, index)) = query {
+                    rpass.begin_occlusion_query(index);
+                }
                 rpass.set_pipeline(pipeline);
                 rpass.set_bind_group(0, ctx.frame_bind_group, &[]);
                 if let Some(bg) = &self.bind_group {
@@ -697,6 +737,9 @@ impl PreparedPass for ShaderPass {
                     rpass.set_vertex_buffer(0, b.vertices.slice(..));
                     rpass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
                     rpass.draw_indexed(0..b.index_count, 0, 0..1);
+                }
+                if query.is_some() {
+                    rpass.end_occlusion_query();
                 }
             }
         }

@@ -49,7 +49,9 @@ impl ResourcePool {
                 match b.access {
                     Access::Sampled => tex_usage[p] |= wgpu::TextureUsages::TEXTURE_BINDING,
                     Access::StorageRead | Access::StorageWrite => tex_usage[p] |= wgpu::TextureUsages::STORAGE_BINDING,
-                    Access::ColorTarget | Access::DepthTarget => tex_usage[p] |= wgpu::TextureUsages::RENDER_ATTACHMENT,
+                    // Render targets are sampleable too: a pass with a loop of its own
+                    // (depth peeling) reads back what it rendered.
+                    Access::ColorTarget | Access::DepthTarget => tex_usage[p] |= wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
                     Access::Uniform => buf_usage[p] |= wgpu::BufferUsages::UNIFORM,
                 }
             }

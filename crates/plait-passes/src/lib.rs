@@ -4,21 +4,27 @@
 //! schedule against its shaders with naga (no GPU), which `plait check` and
 //! `plait render` both run before any GPU work.
 
+pub mod alpha_to_coverage;
 pub mod compose;
 pub mod data_only;
 pub mod deep_opacity;
 pub mod density_clustering;
 pub mod depth_lists;
+pub mod depth_peeling;
 pub mod depth_range;
 pub mod hair_shade;
+pub mod linked_list;
 pub mod occupancy;
 pub mod opacity_shadow_maps;
+pub mod opaque_hair;
 pub mod opaque_shade;
 pub mod per_texel;
 pub mod shadow_map;
 pub mod slab;
 pub mod spec_util;
+pub mod transparency;
 pub mod visibility;
+pub mod weighted_average;
 
 use plait_gpu::pass::{PassLibrary, check_pass};
 use plait_gpu::{ShaderError, ShaderLibrary};
@@ -38,6 +44,15 @@ pub fn library() -> PassLibrary {
     lib.add(opaque_shade::OpaqueShade);
     lib.add(hair_shade::HairShade);
     lib.add(compose::Compose);
+    // Transparency methods (issue 5): each shades with hair_shade.wgsl.
+    lib.add(depth_peeling::HairDepthPeel);
+    lib.add(linked_list::HairFragmentList);
+    lib.add(linked_list::FragmentListResolve);
+    lib.add(weighted_average::HairWeightedAverage);
+    lib.add(weighted_average::WeightedAverageResolve);
+    lib.add(alpha_to_coverage::HAIR_ALPHA_TO_COVERAGE);
+    lib.add(opaque_hair::HAIR_OPAQUE);
+    lib.add(transparency::ComposeHairOver);
     lib.add(data_only::Fullscreen);
     lib.add(data_only::Compute);
     lib

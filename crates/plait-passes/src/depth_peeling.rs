@@ -1,0 +1,250 @@
+//! `hair_depth_peel`: depth peeling, the ground truth of hair transparency
+//! (000_785589f319b01ef5.txt §2.2 and Fig. 2, "depth-peeling (ground truth …
+//! 112 layers)"; §3.4 calls it "the only non-approximate method").
+//!
+//! The hair is drawn once per depth layer, front to back: layer k keeps the
+//! fragments strictly behind layer k-1's depth (sampled, ping-pong between
+//! `peel_depth` and `peel_prev`) and in front of the opaque depth, and the
+//! depth test (Less) leaves the nearest of them in `layer`; a fullscreen draw
+//! blends it UNDER the accumulated `color` (dst += (1-dst.a)·layer). The paper
+//! peels back to front with the far test; front to back with "under" gives the
+//! same image and lets the loop stop on the first empty layer.
+//!
+//! Stopping: each peel draw counts its samples in an occlusion query. Every
+//! `check_every` layers the pass resolves the queries, submits what it has
+//! recorded and waits for the result (mid-frame, through
+//! [`RecordContext::device`]/`queue`, continuing in a fresh encoder), and
+//! stops at the first layer that drew nothing, or at `max_layers`. The layers
+//! used are reported as the pass stat `layers` (`FrameReport`), with
+//! `capped = 1` when the cap cut it short. Fragments at exactly the depth of
+//! the previous layer are peeled together with it (only one kept) — the
+//! method's usual tie.
+//!
+//! Cost: `layers` × (one hair draw + one fullscreen blend), plus a CPU↔GPU round
+//! trip per `check_every` layers. Memory: the accumulated colour, one layer
+//! colour target and two depth buffers at screen size.
+
+use std::cell::Cell;
+
+use plait_gpu::pass::{
+    BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext, ShaderPass, build_shader_pass_typed,
+};
+use plait_gpu::{Capabilities, Define, GpuError};
+use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
+
+use crate::spec_util::{DEPTH, HDR, int, texture};
+use crate::transparency::{self, HAIR_SHADER};
+
+pub struct HairDepthPeel;
+
+fn spec() -> PassTypeSpec {
+    let mut inputs = transparency::shading_inputs();
+    inputs.push(texture("opaque_depth", Access::Sampled, DEPTH, "camera depth of opaque geometry: hair behind it is not peeled"));
+    let mut params = transparency::shading_params();
+    params.push(int("max_layers", 256, 1, 4096, "layer cap: peel at most this many layers"));
+    params.push(int("check_every", 4, 1, 4096, "layers peeled between occlusion-query read-backs (each one a CPU-GPU round trip)"));
+    PassTypeSpec {
+        name: "hair_depth_peel".into(),
+        description: "Depth peeling front to back until an occlusion query reports no fragments (ground truth).".into(),
+        source: "000_785589f319b01ef5.txt §2.2, §3.4, Fig. 2".into(),
+        shape: PassShape::Raster,
+        inputs,
+        outputs: vec![
+            texture("color", Access::ColorTarget, HDR, "hair, premultiplied, blended front to back"),
+            texture("layer", Access::ColorTarget, HDR, "scratch: the layer being peeled"),
+            texture("peel_depth", Access::DepthTarget, DEPTH, "scratch: depth of the layer being peeled"),
+            texture("peel_prev", Access::DepthTarget, DEPTH, "scratch: depth of the previous layer (ping-pong with peel_depth)"),
+        ],
+        params,
+        dynamic_slots: false,
+        needs_shader: false,
+        required_features: vec![],
+    }
+}
+
+impl PassType for HairDepthPeel {
+    fn spec(&self) -> PassTypeSpec {
+        spec()
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(HAIR_SHADER)
+    }
+    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
+        transparency::defines(pass, "depth_peel")
+    }
+    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+        let find = |slot: &str| {
+            pass.writes.iter().find(|b| b.slot == slot).cloned().ok_or_else(|| GpuError::Pass { pass: pass.name.clone(), message: format!("`{slot}` is not bound") })
+        };
+        let (color, layer, depth_a, depth_b) = (find("color")?, find("layer")?, find("peel_depth")?, find("peel_prev")?);
+        let int_param = |name: &str, default: i64| match pass.params.get(name) {
+            Some(plait_graph::Value::Int(i)) => (*i).max(1) as u32,
+            _ => default as u32,
+        };
+        let max_layers = int_param("max_layers", 256);
+        let check_every = int_param("check_every", 4);
+
+        // One peel draw per parity: writes one depth buffer, samples the other.
+        let peel_pass = |write: &Binding, prev: &Binding| {
+            let mut p = pass.clone();
+            p.writes = vec![Binding { loads: false, ..layer.clone() }, Binding { slot: "peel_depth".into(), loads: false, access: Access::DepthTarget, ..write.clone() }];
+            p.reads.push(Binding { slot: "peel_prev".into(), access: Access::Sampled, ..prev.clone() });
+            p
+        };
+        let peel = [
+            build_shader_pass_typed(&PeelDraw, &peel_pass(&depth_a, &depth_b), ctx)?,
+            build_shader_pass_typed(&PeelDraw, &peel_pass(&depth_b, &depth_a), ctx)?,
+        ];
+        let mut blend_pass = pass.clone();
+        blend_pass.reads = vec![Binding { access: Access::Sampled, ..layer.clone() }];
+        blend_pass.writes = vec![Binding { loads: true, ..color.clone() }];
+        blend_pass.params.clear();
+        let blend = build_shader_pass_typed(&PeelBlend, &blend_pass, ctx)?;
+
+        let device = ctx.device;
+        let queries = device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("depth peeling"), ty: wgpu::QueryType::Occlusion, count: max_layers });
+        let size = max_layers as u64 * 8;
+        let resolve = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("depth peeling queries"),
+            size,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("depth peeling query readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Ok(Box::new(Peeling {
+            name: pass.name.clone(),
+            peel,
+            blend,
+            color: color.resource,
+            first_prev: depth_b.resource,
+            queries,
+            resolve,
+            readback,
+            max_layers,
+            check_every,
+            layers: Cell::new(0),
+            capped: Cell::new(false),
+        }))
+    }
+}
+
+/// The peel draw: hair, depth test and write (Less), colour replaced.
+struct PeelDraw;
+
+impl PassType for PeelDraw {
+    fn spec(&self) -> PassTypeSpec {
+        spec()
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(HAIR_SHADER)
+    }
+    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
+        transparency::defines(pass, "depth_peel")
+    }
+    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+        Ok(RasterState { depth: DepthMode::TestWrite(wgpu::CompareFunction::Less), clear_depth: 1.0, ..RasterState::default() })
+    }
+}
+
+/// Front-to-back "under": dst.rgb += (1 - dst.a) · src.rgb, dst.a likewise (src premultiplied).
+const UNDER: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::OneMinusDstAlpha, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
+    alpha: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::OneMinusDstAlpha, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
+};
+
+/// The blend of one layer under the accumulated colour.
+struct PeelBlend;
+
+impl PassType for PeelBlend {
+    fn spec(&self) -> PassTypeSpec {
+        PassTypeSpec { shape: PassShape::Fullscreen, ..spec() }
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(("shaders/passes/peel_blend.wgsl", include_str!("../../../shaders/passes/peel_blend.wgsl")))
+    }
+    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+        Ok(RasterState { blend: vec![Some(UNDER)], load_colors: true, ..RasterState::default() })
+    }
+}
+
+struct Peeling {
+    name: String,
+    peel: [ShaderPass; 2],
+    blend: ShaderPass,
+    color: plait_graph::ResourceId,
+    first_prev: plait_graph::ResourceId,
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    max_layers: u32,
+    check_every: u32,
+    layers: Cell<u32>,
+    capped: Cell<bool>,
+}
+
+impl PreparedPass for Peeling {
+    fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        // Start: nothing accumulated; the "previous layer" at depth 0 lets every fragment through.
+        {
+            let view = |id| ctx.pool.texture(id).map(|(_, v)| v).expect("peeling targets are textures");
+            let _clear = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(&self.name),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: view(self.color),
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: view(self.first_prev),
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+        }
+        let mut used = self.max_layers;
+        let mut start = 0;
+        'peel: while start < self.max_layers {
+            let end = (start + self.check_every).min(self.max_layers);
+            for k in start..end {
+                self.peel[(k % 2) as usize].record_with_query(ctx, encoder, Some((&self.queries, k)));
+                self.blend.record(ctx, encoder);
+            }
+            // (Resolve offsets must be 256-aligned: each batch lands at 0.)
+            encoder.resolve_query_set(&self.queries, start..end, &self.resolve, 0);
+            encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, (end - start) as u64 * 8);
+            // Submit what is recorded and wait for the query results; go on in a new encoder.
+            // The executor wraps the pass in a debug group: close it in the old encoder, reopen it in the new.
+            encoder.pop_debug_group();
+            let done = std::mem::replace(encoder, ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(&self.name) }));
+            encoder.push_debug_group(&self.name);
+            ctx.queue.submit([done.finish()]);
+            let Ok(bytes) = plait_gpu::readback::map_buffer(ctx.device, &self.readback) else {
+                break 'peel;
+            };
+            for k in start..end {
+                let at = (k - start) as usize * 8;
+                let samples = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap_or([0; 8]));
+                if samples == 0 {
+                    used = k;
+                    break 'peel;
+                }
+            }
+            start = end;
+        }
+        self.layers.set(used);
+        self.capped.set(used == self.max_layers);
+    }
+
+    fn stats(&self) -> Vec<(String, f64)> {
+        vec![("layers".into(), self.layers.get() as f64), ("capped".into(), if self.capped.get() { 1.0 } else { 0.0 })]
+    }
+}

@@ -1,0 +1,67 @@
+//! What the transparency pass types share: they all shade hair with
+//! `hair_shade.wgsl` (Kajiya-Kay × the visibility provider, so the
+//! self-shadowing stays the base pipeline's) and differ only in the
+//! `plait::transparency::*` WGSL module that turns the shaded colour and alpha
+//! into fragment outputs, and in what resolves and composes the result.
+//!
+//! Methods (000_785589f319b01ef5.txt §2.2, §3.4, Fig. 2; 004_51cca5cde985008c.txt
+//! §3.1.2, §5.6): depth peeling (`depth_peeling`), per-pixel fragment lists
+//! (`linked_list`), weighted-average blending (`weighted_average`), alpha to
+//! coverage (`alpha_to_coverage`), none (`opaque_hair`). `compose_hair_over`
+//! puts a front-to-back premultiplied hair image over the scene.
+
+use plait_gpu::pass::{BuiltinShader, PassType, default_defines};
+use plait_gpu::Define;
+use plait_graph::{Access, Format, ParamSpec, PassShape, PassTypeSpec, ScheduledPass, SlotSpec};
+
+use crate::spec_util::{DEPTH, HDR, texture};
+use crate::visibility;
+
+pub const HAIR_SHADER: BuiltinShader = ("shaders/passes/hair_shade.wgsl", include_str!("../../../shaders/passes/hair_shade.wgsl"));
+
+/// The shading inputs of every hair pass: the opaque shadow map and the
+/// visibility provider's light maps.
+pub fn shading_inputs() -> Vec<SlotSpec> {
+    let mut v = vec![texture("shadow_map", Access::Sampled, DEPTH, "opaque shadow map from the light")];
+    v.extend(visibility::slots());
+    v
+}
+
+pub fn shading_params() -> Vec<ParamSpec> {
+    visibility::params()
+}
+
+/// The shading defines plus the transparency module's (`TRANSPARENCY_<MODULE>`).
+pub fn defines(pass: &ScheduledPass, module: &str) -> Vec<(String, Define)> {
+    let mut d = default_defines(pass);
+    d.push(("TRANSPARENCY_MODULE".into(), Define::Bool(true)));
+    d.push((format!("TRANSPARENCY_{}", module.to_ascii_uppercase()), Define::Bool(true)));
+    d
+}
+
+/// `compose_hair_over`: premultiplied hair (blended front to back) over the
+/// scene over the background, to the output format.
+pub struct ComposeHairOver;
+
+impl PassType for ComposeHairOver {
+    fn spec(&self) -> PassTypeSpec {
+        PassTypeSpec {
+            name: "compose_hair_over".into(),
+            description: "Premultiplied hair over the scene over the background, to sRGB.".into(),
+            source: "000_785589f319b01ef5.txt §2.2 (f = αc + (1-α)b)".into(),
+            shape: PassShape::Fullscreen,
+            inputs: vec![
+                texture("hair", Access::Sampled, HDR, "hair, premultiplied, accumulated front to back"),
+                texture("scene", Access::Sampled, HDR, "opaque objects, premultiplied; background where alpha < 1"),
+            ],
+            outputs: vec![texture("color", Access::ColorTarget, &[Format::Rgba8UnormSrgb, Format::Rgba8Unorm, Format::Rgba16Float], "final image")],
+            params: vec![],
+            dynamic_slots: false,
+            needs_shader: false,
+            required_features: vec![],
+        }
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(("shaders/passes/compose_hair_over.wgsl", include_str!("../../../shaders/passes/compose_hair_over.wgsl")))
+    }
+}

@@ -1,0 +1,84 @@
+//! Weighted-average blending (Bavoil & Myers 2008), as 000_785589f319b01ef5.txt
+//! §2.2 describes it and Fig. 2 shows it ("weighted-average blending (72 fps)",
+//! "very dull … compared to the depth-peeled image").
+//!
+//! `hair_weighted_average` draws the hair once, unsorted, adding α·rgb and α
+//! into `color` and 1 into `count` (the depth complexity n) — additive
+//! blending, so the draw order does not matter. `weighted_average_resolve`
+//! takes the average colour C = Σα·rgb / Σα and the average alpha ᾱ = Σα / n,
+//! and writes the hair as if n fragments of colour C and alpha ᾱ were blended:
+//! premultiplied (C · (1 - (1-ᾱ)ⁿ), 1 - (1-ᾱ)ⁿ), for `compose_hair_over`.
+//!
+//! Cost: one hair draw + one fullscreen pass. Memory: two screen-size float
+//! targets (rgba16float sums, r16float count — exact counts to 2048).
+
+use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
+use plait_gpu::{Capabilities, Define};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
+
+use crate::spec_util::{DEPTH, HDR, texture};
+use crate::transparency::{self, HAIR_SHADER};
+
+const COUNT_FORMATS: &[Format] = &[Format::R16Float, Format::R32Float, Format::Rgba16Float];
+
+pub struct HairWeightedAverage;
+
+impl PassType for HairWeightedAverage {
+    fn spec(&self) -> PassTypeSpec {
+        let mut inputs = transparency::shading_inputs();
+        inputs.push(texture("depth", Access::DepthTarget, DEPTH, "camera depth of opaque geometry (tested, not written)"));
+        PassTypeSpec {
+            name: "hair_weighted_average".into(),
+            description: "Sum α·rgb, α and the fragment count of the hair, unsorted (weighted-average blending).".into(),
+            source: "000_785589f319b01ef5.txt §2.2, Fig. 2".into(),
+            shape: PassShape::Raster,
+            inputs,
+            outputs: vec![
+                texture("color", Access::ColorTarget, HDR, "Σ α·rgb, Σ α"),
+                texture("count", Access::ColorTarget, COUNT_FORMATS, "n: hair fragments per pixel (red)"),
+            ],
+            params: transparency::shading_params(),
+            dynamic_slots: false,
+            needs_shader: false,
+            required_features: vec![],
+        }
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(HAIR_SHADER)
+    }
+    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
+        transparency::defines(pass, "weighted_average")
+    }
+    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+        Ok(RasterState {
+            depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
+            blend: vec![Some(ADDITIVE), Some(ADDITIVE)],
+            ..RasterState::default()
+        })
+    }
+}
+
+pub struct WeightedAverageResolve;
+
+impl PassType for WeightedAverageResolve {
+    fn spec(&self) -> PassTypeSpec {
+        PassTypeSpec {
+            name: "weighted_average_resolve".into(),
+            description: "Average colour and alpha over the depth complexity; blend n average fragments.".into(),
+            source: "000_785589f319b01ef5.txt §2.2".into(),
+            shape: PassShape::Fullscreen,
+            inputs: vec![
+                texture("sums", Access::Sampled, HDR, "Σ α·rgb, Σ α"),
+                texture("count", Access::Sampled, COUNT_FORMATS, "n per pixel"),
+            ],
+            outputs: vec![texture("color", Access::ColorTarget, HDR, "hair, premultiplied")],
+            params: vec![],
+            dynamic_slots: false,
+            needs_shader: false,
+            required_features: vec![],
+        }
+    }
+    fn shader(&self) -> Option<BuiltinShader> {
+        Some(("shaders/passes/weighted_average_resolve.wgsl", include_str!("../../../shaders/passes/weighted_average_resolve.wgsl")))
+    }
+}
