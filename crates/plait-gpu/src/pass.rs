@@ -702,9 +702,11 @@ impl ShaderPass {
                     let view = ctx.pool.texture(id).map(|(_, v)| v).expect("depth targets are textures (checked at build)");
                     wgpu::RenderPassDepthStencilAttachment {
                         view,
-                        depth_ops: Some(wgpu::Operations {
+                        // Only tested, never written: attached read-only, so the
+                        // pass may also sample it (fragment lists test it by hand).
+                        depth_ops: (write || !loads).then_some(wgpu::Operations {
                             load: if loads { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(state.clear_depth) },
-                            store: { let _ = write; wgpu::StoreOp::Store },
+                            store: wgpu::StoreOp::Store,
                         }),
                         stencil_ops: None,
                     }
