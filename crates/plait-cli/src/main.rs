@@ -4,6 +4,7 @@
 //! file, a flag) is printed as `error: …` naming the file and line or the flag,
 //! and exits with code 2; no output file is left half-written.
 
+mod ab_cmd;
 mod hair_cmd;
 mod output;
 mod pipeline_cmd;
@@ -30,6 +31,8 @@ enum Command {
     Passes(pipeline_cmd::PassesArgs),
     /// Inspect and generate `.hair` files.
     Hair(hair_cmd::HairArgs),
+    /// Run several pipelines on the same scene(s) and write one report
+    Ab(ab_cmd::AbArgs),
 }
 
 fn main() {
@@ -46,6 +49,7 @@ fn main() {
         Command::Graph(args) => pipeline_cmd::graph(args),
         Command::Passes(args) => pipeline_cmd::passes(args),
         Command::Hair(args) => hair_cmd::run(args),
+        Command::Ab(args) => ab_cmd::run(args),
     };
     if let Err(e) = result {
         // `Errors` already prefixes each line with `error:`.
