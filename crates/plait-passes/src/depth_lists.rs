@@ -12,7 +12,7 @@
 //! the stored depths in front of a point: visibility = exp(-w · n), n exact.
 //! No sorting is needed — only a count.
 //!
-//! Memory: 512² × capacity × 4 B (64 MiB at capacity 64) + 1 MiB counters —
+//! Memory: 512² × capacity × 4 B (96 MiB at capacity 96) + 1 MiB counters —
 //! a reference, not a real-time method.
 
 use plait_gpu::GpuError;
