@@ -41,7 +41,7 @@ pub fn escape(text: &str) -> String {
 
 /// About `n` round tick values covering `lo..=hi`.
 pub fn ticks(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    if !(hi > lo) || !lo.is_finite() || !hi.is_finite() {
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) || !lo.is_finite() || !hi.is_finite() {
         return vec![lo];
     }
     let raw = (hi - lo) / n.max(1) as f64;
@@ -61,7 +61,7 @@ fn fmt_tick(v: f64) -> String {
         return "0".into();
     }
     let a = v.abs();
-    if a >= 1e4 || a < 1e-3 { format!("{v:.1e}") } else { let s = format!("{v:.4}"); s.trim_end_matches('0').trim_end_matches('.').to_string() }
+    if !(1e-3..1e4).contains(&a) { format!("{v:.1e}") } else { let s = format!("{v:.4}"); s.trim_end_matches('0').trim_end_matches('.').to_string() }
 }
 
 /// The chart as a standalone `<svg>` element (640×400).
