@@ -11,6 +11,7 @@
 //!   of each slice, one k-means iteration" (004 §3.3.2);
 //! - draws 1..=`iterations`: each fragment joins the cluster whose mean (from
 //!   the previous draw's sums) is nearest and adds itself there.
+//!
 //! Sums are fixed point (z relative to the texel range × 2^18) with
 //! `atomicAdd`, one stage of 4 × 3 u32 per texel per draw, so a draw reads the
 //! previous stage while writing its own (no read-write hazard inside a draw).
@@ -20,7 +21,8 @@
 //! proportional to the standard deviation of each cluster"), holding its
 //! fragment count; the density integrated up to z gives the fragment count
 //! in front, visibility exp(-w · ∫d) — piecewise linear, as in the paper.
-//! Mertens et al. found one refinement enough: `iterations = 1` (2 draws).
+//! Mertens et al. found one iteration enough (004 §3.3.2): uniform slices,
+//! then one reassignment that also gathers σ — `iterations = 1` (2 draws).
 //!
 //! Memory: (iterations + 1) × 4 × 3 × 4 B per texel = 24 MiB at 512² with
 //! one refinement, plus the 2 MiB depth range.

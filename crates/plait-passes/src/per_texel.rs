@@ -30,7 +30,7 @@ pub fn check_words(
     };
     let per_texel = 4 * width as u64 * height as u64;
     let words = size / per_texel;
-    if size == 0 || size % per_texel != 0 || words % multiple != 0 || words > max {
+    if size == 0 || !size.is_multiple_of(per_texel) || !words.is_multiple_of(multiple) || words > max {
         return Err(GpuError::Pass {
             pass: pass.name.clone(),
             message: format!(
