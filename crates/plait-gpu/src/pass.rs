@@ -206,13 +206,11 @@ pub fn default_defines(pass: &ScheduledPass) -> Vec<(String, Define)> {
 }
 
 pub fn default_threads(pass: &ScheduledPass, schedule: &Schedule) -> [u32; 3] {
-    for b in &pass.writes {
-        match schedule.resources[b.resource].desc {
-            ResourceDesc::Texture { width, height, layers, .. } => return [width, height, layers],
-            ResourceDesc::Buffer { size } => return [(size / 4).min(u32::MAX as u64) as u32, 1, 1],
-        }
+    match pass.writes.first().map(|b| &schedule.resources[b.resource].desc) {
+        Some(ResourceDesc::Texture { width, height, layers, .. }) => [*width, *height, *layers],
+        Some(ResourceDesc::Buffer { size }) => [(size / 4).min(u32::MAX as u64) as u32, 1, 1],
+        None => [1, 1, 1],
     }
-    [1, 1, 1]
 }
 
 /// The shader source of a pass: built in, or the file the pipeline names.
