@@ -10,6 +10,7 @@ struct Frame {
     camera_inv_view_proj: mat4x4<f32>,
     light_view_proj: mat4x4<f32>,
     light_view: mat4x4<f32>,
+    light_inv_view_proj: mat4x4<f32>,
     // xyz: eye position in world space.
     camera_position: vec4<f32>,
     // xyz: unit vector from the scene towards a directional light; w = 1 for a spot light.

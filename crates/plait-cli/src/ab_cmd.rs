@@ -12,10 +12,11 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use plait::probe::{ProbeGrid, Probed, probe_visibility};
 use plait::session::{Prepared, SceneData, compile_checked, prepare, resolve_pipeline};
 use plait_compare::report::{
     Adapter, FileHash, Memory, PassStats, PipelineProvenance, Provenance, Report, ResourceMemory, Run, SCHEMA, SceneResult,
-    Sweep, Timing, Variant,
+    Sweep, Timing, Variant, Visibility, VisibilityCurve,
 };
 use plait_compare::{Stats, heatmap};
 use plait_gpu::Gpu;
@@ -353,7 +354,7 @@ pub fn run(args: AbArgs) -> Result<()> {
 
     let gpu = Gpu::new()?;
     let v = plans.len() as u64;
-    let mut progress = Progress::new(scenes.len() as u64 * (v * 2 + v * args.repeats as u64 + v));
+    let mut progress = Progress::new(scenes.len() as u64 * (v * 3 + v * args.repeats as u64 + v));
 
     let mut variants: Vec<Variant> = Vec::new();
     let mut graphs: Vec<(String, String)> = Vec::new();
@@ -445,6 +446,24 @@ pub fn run(args: AbArgs) -> Result<()> {
             progress.step(format!("{scene_name}: compared {}", p.label));
             comparisons.push(c);
         }
+        // Self-shadowing: every variant's visibility provider probed along the
+        // same rays through the hair, against the reference's (Fig. 5).
+        let grid = ProbeGrid::through_hair(scene, (16, 16), 48);
+        let probe = |p: &VariantPlan| -> Result<Option<Probed>> {
+            probe_visibility(&gpu, &p.pipeline, &p.sets, scene, args.size, &grid)
+                .map_err(|e| anyhow::anyhow!("{e:#}"))
+                .with_context(|| format!("probing the self-shadowing of {} on scene {scene_name}", p.label))
+        };
+        let reference_probe = probe(&plans[ref_index])?;
+        let mut visibilities = Vec::new();
+        for p in &plans {
+            let v = match &reference_probe {
+                Some(reference) => probe(p)?.map(|probed| visibility_error(&grid, reference, &probed)),
+                None => None,
+            };
+            progress.step(format!("{scene_name}: probed {}", p.label));
+            visibilities.push(v);
+        }
         // One difference scale per scene, so the heat maps compare.
         let max_diff = comparisons.iter().map(|c| c.metrics.max_abs_diff).fold(0.0, f64::max);
         let scale = heatmap::nice_scale(max_diff);
@@ -474,7 +493,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                         .collect(),
                 },
                 metrics: c.metrics,
-                visibility: None,
+                visibility: visibilities[i].take(),
             });
         }
         scene_results.push(SceneResult {
@@ -570,5 +589,48 @@ mod tests {
         assert_eq!(shell_quote("--size"), "--size");
         assert_eq!(shell_quote("a b"), "'a b'");
         assert_eq!(shell_quote("it's"), "'it'\\''s'");
+    }
+}
+
+/// Visibility of a variant against the reference along the probe rays: the
+/// mean and max |ΔV| over the samples of rays that pass through hair (the
+/// reference sees less than full light somewhere along them), and the curves
+/// of the four rays through the most hair.
+fn visibility_error(grid: &ProbeGrid, reference: &Probed, variant: &Probed) -> Visibility {
+    let depths = grid.depths as usize;
+    let rays = grid.ray_count();
+    let ray = |values: &[f32], r: usize| values[r * depths..(r + 1) * depths].to_vec();
+    let through_hair: Vec<usize> = (0..rays).filter(|&r| ray(&reference.values, r).iter().any(|&v| v < 0.999)).collect();
+    let (mut sum, mut max, mut count) = (0.0f64, 0.0f64, 0usize);
+    for &r in &through_hair {
+        for (a, b) in ray(&reference.values, r).iter().zip(ray(&variant.values, r)) {
+            let e = (*a as f64 - b as f64).abs();
+            sum += e;
+            max = max.max(e);
+            count += 1;
+        }
+    }
+    let mut darkest = through_hair.clone();
+    darkest.sort_by(|&a, &b| reference.values[(a + 1) * depths - 1].total_cmp(&reference.values[(b + 1) * depths - 1]));
+    let curves = darkest
+        .iter()
+        .take(4)
+        .map(|&r| {
+            let uv = grid.ray_uv(r as u32);
+            VisibilityCurve {
+                light_uv: uv,
+                depth: (0..grid.depths).map(|d| grid.depth(d) as f64).collect(),
+                exact: ray(&reference.values, r).iter().map(|&v| v as f64).collect(),
+                approx: ray(&variant.values, r).iter().map(|&v| v as f64).collect(),
+            }
+        })
+        .collect();
+    Visibility {
+        provider: variant.visibility.clone(),
+        reference_provider: reference.visibility.clone(),
+        rays_through_hair: through_hair.len(),
+        curves,
+        mean_abs_error: if count > 0 { sum / count as f64 } else { 0.0 },
+        max_abs_error: max,
     }
 }

@@ -172,20 +172,32 @@ pub struct PassStats {
     pub gpu_ms: Option<Stats>,
 }
 
-/// Self-shadowing error of one variant (reserved; see the module docs).
+/// Self-shadowing error of one variant: its visibility provider probed along
+/// rays from the light through the hair, against the reference's.
 #[derive(Clone, Debug, Serialize)]
 pub struct Visibility {
+    /// The variant's provider (`occupancy`, `deep_opacity`, …).
+    pub provider: String,
+    /// The reference's provider (`exact` for `reference.toml`).
+    pub reference_provider: String,
+    /// Probe rays along which the reference sees hair; the errors are over their samples.
+    pub rays_through_hair: usize,
+    /// The rays through the most hair.
     pub curves: Vec<VisibilityCurve>,
     pub mean_abs_error: f64,
     pub max_abs_error: f64,
 }
 
-/// Visibility against depth behind the first hair, at one light texel.
+/// Visibility against light depth along one ray from the light.
 #[derive(Clone, Debug, Serialize)]
 pub struct VisibilityCurve {
-    pub light_texel: [u32; 2],
+    /// Where the ray crosses the light map (0..1, y down).
+    pub light_uv: [f32; 2],
+    /// Light NDC depth of each sample, spanning the hair.
     pub depth: Vec<f64>,
+    /// The reference's visibility.
     pub exact: Vec<f64>,
+    /// The variant's visibility.
     pub approx: Vec<f64>,
 }
 
@@ -450,7 +462,15 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         for run in &scene.runs {
             let (Some(vis), Some(v)) = (&run.visibility, report.variant(&run.variant)) else { continue };
             any = true;
-            let _ = write!(h, "<p>{}: mean |ΔV| {:.4}, max |ΔV| {:.4}</p><div class=grid>", escape(&v.label), vis.mean_abs_error, vis.max_abs_error);
+            let _ = write!(
+                h,
+                "<p>{} ({}): mean |ΔV| {:.4}, max |ΔV| {:.4} over {} rays through the hair</p><div class=grid>",
+                escape(&v.label),
+                escape(&vis.provider),
+                vis.mean_abs_error,
+                vis.max_abs_error,
+                vis.rays_through_hair
+            );
             for c in &vis.curves {
                 let line = |name: &str, ys: &[f64]| Series {
                     name: name.into(),
@@ -458,17 +478,17 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
                     points: c.depth.iter().zip(ys).map(|(&x, &y)| Point { x, y, size: Some(2.0), label: None }).collect(),
                 };
                 h.push_str(&svg(&Chart {
-                    title: format!("{}: texel ({}, {})", v.label, c.light_texel[0], c.light_texel[1]),
-                    x_label: "depth behind the first hair".into(),
+                    title: format!("{}: light uv ({:.2}, {:.2})", v.label, c.light_uv[0], c.light_uv[1]),
+                    x_label: "light depth (NDC)".into(),
                     y_label: "visibility".into(),
                     note: None,
-                    series: vec![line("exact", &c.exact), line(&v.label, &c.approx)],
+                    series: vec![line(&format!("reference ({})", vis.reference_provider), &c.exact), line(&v.label, &c.approx)],
                 }));
             }
             h.push_str("</div>");
         }
         if !any {
-            h.push_str("<p class=note>Not computed: no variant reports a visibility provider yet (the <code>visibility</code> field of each run in report.json is null).</p>");
+            h.push_str("<p class=note>Not computed: the reference pipeline has no visibility provider (use one with self-shadowing, e.g. <code>reference.toml</code>).</p>");
         }
     }
 

@@ -14,4 +14,5 @@ pub use plait_graph as graph;
 pub use plait_hair as hair;
 pub use plait_passes as passes;
 
+pub mod probe;
 pub mod session;

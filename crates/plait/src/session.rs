@@ -45,8 +45,12 @@ pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
 /// Load, compile and check a pipeline against the pass library, shaders
 /// included (naga), without a GPU.
 pub fn compile_checked(path: &Path, sets: &[String], opts: &CompileOptions) -> Result<Schedule, Errors> {
+    check_pipeline(plait_graph::load(path, sets)?, opts)
+}
+
+/// Compile and check a loaded pipeline (see [`compile_checked`]).
+pub fn check_pipeline(pipeline: plait_graph::Pipeline, opts: &CompileOptions) -> Result<Schedule, Errors> {
     let library = plait_passes::library();
-    let pipeline = plait_graph::load(path, sets)?;
     let mut schedule = plait_graph::compile(&pipeline, &library.registry(), opts)?;
     plait_passes::check(&mut schedule, &library)?;
     Ok(schedule)
@@ -107,8 +111,18 @@ pub fn prepare<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
-    let opts = CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension };
-    let schedule = compile_checked(pipeline, sets, &opts)?;
+    let schedule = compile_checked(pipeline, sets, &gpu_options(gpu, size))?;
+    build(gpu, schedule, pipeline, scene, size)
+}
+
+/// Compile options for rendering at `size` on `gpu`.
+pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
+    CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension }
+}
+
+/// Build a checked schedule for `scene` at `size` on `gpu`; `pipeline` is the
+/// file it came from (relative shader paths resolve against its folder).
+pub fn build<'g>(gpu: &'g Gpu, schedule: Schedule, pipeline: &Path, scene: &SceneData, size: (u32, u32)) -> Result<Prepared<'g>, SessionError> {
     let output = schedule.outputs.first().map(|&id| schedule.resources[id].name.clone()).ok_or(SessionError::NoOutput)?;
     let frame = scene.frame(size, 0);
     let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);

@@ -1,0 +1,151 @@
+//! Visibility probes: what a pipeline's self-shadowing technique says about
+//! light reaching points along rays from the light — the curves of Figure 5 of
+//! 000_785589f319b01ef5.txt, and the numbers `plait ab` compares between
+//! variants.
+//!
+//! The probe is data: the variant file is extended by one data-only compute
+//! pass (`shaders/visibility_probe.wgsl`) that imports the provider the
+//! variant's shading pass names, binds the same `vis_*` maps and params, and
+//! writes one visibility per (ray, depth). Outputs become the probe buffer, so
+//! every pass the probe does not need (the camera, the image) is culled.
+
+use std::fmt::Write;
+use std::path::Path;
+
+use glam::Vec3;
+use plait_gpu::Gpu;
+use plait_graph::Value;
+
+use crate::session::{SceneData, SessionError, build, check_pipeline, gpu_options, repo_root};
+
+/// Rays on a uv grid of the light map, sampled at evenly spaced light depths.
+#[derive(Clone, Debug)]
+pub struct ProbeGrid {
+    pub uv0: [f32; 2],
+    pub uv1: [f32; 2],
+    pub rays: (u32, u32),
+    pub depths: u32,
+    /// Light NDC depth of the first and last sample.
+    pub depth_range: (f32, f32),
+}
+
+impl ProbeGrid {
+    /// A grid over the hair seen from the light, its depths spanning the hair.
+    pub fn through_hair(scene: &SceneData, rays: (u32, u32), depths: u32) -> Self {
+        let frame = scene.frame((1, 1), 0);
+        let m = glam::Mat4::from_cols_array_2d(&frame.light_view_proj);
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for c in scene.strands.bounds().corners() {
+            let p = m.project_point3(c);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        let uv = |x: f32, y: f32| [(x * 0.5 + 0.5).clamp(0.0, 1.0), (0.5 - y * 0.5).clamp(0.0, 1.0)];
+        ProbeGrid {
+            uv0: uv(lo.x, hi.y),
+            uv1: uv(hi.x, lo.y),
+            rays,
+            depths: depths.max(2),
+            depth_range: (lo.z.clamp(0.0, 1.0), hi.z.clamp(0.0, 1.0)),
+        }
+    }
+
+    pub fn ray_count(&self) -> usize {
+        (self.rays.0 * self.rays.1) as usize
+    }
+
+    /// Light NDC depth of sample `d`.
+    pub fn depth(&self, d: u32) -> f32 {
+        let t = d as f32 / (self.depths - 1).max(1) as f32;
+        self.depth_range.0 + (self.depth_range.1 - self.depth_range.0) * t
+    }
+
+    /// uv of ray `r` on the light map.
+    pub fn ray_uv(&self, r: u32) -> [f32; 2] {
+        let (x, y) = (r % self.rays.0, r / self.rays.0);
+        let f = |a: f32, b: f32, i: u32, n: u32| a + (b - a) * (i as f32 + 0.5) / n as f32;
+        [f(self.uv0[0], self.uv1[0], x, self.rays.0), f(self.uv0[1], self.uv1[1], y, self.rays.1)]
+    }
+}
+
+/// A pipeline's visibility along every probe ray.
+#[derive(Clone, Debug)]
+pub struct Probed {
+    /// The provider the pipeline's shading pass uses (`occupancy`, `exact`…).
+    pub visibility: String,
+    /// `values[ray * depths + d]`.
+    pub values: Vec<f32>,
+}
+
+fn literal(v: &Value) -> String {
+    match v {
+        Value::Str(s) => format!("{s:?}"),
+        Value::Float(f) => format!("{f:?}"),
+        Value::List(items) => format!("[{}]", items.iter().map(literal).collect::<Vec<_>>().join(", ")),
+        other => other.to_string(),
+    }
+}
+
+/// Probe `pipeline`'s self-shadowing on `scene`; `None` when no pass of it
+/// has a visibility provider (a `visibility` param).
+pub fn probe_visibility(
+    gpu: &Gpu,
+    pipeline: &Path,
+    sets: &[String],
+    scene: &SceneData,
+    size: (u32, u32),
+    grid: &ProbeGrid,
+) -> Result<Option<Probed>, SessionError> {
+    let opts = gpu_options(gpu, size);
+    let variant = crate::session::compile_checked(pipeline, sets, &opts)?;
+    let shading = variant
+        .passes
+        .iter()
+        .filter(|p| p.params.contains_key("visibility"))
+        .max_by_key(|p| p.name == "hair");
+    let Some(shading) = shading else { return Ok(None) };
+    let visibility = shading.params["visibility"].as_str().unwrap_or("none").to_owned();
+    let reads: Vec<String> = shading
+        .reads
+        .iter()
+        .filter(|b| b.slot.starts_with("vis_"))
+        .map(|b| format!("{} = {:?}", b.slot, b.resource_name))
+        .collect();
+    let mut params: Vec<String> = shading
+        .params
+        .iter()
+        .filter(|(k, _)| k.as_str() != "blend")
+        .map(|(k, v)| format!("{k} = {}", literal(v)))
+        .collect();
+    params.extend([
+        format!("probe_uv0 = [{:?}, {:?}]", grid.uv0[0], grid.uv0[1]),
+        format!("probe_uv1 = [{:?}, {:?}]", grid.uv1[0], grid.uv1[1]),
+        format!("probe_rays_x = {:?}", grid.rays.0 as f32),
+        format!("probe_rays_y = {:?}", grid.rays.1 as f32),
+        format!("probe_depths = {:?}", grid.depths as f32),
+        format!("probe_depth0 = {:?}", grid.depth_range.0),
+        format!("probe_depth1 = {:?}", grid.depth_range.1),
+    ]);
+    let file_name = pipeline.file_name().and_then(|f| f.to_str()).unwrap_or("pipeline.toml");
+    let shader = repo_root().join("shaders/visibility_probe.wgsl");
+    let mut text = String::new();
+    let _ = write!(
+        text,
+        "[pipeline]\nname = \"probe\"\nextends = {file_name:?}\noutputs = [\"probe_out\"]\n\n\
+         [resources.probe_out]\nkind = \"buffer\"\nsize = {bytes}\n\n\
+         [passes.visibility_probe]\ntype = \"compute\"\nshader = {shader:?}\nreads = {{ {reads} }}\n\
+         writes = {{ probe_out = \"probe_out\" }}\nparams = {{ {params} }}\n",
+        bytes = grid.ray_count() * grid.depths as usize * 4,
+        shader = shader.display().to_string(),
+        reads = reads.join(", "),
+        params = params.join(", "),
+    );
+    let probe_path = pipeline.with_file_name(format!("{}.probe.toml", file_name.trim_end_matches(".toml")));
+    let loaded = plait_graph::load_str(&probe_path, &text, sets)?;
+    let schedule = check_pipeline(loaded, &opts)?;
+    let prepared = build(gpu, schedule, &probe_path, scene, size)?;
+    prepared.renderer.render()?;
+    let bytes = prepared.renderer.read_buffer("probe_out")?;
+    let values = bytes.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    Ok(Some(Probed { visibility, values }))
+}
