@@ -130,7 +130,7 @@ pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Val
             serde_json::json!({
                 "name": p.name, "type": p.type_name,
                 "reads": names(s, &p.reads), "writes": names(s, &p.writes),
-                "gpu_ms": t.gpu_ms, "culled": false,
+                "gpu_ms": t.gpu_ms, "culled": false, "stats": t.stats,
             })
         })
         .collect();

@@ -115,30 +115,3 @@ fn depth_peeling_layer_cap() {
     assert_eq!(stat(&capped.report, "hair_peel", "layers"), 2.0);
     assert_eq!(stat(&capped.report, "hair_peel", "capped"), 1.0);
 }
-
-/// The layers depth peeling needs on the default scene (10,000 strands) at
-/// 320x240. Slow on a software rasterizer: `cargo test -- --ignored`.
-#[test]
-#[ignore]
-fn depth_peeling_layers_on_default_scene() {
-    let gpu = Gpu::new().unwrap_or_else(|e| panic!("GPU tests need an adapter: {e}"));
-    let path = root().join("pipelines/depth_peeling.toml");
-    let scene = Scene::load(root().join("examples/scenes/default.toml")).expect("default scene");
-    let strands = scene.strands().expect("strands");
-    let meshes = scene.opaque_meshes();
-    let library = plait_passes::library();
-    let size = (320, 240);
-    let loaded = plait_graph::load(&path, &["params.peel_layers=1024".to_string()]).expect("load");
-    let opts = CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension };
-    let mut schedule = plait_graph::compile(&loaded, &library.registry(), &opts).expect("compile");
-    plait_passes::check(&mut schedule, &library).expect("check");
-    let bounds = scene.opaque_bounds().union(&strands.bounds());
-    let frame = plait_gpu::frame::FrameUniforms::new(&scene, &strands, bounds, size, 0);
-    let geometry = SceneGeometry::upload(&gpu.device, &strands, &meshes);
-    let renderer = Renderer::new(&gpu, schedule, &library, geometry, &frame, path.parent().unwrap()).expect("build");
-    let report = renderer.render().expect("render");
-    let layers = stat(&report, "hair_peel", "layers");
-    let ms = report.passes.iter().find(|p| p.name == "hair_peel").and_then(|p| p.gpu_ms);
-    eprintln!("default scene, 320x240: depth peeling used {layers} layers, {ms:?} ms");
-    assert_eq!(stat(&report, "hair_peel", "capped"), 0.0);
-}
