@@ -5,21 +5,7 @@
 #import plait::frame::{frame, view_proj, to_light}
 #import plait::kajiya_kay::kajiya_kay
 #import plait::shadow::opaque_shadow
-#ifdef VISIBILITY_MODIFIED_SHADOW_MAP
-#import plait::visibility::modified_shadow_map::hair_visibility
-#else ifdef VISIBILITY_OCCUPANCY
-#import plait::visibility::occupancy::hair_visibility
-#else ifdef VISIBILITY_DEEP_OPACITY
-#import plait::visibility::deep_opacity::hair_visibility
-#else ifdef VISIBILITY_OPACITY_SHADOW_MAPS
-#import plait::visibility::opacity_shadow_maps::hair_visibility
-#else ifdef VISIBILITY_DENSITY_CLUSTERING
-#import plait::visibility::density_clustering::hair_visibility
-#else ifdef VISIBILITY_EXACT
-#import plait::visibility::exact::hair_visibility
-#else
-#import plait::visibility::none::hair_visibility
-#endif
+#import plait::self_shadow::self_shadow
 #ifdef BLEND_OCCUPANCY_ORDER
 #import plait::frame::camera_linear_depth
 #import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, order_estimate}
@@ -105,7 +91,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let e = normalize(frame.camera_position.xyz - in.world);
     let s = frame.hair_shading;
     let kk = kajiya_kay(tangent, l, e, s.x, s.y, s.z, s.w);
-    let visibility = hair_visibility(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
+    let visibility = self_shadow(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
     let base = in.color * frame.hair_color.rgb;
     let rgb = frame.light_color.rgb * (base * kk.x + vec3<f32>(kk.y)) * visibility + frame.ambient.rgb * base;
 #ifdef TRANSPARENCY_MODULE

@@ -4,21 +4,7 @@
 // same light maps the hair uses for itself).
 #import plait::frame::{frame, view_proj, to_light}
 #import plait::shadow::opaque_shadow
-#ifdef VISIBILITY_MODIFIED_SHADOW_MAP
-#import plait::visibility::modified_shadow_map::hair_visibility
-#else ifdef VISIBILITY_OCCUPANCY
-#import plait::visibility::occupancy::hair_visibility
-#else ifdef VISIBILITY_DEEP_OPACITY
-#import plait::visibility::deep_opacity::hair_visibility
-#else ifdef VISIBILITY_OPACITY_SHADOW_MAPS
-#import plait::visibility::opacity_shadow_maps::hair_visibility
-#else ifdef VISIBILITY_DENSITY_CLUSTERING
-#import plait::visibility::density_clustering::hair_visibility
-#else ifdef VISIBILITY_EXACT
-#import plait::visibility::exact::hair_visibility
-#else
-#import plait::visibility::none::hair_visibility
-#endif
+#import plait::self_shadow::self_shadow
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 
@@ -52,7 +38,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let lambert = max(dot(n, l), 0.0);
     // Slope-scaled bias against acne on surfaces grazing the light.
     let bias = 0.001 + 0.004 * (1.0 - lambert);
-    let visibility = opaque_shadow(shadow_map, in.world, bias) * hair_visibility(in.world);
+    let visibility = opaque_shadow(shadow_map, in.world, bias) * self_shadow(in.world);
     let rgb = in.albedo * (frame.light_color.rgb * lambert * visibility + frame.ambient.rgb);
     return vec4<f32>(rgb, 1.0);
 }

@@ -34,6 +34,7 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/visibility/density_clustering.wgsl"),
     ),
     ("shaders/lib/visibility/exact.wgsl", include_str!("../../../shaders/lib/visibility/exact.wgsl")),
+    ("shaders/lib/self_shadow.wgsl", include_str!("../../../shaders/lib/self_shadow.wgsl")),
     ("shaders/lib/transparency/depth_peel.wgsl", include_str!("../../../shaders/lib/transparency/depth_peel.wgsl")),
     ("shaders/lib/transparency/fragment_list.wgsl", include_str!("../../../shaders/lib/transparency/fragment_list.wgsl")),
     ("shaders/lib/transparency/weighted_average.wgsl", include_str!("../../../shaders/lib/transparency/weighted_average.wgsl")),
