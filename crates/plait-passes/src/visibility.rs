@@ -1,9 +1,10 @@
 //! Visibility providers: every self-shadowing technique answers one WGSL
 //! question, `hair_visibility(world) -> f32`, from its own light maps. A
-//! shading pass imports the provider its `visibility` param names and binds
-//! the provider's maps under the `vis_*` slots; adding a provider is a WGSL
-//! module in `shaders/lib/visibility/`, a line in the shading shaders' import
-//! switch, and its slots and params here — the shading passes' Rust is unchanged.
+//! shading pass imports `plait::self_shadow` (`shaders/lib/self_shadow.wgsl`),
+//! which picks the provider its `visibility` param names, and binds the
+//! provider's maps under the `vis_*` slots. Adding a provider is a WGSL module
+//! in `shaders/lib/visibility/`, one import line in `self_shadow.wgsl`, and its
+//! slots and params here — no shading pass changes.
 
 use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
