@@ -6,21 +6,7 @@
 // in the light's NDC depth. `plait ab` uses it for the visibility curves of
 // 000_785589f319b01ef5.txt Fig. 5; tests use it against analytic visibility.
 #import plait::frame::frame
-#ifdef VISIBILITY_MODIFIED_SHADOW_MAP
-#import plait::visibility::modified_shadow_map::hair_visibility
-#else ifdef VISIBILITY_OCCUPANCY
-#import plait::visibility::occupancy::hair_visibility
-#else ifdef VISIBILITY_DEEP_OPACITY
-#import plait::visibility::deep_opacity::hair_visibility
-#else ifdef VISIBILITY_OPACITY_SHADOW_MAPS
-#import plait::visibility::opacity_shadow_maps::hair_visibility
-#else ifdef VISIBILITY_DENSITY_CLUSTERING
-#import plait::visibility::density_clustering::hair_visibility
-#else ifdef VISIBILITY_EXACT
-#import plait::visibility::exact::hair_visibility
-#else
-#import plait::visibility::none::hair_visibility
-#endif
+#import plait::self_shadow::self_shadow
 
 @group(1) @binding(0) var<storage, read_write> probe_out: array<f32>;
 
@@ -50,5 +36,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let t = f32(d) / max(f32(depths) - 1.0, 1.0);
     let z = mix(probe_params.probe_depth0, probe_params.probe_depth1, t);
     let world = frame.light_inv_view_proj * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, z, 1.0);
-    probe_out[p] = hair_visibility(world.xyz / world.w);
+    probe_out[p] = self_shadow(world.xyz / world.w);
 }
