@@ -31,8 +31,12 @@ fn gpu() -> (MutexGuard<'static, ()>, Gpu) {
 }
 
 fn scene() -> SceneData {
-    let path = repo_root().join(SCENE);
-    SceneData::load(Some(&path)).unwrap_or_else(|e| panic!("loading {SCENE}: {e}"))
+    load_scene(SCENE)
+}
+
+fn load_scene(relative: &str) -> SceneData {
+    let path = repo_root().join(relative);
+    SceneData::load(Some(&path)).unwrap_or_else(|e| panic!("loading {relative}: {e}"))
 }
 
 fn render(gpu: &Gpu, pipeline: &Path, scene: &SceneData) -> (RgbaImage, plait_gpu::FrameReport) {
@@ -166,6 +170,17 @@ fn every_pipeline_matches_its_golden_image() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The stray strands lifted off the head (000_785589f319b01ef5.txt Fig. 4–5)
+/// are the case where self-shadowing methods differ most: the default
+/// pipeline on the stray-strand scene has a golden image of its own.
+#[test]
+fn occupancy_on_stray_strands_matches_its_golden_image() {
+    let (_lock, gpu) = gpu();
+    let scene = load_scene("examples/scenes/stray.toml");
+    let (image, _) = render(&gpu, &repo_root().join("pipelines/occupancy.toml"), &scene);
+    check_golden("occupancy_stray", &image).unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// The comparison must be able to fail: a strand-sized change is caught even
