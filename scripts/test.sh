@@ -38,4 +38,4 @@ fi
 
 # Two test threads per binary: the GPU tests serialize themselves (one
 # lavapipe device uses every core); the CPU tests run alongside.
-exec cargo test --workspace --locked "$@" -- --test-threads=2
+exec cargo test --workspace --locked --no-fail-fast "$@" -- --test-threads=2
