@@ -6,7 +6,11 @@
 set -euo pipefail
 
 has_icd() {
-    compgen -G "/usr/share/vulkan/icd.d/*.json" >/dev/null || compgen -G "/etc/vulkan/icd.d/*.json" >/dev/null
+    local d
+    for d in /usr/share/vulkan/icd.d /etc/vulkan/icd.d /usr/local/share/vulkan/icd.d; do
+        compgen -G "$d/*.json" >/dev/null && return 0
+    done
+    return 1
 }
 
 if has_icd; then

@@ -7,24 +7,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # A Vulkan driver (ICD) is needed for the GPU tests; without one they FAIL
 # with a message saying how to install it (they are never skipped).
-have_icd() {
-    local d
-    for d in /usr/share/vulkan/icd.d /etc/vulkan/icd.d /usr/local/share/vulkan/icd.d; do
-        compgen -G "$d/*.json" > /dev/null && return 0
-    done
-    return 1
-}
-if ! have_icd; then
-    if [ "$(id -u)" = 0 ] && command -v apt-get > /dev/null; then
-        echo "test.sh: no Vulkan driver found; installing Mesa's lavapipe (mesa-vulkan-drivers)" >&2
-        export DEBIAN_FRONTEND=noninteractive
-        apt-get update -qq
-        apt-get install -y -qq mesa-vulkan-drivers > /dev/null
-    else
-        echo "test.sh: no Vulkan driver found and cannot install one here; the GPU tests will fail." >&2
-        echo "test.sh: install Mesa's software Vulkan driver: sudo apt-get install -y mesa-vulkan-drivers" >&2
-    fi
-fi
+bash scripts/ensure-vulkan.sh
 
 # Pin the tests to lavapipe when it is installed, as blade's CI does: the
 # golden images were made with it, and other ICDs on a GPU-less machine only

@@ -71,7 +71,8 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
 /// first, then open the device, build, render, read the first output.
 pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32), show: Option<&str>) -> Result<Rendered> {
     // Everything that can fail without a GPU fails before one is opened.
-    compile_checked(pipeline, sets, &CompileOptions { screen: size, ..CompileOptions::default() })?;
+    // The adapter's texture limit is checked once the device is open.
+    compile_checked(pipeline, sets, &CompileOptions { screen: size, max_texture_dimension: u32::MAX })?;
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
     let mut prepared = prepare(&gpu, pipeline, sets, &data, size)?;

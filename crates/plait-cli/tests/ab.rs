@@ -52,7 +52,12 @@ fn forward_against_itself_is_identical_and_report_is_complete() {
         assert!(m["psnr_db"].is_null(), "identical images: infinite PSNR");
         assert!((m["ssim"].as_f64().expect("ssim") - 1.0).abs() < 1e-9);
         assert!(m["flip_mean"].as_f64().expect("flip").abs() < 1e-6);
-        assert!(run["visibility"].is_null());
+        // forward.toml self-shadows with the modified shadow map: probed, and
+        // identical to itself.
+        let vis = &run["visibility"];
+        assert_eq!(vis["provider"], "modified_shadow_map", "{vis}");
+        assert_eq!(vis["mean_abs_error"].as_f64(), Some(0.0), "{vis}");
+        assert!(vis["curves"].as_array().is_some_and(|c| !c.is_empty()), "{vis}");
         assert_eq!(run["timing"]["wall_ms"]["samples"].as_array().expect("samples").len(), 2);
         for key in ["image", "diff_image", "flip_image"] {
             let name = run[key].as_str().expect("file name");

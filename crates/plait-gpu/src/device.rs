@@ -25,6 +25,9 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub capabilities: Capabilities,
+    /// Pipelines built on this device, shared by every schedule rendered on it
+    /// (an A/B run builds the same passes for many variants).
+    pub pipelines: crate::cache::PipelineCache,
     uncaptured: std::sync::Arc<std::sync::Mutex<Vec<String>>>,
 }
 
@@ -117,7 +120,7 @@ impl Gpu {
             float32_blendable: features.contains(wgpu::Features::FLOAT32_BLENDABLE),
             max_texture_dimension: limits.max_texture_dimension_2d,
         };
-        Ok(Gpu { adapter, device, queue, info, capabilities, uncaptured })
+        Ok(Gpu { adapter, device, queue, info, capabilities, pipelines: Default::default(), uncaptured })
     }
 
     /// `llvmpipe (LLVM 15.0.6, 256 bits)`.

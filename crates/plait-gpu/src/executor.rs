@@ -121,6 +121,7 @@ impl<'g> Renderer<'g> {
             })?;
             let mut ctx = BuildContext {
                 device,
+                pipelines: &gpu.pipelines,
                 capabilities: &gpu.capabilities,
                 adapter_name: gpu.adapter_name(),
                 schedule: &schedule,

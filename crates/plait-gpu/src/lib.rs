@@ -2,6 +2,7 @@
 //! buffers. The device is headless and runs on whatever adapter exists (Mesa's
 //! lavapipe in CI); optional features are probed and used when present.
 
+pub mod cache;
 pub mod device;
 pub mod executor;
 pub mod frame;

@@ -127,6 +127,7 @@ pub trait PreparedPass {
 /// What building a pass can use.
 pub struct BuildContext<'a> {
     pub device: &'a wgpu::Device,
+    pub pipelines: &'a crate::cache::PipelineCache,
     pub capabilities: &'a Capabilities,
     pub adapter_name: &'a str,
     pub schedule: &'a Schedule,
@@ -529,10 +530,17 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
         bind_group_layouts: &[Some(ctx.frame_layout), Some(&group1_layout)],
         immediate_size: 0,
     });
-    let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(&pass.name),
-        source: wgpu::ShaderSource::Naga(Cow::Owned(module.clone())),
-    });
+    // Compiled only when the cache has no pipeline for this shader and state.
+    let shader = std::cell::OnceCell::new();
+    let shader = || {
+        shader.get_or_init(|| {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(&pass.name),
+                source: wgpu::ShaderSource::Naga(Cow::Owned(module.clone())),
+            })
+        })
+    };
+    let shader_key: [&dyn std::fmt::Debug; 4] = [&path, &source, &defines, &layout_entries];
     let clears: Vec<_> = pass
         .writes
         .iter()
@@ -545,13 +553,16 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
         let wg = entry.workgroup_size;
         let threads = t.compute_threads(pass, ctx.schedule);
         let workgroups = [0, 1, 2].map(|i| threads[i].div_ceil(wg[i].max(1)));
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(&pass.name),
-            layout: Some(&layout),
-            module: &shader,
-            entry_point: Some(entry.name.as_str()),
-            compilation_options: Default::default(),
-            cache: None,
+        let key = crate::cache::key(&[&shader_key, &entry.name]);
+        let pipeline = ctx.pipelines.compute(key, || {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(&pass.name),
+                layout: Some(&layout),
+                module: shader(),
+                entry_point: Some(entry.name.as_str()),
+                compilation_options: Default::default(),
+                cache: None,
+            })
         });
         ShaderPassKind::Compute { pipeline, workgroups }
     } else {
@@ -618,26 +629,31 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             DrawWhat::Fullscreen => vec![],
         };
         let has_fragment = module.entry_points.iter().any(|e| e.stage == naga::ShaderStage::Fragment);
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&pass.name),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState { module: &shader, entry_point: None, compilation_options: Default::default(), buffers: &vertex_layouts },
-            primitive: wgpu::PrimitiveState {
-                topology: if draw == DrawWhat::Hair { wgpu::PrimitiveTopology::LineList } else { wgpu::PrimitiveTopology::TriangleList },
-                cull_mode: state.cull_mode,
-                front_face: wgpu::FrontFace::Ccw,
-                ..Default::default()
-            },
-            depth_stencil,
-            multisample: wgpu::MultisampleState { count: samples, mask: !0, alpha_to_coverage_enabled: state.alpha_to_coverage },
-            fragment: has_fragment.then(|| wgpu::FragmentState {
-                module: &shader,
-                entry_point: None,
-                compilation_options: Default::default(),
-                targets: &color_states,
-            }),
-            multiview_mask: None,
-            cache: None,
+        let primitive = wgpu::PrimitiveState {
+            topology: if draw == DrawWhat::Hair { wgpu::PrimitiveTopology::LineList } else { wgpu::PrimitiveTopology::TriangleList },
+            cull_mode: state.cull_mode,
+            front_face: wgpu::FrontFace::Ccw,
+            ..Default::default()
+        };
+        let multisample = wgpu::MultisampleState { count: samples, mask: !0, alpha_to_coverage_enabled: state.alpha_to_coverage };
+        let key = crate::cache::key(&[&shader_key, &primitive, &depth_stencil, &multisample, &color_states, &vertex_layouts, &has_fragment]);
+        let pipeline = ctx.pipelines.render(key, || {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&pass.name),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState { module: shader(), entry_point: None, compilation_options: Default::default(), buffers: &vertex_layouts },
+                primitive,
+                depth_stencil: depth_stencil.clone(),
+                multisample,
+                fragment: has_fragment.then(|| wgpu::FragmentState {
+                    module: shader(),
+                    entry_point: None,
+                    compilation_options: Default::default(),
+                    targets: &color_states,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
         });
         ShaderPassKind::Raster { pipeline, colors, resolves, depth, state, draw }
     };

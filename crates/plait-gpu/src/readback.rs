@@ -122,6 +122,7 @@ mod tests {
         assert_eq!(linear_to_srgb(0.0), 0);
         assert_eq!(linear_to_srgb(1.0), 255);
         assert_eq!(linear_to_srgb(f32::NAN), 0);
-        assert_eq!(linear_to_srgb(0.214), 128);
+        // 0.2158 linear is 0.502 in sRGB, the middle of the 8-bit range.
+        assert_eq!(linear_to_srgb(0.2158), 128);
     }
 }

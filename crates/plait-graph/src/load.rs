@@ -330,7 +330,14 @@ fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>)
             None => break,
         }
     }
-    let mut node = Spanned::new(parse_flag_value(value_text.trim(), &location), location.clone());
+    let value_text = value_text.trim();
+    // A value that starts like structured TOML must be valid TOML: a bare
+    // word may be a string, but `[1,` is a mistake, not the text "[1,".
+    if value_text.starts_with(['[', '{', '"', '\'']) && toml::de::DeValue::parse(value_text).is_err() {
+        let reason = toml::de::DeValue::parse(value_text).err().map(|e| e.message().to_owned()).unwrap_or_default();
+        return errors.push(malformed(&format!("the value `{value_text}` is not valid TOML: {reason}")));
+    }
+    let mut node = Spanned::new(parse_flag_value(value_text, &location), location.clone());
     for part in path.iter().rev() {
         let mut table = Table::new();
         table.insert((*part).to_owned(), Entry { key: location.clone(), value: node });
