@@ -159,9 +159,9 @@ fn texture_larger_than_the_limit() {
 fn malformed_set() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("x.png");
-    // (`params.light_size=[1,` is NOT reported on the flag today: the value falls
-    // back to a string and fails later at the file's `${light_size}`; see the report.)
-    for bad in ["no_equals_sign", "=5"] {
+    // A value that starts like structured TOML (`[1,`) must parse; a bare word
+    // would be taken as a string.
+    for bad in ["no_equals_sign", "=5", "params.light_size=[1,"] {
         let o = plait(&["check", "pipelines/forward.toml", "--set", bad]);
         assert_fails(&format!("plait check --set {bad}"), &o, &["--set", bad], None);
         let o = plait(&["render", "pipelines/forward.toml", "--size", "64x48", "--set", bad, "--out", png.to_str().expect("utf-8")]);
