@@ -2,7 +2,7 @@
 // colour goes over the background colour; the sRGB target encodes the output.
 // Bindings are matched by name to the pass's `reads`; the output is the pass's
 // one colour target in `writes`.
-#import plait::frame::{frame, fullscreen_position}
+#import plait::frame::{frame, fullscreen_position, background_at}
 
 @group(1) @binding(0) var scene: texture_2d<f32>;
 
@@ -14,5 +14,5 @@ fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
 @fragment
 fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
     let c = textureLoad(scene, vec2<i32>(pixel.xy), 0);
-    return vec4<f32>(c.rgb + (1.0 - c.a) * frame.background.rgb, 1.0);
+    return vec4<f32>(c.rgb + (1.0 - c.a) * background_at(pixel.xy), 1.0);
 }

@@ -183,6 +183,19 @@ fn occupancy_on_stray_strands_matches_its_golden_image() {
     check_golden("occupancy_stray", &image).unwrap_or_else(|e| panic!("{e}"));
 }
 
+/// A scene's background image shows where nothing covers it, stretched over
+/// the frame: its left half orange, its right half blue.
+#[test]
+fn background_image_fills_the_uncovered_pixels() {
+    let (_lock, gpu) = gpu();
+    let scene = load_scene("tests/fixtures/background.toml");
+    let (image, _) = render(&gpu, &repo_root().join("pipelines/forward.toml"), &scene);
+    let near = |p: &image::Rgba<u8>, want: [u8; 3]| (0..3).all(|c| p[c].abs_diff(want[c]) <= 6);
+    let (w, _) = image.dimensions();
+    assert!(near(image.get_pixel(2, 2), [230, 120, 30]), "top-left pixel {:?} is not the image's left half", image.get_pixel(2, 2));
+    assert!(near(image.get_pixel(w - 3, 2), [30, 90, 200]), "top-right pixel {:?} is not the image's right half", image.get_pixel(w - 3, 2));
+}
+
 /// The comparison must be able to fail: a strand-sized change is caught even
 /// though it barely moves the mean.
 #[test]

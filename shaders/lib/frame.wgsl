@@ -23,7 +23,8 @@ struct Frame {
     hair_color: vec4<f32>,
     // Kajiya-Kay: x = diffuse kd, y = specular ks, z = specular exponent, w = specular shift.
     hair_shading: vec4<f32>,
-    // rgb: background colour.
+    // rgb: background colour; w = 1 when the scene's background is an image
+    // (`background_image`), 0 for the flat colour.
     background: vec4<f32>,
     // rgb: ambient light.
     ambient: vec4<f32>,
@@ -42,6 +43,17 @@ struct Frame {
 @group(0) @binding(1) var linear_sampler: sampler;
 @group(0) @binding(2) var nearest_sampler: sampler;
 @group(0) @binding(3) var shadow_sampler: sampler_comparison;
+// The scene's background image, stretched over the frame (1×1 when the
+// background is a colour).
+@group(0) @binding(4) var background_image: texture_2d<f32>;
+
+// What lies behind everything at a pixel: the background image or colour.
+fn background_at(pixel: vec2<f32>) -> vec3<f32> {
+    if (frame.background.w > 0.5) {
+        return textureSampleLevel(background_image, linear_sampler, pixel * frame.screen_size.zw, 0.0).rgb;
+    }
+    return frame.background.rgb;
+}
 
 // The view a raster pass draws from: the engine defines LIGHT_VIEW for `view = "light"`.
 fn view_proj() -> mat4x4<f32> {

@@ -4,7 +4,7 @@
 // (the sum of the camera-view slab counts); the hair image, whose alpha
 // should sum to Λ = 1-(1-α)^n, is rescaled to it: rgb · Λ / a. (The paper
 // writes hair.a / Λ; the factor that makes the intensity right is Λ / a.)
-#import plait::frame::{frame, fullscreen_position}
+#import plait::frame::{frame, fullscreen_position, background_at}
 
 @group(1) @binding(0) var hair: texture_2d<f32>;
 @group(1) @binding(1) var scene: texture_2d<f32>;
@@ -34,6 +34,6 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
         hair_rgb = h.rgb * (lambda / h.a);
     }
     let s = textureLoad(scene, vec2<i32>(p), 0);
-    let behind = s.rgb + (1.0 - s.a) * frame.background.rgb;
+    let behind = s.rgb + (1.0 - s.a) * background_at(pixel.xy);
     return vec4<f32>(behind * transmit + hair_rgb, 1.0);
 }

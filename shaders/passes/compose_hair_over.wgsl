@@ -2,7 +2,7 @@
 // depth peeling, sorted fragment lists or weighted averages) over the scene
 // over the background: f = hair + (1 - hair.a) · behind
 // (000_785589f319b01ef5.txt §2.2).
-#import plait::frame::{frame, fullscreen_position}
+#import plait::frame::{frame, fullscreen_position, background_at}
 
 @group(1) @binding(0) var hair: texture_2d<f32>;
 @group(1) @binding(1) var scene: texture_2d<f32>;
@@ -17,6 +17,6 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pixel.xy);
     let h = textureLoad(hair, p, 0);
     let s = textureLoad(scene, p, 0);
-    let behind = s.rgb + (1.0 - s.a) * frame.background.rgb;
+    let behind = s.rgb + (1.0 - s.a) * background_at(pixel.xy);
     return vec4<f32>(h.rgb + (1.0 - h.a) * behind, 1.0);
 }

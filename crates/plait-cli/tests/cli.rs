@@ -318,3 +318,14 @@ fn render_json_shows_memory_sharing() {
     assert_eq!(a["shares_memory_with"], serde_json::json!(["c"]), "{v:#}");
     assert!(v["memory"]["peak_bytes"].as_u64() < v["memory"]["unpooled_bytes"].as_u64(), "memory: {}", v["memory"]);
 }
+
+#[test]
+fn missing_background_image_names_the_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = dir.path().join("x.png");
+    let o = plait(&[
+        "render", "pipelines/forward.toml", "--scene", "tests/fixtures/missing_background.toml", "--size", "64x48", "--out",
+        png.to_str().expect("utf-8"),
+    ]);
+    assert_fails("plait render --scene missing_background.toml", &o, &["no-such-backdrop.png"], Some(dir.path()));
+}

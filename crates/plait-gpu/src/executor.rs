@@ -49,6 +49,7 @@ pub struct Renderer<'g> {
     pool: ResourcePool,
     geometry: SceneGeometry,
     frame_buffer: wgpu::Buffer,
+    frame_group: FrameGroup,
     frame_bind_group: wgpu::BindGroup,
     passes: Vec<Box<dyn PreparedPass>>,
     timestamps: Option<Timestamps>,
@@ -102,16 +103,8 @@ impl<'g> Renderer<'g> {
         let linear = sampler(wgpu::FilterMode::Linear, None);
         let nearest = sampler(wgpu::FilterMode::Nearest, None);
         let shadow = sampler(wgpu::FilterMode::Linear, Some(wgpu::CompareFunction::LessEqual));
-        let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("plait frame"),
-            layout: &frame_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&linear) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&nearest) },
-                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&shadow) },
-            ],
-        });
+        let frame_group = FrameGroup { layout: frame_layout, linear, nearest, shadow };
+        let frame_bind_group = frame_group.bind(device, &frame_buffer, &background_view(gpu, None));
         let mut shaders = ShaderLibrary::new()?;
         let mut passes = Vec::with_capacity(schedule.passes.len());
         for pass in &schedule.passes {
@@ -127,7 +120,7 @@ impl<'g> Renderer<'g> {
                 schedule: &schedule,
                 pool: &pool,
                 geometry: &geometry,
-                frame_layout: &frame_layout,
+                frame_layout: &frame_group.layout,
                 shaders: &mut shaders,
                 base_dir,
             };
@@ -160,7 +153,7 @@ impl<'g> Renderer<'g> {
                 period_ns: gpu.queue.get_timestamp_period(),
             }
         });
-        Ok(Renderer { gpu, schedule, pool, geometry, frame_buffer, frame_bind_group, passes, timestamps, notes })
+        Ok(Renderer { gpu, schedule, pool, geometry, frame_buffer, frame_group, frame_bind_group, passes, timestamps, notes })
     }
 
     pub fn schedule(&self) -> &Schedule {
@@ -171,6 +164,13 @@ impl<'g> Renderer<'g> {
     /// target blended in 16 bits), one sentence each.
     pub fn notes(&self) -> &[String] {
         &self.notes
+    }
+
+    /// The scene's background image (sRGB), shown where `frame.background.w`
+    /// says the background is an image.
+    pub fn set_background_image(&mut self, image: &image::RgbaImage) {
+        let view = background_view(self.gpu, Some(image));
+        self.frame_bind_group = self.frame_group.bind(&self.gpu.device, &self.frame_buffer, &view);
     }
 
     /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
@@ -320,4 +320,51 @@ fn downgrade_float32_blending(schedule: &mut Schedule, library: &PassLibrary, ca
     schedule.memory.peak_bytes = schedule.physical.iter().map(|p| p.desc.bytes()).sum();
     schedule.memory.unpooled_bytes = schedule.resources.iter().map(|r| r.desc.bytes()).sum();
     notes
+}
+
+/// Group 0's fixed parts, kept to rebind when the background image changes.
+struct FrameGroup {
+    layout: wgpu::BindGroupLayout,
+    linear: wgpu::Sampler,
+    nearest: wgpu::Sampler,
+    shadow: wgpu::Sampler,
+}
+
+impl FrameGroup {
+    fn bind(&self, device: &wgpu::Device, frame: &wgpu::Buffer, background: &wgpu::TextureView) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("plait frame"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: frame.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&self.linear) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&self.nearest) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.shadow) },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(background) },
+            ],
+        })
+    }
+}
+
+/// The background image as an sRGB texture (sampling decodes it to linear);
+/// a 1×1 black texture when there is none.
+fn background_view(gpu: &Gpu, image: Option<&image::RgbaImage>) -> wgpu::TextureView {
+    let black = image::RgbaImage::from_pixel(1, 1, image::Rgba([0, 0, 0, 255]));
+    let image = image.unwrap_or(&black);
+    let texture = gpu.device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("background image"),
+            size: wgpu::Extent3d { width: image.width(), height: image.height(), depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        image.as_raw(),
+    );
+    texture.create_view(&Default::default())
 }

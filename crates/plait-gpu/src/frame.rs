@@ -58,9 +58,10 @@ impl FrameUniforms {
         };
         let light_color = Vec3::from(scene.light.color) * scene.light.intensity;
         let m = &scene.material;
-        let background = match &scene.background {
-            Background::Color(c) => Vec3::from(*c),
-            Background::Image(_) => Vec3::ZERO,
+        // w tells the shaders to read `background_image` instead of the colour.
+        let (background, background_is_image) = match &scene.background {
+            Background::Color(c) => (Vec3::from(*c), 0.0),
+            Background::Image(_) => (Vec3::ZERO, 1.0),
         };
         FrameUniforms {
             camera_view_proj: view_proj.to_cols_array_2d(),
@@ -75,7 +76,7 @@ impl FrameUniforms {
             light_color: v4(light_color, 1.0),
             hair_color: v4(Vec3::from(m.color), m.alpha),
             hair_shading: [m.diffuse, m.specular, m.specular_exponent, m.specular_shift],
-            background: v4(background, 1.0),
+            background: v4(background, background_is_image),
             ambient: v4(Vec3::splat(scene.ambient), 1.0),
             screen_size: [size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32],
             jitter: [0.0, 0.0, 0.0, frame_index as f32],

@@ -349,7 +349,7 @@ pub fn check_pass(
     errors
 }
 
-/// The group 0 layout: frame uniforms and the three samplers.
+/// The group 0 layout: frame uniforms, the three samplers, the background image.
 pub fn frame_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let all = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry { binding, visibility: all, ty, count: None };
@@ -364,6 +364,11 @@ pub fn frame_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             entry(1, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)),
             entry(2, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering)),
             entry(3, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison)),
+            entry(4, wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            }),
         ],
     })
 }

@@ -6,7 +6,7 @@ use plait_gpu::frame::FrameUniforms;
 use plait_gpu::geometry::SceneGeometry;
 use plait_gpu::{GpuError, Gpu, Renderer};
 use plait_graph::{CompileOptions, Errors, Schedule};
-use plait_hair::scene::{Scene, SceneError};
+use plait_hair::scene::{Background, Scene, SceneError};
 
 /// The pipeline `plait render` uses when none is given.
 pub const DEFAULT_PIPELINE: &str = "pipelines/occupancy.toml";
@@ -61,13 +61,23 @@ pub struct SceneData {
     pub scene: Scene,
     pub strands: plait_hair::Strands,
     pub meshes: Vec<plait_hair::mesh::Mesh>,
+    /// The background image, when the scene names one.
+    pub background: Option<image::RgbaImage>,
 }
 
 impl SceneData {
     pub fn new(scene: Scene) -> Result<Self, SceneError> {
         let strands = scene.strands()?;
         let meshes = scene.opaque_meshes();
-        Ok(SceneData { scene, strands, meshes })
+        let background = match &scene.background {
+            Background::Image(path) => Some(
+                image::open(path)
+                    .map_err(|e| SceneError::Invalid { path: path.clone(), message: format!("cannot read the background image: {e}") })?
+                    .to_rgba8(),
+            ),
+            Background::Color(_) => None,
+        };
+        Ok(SceneData { scene, strands, meshes, background })
     }
 
     /// The scene file, or the built-in default scene.
@@ -127,6 +137,9 @@ pub fn build<'g>(gpu: &'g Gpu, schedule: Schedule, pipeline: &Path, scene: &Scen
     let frame = scene.frame(size, 0);
     let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
-    let renderer = Renderer::new(gpu, schedule, &plait_passes::library(), geometry, &frame, base_dir)?;
+    let mut renderer = Renderer::new(gpu, schedule, &plait_passes::library(), geometry, &frame, base_dir)?;
+    if let Some(image) = &scene.background {
+        renderer.set_background_image(image);
+    }
     Ok(Prepared { renderer, output })
 }
