@@ -4,7 +4,10 @@ use std::path::{Path, PathBuf};
 
 /// The checkout root (the parent of `tests/`).
 pub fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("tests/ has a parent").to_path_buf()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tests/ has a parent")
+        .to_path_buf()
 }
 
 /// `PLAIT_BLESS=1` (re)writes snapshots and golden images instead of comparing.
@@ -17,7 +20,8 @@ pub fn files_with_ext(dir: &Path, ext: &str) -> Vec<PathBuf> {
     let mut out = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
-        let entries = std::fs::read_dir(&d).unwrap_or_else(|e| panic!("cannot list {}: {e}", d.display()));
+        let entries =
+            std::fs::read_dir(&d).unwrap_or_else(|e| panic!("cannot list {}: {e}", d.display()));
         for entry in entries {
             let path = entry.expect("directory entry").path();
             if path.is_dir() {
@@ -34,8 +38,15 @@ pub fn files_with_ext(dir: &Path, ext: &str) -> Vec<PathBuf> {
 /// Every `pipelines/*.toml` (not recursive); panics when there are none.
 pub fn pipeline_files() -> Vec<PathBuf> {
     let dir = repo_root().join("pipelines");
-    let files: Vec<PathBuf> = files_with_ext(&dir, "toml").into_iter().filter(|p| p.parent() == Some(dir.as_path())).collect();
-    assert!(!files.is_empty(), "found no pipeline files in {}: the snapshot and golden tests would test nothing", dir.display());
+    let files: Vec<PathBuf> = files_with_ext(&dir, "toml")
+        .into_iter()
+        .filter(|p| p.parent() == Some(dir.as_path()))
+        .collect();
+    assert!(
+        !files.is_empty(),
+        "found no pipeline files in {}: the snapshot and golden tests would test nothing",
+        dir.display()
+    );
     files
 }
 
@@ -44,7 +55,10 @@ pub fn rel(path: &Path) -> String {
     let root = repo_root();
     let root = root.canonicalize().unwrap_or(root);
     let path = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
-    path.strip_prefix(&root).unwrap_or(&path).to_string_lossy().replace('\\', "/")
+    path.strip_prefix(&root)
+        .unwrap_or(&path)
+        .to_string_lossy()
+        .replace('\\', "/")
 }
 
 /// A minimal line diff: the first differing lines with a little context.
@@ -53,7 +67,9 @@ pub fn line_diff(expected: &str, actual: &str) -> String {
     let a: Vec<&str> = actual.lines().collect();
     let mut out = String::new();
     let first = (0..e.len().max(a.len())).find(|&i| e.get(i) != a.get(i));
-    let Some(first) = first else { return "(texts differ only in trailing newlines)".into() };
+    let Some(first) = first else {
+        return "(texts differ only in trailing newlines)".into();
+    };
     let start = first.saturating_sub(3);
     for i in start..first {
         out += &format!("   {}\n", e[i]);
@@ -65,5 +81,8 @@ pub fn line_diff(expected: &str, actual: &str) -> String {
     for l in a.iter().skip(first).take(20) {
         out += &format!(" + {l}\n");
     }
-    format!("first difference at line {} (- committed, + actual):\n{out}", first + 1)
+    format!(
+        "first difference at line {} (- committed, + actual):\n{out}",
+        first + 1
+    )
 }

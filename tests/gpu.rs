@@ -23,7 +23,9 @@ static GPU_LOCK: Mutex<()> = Mutex::new(());
 /// Open the GPU or fail with the device crate's message, which says how to
 /// install lavapipe (`apt-get install -y mesa-vulkan-drivers`).
 fn gpu() -> (MutexGuard<'static, ()>, Gpu) {
-    let guard = GPU_LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let guard = GPU_LOCK
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
     match Gpu::new() {
         Ok(gpu) => (guard, gpu),
         Err(e) => panic!("GPU tests need an adapter and none could be opened: {e}"),
@@ -41,15 +43,25 @@ fn load_scene(relative: &str) -> SceneData {
 
 fn render(gpu: &Gpu, pipeline: &Path, scene: &SceneData) -> (RgbaImage, plait_gpu::FrameReport) {
     let name = rel(pipeline);
-    let prepared = prepare(gpu, pipeline, &[], scene, SIZE).unwrap_or_else(|e| panic!("preparing {name}: {e}"));
-    let report = prepared.renderer.render().unwrap_or_else(|e| panic!("rendering {name}: {e}"));
-    let image = prepared.image().unwrap_or_else(|e| panic!("reading back {name}: {e}"));
+    let prepared = prepare(gpu, pipeline, &[], scene, SIZE)
+        .unwrap_or_else(|e| panic!("preparing {name}: {e}"));
+    let report = prepared
+        .renderer
+        .render()
+        .unwrap_or_else(|e| panic!("rendering {name}: {e}"));
+    let image = prepared
+        .image()
+        .unwrap_or_else(|e| panic!("reading back {name}: {e}"));
     (image, report)
 }
 
 /// Per-pixel difference: the largest absolute difference over R, G, B, A.
 fn pixel_diff(a: &image::Rgba<u8>, b: &image::Rgba<u8>) -> u8 {
-    a.0.iter().zip(b.0.iter()).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0)
+    a.0.iter()
+        .zip(b.0.iter())
+        .map(|(x, y)| x.abs_diff(*y))
+        .max()
+        .unwrap_or(0)
 }
 
 struct Comparison {
@@ -80,7 +92,11 @@ const MAX_MEAN: f64 = 2.0;
 fn compare(actual: &RgbaImage, golden: &RgbaImage) -> Comparison {
     let mut difference = RgbaImage::new(actual.width(), actual.height());
     let (mut sum, mut outliers, mut max) = (0u64, 0u64, 0u8);
-    for ((a, g), d) in actual.pixels().zip(golden.pixels()).zip(difference.pixels_mut()) {
+    for ((a, g), d) in actual
+        .pixels()
+        .zip(golden.pixels())
+        .zip(difference.pixels_mut())
+    {
         let diff = pixel_diff(a, g);
         sum += diff as u64;
         max = max.max(diff);
@@ -89,10 +105,20 @@ fn compare(actual: &RgbaImage, golden: &RgbaImage) -> Comparison {
         }
         // Red where it differs, scaled ×4 so small differences are visible; grey background.
         let grey = (g.0[0] as u16 + g.0[1] as u16 + g.0[2] as u16) / 12;
-        *d = image::Rgba([(diff as u16 * 4).min(255).max(grey) as u8, grey as u8, grey as u8, 255]);
+        *d = image::Rgba([
+            (diff as u16 * 4).min(255).max(grey) as u8,
+            grey as u8,
+            grey as u8,
+            255,
+        ]);
     }
     let n = (actual.width() as u64 * actual.height() as u64).max(1) as f64;
-    Comparison { outlier_fraction: outliers as f64 / n, mean: sum as f64 / n, max, difference }
+    Comparison {
+        outlier_fraction: outliers as f64 / n,
+        mean: sum as f64 / n,
+        max,
+        difference,
+    }
 }
 
 /// Compare with `tests/golden/<stem>.png`, or write it with `PLAIT_BLESS=1`.
@@ -105,12 +131,17 @@ fn check_golden(stem: &str, actual: &RgbaImage) -> Result<(), String> {
     let _ = std::fs::remove_file(&actual_path);
     let _ = std::fs::remove_file(&diff_path);
     if bless() {
-        actual.save(&golden_path).map_err(|e| format!("writing {}: {e}", golden_path.display()))?;
+        actual
+            .save(&golden_path)
+            .map_err(|e| format!("writing {}: {e}", golden_path.display()))?;
         eprintln!("blessed {}", rel(&golden_path));
         return Ok(());
     }
     let save_actual = || {
-        actual.save(&actual_path).map(|_| rel(&actual_path)).unwrap_or_else(|e| format!("(could not write {}: {e})", actual_path.display()))
+        actual
+            .save(&actual_path)
+            .map(|_| rel(&actual_path))
+            .unwrap_or_else(|e| format!("(could not write {}: {e})", actual_path.display()))
     };
     let golden = match image::open(&golden_path) {
         Ok(g) => g.to_rgba8(),
@@ -163,7 +194,11 @@ fn every_pipeline_matches_its_golden_image() {
     let scene = scene();
     let mut failures = Vec::new();
     for pipeline in pipeline_files() {
-        let stem = pipeline.file_stem().expect("stem").to_string_lossy().into_owned();
+        let stem = pipeline
+            .file_stem()
+            .expect("stem")
+            .to_string_lossy()
+            .into_owned();
         let (image, _) = render(&gpu, &pipeline, &scene);
         if let Err(e) = check_golden(&stem, &image) {
             failures.push(e);
@@ -192,8 +227,16 @@ fn background_image_fills_the_uncovered_pixels() {
     let (image, _) = render(&gpu, &repo_root().join("pipelines/forward.toml"), &scene);
     let near = |p: &image::Rgba<u8>, want: [u8; 3]| (0..3).all(|c| p[c].abs_diff(want[c]) <= 6);
     let (w, _) = image.dimensions();
-    assert!(near(image.get_pixel(2, 2), [230, 120, 30]), "top-left pixel {:?} is not the image's left half", image.get_pixel(2, 2));
-    assert!(near(image.get_pixel(w - 3, 2), [30, 90, 200]), "top-right pixel {:?} is not the image's right half", image.get_pixel(w - 3, 2));
+    assert!(
+        near(image.get_pixel(2, 2), [230, 120, 30]),
+        "top-left pixel {:?} is not the image's left half",
+        image.get_pixel(2, 2)
+    );
+    assert!(
+        near(image.get_pixel(w - 3, 2), [30, 90, 200]),
+        "top-right pixel {:?} is not the image's right half",
+        image.get_pixel(w - 3, 2)
+    );
 }
 
 /// The comparison must be able to fail: a strand-sized change is caught even
@@ -209,14 +252,22 @@ fn golden_comparison_catches_a_missing_strand_and_a_shift() {
         }
     }
     let c = compare(&missing, &golden);
-    assert!(c.outlier_fraction > MAX_OUTLIER_FRACTION, "a missing band must fail: {:.4}", c.outlier_fraction);
+    assert!(
+        c.outlier_fraction > MAX_OUTLIER_FRACTION,
+        "a missing band must fail: {:.4}",
+        c.outlier_fraction
+    );
     // A global brightness shift of 3/255: no outliers, but the mean catches it.
     let mut shifted = golden.clone();
     for p in shifted.pixels_mut() {
         p.0[0] += 3;
     }
     let c = compare(&shifted, &golden);
-    assert!(c.outlier_fraction == 0.0 && c.mean > MAX_MEAN, "a global shift must fail on the mean: {}", c.mean);
+    assert!(
+        c.outlier_fraction == 0.0 && c.mean > MAX_MEAN,
+        "a global shift must fail on the mean: {}",
+        c.mean
+    );
     // A one-pixel line shift of a single strand passes.
     let mut a = golden.clone();
     let mut b = golden.clone();
@@ -225,7 +276,10 @@ fn golden_comparison_catches_a_missing_strand_and_a_shift() {
         b.put_pixel(51, y, image::Rgba([200, 180, 120, 255]));
     }
     let c = compare(&a, &b);
-    assert!(c.outlier_fraction <= MAX_OUTLIER_FRACTION && c.mean <= MAX_MEAN, "a 1-px line shift must pass");
+    assert!(
+        c.outlier_fraction <= MAX_OUTLIER_FRACTION && c.mean <= MAX_MEAN,
+        "a 1-px line shift must pass"
+    );
 }
 
 fn sharing_fixture() -> PathBuf {
@@ -235,17 +289,45 @@ fn sharing_fixture() -> PathBuf {
 #[test]
 fn same_descriptor_disjoint_lifetimes_share_memory_without_corruption() {
     let path = sharing_fixture();
-    let opts = CompileOptions { screen: SIZE, ..Default::default() };
-    let schedule = compile_checked(&path, &[], &opts).unwrap_or_else(|e| panic!("compiling {}: {e}", rel(&path)));
-    let id = |n: &str| schedule.resource(n).unwrap_or_else(|| panic!("no resource `{n}` in the schedule"));
+    let opts = CompileOptions {
+        screen: SIZE,
+        ..Default::default()
+    };
+    let schedule = compile_checked(&path, &[], &opts)
+        .unwrap_or_else(|e| panic!("compiling {}: {e}", rel(&path)));
+    let id = |n: &str| {
+        schedule
+            .resource(n)
+            .unwrap_or_else(|| panic!("no resource `{n}` in the schedule"))
+    };
     let table = plait_graph::schedule_text(&schedule);
-    assert_eq!(schedule.shares_memory_with(id("a")), vec!["c"], "`a` and `c` must share memory:\n{table}");
-    assert_eq!(schedule.shares_memory_with(id("c")), vec!["a"], "`c` and `a` must share memory:\n{table}");
-    assert!(schedule.shares_memory_with(id("b")).is_empty(), "`b` overlaps both and must not share:\n{table}");
+    assert_eq!(
+        schedule.shares_memory_with(id("a")),
+        vec!["c"],
+        "`a` and `c` must share memory:\n{table}"
+    );
+    assert_eq!(
+        schedule.shares_memory_with(id("c")),
+        vec!["a"],
+        "`c` and `a` must share memory:\n{table}"
+    );
+    assert!(
+        schedule.shares_memory_with(id("b")).is_empty(),
+        "`b` overlaps both and must not share:\n{table}"
+    );
     let m = schedule.memory;
-    assert!(m.peak_bytes < m.unpooled_bytes, "peak {} B must be below unpooled {} B:\n{table}", m.peak_bytes, m.unpooled_bytes);
+    assert!(
+        m.peak_bytes < m.unpooled_bytes,
+        "peak {} B must be below unpooled {} B:\n{table}",
+        m.peak_bytes,
+        m.unpooled_bytes
+    );
     let texture = 256 * 192 * 8;
-    assert_eq!(m.unpooled_bytes - m.peak_bytes, texture, "sharing saves exactly one rgba16float texture:\n{table}");
+    assert_eq!(
+        m.unpooled_bytes - m.peak_bytes,
+        texture,
+        "sharing saves exactly one rgba16float texture:\n{table}"
+    );
 
     // The same pipeline on the GPU: a and c really live in one texture, and
     // the result is still exactly the closed-form image.
@@ -260,11 +342,22 @@ fn same_descriptor_disjoint_lifetimes_share_memory_without_corruption() {
         let v = (y as f32 + 0.5) / h as f32;
         let want = [0.5 * v, u, 0.475, 1.0].map(|c| (c * 255.0).round());
         // rgba16float intermediates round to ~11 bits; allow 2/255.
-        if px.0.iter().zip(want).any(|(&got, want)| (got as f32 - want).abs() > 2.0) {
+        if px
+            .0
+            .iter()
+            .zip(want)
+            .any(|(&got, want)| (got as f32 - want).abs() > 2.0)
+        {
             bad.push(format!("({x},{y}) = {:?}, expected {want:?}", px.0));
         }
     }
-    assert!(bad.is_empty(), "{} of {} pixels are wrong with shared memory, e.g. {}", bad.len(), w * h, bad[..bad.len().min(5)].join("; "));
+    assert!(
+        bad.is_empty(),
+        "{} of {} pixels are wrong with shared memory, e.g. {}",
+        bad.len(),
+        w * h,
+        bad[..bad.len().min(5)].join("; ")
+    );
 }
 
 #[test]
@@ -273,23 +366,41 @@ fn timestamps_time_every_pass() {
     if !gpu.capabilities.timestamps {
         // Not a skip of the test's subject: the adapter has no timestamp queries,
         // which the renderer reports as `gpu_ms: None` (checked here).
-        eprintln!("adapter {} has no timestamp queries; checking that gpu_ms is None", gpu.adapter_name());
+        eprintln!(
+            "adapter {} has no timestamp queries; checking that gpu_ms is None",
+            gpu.adapter_name()
+        );
     }
     let scene = scene();
     for pipeline in pipeline_files() {
         let (_, report) = render(&gpu, &pipeline, &scene);
         let name = rel(&pipeline);
-        assert!(!report.passes.is_empty(), "{name}: the report lists no passes");
+        assert!(
+            !report.passes.is_empty(),
+            "{name}: the report lists no passes"
+        );
         for p in &report.passes {
             match (gpu.capabilities.timestamps, p.gpu_ms) {
-                (true, Some(ms)) => assert!(ms >= 0.0 && ms.is_finite(), "{name}: pass `{}` has gpu_ms {ms}", p.name),
-                (true, None) => panic!("{name}: pass `{}` has no gpu_ms although the adapter has timestamps", p.name),
-                (false, Some(ms)) => panic!("{name}: pass `{}` has gpu_ms {ms} without timestamp queries", p.name),
+                (true, Some(ms)) => assert!(
+                    ms >= 0.0 && ms.is_finite(),
+                    "{name}: pass `{}` has gpu_ms {ms}",
+                    p.name
+                ),
+                (true, None) => panic!(
+                    "{name}: pass `{}` has no gpu_ms although the adapter has timestamps",
+                    p.name
+                ),
+                (false, Some(ms)) => panic!(
+                    "{name}: pass `{}` has gpu_ms {ms} without timestamp queries",
+                    p.name
+                ),
                 (false, None) => {}
             }
         }
         if gpu.capabilities.timestamps {
-            let total = report.total_gpu_ms.unwrap_or_else(|| panic!("{name}: no total_gpu_ms"));
+            let total = report
+                .total_gpu_ms
+                .unwrap_or_else(|| panic!("{name}: no total_gpu_ms"));
             assert!(total >= 0.0, "{name}: total_gpu_ms {total}");
         }
     }

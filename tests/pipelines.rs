@@ -12,7 +12,10 @@ use plait_tests::{bless, line_diff, pipeline_files, rel, repo_root};
 /// The snapshot text, independent of where the checkout lives: absolute
 /// paths (pipeline files, shader files) become checkout-relative.
 fn snapshot_of(path: &Path) -> Result<String, String> {
-    let opts = CompileOptions { screen: (960, 720), ..Default::default() };
+    let opts = CompileOptions {
+        screen: (960, 720),
+        ..Default::default()
+    };
     let schedule = compile_checked(path, &[], &opts).map_err(|e| format!("{e}"))?;
     let text = plait_graph::schedule_text(&schedule);
     let root = repo_root();
@@ -24,7 +27,12 @@ fn snapshot_of(path: &Path) -> Result<String, String> {
     roots.sort_by_key(|r| std::cmp::Reverse(r.len()));
     let mut text = roots.iter().fold(text, |t, r| t.replace(r.as_str(), ""));
     text = text.replace('\\', "/");
-    Ok(text.lines().map(normalize_dotdot).collect::<Vec<_>>().join("\n") + "\n")
+    Ok(text
+        .lines()
+        .map(normalize_dotdot)
+        .collect::<Vec<_>>()
+        .join("\n")
+        + "\n")
 }
 
 /// `pipelines/../shaders/x.wgsl` → `shaders/x.wgsl` in every word of a line
@@ -55,8 +63,14 @@ fn every_pipeline_compiles_and_matches_its_snapshot() {
     let mut failures = Vec::new();
     for path in pipeline_files() {
         let name = rel(&path);
-        let stem = path.file_stem().expect("file stem").to_string_lossy().into_owned();
-        let snap_path = repo_root().join("tests/snapshots").join(format!("{stem}.txt"));
+        let stem = path
+            .file_stem()
+            .expect("file stem")
+            .to_string_lossy()
+            .into_owned();
+        let snap_path = repo_root()
+            .join("tests/snapshots")
+            .join(format!("{stem}.txt"));
         let actual = match snapshot_of(&path) {
             Ok(t) => t,
             Err(e) => {
@@ -65,7 +79,8 @@ fn every_pipeline_compiles_and_matches_its_snapshot() {
             }
         };
         if bless() {
-            std::fs::write(&snap_path, &actual).unwrap_or_else(|e| panic!("writing {}: {e}", snap_path.display()));
+            std::fs::write(&snap_path, &actual)
+                .unwrap_or_else(|e| panic!("writing {}: {e}", snap_path.display()));
             eprintln!("blessed {}", rel(&snap_path));
             continue;
         }
@@ -88,13 +103,23 @@ fn every_pipeline_compiles_and_matches_its_snapshot() {
 /// A snapshot without a pipeline is stale (renamed or deleted pipeline).
 #[test]
 fn every_snapshot_has_a_pipeline() {
-    let stems: Vec<String> =
-        pipeline_files().iter().map(|p| p.file_stem().expect("stem").to_string_lossy().into_owned()).collect();
+    let stems: Vec<String> = pipeline_files()
+        .iter()
+        .map(|p| p.file_stem().expect("stem").to_string_lossy().into_owned())
+        .collect();
     let dir = repo_root().join("tests/snapshots");
     let stale: Vec<String> = plait_tests::files_with_ext(&dir, "txt")
         .iter()
-        .filter(|p| !stems.iter().any(|s| p.file_stem().is_some_and(|f| f.to_string_lossy() == *s)))
+        .filter(|p| {
+            !stems
+                .iter()
+                .any(|s| p.file_stem().is_some_and(|f| f.to_string_lossy() == *s))
+        })
         .map(|p| rel(p))
         .collect();
-    assert!(stale.is_empty(), "snapshots without a pipeline in pipelines/ (delete them): {}", stale.join(", "));
+    assert!(
+        stale.is_empty(),
+        "snapshots without a pipeline in pipelines/ (delete them): {}",
+        stale.join(", ")
+    );
 }

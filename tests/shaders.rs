@@ -14,7 +14,13 @@ use plait_graph::{Location, ParamSpec, ParamType, PassShape, ScheduledPass, Valu
 use plait_tests::{files_with_ext, rel, repo_root};
 
 fn library() -> ShaderLibrary {
-    ShaderLibrary::new().unwrap_or_else(|e| panic!("composing the shader library failed in {}:\n{}", e.path.display(), e.message))
+    ShaderLibrary::new().unwrap_or_else(|e| {
+        panic!(
+            "composing the shader library failed in {}:\n{}",
+            e.path.display(),
+            e.message
+        )
+    })
 }
 
 /// A value for a param: its default, else the smallest valid one.
@@ -35,7 +41,10 @@ fn some_value(p: &ParamSpec) -> Value {
 /// Param sets a pass of this type can have that change its defines: the
 /// defaults, then each value of each enum (and each bool) param in turn.
 fn param_variants(params: &[ParamSpec]) -> Vec<IndexMap<String, Value>> {
-    let base: IndexMap<String, Value> = params.iter().map(|p| (p.name.clone(), some_value(p))).collect();
+    let base: IndexMap<String, Value> = params
+        .iter()
+        .map(|p| (p.name.clone(), some_value(p)))
+        .collect();
     let mut out = vec![base.clone()];
     for p in params {
         let values: Vec<Value> = match &p.ty {
@@ -54,7 +63,12 @@ fn param_variants(params: &[ParamSpec]) -> Vec<IndexMap<String, Value>> {
     out
 }
 
-fn scheduled_pass(type_name: &str, shape: PassShape, view: Option<&str>, params: IndexMap<String, Value>) -> ScheduledPass {
+fn scheduled_pass(
+    type_name: &str,
+    shape: PassShape,
+    view: Option<&str>,
+    params: IndexMap<String, Value>,
+) -> ScheduledPass {
     ScheduledPass {
         name: format!("test_{type_name}"),
         type_name: type_name.into(),
@@ -74,14 +88,25 @@ fn describe(defines: &[(String, Define)]) -> String {
     if defines.is_empty() {
         return "no defines".into();
     }
-    defines.iter().map(|(k, v)| format!("{k}={v:?}")).collect::<Vec<_>>().join(", ")
+    defines
+        .iter()
+        .map(|(k, v)| format!("{k}={v:?}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Every shader file, relative to the checkout (`shaders/passes/x.wgsl`).
 fn shader_files() -> Vec<String> {
     let dir = repo_root().join("shaders");
-    let files: Vec<String> = files_with_ext(&dir, "wgsl").iter().map(|p| rel(p)).collect();
-    assert!(!files.is_empty(), "found no .wgsl files under {}: shader validation would test nothing", dir.display());
+    let files: Vec<String> = files_with_ext(&dir, "wgsl")
+        .iter()
+        .map(|p| rel(p))
+        .collect();
+    assert!(
+        !files.is_empty(),
+        "found no .wgsl files under {}: shader validation would test nothing",
+        dir.display()
+    );
     files
 }
 
@@ -108,31 +133,46 @@ fn every_shader_composes_and_validates() {
     for (p, source) in LIBRARY_MODULES {
         match std::fs::read_to_string(root.join(p)) {
             Ok(on_disk) if on_disk == *source => {}
-            Ok(_) => failures.push(format!("{p}: differs from the copy compiled into plait-gpu (rebuild?)")),
-            Err(e) => failures.push(format!("{p}: listed in LIBRARY_MODULES but not readable: {e}")),
+            Ok(_) => failures.push(format!(
+                "{p}: differs from the copy compiled into plait-gpu (rebuild?)"
+            )),
+            Err(e) => failures.push(format!(
+                "{p}: listed in LIBRARY_MODULES but not readable: {e}"
+            )),
         }
     }
 
     for f in files.iter().filter(|f| !f.starts_with("shaders/lib/")) {
         let path = root.join(f);
-        let source = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {f}: {e}"));
+        let source =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {f}: {e}"));
         // The define sets this file is composed with at run time.
         let mut variants: Vec<Vec<(String, Define)>> = Vec::new();
         if f.starts_with("shaders/passes/") {
-            let users: Vec<&dyn PassType> =
-                passes.types.values().map(|t| t.as_ref()).filter(|t| t.shader().is_some_and(|(p, _)| p == f)).collect();
+            let users: Vec<&dyn PassType> = passes
+                .types
+                .values()
+                .map(|t| t.as_ref())
+                .filter(|t| t.shader().is_some_and(|(p, _)| p == f))
+                .collect();
             if users.is_empty() {
                 // Still validated, but a pass shader no type uses is probably a mistake.
-                eprintln!("note: {f} is not the shader of any registered pass type; validating it without defines");
+                eprintln!(
+                    "note: {f} is not the shader of any registered pass type; validating it without defines"
+                );
                 variants.push(vec![]);
             }
             for t in users {
                 let spec = t.spec();
-                let views: &[Option<&str>] =
-                    if spec.shape == PassShape::Raster { &[Some("camera"), Some("light")] } else { &[None] };
+                let views: &[Option<&str>] = if spec.shape == PassShape::Raster {
+                    &[Some("camera"), Some("light")]
+                } else {
+                    &[None]
+                };
                 for view in views {
                     for params in param_variants(&spec.params) {
-                        let defines = t.defines(&scheduled_pass(&spec.name, spec.shape, *view, params));
+                        let defines =
+                            t.defines(&scheduled_pass(&spec.name, spec.shape, *view, params));
                         if !variants.contains(&defines) {
                             variants.push(defines);
                         }
@@ -156,13 +196,24 @@ fn every_shader_composes_and_validates() {
     for t in passes.types.values() {
         if let Some((p, _)) = t.shader() {
             if !root.join(p).is_file() {
-                failures.push(format!("pass type `{}` names shader {p}, which is not a file in the checkout", t.spec().name));
+                failures.push(format!(
+                    "pass type `{}` names shader {p}, which is not a file in the checkout",
+                    t.spec().name
+                ));
             }
         }
     }
 
-    assert!(failures.is_empty(), "{} shader problem(s):\n\n{}", failures.len(), failures.join("\n\n"));
-    eprintln!("validated {} shader files in {compositions} compositions", files.len());
+    assert!(
+        failures.is_empty(),
+        "{} shader problem(s):\n\n{}",
+        failures.len(),
+        failures.join("\n\n")
+    );
+    eprintln!(
+        "validated {} shader files in {compositions} compositions",
+        files.len()
+    );
 }
 
 /// The test above must be able to fail: a broken shader is reported with its
@@ -171,7 +222,17 @@ fn every_shader_composes_and_validates() {
 fn a_broken_shader_is_reported_with_file_and_line() {
     let mut shaders = library();
     let source = "#import plait::frame::frame\n\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return frame.nonexistent;\n}\n";
-    let err = shaders.compose(Path::new("shaders/broken.wgsl"), source, &[]).expect_err("an invalid shader must not compose");
-    assert!(err.message.contains("broken.wgsl"), "message does not name the file:\n{}", err.message);
-    assert!(err.message.contains(":5:"), "message does not give line 5:\n{}", err.message);
+    let err = shaders
+        .compose(Path::new("shaders/broken.wgsl"), source, &[])
+        .expect_err("an invalid shader must not compose");
+    assert!(
+        err.message.contains("broken.wgsl"),
+        "message does not name the file:\n{}",
+        err.message
+    );
+    assert!(
+        err.message.contains(":5:"),
+        "message does not give line 5:\n{}",
+        err.message
+    );
 }

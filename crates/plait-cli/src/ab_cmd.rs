@@ -15,8 +15,8 @@ use clap::Args;
 use plait::probe::{ProbeGrid, Probed, probe_visibility};
 use plait::session::{Prepared, SceneData, compile_checked, prepare, resolve_pipeline};
 use plait_compare::report::{
-    Adapter, FileHash, Memory, PassStats, PipelineProvenance, Provenance, Report, ResourceMemory, Run, SCHEMA, SceneResult,
-    Sweep, Timing, Variant, Visibility, VisibilityCurve,
+    Adapter, FileHash, Memory, PassStats, PipelineProvenance, Provenance, Report, ResourceMemory,
+    Run, SCHEMA, SceneResult, Sweep, Timing, Variant, Visibility, VisibilityCurve,
 };
 use plait_compare::{Stats, heatmap};
 use plait_gpu::Gpu;
@@ -68,7 +68,9 @@ fn parse_sweep(text: &str) -> Result<SweepArg, String> {
         .ok_or_else(|| format!("`{text}` is not KEY=V1,V2,… (e.g. params.slices=32,64,128)"))?;
     let key = key.trim();
     if key.is_empty() || key.contains(char::is_whitespace) {
-        return Err(format!("`{text}`: the key before `=` must be a --set key such as params.slices"));
+        return Err(format!(
+            "`{text}`: the key before `=` must be a --set key such as params.slices"
+        ));
     }
     let values: Vec<String> = values.split(',').map(|v| v.trim().to_string()).collect();
     if values.iter().any(String::is_empty) {
@@ -78,7 +80,10 @@ fn parse_sweep(text: &str) -> Result<SweepArg, String> {
     if let Some(dup) = values.iter().find(|v| !seen.insert(v.as_str())) {
         return Err(format!("`{text}`: value `{dup}` is listed twice"));
     }
-    Ok(SweepArg { key: key.to_string(), values })
+    Ok(SweepArg {
+        key: key.to_string(),
+        values,
+    })
 }
 
 /// One pipeline at one sweep value (or the reference), before any GPU work.
@@ -93,7 +98,15 @@ struct VariantPlan {
 
 /// Keep names usable as file names.
 fn sanitize(text: &str) -> String {
-    text.chars().map(|c| if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_' | '@' | '=') { c } else { '_' }).collect()
+    text.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_' | '@' | '=') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
 }
 
 fn unique(id: String, taken: &mut Vec<String>) -> String {
@@ -108,7 +121,9 @@ fn unique(id: String, taken: &mut Vec<String>) -> String {
 }
 
 fn stem(path: &Path) -> String {
-    path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "pipeline".into())
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "pipeline".into())
 }
 
 /// Where the report goes: a temporary directory beside `out`, renamed at the end.
@@ -124,21 +139,42 @@ impl PendingDir {
             bail!("--out {}: exists and is not a directory", out.display());
         }
         if out.is_dir() {
-            let empty = std::fs::read_dir(out).map(|mut d| d.next().is_none()).unwrap_or(false);
+            let empty = std::fs::read_dir(out)
+                .map(|mut d| d.next().is_none())
+                .unwrap_or(false);
             if !empty && !out.join("report.json").exists() {
-                bail!("--out {}: exists and is not an earlier `plait ab` report (no report.json); refusing to replace it", out.display());
+                bail!(
+                    "--out {}: exists and is not an earlier `plait ab` report (no report.json); refusing to replace it",
+                    out.display()
+                );
             }
         }
         let parent = match out.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
         };
-        std::fs::create_dir_all(&parent).with_context(|| format!("--out {}: cannot create {}", out.display(), parent.display()))?;
+        std::fs::create_dir_all(&parent).with_context(|| {
+            format!(
+                "--out {}: cannot create {}",
+                out.display(),
+                parent.display()
+            )
+        })?;
         let temp = tempfile::Builder::new()
             .prefix(".plait-ab-")
             .tempdir_in(&parent)
-            .with_context(|| format!("--out {}: cannot write in {}", out.display(), parent.display()))?;
-        Ok(PendingDir { out: out.to_path_buf(), parent, temp })
+            .with_context(|| {
+                format!(
+                    "--out {}: cannot write in {}",
+                    out.display(),
+                    parent.display()
+                )
+            })?;
+        Ok(PendingDir {
+            out: out.to_path_buf(),
+            parent,
+            temp,
+        })
     }
 
     fn path(&self, name: &str) -> PathBuf {
@@ -146,7 +182,8 @@ impl PendingDir {
     }
 
     fn write(&self, name: &str, bytes: &[u8]) -> Result<()> {
-        std::fs::write(self.path(name), bytes).with_context(|| format!("writing {name} for --out {}", self.out.display()))
+        std::fs::write(self.path(name), bytes)
+            .with_context(|| format!("writing {name} for --out {}", self.out.display()))
     }
 
     fn write_png(&self, name: &str, img: impl Into<image::DynamicImage>) -> Result<()> {
@@ -160,12 +197,25 @@ impl PendingDir {
         let temp = self.temp.keep();
         let mut old = None;
         if self.out.exists() {
-            let aside = tempfile::Builder::new().prefix(".plait-ab-old-").tempdir_in(&self.parent)?.keep();
+            let aside = tempfile::Builder::new()
+                .prefix(".plait-ab-old-")
+                .tempdir_in(&self.parent)?
+                .keep();
             std::fs::remove_dir(&aside).ok();
-            std::fs::rename(&self.out, &aside).with_context(|| format!("--out {}: cannot move the earlier report aside", self.out.display()))?;
+            std::fs::rename(&self.out, &aside).with_context(|| {
+                format!(
+                    "--out {}: cannot move the earlier report aside",
+                    self.out.display()
+                )
+            })?;
             old = Some(aside);
         }
-        std::fs::rename(&temp, &self.out).with_context(|| format!("--out {}: cannot move the report into place", self.out.display()))?;
+        std::fs::rename(&temp, &self.out).with_context(|| {
+            format!(
+                "--out {}: cannot move the report into place",
+                self.out.display()
+            )
+        })?;
         if let Some(old) = old {
             std::fs::remove_dir_all(old).ok();
         }
@@ -184,12 +234,18 @@ impl Progress {
     fn new(total: u64) -> Self {
         let bar = std::io::stdout().is_terminal().then(|| {
             let b = indicatif::ProgressBar::new(total);
-            if let Ok(style) = indicatif::ProgressStyle::with_template("{bar:40.cyan/blue} {pos}/{len} {elapsed_precise} {msg}") {
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "{bar:40.cyan/blue} {pos}/{len} {elapsed_precise} {msg}",
+            ) {
                 b.set_style(style);
             }
             b
         });
-        Progress { bar, total, done: 0 }
+        Progress {
+            bar,
+            total,
+            done: 0,
+        }
     }
 
     fn step(&mut self, message: String) {
@@ -211,21 +267,37 @@ impl Progress {
 }
 
 fn sha256_hex(bytes: &[u8]) -> String {
-    sha2::Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+    sha2::Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
 fn hash_file(path: &Path) -> Result<FileHash> {
-    let bytes = std::fs::read(path).with_context(|| format!("reading {} to hash it", path.display()))?;
-    Ok(FileHash { path: path.display().to_string(), sha256: sha256_hex(&bytes), bytes: bytes.len() as u64 })
+    let bytes =
+        std::fs::read(path).with_context(|| format!("reading {} to hash it", path.display()))?;
+    Ok(FileHash {
+        path: path.display().to_string(),
+        sha256: sha256_hex(&bytes),
+        bytes: bytes.len() as u64,
+    })
 }
 
 fn hash_text(name: &str, text: &str) -> FileHash {
-    FileHash { path: name.to_string(), sha256: sha256_hex(text.as_bytes()), bytes: text.len() as u64 }
+    FileHash {
+        path: name.to_string(),
+        sha256: sha256_hex(text.as_bytes()),
+        bytes: text.len() as u64,
+    }
 }
 
 /// Quote an argument for a POSIX shell when it needs it.
 fn shell_quote(arg: &str) -> String {
-    if !arg.is_empty() && arg.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=:,@+%".contains(c)) {
+    if !arg.is_empty()
+        && arg
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./=:,@+%".contains(c))
+    {
         arg.to_string()
     } else {
         format!("'{}'", arg.replace('\'', "'\\''"))
@@ -245,23 +317,46 @@ fn memory(s: &Schedule) -> Memory {
                 name: r.name.clone(),
                 desc: r.desc.label(),
                 bytes: r.desc.bytes(),
-                shares_memory_with: s.shares_memory_with(id).into_iter().map(str::to_string).collect(),
+                shares_memory_with: s
+                    .shares_memory_with(id)
+                    .into_iter()
+                    .map(str::to_string)
+                    .collect(),
             })
             .collect(),
     }
 }
 
 fn pipeline_provenance(path: &Path, s: &Schedule) -> Result<PipelineProvenance> {
-    let files = s.files.iter().map(|f| hash_file(f)).collect::<Result<Vec<_>>>()?;
-    let mut shader_paths: Vec<&PathBuf> = s.passes.iter().chain(s.culled.iter().map(|c| &c.pass)).filter_map(|p| p.shader.as_ref()).collect();
+    let files = s
+        .files
+        .iter()
+        .map(|f| hash_file(f))
+        .collect::<Result<Vec<_>>>()?;
+    let mut shader_paths: Vec<&PathBuf> = s
+        .passes
+        .iter()
+        .chain(s.culled.iter().map(|c| &c.pass))
+        .filter_map(|p| p.shader.as_ref())
+        .collect();
     shader_paths.sort();
     shader_paths.dedup();
-    let shaders = shader_paths.into_iter().map(|p| hash_file(p)).collect::<Result<Vec<_>>>()?;
-    Ok(PipelineProvenance { path: path.display().to_string(), files, shaders })
+    let shaders = shader_paths
+        .into_iter()
+        .map(|p| hash_file(p))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(PipelineProvenance {
+        path: path.display().to_string(),
+        files,
+        shaders,
+    })
 }
 
 fn builtin_shaders() -> Vec<FileHash> {
-    let mut out: Vec<FileHash> = plait_gpu::shader::LIBRARY_MODULES.iter().map(|(name, text)| hash_text(name, text)).collect();
+    let mut out: Vec<FileHash> = plait_gpu::shader::LIBRARY_MODULES
+        .iter()
+        .map(|(name, text)| hash_text(name, text))
+        .collect();
     let library = plait_passes::library();
     for (type_name, t) in &library.types {
         if let Some((name, text)) = t.shader() {
@@ -325,7 +420,10 @@ pub fn run(args: AbArgs) -> Result<()> {
     });
 
     // Compile and check every variant without a GPU.
-    let opts = CompileOptions { screen: args.size, ..CompileOptions::default() };
+    let opts = CompileOptions {
+        screen: args.size,
+        ..CompileOptions::default()
+    };
     for p in &plans {
         compile_checked(&p.pipeline, &p.sets, &opts).map_err(|e| {
             let what = match (&p.sweep_value, &args.sweep) {
@@ -338,7 +436,11 @@ pub fn run(args: AbArgs) -> Result<()> {
     }
 
     // Scenes, each loaded once.
-    let scene_paths: Vec<Option<PathBuf>> = if args.scenes.is_empty() { vec![None] } else { args.scenes.iter().cloned().map(Some).collect() };
+    let scene_paths: Vec<Option<PathBuf>> = if args.scenes.is_empty() {
+        vec![None]
+    } else {
+        args.scenes.iter().cloned().map(Some).collect()
+    };
     let mut scenes = Vec::new();
     let mut scene_names = Vec::new();
     let mut scene_taken = Vec::new();
@@ -347,7 +449,10 @@ pub fn run(args: AbArgs) -> Result<()> {
             Some(p) => format!("--scene {}", p.display()),
             None => "the built-in scene".into(),
         })?;
-        let name = sp.as_ref().map(|p| stem(p)).unwrap_or_else(|| "default".into());
+        let name = sp
+            .as_ref()
+            .map(|p| stem(p))
+            .unwrap_or_else(|| "default".into());
         scene_names.push(unique(sanitize(&name), &mut scene_taken));
         scenes.push(data);
     }
@@ -367,7 +472,9 @@ pub fn run(args: AbArgs) -> Result<()> {
         for p in &plans {
             let pr = prepare(&gpu, &p.pipeline, &p.sets, scene, args.size)
                 .map_err(|e| anyhow::anyhow!("{e:#}"))
-                .with_context(|| format!("pipeline {} on scene {scene_name}", p.pipeline.display()))?;
+                .with_context(|| {
+                    format!("pipeline {} on scene {scene_name}", p.pipeline.display())
+                })?;
             progress.step(format!("{scene_name}: built {}", p.label));
             prepared.push(pr);
         }
@@ -386,7 +493,10 @@ pub fn run(args: AbArgs) -> Result<()> {
                         None
                     }
                 };
-                if !pipelines_prov.iter().any(|pp| pp.path == p.pipeline.display().to_string()) {
+                if !pipelines_prov
+                    .iter()
+                    .any(|pp| pp.path == p.pipeline.display().to_string())
+                {
                     pipelines_prov.push(pipeline_provenance(&p.pipeline, s)?);
                 }
                 variants.push(Variant {
@@ -404,13 +514,19 @@ pub fn run(args: AbArgs) -> Result<()> {
         }
         // Warm-up (excluded), then interleaved repeats.
         for (p, pr) in plans.iter().zip(&prepared) {
-            pr.renderer.render().map_err(|e| anyhow::anyhow!("{e:#}")).with_context(|| format!("{} on scene {scene_name} (warm-up)", p.label))?;
+            pr.renderer
+                .render()
+                .map_err(|e| anyhow::anyhow!("{e:#}"))
+                .with_context(|| format!("{} on scene {scene_name} (warm-up)", p.label))?;
             progress.step(format!("{scene_name}: warm-up {}", p.label));
         }
         let n = plans.len();
         let mut wall: Vec<Vec<f64>> = vec![Vec::new(); n];
         let mut totals: Vec<Vec<f64>> = vec![Vec::new(); n];
-        let mut pass_ms: Vec<Vec<Vec<f64>>> = prepared.iter().map(|pr| vec![Vec::new(); pr.schedule().passes.len()]).collect();
+        let mut pass_ms: Vec<Vec<Vec<f64>>> = prepared
+            .iter()
+            .map(|pr| vec![Vec::new(); pr.schedule().passes.len()])
+            .collect();
         for r in 0..args.repeats {
             for (i, (p, pr)) in plans.iter().zip(&prepared).enumerate() {
                 let t0 = Instant::now();
@@ -418,7 +534,9 @@ pub fn run(args: AbArgs) -> Result<()> {
                     .renderer
                     .render()
                     .map_err(|e| anyhow::anyhow!("{e:#}"))
-                    .with_context(|| format!("{} on scene {scene_name} (repeat {})", p.label, r + 1))?;
+                    .with_context(|| {
+                        format!("{} on scene {scene_name} (repeat {})", p.label, r + 1)
+                    })?;
                 wall[i].push(t0.elapsed().as_secs_f64() * 1e3);
                 if let Some(t) = report.total_gpu_ms {
                     totals[i].push(t);
@@ -428,21 +546,37 @@ pub fn run(args: AbArgs) -> Result<()> {
                         list.push(ms);
                     }
                 }
-                progress.step(format!("{scene_name}: repeat {}/{} {}", r + 1, args.repeats, p.label));
+                progress.step(format!(
+                    "{scene_name}: repeat {}/{} {}",
+                    r + 1,
+                    args.repeats,
+                    p.label
+                ));
             }
         }
         // Images and metrics against the reference.
         let images: Vec<image::RgbaImage> = plans
             .iter()
             .zip(&prepared)
-            .map(|(p, pr)| pr.image().map_err(|e| anyhow::anyhow!("{e:#}")).with_context(|| format!("reading the image of {} on scene {scene_name}", p.label)))
+            .map(|(p, pr)| {
+                pr.image()
+                    .map_err(|e| anyhow::anyhow!("{e:#}"))
+                    .with_context(|| {
+                        format!("reading the image of {} on scene {scene_name}", p.label)
+                    })
+            })
             .collect::<Result<_>>()?;
         let ref_index = plans.iter().position(|p| p.is_reference).unwrap_or(n - 1);
         let reference_image = format!("{scene_name}-reference.png");
         pending.write_png(&reference_image, images[ref_index].clone())?;
         let mut comparisons = Vec::new();
         for (p, img) in plans.iter().zip(&images) {
-            let c = plait_compare::compare(&images[ref_index], img).with_context(|| format!("comparing {} with the reference on scene {scene_name}", p.label))?;
+            let c = plait_compare::compare(&images[ref_index], img).with_context(|| {
+                format!(
+                    "comparing {} with the reference on scene {scene_name}",
+                    p.label
+                )
+            })?;
             progress.step(format!("{scene_name}: compared {}", p.label));
             comparisons.push(c);
         }
@@ -452,20 +586,30 @@ pub fn run(args: AbArgs) -> Result<()> {
         let probe = |p: &VariantPlan| -> Result<Option<Probed>> {
             probe_visibility(&gpu, &p.pipeline, &p.sets, scene, args.size, &grid)
                 .map_err(|e| anyhow::anyhow!("{e:#}"))
-                .with_context(|| format!("probing the self-shadowing of {} on scene {scene_name}", p.label))
+                .with_context(|| {
+                    format!(
+                        "probing the self-shadowing of {} on scene {scene_name}",
+                        p.label
+                    )
+                })
         };
         let reference_probe = probe(&plans[ref_index])?;
         let mut visibilities = Vec::new();
         for p in &plans {
             let v = match &reference_probe {
-                Some(reference) => probe(p)?.map(|probed| visibility_error(&grid, reference, &probed)),
+                Some(reference) => {
+                    probe(p)?.map(|probed| visibility_error(&grid, reference, &probed))
+                }
                 None => None,
             };
             progress.step(format!("{scene_name}: probed {}", p.label));
             visibilities.push(v);
         }
         // One difference scale per scene, so the heat maps compare.
-        let max_diff = comparisons.iter().map(|c| c.metrics.max_abs_diff).fold(0.0, f64::max);
+        let max_diff = comparisons
+            .iter()
+            .map(|c| c.metrics.max_abs_diff)
+            .fold(0.0, f64::max);
         let scale = heatmap::nice_scale(max_diff);
         let mut runs = Vec::new();
         for (i, (p, c)) in plans.iter().zip(comparisons).enumerate() {
@@ -473,8 +617,14 @@ pub fn run(args: AbArgs) -> Result<()> {
             let diff_image = format!("{scene_name}-{}-diff.png", p.id);
             let flip_image = format!("{scene_name}-{}-flip.png", p.id);
             pending.write_png(&image, images[i].clone())?;
-            pending.write_png(&diff_image, heatmap::heatmap(&c.abs_diff, c.width, c.height, scale as f32))?;
-            pending.write_png(&flip_image, heatmap::heatmap(&c.flip_map, c.width, c.height, 1.0))?;
+            pending.write_png(
+                &diff_image,
+                heatmap::heatmap(&c.abs_diff, c.width, c.height, scale as f32),
+            )?;
+            pending.write_png(
+                &flip_image,
+                heatmap::heatmap(&c.flip_map, c.width, c.height, 1.0),
+            )?;
             let schedule = prepared[i].schedule();
             runs.push(Run {
                 variant: p.id.clone(),
@@ -489,7 +639,11 @@ pub fn run(args: AbArgs) -> Result<()> {
                         .passes
                         .iter()
                         .zip(&pass_ms[i])
-                        .map(|(sp, ms)| PassStats { name: sp.name.clone(), type_name: sp.type_name.clone(), gpu_ms: Stats::of(ms) })
+                        .map(|(sp, ms)| PassStats {
+                            name: sp.name.clone(),
+                            type_name: sp.type_name.clone(),
+                            gpu_ms: Stats::of(ms),
+                        })
                         .collect(),
                 },
                 metrics: c.metrics,
@@ -505,7 +659,11 @@ pub fn run(args: AbArgs) -> Result<()> {
     }
     progress.finish();
 
-    let scene_hashes = scene_paths.iter().flatten().map(|p| hash_file(p)).collect::<Result<Vec<_>>>()?;
+    let scene_hashes = scene_paths
+        .iter()
+        .flatten()
+        .map(|p| hash_file(p))
+        .collect::<Result<Vec<_>>>()?;
     let report = Report {
         schema: SCHEMA.into(),
         provenance: Provenance {
@@ -536,8 +694,14 @@ pub fn run(args: AbArgs) -> Result<()> {
         variants,
         scenes: scene_results,
     };
-    pending.write("report.json", serde_json::to_string_pretty(&report)?.as_bytes())?;
-    pending.write("report.html", plait_compare::report::html(&report, &graphs).as_bytes())?;
+    pending.write(
+        "report.json",
+        serde_json::to_string_pretty(&report)?.as_bytes(),
+    )?;
+    pending.write(
+        "report.html",
+        plait_compare::report::html(&report, &graphs).as_bytes(),
+    )?;
     let out = args.out.clone();
     pending.commit()?;
     print_summary(&report);
@@ -548,16 +712,24 @@ pub fn run(args: AbArgs) -> Result<()> {
 fn print_summary(report: &Report) {
     for scene in &report.scenes {
         println!("scene {}:", scene.name);
-        println!("{:<36} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8}", "variant", "frame ms", "peak MiB", "RMSE", "PSNR", "SSIM", "FLIP");
+        println!(
+            "{:<36} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8}",
+            "variant", "frame ms", "peak MiB", "RMSE", "PSNR", "SSIM", "FLIP"
+        );
         for run in &scene.runs {
-            let Some(v) = report.variant(&run.variant) else { continue };
+            let Some(v) = report.variant(&run.variant) else {
+                continue;
+            };
             println!(
                 "{:<36} {:>10} {:>10.2} {:>9.5} {:>9} {:>8.5} {:>8.5}",
                 v.label,
                 format!("{:.3}", plait_compare::report::cost_ms(&run.timing)),
                 v.memory.peak_bytes as f64 / 1048576.0,
                 run.metrics.rmse,
-                run.metrics.psnr_db.map(|p| format!("{p:.2}")).unwrap_or_else(|| "inf".into()),
+                run.metrics
+                    .psnr_db
+                    .map(|p| format!("{p:.2}"))
+                    .unwrap_or_else(|| "inf".into()),
                 run.metrics.ssim,
                 run.metrics.flip_mean
             );
@@ -600,10 +772,15 @@ fn visibility_error(grid: &ProbeGrid, reference: &Probed, variant: &Probed) -> V
     let depths = grid.depths as usize;
     let rays = grid.ray_count();
     let ray = |values: &[f32], r: usize| values[r * depths..(r + 1) * depths].to_vec();
-    let through_hair: Vec<usize> = (0..rays).filter(|&r| ray(&reference.values, r).iter().any(|&v| v < 0.999)).collect();
+    let through_hair: Vec<usize> = (0..rays)
+        .filter(|&r| ray(&reference.values, r).iter().any(|&v| v < 0.999))
+        .collect();
     let (mut sum, mut max, mut count) = (0.0f64, 0.0f64, 0usize);
     for &r in &through_hair {
-        for (a, b) in ray(&reference.values, r).iter().zip(ray(&variant.values, r)) {
+        for (a, b) in ray(&reference.values, r)
+            .iter()
+            .zip(ray(&variant.values, r))
+        {
             let e = (*a as f64 - b as f64).abs();
             sum += e;
             max = max.max(e);
@@ -611,7 +788,9 @@ fn visibility_error(grid: &ProbeGrid, reference: &Probed, variant: &Probed) -> V
         }
     }
     let mut darkest = through_hair.clone();
-    darkest.sort_by(|&a, &b| reference.values[(a + 1) * depths - 1].total_cmp(&reference.values[(b + 1) * depths - 1]));
+    darkest.sort_by(|&a, &b| {
+        reference.values[(a + 1) * depths - 1].total_cmp(&reference.values[(b + 1) * depths - 1])
+    });
     let curves = darkest
         .iter()
         .take(4)
@@ -620,7 +799,10 @@ fn visibility_error(grid: &ProbeGrid, reference: &Probed, variant: &Probed) -> V
             VisibilityCurve {
                 light_uv: uv,
                 depth: (0..grid.depths).map(|d| grid.depth(d) as f64).collect(),
-                exact: ray(&reference.values, r).iter().map(|&v| v as f64).collect(),
+                exact: ray(&reference.values, r)
+                    .iter()
+                    .map(|&v| v as f64)
+                    .collect(),
                 approx: ray(&variant.values, r).iter().map(|&v| v as f64).collect(),
             }
         })

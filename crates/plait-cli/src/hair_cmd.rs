@@ -48,11 +48,21 @@ pub enum HairCommand {
 pub fn run(args: HairArgs) -> anyhow::Result<()> {
     match args.command {
         HairCommand::Info { file, json } => info(&file, json),
-        HairCommand::Generate { style, strands, segments, seed, out } => {
+        HairCommand::Generate {
+            style,
+            strands,
+            segments,
+            seed,
+            out,
+        } => {
             let spec = generate_spec(&style, strands, segments, seed)?;
             let strands = generate(&spec);
-            let mut hair = strands.to_hair_file().with_context(|| format!("converting the groom for {}", out.display()))?;
-            hair.set_info(&format!("plait hair generate --style {style} --seed {seed}"));
+            let mut hair = strands
+                .to_hair_file()
+                .with_context(|| format!("converting the groom for {}", out.display()))?;
+            hair.set_info(&format!(
+                "plait hair generate --style {style} --seed {seed}"
+            ));
             hair.write(&out)?;
             println!(
                 "wrote {}: {} strands, {} points, {} segments",
@@ -67,8 +77,15 @@ pub fn run(args: HairArgs) -> anyhow::Result<()> {
 }
 
 /// Validates the `generate` flags (messages name the flag) and builds the spec.
-pub fn generate_spec(style: &str, strands: u32, segments: u32, seed: u64) -> anyhow::Result<GroomSpec> {
-    let style: Style = style.parse().map_err(|e: String| anyhow::anyhow!("--style: {e}"))?;
+pub fn generate_spec(
+    style: &str,
+    strands: u32,
+    segments: u32,
+    seed: u64,
+) -> anyhow::Result<GroomSpec> {
+    let style: Style = style
+        .parse()
+        .map_err(|e: String| anyhow::anyhow!("--style: {e}"))?;
     if strands < 1 {
         bail!("--strands must be at least 1, got {strands}");
     }
@@ -77,9 +94,17 @@ pub fn generate_spec(style: &str, strands: u32, segments: u32, seed: u64) -> any
     }
     let points = u64::from(strands) * (u64::from(segments) + 1);
     if points > u64::from(u32::MAX) {
-        bail!("--strands {strands} × (--segments {segments} + 1) = {points} points exceeds the .hair limit of 2^32-1");
+        bail!(
+            "--strands {strands} × (--segments {segments} + 1) = {points} points exceeds the .hair limit of 2^32-1"
+        );
     }
-    let spec = GroomSpec { style, strands, segments, seed, ..GroomSpec::default() };
+    let spec = GroomSpec {
+        style,
+        strands,
+        segments,
+        seed,
+        ..GroomSpec::default()
+    };
     spec.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
     Ok(spec)
 }
@@ -87,7 +112,11 @@ pub fn generate_spec(style: &str, strands: u32, segments: u32, seed: u64) -> any
 fn info(path: &std::path::Path, json: bool) -> anyhow::Result<()> {
     let (file, warnings) = HairFile::read(path)?;
     let b = file.bounds();
-    let (min, max) = if b.is_empty() { ([0.0f32; 3], [0.0f32; 3]) } else { (b.min.to_array(), b.max.to_array()) };
+    let (min, max) = if b.is_empty() {
+        ([0.0f32; 3], [0.0f32; 3])
+    } else {
+        (b.min.to_array(), b.max.to_array())
+    };
     let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
     if json {
         let v = serde_json::json!({

@@ -13,7 +13,11 @@ mod render_cmd;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "plait", version, about = "Real-time strand-hair render pipelines as data")]
+#[command(
+    name = "plait",
+    version,
+    about = "Real-time strand-hair render pipelines as data"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

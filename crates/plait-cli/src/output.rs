@@ -26,14 +26,24 @@ impl PendingFile {
         let temp = tempfile::Builder::new()
             .prefix(".plait-")
             .tempfile_in(&dir)
-            .with_context(|| format!("{flag} {}: cannot write in {}", path.display(), dir.display()))?;
-        Ok(PendingFile { path: path.to_path_buf(), temp })
+            .with_context(|| {
+                format!(
+                    "{flag} {}: cannot write in {}",
+                    path.display(),
+                    dir.display()
+                )
+            })?;
+        Ok(PendingFile {
+            path: path.to_path_buf(),
+            temp,
+        })
     }
-
 
     /// Write the whole content and move it into place.
     pub fn commit(mut self, bytes: &[u8]) -> Result<()> {
-        self.temp.write_all(bytes).with_context(|| format!("writing {}", self.path.display()))?;
+        self.temp
+            .write_all(bytes)
+            .with_context(|| format!("writing {}", self.path.display()))?;
         self.temp.as_file().sync_all().ok();
         self.temp
             .persist(&self.path)

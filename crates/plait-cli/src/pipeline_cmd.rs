@@ -32,8 +32,17 @@ pub fn check(args: CheckArgs) -> Result<()> {
     for path in &args.pipelines {
         match compile_checked(path, &args.set.sets, &CompileOptions::default()) {
             Ok(s) => {
-                let culled = if s.culled.is_empty() { String::new() } else { format!(", {} culled", s.culled.len()) };
-                println!("ok  {}: {} passes{culled}, {} resources", path.display(), s.passes.len(), s.resources.len());
+                let culled = if s.culled.is_empty() {
+                    String::new()
+                } else {
+                    format!(", {} culled", s.culled.len())
+                };
+                println!(
+                    "ok  {}: {} passes{culled}, {} resources",
+                    path.display(),
+                    s.passes.len(),
+                    s.resources.len()
+                );
             }
             Err(e) => failures.push(format!("{e:#}")),
         }
@@ -70,12 +79,20 @@ pub struct GraphArgs {
 }
 
 pub fn graph(args: GraphArgs) -> Result<()> {
-    let out = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
-    let opts = CompileOptions { screen: args.size, ..CompileOptions::default() };
+    let out = args
+        .out
+        .as_deref()
+        .map(|p| PendingFile::create(p, "--out"))
+        .transpose()?;
+    let opts = CompileOptions {
+        screen: args.size,
+        ..CompileOptions::default()
+    };
     let schedule = compile_checked(&args.pipeline, &args.set.sets, &opts)?;
     let text = match args.format {
         GraphFormat::Dot => plait_graph::to_dot(&schedule),
-        GraphFormat::Svg => plait_graph::to_svg(&schedule).map_err(|e| anyhow::anyhow!("drawing the graph: {}", e.0))?,
+        GraphFormat::Svg => plait_graph::to_svg(&schedule)
+            .map_err(|e| anyhow::anyhow!("drawing the graph: {}", e.0))?,
         GraphFormat::Text => plait_graph::schedule_text(&schedule),
     };
     match out {
@@ -121,7 +138,10 @@ pub fn passes(args: PassesArgs) -> Result<()> {
     let specs: Vec<PassTypeSpec> = library.types.values().map(|t| t.spec()).collect();
     if args.json {
         let all: Vec<_> = specs.iter().map(spec_json).collect();
-        println!("{}", serde_json::to_string_pretty(&all).context("serializing pass specs")?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&all).context("serializing pass specs")?
+        );
         return Ok(());
     }
     for spec in &specs {
@@ -130,7 +150,9 @@ pub fn passes(args: PassesArgs) -> Result<()> {
             println!("  source: {}", spec.source);
         }
         if spec.dynamic_slots {
-            println!("  slots: the shader's group-1 bindings, matched by name; params fill its `params` uniform");
+            println!(
+                "  slots: the shader's group-1 bindings, matched by name; params fill its `params` uniform"
+            );
         }
         for (title, slots) in [("inputs", &spec.inputs), ("outputs", &spec.outputs)] {
             if !slots.is_empty() {
@@ -144,19 +166,30 @@ pub fn passes(args: PassesArgs) -> Result<()> {
                 if s.loads {
                     flags.push("loads");
                 }
-                let flags = if flags.is_empty() { String::new() } else { format!(" [{}]", flags.join(", ")) };
+                let flags = if flags.is_empty() {
+                    String::new()
+                } else {
+                    format!(" [{}]", flags.join(", "))
+                };
                 let formats = match s.kind {
                     plait_graph::ResourceKind::Texture => format!(" ({})", s.formats),
                     plait_graph::ResourceKind::Buffer => String::new(),
                 };
-                println!("    {:<12} {} {:?}{formats}{flags} — {}", s.name, s.kind, s.access, s.doc);
+                println!(
+                    "    {:<12} {} {:?}{formats}{flags} — {}",
+                    s.name, s.kind, s.access, s.doc
+                );
             }
         }
         if !spec.params.is_empty() {
             println!("  params:");
         }
         for p in &spec.params {
-            let default = p.default.as_ref().map(|d| format!(" = {d}")).unwrap_or_else(|| " (required)".into());
+            let default = p
+                .default
+                .as_ref()
+                .map(|d| format!(" = {d}"))
+                .unwrap_or_else(|| " (required)".into());
             println!("    {:<12} {:?}{default} — {}", p.name, p.ty, p.doc);
         }
         if !spec.required_features.is_empty() {

@@ -69,10 +69,23 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
 
 /// Render `pipeline` on `scene` at `size`: compile and check without the GPU
 /// first, then open the device, build, render, read the first output.
-pub fn render(pipeline: &Path, sets: &[String], scene: &Scene, size: (u32, u32), show: Option<&str>) -> Result<Rendered> {
+pub fn render(
+    pipeline: &Path,
+    sets: &[String],
+    scene: &Scene,
+    size: (u32, u32),
+    show: Option<&str>,
+) -> Result<Rendered> {
     // Everything that can fail without a GPU fails before one is opened.
     // The adapter's texture limit is checked once the device is open.
-    compile_checked(pipeline, sets, &CompileOptions { screen: size, max_texture_dimension: u32::MAX })?;
+    compile_checked(
+        pipeline,
+        sets,
+        &CompileOptions {
+            screen: size,
+            max_texture_dimension: u32::MAX,
+        },
+    )?;
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
     let mut prepared = prepare(&gpu, pipeline, sets, &data, size)?;
@@ -97,7 +110,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let out = PendingFile::create(&args.out, "--out")?;
     let pipeline = resolve_pipeline(args.pipeline.as_deref());
     let scene = load_scene(args.scene.as_deref())?;
-    let r = render(&pipeline, &args.set.sets, &scene, args.size, args.show.as_deref())?;
+    let r = render(
+        &pipeline,
+        &args.set.sets,
+        &scene,
+        args.size,
+        args.show.as_deref(),
+    )?;
     let mut png = Vec::new();
     r.image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
@@ -107,7 +126,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
         eprintln!("note: {note}");
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report_json(&pipeline, &r, &args.out))?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report_json(&pipeline, &r, &args.out))?
+        );
     } else {
         print_table(&pipeline, &r, &args.out);
     }
@@ -117,7 +139,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
 fn names(schedule: &Schedule, bindings: &[plait_graph::Binding]) -> Vec<String> {
     bindings
         .iter()
-        .map(|b| schedule.resources.get(b.resource).map(|r| r.name.clone()).unwrap_or_else(|| b.resource_name.clone()))
+        .map(|b| {
+            schedule
+                .resources
+                .get(b.resource)
+                .map(|r| r.name.clone())
+                .unwrap_or_else(|| b.resource_name.clone())
+        })
         .collect()
 }
 
@@ -148,7 +176,9 @@ pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Val
         .enumerate()
         .map(|(id, res)| {
             let (kind, format) = match &res.desc {
-                plait_graph::ResourceDesc::Texture { format, .. } => ("texture", Some(format.name())),
+                plait_graph::ResourceDesc::Texture { format, .. } => {
+                    ("texture", Some(format.name()))
+                }
                 plait_graph::ResourceDesc::Buffer { .. } => ("buffer", None),
             };
             serde_json::json!({
@@ -176,15 +206,30 @@ fn ms(v: Option<f64>) -> String {
 
 fn print_table(pipeline: &Path, r: &Rendered, out: &Path) {
     let s = &r.schedule;
-    println!("{} on {} ({}), {}x{}", pipeline.display(), r.adapter, r.backend, r.image.width(), r.image.height());
+    println!(
+        "{} on {} ({}), {}x{}",
+        pipeline.display(),
+        r.adapter,
+        r.backend,
+        r.image.width(),
+        r.image.height()
+    );
     println!("{:<20} {:<16} {:>10}", "pass", "type", "GPU ms");
     for (p, t) in s.passes.iter().zip(&r.report.passes) {
         println!("{:<20} {:<16} {:>10}", p.name, p.type_name, ms(t.gpu_ms));
     }
     for c in &s.culled {
-        println!("{:<20} {:<16} {:>10}  ({})", c.pass.name, c.pass.type_name, "culled", c.reason);
+        println!(
+            "{:<20} {:<16} {:>10}  ({})",
+            c.pass.name, c.pass.type_name, "culled", c.reason
+        );
     }
-    println!("{:<20} {:<16} {:>10}", "frame", "", ms(r.report.total_gpu_ms));
+    println!(
+        "{:<20} {:<16} {:>10}",
+        "frame",
+        "",
+        ms(r.report.total_gpu_ms)
+    );
     if r.report.total_gpu_ms.is_none() {
         println!("(this adapter has no timestamp queries: GPU times are not available)");
     }

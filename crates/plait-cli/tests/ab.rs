@@ -9,7 +9,11 @@ fn root() -> PathBuf {
 }
 
 fn plait(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_plait")).current_dir(root()).args(args).output().expect("run plait")
+    Command::new(env!("CARGO_BIN_EXE_plait"))
+        .current_dir(root())
+        .args(args)
+        .output()
+        .expect("run plait")
 }
 
 fn text(b: &[u8]) -> String {
@@ -26,22 +30,55 @@ fn forward_against_itself_is_identical_and_report_is_complete() {
     let tmp = tempfile::tempdir().expect("tempdir");
     let out = tmp.path().join("report");
     let o = plait(&[
-        "ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--scene", "examples/scenes/small.toml",
-        "--size", "128x96", "--repeats", "2", "--out", out.to_str().expect("utf-8"),
+        "ab",
+        "pipelines/forward.toml",
+        "--reference",
+        "pipelines/forward.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "128x96",
+        "--repeats",
+        "2",
+        "--out",
+        out.to_str().expect("utf-8"),
     ]);
-    assert!(o.status.success(), "stderr: {}\nstdout: {}", text(&o.stderr), text(&o.stdout));
+    assert!(
+        o.status.success(),
+        "stderr: {}\nstdout: {}",
+        text(&o.stderr),
+        text(&o.stdout)
+    );
     // Not a terminal: plain progress lines.
     assert!(text(&o.stdout).contains("[1/"), "{}", text(&o.stdout));
     let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
     assert!(html.contains("<svg") && html.contains("flip") && html.contains("Provenance"));
-    assert!(!html.contains("<script src") && !html.contains("<link "), "self-contained");
+    assert!(
+        !html.contains("<script src") && !html.contains("<link "),
+        "self-contained"
+    );
     let v = read_json(&out);
     assert_eq!(v["schema"], "plait-ab/1");
     let variants = v["variants"].as_array().expect("variants");
     assert_eq!(variants.len(), 2, "the variant and the reference");
-    assert_eq!(variants.iter().filter(|x| x["is_reference"] == true).count(), 1);
-    assert!(variants.iter().all(|x| x["memory"]["peak_bytes"].as_u64().unwrap_or(0) > 0));
-    assert!(variants.iter().all(|x| !x["memory"]["resources"].as_array().expect("resources").is_empty()));
+    assert_eq!(
+        variants
+            .iter()
+            .filter(|x| x["is_reference"] == true)
+            .count(),
+        1
+    );
+    assert!(
+        variants
+            .iter()
+            .all(|x| x["memory"]["peak_bytes"].as_u64().unwrap_or(0) > 0)
+    );
+    assert!(variants.iter().all(|x| {
+        !x["memory"]["resources"]
+            .as_array()
+            .expect("resources")
+            .is_empty()
+    }));
     let scenes = v["scenes"].as_array().expect("scenes");
     assert_eq!(scenes.len(), 1);
     let runs = scenes[0]["runs"].as_array().expect("runs");
@@ -57,8 +94,17 @@ fn forward_against_itself_is_identical_and_report_is_complete() {
         let vis = &run["visibility"];
         assert_eq!(vis["provider"], "modified_shadow_map", "{vis}");
         assert_eq!(vis["mean_abs_error"].as_f64(), Some(0.0), "{vis}");
-        assert!(vis["curves"].as_array().is_some_and(|c| !c.is_empty()), "{vis}");
-        assert_eq!(run["timing"]["wall_ms"]["samples"].as_array().expect("samples").len(), 2);
+        assert!(
+            vis["curves"].as_array().is_some_and(|c| !c.is_empty()),
+            "{vis}"
+        );
+        assert_eq!(
+            run["timing"]["wall_ms"]["samples"]
+                .as_array()
+                .expect("samples")
+                .len(),
+            2
+        );
         for key in ["image", "diff_image", "flip_image"] {
             let name = run[key].as_str().expect("file name");
             assert!(out.join(name).is_file(), "{name}");
@@ -67,18 +113,48 @@ fn forward_against_itself_is_identical_and_report_is_complete() {
             }
         }
         if !run["timing"]["total_gpu_ms"].is_null() {
-            assert_eq!(run["timing"]["total_gpu_ms"]["samples"].as_array().expect("samples").len(), 2);
-            assert!(!run["timing"]["passes"].as_array().expect("passes").is_empty());
+            assert_eq!(
+                run["timing"]["total_gpu_ms"]["samples"]
+                    .as_array()
+                    .expect("samples")
+                    .len(),
+                2
+            );
+            assert!(
+                !run["timing"]["passes"]
+                    .as_array()
+                    .expect("passes")
+                    .is_empty()
+            );
         }
     }
-    assert!(out.join(scenes[0]["reference_image"].as_str().expect("ref")).is_file());
+    assert!(
+        out.join(scenes[0]["reference_image"].as_str().expect("ref"))
+            .is_file()
+    );
     let p = &v["provenance"];
     assert_eq!(p["plait_version"], env!("CARGO_PKG_VERSION"));
     assert!(p["adapter"]["name"].as_str().is_some_and(|s| !s.is_empty()));
-    assert!(p["command_line"].as_str().expect("command").contains("--repeats 2"));
+    assert!(
+        p["command_line"]
+            .as_str()
+            .expect("command")
+            .contains("--repeats 2")
+    );
     let pipelines = p["pipelines"].as_array().expect("pipelines");
-    assert!(pipelines[0]["files"][0]["sha256"].as_str().expect("hash").len() == 64);
-    assert!(!pipelines[0]["shaders"].as_array().expect("shaders").is_empty());
+    assert!(
+        pipelines[0]["files"][0]["sha256"]
+            .as_str()
+            .expect("hash")
+            .len()
+            == 64
+    );
+    assert!(
+        !pipelines[0]["shaders"]
+            .as_array()
+            .expect("shaders")
+            .is_empty()
+    );
     assert!(!p["builtin_shaders"].as_array().expect("builtin").is_empty());
     // No temporary directory left beside the report.
     let leftovers: Vec<_> = std::fs::read_dir(tmp.path())
@@ -94,21 +170,43 @@ fn sweep_gives_one_row_per_value() {
     let tmp = tempfile::tempdir().expect("tempdir");
     let out = tmp.path().join("sweep");
     let o = plait(&[
-        "ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--scene", "examples/scenes/small.toml",
-        "--size", "64x48", "--repeats", "1", "--sweep", "params.hair_density=10,40", "--set", "params.light_size=256",
-        "--out", out.to_str().expect("utf-8"),
+        "ab",
+        "pipelines/forward.toml",
+        "--reference",
+        "pipelines/forward.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--repeats",
+        "1",
+        "--sweep",
+        "params.hair_density=10,40",
+        "--set",
+        "params.light_size=256",
+        "--out",
+        out.to_str().expect("utf-8"),
     ]);
     assert!(o.status.success(), "stderr: {}", text(&o.stderr));
     let v = read_json(&out);
     assert_eq!(v["sweep"]["key"], "params.hair_density");
     let variants = v["variants"].as_array().expect("variants");
     assert_eq!(variants.len(), 3, "two sweep rows and the reference");
-    let values: Vec<_> = variants.iter().filter(|x| x["is_reference"] == false).map(|x| x["sweep_value"].clone()).collect();
+    let values: Vec<_> = variants
+        .iter()
+        .filter(|x| x["is_reference"] == false)
+        .map(|x| x["sweep_value"].clone())
+        .collect();
     assert_eq!(values, [serde_json::json!("10"), serde_json::json!("40")]);
     let runs = v["scenes"][0]["runs"].as_array().expect("runs");
     assert_eq!(runs.len(), 3);
     // density 40 is the reference's own value: identical; 10 differs.
-    let by = |id: &str| runs.iter().find(|r| r["variant"] == id).expect("run").clone();
+    let by = |id: &str| {
+        runs.iter()
+            .find(|r| r["variant"] == id)
+            .expect("run")
+            .clone()
+    };
     assert_eq!(by("forward@40")["metrics"]["rmse"].as_f64(), Some(0.0));
     assert!(by("forward@10")["metrics"]["rmse"].as_f64().expect("rmse") > 0.0);
     let html = std::fs::read_to_string(out.join("report.html")).expect("html");
@@ -121,25 +219,141 @@ fn bad_input_exits_2_naming_the_flag_or_file() {
     let out = tmp.path().join("r");
     let out = out.to_str().expect("utf-8");
     let cases: Vec<(Vec<&str>, &str)> = vec![
-        (vec!["ab", "pipelines/nope.toml", "--reference", "pipelines/forward.toml", "--out", out], "nope.toml"),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/missing.toml", "--out", out], "--reference"),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--sweep", "params.x", "--out", out], "--sweep"),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--sweep", "params.x=1,,2", "--out", out], "--sweep"),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--size", "0x3", "--out", out], "--size"),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--repeats", "0", "--out", out], "--repeats"),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--out", "/proc/plait-cannot-write/r"], "--out"),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--out", "Cargo.toml"], "--out"),
         (
-            vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--sweep", "params.no_such_param_anywhere.x=1,2", "--out", out],
+            vec![
+                "ab",
+                "pipelines/nope.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--out",
+                out,
+            ],
+            "nope.toml",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/missing.toml",
+                "--out",
+                out,
+            ],
+            "--reference",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--sweep",
+                "params.x",
+                "--out",
+                out,
+            ],
             "--sweep",
         ),
-        (vec!["ab", "pipelines/forward.toml", "--reference", "pipelines/forward.toml", "--scene", "nope.toml", "--out", out], "nope.toml"),
-        (vec!["ab", "--reference", "pipelines/forward.toml", "--out", out], "PIPELINE"),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--sweep",
+                "params.x=1,,2",
+                "--out",
+                out,
+            ],
+            "--sweep",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--size",
+                "0x3",
+                "--out",
+                out,
+            ],
+            "--size",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--repeats",
+                "0",
+                "--out",
+                out,
+            ],
+            "--repeats",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--out",
+                "/proc/plait-cannot-write/r",
+            ],
+            "--out",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--out",
+                "Cargo.toml",
+            ],
+            "--out",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--sweep",
+                "params.no_such_param_anywhere.x=1,2",
+                "--out",
+                out,
+            ],
+            "--sweep",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--scene",
+                "nope.toml",
+                "--out",
+                out,
+            ],
+            "nope.toml",
+        ),
+        (
+            vec!["ab", "--reference", "pipelines/forward.toml", "--out", out],
+            "PIPELINE",
+        ),
     ];
     for (args, needle) in cases {
         let o = plait(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o.stderr));
-        assert!(text(&o.stderr).contains(needle), "{args:?}: stderr does not name {needle}: {}", text(&o.stderr));
+        assert!(
+            text(&o.stderr).contains(needle),
+            "{args:?}: stderr does not name {needle}: {}",
+            text(&o.stderr)
+        );
         assert!(!Path::new(out).exists(), "{args:?} left a report behind");
     }
 }

@@ -10,11 +10,18 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().expect("checkout root")
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .expect("checkout root")
 }
 
 fn plait(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_plait")).current_dir(root()).args(args).output().expect("run plait")
+    Command::new(env!("CARGO_BIN_EXE_plait"))
+        .current_dir(root())
+        .args(args)
+        .output()
+        .expect("run plait")
 }
 
 fn text(b: &[u8]) -> String {
@@ -27,15 +34,24 @@ fn fixture(name: &str) -> PathBuf {
 
 /// 1-based number of the line carrying the `<- error` marker.
 fn marked_line(path: &Path) -> usize {
-    let source = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
-    source.lines().position(|l| l.contains("<- error")).unwrap_or_else(|| panic!("{} has no `<- error` marker", path.display())) + 1
+    let source =
+        std::fs::read_to_string(path).unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
+    source
+        .lines()
+        .position(|l| l.contains("<- error"))
+        .unwrap_or_else(|| panic!("{} has no `<- error` marker", path.display()))
+        + 1
 }
 
 /// Exit code 2, no panic, stderr has an `error:` and every `expected` part;
 /// nothing left in `dir` (no output, no `.plait-*` temporary file).
 fn assert_fails(what: &str, o: &Output, expected: &[&str], dir: Option<&Path>) -> String {
     let stderr = text(&o.stderr);
-    let context = format!("{what}\n--- exit: {:?}\n--- stderr:\n{stderr}\n--- stdout:\n{}", o.status.code(), text(&o.stdout));
+    let context = format!(
+        "{what}\n--- exit: {:?}\n--- stderr:\n{stderr}\n--- stdout:\n{}",
+        o.status.code(),
+        text(&o.stdout)
+    );
     assert_eq!(o.status.code(), Some(2), "expected exit code 2: {context}");
     assert!(!stderr.contains("panicked"), "panicked: {context}");
     assert!(stderr.contains("error"), "no `error` on stderr: {context}");
@@ -43,9 +59,14 @@ fn assert_fails(what: &str, o: &Output, expected: &[&str], dir: Option<&Path>) -
         assert!(stderr.contains(e), "stderr lacks `{e}`: {context}");
     }
     if let Some(dir) = dir {
-        let left: Vec<String> =
-            std::fs::read_dir(dir).expect("list output dir").map(|e| e.expect("entry").file_name().to_string_lossy().into_owned()).collect();
-        assert!(left.is_empty(), "files left behind in the output directory: {left:?}: {context}");
+        let left: Vec<String> = std::fs::read_dir(dir)
+            .expect("list output dir")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(
+            left.is_empty(),
+            "files left behind in the output directory: {left:?}: {context}"
+        );
     }
     stderr
 }
@@ -65,18 +86,45 @@ fn bad_pipeline(name: &str, message: &str, marked: &str) {
     let scene = root().join("examples/scenes/small.toml");
     let runs: [(&str, Vec<&str>); 3] = [
         ("check", vec!["check", p]),
-        ("graph", vec!["graph", p, "--format", "svg", "--out", svg.to_str().expect("utf-8")]),
+        (
+            "graph",
+            vec![
+                "graph",
+                p,
+                "--format",
+                "svg",
+                "--out",
+                svg.to_str().expect("utf-8"),
+            ],
+        ),
         (
             "render",
-            vec!["render", p, "--scene", scene.to_str().expect("utf-8"), "--size", "64x48", "--out", png.to_str().expect("utf-8")],
+            vec![
+                "render",
+                p,
+                "--scene",
+                scene.to_str().expect("utf-8"),
+                "--size",
+                "64x48",
+                "--out",
+                png.to_str().expect("utf-8"),
+            ],
         ),
     ];
     for (cmd, args) in runs {
         let o = plait(&args);
-        let stderr = assert_fails(&format!("plait {cmd} {name}"), &o, &[message, &at], Some(dir.path()));
+        let stderr = assert_fails(
+            &format!("plait {cmd} {name}"),
+            &o,
+            &[message, &at],
+            Some(dir.path()),
+        );
         // file:line:column — the column is a number too.
         let after = &stderr[stderr.find(&at).expect("checked above") + at.len()..];
-        assert!(after.starts_with(|c: char| c.is_ascii_digit()), "`{at}` is not followed by a column: {stderr}");
+        assert!(
+            after.starts_with(|c: char| c.is_ascii_digit()),
+            "`{at}` is not followed by a column: {stderr}"
+        );
     }
 }
 
@@ -87,22 +135,38 @@ fn toml_syntax_error() {
 
 #[test]
 fn unknown_pass_type() {
-    bad_pipeline("unknown_pass_type.toml", "unknown pass type `shadow_mapp`", "unknown_pass_type.toml");
+    bad_pipeline(
+        "unknown_pass_type.toml",
+        "unknown pass type `shadow_mapp`",
+        "unknown_pass_type.toml",
+    );
 }
 
 #[test]
 fn unknown_param() {
-    bad_pipeline("unknown_param.toml", "has no param `bias`", "unknown_param.toml");
+    bad_pipeline(
+        "unknown_param.toml",
+        "has no param `bias`",
+        "unknown_param.toml",
+    );
 }
 
 #[test]
 fn resource_read_but_never_written() {
-    bad_pipeline("never_written.toml", "resource `a` is read by pass `copy` but no pass writes it", "never_written.toml");
+    bad_pipeline(
+        "never_written.toml",
+        "resource `a` is read by pass `copy` but no pass writes it",
+        "never_written.toml",
+    );
 }
 
 #[test]
 fn resource_written_by_two_unordered_passes() {
-    bad_pipeline("unordered_writers.toml", "with no order between them", "unordered_writers.toml");
+    bad_pipeline(
+        "unordered_writers.toml",
+        "with no order between them",
+        "unordered_writers.toml",
+    );
 }
 
 #[test]
@@ -112,12 +176,20 @@ fn cycle() {
 
 #[test]
 fn writer_reader_format_mismatch() {
-    bad_pipeline("format_mismatch.toml", "accepts depth32float", "format_mismatch.toml");
+    bad_pipeline(
+        "format_mismatch.toml",
+        "accepts depth32float",
+        "format_mismatch.toml",
+    );
 }
 
 #[test]
 fn undefined_param() {
-    bad_pipeline("undefined_param.toml", "`${side}` is not defined", "undefined_param.toml");
+    bad_pipeline(
+        "undefined_param.toml",
+        "`${side}` is not defined",
+        "undefined_param.toml",
+    );
 }
 
 #[test]
@@ -129,13 +201,25 @@ fn wgsl_that_does_not_parse() {
 
 #[test]
 fn wgsl_that_does_not_validate() {
-    bad_pipeline("wgsl_validate.toml", "wgsl_validate.toml", "wgsl_validate.toml");
-    bad_pipeline("wgsl_validate.toml", "wgsl_validate.wgsl", "wgsl_validate.wgsl");
+    bad_pipeline(
+        "wgsl_validate.toml",
+        "wgsl_validate.toml",
+        "wgsl_validate.toml",
+    );
+    bad_pipeline(
+        "wgsl_validate.toml",
+        "wgsl_validate.wgsl",
+        "wgsl_validate.wgsl",
+    );
 }
 
 #[test]
 fn shader_binding_not_provided() {
-    bad_pipeline("missing_binding.toml", "shader binding `src`", "missing_binding.toml");
+    bad_pipeline(
+        "missing_binding.toml",
+        "shader binding `src`",
+        "missing_binding.toml",
+    );
 }
 
 #[test]
@@ -143,16 +227,37 @@ fn texture_larger_than_the_limit() {
     let set = "params.light_size=100000";
     // Without a GPU, against WebGPU's default limit 8192.
     let o = plait(&["check", "pipelines/forward.toml", "--set", set]);
-    assert_fails("plait check --set light_size=100000", &o, &["opaque_shadow", "100000", "8192"], None);
+    assert_fails(
+        "plait check --set light_size=100000",
+        &o,
+        &["opaque_shadow", "100000", "8192"],
+        None,
+    );
     // On the GPU: an error naming the resource and a limit, no file.
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("big.png");
     let o = plait(&[
-        "render", "pipelines/forward.toml", "--scene", "examples/scenes/small.toml", "--size", "64x48", "--set", set, "--out",
+        "render",
+        "pipelines/forward.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--set",
+        set,
+        "--out",
         png.to_str().expect("utf-8"),
     ]);
-    let stderr = assert_fails("plait render --set light_size=100000", &o, &["opaque_shadow", "100000", "limit"], Some(dir.path()));
-    assert!(stderr.contains(set) || stderr.contains("forward.toml:"), "error does not point at the flag or the file: {stderr}");
+    let stderr = assert_fails(
+        "plait render --set light_size=100000",
+        &o,
+        &["opaque_shadow", "100000", "limit"],
+        Some(dir.path()),
+    );
+    assert!(
+        stderr.contains(set) || stderr.contains("forward.toml:"),
+        "error does not point at the flag or the file: {stderr}"
+    );
 }
 
 #[test]
@@ -163,23 +268,78 @@ fn malformed_set() {
     // would be taken as a string.
     for bad in ["no_equals_sign", "=5", "params.light_size=[1,"] {
         let o = plait(&["check", "pipelines/forward.toml", "--set", bad]);
-        assert_fails(&format!("plait check --set {bad}"), &o, &["--set", bad], None);
-        let o = plait(&["render", "pipelines/forward.toml", "--size", "64x48", "--set", bad, "--out", png.to_str().expect("utf-8")]);
-        assert_fails(&format!("plait render --set {bad}"), &o, &["--set", bad], Some(dir.path()));
+        assert_fails(
+            &format!("plait check --set {bad}"),
+            &o,
+            &["--set", bad],
+            None,
+        );
+        let o = plait(&[
+            "render",
+            "pipelines/forward.toml",
+            "--size",
+            "64x48",
+            "--set",
+            bad,
+            "--out",
+            png.to_str().expect("utf-8"),
+        ]);
+        assert_fails(
+            &format!("plait render --set {bad}"),
+            &o,
+            &["--set", bad],
+            Some(dir.path()),
+        );
     }
 }
 
 #[test]
 fn unwritable_output_path() {
-    let o = plait(&["render", "--scene", "examples/scenes/small.toml", "--size", "64x48", "--out", "/nonexistent-dir/x.png"]);
-    assert_fails("plait render --out /nonexistent-dir/x.png", &o, &["--out", "/nonexistent-dir/x.png"], None);
+    let o = plait(&[
+        "render",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--out",
+        "/nonexistent-dir/x.png",
+    ]);
+    assert_fails(
+        "plait render --out /nonexistent-dir/x.png",
+        &o,
+        &["--out", "/nonexistent-dir/x.png"],
+        None,
+    );
     assert!(!Path::new("/nonexistent-dir").exists());
     // A directory is not a file either.
     let dir = tempfile::tempdir().expect("tempdir");
-    let o = plait(&["render", "--size", "64x48", "--out", dir.path().to_str().expect("utf-8")]);
-    assert_fails("plait render --out <a directory>", &o, &["--out"], Some(dir.path()));
-    let o = plait(&["graph", "pipelines/forward.toml", "--format", "svg", "--out", "/nonexistent-dir/g.svg"]);
-    assert_fails("plait graph --out /nonexistent-dir/g.svg", &o, &["--out", "/nonexistent-dir/g.svg"], None);
+    let o = plait(&[
+        "render",
+        "--size",
+        "64x48",
+        "--out",
+        dir.path().to_str().expect("utf-8"),
+    ]);
+    assert_fails(
+        "plait render --out <a directory>",
+        &o,
+        &["--out"],
+        Some(dir.path()),
+    );
+    let o = plait(&[
+        "graph",
+        "pipelines/forward.toml",
+        "--format",
+        "svg",
+        "--out",
+        "/nonexistent-dir/g.svg",
+    ]);
+    assert_fails(
+        "plait graph --out /nonexistent-dir/g.svg",
+        &o,
+        &["--out", "/nonexistent-dir/g.svg"],
+        None,
+    );
 }
 
 #[test]
@@ -187,19 +347,48 @@ fn bad_size() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("x.png");
     for bad in ["abc", "0x10", "64", "64x", "4x-4", "20000x10"] {
-        let o = plait(&["render", "--size", bad, "--out", png.to_str().expect("utf-8")]);
-        assert_fails(&format!("plait render --size {bad}"), &o, &["--size", bad], Some(dir.path()));
+        let o = plait(&[
+            "render",
+            "--size",
+            bad,
+            "--out",
+            png.to_str().expect("utf-8"),
+        ]);
+        assert_fails(
+            &format!("plait render --size {bad}"),
+            &o,
+            &["--size", bad],
+            Some(dir.path()),
+        );
     }
 }
 
 #[test]
 fn unreadable_pipeline_and_scene() {
     let o = plait(&["check", "tests/fixtures/bad/does_not_exist.toml"]);
-    assert_fails("plait check <missing file>", &o, &["does_not_exist.toml"], None);
+    assert_fails(
+        "plait check <missing file>",
+        &o,
+        &["does_not_exist.toml"],
+        None,
+    );
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("x.png");
-    let o = plait(&["render", "--scene", "tests/fixtures/bad/no_scene.toml", "--size", "64x48", "--out", png.to_str().expect("utf-8")]);
-    assert_fails("plait render --scene <missing file>", &o, &["no_scene.toml"], Some(dir.path()));
+    let o = plait(&[
+        "render",
+        "--scene",
+        "tests/fixtures/bad/no_scene.toml",
+        "--size",
+        "64x48",
+        "--out",
+        png.to_str().expect("utf-8"),
+    ]);
+    assert_fails(
+        "plait render --scene <missing file>",
+        &o,
+        &["no_scene.toml"],
+        Some(dir.path()),
+    );
 }
 
 // ---- good paths ----
@@ -209,7 +398,12 @@ fn pipeline_files() -> Vec<String> {
         .expect("pipelines/")
         .map(|e| e.expect("entry").path())
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .map(|p| format!("pipelines/{}", p.file_name().expect("name").to_string_lossy()))
+        .map(|p| {
+            format!(
+                "pipelines/{}",
+                p.file_name().expect("name").to_string_lossy()
+            )
+        })
         .collect();
     files.sort();
     assert!(!files.is_empty(), "no pipelines/*.toml");
@@ -222,10 +416,17 @@ fn check_accepts_every_shipped_pipeline() {
     let mut args = vec!["check"];
     args.extend(files.iter().map(String::as_str));
     let o = plait(&args);
-    assert!(o.status.success(), "plait check {files:?} failed:\n{}", text(&o.stderr));
+    assert!(
+        o.status.success(),
+        "plait check {files:?} failed:\n{}",
+        text(&o.stderr)
+    );
     let stdout = text(&o.stdout);
     for f in &files {
-        assert!(stdout.contains(&format!("ok  {f}")), "no `ok` line for {f}:\n{stdout}");
+        assert!(
+            stdout.contains(&format!("ok  {f}")),
+            "no `ok` line for {f}:\n{stdout}"
+        );
     }
 }
 
@@ -238,15 +439,32 @@ fn graph_prints_dot_and_writes_svg() {
     for pass in ["opaque_shadow", "hair_depth", "opaque", "hair", "compose"] {
         assert!(dot.contains(pass), "DOT lacks pass `{pass}`:\n{dot}");
     }
-    assert!(dot.contains("rgba16float"), "DOT edges lack resource formats:\n{dot}");
+    assert!(
+        dot.contains("rgba16float"),
+        "DOT edges lack resource formats:\n{dot}"
+    );
     let dir = tempfile::tempdir().expect("tempdir");
     let svg = dir.path().join("forward.svg");
-    let o = plait(&["graph", "pipelines/forward.toml", "--format", "svg", "--out", svg.to_str().expect("utf-8")]);
+    let o = plait(&[
+        "graph",
+        "pipelines/forward.toml",
+        "--format",
+        "svg",
+        "--out",
+        svg.to_str().expect("utf-8"),
+    ]);
     assert!(o.status.success(), "{}", text(&o.stderr));
     let picture = std::fs::read_to_string(&svg).expect("SVG written");
-    assert!(picture.contains("<svg"), "not an SVG: {}", &picture[..picture.len().min(200)]);
+    assert!(
+        picture.contains("<svg"),
+        "not an SVG: {}",
+        &picture[..picture.len().min(200)]
+    );
     assert!(picture.contains("compose"), "SVG lacks pass names");
-    let left: Vec<_> = std::fs::read_dir(dir.path()).expect("list").map(|e| e.expect("entry").file_name()).collect();
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .expect("list")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
     assert_eq!(left.len(), 1, "temporary files left: {left:?}");
 }
 
@@ -255,26 +473,68 @@ fn passes_lists_the_library() {
     let o = plait(&["passes"]);
     assert!(o.status.success(), "{}", text(&o.stderr));
     let out = text(&o.stdout);
-    for t in ["hair_shade", "shadow_map", "opaque_shade", "fullscreen", "compute"] {
-        assert!(out.lines().any(|l| l.starts_with(t)), "`plait passes` does not list `{t}`:\n{out}");
+    for t in [
+        "hair_shade",
+        "shadow_map",
+        "opaque_shade",
+        "fullscreen",
+        "compute",
+    ] {
+        assert!(
+            out.lines().any(|l| l.starts_with(t)),
+            "`plait passes` does not list `{t}`:\n{out}"
+        );
     }
-    assert!(out.contains("visibility"), "hair_shade params missing:\n{out}");
+    assert!(
+        out.contains("visibility"),
+        "hair_shade params missing:\n{out}"
+    );
 }
 
 #[test]
 fn render_json_report() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("small.png");
-    let o = plait(&["render", "--scene", "examples/scenes/small.toml", "--size", "128x96", "--json", "--out", png.to_str().expect("utf-8")]);
-    assert!(o.status.success(), "plait render failed:\n{}", text(&o.stderr));
+    let o = plait(&[
+        "render",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "128x96",
+        "--json",
+        "--out",
+        png.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        o.status.success(),
+        "plait render failed:\n{}",
+        text(&o.stderr)
+    );
     assert!(!text(&o.stderr).contains("panicked"));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("stdout is not one JSON object ({e}):\n{}", text(&o.stdout)));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout)
+        .unwrap_or_else(|e| panic!("stdout is not one JSON object ({e}):\n{}", text(&o.stdout)));
     let obj = v.as_object().expect("a JSON object");
-    for key in ["pipeline", "adapter", "size", "passes", "resources", "memory", "output"] {
+    for key in [
+        "pipeline",
+        "adapter",
+        "size",
+        "passes",
+        "resources",
+        "memory",
+        "output",
+    ] {
         assert!(obj.contains_key(key), "JSON lacks `{key}`: {v:#}");
     }
-    assert!(v["pipeline"].as_str().is_some_and(|p| p.ends_with(".toml")), "pipeline: {}", v["pipeline"]);
-    assert!(v["adapter"]["name"].is_string() && v["adapter"]["backend"].is_string(), "adapter: {}", v["adapter"]);
+    assert!(
+        v["pipeline"].as_str().is_some_and(|p| p.ends_with(".toml")),
+        "pipeline: {}",
+        v["pipeline"]
+    );
+    assert!(
+        v["adapter"]["name"].is_string() && v["adapter"]["backend"].is_string(),
+        "adapter: {}",
+        v["adapter"]
+    );
     assert_eq!(v["size"], serde_json::json!([128, 96]));
     let passes = v["passes"].as_array().expect("passes array");
     assert!(!passes.is_empty());
@@ -282,24 +542,48 @@ fn render_json_report() {
         for key in ["name", "type", "reads", "writes", "gpu_ms", "culled"] {
             assert!(p.get(key).is_some(), "pass lacks `{key}`: {p}");
         }
-        assert!(p["reads"].is_array() && p["writes"].is_array() && p["culled"].is_boolean(), "pass: {p}");
-        assert!(p["gpu_ms"].is_null() || p["gpu_ms"].as_f64().is_some_and(|ms| ms >= 0.0), "gpu_ms: {p}");
+        assert!(
+            p["reads"].is_array() && p["writes"].is_array() && p["culled"].is_boolean(),
+            "pass: {p}"
+        );
+        assert!(
+            p["gpu_ms"].is_null() || p["gpu_ms"].as_f64().is_some_and(|ms| ms >= 0.0),
+            "gpu_ms: {p}"
+        );
     }
-    assert!(passes.iter().all(|p| p["name"].as_str().is_some_and(|n| !n.is_empty())), "unnamed pass: {v:#}");
+    assert!(
+        passes
+            .iter()
+            .all(|p| p["name"].as_str().is_some_and(|n| !n.is_empty())),
+        "unnamed pass: {v:#}"
+    );
     let resources = v["resources"].as_array().expect("resources array");
     assert!(!resources.is_empty());
     for r in resources {
         for key in ["name", "kind", "format", "bytes", "shares_memory_with"] {
             assert!(r.get(key).is_some(), "resource lacks `{key}`: {r}");
         }
-        assert!(r["bytes"].as_u64().is_some_and(|b| b > 0) && r["shares_memory_with"].is_array(), "resource: {r}");
+        assert!(
+            r["bytes"].as_u64().is_some_and(|b| b > 0) && r["shares_memory_with"].is_array(),
+            "resource: {r}"
+        );
     }
-    let (peak, unpooled) = (v["memory"]["peak_bytes"].as_u64(), v["memory"]["unpooled_bytes"].as_u64());
-    assert!(peak.is_some_and(|p| p > 0) && unpooled.is_some_and(|u| u >= peak.unwrap_or(0)), "memory: {}", v["memory"]);
+    let (peak, unpooled) = (
+        v["memory"]["peak_bytes"].as_u64(),
+        v["memory"]["unpooled_bytes"].as_u64(),
+    );
+    assert!(
+        peak.is_some_and(|p| p > 0) && unpooled.is_some_and(|u| u >= peak.unwrap_or(0)),
+        "memory: {}",
+        v["memory"]
+    );
     assert_eq!(v["output"].as_str(), png.to_str());
     let img = image::open(&png).expect("the PNG exists and decodes");
     assert_eq!((img.width(), img.height()), (128, 96));
-    let left: Vec<_> = std::fs::read_dir(dir.path()).expect("list").map(|e| e.expect("entry").file_name()).collect();
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .expect("list")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
     assert_eq!(left.len(), 1, "temporary files left: {left:?}");
 }
 
@@ -309,14 +593,35 @@ fn render_json_shows_memory_sharing() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("sharing.png");
     let o = plait(&[
-        "render", "tests/fixtures/sharing.toml", "--scene", "examples/scenes/small.toml", "--size", "64x48", "--json", "--out",
+        "render",
+        "tests/fixtures/sharing.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--json",
+        "--out",
         png.to_str().expect("utf-8"),
     ]);
-    assert!(o.status.success(), "plait render sharing.toml failed:\n{}", text(&o.stderr));
+    assert!(
+        o.status.success(),
+        "plait render sharing.toml failed:\n{}",
+        text(&o.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
-    let a = v["resources"].as_array().expect("resources").iter().find(|r| r["name"] == "a").expect("resource a").clone();
+    let a = v["resources"]
+        .as_array()
+        .expect("resources")
+        .iter()
+        .find(|r| r["name"] == "a")
+        .expect("resource a")
+        .clone();
     assert_eq!(a["shares_memory_with"], serde_json::json!(["c"]), "{v:#}");
-    assert!(v["memory"]["peak_bytes"].as_u64() < v["memory"]["unpooled_bytes"].as_u64(), "memory: {}", v["memory"]);
+    assert!(
+        v["memory"]["peak_bytes"].as_u64() < v["memory"]["unpooled_bytes"].as_u64(),
+        "memory: {}",
+        v["memory"]
+    );
 }
 
 #[test]
@@ -324,8 +629,19 @@ fn missing_background_image_names_the_file() {
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("x.png");
     let o = plait(&[
-        "render", "pipelines/forward.toml", "--scene", "tests/fixtures/missing_background.toml", "--size", "64x48", "--out",
+        "render",
+        "pipelines/forward.toml",
+        "--scene",
+        "tests/fixtures/missing_background.toml",
+        "--size",
+        "64x48",
+        "--out",
         png.to_str().expect("utf-8"),
     ]);
-    assert_fails("plait render --scene missing_background.toml", &o, &["no-such-backdrop.png"], Some(dir.path()));
+    assert_fails(
+        "plait render --scene missing_background.toml",
+        &o,
+        &["no-such-backdrop.png"],
+        Some(dir.path()),
+    );
 }

@@ -4,7 +4,10 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 fn plait(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_plait")).args(args).output().expect("run plait")
+    Command::new(env!("CARGO_BIN_EXE_plait"))
+        .args(args)
+        .output()
+        .expect("run plait")
 }
 
 fn text(b: &[u8]) -> String {
@@ -14,7 +17,17 @@ fn text(b: &[u8]) -> String {
 fn generate(dir: &Path, name: &str) -> std::path::PathBuf {
     let out = dir.join(name);
     let o = plait(&[
-        "hair", "generate", "--style", "wavy", "--strands", "40", "--segments", "8", "--seed", "9", "--out",
+        "hair",
+        "generate",
+        "--style",
+        "wavy",
+        "--strands",
+        "40",
+        "--segments",
+        "8",
+        "--seed",
+        "9",
+        "--out",
         out.to_str().expect("utf-8 path"),
     ]);
     assert!(o.status.success(), "generate failed: {}", text(&o.stderr));
@@ -31,14 +44,23 @@ fn generate_then_info_json() {
     assert_eq!(v["strands"], 40);
     assert_eq!(v["points"], 40 * 9);
     assert_eq!(v["segments"], 40 * 8);
-    assert!(v["arrays"].as_array().expect("arrays").iter().any(|a| a == "points"));
+    assert!(
+        v["arrays"]
+            .as_array()
+            .expect("arrays")
+            .iter()
+            .any(|a| a == "points")
+    );
     assert_eq!(v["bounds"]["min"].as_array().expect("min").len(), 3);
     assert_eq!(v["bounds"]["max"].as_array().expect("max").len(), 3);
     assert!(v["defaults"].is_object());
     assert_eq!(v["warnings"].as_array().expect("warnings").len(), 0);
     // deterministic: same flags, same bytes
     let again = generate(dir.path(), "h.hair");
-    assert_eq!(std::fs::read(&file).expect("read"), std::fs::read(&again).expect("read"));
+    assert_eq!(
+        std::fs::read(&file).expect("read"),
+        std::fs::read(&again).expect("read")
+    );
 }
 
 #[test]
@@ -86,15 +108,23 @@ fn bad_files_exit_2_and_name_the_file() {
     let dir = tempfile::tempdir().expect("tempdir");
     let good = std::fs::read(generate(dir.path(), "g.hair")).expect("read");
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
-        ("sig.hair", [b"NOPE".as_slice(), &good[4..]].concat(), "HAIR"),
+        (
+            "sig.hair",
+            [b"NOPE".as_slice(), &good[4..]].concat(),
+            "HAIR",
+        ),
         ("trunc.hair", good[..good.len() - 10].to_vec(), "bytes"),
         ("short.hair", good[..50].to_vec(), "header"),
-        ("huge.hair", {
-            let mut b = good[..1024].to_vec();
-            b[4..8].copy_from_slice(&u32::MAX.to_le_bytes());
-            b[8..12].copy_from_slice(&u32::MAX.to_le_bytes());
-            b
-        }, "points"),
+        (
+            "huge.hair",
+            {
+                let mut b = good[..1024].to_vec();
+                b[4..8].copy_from_slice(&u32::MAX.to_le_bytes());
+                b[8..12].copy_from_slice(&u32::MAX.to_le_bytes());
+                b
+            },
+            "points",
+        ),
     ];
     for (name, bytes, needle) in cases {
         let path = dir.path().join(name);
@@ -106,7 +136,11 @@ fn bad_files_exit_2_and_name_the_file() {
         assert!(err.contains(needle), "{name}: {err}");
         assert!(!err.contains("panicked"), "{name}: {err}");
     }
-    let o = plait(&["hair", "info", dir.path().join("missing.hair").to_str().expect("utf-8")]);
+    let o = plait(&[
+        "hair",
+        "info",
+        dir.path().join("missing.hair").to_str().expect("utf-8"),
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o.stderr).contains("missing.hair"));
 }
@@ -120,14 +154,21 @@ fn generate_validates_flags() {
         ("--strands", vec!["--strands", "0", "--segments", "4"]),
         ("--segments", vec!["--strands", "4", "--segments", "0"]),
         ("--segments", vec!["--strands", "4", "--segments", "70000"]),
-        ("--style", vec!["--style", "frizzy", "--strands", "4", "--segments", "4"]),
+        (
+            "--style",
+            vec!["--style", "frizzy", "--strands", "4", "--segments", "4"],
+        ),
     ] {
         let mut all = vec!["hair", "generate"];
         all.extend(args);
         all.extend(["--out", out]);
         let o = plait(&all);
         assert_eq!(o.status.code(), Some(2), "{all:?}");
-        assert!(text(&o.stderr).contains(flag), "{all:?}: {}", text(&o.stderr));
+        assert!(
+            text(&o.stderr).contains(flag),
+            "{all:?}: {}",
+            text(&o.stderr)
+        );
     }
     assert!(!Path::new(out).exists());
 }

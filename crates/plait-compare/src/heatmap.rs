@@ -30,7 +30,11 @@ pub fn heatmap(values: &[f32], width: u32, height: u32, scale: f32) -> RgbImage 
     }
     for y in height + 4..height + LEGEND_HEIGHT {
         for x in 0..width {
-            let t = if width > 1 { x as f32 / (width - 1) as f32 } else { 0.0 };
+            let t = if width > 1 {
+                x as f32 / (width - 1) as f32
+            } else {
+                0.0
+            };
             img.put_pixel(x, y, Rgb(lut[(t * 255.0).round() as usize]));
         }
     }

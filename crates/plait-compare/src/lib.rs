@@ -33,14 +33,24 @@ use image::RgbaImage;
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum CompareError {
     #[error("images differ in size: {a_w}x{a_h} vs {b_w}x{b_h}")]
-    SizeMismatch { a_w: u32, a_h: u32, b_w: u32, b_h: u32 },
+    SizeMismatch {
+        a_w: u32,
+        a_h: u32,
+        b_w: u32,
+        b_h: u32,
+    },
     #[error("empty image")]
     Empty,
 }
 
 fn check(a: &RgbaImage, b: &RgbaImage) -> Result<(), CompareError> {
     if a.dimensions() != b.dimensions() {
-        return Err(CompareError::SizeMismatch { a_w: a.width(), a_h: a.height(), b_w: b.width(), b_h: b.height() });
+        return Err(CompareError::SizeMismatch {
+            a_w: a.width(),
+            a_h: a.height(),
+            b_w: b.width(),
+            b_h: b.height(),
+        });
     }
     if a.width() == 0 || a.height() == 0 {
         return Err(CompareError::Empty);
@@ -70,7 +80,11 @@ pub fn rmse(a: &RgbaImage, b: &RgbaImage) -> Result<f64, CompareError> {
 /// are identical (infinite PSNR).
 pub fn psnr(a: &RgbaImage, b: &RgbaImage) -> Result<Option<f64>, CompareError> {
     let m = mse(a, b)?;
-    Ok(if m == 0.0 { None } else { Some(-10.0 * m.log10()) })
+    Ok(if m == 0.0 {
+        None
+    } else {
+        Some(-10.0 * m.log10())
+    })
 }
 
 /// Luma in 0..1 (Rec. 601 weights, as MATLAB's `rgb2gray`).
@@ -90,7 +104,9 @@ pub const SSIM_SIGMA: f64 = 1.5;
 /// Normalized 1-D Gaussian taps (the 2-D window is their outer product).
 pub fn gaussian_taps(size: usize, sigma: f64) -> Vec<f64> {
     let c = (size as f64 - 1.0) / 2.0;
-    let t: Vec<f64> = (0..size).map(|i| (-((i as f64 - c).powi(2)) / (2.0 * sigma * sigma)).exp()).collect();
+    let t: Vec<f64> = (0..size)
+        .map(|i| (-((i as f64 - c).powi(2)) / (2.0 * sigma * sigma)).exp())
+        .collect();
     let s: f64 = t.iter().sum();
     t.into_iter().map(|v| v / s).collect()
 }
@@ -142,7 +158,8 @@ pub fn ssim_planes(x: &[f64], y: &[f64], w: usize, h: usize) -> f64 {
         let vx = sxx[i] - ux * ux;
         let vy = syy[i] - uy * uy;
         let cov = sxy[i] - ux * uy;
-        total += ((2.0 * ux * uy + c1) * (2.0 * cov + c2)) / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
+        total +=
+            ((2.0 * ux * uy + c1) * (2.0 * cov + c2)) / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
     }
     total / (ow * oh) as f64
 }
@@ -150,7 +167,12 @@ pub fn ssim_planes(x: &[f64], y: &[f64], w: usize, h: usize) -> f64 {
 /// Mean SSIM on luma (Gaussian 11×11, σ 1.5; see the crate docs). 1 for identical images.
 pub fn ssim(a: &RgbaImage, b: &RgbaImage) -> Result<f64, CompareError> {
     check(a, b)?;
-    Ok(ssim_planes(&luma(a), &luma(b), a.width() as usize, a.height() as usize))
+    Ok(ssim_planes(
+        &luma(a),
+        &luma(b),
+        a.width() as usize,
+        a.height() as usize,
+    ))
 }
 
 /// FLIP's default viewing condition (pixels per degree of visual angle).
@@ -166,7 +188,11 @@ pub struct FlipResult {
 /// LDR-ꟻLIP of `test` against `reference` (nv-flip, sRGB input, 67 ppd).
 pub fn flip(reference: &RgbaImage, test: &RgbaImage) -> Result<FlipResult, CompareError> {
     check(reference, test)?;
-    let rgb = |img: &RgbaImage| -> Vec<u8> { img.pixels().flat_map(|p| [p.0[0], p.0[1], p.0[2]]).collect() };
+    let rgb = |img: &RgbaImage| -> Vec<u8> {
+        img.pixels()
+            .flat_map(|p| [p.0[0], p.0[1], p.0[2]])
+            .collect()
+    };
     let (w, h) = reference.dimensions();
     let r = nv_flip::FlipImageRgb8::with_data(w, h, &rgb(reference));
     let t = nv_flip::FlipImageRgb8::with_data(w, h, &rgb(test));
@@ -207,17 +233,32 @@ pub fn compare(reference: &RgbaImage, test: &RgbaImage) -> Result<Comparison, Co
     let abs_diff: Vec<f32> = reference
         .pixels()
         .zip(test.pixels())
-        .map(|(a, b)| (0..3).map(|c| (a.0[c] as f32 - b.0[c] as f32).abs()).sum::<f32>() / (3.0 * 255.0))
+        .map(|(a, b)| {
+            (0..3)
+                .map(|c| (a.0[c] as f32 - b.0[c] as f32).abs())
+                .sum::<f32>()
+                / (3.0 * 255.0)
+        })
         .collect();
     let f = flip(reference, test)?;
     let metrics = Metrics {
         rmse: m.sqrt(),
-        psnr_db: if m == 0.0 { None } else { Some(-10.0 * m.log10()) },
+        psnr_db: if m == 0.0 {
+            None
+        } else {
+            Some(-10.0 * m.log10())
+        },
         ssim: ssim(reference, test)?,
         flip_mean: f.mean,
         max_abs_diff: abs_diff.iter().fold(0.0f32, |a, &b| a.max(b)) as f64,
     };
-    Ok(Comparison { metrics, abs_diff, flip_map: f.map, width: reference.width(), height: reference.height() })
+    Ok(Comparison {
+        metrics,
+        abs_diff,
+        flip_map: f.map,
+        width: reference.width(),
+        height: reference.height(),
+    })
 }
 
 /// Median and spread of a sample.
@@ -245,7 +286,14 @@ impl Stats {
             let (lo, hi) = (pos.floor() as usize, pos.ceil() as usize);
             s[lo] + (s[hi] - s[lo]) * (pos - lo as f64)
         };
-        Some(Stats { median: q(0.5), min: s[0], max: s[s.len() - 1], q1: q(0.25), q3: q(0.75), samples: samples.to_vec() })
+        Some(Stats {
+            median: q(0.5),
+            min: s[0],
+            max: s[s.len() - 1],
+            q1: q(0.25),
+            q3: q(0.75),
+            samples: samples.to_vec(),
+        })
     }
 }
 
@@ -286,8 +334,17 @@ mod tests {
         // PSNR = 10 log10(1/MSE) = 10 log10(75) = 18.7506 dB.
         assert!((psnr(&a, &b).unwrap().unwrap() - 18.750_612_633_917).abs() < 1e-9);
         // Half the pixels black vs white: MSE 0.5, PSNR 3.0103 dB.
-        let half = RgbaImage::from_fn(4, 4, |x, _| if x < 2 { image::Rgba([255; 4]) } else { image::Rgba([0, 0, 0, 255]) });
-        assert!((psnr(&solid(4, 4, [0, 0, 0]), &half).unwrap().unwrap() - 3.010_299_956_64).abs() < 1e-9);
+        let half = RgbaImage::from_fn(4, 4, |x, _| {
+            if x < 2 {
+                image::Rgba([255; 4])
+            } else {
+                image::Rgba([0, 0, 0, 255])
+            }
+        });
+        assert!(
+            (psnr(&solid(4, 4, [0, 0, 0]), &half).unwrap().unwrap() - 3.010_299_956_64).abs()
+                < 1e-9
+        );
     }
 
     #[test]
@@ -296,7 +353,10 @@ mod tests {
         let mut b = a.clone();
         b.pixels_mut().for_each(|p| p.0[3] = 0);
         assert_eq!(rmse(&a, &b).unwrap(), 0.0);
-        assert!(matches!(rmse(&a, &solid(2, 3, [0; 3])), Err(CompareError::SizeMismatch { .. })));
+        assert!(matches!(
+            rmse(&a, &solid(2, 3, [0; 3])),
+            Err(CompareError::SizeMismatch { .. })
+        ));
     }
 
     #[test]
@@ -325,7 +385,11 @@ mod tests {
         let (x, y) = (0.2f64, 0.6f64);
         let c1 = 0.0001;
         let want = (2.0 * x * y + c1) / (x * x + y * y + c1);
-        assert!((ssim(&a, &b).unwrap() - want).abs() < 1e-9, "{} vs {want}", ssim(&a, &b).unwrap());
+        assert!(
+            (ssim(&a, &b).unwrap() - want).abs() < 1e-9,
+            "{} vs {want}",
+            ssim(&a, &b).unwrap()
+        );
         // Black vs white: C1 / (1 + C1).
         let k = ssim(&solid(12, 12, [0; 3]), &solid(12, 12, [255; 3])).unwrap();
         assert!((k - c1 / (1.0 + c1)).abs() < 1e-12);
@@ -360,7 +424,8 @@ mod tests {
                         cov += wgt * dx * dy;
                     }
                 }
-                total += ((2.0 * ux * uy + c1) * (2.0 * cov + c2)) / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
+                total += ((2.0 * ux * uy + c1) * (2.0 * cov + c2))
+                    / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
                 count += 1;
             }
         }
@@ -429,7 +494,10 @@ mod tests {
     #[test]
     fn stats_quartiles() {
         let s = Stats::of(&[5.0, 1.0, 3.0, 2.0, 4.0]).unwrap();
-        assert_eq!((s.min, s.q1, s.median, s.q3, s.max), (1.0, 2.0, 3.0, 4.0, 5.0));
+        assert_eq!(
+            (s.min, s.q1, s.median, s.q3, s.max),
+            (1.0, 2.0, 3.0, 4.0, 5.0)
+        );
         let e = Stats::of(&[1.0, 2.0]).unwrap();
         assert_eq!(e.median, 1.5);
         assert!(Stats::of(&[]).is_none());

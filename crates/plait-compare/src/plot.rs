@@ -31,22 +31,34 @@ pub struct Chart {
 }
 
 /// Colors of the series, in order (Tableau 10).
-pub const PALETTE: [&str; 10] =
-    ["#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"];
+pub const PALETTE: [&str; 10] = [
+    "#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7",
+    "#9c755f", "#bab0ac",
+];
 
 /// XML-escape text for SVG and HTML.
 pub fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// About `n` round tick values covering `lo..=hi`.
 pub fn ticks(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) || !lo.is_finite() || !hi.is_finite() {
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater)
+        || !lo.is_finite()
+        || !hi.is_finite()
+    {
         return vec![lo];
     }
     let raw = (hi - lo) / n.max(1) as f64;
     let p = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0].iter().map(|m| m * p).find(|s| *s >= raw).unwrap_or(10.0 * p);
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * p)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * p);
     let mut t = (lo / step).ceil() * step;
     let mut out = Vec::new();
     while t <= hi + step * 1e-9 {
@@ -61,30 +73,59 @@ fn fmt_tick(v: f64) -> String {
         return "0".into();
     }
     let a = v.abs();
-    if !(1e-3..1e4).contains(&a) { format!("{v:.1e}") } else { let s = format!("{v:.4}"); s.trim_end_matches('0').trim_end_matches('.').to_string() }
+    if !(1e-3..1e4).contains(&a) {
+        format!("{v:.1e}")
+    } else {
+        let s = format!("{v:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
 }
 
 /// The chart as a standalone `<svg>` element (640×400).
 pub fn svg(chart: &Chart) -> String {
     let (w, h) = (640.0, 400.0);
     let (left, right, top, bottom) = (70.0, 170.0, 44.0, 50.0);
-    let pts: Vec<&Point> = chart.series.iter().flat_map(|s| &s.points).filter(|p| p.x.is_finite() && p.y.is_finite()).collect();
+    let pts: Vec<&Point> = chart
+        .series
+        .iter()
+        .flat_map(|s| &s.points)
+        .filter(|p| p.x.is_finite() && p.y.is_finite())
+        .collect();
     let mut out = String::new();
     let _ = write!(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w} {h}" width="{w}" height="{h}" font-family="sans-serif" font-size="11">"#
     );
     let _ = write!(out, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let _ = write!(out, r#"<text x="{}" y="18" font-size="14" text-anchor="middle">{}</text>"#, w / 2.0, escape(&chart.title));
+    let _ = write!(
+        out,
+        r#"<text x="{}" y="18" font-size="14" text-anchor="middle">{}</text>"#,
+        w / 2.0,
+        escape(&chart.title)
+    );
     if let Some(note) = &chart.note {
-        let _ = write!(out, r##"<text x="{}" y="33" fill="#555" text-anchor="middle">{}</text>"##, w / 2.0, escape(note));
+        let _ = write!(
+            out,
+            r##"<text x="{}" y="33" fill="#555" text-anchor="middle">{}</text>"##,
+            w / 2.0,
+            escape(note)
+        );
     }
     if pts.is_empty() {
-        let _ = write!(out, r##"<text x="{}" y="{}" text-anchor="middle" fill="#777">no data</text></svg>"##, w / 2.0, h / 2.0);
+        let _ = write!(
+            out,
+            r##"<text x="{}" y="{}" text-anchor="middle" fill="#777">no data</text></svg>"##,
+            w / 2.0,
+            h / 2.0
+        );
         return out;
     }
-    let (mut x0, mut x1) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.x), b.max(p.x)));
-    let (mut y0, mut y1) = pts.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.y), b.max(p.y)));
+    let (mut x0, mut x1) = pts
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.x), b.max(p.x)));
+    let (mut y0, mut y1) = pts
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.y), b.max(p.y)));
     let pad = |a: &mut f64, b: &mut f64| {
         if *b - *a < 1e-12 {
             let d = if a.abs() > 0.0 { a.abs() * 0.1 } else { 1.0 };
@@ -108,7 +149,10 @@ pub fn svg(chart: &Chart) -> String {
     let ph = h - top - bottom;
     let sx = |x: f64| left + (x - x0) / (x1 - x0) * pw;
     let sy = |y: f64| top + ph - (y - y0) / (y1 - y0) * ph;
-    let _ = write!(out, r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##);
+    let _ = write!(
+        out,
+        r##"<rect x="{left}" y="{top}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##
+    );
     for t in ticks(x0, x1, 6) {
         let x = sx(t);
         let _ = write!(
@@ -130,7 +174,13 @@ pub fn svg(chart: &Chart) -> String {
             fmt_tick(t)
         );
     }
-    let _ = write!(out, r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#, left + pw / 2.0, h - 12.0, escape(&chart.x_label));
+    let _ = write!(
+        out,
+        r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#,
+        left + pw / 2.0,
+        h - 12.0,
+        escape(&chart.x_label)
+    );
     let _ = write!(
         out,
         r#"<text x="16" y="{}" text-anchor="middle" transform="rotate(-90 16 {})">{}</text>"#,
@@ -140,10 +190,21 @@ pub fn svg(chart: &Chart) -> String {
     );
     for (i, s) in chart.series.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
-        let ok: Vec<&Point> = s.points.iter().filter(|p| p.x.is_finite() && p.y.is_finite()).collect();
+        let ok: Vec<&Point> = s
+            .points
+            .iter()
+            .filter(|p| p.x.is_finite() && p.y.is_finite())
+            .collect();
         if s.line && ok.len() > 1 {
-            let path: Vec<String> = ok.iter().map(|p| format!("{:.1},{:.1}", sx(p.x), sy(p.y))).collect();
-            let _ = write!(out, r#"<polyline points="{}" fill="none" stroke="{color}" stroke-width="1.5"/>"#, path.join(" "));
+            let path: Vec<String> = ok
+                .iter()
+                .map(|p| format!("{:.1},{:.1}", sx(p.x), sy(p.y)))
+                .collect();
+            let _ = write!(
+                out,
+                r#"<polyline points="{}" fill="none" stroke="{color}" stroke-width="1.5"/>"#,
+                path.join(" ")
+            );
         }
         for p in &ok {
             let r = p.size.unwrap_or(4.0);
@@ -157,7 +218,13 @@ pub fn svg(chart: &Chart) -> String {
                 fmt_tick(p.y)
             );
             if let Some(l) = &p.label {
-                let _ = write!(out, r##"<text x="{:.1}" y="{:.1}" fill="#333" font-size="9">{}</text>"##, sx(p.x) + r + 2.0, sy(p.y) - 2.0, escape(l));
+                let _ = write!(
+                    out,
+                    r##"<text x="{:.1}" y="{:.1}" fill="#333" font-size="9">{}</text>"##,
+                    sx(p.x) + r + 2.0,
+                    sy(p.y) - 2.0,
+                    escape(l)
+                );
             }
         }
         let ly = top + 8.0 + i as f64 * 16.0;
@@ -180,7 +247,10 @@ mod tests {
 
     #[test]
     fn ticks_are_round() {
-        assert_eq!(ticks(0.0, 1.0, 5), vec![0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]);
+        assert_eq!(
+            ticks(0.0, 1.0, 5),
+            vec![0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
+        );
         assert_eq!(ticks(3.0, 3.0, 5), vec![3.0]);
     }
 
@@ -195,15 +265,33 @@ mod tests {
                 name: "a&b".into(),
                 line: true,
                 points: vec![
-                    Point { x: 1.0, y: 0.1, size: Some(8.0), label: Some("64".into()) },
-                    Point { x: 2.0, y: 0.05, size: None, label: None },
+                    Point {
+                        x: 1.0,
+                        y: 0.1,
+                        size: Some(8.0),
+                        label: Some("64".into()),
+                    },
+                    Point {
+                        x: 2.0,
+                        y: 0.05,
+                        size: None,
+                        label: None,
+                    },
                 ],
             }],
         };
         let s = svg(&c);
         assert!(s.starts_with("<svg") && s.ends_with("</svg>"));
         assert_eq!(s.matches("<circle").count(), 3); // two points + legend
-        assert!(s.contains("error &lt;vs&gt; cost") && s.contains("a&amp;b") && s.contains("<polyline"));
-        assert!(svg(&Chart { series: vec![], ..c }).contains("no data"));
+        assert!(
+            s.contains("error &lt;vs&gt; cost") && s.contains("a&amp;b") && s.contains("<polyline")
+        );
+        assert!(
+            svg(&Chart {
+                series: vec![],
+                ..c
+            })
+            .contains("no data")
+        );
     }
 }

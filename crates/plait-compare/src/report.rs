@@ -209,16 +209,26 @@ impl Report {
 
 /// The cost used on plots: median total GPU ms, else median wall ms.
 pub fn cost_ms(t: &Timing) -> f64 {
-    t.total_gpu_ms.as_ref().map(|s| s.median).unwrap_or(t.wall_ms.median)
+    t.total_gpu_ms
+        .as_ref()
+        .map(|s| s.median)
+        .unwrap_or(t.wall_ms.median)
 }
 
 fn cost_label(report: &Report) -> &'static str {
-    if report.provenance.timestamps { "GPU ms per frame (median)" } else { "wall ms per frame (median, no GPU timestamps)" }
+    if report.provenance.timestamps {
+        "GPU ms per frame (median)"
+    } else {
+        "wall ms per frame (median, no GPU timestamps)"
+    }
 }
 
 /// Sweep values as numbers when they all parse, else their positions.
 fn sweep_x(values: &[String]) -> (Vec<f64>, bool) {
-    let nums: Option<Vec<f64>> = values.iter().map(|v| v.trim().parse::<f64>().ok()).collect();
+    let nums: Option<Vec<f64>> = values
+        .iter()
+        .map(|v| v.trim().parse::<f64>().ok())
+        .collect();
     match nums {
         Some(n) => (n, true),
         None => ((0..values.len()).map(|i| i as f64).collect(), false),
@@ -228,23 +238,46 @@ fn sweep_x(values: &[String]) -> (Vec<f64>, bool) {
 /// Every chart of a scene: error vs cost (marker area ∝ peak memory), and
 /// with a sweep, error and cost against the swept value.
 pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
-    let max_mem = report.variants.iter().map(|v| v.memory.peak_bytes).max().unwrap_or(1).max(1) as f64;
+    let max_mem = report
+        .variants
+        .iter()
+        .map(|v| v.memory.peak_bytes)
+        .max()
+        .unwrap_or(1)
+        .max(1) as f64;
     let radius = |bytes: u64| 3.0 + 13.0 * (bytes as f64 / max_mem).sqrt();
     // Group runs by pipeline (sweep points of one pipeline form one series).
     let mut groups: Vec<(String, Vec<(&Run, &Variant)>)> = Vec::new();
     for run in &scene.runs {
-        let Some(v) = report.variant(&run.variant) else { continue };
-        let key = if v.is_reference { format!("{} (reference)", v.pipeline_stem()) } else { v.pipeline.clone() };
+        let Some(v) = report.variant(&run.variant) else {
+            continue;
+        };
+        let key = if v.is_reference {
+            format!("{} (reference)", v.pipeline_stem())
+        } else {
+            v.pipeline.clone()
+        };
         match groups.iter_mut().find(|(k, _)| *k == key) {
             Some((_, list)) => list.push((run, v)),
             None => groups.push((key, vec![(run, v)])),
         }
     }
     let name_of = |key: &str, list: &[(&Run, &Variant)]| {
-        list.first().map(|(_, v)| if v.is_reference { key.to_string() } else { v.pipeline_stem() }).unwrap_or_default()
+        list.first()
+            .map(|(_, v)| {
+                if v.is_reference {
+                    key.to_string()
+                } else {
+                    v.pipeline_stem()
+                }
+            })
+            .unwrap_or_default()
     };
     let mut charts = Vec::new();
-    let series = |y: &dyn Fn(&Run) -> f64, x: &dyn Fn(&Run, &Variant) -> Option<f64>, sized: bool| -> Vec<Series> {
+    let series = |y: &dyn Fn(&Run) -> f64,
+                  x: &dyn Fn(&Run, &Variant) -> Option<f64>,
+                  sized: bool|
+     -> Vec<Series> {
         groups
             .iter()
             .map(|(key, list)| Series {
@@ -256,7 +289,11 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
                         Some(Point {
                             x: x(r, v)?,
                             y: y(r),
-                            size: if sized { Some(radius(v.memory.peak_bytes)) } else { None },
+                            size: if sized {
+                                Some(radius(v.memory.peak_bytes))
+                            } else {
+                                None
+                            },
                             label: v.sweep_value.clone(),
                         })
                     })
@@ -269,7 +306,11 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
         x_label: cost_label(report).into(),
         y_label: "ꟻLIP mean vs reference".into(),
         note: Some("marker area ∝ peak memory; labels: sweep value".into()),
-        series: series(&|r| r.metrics.flip_mean, &|r, _| Some(cost_ms(&r.timing)), true),
+        series: series(
+            &|r| r.metrics.flip_mean,
+            &|r, _| Some(cost_ms(&r.timing)),
+            true,
+        ),
     }));
     if let Some(sw) = &report.sweep {
         let (xs, numeric) = sweep_x(&sw.values);
@@ -277,9 +318,17 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
             let val = v.sweep_value.as_ref()?;
             sw.values.iter().position(|s| s == val).map(|i| xs[i])
         };
-        let x_label = if numeric { sw.key.clone() } else { format!("{} (index: {})", sw.key, sw.values.join(", ")) };
+        let x_label = if numeric {
+            sw.key.clone()
+        } else {
+            format!("{} (index: {})", sw.key, sw.values.join(", "))
+        };
         for (title, y_label, y) in [
-            ("ꟻLIP mean", "ꟻLIP mean vs reference", &(|r: &Run| r.metrics.flip_mean) as &dyn Fn(&Run) -> f64),
+            (
+                "ꟻLIP mean",
+                "ꟻLIP mean vs reference",
+                &(|r: &Run| r.metrics.flip_mean) as &dyn Fn(&Run) -> f64,
+            ),
             ("RMSE", "RMSE (sRGB 0..1)", &|r: &Run| r.metrics.rmse),
             ("cost", cost_label(report), &|r: &Run| cost_ms(&r.timing)),
         ] {
@@ -288,7 +337,10 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
                 x_label: x_label.clone(),
                 y_label: y_label.into(),
                 note: None,
-                series: series(y, &x_of, false).into_iter().filter(|s| !s.points.is_empty()).collect(),
+                series: series(y, &x_of, false)
+                    .into_iter()
+                    .filter(|s| !s.points.is_empty())
+                    .collect(),
             }));
         }
     }
@@ -298,7 +350,10 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
 impl Variant {
     /// The pipeline's file stem (`forward` for `pipelines/forward.toml`).
     pub fn pipeline_stem(&self) -> String {
-        std::path::Path::new(&self.pipeline).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| self.pipeline.clone())
+        std::path::Path::new(&self.pipeline)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| self.pipeline.clone())
     }
 }
 
@@ -361,7 +416,12 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         h,
         "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>plait ab report</title><style>{CSS}</style></head><body>"
     );
-    let _ = write!(h, "<h1>plait ab: {} variant(s) vs <code>{}</code></h1>", report.variants.iter().filter(|v| !v.is_reference).count(), escape(&p.reference));
+    let _ = write!(
+        h,
+        "<h1>plait ab: {} variant(s) vs <code>{}</code></h1>",
+        report.variants.iter().filter(|v| !v.is_reference).count(),
+        escape(&p.reference)
+    );
     let _ = write!(
         h,
         "<p class=\"note\">{}×{} px, {} timed repeat(s) per variant after {} warm-up frame(s), {} order, on {} ({}). Metrics: {}</p>",
@@ -381,7 +441,9 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         // Summary table.
         h.push_str("<table><tr><th class=l>variant</th><th class=l>sweep</th><th>frame ms (median)</th><th class=l>spread min–max (IQR)</th><th>wall ms</th><th>peak MiB</th><th>unpooled MiB</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>ꟻLIP</th></tr>");
         for run in &scene.runs {
-            let Some(v) = report.variant(&run.variant) else { continue };
+            let Some(v) = report.variant(&run.variant) else {
+                continue;
+            };
             let m = &run.metrics;
             let _ = write!(
                 h,
@@ -403,9 +465,16 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         h.push_str("</table>");
 
         // Images.
-        let _ = write!(h, "<h3>Images</h3><div class=grid><figure><img class=img src=\"{}\" alt=\"reference\"><figcaption><b>reference</b>: {}</figcaption></figure></div>", escape(&scene.reference_image), escape(&p.reference));
+        let _ = write!(
+            h,
+            "<h3>Images</h3><div class=grid><figure><img class=img src=\"{}\" alt=\"reference\"><figcaption><b>reference</b>: {}</figcaption></figure></div>",
+            escape(&scene.reference_image),
+            escape(&p.reference)
+        );
         for run in &scene.runs {
-            let Some(v) = report.variant(&run.variant) else { continue };
+            let Some(v) = report.variant(&run.variant) else {
+                continue;
+            };
             if v.is_reference {
                 continue;
             }
@@ -443,15 +512,35 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         // Per-pass times.
         h.push_str("<h3>Per-pass GPU time (ms)</h3><table><tr><th class=l>variant</th><th class=l>pass</th><th class=l>type</th><th>median</th><th>min</th><th>max</th><th>q1</th><th>q3</th></tr>");
         for run in &scene.runs {
-            let Some(v) = report.variant(&run.variant) else { continue };
-            let rows = run.timing.passes.iter().map(|ps| (ps.name.as_str(), ps.type_name.as_str(), &ps.gpu_ms)).chain(std::iter::once(("frame", "", &run.timing.total_gpu_ms)));
+            let Some(v) = report.variant(&run.variant) else {
+                continue;
+            };
+            let rows = run
+                .timing
+                .passes
+                .iter()
+                .map(|ps| (ps.name.as_str(), ps.type_name.as_str(), &ps.gpu_ms))
+                .chain(std::iter::once(("frame", "", &run.timing.total_gpu_ms)));
             for (name, ty, s) in rows {
                 let cells = match s {
-                    Some(s) => format!("<td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td>", s.median, s.min, s.max, s.q1, s.q3),
+                    Some(s) => format!(
+                        "<td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td>",
+                        s.median, s.min, s.max, s.q1, s.q3
+                    ),
                     None => "<td colspan=5>n/a (no timestamp queries)</td>".into(),
                 };
-                let bold = if name == "frame" { " style=\"font-weight:bold\"" } else { "" };
-                let _ = write!(h, "<tr{bold}><td class=l>{}</td><td class=l>{}</td><td class=l>{}</td>{cells}</tr>", escape(&v.label), escape(name), escape(ty));
+                let bold = if name == "frame" {
+                    " style=\"font-weight:bold\""
+                } else {
+                    ""
+                };
+                let _ = write!(
+                    h,
+                    "<tr{bold}><td class=l>{}</td><td class=l>{}</td><td class=l>{}</td>{cells}</tr>",
+                    escape(&v.label),
+                    escape(name),
+                    escape(ty)
+                );
             }
         }
         h.push_str("</table>");
@@ -460,7 +549,9 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         h.push_str("<h3>Self-shadowing visibility</h3>");
         let mut any = false;
         for run in &scene.runs {
-            let (Some(vis), Some(v)) = (&run.visibility, report.variant(&run.variant)) else { continue };
+            let (Some(vis), Some(v)) = (&run.visibility, report.variant(&run.variant)) else {
+                continue;
+            };
             any = true;
             let _ = write!(
                 h,
@@ -475,14 +566,30 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
                 let line = |name: &str, ys: &[f64]| Series {
                     name: name.into(),
                     line: true,
-                    points: c.depth.iter().zip(ys).map(|(&x, &y)| Point { x, y, size: Some(2.0), label: None }).collect(),
+                    points: c
+                        .depth
+                        .iter()
+                        .zip(ys)
+                        .map(|(&x, &y)| Point {
+                            x,
+                            y,
+                            size: Some(2.0),
+                            label: None,
+                        })
+                        .collect(),
                 };
                 h.push_str(&svg(&Chart {
-                    title: format!("{}: light uv ({:.2}, {:.2})", v.label, c.light_uv[0], c.light_uv[1]),
+                    title: format!(
+                        "{}: light uv ({:.2}, {:.2})",
+                        v.label, c.light_uv[0], c.light_uv[1]
+                    ),
                     x_label: "light depth (NDC)".into(),
                     y_label: "visibility".into(),
                     note: None,
-                    series: vec![line(&format!("reference ({})", vis.reference_provider), &c.exact), line(&v.label, &c.approx)],
+                    series: vec![
+                        line(&format!("reference ({})", vis.reference_provider), &c.exact),
+                        line(&v.label, &c.approx),
+                    ],
                 }));
             }
             h.push_str("</div>");
@@ -520,34 +627,70 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     // Graphs.
     h.push_str("<h2>Pipelines</h2>");
     for (id, graph) in graphs {
-        let label = report.variant(id).map(|v| v.label.clone()).unwrap_or_else(|| id.clone());
-        let _ = write!(h, "<h4>{}</h4><div class=graph>{}</div>", escape(&label), strip_xml_prolog(graph));
+        let label = report
+            .variant(id)
+            .map(|v| v.label.clone())
+            .unwrap_or_else(|| id.clone());
+        let _ = write!(
+            h,
+            "<h4>{}</h4><div class=graph>{}</div>",
+            escape(&label),
+            strip_xml_prolog(graph)
+        );
     }
 
     // Provenance.
     h.push_str("<h2>Provenance</h2><table>");
     let row = |h: &mut String, k: &str, v: &str| {
-        let _ = write!(h, "<tr><th class=l>{}</th><td class=l><code>{}</code></td></tr>", escape(k), escape(v));
+        let _ = write!(
+            h,
+            "<tr><th class=l>{}</th><td class=l><code>{}</code></td></tr>",
+            escape(k),
+            escape(v)
+        );
     };
     row(&mut h, "plait version", &p.plait_version);
-    row(&mut h, "adapter", &format!("{} ({}; {} {})", p.adapter.name, p.adapter.backend, p.adapter.driver, p.adapter.driver_info));
-    row(&mut h, "GPU timestamps", if p.timestamps { "yes" } else { "no" });
+    row(
+        &mut h,
+        "adapter",
+        &format!(
+            "{} ({}; {} {})",
+            p.adapter.name, p.adapter.backend, p.adapter.driver, p.adapter.driver_info
+        ),
+    );
+    row(
+        &mut h,
+        "GPU timestamps",
+        if p.timestamps { "yes" } else { "no" },
+    );
     row(&mut h, "command", &p.command_line);
     row(&mut h, "working directory", &p.working_directory);
     row(&mut h, "--set", &p.sets.join(" "));
     if let Some(sw) = &report.sweep {
-        row(&mut h, "--sweep", &format!("{}={}", sw.key, sw.values.join(",")));
+        row(
+            &mut h,
+            "--sweep",
+            &format!("{}={}", sw.key, sw.values.join(",")),
+        );
     }
     for s in &p.scenes {
         row(&mut h, "scene", &format!("{}  sha256 {}", s.path, s.sha256));
     }
     for pp in &p.pipelines {
         for f in pp.files.iter().chain(&pp.shaders) {
-            row(&mut h, &format!("{} file", pp.path), &format!("{}  sha256 {}", f.path, f.sha256));
+            row(
+                &mut h,
+                &format!("{} file", pp.path),
+                &format!("{}  sha256 {}", f.path, f.sha256),
+            );
         }
     }
     for f in &p.builtin_shaders {
-        row(&mut h, "built-in shader", &format!("{}  sha256 {}", f.path, f.sha256));
+        row(
+            &mut h,
+            "built-in shader",
+            &format!("{}  sha256 {}", f.path, f.sha256),
+        );
     }
     h.push_str("</table><p class=note>Every number above is in report.json.</p>");
     let _ = write!(h, "<script>{JS}</script></body></html>");
@@ -578,7 +721,12 @@ mod tests {
             sweep_value: sweep.map(str::to_string),
             sets: vec![],
             schedule_name: "forward".into(),
-            memory: Memory { peak_bytes: 1 << 20, unpooled_bytes: 2 << 20, allocations: 2, resources: vec![] },
+            memory: Memory {
+                peak_bytes: 1 << 20,
+                unpooled_bytes: 2 << 20,
+                allocations: 2,
+                resources: vec![],
+            },
             graph_svg: None,
         };
         let run = |id: &str, flip: f64| Run {
@@ -587,15 +735,31 @@ mod tests {
             diff_image: "d.png".into(),
             diff_scale: 1.0,
             flip_image: "f.png".into(),
-            timing: Timing { total_gpu_ms: Some(stats(2.0)), wall_ms: stats(3.0), passes: vec![PassStats { name: "p".into(), type_name: "t".into(), gpu_ms: None }] },
-            metrics: Metrics { flip_mean: flip, ..Metrics::default() },
+            timing: Timing {
+                total_gpu_ms: Some(stats(2.0)),
+                wall_ms: stats(3.0),
+                passes: vec![PassStats {
+                    name: "p".into(),
+                    type_name: "t".into(),
+                    gpu_ms: None,
+                }],
+            },
+            metrics: Metrics {
+                flip_mean: flip,
+                ..Metrics::default()
+            },
             visibility: None,
         };
         Report {
             schema: SCHEMA.into(),
             provenance: Provenance {
                 plait_version: "0.1.0".into(),
-                adapter: Adapter { name: "lavapipe".into(), backend: "vulkan".into(), driver: String::new(), driver_info: String::new() },
+                adapter: Adapter {
+                    name: "lavapipe".into(),
+                    backend: "vulkan".into(),
+                    driver: String::new(),
+                    driver_info: String::new(),
+                },
                 timestamps: true,
                 command: vec!["plait".into()],
                 command_line: "plait ab <x>".into(),
@@ -612,16 +776,31 @@ mod tests {
                 scenes: vec![],
                 unix_time: 0,
             },
-            sweep: Some(Sweep { key: "params.x".into(), values: vec!["1".into(), "2".into()] }),
-            variants: vec![variant("reference", true, None), variant("a@1", false, Some("1")), variant("a@2", false, Some("2"))],
-            scenes: vec![SceneResult { name: "s".into(), path: None, reference_image: "r.png".into(), runs: vec![run("reference", 0.0), run("a@1", 0.2), run("a@2", 0.1)] }],
+            sweep: Some(Sweep {
+                key: "params.x".into(),
+                values: vec!["1".into(), "2".into()],
+            }),
+            variants: vec![
+                variant("reference", true, None),
+                variant("a@1", false, Some("1")),
+                variant("a@2", false, Some("2")),
+            ],
+            scenes: vec![SceneResult {
+                name: "s".into(),
+                path: None,
+                reference_image: "r.png".into(),
+                runs: vec![run("reference", 0.0), run("a@1", 0.2), run("a@2", 0.1)],
+            }],
         }
     }
 
     #[test]
     fn html_is_self_contained_and_escaped() {
         let r = sample();
-        let page = html(&r, &[("a@1".into(), "<?xml version=\"1.0\"?><svg></svg>".into())]);
+        let page = html(
+            &r,
+            &[("a@1".into(), "<?xml version=\"1.0\"?><svg></svg>".into())],
+        );
         assert!(page.contains("plait ab &lt;x&gt;"));
         assert!(!page.contains("<?xml"));
         assert!(!page.contains("<script src") && !page.contains("<link"));

@@ -31,12 +31,20 @@ pub fn key(parts: &[&dyn std::fmt::Debug]) -> u64 {
 
 impl PipelineCache {
     /// The cached render pipeline for `key`, or the one `make` builds.
-    pub fn render(&self, key: u64, make: impl FnOnce() -> wgpu::RenderPipeline) -> wgpu::RenderPipeline {
+    pub fn render(
+        &self,
+        key: u64,
+        make: impl FnOnce() -> wgpu::RenderPipeline,
+    ) -> wgpu::RenderPipeline {
         self.get_or_make(&self.render, key, make)
     }
 
     /// The cached compute pipeline for `key`, or the one `make` builds.
-    pub fn compute(&self, key: u64, make: impl FnOnce() -> wgpu::ComputePipeline) -> wgpu::ComputePipeline {
+    pub fn compute(
+        &self,
+        key: u64,
+        make: impl FnOnce() -> wgpu::ComputePipeline,
+    ) -> wgpu::ComputePipeline {
         self.get_or_make(&self.compute, key, make)
     }
 
@@ -45,7 +53,12 @@ impl PipelineCache {
         self.hits.lock().map(|h| *h).unwrap_or(0)
     }
 
-    fn get_or_make<P: Clone>(&self, map: &Mutex<HashMap<u64, P>>, key: u64, make: impl FnOnce() -> P) -> P {
+    fn get_or_make<P: Clone>(
+        &self,
+        map: &Mutex<HashMap<u64, P>>,
+        key: u64,
+        make: impl FnOnce() -> P,
+    ) -> P {
         if let Some(p) = map.lock().ok().and_then(|m| m.get(&key).cloned()) {
             if let Ok(mut h) = self.hits.lock() {
                 *h += 1;

@@ -72,7 +72,9 @@ impl Gpu {
             }
         }
         let Some(adapter) = found else {
-            return Err(GpuError::NoAdapter(format!("{NO_ADAPTER_HELP} ({last_error})")));
+            return Err(GpuError::NoAdapter(format!(
+                "{NO_ADAPTER_HELP} ({last_error})"
+            )));
         };
         let info = adapter.get_info();
         let available = adapter.features();
@@ -87,7 +89,11 @@ impl Gpu {
             for name in list.split(',').map(str::trim).filter(|n| !n.is_empty()) {
                 match wgpu::Features::from_name(name) {
                     Some(f) => features.remove(f),
-                    None => return Err(GpuError::Device(format!("PLAIT_DISABLE_FEATURES: unknown feature `{name}`"))),
+                    None => {
+                        return Err(GpuError::Device(format!(
+                            "PLAIT_DISABLE_FEATURES: unknown feature `{name}`"
+                        )));
+                    }
                 }
             }
         }
@@ -120,7 +126,15 @@ impl Gpu {
             float32_blendable: features.contains(wgpu::Features::FLOAT32_BLENDABLE),
             max_texture_dimension: limits.max_texture_dimension_2d,
         };
-        Ok(Gpu { adapter, device, queue, info, capabilities, pipelines: Default::default(), uncaptured })
+        Ok(Gpu {
+            adapter,
+            device,
+            queue,
+            info,
+            capabilities,
+            pipelines: Default::default(),
+            uncaptured,
+        })
     }
 
     /// `llvmpipe (LLVM 15.0.6, 256 bits)`.
@@ -144,7 +158,10 @@ impl Gpu {
 
     /// GPU errors raised outside any error scope since the last call.
     pub fn take_uncaptured_errors(&self) -> Vec<String> {
-        self.uncaptured.lock().map(|mut l| std::mem::take(&mut *l)).unwrap_or_default()
+        self.uncaptured
+            .lock()
+            .map(|mut l| std::mem::take(&mut *l))
+            .unwrap_or_default()
     }
 
     /// Wait for all submitted work.

@@ -84,7 +84,10 @@ impl<'g> Renderer<'g> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pool = ResourcePool::new(device, &schedule);
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Resource { resource: "memory plan".into(), message: crate::describe_wgpu_error(&e) });
+            return Err(GpuError::Resource {
+                resource: "memory plan".into(),
+                message: crate::describe_wgpu_error(&e),
+            });
         }
         let frame_layout = frame_layout(device);
         let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -102,8 +105,16 @@ impl<'g> Renderer<'g> {
         };
         let linear = sampler(wgpu::FilterMode::Linear, None);
         let nearest = sampler(wgpu::FilterMode::Nearest, None);
-        let shadow = sampler(wgpu::FilterMode::Linear, Some(wgpu::CompareFunction::LessEqual));
-        let frame_group = FrameGroup { layout: frame_layout, linear, nearest, shadow };
+        let shadow = sampler(
+            wgpu::FilterMode::Linear,
+            Some(wgpu::CompareFunction::LessEqual),
+        );
+        let frame_group = FrameGroup {
+            layout: frame_layout,
+            linear,
+            nearest,
+            shadow,
+        };
         let frame_bind_group = frame_group.bind(device, &frame_buffer, &background_view(gpu, None));
         let mut shaders = ShaderLibrary::new()?;
         let mut passes = Vec::with_capacity(schedule.passes.len());
@@ -126,7 +137,10 @@ impl<'g> Renderer<'g> {
             };
             passes.push(t.build(pass, &mut ctx)?);
             if let Some(message) = gpu.take_uncaptured_errors().into_iter().next() {
-                return Err(GpuError::Validation { pass: pass.name.clone(), message });
+                return Err(GpuError::Validation {
+                    pass: pass.name.clone(),
+                    message,
+                });
             }
         }
         let timestamps = gpu.capabilities.timestamps.then(|| {
@@ -153,7 +167,18 @@ impl<'g> Renderer<'g> {
                 period_ns: gpu.queue.get_timestamp_period(),
             }
         });
-        Ok(Renderer { gpu, schedule, pool, geometry, frame_buffer, frame_group, frame_bind_group, passes, timestamps, notes })
+        Ok(Renderer {
+            gpu,
+            schedule,
+            pool,
+            geometry,
+            frame_buffer,
+            frame_group,
+            frame_bind_group,
+            passes,
+            timestamps,
+            notes,
+        })
     }
 
     pub fn schedule(&self) -> &Schedule {
@@ -170,19 +195,25 @@ impl<'g> Renderer<'g> {
     /// says the background is an image.
     pub fn set_background_image(&mut self, image: &image::RgbaImage) {
         let view = background_view(self.gpu, Some(image));
-        self.frame_bind_group = self.frame_group.bind(&self.gpu.device, &self.frame_buffer, &view);
+        self.frame_bind_group = self
+            .frame_group
+            .bind(&self.gpu.device, &self.frame_buffer, &view);
     }
 
     /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
     pub fn set_frame(&self, frame: &FrameUniforms) {
-        self.gpu.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
+        self.gpu
+            .queue
+            .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
     }
 
     /// Render one frame and wait for it; per-pass GPU times when the adapter has timestamps.
     pub fn render(&self) -> Result<FrameReport, GpuError> {
         let device = &self.gpu.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(&self.schedule.name) });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some(&self.schedule.name),
+        });
         let ctx = RecordContext {
             device,
             queue: &self.gpu.queue,
@@ -210,15 +241,29 @@ impl<'g> Renderer<'g> {
         self.gpu.queue.submit([encoder.finish()]);
         self.gpu.wait()?;
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Validation { pass: self.schedule.name.clone(), message: crate::describe_wgpu_error(&e) });
+            return Err(GpuError::Validation {
+                pass: self.schedule.name.clone(),
+                message: crate::describe_wgpu_error(&e),
+            });
         }
         if let Some(message) = self.gpu.take_uncaptured_errors().into_iter().next() {
-            return Err(GpuError::Validation { pass: self.schedule.name.clone(), message });
+            return Err(GpuError::Validation {
+                pass: self.schedule.name.clone(),
+                message,
+            });
         }
         let mut times: Option<Vec<u64>> = None;
         if let Some(ts) = &self.timestamps {
-            let bytes = map_buffer(device, &ts.readback).map_err(|message| GpuError::Readback { resource: "timestamps".into(), message })?;
-            times = Some(bytes.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8]))).collect());
+            let bytes = map_buffer(device, &ts.readback).map_err(|message| GpuError::Readback {
+                resource: "timestamps".into(),
+                message,
+            })?;
+            times = Some(
+                bytes
+                    .chunks_exact(8)
+                    .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+                    .collect(),
+            );
         }
         let ms = |a: u64, b: u64, period: f32| b.saturating_sub(a) as f64 * period as f64 / 1e6;
         let period = self.timestamps.as_ref().map(|t| t.period_ns).unwrap_or(1.0);
@@ -234,27 +279,59 @@ impl<'g> Renderer<'g> {
                 stats: self.passes[i].stats(),
             })
             .collect();
-        let total_gpu_ms = times.as_ref().map(|t| ms(t[0], t[self.passes.len()], period));
-        Ok(FrameReport { passes, total_gpu_ms })
+        let total_gpu_ms = times
+            .as_ref()
+            .map(|t| ms(t[0], t[self.passes.len()], period));
+        Ok(FrameReport {
+            passes,
+            total_gpu_ms,
+        })
     }
 
     /// Read a texture resource back (layer 0; multisampled textures cannot be read).
     pub fn read_resource(&self, name: &str) -> Result<TexelData, GpuError> {
-        let id = self.schedule.resource(name).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "no such resource".into() })?;
-        let ResourceDesc::Texture { format, samples, .. } = self.schedule.resources[id].desc else {
-            return Err(GpuError::Readback { resource: name.into(), message: "only textures can be read back as images".into() });
+        let id = self
+            .schedule
+            .resource(name)
+            .ok_or_else(|| GpuError::Readback {
+                resource: name.into(),
+                message: "no such resource".into(),
+            })?;
+        let ResourceDesc::Texture {
+            format, samples, ..
+        } = self.schedule.resources[id].desc
+        else {
+            return Err(GpuError::Readback {
+                resource: name.into(),
+                message: "only textures can be read back as images".into(),
+            });
         };
         if samples > 1 {
-            return Err(GpuError::Readback { resource: name.into(), message: "a multisampled texture must be resolved first".into() });
+            return Err(GpuError::Readback {
+                resource: name.into(),
+                message: "a multisampled texture must be resolved first".into(),
+            });
         }
-        let (texture, _) = self.pool.texture(id).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "not a texture".into() })?;
+        let (texture, _) = self.pool.texture(id).ok_or_else(|| GpuError::Readback {
+            resource: name.into(),
+            message: "not a texture".into(),
+        })?;
         read_texture(&self.gpu.device, &self.gpu.queue, texture, format, name)
     }
 
     /// Read a buffer resource back as bytes.
     pub fn read_buffer(&self, name: &str) -> Result<Vec<u8>, GpuError> {
-        let id = self.schedule.resource(name).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "no such resource".into() })?;
-        let buffer = self.pool.buffer(id).ok_or_else(|| GpuError::Readback { resource: name.into(), message: "not a buffer".into() })?;
+        let id = self
+            .schedule
+            .resource(name)
+            .ok_or_else(|| GpuError::Readback {
+                resource: name.into(),
+                message: "no such resource".into(),
+            })?;
+        let buffer = self.pool.buffer(id).ok_or_else(|| GpuError::Readback {
+            resource: name.into(),
+            message: "not a buffer".into(),
+        })?;
         let device = &self.gpu.device;
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("buffer readback"),
@@ -265,26 +342,45 @@ impl<'g> Renderer<'g> {
         let mut encoder = device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
         self.gpu.queue.submit([encoder.finish()]);
-        map_buffer(device, &staging).map_err(|message| GpuError::Readback { resource: name.into(), message })
+        map_buffer(device, &staging).map_err(|message| GpuError::Readback {
+            resource: name.into(),
+            message,
+        })
     }
 }
 
 /// Blending into 32-bit float targets needs `FLOAT32_BLENDABLE`. Without it,
 /// every such target (and every resource sharing its memory) becomes the
 /// 16-bit float format with the same channels, and a note says so.
-fn downgrade_float32_blending(schedule: &mut Schedule, library: &PassLibrary, caps: &crate::Capabilities) -> Vec<String> {
+fn downgrade_float32_blending(
+    schedule: &mut Schedule,
+    library: &PassLibrary,
+    caps: &crate::Capabilities,
+) -> Vec<String> {
     use plait_graph::{Access, Format};
     if caps.float32_blendable {
         return Vec::new();
     }
     let mut physical_to_downgrade = Vec::new();
     for pass in &schedule.passes {
-        let Some(t) = library.get(&pass.type_name) else { continue };
-        let Ok(state) = t.raster_state(pass, caps) else { continue };
-        for (i, b) in pass.writes.iter().filter(|b| b.access == Access::ColorTarget).enumerate() {
+        let Some(t) = library.get(&pass.type_name) else {
+            continue;
+        };
+        let Ok(state) = t.raster_state(pass, caps) else {
+            continue;
+        };
+        for (i, b) in pass
+            .writes
+            .iter()
+            .filter(|b| b.access == Access::ColorTarget)
+            .enumerate()
+        {
             let blended = state.blend.get(i).copied().flatten().is_some();
             let res = &schedule.resources[b.resource];
-            if let ResourceDesc::Texture { format: Format::R32Float | Format::Rg32Float | Format::Rgba32Float, .. } = res.desc
+            if let ResourceDesc::Texture {
+                format: Format::R32Float | Format::Rg32Float | Format::Rgba32Float,
+                ..
+            } = res.desc
                 && blended
             {
                 physical_to_downgrade.push((res.physical, pass.name.clone()));
@@ -300,7 +396,10 @@ fn downgrade_float32_blending(schedule: &mut Schedule, library: &PassLibrary, ca
     for (physical, pass) in physical_to_downgrade {
         let phys = &mut schedule.physical[physical];
         if let ResourceDesc::Texture { format, .. } = &mut phys.desc {
-            if !matches!(format, Format::R32Float | Format::Rg32Float | Format::Rgba32Float) {
+            if !matches!(
+                format,
+                Format::R32Float | Format::Rg32Float | Format::Rgba32Float
+            ) {
                 continue;
             }
             let from = *format;
@@ -331,16 +430,36 @@ struct FrameGroup {
 }
 
 impl FrameGroup {
-    fn bind(&self, device: &wgpu::Device, frame: &wgpu::Buffer, background: &wgpu::TextureView) -> wgpu::BindGroup {
+    fn bind(
+        &self,
+        device: &wgpu::Device,
+        frame: &wgpu::Buffer,
+        background: &wgpu::TextureView,
+    ) -> wgpu::BindGroup {
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("plait frame"),
             layout: &self.layout,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: frame.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&self.linear) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&self.nearest) },
-                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.shadow) },
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(background) },
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: frame.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.linear),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&self.nearest),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.shadow),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::TextureView(background),
+                },
             ],
         })
     }
@@ -355,7 +474,11 @@ fn background_view(gpu: &Gpu, image: Option<&image::RgbaImage>) -> wgpu::Texture
         &gpu.queue,
         &wgpu::TextureDescriptor {
             label: Some("background image"),
-            size: wgpu::Extent3d { width: image.width(), height: image.height(), depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width: image.width(),
+                height: image.height(),
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,

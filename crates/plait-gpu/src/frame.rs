@@ -1,8 +1,8 @@
 //! The frame's standard inputs (group 0 of every pass), computed from the scene.
 
 use glam::{Mat4, Vec3};
-use plait_hair::{Aabb, Strands};
 use plait_hair::scene::{Background, LightKind, Scene};
+use plait_hair::{Aabb, Strands};
 
 /// Mirrors `struct Frame` in `shaders/lib/frame.wgsl`; every member is 16-byte
 /// aligned so the Rust and WGSL layouts agree without padding rules.
@@ -39,7 +39,13 @@ fn v4(v: Vec3, w: f32) -> [f32; 4] {
 impl FrameUniforms {
     /// Standard inputs for rendering `scene` at `size`, with light maps fitted to
     /// the hair (occluders) and the whole scene (receivers).
-    pub fn new(scene: &Scene, strands: &Strands, scene_bounds: Aabb, size: (u32, u32), frame_index: u32) -> Self {
+    pub fn new(
+        scene: &Scene,
+        strands: &Strands,
+        scene_bounds: Aabb,
+        size: (u32, u32),
+        frame_index: u32,
+    ) -> Self {
         let hair_bounds = strands.bounds();
         let mean_alpha = if strands.alpha.is_empty() {
             1.0
@@ -78,7 +84,12 @@ impl FrameUniforms {
             hair_shading: [m.diffuse, m.specular, m.specular_exponent, m.specular_shift],
             background: v4(background, background_is_image),
             ambient: v4(Vec3::splat(scene.ambient), 1.0),
-            screen_size: [size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32],
+            screen_size: [
+                size.0 as f32,
+                size.1 as f32,
+                1.0 / size.0 as f32,
+                1.0 / size.1 as f32,
+            ],
             jitter: [0.0, 0.0, 0.0, frame_index as f32],
             near_far: [scene.camera.near, scene.camera.far, light.near, light.far],
             hair_stats: [
@@ -114,19 +125,34 @@ impl LightFrustum {
         let radius = all.extent().length().max(1e-3);
         let to_light = scene.light.direction_to_light().normalize_or(Vec3::Y);
         let (eye, forward) = match &scene.light.kind {
-            LightKind::Directional { .. } => (occluders.center() + to_light * radius * 2.0, -to_light),
+            LightKind::Directional { .. } => {
+                (occluders.center() + to_light * radius * 2.0, -to_light)
+            }
             LightKind::Spot { position, .. } => {
                 let p = Vec3::from(*position);
                 (p, (occluders.center() - p).normalize_or(-to_light))
             }
         };
-        let up = if forward.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
+        let up = if forward.cross(Vec3::Y).length_squared() < 1e-6 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
         let view = Mat4::look_to_rh(eye, forward, up);
         let to_view = |p: Vec3| view.transform_point3(p);
         let occ: Vec<Vec3> = occluders.corners().into_iter().map(to_view).collect();
         let rec: Vec<Vec3> = receivers.corners().into_iter().map(to_view).collect();
-        let near = occ.iter().map(|p| -p.z).fold(f32::INFINITY, f32::min).max(1e-3);
-        let far = rec.iter().chain(occ.iter()).map(|p| -p.z).fold(0.0, f32::max).max(near + 1e-3);
+        let near = occ
+            .iter()
+            .map(|p| -p.z)
+            .fold(f32::INFINITY, f32::min)
+            .max(1e-3);
+        let far = rec
+            .iter()
+            .chain(occ.iter())
+            .map(|p| -p.z)
+            .fold(0.0, f32::max)
+            .max(near + 1e-3);
         let projection = match &scene.light.kind {
             LightKind::Directional { .. } => {
                 let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
@@ -149,6 +175,11 @@ impl LightFrustum {
                 Mat4::perspective_rh(fov, 1.0, near, far)
             }
         };
-        LightFrustum { view, projection, near, far }
+        LightFrustum {
+            view,
+            projection,
+            near,
+            far,
+        }
     }
 }

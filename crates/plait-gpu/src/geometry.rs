@@ -1,7 +1,7 @@
 //! Scene geometry on the GPU: hair as a line list, opaque meshes as one triangle list.
 
 use plait_hair::mesh::Mesh;
-use plait_hair::{Strands, StrandVertex};
+use plait_hair::{StrandVertex, Strands};
 use wgpu::util::DeviceExt;
 
 /// An opaque vertex with its mesh's albedo baked in, so all opaque geometry is one draw.
@@ -54,7 +54,12 @@ pub struct SceneGeometry {
     pub segment_count: u32,
 }
 
-fn upload<V: bytemuck::Pod>(device: &wgpu::Device, label: &str, vertices: &[V], indices: &[u32]) -> Option<DrawBuffers> {
+fn upload<V: bytemuck::Pod>(
+    device: &wgpu::Device,
+    label: &str,
+    vertices: &[V],
+    indices: &[u32],
+) -> Option<DrawBuffers> {
     if indices.is_empty() {
         return None;
     }
@@ -68,7 +73,11 @@ fn upload<V: bytemuck::Pod>(device: &wgpu::Device, label: &str, vertices: &[V], 
         contents: bytemuck::cast_slice(indices),
         usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
     });
-    Some(DrawBuffers { vertices, indices: index_buffer, index_count: indices.len() as u32 })
+    Some(DrawBuffers {
+        vertices,
+        indices: index_buffer,
+        index_count: indices.len() as u32,
+    })
 }
 
 impl SceneGeometry {

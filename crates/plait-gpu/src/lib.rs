@@ -26,7 +26,11 @@ pub enum GpuError {
     #[error("could not open the GPU device: {0}")]
     Device(String),
     #[error("pass `{pass}` needs the GPU feature {feature}, which adapter `{adapter}` lacks")]
-    MissingFeature { pass: String, feature: String, adapter: String },
+    MissingFeature {
+        pass: String,
+        feature: String,
+        adapter: String,
+    },
     #[error("resource `{resource}`: {message}")]
     Resource { resource: String, message: String },
     #[error("pass `{pass}`: {message}")]

@@ -17,8 +17,8 @@ use std::path::{Path, PathBuf};
 
 use indexmap::IndexMap;
 use plait_graph::{
-    Access, Error as GraphError, ErrorKind, Format, Location, PassShape, PassTypeSpec, ResourceDesc,
-    ResourceKind, Schedule, ScheduledPass, Value,
+    Access, Error as GraphError, ErrorKind, Format, Location, PassShape, PassTypeSpec,
+    ResourceDesc, ResourceKind, Schedule, ScheduledPass, Value,
 };
 
 use crate::frame::FRAME_UNIFORMS_SIZE;
@@ -75,8 +75,16 @@ impl Default for RasterState {
 
 /// Additive blending of colour and alpha (accumulation targets).
 pub const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::One, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
-    alpha: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::One, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
 };
 
 /// A WGSL source compiled into the pass library: `(path for messages, text)`.
@@ -96,7 +104,11 @@ pub trait PassType: Send + Sync {
     }
 
     /// Pipeline state of a raster or fullscreen pass.
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
         Ok(RasterState::default())
     }
 
@@ -108,7 +120,11 @@ pub trait PassType: Send + Sync {
 
     /// Build the GPU objects of a pass. Types with loops of their own
     /// (depth peeling, k-means) override this; most use the default.
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         build_shader_pass(self, pass, ctx)
     }
 }
@@ -192,7 +208,9 @@ pub fn default_defines(pass: &ScheduledPass) -> Vec<(String, Define)> {
     let mut out = Vec::new();
     for (k, v) in &pass.params {
         match v {
-            Value::Int(i) if *i >= 0 && *i <= u32::MAX as i64 => out.push((upper(k), Define::UInt(*i as u32))),
+            Value::Int(i) if *i >= 0 && *i <= u32::MAX as i64 => {
+                out.push((upper(k), Define::UInt(*i as u32)))
+            }
             Value::Int(i) => out.push((upper(k), Define::Int(*i as i32))),
             Value::Bool(b) => out.push((upper(k), Define::Bool(*b))),
             // `visibility = "modified_shadow_map"` → `#ifdef VISIBILITY_MODIFIED_SHADOW_MAP`.
@@ -207,19 +225,34 @@ pub fn default_defines(pass: &ScheduledPass) -> Vec<(String, Define)> {
 }
 
 pub fn default_threads(pass: &ScheduledPass, schedule: &Schedule) -> [u32; 3] {
-    match pass.writes.first().map(|b| &schedule.resources[b.resource].desc) {
-        Some(ResourceDesc::Texture { width, height, layers, .. }) => [*width, *height, *layers],
+    match pass
+        .writes
+        .first()
+        .map(|b| &schedule.resources[b.resource].desc)
+    {
+        Some(ResourceDesc::Texture {
+            width,
+            height,
+            layers,
+            ..
+        }) => [*width, *height, *layers],
         Some(ResourceDesc::Buffer { size }) => [(size / 4).min(u32::MAX as u64) as u32, 1, 1],
         None => [1, 1, 1],
     }
 }
 
 /// The shader source of a pass: built in, or the file the pipeline names.
-pub fn shader_source(t: &dyn PassType, pass: &ScheduledPass) -> Result<(PathBuf, Cow<'static, str>), (Location, String)> {
+pub fn shader_source(
+    t: &dyn PassType,
+    pass: &ScheduledPass,
+) -> Result<(PathBuf, Cow<'static, str>), (Location, String)> {
     if let Some((path, text)) = t.shader() {
         return Ok((PathBuf::from(path), Cow::Borrowed(text)));
     }
-    let loc = pass.shader_location.clone().unwrap_or_else(|| pass.location.clone());
+    let loc = pass
+        .shader_location
+        .clone()
+        .unwrap_or_else(|| pass.location.clone());
     let Some(path) = &pass.shader else {
         return Err((loc, "needs `shader = \"path.wgsl\"`".into()));
     };
@@ -238,7 +271,15 @@ pub fn check_pass(
     shaders: &mut ShaderLibrary,
 ) -> Vec<GraphError> {
     let mut errors = Vec::new();
-    let err = |loc: &Location, message: String| GraphError::new(loc.clone(), ErrorKind::Pass { pass: pass.name.clone(), message });
+    let err = |loc: &Location, message: String| {
+        GraphError::new(
+            loc.clone(),
+            ErrorKind::Pass {
+                pass: pass.name.clone(),
+                message,
+            },
+        )
+    };
     let (path, source) = match shader_source(t, pass) {
         Ok(s) => s,
         Err((loc, message)) => return vec![err(&loc, message)],
@@ -247,8 +288,17 @@ pub fn check_pass(
     let module = match shaders.compose(&path, &source, &defines) {
         Ok(m) => m,
         Err(e) => {
-            let loc = pass.shader_location.clone().unwrap_or_else(|| pass.location.clone());
-            return vec![GraphError::new(loc, ErrorKind::Shader { path: e.path, message: e.message })];
+            let loc = pass
+                .shader_location
+                .clone()
+                .unwrap_or_else(|| pass.location.clone());
+            return vec![GraphError::new(
+                loc,
+                ErrorKind::Shader {
+                    path: e.path,
+                    message: e.message,
+                },
+            )];
         }
     };
     let spec = t.spec();
@@ -259,11 +309,20 @@ pub fn check_pass(
     }
     // Every shader binding needs a slot, a params uniform or a scene buffer.
     for b in &group1 {
-        let bound = pass.reads.iter().chain(pass.writes.iter()).any(|s| s.slot == b.name);
+        let bound = pass
+            .reads
+            .iter()
+            .chain(pass.writes.iter())
+            .any(|s| s.slot == b.name);
         if !bound && !is_params(b) && !SCENE_BINDINGS.contains(&b.name.as_str()) {
             errors.push(GraphError::new(
                 pass.location.clone(),
-                ErrorKind::MissingBinding { pass: pass.name.clone(), binding: b.name.clone(), group: b.group, index: b.binding },
+                ErrorKind::MissingBinding {
+                    pass: pass.name.clone(),
+                    binding: b.name.clone(),
+                    group: b.group,
+                    index: b.binding,
+                },
             ));
         }
         if !bound
@@ -276,7 +335,12 @@ pub fn check_pass(
     }
     let is_raster = spec.shape != PassShape::Compute;
     let mut color_targets = 0;
-    for (is_write, b) in pass.reads.iter_mut().map(|b| (false, b)).chain(pass.writes.iter_mut().map(|b| (true, b))) {
+    for (is_write, b) in pass
+        .reads
+        .iter_mut()
+        .map(|b| (false, b))
+        .chain(pass.writes.iter_mut().map(|b| (true, b)))
+    {
         let Some(res) = schedule_resources.get(b.resource) else {
             // A culled pass's binding to a resource nothing live uses.
             continue;
@@ -285,40 +349,78 @@ pub fn check_pass(
         match shader_binding {
             None if spec.dynamic_slots => {
                 // Not a shader binding: an attachment of a fullscreen pass.
-                let is_depth = matches!(res.desc, ResourceDesc::Texture { format, .. } if format.is_depth());
+                let is_depth =
+                    matches!(res.desc, ResourceDesc::Texture { format, .. } if format.is_depth());
                 if !is_raster || res.desc.kind() != ResourceKind::Texture {
-                    errors.push(err(&b.location, format!("slot `{}` is not a binding of the shader", b.slot)));
+                    errors.push(err(
+                        &b.location,
+                        format!("slot `{}` is not a binding of the shader", b.slot),
+                    ));
                 } else if is_depth {
                     b.access = Access::DepthTarget;
                 } else if is_write {
                     b.access = Access::ColorTarget;
                     color_targets += 1;
                 } else {
-                    errors.push(err(&b.location, format!("slot `{}` is read but the shader declares no binding of that name", b.slot)));
+                    errors.push(err(
+                        &b.location,
+                        format!(
+                            "slot `{}` is read but the shader declares no binding of that name",
+                            b.slot
+                        ),
+                    ));
                 }
             }
             None => {
                 if !matches!(b.access, Access::ColorTarget | Access::DepthTarget) {
-                    errors.push(err(&b.location, format!("the shader declares no binding named `{}` for this slot", b.slot)));
+                    errors.push(err(
+                        &b.location,
+                        format!(
+                            "the shader declares no binding named `{}` for this slot",
+                            b.slot
+                        ),
+                    ));
                 }
             }
             Some(sb) => {
                 if sb.resource_kind() != Some(res.desc.kind()) {
-                    errors.push(err(&b.location, format!("slot `{}` is bound to {} `{}`, but the shader declares it as {:?}", b.slot, res.desc.kind(), res.name, sb.kind)));
+                    errors.push(err(
+                        &b.location,
+                        format!(
+                            "slot `{}` is bound to {} `{}`, but the shader declares it as {:?}",
+                            b.slot,
+                            res.desc.kind(),
+                            res.name,
+                            sb.kind
+                        ),
+                    ));
                     continue;
                 }
-                if let ResourceDesc::Texture { format, samples, layers, .. } = res.desc {
+                if let ResourceDesc::Texture {
+                    format,
+                    samples,
+                    layers,
+                    ..
+                } = res.desc
+                {
                     if let Err(why) = sb.accepts_format(format) {
-                        errors.push(GraphError::new(b.location.clone(), ErrorKind::FormatMismatch {
-                            resource: res.name.clone(),
-                            declared: format.to_string(),
-                            pass: pass.name.clone(),
-                            slot: b.slot.clone(),
-                            accepted: why,
-                        }));
+                        errors.push(GraphError::new(
+                            b.location.clone(),
+                            ErrorKind::FormatMismatch {
+                                resource: res.name.clone(),
+                                declared: format.to_string(),
+                                pass: pass.name.clone(),
+                                slot: b.slot.clone(),
+                                accepted: why,
+                            },
+                        ));
                     }
                     let (multi, arrayed) = match sb.kind {
-                        BindingKind::Texture { multisampled, arrayed, .. } => (multisampled, arrayed),
+                        BindingKind::Texture {
+                            multisampled,
+                            arrayed,
+                            ..
+                        } => (multisampled, arrayed),
                         BindingKind::StorageTexture { arrayed, .. } => (false, arrayed),
                         _ => (false, false),
                     };
@@ -330,7 +432,13 @@ pub fn check_pass(
                     }
                 }
                 if sb.writes() && !is_write {
-                    errors.push(err(&b.location, format!("the shader writes `{}`; bind it under `writes`, not `reads`", b.slot)));
+                    errors.push(err(
+                        &b.location,
+                        format!(
+                            "the shader writes `{}`; bind it under `writes`, not `reads`",
+                            b.slot
+                        ),
+                    ));
                 }
                 if spec.dynamic_slots {
                     b.access = match sb.kind {
@@ -343,38 +451,70 @@ pub fn check_pass(
             }
         }
     }
-    if spec.dynamic_slots && is_raster && color_targets == 0 && !pass.writes.iter().any(|b| b.access == Access::DepthTarget) && pass.writes.iter().all(|b| b.access != Access::StorageWrite) {
-        errors.push(err(&pass.location, "a fullscreen pass must write at least one target".into()));
+    if spec.dynamic_slots
+        && is_raster
+        && color_targets == 0
+        && !pass.writes.iter().any(|b| b.access == Access::DepthTarget)
+        && pass.writes.iter().all(|b| b.access != Access::StorageWrite)
+    {
+        errors.push(err(
+            &pass.location,
+            "a fullscreen pass must write at least one target".into(),
+        ));
     }
     errors
 }
 
 /// The group 0 layout: frame uniforms, the three samplers, the background image.
 pub fn frame_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let all = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
-    let entry = |binding, ty| wgpu::BindGroupLayoutEntry { binding, visibility: all, ty, count: None };
+    let all =
+        wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
+    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: all,
+        ty,
+        count: None,
+    };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("plait frame"),
         entries: &[
-            entry(0, wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: wgpu::BufferSize::new(FRAME_UNIFORMS_SIZE),
-            }),
-            entry(1, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)),
-            entry(2, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering)),
-            entry(3, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison)),
-            entry(4, wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            }),
+            entry(
+                0,
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(FRAME_UNIFORMS_SIZE),
+                },
+            ),
+            entry(
+                1,
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            ),
+            entry(
+                2,
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering),
+            ),
+            entry(
+                3,
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            ),
+            entry(
+                4,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            ),
         ],
     })
 }
 
 fn filterable(format: Format) -> bool {
-    !matches!(format, Format::R32Float | Format::Rg32Float | Format::Rgba32Float)
+    !matches!(
+        format,
+        Format::R32Float | Format::Rg32Float | Format::Rgba32Float
+    )
 }
 
 /// A pass built from one shader with bindings by name.
@@ -410,22 +550,38 @@ pub enum DrawWhat {
 }
 
 fn pass_error(pass: &ScheduledPass, message: impl Into<String>) -> GpuError {
-    GpuError::Pass { pass: pass.name.clone(), message: message.into() }
+    GpuError::Pass {
+        pass: pass.name.clone(),
+        message: message.into(),
+    }
 }
 
 /// The default `PassType::build`: compose, reflect, lay out, create the pipeline.
-pub fn build_shader_pass<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+pub fn build_shader_pass<T: PassType + ?Sized>(
+    t: &T,
+    pass: &ScheduledPass,
+    ctx: &mut BuildContext<'_>,
+) -> Result<Box<dyn PreparedPass>, GpuError> {
     Ok(Box::new(build_shader_pass_typed(t, pass, ctx)?))
 }
 
 /// [`build_shader_pass`] without the box, for passes that record it their own
 /// way (e.g. [`ShaderPass::record_with_query`]).
-pub fn build_shader_pass_typed<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<ShaderPass, GpuError> {
+pub fn build_shader_pass_typed<T: PassType + ?Sized>(
+    t: &T,
+    pass: &ScheduledPass,
+    ctx: &mut BuildContext<'_>,
+) -> Result<ShaderPass, GpuError> {
     let spec = t.spec();
     for feature in &spec.required_features {
-        let has = wgpu::Features::from_name(feature).is_some_and(|f| ctx.device.features().contains(f));
+        let has =
+            wgpu::Features::from_name(feature).is_some_and(|f| ctx.device.features().contains(f));
         if !has {
-            return Err(GpuError::MissingFeature { pass: pass.name.clone(), feature: feature.clone(), adapter: ctx.adapter_name.to_owned() });
+            return Err(GpuError::MissingFeature {
+                pass: pass.name.clone(),
+                feature: feature.clone(),
+                adapter: ctx.adapter_name.to_owned(),
+            });
         }
     }
     let (path, source) = shader_source_for_build(t, pass)?;
@@ -435,7 +591,10 @@ pub fn build_shader_pass_typed<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass
     let scoped = pollster::block_on(scope.pop());
     let built = result?;
     if let Some(e) = scoped {
-        return Err(GpuError::Validation { pass: pass.name.clone(), message: crate::describe_wgpu_error(&e) });
+        return Err(GpuError::Validation {
+            pass: pass.name.clone(),
+            message: crate::describe_wgpu_error(&e),
+        });
     }
     Ok(built)
 }
@@ -467,68 +626,149 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
         } else {
             wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT
         };
-        let slot = pass.reads.iter().chain(pass.writes.iter()).find(|s| s.slot == b.name);
+        let slot = pass
+            .reads
+            .iter()
+            .chain(pass.writes.iter())
+            .find(|s| s.slot == b.name);
         let format = slot.and_then(|s| match ctx.schedule.resources[s.resource].desc {
             ResourceDesc::Texture { format, .. } => Some(format),
             _ => None,
         });
         let ty = match &b.kind {
-            BindingKind::Uniform { .. } => wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None },
-            BindingKind::Storage { read_only, .. } => wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Storage { read_only: *read_only }, has_dynamic_offset: false, min_binding_size: None },
-            BindingKind::Texture { sample, multisampled, arrayed } => wgpu::BindingType::Texture {
+            BindingKind::Uniform { .. } => wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            BindingKind::Storage { read_only, .. } => wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage {
+                    read_only: *read_only,
+                },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            BindingKind::Texture {
+                sample,
+                multisampled,
+                arrayed,
+            } => wgpu::BindingType::Texture {
                 sample_type: match sample {
-                    TextureSample::Float => wgpu::TextureSampleType::Float { filterable: format.is_some_and(filterable) && !multisampled },
+                    TextureSample::Float => wgpu::TextureSampleType::Float {
+                        filterable: format.is_some_and(filterable) && !multisampled,
+                    },
                     TextureSample::Uint => wgpu::TextureSampleType::Uint,
                     TextureSample::Sint => wgpu::TextureSampleType::Sint,
                     TextureSample::Depth => wgpu::TextureSampleType::Depth,
                 },
-                view_dimension: if *arrayed { wgpu::TextureViewDimension::D2Array } else { wgpu::TextureViewDimension::D2 },
+                view_dimension: if *arrayed {
+                    wgpu::TextureViewDimension::D2Array
+                } else {
+                    wgpu::TextureViewDimension::D2
+                },
                 multisampled: *multisampled,
             },
-            BindingKind::StorageTexture { format: f, access_write, access_read, arrayed } => wgpu::BindingType::StorageTexture {
+            BindingKind::StorageTexture {
+                format: f,
+                access_write,
+                access_read,
+                arrayed,
+            } => wgpu::BindingType::StorageTexture {
                 access: match (access_read, access_write) {
                     (true, true) => wgpu::StorageTextureAccess::ReadWrite,
                     (false, true) => wgpu::StorageTextureAccess::WriteOnly,
                     _ => wgpu::StorageTextureAccess::ReadOnly,
                 },
-                format: texture_format(f.ok_or_else(|| pass_error(pass, format!("storage texture `{}` has an unsupported format", b.name)))?),
-                view_dimension: if *arrayed { wgpu::TextureViewDimension::D2Array } else { wgpu::TextureViewDimension::D2 },
+                format: texture_format(f.ok_or_else(|| {
+                    pass_error(
+                        pass,
+                        format!("storage texture `{}` has an unsupported format", b.name),
+                    )
+                })?),
+                view_dimension: if *arrayed {
+                    wgpu::TextureViewDimension::D2Array
+                } else {
+                    wgpu::TextureViewDimension::D2
+                },
             },
-            BindingKind::Sampler { .. } => return Err(pass_error(pass, format!("sampler `{}` belongs in group 0 (import plait::frame)", b.name))),
+            BindingKind::Sampler { .. } => {
+                return Err(pass_error(
+                    pass,
+                    format!(
+                        "sampler `{}` belongs in group 0 (import plait::frame)",
+                        b.name
+                    ),
+                ));
+            }
         };
-        layout_entries.push(wgpu::BindGroupLayoutEntry { binding: b.binding, visibility, ty, count: None });
+        layout_entries.push(wgpu::BindGroupLayoutEntry {
+            binding: b.binding,
+            visibility,
+            ty,
+            count: None,
+        });
         if slot.is_none() && is_params(b) {
-            let (size, members) = reflect::params_layout(&module, &b.name).ok_or_else(|| pass_error(pass, format!("`{}` must be a uniform struct", b.name)))?;
-            let bytes = reflect::pack_params(size, &members, &pass.params).map_err(|m| pass_error(pass, m))?;
-            let buffer = wgpu::util::DeviceExt::create_buffer_init(device, &wgpu::util::BufferInitDescriptor {
-                label: Some(&format!("{} params", pass.name)),
-                contents: &bytes,
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let (size, members) = reflect::params_layout(&module, &b.name).ok_or_else(|| {
+                pass_error(pass, format!("`{}` must be a uniform struct", b.name))
+            })?;
+            let bytes = reflect::pack_params(size, &members, &pass.params)
+                .map_err(|m| pass_error(pass, m))?;
+            let buffer = wgpu::util::DeviceExt::create_buffer_init(
+                device,
+                &wgpu::util::BufferInitDescriptor {
+                    label: Some(&format!("{} params", pass.name)),
+                    contents: &bytes,
+                    usage: wgpu::BufferUsages::UNIFORM,
+                },
+            );
             owned_buffers.push((b.binding, buffer));
         } else if let Some(s) = slot {
             resource_entries.push((b.binding, s.resource));
         } else {
-            let hair = ctx.geometry.hair.as_ref().ok_or_else(|| pass_error(pass, "the scene has no hair to bind"))?;
-            let buf = if b.name == "hair_vertices" { &hair.vertices } else { &hair.indices };
+            let hair = ctx
+                .geometry
+                .hair
+                .as_ref()
+                .ok_or_else(|| pass_error(pass, "the scene has no hair to bind"))?;
+            let buf = if b.name == "hair_vertices" {
+                &hair.vertices
+            } else {
+                &hair.indices
+            };
             scene_entries.push((b.binding, buf));
         }
     }
-    let group1_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(&pass.name), entries: &layout_entries });
+    let group1_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(&pass.name),
+        entries: &layout_entries,
+    });
     let bind_group = if layout_entries.is_empty() {
         None
     } else {
         let mut entries: Vec<wgpu::BindGroupEntry> = Vec::new();
         for (binding, buf) in &owned_buffers {
-            entries.push(wgpu::BindGroupEntry { binding: *binding, resource: buf.as_entire_binding() });
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: buf.as_entire_binding(),
+            });
         }
         for (binding, id) in &resource_entries {
-            entries.push(wgpu::BindGroupEntry { binding: *binding, resource: ctx.pool.binding_resource(*id) });
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: ctx.pool.binding_resource(*id),
+            });
         }
         for (binding, buf) in &scene_entries {
-            entries.push(wgpu::BindGroupEntry { binding: *binding, resource: buf.as_entire_binding() });
+            entries.push(wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: buf.as_entire_binding(),
+            });
         }
-        Some(device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(&pass.name), layout: &group1_layout, entries: &entries }))
+        Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&pass.name),
+            layout: &group1_layout,
+            entries: &entries,
+        }))
     };
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(&pass.name),
@@ -554,7 +794,11 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
         .collect();
 
     let kind = if is_compute {
-        let entry = module.entry_points.iter().find(|e| e.stage == naga::ShaderStage::Compute).ok_or_else(|| pass_error(pass, "the shader has no @compute entry point"))?;
+        let entry = module
+            .entry_points
+            .iter()
+            .find(|e| e.stage == naga::ShaderStage::Compute)
+            .ok_or_else(|| pass_error(pass, "the shader has no @compute entry point"))?;
         let wg = entry.workgroup_size;
         let threads = t.compute_threads(pass, ctx.schedule);
         let workgroups = [0, 1, 2].map(|i| threads[i].div_ceil(wg[i].max(1)));
@@ -569,15 +813,25 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
                 cache: None,
             })
         });
-        ShaderPassKind::Compute { pipeline, workgroups }
+        ShaderPassKind::Compute {
+            pipeline,
+            workgroups,
+        }
     } else {
-        let state = t.raster_state(pass, ctx.capabilities).map_err(|m| pass_error(pass, m))?;
+        let state = t
+            .raster_state(pass, ctx.capabilities)
+            .map_err(|m| pass_error(pass, m))?;
         let draw = match spec.shape {
             PassShape::Fullscreen => DrawWhat::Fullscreen,
             _ => match pass.draw.as_deref() {
                 Some("hair") => DrawWhat::Hair,
                 Some("opaque") => DrawWhat::Opaque,
-                other => return Err(pass_error(pass, format!("cannot draw {other:?}: use \"hair\" or \"opaque\""))),
+                other => {
+                    return Err(pass_error(
+                        pass,
+                        format!("cannot draw {other:?}: use \"hair\" or \"opaque\""),
+                    ));
+                }
             },
         };
         let mut colors = Vec::new();
@@ -586,18 +840,45 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
         // A colour target `X` with a written slot `X_resolve` resolves its
         // samples into that resource at the end of the pass (MSAA).
         let is_resolve = |slot: &str| {
-            slot.strip_suffix("_resolve").is_some_and(|base| pass.writes.iter().any(|o| o.slot == base && o.access == Access::ColorTarget))
+            slot.strip_suffix("_resolve").is_some_and(|base| {
+                pass.writes
+                    .iter()
+                    .any(|o| o.slot == base && o.access == Access::ColorTarget)
+            })
         };
         let mut resolves = Vec::new();
-        for b in pass.writes.iter().filter(|b| b.access == Access::ColorTarget && !is_resolve(&b.slot)) {
-            resolves.push(pass.writes.iter().find(|r| r.slot == format!("{}_resolve", b.slot)).map(|r| r.resource));
-            let ResourceDesc::Texture { format, samples: s, .. } = ctx.schedule.resources[b.resource].desc else {
-                return Err(pass_error(pass, format!("colour target `{}` is not a texture", b.slot)));
+        for b in pass
+            .writes
+            .iter()
+            .filter(|b| b.access == Access::ColorTarget && !is_resolve(&b.slot))
+        {
+            resolves.push(
+                pass.writes
+                    .iter()
+                    .find(|r| r.slot == format!("{}_resolve", b.slot))
+                    .map(|r| r.resource),
+            );
+            let ResourceDesc::Texture {
+                format, samples: s, ..
+            } = ctx.schedule.resources[b.resource].desc
+            else {
+                return Err(pass_error(
+                    pass,
+                    format!("colour target `{}` is not a texture", b.slot),
+                ));
             };
             samples = s;
             let blend = state.blend.get(colors.len()).copied().flatten();
-            let write_mask = state.write_mask.get(colors.len()).copied().unwrap_or(wgpu::ColorWrites::ALL);
-            color_states.push(Some(wgpu::ColorTargetState { format: texture_format(format), blend, write_mask }));
+            let write_mask = state
+                .write_mask
+                .get(colors.len())
+                .copied()
+                .unwrap_or(wgpu::ColorWrites::ALL);
+            color_states.push(Some(wgpu::ColorTargetState {
+                format: texture_format(format),
+                blend,
+                write_mask,
+            }));
             colors.push((b.resource, b.loads || state.load_colors));
         }
         let depth_binding = pass
@@ -609,7 +890,10 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
         let mut depth = None;
         let depth_stencil = match depth_binding {
             Some((b, written)) => {
-                let ResourceDesc::Texture { format, samples: s, .. } = ctx.schedule.resources[b.resource].desc else {
+                let ResourceDesc::Texture {
+                    format, samples: s, ..
+                } = ctx.schedule.resources[b.resource].desc
+                else {
                     return Err(pass_error(pass, "depth target is not a texture"));
                 };
                 samples = s;
@@ -633,20 +917,44 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             DrawWhat::Opaque => vec![Some(opaque_vertex_layout())],
             DrawWhat::Fullscreen => vec![],
         };
-        let has_fragment = module.entry_points.iter().any(|e| e.stage == naga::ShaderStage::Fragment);
+        let has_fragment = module
+            .entry_points
+            .iter()
+            .any(|e| e.stage == naga::ShaderStage::Fragment);
         let primitive = wgpu::PrimitiveState {
-            topology: if draw == DrawWhat::Hair { wgpu::PrimitiveTopology::LineList } else { wgpu::PrimitiveTopology::TriangleList },
+            topology: if draw == DrawWhat::Hair {
+                wgpu::PrimitiveTopology::LineList
+            } else {
+                wgpu::PrimitiveTopology::TriangleList
+            },
             cull_mode: state.cull_mode,
             front_face: wgpu::FrontFace::Ccw,
             ..Default::default()
         };
-        let multisample = wgpu::MultisampleState { count: samples, mask: !0, alpha_to_coverage_enabled: state.alpha_to_coverage };
-        let key = crate::cache::key(&[&shader_key, &primitive, &depth_stencil, &multisample, &color_states, &vertex_layouts, &has_fragment]);
+        let multisample = wgpu::MultisampleState {
+            count: samples,
+            mask: !0,
+            alpha_to_coverage_enabled: state.alpha_to_coverage,
+        };
+        let key = crate::cache::key(&[
+            &shader_key,
+            &primitive,
+            &depth_stencil,
+            &multisample,
+            &color_states,
+            &vertex_layouts,
+            &has_fragment,
+        ]);
         let pipeline = ctx.pipelines.render(key, || {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&pass.name),
                 layout: Some(&layout),
-                vertex: wgpu::VertexState { module: shader(), entry_point: None, compilation_options: Default::default(), buffers: &vertex_layouts },
+                vertex: wgpu::VertexState {
+                    module: shader(),
+                    entry_point: None,
+                    compilation_options: Default::default(),
+                    buffers: &vertex_layouts,
+                },
                 primitive,
                 depth_stencil: depth_stencil.clone(),
                 multisample,
@@ -660,17 +968,36 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
                 cache: None,
             })
         });
-        ShaderPassKind::Raster { pipeline, colors, resolves, depth, state, draw }
+        ShaderPassKind::Raster {
+            pipeline,
+            colors,
+            resolves,
+            depth,
+            state,
+            draw,
+        }
     };
-    Ok(ShaderPass { name: pass.name.clone(), kind, bind_group, clears })
+    Ok(ShaderPass {
+        name: pass.name.clone(),
+        kind,
+        bind_group,
+        clears,
+    })
 }
 
-fn shader_source_for_build<T: PassType + ?Sized>(t: &T, pass: &ScheduledPass) -> Result<(PathBuf, Cow<'static, str>), GpuError> {
+fn shader_source_for_build<T: PassType + ?Sized>(
+    t: &T,
+    pass: &ScheduledPass,
+) -> Result<(PathBuf, Cow<'static, str>), GpuError> {
     if let Some((path, text)) = t.shader() {
         return Ok((PathBuf::from(path), Cow::Borrowed(text)));
     }
-    let path = pass.shader.clone().ok_or_else(|| pass_error(pass, "needs `shader = \"path.wgsl\"`"))?;
-    let text = std::fs::read_to_string(&path).map_err(|e| pass_error(pass, format!("cannot read shader {}: {e}", path.display())))?;
+    let path = pass
+        .shader
+        .clone()
+        .ok_or_else(|| pass_error(pass, "needs `shader = \"path.wgsl\"`"))?;
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| pass_error(pass, format!("cannot read shader {}: {e}", path.display())))?;
     Ok((path, Cow::Owned(text)))
 }
 
@@ -683,16 +1010,29 @@ impl PreparedPass for ShaderPass {
 impl ShaderPass {
     /// Record the pass; a raster pass counts the samples that pass the depth
     /// test in occlusion query `index` of `queries` (depth peeling's stop test).
-    pub fn record_with_query(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder, query: Option<(&wgpu::QuerySet, u32)>) {
+    pub fn record_with_query(
+        &self,
+        ctx: &RecordContext<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        query: Option<(&wgpu::QuerySet, u32)>,
+    ) {
         for &id in &self.clears {
             match ctx.pool.get(id) {
                 crate::pool::GpuResource::Buffer(b) => encoder.clear_buffer(b, 0, None),
-                crate::pool::GpuResource::Texture { texture, .. } => encoder.clear_texture(texture, &wgpu::ImageSubresourceRange::default()),
+                crate::pool::GpuResource::Texture { texture, .. } => {
+                    encoder.clear_texture(texture, &wgpu::ImageSubresourceRange::default())
+                }
             }
         }
         match &self.kind {
-            ShaderPassKind::Compute { pipeline, workgroups } => {
-                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(&self.name), timestamp_writes: None });
+            ShaderPassKind::Compute {
+                pipeline,
+                workgroups,
+            } => {
+                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(&self.name),
+                    timestamp_writes: None,
+                });
                 cpass.set_pipeline(pipeline);
                 cpass.set_bind_group(0, ctx.frame_bind_group, &[]);
                 if let Some(bg) = &self.bind_group {
@@ -700,31 +1040,56 @@ impl ShaderPass {
                 }
                 cpass.dispatch_workgroups(workgroups[0], workgroups[1], workgroups[2]);
             }
-            ShaderPassKind::Raster { pipeline, colors, resolves, depth, state, draw } => {
+            ShaderPassKind::Raster {
+                pipeline,
+                colors,
+                resolves,
+                depth,
+                state,
+                draw,
+            } => {
                 let color_attachments: Vec<_> = colors
                     .iter()
                     .zip(resolves)
                     .map(|(&(id, loads), resolve)| {
-                        let view = ctx.pool.texture(id).map(|(_, v)| v).expect("colour targets are textures (checked at build)");
+                        let view = ctx
+                            .pool
+                            .texture(id)
+                            .map(|(_, v)| v)
+                            .expect("colour targets are textures (checked at build)");
                         Some(wgpu::RenderPassColorAttachment {
                             view,
                             depth_slice: None,
-                            resolve_target: resolve.and_then(|r| ctx.pool.texture(r)).map(|(_, v)| v),
+                            resolve_target: resolve
+                                .and_then(|r| ctx.pool.texture(r))
+                                .map(|(_, v)| v),
                             ops: wgpu::Operations {
-                                load: if loads { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(state.clear_color) },
+                                load: if loads {
+                                    wgpu::LoadOp::Load
+                                } else {
+                                    wgpu::LoadOp::Clear(state.clear_color)
+                                },
                                 store: wgpu::StoreOp::Store,
                             },
                         })
                     })
                     .collect();
                 let depth_attachment = depth.map(|(id, loads, write)| {
-                    let view = ctx.pool.texture(id).map(|(_, v)| v).expect("depth targets are textures (checked at build)");
+                    let view = ctx
+                        .pool
+                        .texture(id)
+                        .map(|(_, v)| v)
+                        .expect("depth targets are textures (checked at build)");
                     wgpu::RenderPassDepthStencilAttachment {
                         view,
                         // Only tested, never written: attached read-only, so the
                         // pass may also sample it (fragment lists test it by hand).
                         depth_ops: (write || !loads).then_some(wgpu::Operations {
-                            load: if loads { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(state.clear_depth) },
+                            load: if loads {
+                                wgpu::LoadOp::Load
+                            } else {
+                                wgpu::LoadOp::Clear(state.clear_depth)
+                            },
                             store: wgpu::StoreOp::Store,
                         }),
                         stencil_ops: None,

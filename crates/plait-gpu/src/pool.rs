@@ -24,7 +24,10 @@ pub fn texture_format(f: Format) -> wgpu::TextureFormat {
 
 /// A physical GPU allocation.
 pub enum GpuResource {
-    Texture { texture: wgpu::Texture, view: wgpu::TextureView },
+    Texture {
+        texture: wgpu::Texture,
+        view: wgpu::TextureView,
+    },
     Buffer(wgpu::Buffer),
 }
 
@@ -38,9 +41,14 @@ pub struct ResourcePool {
 impl ResourcePool {
     pub fn new(device: &wgpu::Device, schedule: &Schedule) -> Self {
         // Usage is the union over every pass that touches any user of the allocation.
-        let mut tex_usage = vec![wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST; schedule.physical.len()];
+        let mut tex_usage = vec![
+            wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
+            schedule.physical.len()
+        ];
         let mut buf_usage = vec![
-            wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::STORAGE;
+            wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::STORAGE;
             schedule.physical.len()
         ];
         for pass in schedule.passes.iter() {
@@ -48,10 +56,15 @@ impl ResourcePool {
                 let p = schedule.resources[b.resource].physical;
                 match b.access {
                     Access::Sampled => tex_usage[p] |= wgpu::TextureUsages::TEXTURE_BINDING,
-                    Access::StorageRead | Access::StorageWrite => tex_usage[p] |= wgpu::TextureUsages::STORAGE_BINDING,
+                    Access::StorageRead | Access::StorageWrite => {
+                        tex_usage[p] |= wgpu::TextureUsages::STORAGE_BINDING
+                    }
                     // Render targets are sampleable too: a pass with a loop of its own
                     // (depth peeling) reads back what it rendered.
-                    Access::ColorTarget | Access::DepthTarget => tex_usage[p] |= wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                    Access::ColorTarget | Access::DepthTarget => {
+                        tex_usage[p] |= wgpu::TextureUsages::RENDER_ATTACHMENT
+                            | wgpu::TextureUsages::TEXTURE_BINDING
+                    }
                     Access::Uniform => buf_usage[p] |= wgpu::BufferUsages::UNIFORM,
                 }
             }
@@ -68,15 +81,26 @@ impl ResourcePool {
                     .collect::<Vec<_>>()
                     .join("+");
                 match phys.desc {
-                    ResourceDesc::Texture { format, width, height, layers, samples } => {
+                    ResourceDesc::Texture {
+                        format,
+                        width,
+                        height,
+                        layers,
+                        samples,
+                    } => {
                         let mut usage = tex_usage[i];
                         if samples > 1 {
                             // Multisampled textures can be neither storage nor copy targets.
-                            usage &= wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+                            usage &= wgpu::TextureUsages::RENDER_ATTACHMENT
+                                | wgpu::TextureUsages::TEXTURE_BINDING;
                         }
                         let texture = device.create_texture(&wgpu::TextureDescriptor {
                             label: Some(&label),
-                            size: wgpu::Extent3d { width, height, depth_or_array_layers: layers },
+                            size: wgpu::Extent3d {
+                                width,
+                                height,
+                                depth_or_array_layers: layers,
+                            },
                             mip_level_count: 1,
                             sample_count: samples,
                             dimension: wgpu::TextureDimension::D2,
@@ -95,13 +119,15 @@ impl ResourcePool {
                         });
                         GpuResource::Texture { texture, view }
                     }
-                    ResourceDesc::Buffer { size } => GpuResource::Buffer(device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some(&label),
-                        // wgpu requires a multiple of 4 for copies and clears.
-                        size: size.max(4).next_multiple_of(4),
-                        usage: buf_usage[i],
-                        mapped_at_creation: false,
-                    })),
+                    ResourceDesc::Buffer { size } => {
+                        GpuResource::Buffer(device.create_buffer(&wgpu::BufferDescriptor {
+                            label: Some(&label),
+                            // wgpu requires a multiple of 4 for copies and clears.
+                            size: size.max(4).next_multiple_of(4),
+                            usage: buf_usage[i],
+                            mapped_at_creation: false,
+                        }))
+                    }
                 }
             })
             .collect();

@@ -14,7 +14,13 @@ pub struct TexelData {
 }
 
 /// Read layer 0 of a single-sampled texture.
-pub fn read_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture, format: Format, name: &str) -> Result<TexelData, GpuError> {
+pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    format: Format,
+    name: &str,
+) -> Result<TexelData, GpuError> {
     let (width, height) = (texture.width(), texture.height());
     let bpp = format.bytes_per_texel() as u32;
     let unpadded = width * bpp;
@@ -25,22 +31,45 @@ pub fn read_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("readback"),
+    });
     encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo { texture, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(height) },
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
         },
-        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
     );
     queue.submit([encoder.finish()]);
-    let bytes = map_buffer(device, &buffer).map_err(|message| GpuError::Readback { resource: name.to_owned(), message })?;
+    let bytes = map_buffer(device, &buffer).map_err(|message| GpuError::Readback {
+        resource: name.to_owned(),
+        message,
+    })?;
     let mut out = Vec::with_capacity((unpadded * height) as usize);
     for row in bytes.chunks(padded as usize) {
         out.extend_from_slice(&row[..unpadded as usize]);
     }
-    Ok(TexelData { width, height, format, bytes: out })
+    Ok(TexelData {
+        width,
+        height,
+        format,
+        bytes: out,
+    })
 }
 
 /// Map a MAP_READ buffer and copy its contents out.
@@ -49,16 +78,31 @@ pub fn map_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8
     buffer.map_async(wgpu::MapMode::Read, .., move |r| {
         let _ = tx.send(r);
     });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
-    rx.recv().map_err(|e| e.to_string())?.map_err(|e| e.to_string())?;
-    let data = buffer.get_mapped_range(..).map_err(|e| e.to_string())?.to_vec();
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| e.to_string())?;
+    rx.recv()
+        .map_err(|e| e.to_string())?
+        .map_err(|e| e.to_string())?;
+    let data = buffer
+        .get_mapped_range(..)
+        .map_err(|e| e.to_string())?
+        .to_vec();
     buffer.unmap();
     Ok(data)
 }
 
 fn linear_to_srgb(x: f32) -> u8 {
-    let x = if x.is_finite() { x.clamp(0.0, 1.0) } else { 0.0 };
-    let s = if x <= 0.003_130_8 { x * 12.92 } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 };
+    let x = if x.is_finite() {
+        x.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let s = if x <= 0.003_130_8 {
+        x * 12.92
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    };
     (s * 255.0 + 0.5) as u8
 }
 
@@ -73,7 +117,12 @@ impl TexelData {
         let n = self.format.bytes_per_texel() as usize;
         let o = i * n;
         match self.format {
-            Format::Rgba8Unorm | Format::Rgba8UnormSrgb => [b[o] as f32 / 255.0, b[o + 1] as f32 / 255.0, b[o + 2] as f32 / 255.0, b[o + 3] as f32 / 255.0],
+            Format::Rgba8Unorm | Format::Rgba8UnormSrgb => [
+                b[o] as f32 / 255.0,
+                b[o + 1] as f32 / 255.0,
+                b[o + 2] as f32 / 255.0,
+                b[o + 3] as f32 / 255.0,
+            ],
             Format::R8Unorm => [b[o] as f32 / 255.0; 4],
             Format::R16Float => [f16_at(o); 4],
             Format::Rg16Float => [f16_at(o), f16_at(o + 2), 0.0, 1.0],
@@ -91,10 +140,19 @@ impl TexelData {
     /// encoded from linear, single-channel formats as grey, alpha opaque.
     pub fn to_image(&self) -> image::RgbaImage {
         let mut img = image::RgbaImage::new(self.width, self.height);
-        let stored_8bit = matches!(self.format, Format::Rgba8Unorm | Format::Rgba8UnormSrgb | Format::R8Unorm);
+        let stored_8bit = matches!(
+            self.format,
+            Format::Rgba8Unorm | Format::Rgba8UnormSrgb | Format::R8Unorm
+        );
         for (i, px) in img.pixels_mut().enumerate() {
             let t = self.texel(i);
-            let c = |x: f32| if stored_8bit { (x.clamp(0.0, 1.0) * 255.0 + 0.5) as u8 } else { linear_to_srgb(x) };
+            let c = |x: f32| {
+                if stored_8bit {
+                    (x.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
+                } else {
+                    linear_to_srgb(x)
+                }
+            };
             *px = image::Rgba([c(t[0]), c(t[1]), c(t[2]), 255]);
         }
         img

@@ -7,11 +7,27 @@ use plait_graph::{Format, ResourceKind, Value};
 /// The kind of one shader binding.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BindingKind {
-    Uniform { size: u64 },
-    Storage { read_only: bool, min_size: u64 },
-    Texture { sample: TextureSample, multisampled: bool, arrayed: bool },
-    StorageTexture { format: Option<Format>, access_write: bool, access_read: bool, arrayed: bool },
-    Sampler { comparison: bool },
+    Uniform {
+        size: u64,
+    },
+    Storage {
+        read_only: bool,
+        min_size: u64,
+    },
+    Texture {
+        sample: TextureSample,
+        multisampled: bool,
+        arrayed: bool,
+    },
+    StorageTexture {
+        format: Option<Format>,
+        access_write: bool,
+        access_read: bool,
+        arrayed: bool,
+    },
+    Sampler {
+        comparison: bool,
+    },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -36,7 +52,9 @@ impl ShaderBinding {
     pub fn resource_kind(&self) -> Option<ResourceKind> {
         match self.kind {
             BindingKind::Uniform { .. } | BindingKind::Storage { .. } => Some(ResourceKind::Buffer),
-            BindingKind::Texture { .. } | BindingKind::StorageTexture { .. } => Some(ResourceKind::Texture),
+            BindingKind::Texture { .. } | BindingKind::StorageTexture { .. } => {
+                Some(ResourceKind::Texture)
+            }
             BindingKind::Sampler { .. } => None,
         }
     }
@@ -55,16 +73,27 @@ impl ShaderBinding {
         match &self.kind {
             BindingKind::Texture { sample, .. } => {
                 let ok = match sample {
-                    TextureSample::Float => !format.is_depth() && format.sample_type() == plait_graph::format::SampleType::Float,
-                    TextureSample::Uint => format.sample_type() == plait_graph::format::SampleType::Uint,
+                    TextureSample::Float => {
+                        !format.is_depth()
+                            && format.sample_type() == plait_graph::format::SampleType::Float
+                    }
+                    TextureSample::Uint => {
+                        format.sample_type() == plait_graph::format::SampleType::Uint
+                    }
                     TextureSample::Sint => false,
                     TextureSample::Depth => format.is_depth(),
                 };
-                if ok { Ok(()) } else { Err(format!("the shader samples it as {sample:?}, which {format} is not")) }
+                if ok {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "the shader samples it as {sample:?}, which {format} is not"
+                    ))
+                }
             }
-            BindingKind::StorageTexture { format: Some(want), .. } if *want != format => {
-                Err(format!("the shader declares storage format {want}"))
-            }
+            BindingKind::StorageTexture {
+                format: Some(want), ..
+            } if *want != format => Err(format!("the shader declares storage format {want}")),
             BindingKind::StorageTexture { format: None, .. } => {
                 Err("the shader's storage texture format is not one plait supports".into())
             }
@@ -105,12 +134,21 @@ pub fn bindings(module: &Module) -> Vec<ShaderBinding> {
         let name = plain_name(var.name.as_deref().unwrap_or_default()).to_owned();
         let inner = &module.types[var.ty].inner;
         let kind = match (var.space, inner) {
-            (AddressSpace::Uniform, _) => BindingKind::Uniform { size: inner.size(module.to_ctx()) as u64 },
+            (AddressSpace::Uniform, _) => BindingKind::Uniform {
+                size: inner.size(module.to_ctx()) as u64,
+            },
             (AddressSpace::Storage { access }, _) => BindingKind::Storage {
                 read_only: !access.contains(StorageAccess::STORE),
                 min_size: inner.size(module.to_ctx()) as u64,
             },
-            (_, TypeInner::Image { dim: _, arrayed, class }) => match *class {
+            (
+                _,
+                TypeInner::Image {
+                    dim: _,
+                    arrayed,
+                    class,
+                },
+            ) => match *class {
                 ImageClass::Sampled { kind, multi } => BindingKind::Texture {
                     sample: match kind {
                         ScalarKind::Uint => TextureSample::Uint,
@@ -120,19 +158,31 @@ pub fn bindings(module: &Module) -> Vec<ShaderBinding> {
                     multisampled: multi,
                     arrayed: *arrayed,
                 },
-                ImageClass::Depth { multi } => BindingKind::Texture { sample: TextureSample::Depth, multisampled: multi, arrayed: *arrayed },
+                ImageClass::Depth { multi } => BindingKind::Texture {
+                    sample: TextureSample::Depth,
+                    multisampled: multi,
+                    arrayed: *arrayed,
+                },
                 ImageClass::Storage { format, access } => BindingKind::StorageTexture {
                     format: storage_format(format),
-                    access_write: access.contains(StorageAccess::STORE) || access.contains(StorageAccess::ATOMIC),
+                    access_write: access.contains(StorageAccess::STORE)
+                        || access.contains(StorageAccess::ATOMIC),
                     access_read: access.contains(StorageAccess::LOAD),
                     arrayed: *arrayed,
                 },
                 ImageClass::External => continue,
             },
-            (_, TypeInner::Sampler { comparison }) => BindingKind::Sampler { comparison: *comparison },
+            (_, TypeInner::Sampler { comparison }) => BindingKind::Sampler {
+                comparison: *comparison,
+            },
             _ => continue,
         };
-        out.push(ShaderBinding { name, group: rb.group, binding: rb.binding, kind });
+        out.push(ShaderBinding {
+            name,
+            group: rb.group,
+            binding: rb.binding,
+            kind,
+        });
     }
     out.sort_by_key(|b| (b.group, b.binding));
     out
@@ -157,12 +207,13 @@ pub enum ParamScalar {
 
 /// The layout of the uniform struct `name` of a module, if it has one.
 pub fn params_layout(module: &Module, name: &str) -> Option<(u64, Vec<ParamMember>)> {
-    let (_, var) = module
-        .global_variables
-        .iter()
-        .find(|(_, v)| v.name.as_deref().map(plain_name) == Some(name) && v.space == AddressSpace::Uniform)?;
+    let (_, var) = module.global_variables.iter().find(|(_, v)| {
+        v.name.as_deref().map(plain_name) == Some(name) && v.space == AddressSpace::Uniform
+    })?;
     let ty = &module.types[var.ty];
-    let TypeInner::Struct { members, span } = &ty.inner else { return None };
+    let TypeInner::Struct { members, span } = &ty.inner else {
+        return None;
+    };
     let mut out = Vec::new();
     for m in members {
         let (scalar, components) = match &module.types[m.ty].inner {
@@ -176,7 +227,12 @@ pub fn params_layout(module: &Module, name: &str) -> Option<(u64, Vec<ParamMembe
             ScalarKind::Uint => ParamScalar::U32,
             _ => continue,
         };
-        out.push(ParamMember { name: m.name.clone().unwrap_or_default(), offset: m.offset, ty, components });
+        out.push(ParamMember {
+            name: m.name.clone().unwrap_or_default(),
+            offset: m.offset,
+            ty,
+            components,
+        });
     }
     Some((*span as u64, out))
 }
@@ -191,7 +247,10 @@ pub fn pack_params(
     let mut bytes = vec![0u8; size as usize];
     for m in members {
         let Some(value) = values.get(&m.name) else {
-            return Err(format!("the shader's `params.{}` has no pass param of that name", m.name));
+            return Err(format!(
+                "the shader's `params.{}` has no pass param of that name",
+                m.name
+            ));
         };
         let scalars: Vec<f64> = match value {
             Value::List(items) => items.iter().filter_map(Value::as_f64).collect(),

@@ -14,17 +14,38 @@ use naga_oil::compose::{
 
 /// A WGSL module importable by every shader, as `(file name, source)`.
 pub const LIBRARY_MODULES: &[(&str, &str)] = &[
-    ("shaders/lib/frame.wgsl", include_str!("../../../shaders/lib/frame.wgsl")),
-    ("shaders/lib/kajiya_kay.wgsl", include_str!("../../../shaders/lib/kajiya_kay.wgsl")),
-    ("shaders/lib/shadow.wgsl", include_str!("../../../shaders/lib/shadow.wgsl")),
-    ("shaders/lib/occupancy.wgsl", include_str!("../../../shaders/lib/occupancy.wgsl")),
-    ("shaders/lib/visibility/none.wgsl", include_str!("../../../shaders/lib/visibility/none.wgsl")),
+    (
+        "shaders/lib/frame.wgsl",
+        include_str!("../../../shaders/lib/frame.wgsl"),
+    ),
+    (
+        "shaders/lib/kajiya_kay.wgsl",
+        include_str!("../../../shaders/lib/kajiya_kay.wgsl"),
+    ),
+    (
+        "shaders/lib/shadow.wgsl",
+        include_str!("../../../shaders/lib/shadow.wgsl"),
+    ),
+    (
+        "shaders/lib/occupancy.wgsl",
+        include_str!("../../../shaders/lib/occupancy.wgsl"),
+    ),
+    (
+        "shaders/lib/visibility/none.wgsl",
+        include_str!("../../../shaders/lib/visibility/none.wgsl"),
+    ),
     (
         "shaders/lib/visibility/modified_shadow_map.wgsl",
         include_str!("../../../shaders/lib/visibility/modified_shadow_map.wgsl"),
     ),
-    ("shaders/lib/visibility/occupancy.wgsl", include_str!("../../../shaders/lib/visibility/occupancy.wgsl")),
-    ("shaders/lib/visibility/deep_opacity.wgsl", include_str!("../../../shaders/lib/visibility/deep_opacity.wgsl")),
+    (
+        "shaders/lib/visibility/occupancy.wgsl",
+        include_str!("../../../shaders/lib/visibility/occupancy.wgsl"),
+    ),
+    (
+        "shaders/lib/visibility/deep_opacity.wgsl",
+        include_str!("../../../shaders/lib/visibility/deep_opacity.wgsl"),
+    ),
     (
         "shaders/lib/visibility/opacity_shadow_maps.wgsl",
         include_str!("../../../shaders/lib/visibility/opacity_shadow_maps.wgsl"),
@@ -33,12 +54,30 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         "shaders/lib/visibility/density_clustering.wgsl",
         include_str!("../../../shaders/lib/visibility/density_clustering.wgsl"),
     ),
-    ("shaders/lib/visibility/exact.wgsl", include_str!("../../../shaders/lib/visibility/exact.wgsl")),
-    ("shaders/lib/self_shadow.wgsl", include_str!("../../../shaders/lib/self_shadow.wgsl")),
-    ("shaders/lib/transparency/depth_peel.wgsl", include_str!("../../../shaders/lib/transparency/depth_peel.wgsl")),
-    ("shaders/lib/transparency/fragment_list.wgsl", include_str!("../../../shaders/lib/transparency/fragment_list.wgsl")),
-    ("shaders/lib/transparency/weighted_average.wgsl", include_str!("../../../shaders/lib/transparency/weighted_average.wgsl")),
-    ("shaders/lib/transparency/coverage.wgsl", include_str!("../../../shaders/lib/transparency/coverage.wgsl")),
+    (
+        "shaders/lib/visibility/exact.wgsl",
+        include_str!("../../../shaders/lib/visibility/exact.wgsl"),
+    ),
+    (
+        "shaders/lib/self_shadow.wgsl",
+        include_str!("../../../shaders/lib/self_shadow.wgsl"),
+    ),
+    (
+        "shaders/lib/transparency/depth_peel.wgsl",
+        include_str!("../../../shaders/lib/transparency/depth_peel.wgsl"),
+    ),
+    (
+        "shaders/lib/transparency/fragment_list.wgsl",
+        include_str!("../../../shaders/lib/transparency/fragment_list.wgsl"),
+    ),
+    (
+        "shaders/lib/transparency/weighted_average.wgsl",
+        include_str!("../../../shaders/lib/transparency/weighted_average.wgsl"),
+    ),
+    (
+        "shaders/lib/transparency/coverage.wgsl",
+        include_str!("../../../shaders/lib/transparency/coverage.wgsl"),
+    ),
 ];
 
 /// A shader that failed to parse, compose or validate.
@@ -71,15 +110,18 @@ impl ShaderLibrary {
         // order, and LIBRARY_MODULES is kept in that order.
         for (path, source) in LIBRARY_MODULES {
             let added = composer.add_composable_module(ComposableModuleDescriptor {
-                    source,
-                    file_path: path,
-                    language: ShaderLanguage::Wgsl,
-                    as_name: None,
-                    additional_imports: &[],
-                    shader_defs: HashMap::new(),
-                });
+                source,
+                file_path: path,
+                language: ShaderLanguage::Wgsl,
+                as_name: None,
+                additional_imports: &[],
+                shader_defs: HashMap::new(),
+            });
             if let Err(e) = added {
-                return Err(ShaderError { path: PathBuf::from(path), message: e.emit_to_string(&composer) });
+                return Err(ShaderError {
+                    path: PathBuf::from(path),
+                    message: e.emit_to_string(&composer),
+                });
             }
         }
         Ok(ShaderLibrary { composer })

@@ -19,18 +19,27 @@ use std::collections::{BinaryHeap, HashSet};
 
 use crate::error::{Error, ErrorKind, Errors, Location, Spanned};
 use crate::expr;
-use crate::load::{location_order, PassDecl, Pipeline, ResourceDecl, SizeDecl};
+use crate::load::{PassDecl, Pipeline, ResourceDecl, SizeDecl, location_order};
 use crate::schedule::*;
-use crate::spec::{Access, ParamSpec, ParamType, PassShape, PassTypeSpec, Registry, ResourceKind, SlotSpec};
+use crate::spec::{
+    Access, ParamSpec, ParamType, PassShape, PassTypeSpec, Registry, ResourceKind, SlotSpec,
+};
 use crate::value::Value;
 
 /// Checks `pipeline` and builds its schedule, or returns every problem found.
-pub fn compile(pipeline: &Pipeline, registry: &Registry, opts: &CompileOptions) -> Result<Schedule, Errors> {
+pub fn compile(
+    pipeline: &Pipeline,
+    registry: &Registry,
+    opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
     let mut errors = Vec::new();
 
     // Resource descriptors, indexed like `pipeline.resources`.
-    let descs: Vec<Option<ResourceDesc>> =
-        pipeline.resources.values().map(|r| resolve_resource(r, opts, &mut errors)).collect();
+    let descs: Vec<Option<ResourceDesc>> = pipeline
+        .resources
+        .values()
+        .map(|r| resolve_resource(r, opts, &mut errors))
+        .collect();
 
     let passes: Vec<ScheduledPass> = pipeline
         .passes
@@ -66,13 +75,25 @@ fn int_value(v: &Value, opts: &CompileOptions) -> Result<i64, String> {
         Value::Int(i) => Ok(*i),
         Value::Float(f) if f.fract() == 0.0 && f.abs() < i64::MAX as f64 => Ok(*f as i64),
         Value::Str(s) => expr::eval_int(s, &screen_var(opts)),
-        other => Err(format!("expected an integer or an expression, found {other}")),
+        other => Err(format!(
+            "expected an integer or an expression, found {other}"
+        )),
     }
 }
 
-fn resolve_resource(r: &ResourceDecl, opts: &CompileOptions, errors: &mut Vec<Error>) -> Option<ResourceDesc> {
+fn resolve_resource(
+    r: &ResourceDecl,
+    opts: &CompileOptions,
+    errors: &mut Vec<Error>,
+) -> Option<ResourceDesc> {
     let bad = |location: &Location, reason: String| {
-        Error::new(location.clone(), ErrorKind::BadResource { resource: r.name.clone(), reason })
+        Error::new(
+            location.clone(),
+            ErrorKind::BadResource {
+                resource: r.name.clone(),
+                reason,
+            },
+        )
     };
     let eval = |v: &Spanned<Value>, what: &str, errors: &mut Vec<Error>| match int_value(v, opts) {
         Ok(n) => Some(n),
@@ -85,7 +106,10 @@ fn resolve_resource(r: &ResourceDecl, opts: &CompileOptions, errors: &mut Vec<Er
         SizeDecl::Bytes(size) => {
             let bytes = eval(size, "size", errors)?;
             if bytes <= 0 {
-                errors.push(bad(&size.location, format!("buffer size is {bytes} bytes; it must be positive")));
+                errors.push(bad(
+                    &size.location,
+                    format!("buffer size is {bytes} bytes; it must be positive"),
+                ));
                 return None;
             }
             Some(ResourceDesc::Buffer { size: bytes as u64 })
@@ -94,18 +118,27 @@ fn resolve_resource(r: &ResourceDecl, opts: &CompileOptions, errors: &mut Vec<Er
             let (width, height) = match &r.size {
                 SizeDecl::Screen { divisor, .. } => {
                     // Rounded down like integer division, never below one texel.
-                    ((opts.screen.0 / divisor).max(1) as i64, (opts.screen.1 / divisor).max(1) as i64)
+                    (
+                        (opts.screen.0 / divisor).max(1) as i64,
+                        (opts.screen.1 / divisor).max(1) as i64,
+                    )
                 }
-                SizeDecl::Extent { width, height, .. } => {
-                    (eval(width, "width", errors)?, eval(height, "height", errors)?)
-                }
+                SizeDecl::Extent { width, height, .. } => (
+                    eval(width, "width", errors)?,
+                    eval(height, "height", errors)?,
+                ),
                 SizeDecl::Bytes(_) => return None,
             };
             let limit = opts.max_texture_dimension;
             if width < 1 || height < 1 || width > limit as i64 || height > limit as i64 {
                 errors.push(Error::new(
                     r.size.location().clone(),
-                    ErrorKind::TextureSize { resource: r.name.clone(), width, height, limit },
+                    ErrorKind::TextureSize {
+                        resource: r.name.clone(),
+                        width,
+                        height,
+                        limit,
+                    },
                 ));
                 return None;
             }
@@ -113,7 +146,10 @@ fn resolve_resource(r: &ResourceDecl, opts: &CompileOptions, errors: &mut Vec<Er
                 let Some(v) = field else { return Some(1) };
                 let n = eval(v, what, errors)?;
                 if !(1..=2048).contains(&n) {
-                    errors.push(bad(&v.location, format!("{what} is {n}; it must be between 1 and 2048")));
+                    errors.push(bad(
+                        &v.location,
+                        format!("{what} is {n}; it must be between 1 and 2048"),
+                    ));
                     return None;
                 }
                 Some(n as u32)
@@ -121,7 +157,13 @@ fn resolve_resource(r: &ResourceDecl, opts: &CompileOptions, errors: &mut Vec<Er
             let layers = count(&r.layers, "layers")?;
             let samples = count(&r.samples, "samples")?;
             let format = r.format.as_ref()?.value;
-            Some(ResourceDesc::Texture { format, width: width as u32, height: height as u32, layers, samples })
+            Some(ResourceDesc::Texture {
+                format,
+                width: width as u32,
+                height: height as u32,
+                layers,
+                samples,
+            })
         }
     }
 }
@@ -137,21 +179,33 @@ fn check_param(spec: &ParamSpec, value: &Value, opts: &CompileOptions) -> Result
             Ok(Value::Int(n))
         }
         ParamType::Float { min, max } => {
-            let x = value.as_f64().ok_or_else(|| format!("expected a number, found {value}"))?;
+            let x = value
+                .as_f64()
+                .ok_or_else(|| format!("expected a number, found {value}"))?;
             if x < *min || x > *max || x.is_nan() {
                 return Err(format!("{x} is out of range {min}..={max}"));
             }
             Ok(Value::Float(x))
         }
-        ParamType::Bool => value.as_bool().map(Value::Bool).ok_or_else(|| format!("expected true or false, found {value}")),
-        ParamType::Str => value.as_str().map(|s| Value::Str(s.to_owned())).ok_or_else(|| format!("expected a string, found {value}")),
+        ParamType::Bool => value
+            .as_bool()
+            .map(Value::Bool)
+            .ok_or_else(|| format!("expected true or false, found {value}")),
+        ParamType::Str => value
+            .as_str()
+            .map(|s| Value::Str(s.to_owned()))
+            .ok_or_else(|| format!("expected a string, found {value}")),
         ParamType::Enum(choices) => match value.as_str() {
             Some(s) if choices.iter().any(|c| c == s) => Ok(Value::Str(s.to_owned())),
             _ => Err(format!("{value} is not one of: {}", choices.join(", "))),
         },
         ParamType::Vec3 => match value.as_vec3() {
-            Some(v) => Ok(Value::List(v.iter().map(|&x| Value::Float(x as f64)).collect())),
-            None => Err(format!("expected three numbers like [1.0, 0.5, 0.2], found {value}")),
+            Some(v) => Ok(Value::List(
+                v.iter().map(|&x| Value::Float(x as f64)).collect(),
+            )),
+            None => Err(format!(
+                "expected three numbers like [1.0, 0.5, 0.2], found {value}"
+            )),
         },
     }
 }
@@ -172,11 +226,20 @@ fn resolve_pass(
         let known = registry.names().join(", ");
         errors.push(Error::new(
             decl.type_name.location.clone(),
-            ErrorKind::UnknownPassType { name: decl.type_name.value.clone(), known },
+            ErrorKind::UnknownPassType {
+                name: decl.type_name.value.clone(),
+                known,
+            },
         ));
     }
     let pass_error = |location: &Location, message: String| {
-        Error::new(location.clone(), ErrorKind::Pass { pass: decl.name.clone(), message })
+        Error::new(
+            location.clone(),
+            ErrorKind::Pass {
+                pass: decl.name.clone(),
+                message,
+            },
+        )
     };
 
     let mut params = IndexMap::new();
@@ -196,7 +259,11 @@ fn resolve_pass(
                         pass: decl.name.clone(),
                         pass_type: spec.name.clone(),
                         param: name.clone(),
-                        known: if known.is_empty() { "no params".into() } else { known.join(", ") },
+                        known: if known.is_empty() {
+                            "no params".into()
+                        } else {
+                            known.join(", ")
+                        },
                     },
                 ));
                 continue;
@@ -207,7 +274,11 @@ fn resolve_pass(
                 }
                 Err(reason) => errors.push(Error::new(
                     value.location.clone(),
-                    ErrorKind::BadParam { pass: decl.name.clone(), param: name.clone(), reason },
+                    ErrorKind::BadParam {
+                        pass: decl.name.clone(),
+                        param: name.clone(),
+                        reason,
+                    },
                 )),
             }
         }
@@ -223,7 +294,10 @@ fn resolve_pass(
             } else {
                 errors.push(Error::new(
                     decl.location.clone(),
-                    ErrorKind::MissingParam { pass: decl.name.clone(), param: param.name.clone() },
+                    ErrorKind::MissingParam {
+                        pass: decl.name.clone(),
+                        param: param.name.clone(),
+                    },
                 ));
             }
         }
@@ -234,10 +308,17 @@ fn resolve_pass(
         if spec.shape == PassShape::Raster {
             for (field, value) in [("view", &decl.view), ("draw", &decl.draw)] {
                 if value.is_none() {
-                    let hint = if field == "view" { "light | camera" } else { "hair | opaque" };
+                    let hint = if field == "view" {
+                        "light | camera"
+                    } else {
+                        "hair | opaque"
+                    };
                     errors.push(pass_error(
                         &decl.location,
-                        format!("type `{}` rasterizes geometry and needs `{field} = ` {hint}", spec.name),
+                        format!(
+                            "type `{}` rasterizes geometry and needs `{field} = ` {hint}",
+                            spec.name
+                        ),
                     ));
                 }
             }
@@ -246,7 +327,10 @@ fn resolve_pass(
                 if let Some(v) = value {
                     errors.push(pass_error(
                         &v.location,
-                        format!("type `{}` draws no scene geometry, so `{field}` does not apply", spec.name),
+                        format!(
+                            "type `{}` draws no scene geometry, so `{field}` does not apply",
+                            spec.name
+                        ),
                     ));
                 }
             }
@@ -254,11 +338,17 @@ fn resolve_pass(
         match (&decl.shader, spec.needs_shader) {
             (None, true) => errors.push(pass_error(
                 &decl.location,
-                format!("type `{}` runs a shader from the pipeline and needs `shader = \"….wgsl\"`", spec.name),
+                format!(
+                    "type `{}` runs a shader from the pipeline and needs `shader = \"….wgsl\"`",
+                    spec.name
+                ),
             )),
             (Some(s), false) => errors.push(pass_error(
                 &s.location,
-                format!("type `{}` brings its own shader; `shader` does not apply", spec.name),
+                format!(
+                    "type `{}` brings its own shader; `shader` does not apply",
+                    spec.name
+                ),
             )),
             _ => {}
         }
@@ -318,7 +408,10 @@ fn bind_slots(
             continue;
         }
         let Some(index) = pipeline.resources.get_index_of(&resource.value) else {
-            errors.push(Error::new(resource.location.clone(), ErrorKind::UndeclaredResource(resource.value.clone())));
+            errors.push(Error::new(
+                resource.location.clone(),
+                ErrorKind::UndeclaredResource(resource.value.clone()),
+            ));
             continue;
         };
         let declared_kind = pipeline.resources[index].kind.value;
@@ -327,7 +420,9 @@ fn bind_slots(
             (Some(slot), _) => (slot.access, slot.loads),
             // Data-only passes: the shader's bindings decide (checked later by
             // naga reflection); assume the common access for the direction.
-            (None, Some(spec)) if spec.dynamic_slots => (dynamic_access(direction, declared_kind), false),
+            (None, Some(spec)) if spec.dynamic_slots => {
+                (dynamic_access(direction, declared_kind), false)
+            }
             (None, Some(spec)) => {
                 let known: Vec<_> = slots.iter().map(|s| s.name.as_str()).collect();
                 errors.push(Error::new(
@@ -337,7 +432,11 @@ fn bind_slots(
                         pass_type: spec.name.clone(),
                         direction: direction.word(),
                         slot: slot_name.clone(),
-                        known: if known.is_empty() { "none".into() } else { known.join(", ") },
+                        known: if known.is_empty() {
+                            "none".into()
+                        } else {
+                            known.join(", ")
+                        },
                     },
                 ));
                 continue;
@@ -387,7 +486,11 @@ fn bind_slots(
             if !written.contains_key(&slot.name) {
                 errors.push(Error::new(
                     decl.location.clone(),
-                    ErrorKind::MissingSlot { pass: decl.name.clone(), direction: direction.word(), slot: slot.name.clone() },
+                    ErrorKind::MissingSlot {
+                        pass: decl.name.clone(),
+                        direction: direction.word(),
+                        slot: slot.name.clone(),
+                    },
                 ));
             }
         }
@@ -416,7 +519,11 @@ fn reads_from(pass: &ScheduledPass, resource: usize) -> bool {
 
 /// Output resource indices (into `pipeline.resources`); reports unknown or
 /// unwritten outputs.
-fn check_outputs(pipeline: &Pipeline, passes: &[ScheduledPass], errors: &mut Vec<Error>) -> Vec<usize> {
+fn check_outputs(
+    pipeline: &Pipeline,
+    passes: &[ScheduledPass],
+    errors: &mut Vec<Error>,
+) -> Vec<usize> {
     if pipeline.outputs.is_empty() {
         errors.push(Error::new(
             pipeline.outputs_location.clone(),
@@ -426,9 +533,15 @@ fn check_outputs(pipeline: &Pipeline, passes: &[ScheduledPass], errors: &mut Vec
     let mut outputs = Vec::new();
     for output in &pipeline.outputs {
         match pipeline.resources.get_index_of(&output.value) {
-            None => errors.push(Error::new(output.location.clone(), ErrorKind::UnknownOutput(output.value.clone()))),
+            None => errors.push(Error::new(
+                output.location.clone(),
+                ErrorKind::UnknownOutput(output.value.clone()),
+            )),
             Some(i) if !passes.iter().any(|p| writes_to(p, i).is_some()) => {
-                errors.push(Error::new(output.location.clone(), ErrorKind::OutputNeverWritten(output.value.clone())))
+                errors.push(Error::new(
+                    output.location.clone(),
+                    ErrorKind::OutputNeverWritten(output.value.clone()),
+                ))
             }
             Some(i) if !outputs.contains(&i) => outputs.push(i),
             Some(_) => {}
@@ -440,7 +553,11 @@ fn check_outputs(pipeline: &Pipeline, passes: &[ScheduledPass], errors: &mut Vec
 /// Builds the dependency graph and returns pass indices in execution order,
 /// or `None` if it has a cycle. Reports never-written reads, cycles and
 /// unordered writers.
-fn order_passes(passes: &[ScheduledPass], pipeline: &Pipeline, errors: &mut Vec<Error>) -> Option<Vec<usize>> {
+fn order_passes(
+    passes: &[ScheduledPass],
+    pipeline: &Pipeline,
+    errors: &mut Vec<Error>,
+) -> Option<Vec<usize>> {
     let mut graph: DiGraph<usize, ()> = DiGraph::new();
     let nodes: Vec<NodeIndex> = (0..passes.len()).map(|i| graph.add_node(i)).collect();
     let mut add_edge = |from: usize, to: usize| {
@@ -450,14 +567,21 @@ fn order_passes(passes: &[ScheduledPass], pipeline: &Pipeline, errors: &mut Vec<
     };
 
     for resource in 0..pipeline.resources.len() {
-        let writers: Vec<usize> = (0..passes.len()).filter(|&p| writes_to(&passes[p], resource).is_some()).collect();
-        let readers: Vec<usize> = (0..passes.len()).filter(|&p| reads_from(&passes[p], resource)).collect();
+        let writers: Vec<usize> = (0..passes.len())
+            .filter(|&p| writes_to(&passes[p], resource).is_some())
+            .collect();
+        let readers: Vec<usize> = (0..passes.len())
+            .filter(|&p| reads_from(&passes[p], resource))
+            .collect();
         if writers.is_empty() {
             for &r in &readers {
                 for b in passes[r].reads.iter().filter(|b| b.resource == resource) {
                     errors.push(Error::new(
                         b.location.clone(),
-                        ErrorKind::NeverWritten { resource: b.resource_name.clone(), reader: passes[r].name.clone() },
+                        ErrorKind::NeverWritten {
+                            resource: b.resource_name.clone(),
+                            reader: passes[r].name.clone(),
+                        },
                     ));
                 }
             }
@@ -467,7 +591,10 @@ fn order_passes(passes: &[ScheduledPass], pipeline: &Pipeline, errors: &mut Vec<
                 add_edge(w, r);
             }
         }
-        let is_load_writer = |p: usize| writes_to(&passes[p], resource).is_some_and(|b| b.loads) || reads_from(&passes[p], resource);
+        let is_load_writer = |p: usize| {
+            writes_to(&passes[p], resource).is_some_and(|b| b.loads)
+                || reads_from(&passes[p], resource)
+        };
         for &plain in writers.iter().filter(|&&w| !is_load_writer(w)) {
             for &load in writers.iter().filter(|&&w| is_load_writer(w)) {
                 add_edge(plain, load);
@@ -482,8 +609,15 @@ fn order_passes(passes: &[ScheduledPass], pipeline: &Pipeline, errors: &mut Vec<
             let members: HashSet<NodeIndex> = scc.iter().copied().collect();
             let cycle = cycle_through(&graph, &members);
             let first = cycle.iter().copied().min().unwrap_or(0);
-            let names = cycle.iter().chain(cycle.first()).map(|&i| passes[i].name.clone()).collect();
-            errors.push(Error::new(passes[first].location.clone(), ErrorKind::Cycle(names)));
+            let names = cycle
+                .iter()
+                .chain(cycle.first())
+                .map(|&i| passes[i].name.clone())
+                .collect();
+            errors.push(Error::new(
+                passes[first].location.clone(),
+                ErrorKind::Cycle(names),
+            ));
         }
     }
     if has_cycle {
@@ -503,11 +637,14 @@ fn order_passes(passes: &[ScheduledPass], pipeline: &Pipeline, errors: &mut Vec<
         })
         .collect();
     for resource in 0..pipeline.resources.len() {
-        let writers: Vec<usize> = (0..passes.len()).filter(|&p| writes_to(&passes[p], resource).is_some()).collect();
+        let writers: Vec<usize> = (0..passes.len())
+            .filter(|&p| writes_to(&passes[p], resource).is_some())
+            .collect();
         'pairs: for (i, &a) in writers.iter().enumerate() {
             for &b in &writers[i + 1..] {
                 if !reach[a][b] && !reach[b][a] {
-                    let location = writes_to(&passes[b], resource).map_or(passes[b].location.clone(), |x| x.location.clone());
+                    let location = writes_to(&passes[b], resource)
+                        .map_or(passes[b].location.clone(), |x| x.location.clone());
                     errors.push(Error::new(
                         location,
                         ErrorKind::UnorderedWriters {
@@ -523,8 +660,14 @@ fn order_passes(passes: &[ScheduledPass], pipeline: &Pipeline, errors: &mut Vec<
     }
 
     // Kahn's algorithm; among ready passes the earliest in the file goes first.
-    let mut indegree: Vec<usize> = nodes.iter().map(|&n| graph.neighbors_directed(n, petgraph::Incoming).count()).collect();
-    let mut ready: BinaryHeap<Reverse<usize>> = (0..passes.len()).filter(|&i| indegree[i] == 0).map(Reverse).collect();
+    let mut indegree: Vec<usize> = nodes
+        .iter()
+        .map(|&n| graph.neighbors_directed(n, petgraph::Incoming).count())
+        .collect();
+    let mut ready: BinaryHeap<Reverse<usize>> = (0..passes.len())
+        .filter(|&i| indegree[i] == 0)
+        .map(Reverse)
+        .collect();
     let mut order = Vec::with_capacity(passes.len());
     while let Some(Reverse(p)) = ready.pop() {
         order.push(p);
@@ -549,7 +692,8 @@ fn cycle_through(graph: &DiGraph<usize, ()>, members: &HashSet<NodeIndex>) -> Ve
     let mut parent: std::collections::HashMap<NodeIndex, NodeIndex> = Default::default();
     let mut queue = std::collections::VecDeque::from([start]);
     while let Some(n) = queue.pop_front() {
-        let mut successors: Vec<NodeIndex> = graph.neighbors(n).filter(|s| members.contains(s)).collect();
+        let mut successors: Vec<NodeIndex> =
+            graph.neighbors(n).filter(|s| members.contains(s)).collect();
         successors.sort_by_key(|s| graph[*s]);
         for s in successors {
             if s == start {
@@ -587,11 +731,21 @@ fn build_schedule(
     let mut needed: HashSet<usize> = outputs.iter().copied().collect();
     let mut live = vec![false; passes.len()];
     for &p in order.iter().rev() {
-        if passes[p].writes.iter().any(|b| needed.contains(&b.resource)) {
+        if passes[p]
+            .writes
+            .iter()
+            .any(|b| needed.contains(&b.resource))
+        {
             live[p] = true;
             needed.extend(passes[p].reads.iter().map(|b| b.resource));
             // A load-writer keeps earlier contents: their writers are needed too.
-            needed.extend(passes[p].writes.iter().filter(|b| b.loads).map(|b| b.resource));
+            needed.extend(
+                passes[p]
+                    .writes
+                    .iter()
+                    .filter(|b| b.loads)
+                    .map(|b| b.resource),
+            );
         }
     }
 
@@ -633,7 +787,9 @@ fn build_schedule(
     let mut scheduled = Vec::new();
     let mut culled = Vec::new();
     for &p in &order {
-        let Some(pass) = slots[p].take() else { continue };
+        let Some(pass) = slots[p].take() else {
+            continue;
+        };
         if live[p] {
             scheduled.push(pass);
         } else {
@@ -668,7 +824,11 @@ fn build_schedule(
             r.last_use = r.last_use.max(index);
         }
     }
-    let output_ids: Vec<ResourceId> = outputs.iter().map(|&o| new_id[o]).filter(|&id| id != DROPPED_RESOURCE).collect();
+    let output_ids: Vec<ResourceId> = outputs
+        .iter()
+        .map(|&o| new_id[o])
+        .filter(|&id| id != DROPPED_RESOURCE)
+        .collect();
     let end = scheduled.len().saturating_sub(1);
     for &o in &output_ids {
         resources[o].last_use = end;
@@ -679,7 +839,11 @@ fn build_schedule(
         name: pipeline.name.value.clone(),
         description: pipeline.description.value.clone(),
         files: pipeline.files.clone(),
-        params: pipeline.params.iter().map(|(k, v)| (k.clone(), v.value.clone())).collect(),
+        params: pipeline
+            .params
+            .iter()
+            .map(|(k, v)| (k.clone(), v.value.clone()))
+            .collect(),
         passes: scheduled,
         culled,
         resources,
@@ -694,10 +858,21 @@ fn cull_reason(pass: &ScheduledPass) -> String {
     if pass.writes.is_empty() {
         return "writes nothing".to_owned();
     }
-    let mut names: Vec<String> = pass.writes.iter().map(|b| format!("`{}`", b.resource_name)).collect();
+    let mut names: Vec<String> = pass
+        .writes
+        .iter()
+        .map(|b| format!("`{}`", b.resource_name))
+        .collect();
     names.dedup();
-    let which = if names.len() == 1 { "which" } else { "which none of" };
-    format!("writes only {}, {which} no output depends on", names.join(", "))
+    let which = if names.len() == 1 {
+        "which"
+    } else {
+        "which none of"
+    };
+    format!(
+        "writes only {}, {which} no output depends on",
+        names.join(", ")
+    )
 }
 
 /// Greedy sharing: in order of first use, each resource takes the first
@@ -715,7 +890,10 @@ fn plan_memory(resources: &mut [ResolvedResource]) -> (Vec<PhysicalResource>, Me
         let id = match reusable {
             Some(id) => id,
             None => {
-                physical.push(PhysicalResource { desc, users: Vec::new() });
+                physical.push(PhysicalResource {
+                    desc,
+                    users: Vec::new(),
+                });
                 physical.len() - 1
             }
         };

@@ -8,7 +8,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, Schedule, ScheduledPass, DROPPED_RESOURCE};
+use crate::schedule::{Binding, DROPPED_RESOURCE, Schedule, ScheduledPass};
 
 /// Graphviz DOT of the schedule (for `dot -Tsvg`).
 pub fn to_dot(schedule: &Schedule) -> String {
@@ -65,7 +65,11 @@ fn label(lines: &[&str]) -> String {
 }
 
 fn resource_label(schedule: &Schedule, binding: &Binding) -> String {
-    match schedule.resources.get(binding.resource).filter(|_| binding.resource != DROPPED_RESOURCE) {
+    match schedule
+        .resources
+        .get(binding.resource)
+        .filter(|_| binding.resource != DROPPED_RESOURCE)
+    {
         Some(r) => label(&[&binding.resource_name, &r.desc.label()]),
         None => label(&[&binding.resource_name]),
     }
@@ -88,32 +92,58 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
         let _ = writeln!(out, "  edge [fontname=\"sans-serif\", fontsize=10];");
     }
     for (i, (pass, culled)) in all.iter().enumerate() {
-        let kind = format!("{}{}", pass.type_name, if *culled { " (culled)" } else { "" });
+        let kind = format!(
+            "{}{}",
+            pass.type_name,
+            if *culled { " (culled)" } else { "" }
+        );
         let style = if *culled { ", style=dashed" } else { "" };
-        let _ = writeln!(out, "  p{i} [shape=box, label={}{style}];", label(&[&pass.name, &kind]));
+        let _ = writeln!(
+            out,
+            "  p{i} [shape=box, label={}{style}];",
+            label(&[&pass.name, &kind])
+        );
     }
     let _ = writeln!(out, "  output [shape=doublecircle, label=\"output\"];");
 
     for (i, (pass, culled)) in all.iter().enumerate() {
         // What this pass sees of a resource was made by the latest earlier writer.
-        let consumed = pass.reads.iter().chain(pass.writes.iter().filter(|b| b.loads));
+        let consumed = pass
+            .reads
+            .iter()
+            .chain(pass.writes.iter().filter(|b| b.loads));
         let mut seen = Vec::new();
         for binding in consumed {
             if seen.contains(&&binding.resource_name) {
                 continue;
             }
             seen.push(&binding.resource_name);
-            let writer = (0..i).rev().find(|&w| all[w].0.writes.iter().any(|b| b.resource_name == binding.resource_name));
+            let writer = (0..i).rev().find(|&w| {
+                all[w]
+                    .0
+                    .writes
+                    .iter()
+                    .any(|b| b.resource_name == binding.resource_name)
+            });
             if let Some(w) = writer {
                 let dashed = *culled || all[w].1;
                 let style = if dashed { ", style=dashed" } else { "" };
-                let _ = writeln!(out, "  p{w} -> p{i} [label={}{style}];", resource_label(schedule, binding));
+                let _ = writeln!(
+                    out,
+                    "  p{w} -> p{i} [label={}{style}];",
+                    resource_label(schedule, binding)
+                );
             }
         }
     }
     for &output in &schedule.outputs {
         let name = &schedule.resources[output].name;
-        let writer = (0..schedule.passes.len()).rev().find(|&w| schedule.passes[w].writes.iter().any(|b| &b.resource_name == name));
+        let writer = (0..schedule.passes.len()).rev().find(|&w| {
+            schedule.passes[w]
+                .writes
+                .iter()
+                .any(|b| &b.resource_name == name)
+        });
         if let Some(w) = writer {
             let text = label(&[name, &schedule.resources[output].desc.label()]);
             let _ = writeln!(out, "  p{w} -> output [label={text}];");
@@ -121,7 +151,9 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
     }
     if dialect == Dialect::Graphviz && schedule.passes.len() > 1 {
         // Heavy invisible edges keep the execution order top-down.
-        let chain: Vec<String> = (0..schedule.passes.len()).map(|i| format!("p{i}")).collect();
+        let chain: Vec<String> = (0..schedule.passes.len())
+            .map(|i| format!("p{i}"))
+            .collect();
         let _ = writeln!(out, "  {} [style=invis, weight=10];", chain.join(" -> "));
     }
     out.push_str("}\n");

@@ -8,7 +8,11 @@ use std::path::PathBuf;
 #[serde(tag = "origin", rename_all = "snake_case")]
 pub enum Location {
     /// 1-based line and column in a file.
-    File { path: PathBuf, line: u32, column: u32 },
+    File {
+        path: PathBuf,
+        line: u32,
+        column: u32,
+    },
     /// A `--set key=value` flag (the whole flag text).
     Flag { flag: String },
     /// Built in defaults (a pass type's default param, the default scene…).
@@ -80,41 +84,98 @@ pub enum ErrorKind {
     #[error("unknown pass type `{name}` (known: {known})")]
     UnknownPassType { name: String, known: String },
     #[error("pass `{pass}` of type `{pass_type}` has no param `{param}` (it has: {known})")]
-    UnknownParam { pass: String, pass_type: String, param: String, known: String },
+    UnknownParam {
+        pass: String,
+        pass_type: String,
+        param: String,
+        known: String,
+    },
     #[error("param `{param}` of pass `{pass}`: {reason}")]
-    BadParam { pass: String, param: String, reason: String },
-    #[error("pass `{pass}` of type `{pass_type}` has no {direction} slot `{slot}` (it has: {known})")]
-    UnknownSlot { pass: String, pass_type: String, direction: &'static str, slot: String, known: String },
+    BadParam {
+        pass: String,
+        param: String,
+        reason: String,
+    },
+    #[error(
+        "pass `{pass}` of type `{pass_type}` has no {direction} slot `{slot}` (it has: {known})"
+    )]
+    UnknownSlot {
+        pass: String,
+        pass_type: String,
+        direction: &'static str,
+        slot: String,
+        known: String,
+    },
     #[error("pass `{pass}` does not bind its required {direction} slot `{slot}`")]
-    MissingSlot { pass: String, direction: &'static str, slot: String },
+    MissingSlot {
+        pass: String,
+        direction: &'static str,
+        slot: String,
+    },
     #[error("resource `{0}` is used but not declared in [resources]")]
     UndeclaredResource(String),
     #[error("resource `{resource}` is read by pass `{reader}` but no pass writes it")]
     NeverWritten { resource: String, reader: String },
-    #[error("resource `{resource}` is written by passes `{first}` and `{second}` with no order between them")]
-    UnorderedWriters { resource: String, first: String, second: String },
+    #[error(
+        "resource `{resource}` is written by passes `{first}` and `{second}` with no order between them"
+    )]
+    UnorderedWriters {
+        resource: String,
+        first: String,
+        second: String,
+    },
     #[error("cycle between passes: {}", .0.join(" -> "))]
     Cycle(Vec<String>),
-    #[error("resource `{resource}` has format {declared}, but pass `{pass}` slot `{slot}` accepts {accepted}")]
-    FormatMismatch { resource: String, declared: String, pass: String, slot: String, accepted: String },
-    #[error("resource `{resource}` is a {declared}, but pass `{pass}` slot `{slot}` needs a {expected}")]
-    KindMismatch { resource: String, declared: String, pass: String, slot: String, expected: String },
+    #[error(
+        "resource `{resource}` has format {declared}, but pass `{pass}` slot `{slot}` accepts {accepted}"
+    )]
+    FormatMismatch {
+        resource: String,
+        declared: String,
+        pass: String,
+        slot: String,
+        accepted: String,
+    },
+    #[error(
+        "resource `{resource}` is a {declared}, but pass `{pass}` slot `{slot}` needs a {expected}"
+    )]
+    KindMismatch {
+        resource: String,
+        declared: String,
+        pass: String,
+        slot: String,
+        expected: String,
+    },
     #[error("output `{0}` is not a declared resource")]
     UnknownOutput(String),
     #[error("output `{0}` is not written by any pass")]
     OutputNeverWritten(String),
     #[error("shader {path}: {message}")]
     Shader { path: PathBuf, message: String },
-    #[error("pass `{pass}`: shader binding `{binding}` (group {group}, binding {index}) is not provided by the pipeline file")]
-    MissingBinding { pass: String, binding: String, group: u32, index: u32 },
+    #[error(
+        "pass `{pass}`: shader binding `{binding}` (group {group}, binding {index}) is not provided by the pipeline file"
+    )]
+    MissingBinding {
+        pass: String,
+        binding: String,
+        group: u32,
+        index: u32,
+    },
     #[error("pass `{pass}`: {message}")]
     Pass { pass: String, message: String },
     #[error("params refer to each other in a loop: {}", .0.join(" -> "))]
     ParamCycle(Vec<String>),
     #[error("pass `{pass}` does not set its required param `{param}` (no default)")]
     MissingParam { pass: String, param: String },
-    #[error("texture `{resource}` is {width}x{height}; each side must be between 1 and the device limit {limit}")]
-    TextureSize { resource: String, width: i64, height: i64, limit: u32 },
+    #[error(
+        "texture `{resource}` is {width}x{height}; each side must be between 1 and the device limit {limit}"
+    )]
+    TextureSize {
+        resource: String,
+        width: i64,
+        height: i64,
+        limit: u32,
+    },
     #[error("resource `{resource}`: {reason}")]
     BadResource { resource: String, reason: String },
 }

@@ -10,7 +10,11 @@
 /// in words, ready to be wrapped in an [`crate::ErrorKind`].
 pub fn eval(text: &str, var: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String> {
     let tokens = tokenize(text)?;
-    let mut parser = Parser { tokens: &tokens, pos: 0, var };
+    let mut parser = Parser {
+        tokens: &tokens,
+        pos: 0,
+        var,
+    };
     let value = parser.sum()?;
     match parser.tokens.get(parser.pos) {
         None => Ok(value),
@@ -22,7 +26,9 @@ pub fn eval(text: &str, var: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String
 pub fn eval_int(text: &str, var: &dyn Fn(&str) -> Option<f64>) -> Result<i64, String> {
     let value = eval(text, var)?;
     if !value.is_finite() || value.abs() > i64::MAX as f64 {
-        return Err(format!("expression `{text}` does not evaluate to a finite number"));
+        return Err(format!(
+            "expression `{text}` does not evaluate to a finite number"
+        ));
     }
     Ok(value.floor() as i64)
 }
@@ -57,7 +63,9 @@ fn tokenize(text: &str) -> Result<Vec<Token>, String> {
             i += 1;
         } else if c.is_ascii_digit() || c == '.' {
             let start = i;
-            while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.' || chars[i] == '_') {
+            while i < chars.len()
+                && (chars[i].is_ascii_digit() || chars[i] == '.' || chars[i] == '_')
+            {
                 i += 1;
             }
             let literal: String = chars[start..i].iter().filter(|&&c| c != '_').collect();
@@ -140,9 +148,9 @@ impl Parser<'_> {
         self.pos += 1;
         match token {
             Some(Token::Number(n)) => Ok(n),
-            Some(Token::Name(name)) => {
-                (self.var)(&name).ok_or_else(|| format!("unknown name `{name}` (known: screen_width, screen_height)"))
-            }
+            Some(Token::Name(name)) => (self.var)(&name).ok_or_else(|| {
+                format!("unknown name `{name}` (known: screen_width, screen_height)")
+            }),
             Some(Token::Op('(')) => {
                 let value = self.sum()?;
                 if self.peek_op() == Some(')') {
@@ -189,7 +197,17 @@ mod tests {
 
     #[test]
     fn errors_are_words_not_panics() {
-        for bad in ["", "1 +", "(1", "1 / 0", "2 $ 3", "light * 2", "1 2", ")", "1..2"] {
+        for bad in [
+            "",
+            "1 +",
+            "(1",
+            "1 / 0",
+            "2 $ 3",
+            "light * 2",
+            "1 2",
+            ")",
+            "1..2",
+        ] {
             assert!(eval_int(bad, &screen).is_err(), "{bad:?} should fail");
         }
     }

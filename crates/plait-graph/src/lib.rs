@@ -19,10 +19,10 @@ pub mod compile;
 pub mod dot;
 pub mod error;
 pub mod expr;
-pub mod load;
-pub mod snapshot;
 pub mod format;
+pub mod load;
 pub mod schedule;
+pub mod snapshot;
 pub mod spec;
 pub mod value;
 
@@ -34,5 +34,5 @@ pub use value::Value;
 
 pub use compile::compile;
 pub use dot::{to_dot, to_svg};
-pub use load::{load, load_str, PassDecl, Pipeline, ResourceDecl, SizeDecl};
+pub use load::{PassDecl, Pipeline, ResourceDecl, SizeDecl, load, load_str};
 pub use snapshot::schedule_text;

@@ -62,7 +62,11 @@ pub enum SizeDecl {
     /// `"screen"` (divisor 1) or `"screen/N"`.
     Screen { divisor: u32, location: Location },
     /// `[width, height]`, each an integer or an expression string.
-    Extent { width: Spanned<Value>, height: Spanned<Value>, location: Location },
+    Extent {
+        width: Spanned<Value>,
+        height: Spanned<Value>,
+        location: Location,
+    },
     /// A buffer's size in bytes: an integer or an expression string.
     Bytes(Spanned<Value>),
 }
@@ -96,14 +100,21 @@ pub struct PassDecl {
 /// (`overrides` holds the `key=value` texts).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Pipeline, Errors> {
     let text = std::fs::read_to_string(path).map_err(|e| {
-        Error::new(file_location(path, 1, 1), ErrorKind::Io(format!("{}: {e}", path.display())))
+        Error::new(
+            file_location(path, 1, 1),
+            ErrorKind::Io(format!("{}: {e}", path.display())),
+        )
     })?;
     load_str(path, &text, overrides)
 }
 
 /// Like [`load`], with the top file's text given (tests, editors). `extends`
 /// is still read from disk, relative to `path_for_messages`.
-pub fn load_str(path_for_messages: &Path, text: &str, overrides: &[String]) -> Result<Pipeline, Errors> {
+pub fn load_str(
+    path_for_messages: &Path,
+    text: &str,
+    overrides: &[String],
+) -> Result<Pipeline, Errors> {
     let mut files = Vec::new();
     let mut chain = Vec::new();
     let mut root = load_chain(path_for_messages, text, &mut chain, &mut files)?;
@@ -138,7 +149,11 @@ pub fn location_order(a: &Location, b: &Location) -> std::cmp::Ordering {
 }
 
 fn file_location(path: &Path, line: u32, column: u32) -> Location {
-    Location::File { path: path.to_path_buf(), line, column }
+    Location::File {
+        path: path.to_path_buf(),
+        line,
+        column,
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -172,14 +187,25 @@ impl<'a> SourceMap<'a> {
     fn new(path: &'a Path, text: &'a str) -> Self {
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
-        SourceMap { path, text, line_starts }
+        SourceMap {
+            path,
+            text,
+            line_starts,
+        }
     }
 
     fn location(&self, offset: usize) -> Location {
         let offset = offset.min(self.text.len());
-        let line = self.line_starts.partition_point(|&start| start <= offset).max(1);
+        let line = self
+            .line_starts
+            .partition_point(|&start| start <= offset)
+            .max(1);
         let start = self.line_starts[line - 1];
-        let column = self.text.get(start..offset).map_or(offset - start, |s| s.chars().count()) + 1;
+        let column = self
+            .text
+            .get(start..offset)
+            .map_or(offset - start, |s| s.chars().count())
+            + 1;
         file_location(self.path, line as u32, column as u32)
     }
 }
@@ -200,11 +226,18 @@ fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
     }
 }
 
-fn convert_table(table: &toml::de::DeTable<'_>, map: &SourceMap<'_>, errors: &mut Vec<Error>) -> Table {
+fn convert_table(
+    table: &toml::de::DeTable<'_>,
+    map: &SourceMap<'_>,
+    errors: &mut Vec<Error>,
+) -> Table {
     let mut out = Table::new();
     for (key, value) in table.iter() {
         if let Some(node) = convert_value(value, map, errors) {
-            let entry = Entry { key: map.location(key.span().start), value: node };
+            let entry = Entry {
+                key: map.location(key.span().start),
+                value: node,
+            };
             out.insert(key.get_ref().to_string(), entry);
         }
     }
@@ -223,25 +256,37 @@ fn convert_value(
         DeValue::Integer(i) => match i64::from_str_radix(i.as_str(), i.radix()) {
             Ok(n) => Node::Scalar(Value::Int(n)),
             Err(_) => {
-                errors.push(Error::new(location, ErrorKind::Schema(format!("integer `{i}` is out of range"))));
+                errors.push(Error::new(
+                    location,
+                    ErrorKind::Schema(format!("integer `{i}` is out of range")),
+                ));
                 return None;
             }
         },
         DeValue::Float(f) => match f.as_str().parse::<f64>() {
             Ok(x) => Node::Scalar(Value::Float(x)),
             Err(_) => {
-                errors.push(Error::new(location, ErrorKind::Schema(format!("float `{f}` is not a number"))));
+                errors.push(Error::new(
+                    location,
+                    ErrorKind::Schema(format!("float `{f}` is not a number")),
+                ));
                 return None;
             }
         },
         DeValue::Boolean(b) => Node::Scalar(Value::Bool(*b)),
         DeValue::Datetime(_) => {
-            errors.push(Error::new(location, ErrorKind::Schema("dates are not used in pipeline files".into())));
+            errors.push(Error::new(
+                location,
+                ErrorKind::Schema("dates are not used in pipeline files".into()),
+            ));
             return None;
         }
-        DeValue::Array(items) => {
-            Node::List(items.iter().filter_map(|item| convert_value(item, map, errors)).collect())
-        }
+        DeValue::Array(items) => Node::List(
+            items
+                .iter()
+                .filter_map(|item| convert_value(item, map, errors))
+                .collect(),
+        ),
         DeValue::Table(t) => Node::Table(convert_table(t, map, errors)),
     };
     Some(Spanned::new(node, location))
@@ -274,7 +319,12 @@ fn canonical(path: &Path) -> PathBuf {
 
 /// Parses `text` and, if it `extends` a base, loads the base first and
 /// merges this file over it.
-fn load_chain(path: &Path, text: &str, chain: &mut Vec<PathBuf>, files: &mut Vec<PathBuf>) -> Result<Spanned<Node>, Errors> {
+fn load_chain(
+    path: &Path,
+    text: &str,
+    chain: &mut Vec<PathBuf>,
+    files: &mut Vec<PathBuf>,
+) -> Result<Spanned<Node>, Errors> {
     chain.push(canonical(path));
     files.push(path.to_path_buf());
     let child = parse_file(path, text)?;
@@ -289,14 +339,21 @@ fn load_chain(path: &Path, text: &str, chain: &mut Vec<PathBuf>, files: &mut Vec
         return Ok(child);
     };
     let Node::Scalar(Value::Str(base_name)) = &extends.value else {
-        return Err(Error::new(extends.location, ErrorKind::Schema("`extends` must be a file path string".into())).into());
+        return Err(Error::new(
+            extends.location,
+            ErrorKind::Schema("`extends` must be a file path string".into()),
+        )
+        .into());
     };
     let base_path = path.parent().unwrap_or(Path::new("")).join(base_name);
     if chain.contains(&canonical(&base_path)) {
         return Err(Error::new(extends.location, ErrorKind::ExtendsCycle(base_path)).into());
     }
     let base_text = std::fs::read_to_string(&base_path).map_err(|e| {
-        Error::new(extends.location.clone(), ErrorKind::Io(format!("{}: {e}", base_path.display())))
+        Error::new(
+            extends.location.clone(),
+            ErrorKind::Io(format!("{}: {e}", base_path.display())),
+        )
     })?;
     let mut base = load_chain(&base_path, &base_text, chain, files)?;
     merge(&mut base, child);
@@ -307,23 +364,35 @@ fn load_chain(path: &Path, text: &str, chain: &mut Vec<PathBuf>, files: &mut Vec
 // --set
 
 fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>) {
-    let location = Location::Flag { flag: flag.to_owned() };
+    let location = Location::Flag {
+        flag: flag.to_owned(),
+    };
     let malformed = |reason: &str| {
-        Error::new(location.clone(), ErrorKind::MalformedSet { flag: flag.to_owned(), reason: reason.to_owned() })
+        Error::new(
+            location.clone(),
+            ErrorKind::MalformedSet {
+                flag: flag.to_owned(),
+                reason: reason.to_owned(),
+            },
+        )
     };
     let Some((key, value_text)) = flag.split_once('=') else {
         return errors.push(malformed("expected `key=value`, e.g. `params.slices=64`"));
     };
     let path: Vec<&str> = key.trim().split('.').map(str::trim).collect();
     if path.iter().any(|p| p.is_empty()) {
-        return errors.push(malformed("the key has an empty part; write a dotted path like `passes.shade.params.color`"));
+        return errors.push(malformed(
+            "the key has an empty part; write a dotted path like `passes.shade.params.color`",
+        ));
     }
     // Every key on the way must be a table (or absent, then it is created).
     let mut cursor = &root.value;
     for (depth, part) in path.iter().enumerate() {
         let Node::Table(table) = cursor else {
             let prefix = path[..depth].join(".");
-            return errors.push(malformed(&format!("`{prefix}` is a value, not a table, so `{key}` cannot be set")));
+            return errors.push(malformed(&format!(
+                "`{prefix}` is a value, not a table, so `{key}` cannot be set"
+            )));
         };
         match table.get(*part) {
             Some(entry) => cursor = &entry.value.value,
@@ -333,14 +402,27 @@ fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>)
     let value_text = value_text.trim();
     // A value that starts like structured TOML must be valid TOML: a bare
     // word may be a string, but `[1,` is a mistake, not the text "[1,".
-    if value_text.starts_with(['[', '{', '"', '\'']) && toml::de::DeValue::parse(value_text).is_err() {
-        let reason = toml::de::DeValue::parse(value_text).err().map(|e| e.message().to_owned()).unwrap_or_default();
-        return errors.push(malformed(&format!("the value `{value_text}` is not valid TOML: {reason}")));
+    if value_text.starts_with(['[', '{', '"', '\''])
+        && toml::de::DeValue::parse(value_text).is_err()
+    {
+        let reason = toml::de::DeValue::parse(value_text)
+            .err()
+            .map(|e| e.message().to_owned())
+            .unwrap_or_default();
+        return errors.push(malformed(&format!(
+            "the value `{value_text}` is not valid TOML: {reason}"
+        )));
     }
     let mut node = Spanned::new(parse_flag_value(value_text, &location), location.clone());
     for part in path.iter().rev() {
         let mut table = Table::new();
-        table.insert((*part).to_owned(), Entry { key: location.clone(), value: node });
+        table.insert(
+            (*part).to_owned(),
+            Entry {
+                key: location.clone(),
+                value: node,
+            },
+        );
         node = Spanned::new(Node::Table(table), location.clone());
     }
     merge(root, node);
@@ -365,13 +447,22 @@ fn relocate(node: Node, location: &Location) -> Node {
     match node {
         Node::Scalar(v) => Node::Scalar(v),
         Node::List(items) => Node::List(
-            items.into_iter().map(|i| Spanned::new(relocate(i.value, location), location.clone())).collect(),
+            items
+                .into_iter()
+                .map(|i| Spanned::new(relocate(i.value, location), location.clone()))
+                .collect(),
         ),
         Node::Table(t) => Node::Table(
             t.into_iter()
                 .map(|(k, e)| {
                     let value = Spanned::new(relocate(e.value.value, location), location.clone());
-                    (k, Entry { key: location.clone(), value })
+                    (
+                        k,
+                        Entry {
+                            key: location.clone(),
+                            value,
+                        },
+                    )
                 })
                 .collect(),
         ),
@@ -397,7 +488,12 @@ fn substitute_params(root: Spanned<Node>, errors: &mut Vec<Error>) -> Spanned<No
         Some(Node::Table(t)) => t.clone(),
         _ => Table::new(),
     };
-    let mut sub = Substituter { raw, resolved: HashMap::new(), stack: Vec::new(), errors: Vec::new() };
+    let mut sub = Substituter {
+        raw,
+        resolved: HashMap::new(),
+        stack: Vec::new(),
+        errors: Vec::new(),
+    };
     for (key, entry) in table.iter_mut() {
         if key == "params" {
             if let Node::Table(params) = &mut entry.value.value {
@@ -423,11 +519,15 @@ impl Substituter {
         if let Some(pos) = self.stack.iter().position(|n| n == name) {
             let mut cycle = self.stack[pos..].to_vec();
             cycle.push(name.to_owned());
-            self.errors.push(Error::new(used_at.clone(), ErrorKind::ParamCycle(cycle)));
+            self.errors
+                .push(Error::new(used_at.clone(), ErrorKind::ParamCycle(cycle)));
             return None;
         }
         let Some(raw) = self.raw.get(name).map(|e| e.value.clone()) else {
-            self.errors.push(Error::new(used_at.clone(), ErrorKind::UndefinedParam(name.to_owned())));
+            self.errors.push(Error::new(
+                used_at.clone(),
+                ErrorKind::UndefinedParam(name.to_owned()),
+            ));
             return None;
         };
         self.stack.push(name.to_owned());
@@ -456,7 +556,15 @@ impl Substituter {
             Node::List(items) => Node::List(items.iter().map(|i| self.node(i)).collect()),
             Node::Table(t) => Node::Table(
                 t.iter()
-                    .map(|(k, e)| (k.clone(), Entry { key: e.key.clone(), value: self.node(&e.value) }))
+                    .map(|(k, e)| {
+                        (
+                            k.clone(),
+                            Entry {
+                                key: e.key.clone(),
+                                value: self.node(&e.value),
+                            },
+                        )
+                    })
                     .collect(),
             ),
         };
@@ -478,7 +586,9 @@ impl Substituter {
                 Some(Node::Scalar(v)) => out.push_str(&v.to_string()),
                 Some(_) => self.errors.push(Error::new(
                     location.clone(),
-                    ErrorKind::Schema(format!("`${{{name}}}` is a list or table and cannot be part of a string")),
+                    ErrorKind::Schema(format!(
+                        "`${{{name}}}` is a list or table and cannot be part of a string"
+                    )),
                 )),
                 None => {}
             }
@@ -501,7 +611,9 @@ const TOP_KEYS: &[&str] = &["pipeline", "params", "resources", "passes"];
 const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "outputs"];
 const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
 const BUFFER_KEYS: &[&str] = &["kind", "size"];
-const PASS_KEYS: &[&str] = &["type", "view", "draw", "reads", "writes", "params", "shader", "enabled"];
+const PASS_KEYS: &[&str] = &[
+    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled",
+];
 const VIEWS: &[&str] = &["light", "camera"];
 const DRAWS: &[&str] = &["hair", "opaque"];
 
@@ -511,13 +623,20 @@ struct Builder<'e> {
 
 impl Builder<'_> {
     fn schema(&mut self, location: &Location, message: String) {
-        self.errors.push(Error::new(location.clone(), ErrorKind::Schema(message)));
+        self.errors
+            .push(Error::new(location.clone(), ErrorKind::Schema(message)));
     }
 
     fn check_keys(&mut self, table: &Table, accepted: &[&str], context: &str) {
         for (key, entry) in table {
             if !accepted.contains(&key.as_str()) {
-                self.schema(&entry.key, format!("unknown key `{key}` in {context} (accepted: {})", accepted.join(", ")));
+                self.schema(
+                    &entry.key,
+                    format!(
+                        "unknown key `{key}` in {context} (accepted: {})",
+                        accepted.join(", ")
+                    ),
+                );
             }
         }
     }
@@ -534,7 +653,9 @@ impl Builder<'_> {
 
     fn string(&mut self, entry: &Entry, context: &str) -> Option<Spanned<String>> {
         match &entry.value.value {
-            Node::Scalar(Value::Str(s)) => Some(Spanned::new(s.clone(), entry.value.location.clone())),
+            Node::Scalar(Value::Str(s)) => {
+                Some(Spanned::new(s.clone(), entry.value.location.clone()))
+            }
             _ => {
                 self.schema(&entry.value.location, format!("{context} must be a string"));
                 None
@@ -542,12 +663,24 @@ impl Builder<'_> {
         }
     }
 
-    fn one_of(&mut self, entry: &Entry, context: &str, accepted: &[&str]) -> Option<Spanned<String>> {
+    fn one_of(
+        &mut self,
+        entry: &Entry,
+        context: &str,
+        accepted: &[&str],
+    ) -> Option<Spanned<String>> {
         let s = self.string(entry, context)?;
         if accepted.contains(&s.value.as_str()) {
             Some(s)
         } else {
-            self.schema(&s.location, format!("{context} is `{}`; accepted: {}", s.value, accepted.join(", ")));
+            self.schema(
+                &s.location,
+                format!(
+                    "{context} is `{}`; accepted: {}",
+                    s.value,
+                    accepted.join(", ")
+                ),
+            );
             None
         }
     }
@@ -555,7 +688,11 @@ impl Builder<'_> {
     fn value(&mut self, node: &Spanned<Node>, context: &str) -> Option<Value> {
         match &node.value {
             Node::Scalar(v) => Some(v.clone()),
-            Node::List(items) => items.iter().map(|i| self.value(i, context)).collect::<Option<Vec<_>>>().map(Value::List),
+            Node::List(items) => items
+                .iter()
+                .map(|i| self.value(i, context))
+                .collect::<Option<Vec<_>>>()
+                .map(Value::List),
             Node::Table(_) => {
                 self.schema(&node.location, format!("{context} cannot be a table"));
                 None
@@ -577,7 +714,12 @@ impl Builder<'_> {
     }
 }
 
-fn build_pipeline(root: Spanned<Node>, files: Vec<PathBuf>, top_path: &Path, errors: &mut Vec<Error>) -> Pipeline {
+fn build_pipeline(
+    root: Spanned<Node>,
+    files: Vec<PathBuf>,
+    top_path: &Path,
+    errors: &mut Vec<Error>,
+) -> Pipeline {
     let mut b = Builder { errors };
     let root_location = file_location(top_path, 1, 1);
     let mut pipeline = Pipeline {
@@ -596,31 +738,47 @@ fn build_pipeline(root: Spanned<Node>, files: Vec<PathBuf>, top_path: &Path, err
     b.check_keys(top, TOP_KEYS, "the pipeline file");
 
     match top.get("pipeline") {
-        None => b.schema(&root_location, "missing [pipeline] table (name, outputs)".into()),
+        None => b.schema(
+            &root_location,
+            "missing [pipeline] table (name, outputs)".into(),
+        ),
         Some(entry) => {
             if let Some(t) = b.table(entry, "[pipeline]") {
                 b.check_keys(t, PIPELINE_KEYS, "[pipeline]");
                 pipeline.outputs_location = entry.value.location.clone();
                 match t.get("name") {
-                    Some(e) => pipeline.name = b.string(e, "pipeline.name").unwrap_or(pipeline.name),
+                    Some(e) => {
+                        pipeline.name = b.string(e, "pipeline.name").unwrap_or(pipeline.name)
+                    }
                     None => b.schema(&entry.key, "[pipeline] needs a `name`".into()),
                 }
                 if let Some(e) = t.get("description") {
-                    pipeline.description = b.string(e, "pipeline.description").unwrap_or(pipeline.description);
+                    pipeline.description = b
+                        .string(e, "pipeline.description")
+                        .unwrap_or(pipeline.description);
                 }
                 match t.get("outputs").map(|e| &e.value) {
-                    Some(Spanned { value: Node::List(items), location }) => {
+                    Some(Spanned {
+                        value: Node::List(items),
+                        location,
+                    }) => {
                         pipeline.outputs_location = location.clone();
                         for item in items {
                             match &item.value {
-                                Node::Scalar(Value::Str(s)) => {
-                                    pipeline.outputs.push(Spanned::new(s.clone(), item.location.clone()))
-                                }
-                                _ => b.schema(&item.location, "pipeline.outputs must list resource names".into()),
+                                Node::Scalar(Value::Str(s)) => pipeline
+                                    .outputs
+                                    .push(Spanned::new(s.clone(), item.location.clone())),
+                                _ => b.schema(
+                                    &item.location,
+                                    "pipeline.outputs must list resource names".into(),
+                                ),
                             }
                         }
                     }
-                    Some(other) => b.schema(&other.location, "pipeline.outputs must be a list of resource names".into()),
+                    Some(other) => b.schema(
+                        &other.location,
+                        "pipeline.outputs must be a list of resource names".into(),
+                    ),
                     None => b.schema(&entry.key, "[pipeline] needs `outputs = [\"…\"]`".into()),
                 }
             }
@@ -632,7 +790,9 @@ fn build_pipeline(root: Spanned<Node>, files: Vec<PathBuf>, top_path: &Path, err
     {
         for (name, e) in t {
             if let Some(v) = b.value(&e.value, &format!("params.{name}")) {
-                pipeline.params.insert(name.clone(), Spanned::new(v, e.value.location.clone()));
+                pipeline
+                    .params
+                    .insert(name.clone(), Spanned::new(v, e.value.location.clone()));
             }
         }
     }
@@ -663,51 +823,90 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
     let context = format!("[resources.{name}]");
     let t = b.table(entry, &context)?;
     let Some(kind_entry) = t.get("kind") else {
-        b.schema(&entry.key, format!("{context} needs `kind = \"texture\"` or `\"buffer\"`"));
+        b.schema(
+            &entry.key,
+            format!("{context} needs `kind = \"texture\"` or `\"buffer\"`"),
+        );
         return None;
     };
-    let kind_name = b.one_of(kind_entry, &format!("resources.{name}.kind"), &["texture", "buffer"])?;
-    let kind = if kind_name.value == "texture" { ResourceKind::Texture } else { ResourceKind::Buffer };
-    b.check_keys(t, if kind == ResourceKind::Texture { TEXTURE_KEYS } else { BUFFER_KEYS }, &format!("{context} ({kind})"));
+    let kind_name = b.one_of(
+        kind_entry,
+        &format!("resources.{name}.kind"),
+        &["texture", "buffer"],
+    )?;
+    let kind = if kind_name.value == "texture" {
+        ResourceKind::Texture
+    } else {
+        ResourceKind::Buffer
+    };
+    b.check_keys(
+        t,
+        if kind == ResourceKind::Texture {
+            TEXTURE_KEYS
+        } else {
+            BUFFER_KEYS
+        },
+        &format!("{context} ({kind})"),
+    );
     let Some(size_entry) = t.get("size") else {
         b.schema(&entry.key, format!("{context} needs a `size`"));
         return None;
     };
     let size_node = &size_entry.value;
     let size = match kind {
-        ResourceKind::Buffer => match &size_node.value {
-            Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => SizeDecl::Bytes(Spanned::new(v.clone(), size_node.location.clone())),
-            _ => {
-                b.schema(&size_node.location, format!("resources.{name}.size of a buffer is a byte count (integer or expression)"));
-                return None;
-            }
-        },
-        ResourceKind::Texture => match &size_node.value {
-            Node::Scalar(Value::Str(s)) => match parse_screen_size(s) {
-                Some(divisor) => SizeDecl::Screen { divisor, location: size_node.location.clone() },
-                None => {
-                    b.schema(&size_node.location, format!("resources.{name}.size is `{s}`; accepted: [width, height], \"screen\", \"screen/N\""));
+        ResourceKind::Buffer => {
+            match &size_node.value {
+                Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => {
+                    SizeDecl::Bytes(Spanned::new(v.clone(), size_node.location.clone()))
+                }
+                _ => {
+                    b.schema(&size_node.location, format!("resources.{name}.size of a buffer is a byte count (integer or expression)"));
                     return None;
                 }
-            },
-            Node::List(items) if items.len() == 2 => {
-                let dim = |n: &Spanned<Node>| match &n.value {
-                    Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => Some(Spanned::new(v.clone(), n.location.clone())),
-                    _ => None,
-                };
-                match (dim(&items[0]), dim(&items[1])) {
-                    (Some(width), Some(height)) => SizeDecl::Extent { width, height, location: size_node.location.clone() },
-                    _ => {
-                        b.schema(&size_node.location, format!("resources.{name}.size must hold two integers or expressions"));
+            }
+        }
+        ResourceKind::Texture => {
+            match &size_node.value {
+                Node::Scalar(Value::Str(s)) => match parse_screen_size(s) {
+                    Some(divisor) => SizeDecl::Screen {
+                        divisor,
+                        location: size_node.location.clone(),
+                    },
+                    None => {
+                        b.schema(&size_node.location, format!("resources.{name}.size is `{s}`; accepted: [width, height], \"screen\", \"screen/N\""));
                         return None;
                     }
+                },
+                Node::List(items) if items.len() == 2 => {
+                    let dim = |n: &Spanned<Node>| match &n.value {
+                        Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => {
+                            Some(Spanned::new(v.clone(), n.location.clone()))
+                        }
+                        _ => None,
+                    };
+                    match (dim(&items[0]), dim(&items[1])) {
+                        (Some(width), Some(height)) => SizeDecl::Extent {
+                            width,
+                            height,
+                            location: size_node.location.clone(),
+                        },
+                        _ => {
+                            b.schema(
+                                &size_node.location,
+                                format!(
+                                    "resources.{name}.size must hold two integers or expressions"
+                                ),
+                            );
+                            return None;
+                        }
+                    }
+                }
+                _ => {
+                    b.schema(&size_node.location, format!("resources.{name}.size must be [width, height], \"screen\" or \"screen/N\""));
+                    return None;
                 }
             }
-            _ => {
-                b.schema(&size_node.location, format!("resources.{name}.size must be [width, height], \"screen\" or \"screen/N\""));
-                return None;
-            }
-        },
+        }
     };
     let format = match (kind, t.get("format")) {
         (ResourceKind::Texture, Some(e)) => {
@@ -721,16 +920,21 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
             }
         }
         (ResourceKind::Texture, None) => {
-            b.schema(&entry.key, format!("{context} is a texture and needs a `format`"));
+            b.schema(
+                &entry.key,
+                format!("{context} is a texture and needs a `format`"),
+            );
             return None;
         }
         _ => None,
     };
     let int_field = |key: &str| {
-        t.get(key).map(|e| e.value.clone()).and_then(|n| match n.value {
-            Node::Scalar(v) => Some(Spanned::new(v, n.location)),
-            _ => None,
-        })
+        t.get(key)
+            .map(|e| e.value.clone())
+            .and_then(|n| match n.value {
+                Node::Scalar(v) => Some(Spanned::new(v, n.location)),
+                _ => None,
+            })
     };
     Some(ResourceDecl {
         name: name.to_owned(),
@@ -749,7 +953,13 @@ fn parse_screen_size(s: &str) -> Option<u32> {
     if s == "screen" {
         return Some(1);
     }
-    let divisor: u32 = s.strip_prefix("screen")?.trim().strip_prefix('/')?.trim().parse().ok()?;
+    let divisor: u32 = s
+        .strip_prefix("screen")?
+        .trim()
+        .strip_prefix('/')?
+        .trim()
+        .parse()
+        .ok()?;
     (divisor > 0).then_some(divisor)
 }
 
@@ -761,7 +971,10 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
         match &e.value.value {
             Node::Scalar(Value::Bool(false)) => return None,
             Node::Scalar(Value::Bool(true)) => {}
-            _ => b.schema(&e.value.location, format!("passes.{name}.enabled must be true or false")),
+            _ => b.schema(
+                &e.value.location,
+                format!("passes.{name}.enabled must be true or false"),
+            ),
         }
     }
     let Some(type_entry) = t.get("type") else {
@@ -769,10 +982,20 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
         return None;
     };
     let type_name = b.string(type_entry, &format!("passes.{name}.type"))?;
-    let view = t.get("view").and_then(|e| b.one_of(e, &format!("passes.{name}.view"), VIEWS));
-    let draw = t.get("draw").and_then(|e| b.one_of(e, &format!("passes.{name}.draw"), DRAWS));
-    let reads = t.get("reads").map(|e| b.string_map(e, &format!("passes.{name}.reads"))).unwrap_or_default();
-    let writes = t.get("writes").map(|e| b.string_map(e, &format!("passes.{name}.writes"))).unwrap_or_default();
+    let view = t
+        .get("view")
+        .and_then(|e| b.one_of(e, &format!("passes.{name}.view"), VIEWS));
+    let draw = t
+        .get("draw")
+        .and_then(|e| b.one_of(e, &format!("passes.{name}.draw"), DRAWS));
+    let reads = t
+        .get("reads")
+        .map(|e| b.string_map(e, &format!("passes.{name}.reads")))
+        .unwrap_or_default();
+    let writes = t
+        .get("writes")
+        .map(|e| b.string_map(e, &format!("passes.{name}.writes")))
+        .unwrap_or_default();
     let mut params = IndexMap::new();
     if let Some(e) = t.get("params")
         && let Some(pt) = b.table(e, &format!("passes.{name}.params"))
@@ -787,7 +1010,17 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
         .get("shader")
         .and_then(|e| b.string(e, &format!("passes.{name}.shader")))
         .map(|s| Spanned::new(resolve_shader(&s.value, &s.location), s.location));
-    Some(PassDecl { name: name.to_owned(), type_name, view, draw, reads, writes, params, shader, location: entry.key.clone() })
+    Some(PassDecl {
+        name: name.to_owned(),
+        type_name,
+        view,
+        draw,
+        reads,
+        writes,
+        params,
+        shader,
+        location: entry.key.clone(),
+    })
 }
 
 /// A shader path is relative to the file that wrote it; failing that, to the

@@ -21,8 +21,16 @@ pub type PhysicalId = usize;
 #[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum ResourceDesc {
-    Texture { format: Format, width: u32, height: u32, layers: u32, samples: u32 },
-    Buffer { size: u64 },
+    Texture {
+        format: Format,
+        width: u32,
+        height: u32,
+        layers: u32,
+        samples: u32,
+    },
+    Buffer {
+        size: u64,
+    },
 }
 
 impl ResourceDesc {
@@ -35,8 +43,18 @@ impl ResourceDesc {
 
     pub fn bytes(&self) -> u64 {
         match *self {
-            ResourceDesc::Texture { format, width, height, layers, samples } => {
-                format.bytes_per_texel() * width as u64 * height as u64 * layers as u64 * samples as u64
+            ResourceDesc::Texture {
+                format,
+                width,
+                height,
+                layers,
+                samples,
+            } => {
+                format.bytes_per_texel()
+                    * width as u64
+                    * height as u64
+                    * layers as u64
+                    * samples as u64
             }
             ResourceDesc::Buffer { size } => size,
         }
@@ -45,7 +63,13 @@ impl ResourceDesc {
     /// `rgba16float 1280x720` / `buffer 4194304 B`, for graphs and tables.
     pub fn label(&self) -> String {
         match *self {
-            ResourceDesc::Texture { format, width, height, layers, samples } => {
+            ResourceDesc::Texture {
+                format,
+                width,
+                height,
+                layers,
+                samples,
+            } => {
                 let mut s = format!("{format} {width}x{height}");
                 if layers > 1 {
                     s += &format!("x{layers}");
@@ -183,6 +207,9 @@ pub struct CompileOptions {
 
 impl Default for CompileOptions {
     fn default() -> Self {
-        CompileOptions { screen: (960, 720), max_texture_dimension: 8192 }
+        CompileOptions {
+            screen: (960, 720),
+            max_texture_dimension: 8192,
+        }
     }
 }

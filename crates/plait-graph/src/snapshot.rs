@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, Schedule, DROPPED_RESOURCE};
+use crate::schedule::{Binding, DROPPED_RESOURCE, Schedule};
 
 /// The schedule as text: passes in order, culled passes with reasons,
 /// resources with descriptor, bytes, lifetime and physical slot, memory.
@@ -41,8 +41,16 @@ pub fn schedule_text(s: &Schedule) -> String {
     let _ = writeln!(out, "\nresources:");
     for (id, r) in s.resources.iter().enumerate() {
         let shared = s.shares_memory_with(id);
-        let shared = if shared.is_empty() { String::new() } else { format!(" (shared with {})", shared.join(", ")) };
-        let output = if s.outputs.contains(&id) { " [output]" } else { "" };
+        let shared = if shared.is_empty() {
+            String::new()
+        } else {
+            format!(" (shared with {})", shared.join(", "))
+        };
+        let output = if s.outputs.contains(&id) {
+            " [output]"
+        } else {
+            ""
+        };
         let _ = writeln!(
             out,
             "  {}{output}: {}, {} B, passes {}..={}, physical #{}{shared}",
@@ -55,7 +63,11 @@ pub fn schedule_text(s: &Schedule) -> String {
         );
     }
     if !s.dropped_resources.is_empty() {
-        let _ = writeln!(out, "  dropped (no live pass uses them): {}", s.dropped_resources.join(", "));
+        let _ = writeln!(
+            out,
+            "  dropped (no live pass uses them): {}",
+            s.dropped_resources.join(", ")
+        );
     }
     let _ = writeln!(
         out,
@@ -86,9 +98,16 @@ fn pass_text(out: &mut String, prefix: &str, p: &crate::schedule::ScheduledPass,
     let bindings = |list: &[Binding]| -> String {
         list.iter()
             .map(|b| {
-                let dropped = if b.resource == DROPPED_RESOURCE || b.resource >= s.resources.len() { " (dropped)" } else { "" };
+                let dropped = if b.resource == DROPPED_RESOURCE || b.resource >= s.resources.len() {
+                    " (dropped)"
+                } else {
+                    ""
+                };
                 let loads = if b.loads { ", loads" } else { "" };
-                format!("{}={}{dropped} ({:?}{loads})", b.slot, b.resource_name, b.access)
+                format!(
+                    "{}={}{dropped} ({:?}{loads})",
+                    b.slot, b.resource_name, b.access
+                )
             })
             .collect::<Vec<_>>()
             .join(", ")

@@ -47,7 +47,10 @@ pub enum Access {
 
 impl Access {
     pub fn is_write(self) -> bool {
-        matches!(self, Access::StorageWrite | Access::ColorTarget | Access::DepthTarget)
+        matches!(
+            self,
+            Access::StorageWrite | Access::ColorTarget | Access::DepthTarget
+        )
     }
 }
 
@@ -98,8 +101,14 @@ pub struct SlotSpec {
 /// The type of a pass param.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ParamType {
-    Int { min: i64, max: i64 },
-    Float { min: f64, max: f64 },
+    Int {
+        min: i64,
+        max: i64,
+    },
+    Float {
+        min: f64,
+        max: f64,
+    },
     Bool,
     Str,
     Enum(Vec<String>),

@@ -9,7 +9,12 @@ use plait_graph::*;
 /// The single error of a failing pipeline.
 fn only_error(text: &str, sets: &[&str]) -> Error {
     let errors = errors_of(text, sets);
-    assert_eq!(errors.len(), 1, "expected one error, got:\n{}", Errors(errors.clone()));
+    assert_eq!(
+        errors.len(),
+        1,
+        "expected one error, got:\n{}",
+        Errors(errors.clone())
+    );
     errors.into_iter().next().unwrap()
 }
 
@@ -26,7 +31,11 @@ fn toml_syntax_error_points_at_the_bad_token() {
     let e = load_text(&text, &[]).unwrap_err().0.remove(0);
     assert!(matches!(e.kind, ErrorKind::Syntax(_)), "{e}");
     assert_eq!(e.location, at(2, 8));
-    assert!(e.to_string().starts_with("pipelines/test.toml:2:8: TOML syntax error"), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("pipelines/test.toml:2:8: TOML syntax error"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -37,7 +46,10 @@ fn unknown_pass_type_lists_the_known_ones() {
     match &e.kind {
         ErrorKind::UnknownPassType { name, known } => {
             assert_eq!(name, "shdae");
-            assert!(known.contains("shade") && known.contains("depth_range"), "{known}");
+            assert!(
+                known.contains("shade") && known.contains("depth_range"),
+                "{known}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -45,12 +57,24 @@ fn unknown_pass_type_lists_the_known_ones() {
 
 #[test]
 fn unknown_param_lists_the_params_of_the_type() {
-    let text = edit(GOOD, "writes = { color = \"final\" }", "writes = { color = \"final\" }\nparams = { strength = 2.0, glow = 1 }");
+    let text = edit(
+        GOOD,
+        "writes = { color = \"final\" }",
+        "writes = { color = \"final\" }\nparams = { strength = 2.0, glow = 1 }",
+    );
     let e = only_error(&text, &[]);
     assert_eq!(e.location, at(28, 35));
     match &e.kind {
-        ErrorKind::UnknownParam { pass, pass_type, param, known } => {
-            assert_eq!((pass.as_str(), pass_type.as_str(), param.as_str()), ("shade", "shade", "glow"));
+        ErrorKind::UnknownParam {
+            pass,
+            pass_type,
+            param,
+            known,
+        } => {
+            assert_eq!(
+                (pass.as_str(), pass_type.as_str(), param.as_str()),
+                ("shade", "shade", "glow")
+            );
             assert_eq!(known, "color, mode, strength, slices");
         }
         other => panic!("{other:?}"),
@@ -59,12 +83,18 @@ fn unknown_param_lists_the_params_of_the_type() {
 
 #[test]
 fn bad_param_values_are_reported_at_the_value() {
-    let text = edit(GOOD, "writes = { color = \"final\" }", "writes = { color = \"final\" }\nparams = { strength = 20.0, mode = \"phong\" }");
+    let text = edit(
+        GOOD,
+        "writes = { color = \"final\" }",
+        "writes = { color = \"final\" }\nparams = { strength = 20.0, mode = \"phong\" }",
+    );
     let errors = errors_of(&text, &[]);
     assert_eq!(errors.len(), 2);
     assert!(matches!(&errors[0].kind, ErrorKind::BadParam { param, .. } if param == "strength"));
     assert_eq!(errors[0].location, at(28, 23));
-    assert!(matches!(&errors[1].kind, ErrorKind::BadParam { param, reason, .. } if param == "mode" && reason.contains("kajiya")));
+    assert!(
+        matches!(&errors[1].kind, ErrorKind::BadParam { param, reason, .. } if param == "mode" && reason.contains("kajiya"))
+    );
     assert_eq!(errors[1].location, at(28, 36));
 }
 
@@ -73,17 +103,29 @@ fn read_but_never_written_points_at_the_read() {
     // Disabling the only writer leaves `depth` unwritten.
     let e = only_error(GOOD, &["passes.light_range.enabled=false"]);
     assert_eq!(e.location, at(26, 20));
-    assert_eq!(e.kind, ErrorKind::NeverWritten { resource: "depth".into(), reader: "shade".into() });
+    assert_eq!(
+        e.kind,
+        ErrorKind::NeverWritten {
+            resource: "depth".into(),
+            reader: "shade".into()
+        }
+    );
 }
 
 #[test]
 fn two_unordered_writers_are_named() {
-    let text = format!("{GOOD}\n[passes.other_range]\ntype = \"depth_range\"\nview = \"camera\"\ndraw = \"hair\"\nwrites = {{ range = \"depth\" }}\n");
+    let text = format!(
+        "{GOOD}\n[passes.other_range]\ntype = \"depth_range\"\nview = \"camera\"\ndraw = \"hair\"\nwrites = {{ range = \"depth\" }}\n"
+    );
     let e = only_error(&text, &[]);
     assert_eq!(e.location, at(33, 20));
     assert_eq!(
         e.kind,
-        ErrorKind::UnorderedWriters { resource: "depth".into(), first: "light_range".into(), second: "other_range".into() }
+        ErrorKind::UnorderedWriters {
+            resource: "depth".into(),
+            first: "light_range".into(),
+            second: "other_range".into()
+        }
     );
 }
 
@@ -117,9 +159,15 @@ params = { radius = 2 }
 #[test]
 fn cycle_names_the_passes_around_it() {
     let e = only_error(CYCLE, &[]);
-    assert_eq!(e.kind, ErrorKind::Cycle(vec!["a".into(), "b".into(), "a".into()]));
+    assert_eq!(
+        e.kind,
+        ErrorKind::Cycle(vec!["a".into(), "b".into(), "a".into()])
+    );
     assert_eq!(e.location, at(15, 9));
-    assert!(e.to_string().ends_with("cycle between passes: a -> b -> a"), "{e}");
+    assert!(
+        e.to_string().ends_with("cycle between passes: a -> b -> a"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -143,7 +191,11 @@ fn format_mismatch_names_resource_pass_slot_and_accepted_formats() {
 
 #[test]
 fn undefined_param_points_at_the_string_using_it() {
-    let text = edit(GOOD, "size = [\"${size}\", \"${size}\"]", "size = [\"${size}\", \"${sise}\"]");
+    let text = edit(
+        GOOD,
+        "size = [\"${size}\", \"${size}\"]",
+        "size = [\"${size}\", \"${sise}\"]",
+    );
     let e = load_text(&text, &[]).unwrap_err().0.remove(0);
     assert_eq!(e.location, at(11, 20));
     assert_eq!(e.kind, ErrorKind::UndefinedParam("sise".into()));
@@ -151,17 +203,33 @@ fn undefined_param_points_at_the_string_using_it() {
 
 #[test]
 fn params_referring_to_each_other_in_a_loop_are_an_error() {
-    let text = edit(GOOD, "size = 256", "size = \"${other}\"\nother = \"${size}\"");
+    let text = edit(
+        GOOD,
+        "size = 256",
+        "size = \"${other}\"\nother = \"${size}\"",
+    );
     let e = load_text(&text, &[]).unwrap_err().0.remove(0);
-    assert!(matches!(&e.kind, ErrorKind::ParamCycle(names) if names.len() == 3), "{e}");
+    assert!(
+        matches!(&e.kind, ErrorKind::ParamCycle(names) if names.len() == 3),
+        "{e}"
+    );
 }
 
 #[test]
 fn malformed_set_flags_are_reported_on_the_flag() {
-    for flag in ["params.size", "=3", "params..size=3", "params.size.x=3", " = 1"] {
+    for flag in [
+        "params.size",
+        "=3",
+        "params..size=3",
+        "params.size.x=3",
+        " = 1",
+    ] {
         let e = load_text(GOOD, &[flag]).unwrap_err().0.remove(0);
         assert_eq!(e.location, Location::Flag { flag: flag.into() });
-        assert!(matches!(&e.kind, ErrorKind::MalformedSet { flag: f, .. } if f == flag), "{e}");
+        assert!(
+            matches!(&e.kind, ErrorKind::MalformedSet { flag: f, .. } if f == flag),
+            "{e}"
+        );
     }
 }
 
@@ -169,7 +237,15 @@ fn malformed_set_flags_are_reported_on_the_flag() {
 fn texture_too_large_names_the_limit_at_the_size() {
     let e = only_error(GOOD, &["params.size=10000"]);
     assert_eq!(e.location, at(11, 8));
-    assert_eq!(e.kind, ErrorKind::TextureSize { resource: "depth".into(), width: 10000, height: 10000, limit: 8192 });
+    assert_eq!(
+        e.kind,
+        ErrorKind::TextureSize {
+            resource: "depth".into(),
+            width: 10000,
+            height: 10000,
+            limit: 8192
+        }
+    );
     assert!(e.to_string().contains("8192"));
 }
 
@@ -180,7 +256,10 @@ fn unknown_keys_list_the_accepted_ones() {
     assert_eq!(e.location, at(22, 1));
     match &e.kind {
         ErrorKind::Schema(message) => {
-            assert!(message.contains("`veiw`") && message.contains("view, draw"), "{message}")
+            assert!(
+                message.contains("`veiw`") && message.contains("view, draw"),
+                "{message}"
+            )
         }
         other => panic!("{other:?}"),
     }
@@ -199,46 +278,99 @@ fn several_errors_are_reported_at_once_in_file_order() {
 fn raster_and_shader_requirements_are_checked() {
     let text = edit(GOOD, "draw = \"hair\"\n", "");
     let e = only_error(&text, &[]);
-    assert!(matches!(&e.kind, ErrorKind::Pass { pass, message } if pass == "light_range" && message.contains("draw")), "{e}");
+    assert!(
+        matches!(&e.kind, ErrorKind::Pass { pass, message } if pass == "light_range" && message.contains("draw")),
+        "{e}"
+    );
     assert_eq!(e.location, at(18, 9));
 
-    let text = edit(GOOD, "reads = { shadow = \"depth\" }", "view = \"camera\"\nreads = { shadow = \"depth\" }");
+    let text = edit(
+        GOOD,
+        "reads = { shadow = \"depth\" }",
+        "view = \"camera\"\nreads = { shadow = \"depth\" }",
+    );
     let e = only_error(&text, &[]);
-    assert!(matches!(&e.kind, ErrorKind::Pass { message, .. } if message.contains("`view`")), "{e}");
+    assert!(
+        matches!(&e.kind, ErrorKind::Pass { message, .. } if message.contains("`view`")),
+        "{e}"
+    );
 }
 
 #[test]
 fn missing_required_param_and_slot() {
-    let text = format!("{GOOD}\n[passes.blurred]\ntype = \"blur\"\nwrites = {{ dst = \"final\" }}\n");
+    let text =
+        format!("{GOOD}\n[passes.blurred]\ntype = \"blur\"\nwrites = {{ dst = \"final\" }}\n");
     let errors = errors_of(&text, &[]);
     let kinds: Vec<_> = errors.iter().map(|e| e.kind.clone()).collect();
-    assert!(kinds.contains(&ErrorKind::MissingParam { pass: "blurred".into(), param: "radius".into() }), "{kinds:?}");
-    assert!(kinds.contains(&ErrorKind::MissingSlot { pass: "blurred".into(), direction: "input", slot: "src".into() }), "{kinds:?}");
+    assert!(
+        kinds.contains(&ErrorKind::MissingParam {
+            pass: "blurred".into(),
+            param: "radius".into()
+        }),
+        "{kinds:?}"
+    );
+    assert!(
+        kinds.contains(&ErrorKind::MissingSlot {
+            pass: "blurred".into(),
+            direction: "input",
+            slot: "src".into()
+        }),
+        "{kinds:?}"
+    );
 }
 
 #[test]
 fn undeclared_resources_and_outputs() {
-    let text = edit(GOOD, "outputs = [\"final\"]", "outputs = [\"final\", \"missing\"]");
-    let text = edit(&text, "reads = { shadow = \"depth\" }", "reads = { shadow = \"dpeth\" }");
+    let text = edit(
+        GOOD,
+        "outputs = [\"final\"]",
+        "outputs = [\"final\", \"missing\"]",
+    );
+    let text = edit(
+        &text,
+        "reads = { shadow = \"depth\" }",
+        "reads = { shadow = \"dpeth\" }",
+    );
     let errors = errors_of(&text, &[]);
     assert_eq!(errors[0].kind, ErrorKind::UnknownOutput("missing".into()));
     assert_eq!(errors[0].location, at(3, 21));
-    assert_eq!(errors[1].kind, ErrorKind::UndeclaredResource("dpeth".into()));
+    assert_eq!(
+        errors[1].kind,
+        ErrorKind::UndeclaredResource("dpeth".into())
+    );
 }
 
 #[test]
 fn extends_cycle_is_detected() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("extends_cycle");
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("a.toml"), "[pipeline]\nname = \"a\"\nextends = \"b.toml\"\noutputs = []\n").unwrap();
-    std::fs::write(dir.join("b.toml"), "[pipeline]\nname = \"b\"\nextends = \"a.toml\"\noutputs = []\n").unwrap();
+    std::fs::write(
+        dir.join("a.toml"),
+        "[pipeline]\nname = \"a\"\nextends = \"b.toml\"\noutputs = []\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        "[pipeline]\nname = \"b\"\nextends = \"a.toml\"\noutputs = []\n",
+    )
+    .unwrap();
     let e = load(&dir.join("a.toml"), &[]).unwrap_err().0.remove(0);
     assert!(matches!(e.kind, ErrorKind::ExtendsCycle(_)), "{e}");
-    assert_eq!(e.location, Location::File { path: dir.join("b.toml"), line: 3, column: 11 });
+    assert_eq!(
+        e.location,
+        Location::File {
+            path: dir.join("b.toml"),
+            line: 3,
+            column: 11
+        }
+    );
 }
 
 #[test]
 fn missing_file_is_an_io_error_not_a_panic() {
-    let e = load(std::path::Path::new("does/not/exist.toml"), &[]).unwrap_err().0.remove(0);
+    let e = load(std::path::Path::new("does/not/exist.toml"), &[])
+        .unwrap_err()
+        .0
+        .remove(0);
     assert!(matches!(e.kind, ErrorKind::Io(_)));
 }

@@ -25,7 +25,12 @@ fn truncated_files_never_panic() {
 fn files_missing_a_line_never_panic() {
     let lines: Vec<&str> = GOOD.lines().collect();
     for skip in 0..lines.len() {
-        let text: Vec<&str> = lines.iter().enumerate().filter(|(i, _)| *i != skip).map(|(_, l)| *l).collect();
+        let text: Vec<&str> = lines
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != skip)
+            .map(|(_, l)| *l)
+            .collect();
         check(&text.join("\n"), &[]);
     }
 }

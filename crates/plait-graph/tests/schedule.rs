@@ -29,62 +29,172 @@ params = { strength = 2.5 }
 "#;
     std::fs::write(dir.join("child.toml"), child).unwrap();
     let pipeline = load(&dir.join("child.toml"), &["params.size=128".into()]).unwrap();
-    assert_eq!(pipeline.files, [dir.join("child.toml"), dir.join("base.toml")]);
+    assert_eq!(
+        pipeline.files,
+        [dir.join("child.toml"), dir.join("base.toml")]
+    );
     assert_eq!(pipeline.name.value, "child");
     // Kept from the base, with the base's location.
-    assert_eq!(pipeline.outputs[0].location, Location::File { path: dir.join("base.toml"), line: 3, column: 12 });
+    assert_eq!(
+        pipeline.outputs[0].location,
+        Location::File {
+            path: dir.join("base.toml"),
+            line: 3,
+            column: 12
+        }
+    );
     let shade = &pipeline.passes["shade"];
     assert_eq!(shade.type_name.value, "shade");
-    assert_eq!(shade.type_name.location, Location::File { path: dir.join("base.toml"), line: 25, column: 8 });
+    assert_eq!(
+        shade.type_name.location,
+        Location::File {
+            path: dir.join("base.toml"),
+            line: 25,
+            column: 8
+        }
+    );
     // Set by the child, with the child's location.
     assert_eq!(shade.params["strength"].value, Value::Float(2.5));
-    assert_eq!(shade.params["strength"].location, Location::File { path: dir.join("child.toml"), line: 9, column: 23 });
+    assert_eq!(
+        shade.params["strength"].location,
+        Location::File {
+            path: dir.join("child.toml"),
+            line: 9,
+            column: 23
+        }
+    );
     // --set wins over both files.
     assert_eq!(pipeline.params["size"].value, Value::Int(128));
-    assert_eq!(pipeline.params["size"].location, Location::Flag { flag: "params.size=128".into() });
+    assert_eq!(
+        pipeline.params["size"].location,
+        Location::Flag {
+            flag: "params.size=128".into()
+        }
+    );
 
     let schedule = compile(&pipeline, &registry(), &CompileOptions::default()).unwrap();
     let depth = &schedule.resources[schedule.resource("depth").unwrap()];
-    assert_eq!(depth.desc, ResourceDesc::Texture { format: Format::Rg32Float, width: 128, height: 128, layers: 1, samples: 1 });
+    assert_eq!(
+        depth.desc,
+        ResourceDesc::Texture {
+            format: Format::Rg32Float,
+            width: 128,
+            height: 128,
+            layers: 1,
+            samples: 1
+        }
+    );
     assert_eq!(schedule.passes[1].params["strength"], Value::Float(2.5));
 }
 
 #[test]
 fn set_is_the_same_as_editing_the_file() {
     let cases: &[(&str, &str, &str)] = &[
-        ("passes.shade.params.strength=3.5", "writes = { color = \"final\" }", "writes = { color = \"final\" }\nparams = { strength = 3.5 }"),
-        ("passes.shade.params.color=[1,0.5,0.2]", "writes = { color = \"final\" }", "writes = { color = \"final\" }\nparams = { color = [1, 0.5, 0.2] }"),
-        ("passes.shade.params.mode=marschner", "writes = { color = \"final\" }", "writes = { color = \"final\" }\nparams = { mode = \"marschner\" }"),
-        ("resources.depth.format=rg16float", "format = \"rg32float\"", "format = \"rg16float\""),
+        (
+            "passes.shade.params.strength=3.5",
+            "writes = { color = \"final\" }",
+            "writes = { color = \"final\" }\nparams = { strength = 3.5 }",
+        ),
+        (
+            "passes.shade.params.color=[1,0.5,0.2]",
+            "writes = { color = \"final\" }",
+            "writes = { color = \"final\" }\nparams = { color = [1, 0.5, 0.2] }",
+        ),
+        (
+            "passes.shade.params.mode=marschner",
+            "writes = { color = \"final\" }",
+            "writes = { color = \"final\" }\nparams = { mode = \"marschner\" }",
+        ),
+        (
+            "resources.depth.format=rg16float",
+            "format = \"rg32float\"",
+            "format = \"rg16float\"",
+        ),
         ("params.size=64", "size = 256", "size = 64"),
-        ("resources.final.size=\"screen/2\"", "size = \"screen\"", "size = \"screen/2\""),
+        (
+            "resources.final.size=\"screen/2\"",
+            "size = \"screen\"",
+            "size = \"screen/2\"",
+        ),
     ];
     for (flag, from, to) in cases {
         let by_flag = compile_text(GOOD, &[flag]).unwrap();
         let by_edit = compile_text(&edit(GOOD, from, to), &[]).unwrap();
-        assert_eq!(schedule_text(&by_flag), schedule_text(&by_edit), "--set {flag}");
+        assert_eq!(
+            schedule_text(&by_flag),
+            schedule_text(&by_edit),
+            "--set {flag}"
+        );
     }
 }
 
 #[test]
 fn params_substitute_typed_and_textually_and_sizes_take_expressions() {
-    let text = edit(GOOD, "size = 256", "size = 256\nname_suffix = \"x${size}\"\nslices = \"${size}\"\nhalf = \"${size} / 2\"");
-    let text = edit(&text, "writes = { color = \"final\" }", "writes = { color = \"final\" }\nparams = { slices = \"${half} - 28\" }");
-    let text = edit(&text, "size = \"screen\"", "size = [\"screen_width / 2\", \"screen_height/2 + ${size}\"]");
+    let text = edit(
+        GOOD,
+        "size = 256",
+        "size = 256\nname_suffix = \"x${size}\"\nslices = \"${size}\"\nhalf = \"${size} / 2\"",
+    );
+    let text = edit(
+        &text,
+        "writes = { color = \"final\" }",
+        "writes = { color = \"final\" }\nparams = { slices = \"${half} - 28\" }",
+    );
+    let text = edit(
+        &text,
+        "size = \"screen\"",
+        "size = [\"screen_width / 2\", \"screen_height/2 + ${size}\"]",
+    );
     let pipeline = load_text(&text, &[]).unwrap();
-    assert_eq!(pipeline.params["name_suffix"].value, Value::Str("x256".into()));
-    assert_eq!(pipeline.params["slices"].value, Value::Int(256), "a whole `${{x}}` keeps x's type");
-    let schedule = compile(&pipeline, &registry(), &CompileOptions { screen: (1000, 600), ..Default::default() }).unwrap();
+    assert_eq!(
+        pipeline.params["name_suffix"].value,
+        Value::Str("x256".into())
+    );
+    assert_eq!(
+        pipeline.params["slices"].value,
+        Value::Int(256),
+        "a whole `${{x}}` keeps x's type"
+    );
+    let schedule = compile(
+        &pipeline,
+        &registry(),
+        &CompileOptions {
+            screen: (1000, 600),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert_eq!(schedule.passes[1].params["slices"], Value::Int(100));
     let final_ = &schedule.resources[schedule.resource("final").unwrap()];
-    assert_eq!(final_.desc, ResourceDesc::Texture { format: Format::Rgba16Float, width: 500, height: 556, layers: 1, samples: 1 });
+    assert_eq!(
+        final_.desc,
+        ResourceDesc::Texture {
+            format: Format::Rgba16Float,
+            width: 500,
+            height: 556,
+            layers: 1,
+            samples: 1
+        }
+    );
 }
 
 #[test]
 fn defaults_are_filled_in_the_types_param_order() {
     let schedule = compile_text(GOOD, &["passes.shade.params.strength=2"]).unwrap();
-    let params: Vec<_> = schedule.passes[1].params.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    assert_eq!(params, ["color=[1, 1, 1]", "mode=\"kajiya\"", "strength=2", "slices=16"]);
+    let params: Vec<_> = schedule.passes[1]
+        .params
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect();
+    assert_eq!(
+        params,
+        [
+            "color=[1, 1, 1]",
+            "mode=\"kajiya\"",
+            "strength=2",
+            "slices=16"
+        ]
+    );
 }
 
 #[test]
@@ -96,13 +206,18 @@ fn culled_passes_are_reported_with_a_reason_and_their_resources_dropped() {
     assert_eq!(schedule.passes.len(), 2);
     assert_eq!(schedule.culled.len(), 1);
     assert_eq!(schedule.culled[0].pass.name, "debug_view");
-    assert_eq!(schedule.culled[0].reason, "writes only `debug`, which no output depends on");
+    assert_eq!(
+        schedule.culled[0].reason,
+        "writes only `debug`, which no output depends on"
+    );
     assert_eq!(schedule.dropped_resources, ["debug"]);
     assert!(schedule.resource("debug").is_none());
     assert_eq!(schedule.culled[0].pass.writes[0].resource, DROPPED_RESOURCE);
     // Still validated: a bad param in a culled pass is an error.
     let bad = edit(&text, "radius = 1", "radius = 100");
-    assert!(matches!(&errors_of(&bad, &[])[0].kind, ErrorKind::BadParam { pass, .. } if pass == "debug_view"));
+    assert!(
+        matches!(&errors_of(&bad, &[])[0].kind, ErrorKind::BadParam { pass, .. } if pass == "debug_view")
+    );
 }
 
 const CHAIN: &str = r#"[pipeline]
@@ -169,14 +284,23 @@ fn order_follows_resources_not_the_file() {
     let schedule = compile_text(CHAIN, &[]).unwrap();
     let names: Vec<_> = schedule.passes.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(names, ["source", "a", "b", "c", "d"]);
-    assert_eq!(schedule.passes[0].writes[0].access, Access::StorageWrite, "dynamic slots default to storage writes");
+    assert_eq!(
+        schedule.passes[0].writes[0].access,
+        Access::StorageWrite,
+        "dynamic slots default to storage writes"
+    );
 }
 
 #[test]
 fn same_descriptor_resources_with_disjoint_lifetimes_share_memory() {
     let schedule = compile_text(CHAIN, &[]).unwrap();
     let id = |name: &str| schedule.resource(name).unwrap();
-    let life = |name: &str| (schedule.resources[id(name)].first_use, schedule.resources[id(name)].last_use);
+    let life = |name: &str| {
+        (
+            schedule.resources[id(name)].first_use,
+            schedule.resources[id(name)].last_use,
+        )
+    };
     assert_eq!(life("src"), (0, 1));
     assert_eq!(life("t1"), (1, 2));
     assert_eq!(life("t2"), (2, 3));
@@ -189,15 +313,29 @@ fn same_descriptor_resources_with_disjoint_lifetimes_share_memory() {
     assert_eq!(schedule.shares_memory_with(id("out")), ["src", "t2"]);
     assert_eq!(schedule.physical.len(), 2);
     let one = 256 * 256 * 8;
-    assert_eq!(schedule.memory, MemoryReport { peak_bytes: 2 * one, unpooled_bytes: 5 * one });
+    assert_eq!(
+        schedule.memory,
+        MemoryReport {
+            peak_bytes: 2 * one,
+            unpooled_bytes: 5 * one
+        }
+    );
     assert!(schedule.memory.peak_bytes < schedule.memory.unpooled_bytes);
 }
 
 #[test]
 fn different_descriptors_never_share() {
-    let text = edit(CHAIN, "[resources.t2]\nkind = \"texture\"\nformat = \"rgba16float\"", "[resources.t2]\nkind = \"texture\"\nformat = \"rgba8unorm\"");
+    let text = edit(
+        CHAIN,
+        "[resources.t2]\nkind = \"texture\"\nformat = \"rgba16float\"",
+        "[resources.t2]\nkind = \"texture\"\nformat = \"rgba8unorm\"",
+    );
     let schedule = compile_text(&text, &[]).unwrap();
-    assert!(schedule.shares_memory_with(schedule.resource("t2").unwrap()).is_empty());
+    assert!(
+        schedule
+            .shares_memory_with(schedule.resource("t2").unwrap())
+            .is_empty()
+    );
 }
 
 const ACCUMULATE: &str = r#"[pipeline]
@@ -237,13 +375,29 @@ fn load_writers_run_after_plain_writers_and_the_first_writer_clears() {
     let schedule = compile_text(ACCUMULATE, &[]).unwrap();
     let names: Vec<_> = schedule.passes.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(names, ["make_x", "clear_sum", "add_second"]);
-    assert!(schedule.passes[2].writes[0].loads, "accumulates over clear_sum's result");
+    assert!(
+        schedule.passes[2].writes[0].loads,
+        "accumulates over clear_sum's result"
+    );
     let sum = &schedule.resources[schedule.resource("sum").unwrap()];
-    assert_eq!(sum.desc, ResourceDesc::Texture { format: Format::Rgba16Float, width: 480, height: 360, layers: 1, samples: 1 });
+    assert_eq!(
+        sum.desc,
+        ResourceDesc::Texture {
+            format: Format::Rgba16Float,
+            width: 480,
+            height: 360,
+            layers: 1,
+            samples: 1
+        }
+    );
 
     // Without clear_sum the accumulating pass is the first writer: loads is off.
     let schedule = compile_text(ACCUMULATE, &["passes.clear_sum.enabled=false"]).unwrap();
-    let add = schedule.passes.iter().find(|p| p.name == "add_second").unwrap();
+    let add = schedule
+        .passes
+        .iter()
+        .find(|p| p.name == "add_second")
+        .unwrap();
     assert!(!add.writes[0].loads);
 }
 
@@ -257,9 +411,15 @@ fn shader_paths_resolve_next_to_the_file_or_at_the_repo_root() {
     std::fs::write(root.join("pipelines/chain.toml"), CHAIN).unwrap();
     std::fs::write(root.join("pipelines/acc.toml"), ACCUMULATE).unwrap();
     let chain = load(&root.join("pipelines/chain.toml"), &[]).unwrap();
-    assert_eq!(chain.passes["source"].shader.as_ref().unwrap().value, root.join("shaders/source.wgsl"));
+    assert_eq!(
+        chain.passes["source"].shader.as_ref().unwrap().value,
+        root.join("shaders/source.wgsl")
+    );
     let acc = load(&root.join("pipelines/acc.toml"), &[]).unwrap();
-    assert_eq!(acc.passes["clear_sum"].shader.as_ref().unwrap().value, root.join("pipelines/clear.wgsl"));
+    assert_eq!(
+        acc.passes["clear_sum"].shader.as_ref().unwrap().value,
+        root.join("pipelines/clear.wgsl")
+    );
 }
 
 #[test]
@@ -270,11 +430,26 @@ fn dot_shows_order_culling_and_outputs() {
     let schedule = compile_text(&text, &[]).unwrap();
     let dot = to_dot(&schedule);
     assert!(dot.starts_with("digraph \"good\" {"), "{dot}");
-    assert!(dot.contains("p0 [shape=box, label=\"light_range\\ndepth_range\"];"), "{dot}");
-    assert!(dot.contains("p0 -> p1 [label=\"depth\\nrg32float 256x256\"];"), "{dot}");
-    assert!(dot.contains("p2 [shape=box, label=\"debug_view\\nblur (culled)\", style=dashed];"), "{dot}");
-    assert!(dot.contains("p0 -> p2 [label=\"depth\\nrg32float 256x256\", style=dashed];"), "{dot}");
-    assert!(dot.contains("p1 -> output [label=\"final\\nrgba16float 960x720\"];"), "{dot}");
+    assert!(
+        dot.contains("p0 [shape=box, label=\"light_range\\ndepth_range\"];"),
+        "{dot}"
+    );
+    assert!(
+        dot.contains("p0 -> p1 [label=\"depth\\nrg32float 256x256\"];"),
+        "{dot}"
+    );
+    assert!(
+        dot.contains("p2 [shape=box, label=\"debug_view\\nblur (culled)\", style=dashed];"),
+        "{dot}"
+    );
+    assert!(
+        dot.contains("p0 -> p2 [label=\"depth\\nrg32float 256x256\", style=dashed];"),
+        "{dot}"
+    );
+    assert!(
+        dot.contains("p1 -> output [label=\"final\\nrgba16float 960x720\"];"),
+        "{dot}"
+    );
     let svg = to_svg(&schedule).unwrap();
     assert!(svg.contains("<svg") && svg.contains("light_range"), "{svg}");
 }

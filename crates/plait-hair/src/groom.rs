@@ -45,7 +45,9 @@ impl std::str::FromStr for Style {
             "straight" => Ok(Style::Straight),
             "wavy" => Ok(Style::Wavy),
             "curly" => Ok(Style::Curly),
-            other => Err(format!("unknown style {other:?} (expected straight, wavy or curly)")),
+            other => Err(format!(
+                "unknown style {other:?} (expected straight, wavy or curly)"
+            )),
         }
     }
 }
@@ -62,7 +64,10 @@ pub struct HeadShape {
 
 impl Default for HeadShape {
     fn default() -> Self {
-        HeadShape { center: [0.0, 0.0, 0.0], radii: [0.9, 1.05, 1.0] }
+        HeadShape {
+            center: [0.0, 0.0, 0.0],
+            radii: [0.9, 1.05, 1.0],
+        }
     }
 }
 
@@ -81,7 +86,11 @@ pub struct ScalpRegion {
 
 impl Default for ScalpRegion {
     fn default() -> Self {
-        ScalpRegion { max_polar_degrees: 105.0, face_polar_degrees: 50.0, face_half_width_degrees: 70.0 }
+        ScalpRegion {
+            max_polar_degrees: 105.0,
+            face_polar_degrees: 50.0,
+            face_half_width_degrees: 70.0,
+        }
     }
 }
 
@@ -167,11 +176,17 @@ impl GroomSpec {
             return Err("strands must be at least 1".into());
         }
         if !(1..=65535).contains(&self.segments) {
-            return Err(format!("segments must be in 1..=65535, got {}", self.segments));
+            return Err(format!(
+                "segments must be in 1..=65535, got {}",
+                self.segments
+            ));
         }
-        let total = (u64::from(self.strands) + u64::from(self.stray_strands)) * (u64::from(self.segments) + 1);
+        let total = (u64::from(self.strands) + u64::from(self.stray_strands))
+            * (u64::from(self.segments) + 1);
         if total > u64::from(u32::MAX) {
-            return Err(format!("strands × (segments + 1) = {total} points exceeds 2^32-1"));
+            return Err(format!(
+                "strands × (segments + 1) = {total} points exceeds 2^32-1"
+            ));
         }
         let finite_nonneg = [
             ("length", self.length),
@@ -204,7 +219,13 @@ impl GroomSpec {
         if self.head.radii.iter().any(|r| !(r.is_finite() && *r > 0.0)) {
             return Err("head.radii must be finite and > 0".into());
         }
-        if self.head.center.iter().chain(&self.color).any(|c| !c.is_finite()) {
+        if self
+            .head
+            .center
+            .iter()
+            .chain(&self.color)
+            .any(|c| !c.is_finite())
+        {
             return Err("head.center and color must be finite".into());
         }
         if self.guides == Some(0) {
@@ -219,7 +240,10 @@ impl GroomSpec {
             Style::Wavy => (0.06, 0.5),
             Style::Curly => (0.05, 0.15),
         };
-        (self.wave_amplitude.unwrap_or(a), self.wave_period.unwrap_or(p).max(1e-4))
+        (
+            self.wave_amplitude.unwrap_or(a),
+            self.wave_period.unwrap_or(p).max(1e-4),
+        )
     }
 }
 
@@ -240,7 +264,13 @@ fn look(spec: &GroomSpec, rng: &mut SplitMix64) -> StrandLook {
     let bright = (1.0 + spec.color_variation * rng.signed()).max(0.0);
     let tint = Vec3::new(rng.signed(), rng.signed(), rng.signed()) * spec.color_variation * 0.15;
     let color = ((Vec3::from(spec.color) + tint) * bright).max(Vec3::ZERO);
-    StrandLook { length, thickness, alpha, color, phase: rng.range(0.0, std::f32::consts::TAU) }
+    StrandLook {
+        length,
+        thickness,
+        alpha,
+        color,
+        phase: rng.range(0.0, std::f32::consts::TAU),
+    }
 }
 
 /// Scalp parameter (u, v) in [0,1]² → unit direction on the parameter sphere.
@@ -248,7 +278,11 @@ fn look(spec: &GroomSpec, rng: &mut SplitMix64) -> StrandLook {
 fn scalp_dir(spec: &GroomSpec, u: f32, v: f32) -> Vec3 {
     let theta = u * spec.scalp.max_polar_degrees.to_radians();
     let phi = v * std::f32::consts::TAU;
-    Vec3::new(theta.sin() * phi.sin(), theta.cos(), theta.sin() * phi.cos())
+    Vec3::new(
+        theta.sin() * phi.sin(),
+        theta.cos(),
+        theta.sin() * phi.cos(),
+    )
 }
 
 fn in_scalp(spec: &GroomSpec, u: f32, v: f32) -> bool {
@@ -259,7 +293,11 @@ fn in_scalp(spec: &GroomSpec, u: f32, v: f32) -> bool {
 
 /// A random scalp parameter, area-uniform over the cap, outside the face.
 fn sample_root(spec: &GroomSpec, rng: &mut SplitMix64) -> (f32, f32) {
-    let max = spec.scalp.max_polar_degrees.to_radians().clamp(1e-3, std::f32::consts::PI);
+    let max = spec
+        .scalp
+        .max_polar_degrees
+        .to_radians()
+        .clamp(1e-3, std::f32::consts::PI);
     let mut last = (0.0, 0.0);
     for _ in 0..64 {
         let cos_t = 1.0 - rng.next_f32() * (1.0 - max.cos());
@@ -270,7 +308,11 @@ fn sample_root(spec: &GroomSpec, rng: &mut SplitMix64) -> (f32, f32) {
             return last;
         }
     }
-    (last.0.min(spec.scalp.face_polar_degrees / spec.scalp.max_polar_degrees.max(1e-3)), last.1)
+    (
+        last.0
+            .min(spec.scalp.face_polar_degrees / spec.scalp.max_polar_degrees.max(1e-3)),
+        last.1,
+    )
 }
 
 /// Surface point and outward normal of the head for a parameter direction.
@@ -294,7 +336,14 @@ fn comb(normal: Vec3, v: f32) -> Vec3 {
     (normal + azimuth_dir(v) * 0.6).normalize_or(normal)
 }
 
-fn grow(spec: &GroomSpec, root: Vec3, start_dir: Vec3, length: f32, gravity: f32, lift: f32) -> Vec<Vec3> {
+fn grow(
+    spec: &GroomSpec,
+    root: Vec3,
+    start_dir: Vec3,
+    length: f32,
+    gravity: f32,
+    lift: f32,
+) -> Vec<Vec3> {
     let n = spec.segments.max(1) as usize;
     let step = length / n as f32;
     let center = Vec3::from(spec.head.center);
@@ -372,7 +421,14 @@ pub fn generate(spec: &GroomSpec) -> Strands {
                 let (u, v) = sample_root(spec, &mut rng);
                 let lk = look(spec, &mut rng);
                 let (root, normal) = head_point(spec, scalp_dir(spec, u, v));
-                let mut pts = grow(spec, root, comb(normal, v), lk.length, spec.gravity, lift_of(u));
+                let mut pts = grow(
+                    spec,
+                    root,
+                    comb(normal, v),
+                    lk.length,
+                    spec.gravity,
+                    lift_of(u),
+                );
                 add_waves(spec, &mut pts, lk.phase);
                 push(&mut strands, spec, &pts, &lk);
             }
@@ -412,11 +468,17 @@ fn locate(u: f32, v: f32, rows: usize, cols: usize) -> ([(usize, usize); 3], [f3
     let fv = v.clamp(0.0, 1.0) * cols as f32;
     let i = (fu.floor() as usize).min(rows - 2);
     let j = (fv.floor() as usize).min(cols - 1);
-    let (a, b) = ((fu - i as f32).clamp(0.0, 1.0), (fv - j as f32).clamp(0.0, 1.0));
+    let (a, b) = (
+        (fu - i as f32).clamp(0.0, 1.0),
+        (fv - j as f32).clamp(0.0, 1.0),
+    );
     if a + b <= 1.0 {
         ([(i, j), (i + 1, j), (i, j + 1)], [1.0 - a - b, a, b])
     } else {
-        ([(i + 1, j + 1), (i, j + 1), (i + 1, j)], [a + b - 1.0, 1.0 - a, 1.0 - b])
+        (
+            [(i + 1, j + 1), (i, j + 1), (i + 1, j)],
+            [a + b - 1.0, 1.0 - a, 1.0 - b],
+        )
     }
 }
 
@@ -432,7 +494,12 @@ fn blend(tri: [&Vec<Vec3>; 3], w: [f32; 3], root: Vec3, scale: f32) -> Vec<Vec3>
     (0..n).map(|k| root + (at(k) - start) * scale).collect()
 }
 
-fn interpolate_from_guides(spec: &GroomSpec, g: u32, strands: &mut Strands, lift_of: impl Fn(f32) -> f32) {
+fn interpolate_from_guides(
+    spec: &GroomSpec,
+    g: u32,
+    strands: &mut Strands,
+    lift_of: impl Fn(f32) -> f32,
+) {
     let (rows, cols) = guide_grid(g);
     // Guides: grown with the mean length, with their own wave phase.
     let mut guides: Vec<Vec<Vec3>> = Vec::with_capacity(rows * cols);
@@ -443,7 +510,14 @@ fn interpolate_from_guides(spec: &GroomSpec, g: u32, strands: &mut Strands, lift
             let mut rng = SplitMix64::stream(spec.seed ^ 0x006D_1DE5, (i * cols + j) as u64);
             let phase = rng.range(0.0, std::f32::consts::TAU);
             let (root, normal) = head_point(spec, scalp_dir(spec, u, v));
-            let mut pts = grow(spec, root, comb(normal, v), spec.length, spec.gravity, lift_of(u));
+            let mut pts = grow(
+                spec,
+                root,
+                comb(normal, v),
+                spec.length,
+                spec.gravity,
+                lift_of(u),
+            );
             add_waves(spec, &mut pts, phase);
             guides.push(pts);
         }
@@ -466,7 +540,13 @@ mod tests {
     use super::*;
 
     fn spec(style: Style) -> GroomSpec {
-        GroomSpec { style, strands: 200, segments: 12, seed: 7, ..GroomSpec::default() }
+        GroomSpec {
+            style,
+            strands: 200,
+            segments: 12,
+            seed: 7,
+            ..GroomSpec::default()
+        }
     }
 
     fn head_level(spec: &GroomSpec, p: Vec3) -> f32 {
@@ -483,7 +563,10 @@ mod tests {
             assert_eq!(a.strand_count(), 200);
             assert_eq!(a.point_count(), 200 * 13);
             assert_eq!(a.segment_count(), 200 * 12);
-            let c = generate(&GroomSpec { seed: 8, ..s.clone() });
+            let c = generate(&GroomSpec {
+                seed: 8,
+                ..s.clone()
+            });
             assert_ne!(a.points, c.points);
             assert!(a.points.iter().all(|p| p.is_finite()));
         }
@@ -495,7 +578,10 @@ mod tests {
         let h = generate(&s);
         for r in h.ranges() {
             let pts = &h.points[r];
-            assert!((head_level(&s, pts[0]) - 1.0).abs() < 1e-3, "root on the head surface");
+            assert!(
+                (head_level(&s, pts[0]) - 1.0).abs() < 1e-3,
+                "root on the head surface"
+            );
             assert!(pts[0].z < 0.95 || pts[0].y > 0.3, "no roots on the face");
             for p in &pts[1..] {
                 assert!(head_level(&s, *p) > 0.999, "hair stays outside the head");
@@ -504,7 +590,11 @@ mod tests {
             assert!(pts[pts.len() - 1].y < pts[0].y);
         }
         // variation: strands differ in thickness, alpha and color
-        assert!(h.thickness.iter().any(|&t| (t - h.thickness[0]).abs() > 1e-6));
+        assert!(
+            h.thickness
+                .iter()
+                .any(|&t| (t - h.thickness[0]).abs() > 1e-6)
+        );
         assert!(h.alpha.iter().any(|&a| a != h.alpha[0]));
         assert!(h.color.iter().any(|&c| c != h.color[0]));
         assert!(h.alpha.iter().all(|a| (0.0..=1.0).contains(a)));
@@ -527,7 +617,10 @@ mod tests {
     #[test]
     fn wavy_and_curly_wiggle_more_than_straight() {
         // enough segments to resolve the curl period
-        let fine = |style| GroomSpec { segments: 64, ..spec(style) };
+        let fine = |style| GroomSpec {
+            segments: 64,
+            ..spec(style)
+        };
         let st = mean_deviation_from_chord(&generate(&fine(Style::Straight)));
         let wv = mean_deviation_from_chord(&generate(&fine(Style::Wavy)));
         let cu = mean_deviation_from_chord(&generate(&fine(Style::Curly)));
@@ -537,7 +630,10 @@ mod tests {
 
     #[test]
     fn stray_strands_stand_off_the_volume() {
-        let s = GroomSpec { stray_strands: 5, ..spec(Style::Straight) };
+        let s = GroomSpec {
+            stray_strands: 5,
+            ..spec(Style::Straight)
+        };
         let h = generate(&s);
         assert_eq!(h.strand_count(), 205);
         let main = &h.points[..200 * 13];
@@ -546,16 +642,27 @@ mod tests {
             let off = h
                 .strand(i)
                 .iter()
-                .map(|p| main.iter().map(|q| (*p - *q).length()).fold(f32::INFINITY, f32::min))
+                .map(|p| {
+                    main.iter()
+                        .map(|q| (*p - *q).length())
+                        .fold(f32::INFINITY, f32::min)
+                })
                 .fold(0.0f32, f32::max);
             assert!(off > 0.2, "stray {i} only {off} away from the main volume");
-            assert!((head_level(&s, h.strand(i)[0]) - 1.0).abs() < 1e-3, "stray roots on the scalp");
+            assert!(
+                (head_level(&s, h.strand(i)[0]) - 1.0).abs() < 1e-3,
+                "stray roots on the scalp"
+            );
         }
     }
 
     #[test]
     fn guide_interpolation_is_barycentric() {
-        let s = GroomSpec { guides: Some(60), style: Style::Wavy, ..spec(Style::Straight) };
+        let s = GroomSpec {
+            guides: Some(60),
+            style: Style::Wavy,
+            ..spec(Style::Straight)
+        };
         let h = generate(&s);
         assert_eq!(h.strand_count(), 200);
         assert_eq!(h.point_count(), 200 * 13);
@@ -587,15 +694,30 @@ mod tests {
                 pu += wt * *i as f32 / (rows - 1) as f32;
                 pv += wt * *j as f32 / cols as f32;
             }
-            assert!((pu - u).abs() < 1e-4 && (pv - v).abs() < 1e-4, "({u},{v}) -> ({pu},{pv})");
+            assert!(
+                (pu - u).abs() < 1e-4 && (pv - v).abs() < 1e-4,
+                "({u},{v}) -> ({pu},{pv})"
+            );
         }
     }
 
     #[test]
     fn blend_reproduces_guides_and_averages() {
-        let g0 = vec![Vec3::ZERO, Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.5, -2.0, 0.0)];
-        let g1 = vec![Vec3::X, Vec3::new(1.0, -1.0, 1.0), Vec3::new(1.0, -2.0, 2.0)];
-        let g2 = vec![Vec3::Z, Vec3::new(0.0, -1.0, 1.0), Vec3::new(0.0, -3.0, 1.0)];
+        let g0 = vec![
+            Vec3::ZERO,
+            Vec3::new(0.0, -1.0, 0.0),
+            Vec3::new(0.5, -2.0, 0.0),
+        ];
+        let g1 = vec![
+            Vec3::X,
+            Vec3::new(1.0, -1.0, 1.0),
+            Vec3::new(1.0, -2.0, 2.0),
+        ];
+        let g2 = vec![
+            Vec3::Z,
+            Vec3::new(0.0, -1.0, 1.0),
+            Vec3::new(0.0, -3.0, 1.0),
+        ];
         // weight 1 on a guide: that guide, moved to the new root
         let b = blend([&g0, &g1, &g2], [0.0, 1.0, 0.0], Vec3::X, 1.0);
         assert_eq!(b, g1);
@@ -611,19 +733,41 @@ mod tests {
     #[test]
     fn validate_names_fields() {
         assert!(GroomSpec::default().validate().is_ok());
-        let e = GroomSpec { segments: 0, ..GroomSpec::default() }.validate().unwrap_err();
+        let e = GroomSpec {
+            segments: 0,
+            ..GroomSpec::default()
+        }
+        .validate()
+        .unwrap_err();
         assert!(e.contains("segments"));
-        let e = GroomSpec { segments: 70000, ..GroomSpec::default() }.validate().unwrap_err();
+        let e = GroomSpec {
+            segments: 70000,
+            ..GroomSpec::default()
+        }
+        .validate()
+        .unwrap_err();
         assert!(e.contains("segments"));
-        let e = GroomSpec { length: f32::NAN, ..GroomSpec::default() }.validate().unwrap_err();
+        let e = GroomSpec {
+            length: f32::NAN,
+            ..GroomSpec::default()
+        }
+        .validate()
+        .unwrap_err();
         assert!(e.contains("length"));
-        let e = GroomSpec { strands: u32::MAX, segments: 65535, ..GroomSpec::default() }.validate().unwrap_err();
+        let e = GroomSpec {
+            strands: u32::MAX,
+            segments: 65535,
+            ..GroomSpec::default()
+        }
+        .validate()
+        .unwrap_err();
         assert!(e.contains("points"));
     }
 
     #[test]
     fn spec_parses_from_toml_and_rejects_unknown_fields() {
-        let s: GroomSpec = toml::from_str("style = \"curly\"\nstrands = 10\nguides = 30\n").expect("parse");
+        let s: GroomSpec =
+            toml::from_str("style = \"curly\"\nstrands = 10\nguides = 30\n").expect("parse");
         assert_eq!(s.style, Style::Curly);
         assert_eq!(s.guides, Some(30));
         assert_eq!(s.segments, GroomSpec::default().segments);

@@ -43,7 +43,8 @@ pub const FLAG_THICKNESS: u32 = 4;
 pub const FLAG_TRANSPARENCY: u32 = 8;
 /// Flag bit: a colors array (3×f32 per point) is present.
 pub const FLAG_COLORS: u32 = 16;
-const KNOWN_FLAGS: u32 = FLAG_SEGMENTS | FLAG_POINTS | FLAG_THICKNESS | FLAG_TRANSPARENCY | FLAG_COLORS;
+const KNOWN_FLAGS: u32 =
+    FLAG_SEGMENTS | FLAG_POINTS | FLAG_THICKNESS | FLAG_TRANSPARENCY | FLAG_COLORS;
 
 /// Everything that can make a `.hair` file unreadable.
 #[derive(Debug, thiserror::Error)]
@@ -79,7 +80,9 @@ pub enum HairError {
         offset: u64,
     },
     /// Sum over strands of (segments + 1) differs from the point count.
-    #[error("segment counts imply {implied} points (sum of segments+1 over {strands} strands) but the header says {points}")]
+    #[error(
+        "segment counts imply {implied} points (sum of segments+1 over {strands} strands) but the header says {points}"
+    )]
     SegmentMismatch {
         /// Points implied by the segment counts.
         implied: u64,
@@ -125,7 +128,10 @@ impl From<std::io::Error> for HairError {
 impl HairError {
     /// Wraps `self` with the file it came from.
     pub fn in_file(self, path: impl Into<PathBuf>) -> HairError {
-        HairError::InFile { path: path.into(), error: Box::new(self) }
+        HairError::InFile {
+            path: path.into(),
+            error: Box::new(self),
+        }
     }
 
     /// The error without its file wrapper.
@@ -156,9 +162,14 @@ impl fmt::Display for HairWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             HairWarning::TrailingBytes { count } => {
-                write!(f, "{count} trailing bytes after the last array were ignored")
+                write!(
+                    f,
+                    "{count} trailing bytes after the last array were ignored"
+                )
             }
-            HairWarning::UnknownFlags { bits } => write!(f, "unknown array flag bits {bits:#x} were ignored"),
+            HairWarning::UnknownFlags { bits } => {
+                write!(f, "unknown array flag bits {bits:#x} were ignored")
+            }
         }
     }
 }
@@ -219,7 +230,10 @@ fn f32_at(b: &[u8], off: usize) -> f32 {
 }
 
 fn read_f32s(b: &[u8], off: usize, n: usize) -> Vec<f32> {
-    b[off..off + n * 4].chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
+    b[off..off + n * 4]
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect()
 }
 
 fn read_vec3s(b: &[u8], off: usize, n: usize) -> Vec<[f32; 3]> {
@@ -243,12 +257,16 @@ impl HairFile {
         if bytes.len() < HEADER_SIZE {
             // Report the signature first if it is visibly wrong.
             if bytes.len() >= 4 && bytes[..4] != SIGNATURE {
-                return Err(HairError::BadSignature { found: String::from_utf8_lossy(&bytes[..4]).into_owned() });
+                return Err(HairError::BadSignature {
+                    found: String::from_utf8_lossy(&bytes[..4]).into_owned(),
+                });
             }
             return Err(HairError::ShortHeader { len });
         }
         if bytes[..4] != SIGNATURE {
-            return Err(HairError::BadSignature { found: String::from_utf8_lossy(&bytes[..4]).into_owned() });
+            return Err(HairError::BadSignature {
+                found: String::from_utf8_lossy(&bytes[..4]).into_owned(),
+            });
         }
         let hair_count = u32_at(bytes, 4);
         let point_count = u32_at(bytes, 8);
@@ -262,7 +280,9 @@ impl HairFile {
 
         let mut warnings = Vec::new();
         if flags & !KNOWN_FLAGS != 0 {
-            warnings.push(HairWarning::UnknownFlags { bits: flags & !KNOWN_FLAGS });
+            warnings.push(HairWarning::UnknownFlags {
+                bits: flags & !KNOWN_FLAGS,
+            });
         }
         if flags & FLAG_POINTS == 0 {
             return Err(HairError::NoPoints);
@@ -287,12 +307,19 @@ impl HairFile {
             }
             let present = len.saturating_sub(offset);
             if *size > present {
-                return Err(HairError::Truncated { array: name, expected: *size, present, offset });
+                return Err(HairError::Truncated {
+                    array: name,
+                    expected: *size,
+                    present,
+                    offset,
+                });
             }
             offset += size;
         }
         if offset < len {
-            warnings.push(HairWarning::TrailingBytes { count: len - offset });
+            warnings.push(HairWarning::TrailingBytes {
+                count: len - offset,
+            });
         }
 
         // Segment counts must add up to the point count (checked before
@@ -307,7 +334,11 @@ impl HairFile {
             h * (u64::from(default_segments) + 1)
         };
         if implied != p {
-            return Err(HairError::SegmentMismatch { implied, points: p, strands: h });
+            return Err(HairError::SegmentMismatch {
+                implied,
+                points: p,
+                strands: h,
+            });
         }
 
         let n = point_count as usize;
@@ -318,8 +349,10 @@ impl HairFile {
                 .collect::<Vec<u16>>()
         });
         let points = read_vec3s(bytes, offsets[1] as usize, n);
-        let thickness = (flags & FLAG_THICKNESS != 0).then(|| read_f32s(bytes, offsets[2] as usize, n));
-        let transparency = (flags & FLAG_TRANSPARENCY != 0).then(|| read_f32s(bytes, offsets[3] as usize, n));
+        let thickness =
+            (flags & FLAG_THICKNESS != 0).then(|| read_f32s(bytes, offsets[2] as usize, n));
+        let transparency =
+            (flags & FLAG_TRANSPARENCY != 0).then(|| read_f32s(bytes, offsets[3] as usize, n));
         let colors = (flags & FLAG_COLORS != 0).then(|| read_vec3s(bytes, offsets[4] as usize, n));
 
         let file = HairFile {
@@ -348,7 +381,11 @@ impl HairFile {
                 if let Some(v) = self.points.get(idx)
                     && !v.iter().all(|c| c.is_finite())
                 {
-                    return Err(HairError::NonFinite { strand, point: idx, value: *v });
+                    return Err(HairError::NonFinite {
+                        strand,
+                        point: idx,
+                        value: *v,
+                    });
                 }
             }
             point += count;
@@ -472,7 +509,9 @@ impl HairFile {
 
     /// Total number of line segments over all strands.
     pub fn segment_count(&self) -> u64 {
-        (0..self.strand_count()).map(|i| u64::from(self.strand_segments(i))).sum()
+        (0..self.strand_count())
+            .map(|i| u64::from(self.strand_segments(i)))
+            .sum()
     }
 
     /// Names of the arrays present, in file order.
@@ -575,10 +614,16 @@ mod tests {
         let mut f = HairFile {
             hair_count: 3,
             segments: Some(vec![0, 2, 1]),
-            points: (0..6).map(|i| [i as f32, -0.5 * i as f32, 1e-7 * i as f32]).collect(),
+            points: (0..6)
+                .map(|i| [i as f32, -0.5 * i as f32, 1e-7 * i as f32])
+                .collect(),
             thickness: Some((0..6).map(|i| 0.01 * i as f32).collect()),
             transparency: Some((0..6).map(|i| 0.1 * i as f32).collect()),
-            colors: Some((0..6).map(|i| [0.1 * i as f32, 0.2, f32::MIN_POSITIVE]).collect()),
+            colors: Some(
+                (0..6)
+                    .map(|i| [0.1 * i as f32, 0.2, f32::MIN_POSITIVE])
+                    .collect(),
+            ),
             default_segments: 3,
             default_thickness: 0.5,
             default_transparency: 0.25,
@@ -616,7 +661,11 @@ mod tests {
         assert_eq!(g, f);
         assert_eq!(g.to_bytes(), bytes);
         // no temp file left behind
-        let names: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").flatten().map(|e| e.file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .expect("dir")
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
         assert_eq!(names.len(), 1);
     }
 
@@ -636,7 +685,10 @@ mod tests {
     #[test]
     fn short_header() {
         let b = &independent_file()[..100];
-        assert!(matches!(HairFile::from_bytes(b).unwrap_err(), HairError::ShortHeader { len: 100 }));
+        assert!(matches!(
+            HairFile::from_bytes(b).unwrap_err(),
+            HairError::ShortHeader { len: 100 }
+        ));
     }
 
     #[test]
@@ -645,7 +697,12 @@ mod tests {
         let cut = &b[..b.len() - 3];
         let e = HairFile::from_bytes(cut).unwrap_err();
         match &e {
-            HairError::Truncated { array, expected, present, .. } => {
+            HairError::Truncated {
+                array,
+                expected,
+                present,
+                ..
+            } => {
                 assert_eq!(*array, "transparency");
                 assert_eq!(*expected, 20);
                 assert_eq!(*present, 17);
@@ -653,7 +710,10 @@ mod tests {
             other => panic!("wrong error {other}"),
         }
         let msg = e.to_string();
-        assert!(msg.contains("transparency") && msg.contains("20") && msg.contains("17"), "{msg}");
+        assert!(
+            msg.contains("transparency") && msg.contains("20") && msg.contains("17"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -667,7 +727,12 @@ mod tests {
         let e = HairFile::from_bytes(&b).unwrap_err();
         assert!(start.elapsed().as_secs_f32() < 0.5);
         match e {
-            HairError::Truncated { array, expected, present, .. } => {
+            HairError::Truncated {
+                array,
+                expected,
+                present,
+                ..
+            } => {
                 assert_eq!(array, "segments");
                 assert_eq!(expected, u64::from(u32::MAX) * 2);
                 assert_eq!(present, 1024 - 128);
@@ -677,7 +742,9 @@ mod tests {
         // without a segments array the points array is the one reported
         b[12..16].copy_from_slice(&FLAG_POINTS.to_le_bytes());
         match HairFile::from_bytes(&b).unwrap_err() {
-            HairError::Truncated { array, expected, .. } => {
+            HairError::Truncated {
+                array, expected, ..
+            } => {
                 assert_eq!(array, "points");
                 assert_eq!(expected, u64::from(u32::MAX) * 12);
             }
@@ -690,11 +757,36 @@ mod tests {
         let mut b = independent_file();
         b[128..130].copy_from_slice(&3u16.to_le_bytes()); // 4 + 3 = 7 != 5
         let e = HairFile::from_bytes(&b).unwrap_err();
-        assert!(matches!(e, HairError::SegmentMismatch { implied: 7, points: 5, strands: 2 }), "{e}");
+        assert!(
+            matches!(
+                e,
+                HairError::SegmentMismatch {
+                    implied: 7,
+                    points: 5,
+                    strands: 2
+                }
+            ),
+            "{e}"
+        );
         // default segments path
-        let f = HairFile { hair_count: 2, default_segments: 2, points: vec![[0.0; 3]; 5], ..HairFile::default() };
+        let f = HairFile {
+            hair_count: 2,
+            default_segments: 2,
+            points: vec![[0.0; 3]; 5],
+            ..HairFile::default()
+        };
         let e = HairFile::from_bytes(&f.to_bytes()).unwrap_err();
-        assert!(matches!(e, HairError::SegmentMismatch { implied: 6, points: 5, .. }), "{e}");
+        assert!(
+            matches!(
+                e,
+                HairError::SegmentMismatch {
+                    implied: 6,
+                    points: 5,
+                    ..
+                }
+            ),
+            "{e}"
+        );
     }
 
     #[test]
@@ -702,7 +794,17 @@ mod tests {
         let mut f = full_file();
         f.points[4] = [0.0, f32::NAN, 0.0]; // strand 2 (points 4..6)
         let e = HairFile::from_bytes(&f.to_bytes()).unwrap_err();
-        assert!(matches!(e, HairError::NonFinite { strand: 2, point: 4, .. }), "{e}");
+        assert!(
+            matches!(
+                e,
+                HairError::NonFinite {
+                    strand: 2,
+                    point: 4,
+                    ..
+                }
+            ),
+            "{e}"
+        );
         assert!(e.to_string().contains("strand 2"));
         f.points[4] = [0.0, 0.0, 0.0];
         f.points[1] = [f32::INFINITY, 0.0, 0.0];
@@ -714,7 +816,10 @@ mod tests {
     fn no_points_array() {
         let mut b = independent_file();
         b[12..16].copy_from_slice(&1u32.to_le_bytes());
-        assert!(matches!(HairFile::from_bytes(&b).unwrap_err(), HairError::NoPoints));
+        assert!(matches!(
+            HairFile::from_bytes(&b).unwrap_err(),
+            HairError::NoPoints
+        ));
     }
 
     #[test]

@@ -40,10 +40,17 @@ impl Mesh {
             let theta = std::f32::consts::PI * i as f32 / stacks as f32; // from +Y
             for j in 0..=slices {
                 let phi = std::f32::consts::TAU * j as f32 / slices as f32;
-                let unit = Vec3::new(theta.sin() * phi.sin(), theta.cos(), theta.sin() * phi.cos());
+                let unit = Vec3::new(
+                    theta.sin() * phi.sin(),
+                    theta.cos(),
+                    theta.sin() * phi.cos(),
+                );
                 let p = center + unit * radii;
                 let n = (unit / safe).normalize_or(unit);
-                vertices.push(MeshVertex { position: p.to_array(), normal: n.to_array() });
+                vertices.push(MeshVertex {
+                    position: p.to_array(),
+                    normal: n.to_array(),
+                });
             }
         }
         let row = slices + 1;
@@ -62,16 +69,36 @@ impl Mesh {
                 }
             }
         }
-        Mesh { name: "ellipsoid".into(), vertices, indices, albedo: [0.8, 0.8, 0.8] }
+        Mesh {
+            name: "ellipsoid".into(),
+            vertices,
+            indices,
+            albedo: [0.8, 0.8, 0.8],
+        }
     }
 
     /// A square in the XZ plane at `center`, side `2 * half_size`, facing +Y.
     pub fn ground_plane(center: Vec3, half_size: f32) -> Mesh {
         let h = half_size;
-        let corners = [Vec3::new(-h, 0.0, -h), Vec3::new(-h, 0.0, h), Vec3::new(h, 0.0, h), Vec3::new(h, 0.0, -h)];
-        let vertices =
-            corners.iter().map(|&c| MeshVertex { position: (center + c).to_array(), normal: [0.0, 1.0, 0.0] }).collect();
-        Mesh { name: "ground".into(), vertices, indices: vec![0, 1, 2, 0, 2, 3], albedo: [0.6, 0.6, 0.6] }
+        let corners = [
+            Vec3::new(-h, 0.0, -h),
+            Vec3::new(-h, 0.0, h),
+            Vec3::new(h, 0.0, h),
+            Vec3::new(h, 0.0, -h),
+        ];
+        let vertices = corners
+            .iter()
+            .map(|&c| MeshVertex {
+                position: (center + c).to_array(),
+                normal: [0.0, 1.0, 0.0],
+            })
+            .collect();
+        Mesh {
+            name: "ground".into(),
+            vertices,
+            indices: vec![0, 1, 2, 0, 2, 3],
+            albedo: [0.6, 0.6, 0.6],
+        }
     }
 
     /// Sets the name.
@@ -100,7 +127,10 @@ mod tests {
             let n = |i: u32| Vec3::from(m.vertices[i as usize].normal);
             let face = (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
             assert!(face.length() > 0.0, "degenerate triangle {t:?}");
-            assert!(face.dot(n(t[0]) + n(t[1]) + n(t[2])) > 0.0, "triangle {t:?} faces inward");
+            assert!(
+                face.dot(n(t[0]) + n(t[1]) + n(t[2])) > 0.0,
+                "triangle {t:?} faces inward"
+            );
         }
     }
 
@@ -121,6 +151,10 @@ mod tests {
     fn ground_faces_up() {
         let m = Mesh::ground_plane(Vec3::new(0.0, -2.0, 0.0), 3.0);
         assert_outward(&m);
-        assert!(m.vertices.iter().all(|v| v.position[1] == -2.0 && v.normal == [0.0, 1.0, 0.0]));
+        assert!(
+            m.vertices
+                .iter()
+                .all(|v| v.position[1] == -2.0 && v.normal == [0.0, 1.0, 0.0])
+        );
     }
 }

@@ -215,19 +215,35 @@ impl TryFrom<LightToml> for Light {
                 if t.position.is_some() || t.cone_degrees.is_some() {
                     return Err("a directional light has no position or cone_degrees".into());
                 }
-                LightKind::Directional { direction: t.direction }
+                LightKind::Directional {
+                    direction: t.direction,
+                }
             }
             "spot" => {
                 let position = t.position.ok_or("a spot light needs position")?;
                 let cone_degrees = t.cone_degrees.ok_or("a spot light needs cone_degrees")?;
                 if !(cone_degrees > 0.0 && cone_degrees < 179.0) {
-                    return Err(format!("light.cone_degrees must be in (0, 179), got {cone_degrees}"));
+                    return Err(format!(
+                        "light.cone_degrees must be in (0, 179), got {cone_degrees}"
+                    ));
                 }
-                LightKind::Spot { position, direction: t.direction, cone_degrees }
+                LightKind::Spot {
+                    position,
+                    direction: t.direction,
+                    cone_degrees,
+                }
             }
-            other => return Err(format!("unknown light type {other:?} (expected \"directional\" or \"spot\")")),
+            other => {
+                return Err(format!(
+                    "unknown light type {other:?} (expected \"directional\" or \"spot\")"
+                ));
+            }
         };
-        Ok(Light { kind, color: t.color, intensity: t.intensity })
+        Ok(Light {
+            kind,
+            color: t.color,
+            intensity: t.intensity,
+        })
     }
 }
 
@@ -235,7 +251,9 @@ impl Light {
     /// Unit direction in which the light travels.
     pub fn direction(&self) -> Vec3 {
         let d = match &self.kind {
-            LightKind::Directional { direction } | LightKind::Spot { direction, .. } => Vec3::from(*direction),
+            LightKind::Directional { direction } | LightKind::Spot { direction, .. } => {
+                Vec3::from(*direction)
+            }
         };
         d.normalize_or(Vec3::NEG_Y)
     }
@@ -250,7 +268,9 @@ impl Light {
     pub fn direction_to_light_from(&self, point: Vec3) -> Vec3 {
         match &self.kind {
             LightKind::Directional { .. } => self.direction_to_light(),
-            LightKind::Spot { position, .. } => (Vec3::from(*position) - point).normalize_or(self.direction_to_light()),
+            LightKind::Spot { position, .. } => {
+                (Vec3::from(*position) - point).normalize_or(self.direction_to_light())
+            }
         }
     }
 
@@ -260,7 +280,11 @@ impl Light {
     }
 
     fn up_for(dir: Vec3) -> Vec3 {
-        if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y }
+        if dir.cross(Vec3::Y).length_squared() < 1e-6 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        }
     }
 
     /// The light's view matrix (right-handed, looking along its direction).
@@ -286,18 +310,39 @@ impl Light {
     /// to the farthest receiver point, so shadows cast by the occluders reach
     /// every receiver. Depth maps to 0..1 (wgpu).
     pub fn view_proj(&self, occluders: Aabb, receivers: Aabb) -> Mat4 {
-        let occ = if occluders.is_empty() { Aabb::new(Vec3::splat(-1.0), Vec3::ONE) } else { occluders };
-        let rec = if receivers.is_empty() { occ } else { receivers.union(&occ) };
+        let occ = if occluders.is_empty() {
+            Aabb::new(Vec3::splat(-1.0), Vec3::ONE)
+        } else {
+            occluders
+        };
+        let rec = if receivers.is_empty() {
+            occ
+        } else {
+            receivers.union(&occ)
+        };
         let view = self.view(occ);
-        let occ_v: Vec<Vec3> = occ.corners().iter().map(|&c| view.transform_point3(c)).collect();
-        let rec_v: Vec<Vec3> = rec.corners().iter().map(|&c| view.transform_point3(c)).collect();
+        let occ_v: Vec<Vec3> = occ
+            .corners()
+            .iter()
+            .map(|&c| view.transform_point3(c))
+            .collect();
+        let rec_v: Vec<Vec3> = rec
+            .corners()
+            .iter()
+            .map(|&c| view.transform_point3(c))
+            .collect();
         // distances along the view axis (-z in a right-handed view)
         let near_occ = occ_v.iter().map(|p| -p.z).fold(f32::INFINITY, f32::min);
         let far_all = rec_v.iter().map(|p| -p.z).fold(f32::NEG_INFINITY, f32::max);
         let margin = (far_all - near_occ).abs().max(1e-3) * 0.01;
         match &self.kind {
             LightKind::Directional { .. } => {
-                let (mut l, mut r, mut b, mut t) = (f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY, f32::NEG_INFINITY);
+                let (mut l, mut r, mut b, mut t) = (
+                    f32::INFINITY,
+                    f32::NEG_INFINITY,
+                    f32::INFINITY,
+                    f32::NEG_INFINITY,
+                );
                 for p in &occ_v {
                     l = l.min(p.x);
                     r = r.max(p.x);
@@ -305,7 +350,14 @@ impl Light {
                     t = t.max(p.y);
                 }
                 let pad = ((r - l).max(t - b) * 0.01).max(1e-4);
-                let proj = Mat4::orthographic_rh(l - pad, r + pad, b - pad, t + pad, near_occ - margin, far_all + margin);
+                let proj = Mat4::orthographic_rh(
+                    l - pad,
+                    r + pad,
+                    b - pad,
+                    t + pad,
+                    near_occ - margin,
+                    far_all + margin,
+                );
                 proj * view
             }
             LightKind::Spot { cone_degrees, .. } => {
@@ -317,7 +369,12 @@ impl Light {
                 let in_front = occ_v.iter().all(|p| -p.z > 1e-4);
                 let (mut l, mut r, mut b, mut t) = (-half_cone, half_cone, -half_cone, half_cone);
                 if in_front {
-                    let (mut l2, mut r2, mut b2, mut t2) = (f32::INFINITY, f32::NEG_INFINITY, f32::INFINITY, f32::NEG_INFINITY);
+                    let (mut l2, mut r2, mut b2, mut t2) = (
+                        f32::INFINITY,
+                        f32::NEG_INFINITY,
+                        f32::INFINITY,
+                        f32::NEG_INFINITY,
+                    );
                     for p in &occ_v {
                         let (sx, sy) = (p.x / -p.z, p.y / -p.z);
                         l2 = l2.min(sx);
@@ -387,7 +444,14 @@ pub struct HairMaterial {
 
 impl Default for HairMaterial {
     fn default() -> Self {
-        HairMaterial { color: [1.0, 1.0, 1.0], alpha: 1.0, diffuse: 0.8, specular: 0.3, specular_exponent: 60.0, specular_shift: -0.05 }
+        HairMaterial {
+            color: [1.0, 1.0, 1.0],
+            alpha: 1.0,
+            diffuse: 0.8,
+            specular: 0.3,
+            specular_exponent: 60.0,
+            specular_shift: -0.05,
+        }
     }
 }
 
@@ -443,7 +507,10 @@ impl Scene {
     /// about 10,000 wavy strands × 32 segments on a head, lit from above,
     /// front and side, over a ground that catches the shadow.
     pub fn builtin_default() -> Scene {
-        let head = HeadShape { center: [0.0, 0.0, 0.0], radii: [0.9, 1.05, 1.0] };
+        let head = HeadShape {
+            center: [0.0, 0.0, 0.0],
+            radii: [0.9, 1.05, 1.0],
+        };
         Scene {
             hair: HairSource::Procedural(GroomSpec {
                 style: Style::Wavy,
@@ -460,15 +527,27 @@ impl Scene {
                 color: [0.32, 0.2, 0.11],
                 color_variation: 0.15,
                 head,
-                scalp: ScalpRegion { max_polar_degrees: 105.0, face_polar_degrees: 50.0, face_half_width_degrees: 70.0 },
+                scalp: ScalpRegion {
+                    max_polar_degrees: 105.0,
+                    face_polar_degrees: 50.0,
+                    face_half_width_degrees: 70.0,
+                },
                 gravity: 2.5,
                 wave_amplitude: None,
                 wave_period: None,
                 stray_strands: 0,
                 guides: None,
             }),
-            head: Some(Head { center: head.center, radii: head.radii, albedo: [0.75, 0.55, 0.45] }),
-            ground: Some(Ground { height: -2.7, half_size: 6.0, albedo: [0.6, 0.6, 0.6] }),
+            head: Some(Head {
+                center: head.center,
+                radii: head.radii,
+                albedo: [0.75, 0.55, 0.45],
+            }),
+            ground: Some(Ground {
+                height: -2.7,
+                half_size: 6.0,
+                albedo: [0.6, 0.6, 0.6],
+            }),
             camera: Camera {
                 eye: [2.0, 0.5, 7.6],
                 target: [0.0, -0.6, 0.0],
@@ -478,7 +557,9 @@ impl Scene {
                 far: 100.0,
             },
             light: Light {
-                kind: LightKind::Directional { direction: [-0.5, -1.0, -0.6] },
+                kind: LightKind::Directional {
+                    direction: [-0.5, -1.0, -0.6],
+                },
                 color: [1.0, 0.97, 0.92],
                 intensity: 3.0,
             },
@@ -493,9 +574,17 @@ impl Scene {
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let mut scene: Scene = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((1, 1), |s| line_col(text, s.start));
-            SceneError::Parse { path: path.to_path_buf(), line, column, message: e.message().trim().to_string() }
+            SceneError::Parse {
+                path: path.to_path_buf(),
+                line,
+                column,
+                message: e.message().trim().to_string(),
+            }
         })?;
-        scene.validate().map_err(|message| SceneError::Invalid { path: path.to_path_buf(), message })?;
+        scene.validate().map_err(|message| SceneError::Invalid {
+            path: path.to_path_buf(),
+            message,
+        })?;
         let dir = path.parent().unwrap_or(Path::new(""));
         if let HairSource::File(p) = &mut scene.hair
             && p.is_relative()
@@ -513,7 +602,10 @@ impl Scene {
     /// Loads a scene file.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io { path: path.to_path_buf(), error })?;
+        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io {
+            path: path.to_path_buf(),
+            error,
+        })?;
         Scene::from_toml_str(&text, path)
     }
 
@@ -524,10 +616,16 @@ impl Scene {
         }
         let c = &self.camera;
         if !(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0) {
-            return Err(format!("camera.fov_y_degrees must be in (0, 180), got {}", c.fov_y_degrees));
+            return Err(format!(
+                "camera.fov_y_degrees must be in (0, 180), got {}",
+                c.fov_y_degrees
+            ));
         }
         if !(c.near > 0.0 && c.far > c.near) {
-            return Err(format!("camera needs 0 < near < far, got near {} far {}", c.near, c.far));
+            return Err(format!(
+                "camera needs 0 < near < far, got near {} far {}",
+                c.near, c.far
+            ));
         }
         if Vec3::from(c.eye) == Vec3::from(c.target) {
             return Err("camera.eye and camera.target must differ".into());
@@ -560,11 +658,17 @@ impl Scene {
     pub fn opaque_meshes(&self) -> Vec<Mesh> {
         let mut out = Vec::new();
         if let Some(h) = &self.head {
-            out.push(Mesh::ellipsoid(h.center.into(), h.radii.into(), 32, 64).with_name("head").with_albedo(h.albedo));
+            out.push(
+                Mesh::ellipsoid(h.center.into(), h.radii.into(), 32, 64)
+                    .with_name("head")
+                    .with_albedo(h.albedo),
+            );
         }
         if let Some(g) = &self.ground {
             out.push(
-                Mesh::ground_plane(Vec3::new(0.0, g.height, 0.0), g.half_size).with_name("ground").with_albedo(g.albedo),
+                Mesh::ground_plane(Vec3::new(0.0, g.height, 0.0), g.half_size)
+                    .with_name("ground")
+                    .with_albedo(g.albedo),
             );
         }
         out
@@ -597,7 +701,9 @@ mod tests {
     fn all_example_scenes_load_and_validate() {
         for name in ["small.toml", "default.toml", "dense.toml", "stray.toml"] {
             let s = Scene::load(examples().join(name)).unwrap_or_else(|e| panic!("{e}"));
-            let HairSource::Procedural(g) = &s.hair else { panic!("{name}: procedural expected") };
+            let HairSource::Procedural(g) = &s.hair else {
+                panic!("{name}: procedural expected")
+            };
             match name {
                 "small.toml" => assert!(g.strands <= 1000 && g.segments <= 16),
                 "dense.toml" => assert!(g.strands >= 20_000),
@@ -625,8 +731,15 @@ mod tests {
             hi = hi.max(p);
         }
         // the hair's bounds cover most of the view height and stay inside it
-        assert!(hi.y - lo.y > 1.2, "hair spans {} of NDC height 2", hi.y - lo.y);
-        assert!(lo.y > -1.2 && hi.y < 1.2 && lo.x > -1.2 && hi.x < 1.2, "{lo} {hi}");
+        assert!(
+            hi.y - lo.y > 1.2,
+            "hair spans {} of NDC height 2",
+            hi.y - lo.y
+        );
+        assert!(
+            lo.y > -1.2 && hi.y < 1.2 && lo.x > -1.2 && hi.x < 1.2,
+            "{lo} {hi}"
+        );
         assert!(lo.z > 0.0 && hi.z < 1.0);
         // light from above (travels downward)
         assert!(s.light.direction_to_light().y > 0.5);
@@ -641,9 +754,19 @@ mod tests {
         let occ = Aabb::new(Vec3::new(-1.0, -1.0, -1.0), Vec3::new(1.0, 1.0, 1.0));
         let rec = Aabb::new(Vec3::new(-6.0, -2.7, -6.0), Vec3::new(6.0, -2.7, 6.0));
         let lights = [
-            Light { kind: LightKind::Directional { direction: [-0.5, -1.0, -0.6] }, color: [1.0; 3], intensity: 1.0 },
             Light {
-                kind: LightKind::Spot { position: [3.0, 6.0, 3.0], direction: [-3.0, -6.0, -3.0], cone_degrees: 60.0 },
+                kind: LightKind::Directional {
+                    direction: [-0.5, -1.0, -0.6],
+                },
+                color: [1.0; 3],
+                intensity: 1.0,
+            },
+            Light {
+                kind: LightKind::Spot {
+                    position: [3.0, 6.0, 3.0],
+                    direction: [-3.0, -6.0, -3.0],
+                    cone_degrees: 60.0,
+                },
                 color: [1.0; 3],
                 intensity: 1.0,
             },
@@ -683,7 +806,9 @@ mod tests {
     #[test]
     fn relative_paths_resolve_against_scene_dir_and_missing_hair_is_named() {
         let dir = tempfile::tempdir().expect("tempdir");
-        let text = format!("hair = {{ file = \"models/x.hair\" }}\nbackground = {{ image = \"env.png\" }}\n{MINIMAL}");
+        let text = format!(
+            "hair = {{ file = \"models/x.hair\" }}\nbackground = {{ image = \"env.png\" }}\n{MINIMAL}"
+        );
         let path = dir.path().join("s.toml");
         std::fs::write(&path, text).expect("write");
         let s = Scene::load(&path).expect("loads");
@@ -695,17 +820,22 @@ mod tests {
         std::fs::create_dir(dir.path().join("models")).expect("mkdir");
         let mut hs = Strands::new();
         hs.push_strand(&[Vec3::ZERO, Vec3::Y], |_| 0.1, |_| 1.0, Vec3::ONE);
-        hs.to_hair_file().expect("file").write(dir.path().join("models/x.hair")).expect("write");
+        hs.to_hair_file()
+            .expect("file")
+            .write(dir.path().join("models/x.hair"))
+            .expect("write");
         assert_eq!(s.strands().expect("reads").point_count(), 2);
     }
 
     #[test]
     fn invalid_values_name_the_field() {
         let p = Path::new("s.toml");
-        let e = Scene::from_toml_str(&format!("[hair.procedural]\nsegments = 0\n{MINIMAL}"), p).unwrap_err();
+        let e = Scene::from_toml_str(&format!("[hair.procedural]\nsegments = 0\n{MINIMAL}"), p)
+            .unwrap_err();
         assert!(e.to_string().contains("hair.procedural.segments"), "{e}");
         let bad_light = MINIMAL.replace("directional", "spot");
-        let e = Scene::from_toml_str(&format!("hair = {{ file = \"a.hair\" }}\n{bad_light}"), p).unwrap_err();
+        let e = Scene::from_toml_str(&format!("hair = {{ file = \"a.hair\" }}\n{bad_light}"), p)
+            .unwrap_err();
         assert!(e.to_string().contains("position"), "{e}");
     }
 }

@@ -18,7 +18,10 @@ pub struct Aabb {
 
 impl Aabb {
     /// The empty box (union identity).
-    pub const EMPTY: Aabb = Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+    pub const EMPTY: Aabb = Aabb {
+        min: Vec3::splat(f32::INFINITY),
+        max: Vec3::splat(f32::NEG_INFINITY),
+    };
 
     /// A box from two corners.
     pub fn new(min: Vec3, max: Vec3) -> Aabb {
@@ -27,7 +30,10 @@ impl Aabb {
 
     /// The bounds of some points (empty if there are none).
     pub fn from_points(points: impl IntoIterator<Item = Vec3>) -> Aabb {
-        points.into_iter().fold(Aabb::EMPTY, |b, p| Aabb { min: b.min.min(p), max: b.max.max(p) })
+        points.into_iter().fold(Aabb::EMPTY, |b, p| Aabb {
+            min: b.min.min(p),
+            max: b.max.max(p),
+        })
     }
 
     /// True if the box contains no point.
@@ -37,17 +43,28 @@ impl Aabb {
 
     /// Smallest box containing both.
     pub fn union(&self, other: &Aabb) -> Aabb {
-        Aabb { min: self.min.min(other.min), max: self.max.max(other.max) }
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
     }
 
     /// Center (zero for an empty box).
     pub fn center(&self) -> Vec3 {
-        if self.is_empty() { Vec3::ZERO } else { (self.min + self.max) * 0.5 }
+        if self.is_empty() {
+            Vec3::ZERO
+        } else {
+            (self.min + self.max) * 0.5
+        }
     }
 
     /// Full size along each axis (zero for an empty box).
     pub fn extent(&self) -> Vec3 {
-        if self.is_empty() { Vec3::ZERO } else { self.max - self.min }
+        if self.is_empty() {
+            Vec3::ZERO
+        } else {
+            self.max - self.min
+        }
     }
 
     /// The 8 corners (meaningless for an empty box).
@@ -104,7 +121,10 @@ pub struct Strands {
 impl Strands {
     /// An empty model.
     pub fn new() -> Strands {
-        Strands { offsets: vec![0], ..Strands::default() }
+        Strands {
+            offsets: vec![0],
+            ..Strands::default()
+        }
     }
 
     /// Appends a strand whose points share one thickness/alpha/color profile
@@ -150,14 +170,36 @@ impl Strands {
         let n = at as usize;
         let points: Vec<Vec3> = file.points[..n].iter().map(|&p| Vec3::from(p)).collect();
         let per_point = |arr: &Option<Vec<f32>>, default: f32| -> Vec<f32> {
-            (0..n).map(|i| arr.as_ref().and_then(|a| a.get(i).copied()).unwrap_or(default)).collect()
+            (0..n)
+                .map(|i| {
+                    arr.as_ref()
+                        .and_then(|a| a.get(i).copied())
+                        .unwrap_or(default)
+                })
+                .collect()
         };
         let thickness = per_point(&file.thickness, file.default_thickness);
-        let alpha = per_point(&file.transparency, file.default_transparency).into_iter().map(|t| 1.0 - t).collect();
-        let color = (0..n)
-            .map(|i| Vec3::from(file.colors.as_ref().and_then(|c| c.get(i).copied()).unwrap_or(file.default_color)))
+        let alpha = per_point(&file.transparency, file.default_transparency)
+            .into_iter()
+            .map(|t| 1.0 - t)
             .collect();
-        Strands { offsets, points, thickness, alpha, color }
+        let color = (0..n)
+            .map(|i| {
+                Vec3::from(
+                    file.colors
+                        .as_ref()
+                        .and_then(|c| c.get(i).copied())
+                        .unwrap_or(file.default_color),
+                )
+            })
+            .collect();
+        Strands {
+            offsets,
+            points,
+            thickness,
+            alpha,
+            color,
+        }
     }
 
     /// Converts back to a file. Arrays whose values are all equal are stored
@@ -166,12 +208,18 @@ impl Strands {
     pub fn to_hair_file(&self) -> Result<HairFile, HairError> {
         let n = self.point_count();
         if n > u32::MAX as usize || self.strand_count() > u32::MAX as usize {
-            return Err(HairError::Unrepresentable("more than 2^32-1 points or strands".into()));
+            return Err(HairError::Unrepresentable(
+                "more than 2^32-1 points or strands".into(),
+            ));
         }
         if self.thickness.len() < n || self.alpha.len() < n || self.color.len() < n {
-            return Err(HairError::Unrepresentable("per-point arrays shorter than the point array".into()));
+            return Err(HairError::Unrepresentable(
+                "per-point arrays shorter than the point array".into(),
+            ));
         }
-        let segs: Vec<u32> = (0..self.strand_count()).map(|i| self.strand_range(i).len().saturating_sub(1) as u32).collect();
+        let segs: Vec<u32> = (0..self.strand_count())
+            .map(|i| self.strand_range(i).len().saturating_sub(1) as u32)
+            .collect();
         let uniform = segs.windows(2).all(|w| w[0] == w[1]);
         let (segments, default_segments) = if uniform {
             (None, segs.first().copied().unwrap_or(0))
@@ -179,7 +227,9 @@ impl Strands {
             let mut v = Vec::with_capacity(segs.len());
             for (i, &s) in segs.iter().enumerate() {
                 let s16 = u16::try_from(s).map_err(|_| {
-                    HairError::Unrepresentable(format!("strand {i} has {s} segments; the .hair segments array holds at most 65535"))
+                    HairError::Unrepresentable(format!(
+                        "strand {i} has {s} segments; the .hair segments array holds at most 65535"
+                    ))
                 })?;
                 v.push(s16);
             }
@@ -226,7 +276,9 @@ impl Strands {
 
     /// Number of line segments (points minus one per non-empty strand).
     pub fn segment_count(&self) -> usize {
-        (0..self.strand_count()).map(|i| self.strand_range(i).len().saturating_sub(1)).sum()
+        (0..self.strand_count())
+            .map(|i| self.strand_range(i).len().saturating_sub(1))
+            .sum()
     }
 
     /// The point index range of strand `i` (empty if out of range).
@@ -303,8 +355,18 @@ mod tests {
 
     fn two_strands() -> Strands {
         let mut s = Strands::new();
-        s.push_strand(&[Vec3::ZERO, Vec3::X, Vec3::new(2.0, 1.0, 0.0)], |t| 1.0 - t * 0.5, |_| 0.8, Vec3::new(0.5, 0.4, 0.3));
-        s.push_strand(&[Vec3::Y, Vec3::new(0.0, 3.0, 0.0)], |_| 0.1, |t| 1.0 - t, Vec3::ONE);
+        s.push_strand(
+            &[Vec3::ZERO, Vec3::X, Vec3::new(2.0, 1.0, 0.0)],
+            |t| 1.0 - t * 0.5,
+            |_| 0.8,
+            Vec3::new(0.5, 0.4, 0.3),
+        );
+        s.push_strand(
+            &[Vec3::Y, Vec3::new(0.0, 3.0, 0.0)],
+            |_| 0.1,
+            |t| 1.0 - t,
+            Vec3::ONE,
+        );
         s
     }
 
@@ -331,7 +393,10 @@ mod tests {
         assert_eq!(v.len(), 5);
         assert_eq!(i, vec![0, 1, 1, 2, 3, 4]);
         assert_eq!(v[3].strand_id, 1);
-        assert_eq!(v[1].tangent, Vec3::new(2.0, 1.0, 0.0).normalize().to_array());
+        assert_eq!(
+            v[1].tangent,
+            Vec3::new(2.0, 1.0, 0.0).normalize().to_array()
+        );
         assert_eq!(v[0].tangent, [1.0, 0.0, 0.0]);
         assert_eq!(v[4].tangent, [0.0, 1.0, 0.0]);
         for x in &v {

@@ -29,7 +29,9 @@ pub struct HairCoverage {
     pub alpha_to_coverage: bool,
 }
 
-pub const HAIR_ALPHA_TO_COVERAGE: HairCoverage = HairCoverage { alpha_to_coverage: true };
+pub const HAIR_ALPHA_TO_COVERAGE: HairCoverage = HairCoverage {
+    alpha_to_coverage: true,
+};
 
 impl PassType for HairCoverage {
     fn spec(&self) -> PassTypeSpec {
@@ -40,7 +42,11 @@ impl PassType for HairCoverage {
                 "004_51cca5cde985008c.txt §3.1.2, §5.6",
             )
         } else {
-            ("hair_opaque", "Hair as opaque strands (alpha 1) with depth test and write: no transparency.", "000_785589f319b01ef5.txt Fig. 2 (no transparency)")
+            (
+                "hair_opaque",
+                "Hair as opaque strands (alpha 1) with depth test and write: no transparency.",
+                "000_785589f319b01ef5.txt Fig. 2 (no transparency)",
+            )
         };
         PassTypeSpec {
             name: name.into(),
@@ -49,9 +55,27 @@ impl PassType for HairCoverage {
             shape: PassShape::Raster,
             inputs: transparency::shading_inputs(),
             outputs: vec![
-                texture("color", Access::ColorTarget, HDR, "the scene the hair is drawn into (multisampled for alpha to coverage)").loads(),
-                texture("color_resolve", Access::ColorTarget, HDR, "single-sampled resolve of `color` at the end of the pass").optional(),
-                texture("depth", Access::DepthTarget, DEPTH, "camera depth, tested and written").loads(),
+                texture(
+                    "color",
+                    Access::ColorTarget,
+                    HDR,
+                    "the scene the hair is drawn into (multisampled for alpha to coverage)",
+                )
+                .loads(),
+                texture(
+                    "color_resolve",
+                    Access::ColorTarget,
+                    HDR,
+                    "single-sampled resolve of `color` at the end of the pass",
+                )
+                .optional(),
+                texture(
+                    "depth",
+                    Access::DepthTarget,
+                    DEPTH,
+                    "camera depth, tested and written",
+                )
+                .loads(),
             ],
             params: transparency::shading_params(),
             dynamic_slots: false,
@@ -69,7 +93,11 @@ impl PassType for HairCoverage {
         }
         d
     }
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
         Ok(RasterState {
             depth: DepthMode::TestWrite(wgpu::CompareFunction::Less),
             alpha_to_coverage: self.alpha_to_coverage,

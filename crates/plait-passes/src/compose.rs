@@ -19,11 +19,34 @@ impl PassType for Compose {
             source: "000_785589f319b01ef5.txt §3.4".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
-                texture("hair", Access::Sampled, HDR, "additively blended hair: Σ (1-α)^o α (rgb, 1)"),
-                texture("scene", Access::Sampled, HDR, "opaque objects, premultiplied; background where alpha < 1"),
-                buffer("counts", Access::StorageRead, "camera-view slab counts (slab pass): n per pixel"),
+                texture(
+                    "hair",
+                    Access::Sampled,
+                    HDR,
+                    "additively blended hair: Σ (1-α)^o α (rgb, 1)",
+                ),
+                texture(
+                    "scene",
+                    Access::Sampled,
+                    HDR,
+                    "opaque objects, premultiplied; background where alpha < 1",
+                ),
+                buffer(
+                    "counts",
+                    Access::StorageRead,
+                    "camera-view slab counts (slab pass): n per pixel",
+                ),
             ],
-            outputs: vec![texture("color", Access::ColorTarget, &[Format::Rgba8UnormSrgb, Format::Rgba8Unorm, Format::Rgba16Float], "final image")],
+            outputs: vec![texture(
+                "color",
+                Access::ColorTarget,
+                &[
+                    Format::Rgba8UnormSrgb,
+                    Format::Rgba8Unorm,
+                    Format::Rgba16Float,
+                ],
+                "final image",
+            )],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,
@@ -31,6 +54,9 @@ impl PassType for Compose {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/compose.wgsl", include_str!("../../../shaders/passes/compose.wgsl")))
+        Some((
+            "shaders/passes/compose.wgsl",
+            include_str!("../../../shaders/passes/compose.wgsl"),
+        ))
     }
 }

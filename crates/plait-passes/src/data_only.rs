@@ -30,7 +30,11 @@ pub struct Fullscreen;
 
 impl PassType for Fullscreen {
     fn spec(&self) -> PassTypeSpec {
-        data_only("fullscreen", PassShape::Fullscreen, "A WGSL fragment shader over the whole target; slots are the shader's bindings.")
+        data_only(
+            "fullscreen",
+            PassShape::Fullscreen,
+            "A WGSL fragment shader over the whole target; slots are the shader's bindings.",
+        )
     }
     fn shader(&self) -> Option<BuiltinShader> {
         None
@@ -41,7 +45,11 @@ pub struct Compute;
 
 impl PassType for Compute {
     fn spec(&self) -> PassTypeSpec {
-        data_only("compute", PassShape::Compute, "A WGSL compute shader; slots are the shader's bindings.")
+        data_only(
+            "compute",
+            PassShape::Compute,
+            "A WGSL compute shader; slots are the shader's bindings.",
+        )
     }
     fn shader(&self) -> Option<BuiltinShader> {
         None

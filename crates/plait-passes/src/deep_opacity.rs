@@ -46,9 +46,16 @@ impl PassType for DeepOpacity {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/deep_opacity.wgsl", include_str!("../../../shaders/passes/deep_opacity.wgsl")))
+        Some((
+            "shaders/passes/deep_opacity.wgsl",
+            include_str!("../../../shaders/passes/deep_opacity.wgsl"),
+        ))
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         check_words(pass, ctx, "layers", "range", 1, 32)?;
         build_shader_pass(self, pass, ctx)
     }

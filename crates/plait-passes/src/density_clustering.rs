@@ -27,7 +27,9 @@
 //! Memory: (iterations + 1) × 4 × 3 × 4 B per texel = 24 MiB at 512² with
 //! one refinement, plus the 2 MiB depth range.
 
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, build_shader_pass};
+use plait_gpu::pass::{
+    BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, build_shader_pass,
+};
 use plait_gpu::{Define, GpuError};
 use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass, Value};
 
@@ -41,7 +43,10 @@ pub const CLUSTERS: u64 = 4;
 /// u32 words per cluster per stage: count, Σz, Σz² (fixed point).
 pub const WORDS_PER_CLUSTER: u64 = 3;
 
-const SHADER: BuiltinShader = ("shaders/passes/density_clustering.wgsl", include_str!("../../../shaders/passes/density_clustering.wgsl"));
+const SHADER: BuiltinShader = (
+    "shaders/passes/density_clustering.wgsl",
+    include_str!("../../../shaders/passes/density_clustering.wgsl"),
+);
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
@@ -102,7 +107,11 @@ impl PassType for DensityClustering {
         d.push(("STAGE".into(), Define::UInt(0)));
         d
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         let iterations = match pass.params.get("iterations") {
             Some(Value::Int(i)) => *i as u64,
             _ => 1,

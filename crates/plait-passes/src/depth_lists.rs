@@ -50,9 +50,16 @@ impl PassType for DepthLists {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/depth_lists.wgsl", include_str!("../../../shaders/passes/depth_lists.wgsl")))
+        Some((
+            "shaders/passes/depth_lists.wgsl",
+            include_str!("../../../shaders/passes/depth_lists.wgsl"),
+        ))
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         check_words(pass, ctx, "lists", "range", 1, MAX_CAPACITY)?;
         check_words(pass, ctx, "counts", "range", 1, 1)?;
         build_shader_pass(self, pass, ctx)

@@ -27,7 +27,8 @@
 use std::cell::Cell;
 
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext, ShaderPass, build_shader_pass_typed,
+    BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext,
+    ShaderPass, build_shader_pass_typed,
 };
 use plait_gpu::{Capabilities, Define, GpuError};
 use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
@@ -39,10 +40,27 @@ pub struct HairDepthPeel;
 
 fn spec() -> PassTypeSpec {
     let mut inputs = transparency::shading_inputs();
-    inputs.push(texture("opaque_depth", Access::Sampled, DEPTH, "camera depth of opaque geometry: hair behind it is not peeled"));
+    inputs.push(texture(
+        "opaque_depth",
+        Access::Sampled,
+        DEPTH,
+        "camera depth of opaque geometry: hair behind it is not peeled",
+    ));
     let mut params = transparency::shading_params();
-    params.push(int("max_layers", 256, 1, 4096, "layer cap: peel at most this many layers"));
-    params.push(int("check_every", 4, 1, 4096, "layers peeled between occlusion-query read-backs (each one a CPU-GPU round trip)"));
+    params.push(int(
+        "max_layers",
+        256,
+        1,
+        4096,
+        "layer cap: peel at most this many layers",
+    ));
+    params.push(int(
+        "check_every",
+        4,
+        1,
+        4096,
+        "layers peeled between occlusion-query read-backs (each one a CPU-GPU round trip)",
+    ));
     PassTypeSpec {
         name: "hair_depth_peel".into(),
         description: "Depth peeling front to back until an occlusion query reports no fragments (ground truth).".into(),
@@ -72,11 +90,27 @@ impl PassType for HairDepthPeel {
     fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
         transparency::defines(pass, "depth_peel")
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         let find = |slot: &str| {
-            pass.writes.iter().find(|b| b.slot == slot).cloned().ok_or_else(|| GpuError::Pass { pass: pass.name.clone(), message: format!("`{slot}` is not bound") })
+            pass.writes
+                .iter()
+                .find(|b| b.slot == slot)
+                .cloned()
+                .ok_or_else(|| GpuError::Pass {
+                    pass: pass.name.clone(),
+                    message: format!("`{slot}` is not bound"),
+                })
         };
-        let (color, layer, depth_a, depth_b) = (find("color")?, find("layer")?, find("peel_depth")?, find("peel_prev")?);
+        let (color, layer, depth_a, depth_b) = (
+            find("color")?,
+            find("layer")?,
+            find("peel_depth")?,
+            find("peel_prev")?,
+        );
         let int_param = |name: &str, default: i64| match pass.params.get(name) {
             Some(plait_graph::Value::Int(i)) => (*i).max(1) as u32,
             _ => default as u32,
@@ -87,8 +121,23 @@ impl PassType for HairDepthPeel {
         // One peel draw per parity: writes one depth buffer, samples the other.
         let peel_pass = |write: &Binding, prev: &Binding| {
             let mut p = pass.clone();
-            p.writes = vec![Binding { loads: false, ..layer.clone() }, Binding { slot: "peel_depth".into(), loads: false, access: Access::DepthTarget, ..write.clone() }];
-            p.reads.push(Binding { slot: "peel_prev".into(), access: Access::Sampled, ..prev.clone() });
+            p.writes = vec![
+                Binding {
+                    loads: false,
+                    ..layer.clone()
+                },
+                Binding {
+                    slot: "peel_depth".into(),
+                    loads: false,
+                    access: Access::DepthTarget,
+                    ..write.clone()
+                },
+            ];
+            p.reads.push(Binding {
+                slot: "peel_prev".into(),
+                access: Access::Sampled,
+                ..prev.clone()
+            });
             p
         };
         let peel = [
@@ -96,13 +145,23 @@ impl PassType for HairDepthPeel {
             build_shader_pass_typed(&PeelDraw, &peel_pass(&depth_b, &depth_a), ctx)?,
         ];
         let mut blend_pass = pass.clone();
-        blend_pass.reads = vec![Binding { access: Access::Sampled, ..layer.clone() }];
-        blend_pass.writes = vec![Binding { loads: true, ..color.clone() }];
+        blend_pass.reads = vec![Binding {
+            access: Access::Sampled,
+            ..layer.clone()
+        }];
+        blend_pass.writes = vec![Binding {
+            loads: true,
+            ..color.clone()
+        }];
         blend_pass.params.clear();
         let blend = build_shader_pass_typed(&PeelBlend, &blend_pass, ctx)?;
 
         let device = ctx.device;
-        let queries = device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("depth peeling"), ty: wgpu::QueryType::Occlusion, count: max_layers });
+        let queries = device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("depth peeling"),
+            ty: wgpu::QueryType::Occlusion,
+            count: max_layers,
+        });
         let size = max_layers as u64 * 8;
         let resolve = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("depth peeling queries"),
@@ -146,15 +205,31 @@ impl PassType for PeelDraw {
     fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
         transparency::defines(pass, "depth_peel")
     }
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
-        Ok(RasterState { depth: DepthMode::TestWrite(wgpu::CompareFunction::Less), clear_depth: 1.0, ..RasterState::default() })
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
+        Ok(RasterState {
+            depth: DepthMode::TestWrite(wgpu::CompareFunction::Less),
+            clear_depth: 1.0,
+            ..RasterState::default()
+        })
     }
 }
 
 /// Front-to-back "under": dst.rgb += (1 - dst.a) · src.rgb, dst.a likewise (src premultiplied).
 const UNDER: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::OneMinusDstAlpha, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
-    alpha: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::OneMinusDstAlpha, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
 };
 
 /// The blend of one layer under the accumulated colour.
@@ -162,13 +237,27 @@ struct PeelBlend;
 
 impl PassType for PeelBlend {
     fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec { shape: PassShape::Fullscreen, ..spec() }
+        PassTypeSpec {
+            shape: PassShape::Fullscreen,
+            ..spec()
+        }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/peel_blend.wgsl", include_str!("../../../shaders/passes/peel_blend.wgsl")))
+        Some((
+            "shaders/passes/peel_blend.wgsl",
+            include_str!("../../../shaders/passes/peel_blend.wgsl"),
+        ))
     }
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
-        Ok(RasterState { blend: vec![Some(UNDER)], load_colors: true, ..RasterState::default() })
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
+        Ok(RasterState {
+            blend: vec![Some(UNDER)],
+            load_colors: true,
+            ..RasterState::default()
+        })
     }
 }
 
@@ -191,18 +280,29 @@ impl PreparedPass for Peeling {
     fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
         // Start: nothing accumulated; the "previous layer" at depth 0 lets every fragment through.
         {
-            let view = |id| ctx.pool.texture(id).map(|(_, v)| v).expect("peeling targets are textures");
+            let view = |id| {
+                ctx.pool
+                    .texture(id)
+                    .map(|(_, v)| v)
+                    .expect("peeling targets are textures")
+            };
             let _clear = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(&self.name),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                     view: view(self.color),
                     depth_slice: None,
                     resolve_target: None,
-                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
                 })],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: view(self.first_prev),
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(0.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
                     stencil_ops: None,
                 }),
                 timestamp_writes: None,
@@ -215,16 +315,32 @@ impl PreparedPass for Peeling {
         'peel: while start < self.max_layers {
             let end = (start + self.check_every).min(self.max_layers);
             for k in start..end {
-                self.peel[(k % 2) as usize].record_with_query(ctx, encoder, Some((&self.queries, k)));
+                self.peel[(k % 2) as usize].record_with_query(
+                    ctx,
+                    encoder,
+                    Some((&self.queries, k)),
+                );
                 self.blend.record(ctx, encoder);
             }
             // (Resolve offsets must be 256-aligned: each batch lands at 0.)
             encoder.resolve_query_set(&self.queries, start..end, &self.resolve, 0);
-            encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, (end - start) as u64 * 8);
+            encoder.copy_buffer_to_buffer(
+                &self.resolve,
+                0,
+                &self.readback,
+                0,
+                (end - start) as u64 * 8,
+            );
             // Submit what is recorded and wait for the query results; go on in a new encoder.
             // The executor wraps the pass in a debug group: close it in the old encoder, reopen it in the new.
             encoder.pop_debug_group();
-            let done = std::mem::replace(encoder, ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(&self.name) }));
+            let done = std::mem::replace(
+                encoder,
+                ctx.device
+                    .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                        label: Some(&self.name),
+                    }),
+            );
             encoder.push_debug_group(&self.name);
             ctx.queue.submit([done.finish()]);
             let Ok(bytes) = plait_gpu::readback::map_buffer(ctx.device, &self.readback) else {
@@ -245,6 +361,9 @@ impl PreparedPass for Peeling {
     }
 
     fn stats(&self) -> Vec<(String, f64)> {
-        vec![("layers".into(), self.layers.get() as f64), ("capped".into(), if self.capped.get() { 1.0 } else { 0.0 })]
+        vec![
+            ("layers".into(), self.layers.get() as f64),
+            ("capped".into(), if self.capped.get() { 1.0 } else { 0.0 }),
+        ]
     }
 }

@@ -8,7 +8,10 @@
 //! on every adapter: near with `Less` into red, far with `Greater` into green,
 //! sharing one scratch depth buffer. Empty texels keep near = 1 > far = 0.
 
-use plait_gpu::pass::{BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext, build_shader_pass};
+use plait_gpu::pass::{
+    BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext,
+    build_shader_pass,
+};
 use plait_gpu::{Capabilities, GpuError};
 use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
 
@@ -16,18 +19,38 @@ use crate::spec_util::{DEPTH, texture};
 
 pub struct DepthRange;
 
-const SHADER: BuiltinShader = ("shaders/passes/depth_range.wgsl", include_str!("../../../shaders/passes/depth_range.wgsl"));
+const SHADER: BuiltinShader = (
+    "shaders/passes/depth_range.wgsl",
+    include_str!("../../../shaders/passes/depth_range.wgsl"),
+);
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
         name: "depth_range".into(),
-        description: "Nearest (red) and farthest (green) hair depth per texel, linear in the view's depth.".into(),
+        description:
+            "Nearest (red) and farthest (green) hair depth per texel, linear in the view's depth."
+                .into(),
         source: "000_785589f319b01ef5.txt §3.1, Fig. 7".into(),
         shape: PassShape::Raster,
-        inputs: vec![texture("opaque_depth", Access::Sampled, DEPTH, "opaque depth from the same view; hair behind it is ignored (§3.5)")],
+        inputs: vec![texture(
+            "opaque_depth",
+            Access::Sampled,
+            DEPTH,
+            "opaque depth from the same view; hair behind it is ignored (§3.5)",
+        )],
         outputs: vec![
-            texture("range", Access::ColorTarget, &[Format::Rg32Float], "near (r) and far (g) linear depth"),
-            texture("scratch", Access::DepthTarget, DEPTH, "depth buffer for the two depth-tested draws"),
+            texture(
+                "range",
+                Access::ColorTarget,
+                &[Format::Rg32Float],
+                "near (r) and far (g) linear depth",
+            ),
+            texture(
+                "scratch",
+                Access::DepthTarget,
+                DEPTH,
+                "depth buffer for the two depth-tested draws",
+            ),
         ],
         params: vec![],
         dynamic_slots: false,
@@ -48,7 +71,11 @@ impl PassType for Draw {
     fn shader(&self) -> Option<BuiltinShader> {
         Some(SHADER)
     }
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
         Ok(if self.far {
             RasterState {
                 depth: DepthMode::TestWrite(wgpu::CompareFunction::Greater),
@@ -60,7 +87,12 @@ impl PassType for Draw {
         } else {
             RasterState {
                 depth: DepthMode::TestWrite(wgpu::CompareFunction::Less),
-                clear_color: wgpu::Color { r: 1.0, g: 0.0, b: 0.0, a: 0.0 },
+                clear_color: wgpu::Color {
+                    r: 1.0,
+                    g: 0.0,
+                    b: 0.0,
+                    a: 0.0,
+                },
                 clear_depth: 1.0,
                 write_mask: vec![wgpu::ColorWrites::RED],
                 ..RasterState::default()
@@ -88,7 +120,11 @@ impl PassType for DepthRange {
     fn shader(&self) -> Option<BuiltinShader> {
         Some(SHADER)
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         let near = build_shader_pass(&Draw { far: false }, pass, ctx)?;
         let far = build_shader_pass(&Draw { far: true }, pass, ctx)?;
         Ok(Box::new(TwoDraws { near, far }))

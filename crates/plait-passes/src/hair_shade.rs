@@ -10,8 +10,8 @@
 //!   added unsorted into a float target (000_785589f319b01ef5.txt §3.4); the
 //!   `compose` pass applies the Λ correction.
 
-use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
 use plait_gpu::Capabilities;
+use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::spec_util::{DEPTH, HDR, SlotExt, buffer, choice, texture};
@@ -25,24 +25,65 @@ const OVER: wgpu::BlendState = wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING;
 impl PassType for HairShade {
     fn spec(&self) -> PassTypeSpec {
         let mut inputs = vec![
-            texture("shadow_map", Access::Sampled, DEPTH, "opaque shadow map from the light"),
-            texture("depth", Access::DepthTarget, DEPTH, "camera depth of opaque geometry (tested, not written)"),
+            texture(
+                "shadow_map",
+                Access::Sampled,
+                DEPTH,
+                "opaque shadow map from the light",
+            ),
+            texture(
+                "depth",
+                Access::DepthTarget,
+                DEPTH,
+                "camera depth of opaque geometry (tested, not written)",
+            ),
         ];
         inputs.extend(visibility::slots());
         inputs.extend([
-            texture("order_range", Access::Sampled, &[plait_graph::Format::Rg32Float], "occupancy_order: camera-view depth range").optional(),
-            buffer("order_bits", Access::StorageRead, "occupancy_order: camera-view occupancy bits").optional(),
-            buffer("order_slabs", Access::StorageRead, "occupancy_order: camera-view slab counts").optional(),
+            texture(
+                "order_range",
+                Access::Sampled,
+                &[plait_graph::Format::Rg32Float],
+                "occupancy_order: camera-view depth range",
+            )
+            .optional(),
+            buffer(
+                "order_bits",
+                Access::StorageRead,
+                "occupancy_order: camera-view occupancy bits",
+            )
+            .optional(),
+            buffer(
+                "order_slabs",
+                Access::StorageRead,
+                "occupancy_order: camera-view slab counts",
+            )
+            .optional(),
         ]);
         let mut params = visibility::params();
-        params.push(choice("blend", "over", &["over", "occupancy_order"], "transparency: draw-order `over`, or occupancy-order weights (§3.4)"));
+        params.push(choice(
+            "blend",
+            "over",
+            &["over", "occupancy_order"],
+            "transparency: draw-order `over`, or occupancy-order weights (§3.4)",
+        ));
         PassTypeSpec {
             name: "hair_shade".into(),
-            description: "Kajiya-Kay hair shading with opaque and self shadows, blended over the target.".into(),
+            description:
+                "Kajiya-Kay hair shading with opaque and self shadows, blended over the target."
+                    .into(),
             source: "004_51cca5cde985008c.txt §3.2.1; 000_785589f319b01ef5.txt §3.2-3.5".into(),
             shape: PassShape::Raster,
             inputs,
-            outputs: vec![texture("color", Access::ColorTarget, HDR, "premultiplied colour, blended over").loads()],
+            outputs: vec![
+                texture(
+                    "color",
+                    Access::ColorTarget,
+                    HDR,
+                    "premultiplied colour, blended over",
+                )
+                .loads(),
+            ],
             params,
             dynamic_slots: false,
             needs_shader: false,
@@ -51,10 +92,17 @@ impl PassType for HairShade {
     }
 
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/hair_shade.wgsl", include_str!("../../../shaders/passes/hair_shade.wgsl")))
+        Some((
+            "shaders/passes/hair_shade.wgsl",
+            include_str!("../../../shaders/passes/hair_shade.wgsl"),
+        ))
     }
 
-    fn raster_state(&self, pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+    fn raster_state(
+        &self,
+        pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
         let blend = match pass.params.get("blend").and_then(|v| v.as_str()) {
             Some("occupancy_order") => ADDITIVE,
             _ => OVER,

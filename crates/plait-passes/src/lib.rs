@@ -64,18 +64,28 @@ pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Error
     let mut shaders = ShaderLibrary::new().map_err(shader_library_error)?;
     let mut errors = Vec::new();
     let resources = schedule.resources.clone();
-    let passes = schedule.passes.iter_mut().chain(schedule.culled.iter_mut().map(|c| &mut c.pass));
+    let passes = schedule
+        .passes
+        .iter_mut()
+        .chain(schedule.culled.iter_mut().map(|c| &mut c.pass));
     for pass in passes {
         if let Some(t) = library.get(&pass.type_name) {
             errors.extend(check_pass(t, pass, &resources, &mut shaders));
         }
     }
-    if errors.is_empty() { Ok(()) } else { Err(Errors(errors)) }
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(Errors(errors))
+    }
 }
 
 fn shader_library_error(e: ShaderError) -> Errors {
     Errors(vec![plait_graph::Error::new(
         plait_graph::Location::Builtin,
-        plait_graph::ErrorKind::Shader { path: e.path, message: e.message },
+        plait_graph::ErrorKind::Shader {
+            path: e.path,
+            message: e.message,
+        },
     )])
 }

@@ -36,8 +36,18 @@ pub struct HairFragmentList;
 impl PassType for HairFragmentList {
     fn spec(&self) -> PassTypeSpec {
         let mut inputs = transparency::shading_inputs();
-        inputs.push(texture("depth", Access::DepthTarget, DEPTH, "camera depth of opaque geometry (tested, not written)"));
-        inputs.push(texture("opaque_depth", Access::Sampled, DEPTH, "the same depth, sampled: list writes must not wait for the late depth test"));
+        inputs.push(texture(
+            "depth",
+            Access::DepthTarget,
+            DEPTH,
+            "camera depth of opaque geometry (tested, not written)",
+        ));
+        inputs.push(texture(
+            "opaque_depth",
+            Access::Sampled,
+            DEPTH,
+            "the same depth, sampled: list writes must not wait for the late depth test",
+        ));
         PassTypeSpec {
             name: "hair_fragment_list".into(),
             description: "Append every shaded hair fragment to its pixel's linked list (atomic counter + head pointers).".into(),
@@ -61,8 +71,15 @@ impl PassType for HairFragmentList {
     fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
         transparency::defines(pass, "fragment_list")
     }
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
-        Ok(RasterState { depth: DepthMode::TestOnly(wgpu::CompareFunction::Less), ..RasterState::default() })
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
+        Ok(RasterState {
+            depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
+            ..RasterState::default()
+        })
     }
 }
 
@@ -72,21 +89,36 @@ impl PassType for FragmentListResolve {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
             name: "fragment_list_resolve".into(),
-            description: "Sort each pixel's fragment list by depth and blend it front to back.".into(),
+            description: "Sort each pixel's fragment list by depth and blend it front to back."
+                .into(),
             source: "000_785589f319b01ef5.txt §2.2".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
                 buffer("list_heads", Access::StorageRead, "head node + 1 per pixel"),
                 buffer("list_nodes", Access::StorageRead, "the nodes"),
             ],
-            outputs: vec![texture("color", Access::ColorTarget, HDR, "hair, premultiplied, blended front to back")],
-            params: vec![int("max_sorted", 256, 1, 256, "nearest fragments kept and sorted per pixel (like depth peeling's layer cap)")],
+            outputs: vec![texture(
+                "color",
+                Access::ColorTarget,
+                HDR,
+                "hair, premultiplied, blended front to back",
+            )],
+            params: vec![int(
+                "max_sorted",
+                256,
+                1,
+                256,
+                "nearest fragments kept and sorted per pixel (like depth peeling's layer cap)",
+            )],
             dynamic_slots: false,
             needs_shader: false,
             required_features: vec![],
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/fragment_list_resolve.wgsl", include_str!("../../../shaders/passes/fragment_list_resolve.wgsl")))
+        Some((
+            "shaders/passes/fragment_list_resolve.wgsl",
+            include_str!("../../../shaders/passes/fragment_list_resolve.wgsl"),
+        ))
     }
 }

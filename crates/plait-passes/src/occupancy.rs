@@ -11,8 +11,8 @@
 //! [`order_estimate`] is the CPU mirror of `order_estimate` in
 //! `shaders/lib/occupancy.wgsl` (§3.2); a GPU test proves them equal.
 
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
 use plait_gpu::GpuError;
+use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
 use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass};
 
 use crate::spec_util::{DEPTH, buffer, texture};
@@ -23,14 +23,30 @@ impl PassType for Occupancy {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
             name: "occupancy".into(),
-            description: "One bit per depth slice per texel (atomicOr), 32 slices per u32 word of `bits`.".into(),
+            description:
+                "One bit per depth slice per texel (atomicOr), 32 slices per u32 word of `bits`."
+                    .into(),
             source: "000_785589f319b01ef5.txt §3.1".into(),
             shape: PassShape::Raster,
             inputs: vec![
-                texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view (depth_range)"),
-                texture("depth", Access::DepthTarget, DEPTH, "opaque depth of the same view, tested not written"),
+                texture(
+                    "range",
+                    Access::Sampled,
+                    &[Format::Rg32Float],
+                    "depth range of the same view (depth_range)",
+                ),
+                texture(
+                    "depth",
+                    Access::DepthTarget,
+                    DEPTH,
+                    "opaque depth of the same view, tested not written",
+                ),
             ],
-            outputs: vec![buffer("bits", Access::StorageWrite, "occupancy bits: words × u32 per texel")],
+            outputs: vec![buffer(
+                "bits",
+                Access::StorageWrite,
+                "occupancy bits: words × u32 per texel",
+            )],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,
@@ -38,9 +54,16 @@ impl PassType for Occupancy {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/occupancy.wgsl", include_str!("../../../shaders/passes/occupancy.wgsl")))
+        Some((
+            "shaders/passes/occupancy.wgsl",
+            include_str!("../../../shaders/passes/occupancy.wgsl"),
+        ))
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         check_per_texel_buffer(pass, ctx, "bits", "range")?;
         build_shader_pass(self, pass, ctx)
     }
@@ -48,15 +71,29 @@ impl PassType for Occupancy {
 
 /// A per-texel buffer must hold a whole, non-zero number of u32 words for
 /// every texel of the map it goes with, or the shader's indexing is wrong.
-pub fn check_per_texel_buffer(pass: &ScheduledPass, ctx: &BuildContext<'_>, buffer_slot: &str, texture_slot: &str) -> Result<(), GpuError> {
+pub fn check_per_texel_buffer(
+    pass: &ScheduledPass,
+    ctx: &BuildContext<'_>,
+    buffer_slot: &str,
+    texture_slot: &str,
+) -> Result<(), GpuError> {
     let desc = |slot: &str| {
         pass.reads
             .iter()
             .chain(pass.writes.iter())
             .find(|b| b.slot == slot)
-            .map(|b| (ctx.schedule.resources[b.resource].name.clone(), ctx.schedule.resources[b.resource].desc.clone()))
+            .map(|b| {
+                (
+                    ctx.schedule.resources[b.resource].name.clone(),
+                    ctx.schedule.resources[b.resource].desc.clone(),
+                )
+            })
     };
-    let (Some((buffer_name, ResourceDesc::Buffer { size })), Some((_, ResourceDesc::Texture { width, height, .. }))) = (desc(buffer_slot), desc(texture_slot)) else {
+    let (
+        Some((buffer_name, ResourceDesc::Buffer { size })),
+        Some((_, ResourceDesc::Texture { width, height, .. })),
+    ) = (desc(buffer_slot), desc(texture_slot))
+    else {
         return Ok(());
     };
     let per_texel = 4 * width as u64 * height as u64;
@@ -99,9 +136,17 @@ pub fn order_estimate(maps: &TexelMaps, rel: f32) -> f32 {
     let slab = (slice / per_slab).min(slabs - 1);
     let before: f32 = maps.counts[..slab as usize].iter().map(|&c| c as f32).sum();
     let first = slab * per_slab;
-    let count_bits = |from: u32, to: u32| (from..to).filter(|&k| maps.bits[(k / 32) as usize] >> (k % 32) & 1 == 1).count() as u32;
+    let count_bits = |from: u32, to: u32| {
+        (from..to)
+            .filter(|&k| maps.bits[(k / 32) as usize] >> (k % 32) & 1 == 1)
+            .count() as u32
+    };
     let set_in_slab = count_bits(first, first + per_slab);
-    let per_bit = if set_in_slab > 0 { maps.counts[slab as usize] as f32 / set_in_slab as f32 } else { 0.0 };
+    let per_bit = if set_in_slab > 0 {
+        maps.counts[slab as usize] as f32 / set_in_slab as f32
+    } else {
+        0.0
+    };
     let at_start = before + per_bit * count_bits(first, slice) as f32;
     let at_end = before + per_bit * count_bits(first, slice + 1) as f32;
     at_start + (at_end - at_start) * frac
@@ -111,7 +156,10 @@ pub fn order_estimate(maps: &TexelMaps, rel: f32) -> f32 {
 /// occupancy and slab passes do.
 pub fn maps_from_depths(depths: &[f32], words: u32, slabs: u32) -> TexelMaps {
     let slices = words * 32;
-    let mut maps = TexelMaps { bits: vec![0; words as usize], counts: vec![0; slabs as usize] };
+    let mut maps = TexelMaps {
+        bits: vec![0; words as usize],
+        counts: vec![0; slabs as usize],
+    };
     for &d in depths {
         let slice = ((d.max(0.0) * slices as f32) as u32).min(slices - 1);
         maps.bits[(slice / 32) as usize] |= 1 << (slice % 32);
@@ -150,7 +198,11 @@ mod tests {
         let maps = maps_from_depths(&d, 4, 4);
         for boundary in [0.25f32, 0.5, 0.75] {
             let est = order_estimate(&maps, boundary);
-            assert!((est - exact(&d, boundary)).abs() < 1e-3, "at {boundary}: {est} vs {}", exact(&d, boundary));
+            assert!(
+                (est - exact(&d, boundary)).abs() < 1e-3,
+                "at {boundary}: {est} vs {}",
+                exact(&d, boundary)
+            );
         }
         assert_eq!(order_estimate(&maps, 1.0), d.len() as f32);
         assert_eq!(order_estimate(&maps, 0.0), 0.0);
@@ -168,11 +220,18 @@ mod tests {
             let rel = i as f32 / 1000.0;
             let slab = ((rel * 4.0) as usize).min(3);
             let e = (order_estimate(&maps, rel) - exact(&d, rel)).abs();
-            assert!(e <= maps.counts[slab] as f32 + 1e-3, "rel {rel}: error {e} > F_i {}", maps.counts[slab]);
+            assert!(
+                e <= maps.counts[slab] as f32 + 1e-3,
+                "rel {rel}: error {e} > F_i {}",
+                maps.counts[slab]
+            );
             err = err.max(e);
             err_no_slab = err_no_slab.max((order_estimate(&no_slab, rel) - exact(&d, rel)).abs());
         }
-        assert!(err < err_no_slab, "slabs should help: {err} vs {err_no_slab}");
+        assert!(
+            err < err_no_slab,
+            "slabs should help: {err} vs {err_no_slab}"
+        );
     }
 
     #[test]

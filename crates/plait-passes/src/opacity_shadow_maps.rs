@@ -53,9 +53,16 @@ impl PassType for OpacityShadowMaps {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/opacity_shadow_maps.wgsl", include_str!("../../../shaders/passes/opacity_shadow_maps.wgsl")))
+        Some((
+            "shaders/passes/opacity_shadow_maps.wgsl",
+            include_str!("../../../shaders/passes/opacity_shadow_maps.wgsl"),
+        ))
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         check_words(pass, ctx, "slices", "range", 1, MAX_SLICES)?;
         build_shader_pass(self, pass, ctx)
     }

@@ -10,4 +10,6 @@
 
 use crate::alpha_to_coverage::HairCoverage;
 
-pub const HAIR_OPAQUE: HairCoverage = HairCoverage { alpha_to_coverage: false };
+pub const HAIR_OPAQUE: HairCoverage = HairCoverage {
+    alpha_to_coverage: false,
+};

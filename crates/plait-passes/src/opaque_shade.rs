@@ -12,7 +12,12 @@ pub struct OpaqueShade;
 
 impl PassType for OpaqueShade {
     fn spec(&self) -> PassTypeSpec {
-        let mut inputs = vec![texture("shadow_map", Access::Sampled, DEPTH, "opaque shadow map from the light")];
+        let mut inputs = vec![texture(
+            "shadow_map",
+            Access::Sampled,
+            DEPTH,
+            "opaque shadow map from the light",
+        )];
         inputs.extend(visibility::slots());
         PassTypeSpec {
             name: "opaque_shade".into(),
@@ -21,8 +26,18 @@ impl PassType for OpaqueShade {
             shape: PassShape::Raster,
             inputs,
             outputs: vec![
-                texture("color", Access::ColorTarget, HDR, "linear premultiplied colour, alpha 1 on geometry"),
-                texture("depth", Access::DepthTarget, DEPTH, "camera depth of opaque geometry"),
+                texture(
+                    "color",
+                    Access::ColorTarget,
+                    HDR,
+                    "linear premultiplied colour, alpha 1 on geometry",
+                ),
+                texture(
+                    "depth",
+                    Access::DepthTarget,
+                    DEPTH,
+                    "camera depth of opaque geometry",
+                ),
             ],
             params: visibility::params(),
             dynamic_slots: false,
@@ -32,6 +47,9 @@ impl PassType for OpaqueShade {
     }
 
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/opaque_shade.wgsl", include_str!("../../../shaders/passes/opaque_shade.wgsl")))
+        Some((
+            "shaders/passes/opaque_shade.wgsl",
+            include_str!("../../../shaders/passes/opaque_shade.wgsl"),
+        ))
     }
 }

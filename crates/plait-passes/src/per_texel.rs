@@ -23,14 +23,27 @@ pub fn check_words(
             .iter()
             .chain(pass.writes.iter())
             .find(|b| b.slot == slot)
-            .map(|b| (ctx.schedule.resources[b.resource].name.clone(), ctx.schedule.resources[b.resource].desc.clone()))
+            .map(|b| {
+                (
+                    ctx.schedule.resources[b.resource].name.clone(),
+                    ctx.schedule.resources[b.resource].desc.clone(),
+                )
+            })
     };
-    let (Some((buffer_name, ResourceDesc::Buffer { size })), Some((_, ResourceDesc::Texture { width, height, .. }))) = (desc(buffer_slot), desc(texture_slot)) else {
+    let (
+        Some((buffer_name, ResourceDesc::Buffer { size })),
+        Some((_, ResourceDesc::Texture { width, height, .. })),
+    ) = (desc(buffer_slot), desc(texture_slot))
+    else {
         return Ok(None);
     };
     let per_texel = 4 * width as u64 * height as u64;
     let words = size / per_texel;
-    if size == 0 || !size.is_multiple_of(per_texel) || !words.is_multiple_of(multiple) || words > max {
+    if size == 0
+        || !size.is_multiple_of(per_texel)
+        || !words.is_multiple_of(multiple)
+        || words > max
+    {
         return Err(GpuError::Pass {
             pass: pass.name.clone(),
             message: format!(

@@ -19,7 +19,12 @@ impl PassType for ShadowMap {
             source: "000_785589f319b01ef5.txt §3.5; 004_51cca5cde985008c.txt §3.3.2".into(),
             shape: PassShape::Raster,
             inputs: vec![],
-            outputs: vec![texture("depth", Access::DepthTarget, DEPTH, "nearest depth per texel")],
+            outputs: vec![texture(
+                "depth",
+                Access::DepthTarget,
+                DEPTH,
+                "nearest depth per texel",
+            )],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,
@@ -28,6 +33,9 @@ impl PassType for ShadowMap {
     }
 
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/shadow_map.wgsl", include_str!("../../../shaders/passes/shadow_map.wgsl")))
+        Some((
+            "shaders/passes/shadow_map.wgsl",
+            include_str!("../../../shaders/passes/shadow_map.wgsl"),
+        ))
     }
 }

@@ -5,8 +5,8 @@
 //! floats. `slabs` u32 counters per texel; 4 is the paper's choice for 128
 //! slices, 1 turns the method into "occupancy bits alone" (F/S per set bit).
 
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
 use plait_gpu::GpuError;
+use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
 use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::occupancy::check_per_texel_buffer;
@@ -22,10 +22,24 @@ impl PassType for Slab {
             source: "000_785589f319b01ef5.txt §3.1, Fig. 8".into(),
             shape: PassShape::Raster,
             inputs: vec![
-                texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view (depth_range)"),
-                texture("depth", Access::DepthTarget, DEPTH, "opaque depth of the same view, tested not written"),
+                texture(
+                    "range",
+                    Access::Sampled,
+                    &[Format::Rg32Float],
+                    "depth range of the same view (depth_range)",
+                ),
+                texture(
+                    "depth",
+                    Access::DepthTarget,
+                    DEPTH,
+                    "opaque depth of the same view, tested not written",
+                ),
             ],
-            outputs: vec![buffer("slabs", Access::StorageWrite, "fragment counts: slabs × u32 per texel")],
+            outputs: vec![buffer(
+                "slabs",
+                Access::StorageWrite,
+                "fragment counts: slabs × u32 per texel",
+            )],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,
@@ -33,9 +47,16 @@ impl PassType for Slab {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/slab.wgsl", include_str!("../../../shaders/passes/slab.wgsl")))
+        Some((
+            "shaders/passes/slab.wgsl",
+            include_str!("../../../shaders/passes/slab.wgsl"),
+        ))
     }
-    fn build(&self, pass: &ScheduledPass, ctx: &mut BuildContext<'_>) -> Result<Box<dyn PreparedPass>, GpuError> {
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
         check_per_texel_buffer(pass, ctx, "slabs", "range")?;
         build_shader_pass(self, pass, ctx)
     }

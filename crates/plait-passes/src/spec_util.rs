@@ -7,7 +7,11 @@ pub fn texture(name: &str, access: Access, formats: &[Format], doc: &str) -> Slo
         name: name.into(),
         kind: ResourceKind::Texture,
         access,
-        formats: if formats.is_empty() { Formats::Any } else { Formats::OneOf(formats.to_vec()) },
+        formats: if formats.is_empty() {
+            Formats::Any
+        } else {
+            Formats::OneOf(formats.to_vec())
+        },
         loads: false,
         optional: false,
         doc: doc.into(),
@@ -44,11 +48,21 @@ impl SlotExt for SlotSpec {
 }
 
 pub fn float(name: &str, default: f64, min: f64, max: f64, doc: &str) -> ParamSpec {
-    ParamSpec { name: name.into(), ty: ParamType::Float { min, max }, default: Some(Value::Float(default)), doc: doc.into() }
+    ParamSpec {
+        name: name.into(),
+        ty: ParamType::Float { min, max },
+        default: Some(Value::Float(default)),
+        doc: doc.into(),
+    }
 }
 
 pub fn int(name: &str, default: i64, min: i64, max: i64, doc: &str) -> ParamSpec {
-    ParamSpec { name: name.into(), ty: ParamType::Int { min, max }, default: Some(Value::Int(default)), doc: doc.into() }
+    ParamSpec {
+        name: name.into(),
+        ty: ParamType::Int { min, max },
+        default: Some(Value::Int(default)),
+        doc: doc.into(),
+    }
 }
 
 pub fn choice(name: &str, default: &str, options: &[&str], doc: &str) -> ParamSpec {

@@ -10,19 +10,27 @@
 //! coverage (`alpha_to_coverage`), none (`opaque_hair`). `compose_hair_over`
 //! puts a front-to-back premultiplied hair image over the scene.
 
-use plait_gpu::pass::{BuiltinShader, PassType, default_defines};
 use plait_gpu::Define;
+use plait_gpu::pass::{BuiltinShader, PassType, default_defines};
 use plait_graph::{Access, Format, ParamSpec, PassShape, PassTypeSpec, ScheduledPass, SlotSpec};
 
 use crate::spec_util::{DEPTH, HDR, texture};
 use crate::visibility;
 
-pub const HAIR_SHADER: BuiltinShader = ("shaders/passes/hair_shade.wgsl", include_str!("../../../shaders/passes/hair_shade.wgsl"));
+pub const HAIR_SHADER: BuiltinShader = (
+    "shaders/passes/hair_shade.wgsl",
+    include_str!("../../../shaders/passes/hair_shade.wgsl"),
+);
 
 /// The shading inputs of every hair pass: the opaque shadow map and the
 /// visibility provider's light maps.
 pub fn shading_inputs() -> Vec<SlotSpec> {
-    let mut v = vec![texture("shadow_map", Access::Sampled, DEPTH, "opaque shadow map from the light")];
+    let mut v = vec![texture(
+        "shadow_map",
+        Access::Sampled,
+        DEPTH,
+        "opaque shadow map from the light",
+    )];
     v.extend(visibility::slots());
     v
 }
@@ -35,7 +43,10 @@ pub fn shading_params() -> Vec<ParamSpec> {
 pub fn defines(pass: &ScheduledPass, module: &str) -> Vec<(String, Define)> {
     let mut d = default_defines(pass);
     d.push(("TRANSPARENCY_MODULE".into(), Define::Bool(true)));
-    d.push((format!("TRANSPARENCY_{}", module.to_ascii_uppercase()), Define::Bool(true)));
+    d.push((
+        format!("TRANSPARENCY_{}", module.to_ascii_uppercase()),
+        Define::Bool(true),
+    ));
     d
 }
 
@@ -51,10 +62,29 @@ impl PassType for ComposeHairOver {
             source: "000_785589f319b01ef5.txt §2.2 (f = αc + (1-α)b)".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
-                texture("hair", Access::Sampled, HDR, "hair, premultiplied, accumulated front to back"),
-                texture("scene", Access::Sampled, HDR, "opaque objects, premultiplied; background where alpha < 1"),
+                texture(
+                    "hair",
+                    Access::Sampled,
+                    HDR,
+                    "hair, premultiplied, accumulated front to back",
+                ),
+                texture(
+                    "scene",
+                    Access::Sampled,
+                    HDR,
+                    "opaque objects, premultiplied; background where alpha < 1",
+                ),
             ],
-            outputs: vec![texture("color", Access::ColorTarget, &[Format::Rgba8UnormSrgb, Format::Rgba8Unorm, Format::Rgba16Float], "final image")],
+            outputs: vec![texture(
+                "color",
+                Access::ColorTarget,
+                &[
+                    Format::Rgba8UnormSrgb,
+                    Format::Rgba8Unorm,
+                    Format::Rgba16Float,
+                ],
+                "final image",
+            )],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,
@@ -62,6 +92,9 @@ impl PassType for ComposeHairOver {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/compose_hair_over.wgsl", include_str!("../../../shaders/passes/compose_hair_over.wgsl")))
+        Some((
+            "shaders/passes/compose_hair_over.wgsl",
+            include_str!("../../../shaders/passes/compose_hair_over.wgsl"),
+        ))
     }
 }

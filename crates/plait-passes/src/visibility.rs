@@ -11,30 +11,114 @@ use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 
 /// The providers, by param value.
-pub const PROVIDERS: &[&str] = &["none", "modified_shadow_map", "occupancy", "deep_opacity", "opacity_shadow_maps", "density_clustering", "exact"];
+pub const PROVIDERS: &[&str] = &[
+    "none",
+    "modified_shadow_map",
+    "occupancy",
+    "deep_opacity",
+    "opacity_shadow_maps",
+    "density_clustering",
+    "exact",
+];
 
 /// The optional input slots any provider may need.
 pub fn slots() -> Vec<SlotSpec> {
     vec![
-        texture("vis_depth", Access::Sampled, DEPTH, "modified_shadow_map: nearest hair depth from the light").optional(),
-        texture("vis_range", Access::Sampled, &[Format::Rg32Float], "occupancy: light-view depth range").optional(),
-        buffer("vis_bits", Access::StorageRead, "occupancy: light-view occupancy bits").optional(),
-        buffer("vis_slabs", Access::StorageRead, "occupancy: light-view slab counts").optional(),
-        buffer("vis_layers", Access::StorageRead, "deep_opacity: fragment count per layer after z0 (001_… §3)").optional(),
-        buffer("vis_slices", Access::StorageRead, "opacity_shadow_maps: fragment count per uniform slice (004_… §5.7)").optional(),
-        buffer("vis_clusters", Access::StorageRead, "density_clustering: k-means stages of (count, Σz, Σz²) per cluster (002_…)").optional(),
-        buffer("vis_lists", Access::StorageRead, "exact: every fragment's light depth per texel (000_… Fig. 5)").optional(),
-        buffer("vis_counts", Access::StorageRead, "exact: fragments per light texel").optional(),
+        texture(
+            "vis_depth",
+            Access::Sampled,
+            DEPTH,
+            "modified_shadow_map: nearest hair depth from the light",
+        )
+        .optional(),
+        texture(
+            "vis_range",
+            Access::Sampled,
+            &[Format::Rg32Float],
+            "occupancy: light-view depth range",
+        )
+        .optional(),
+        buffer(
+            "vis_bits",
+            Access::StorageRead,
+            "occupancy: light-view occupancy bits",
+        )
+        .optional(),
+        buffer(
+            "vis_slabs",
+            Access::StorageRead,
+            "occupancy: light-view slab counts",
+        )
+        .optional(),
+        buffer(
+            "vis_layers",
+            Access::StorageRead,
+            "deep_opacity: fragment count per layer after z0 (001_… §3)",
+        )
+        .optional(),
+        buffer(
+            "vis_slices",
+            Access::StorageRead,
+            "opacity_shadow_maps: fragment count per uniform slice (004_… §5.7)",
+        )
+        .optional(),
+        buffer(
+            "vis_clusters",
+            Access::StorageRead,
+            "density_clustering: k-means stages of (count, Σz, Σz²) per cluster (002_…)",
+        )
+        .optional(),
+        buffer(
+            "vis_lists",
+            Access::StorageRead,
+            "exact: every fragment's light depth per texel (000_… Fig. 5)",
+        )
+        .optional(),
+        buffer(
+            "vis_counts",
+            Access::StorageRead,
+            "exact: fragments per light texel",
+        )
+        .optional(),
     ]
 }
 
 /// Params of the providers (filled into `visibility_params` by name).
 pub fn params() -> Vec<ParamSpec> {
     vec![
-        choice("visibility", "none", PROVIDERS, "self-shadowing technique (visibility provider) used for hair shadows"),
-        float("density", 40.0, 0.0, 1e6, "modified_shadow_map: extinction per world unit behind the first strand"),
-        float("shadow_weight", 0.05, 0.0, 100.0, "occupancy, deep_opacity, opacity_shadow_maps, density_clustering, exact: opacity w added per hair fragment in front (§3.3)"),
-        float("layer_size", 0.05, 1e-6, 1e6, "deep_opacity: first layer thickness in world units (layer k is k times as thick)"),
-        float("exact_bias", 0.01, 0.0, 1e6, "exact: depth (world units) within which a fragment is not in front of the point"),
+        choice(
+            "visibility",
+            "none",
+            PROVIDERS,
+            "self-shadowing technique (visibility provider) used for hair shadows",
+        ),
+        float(
+            "density",
+            40.0,
+            0.0,
+            1e6,
+            "modified_shadow_map: extinction per world unit behind the first strand",
+        ),
+        float(
+            "shadow_weight",
+            0.05,
+            0.0,
+            100.0,
+            "occupancy, deep_opacity, opacity_shadow_maps, density_clustering, exact: opacity w added per hair fragment in front (§3.3)",
+        ),
+        float(
+            "layer_size",
+            0.05,
+            1e-6,
+            1e6,
+            "deep_opacity: first layer thickness in world units (layer k is k times as thick)",
+        ),
+        float(
+            "exact_bias",
+            0.01,
+            0.0,
+            1e6,
+            "exact: depth (world units) within which a fragment is not in front of the point",
+        ),
     ]
 }

@@ -26,7 +26,12 @@ pub struct HairWeightedAverage;
 impl PassType for HairWeightedAverage {
     fn spec(&self) -> PassTypeSpec {
         let mut inputs = transparency::shading_inputs();
-        inputs.push(texture("depth", Access::DepthTarget, DEPTH, "camera depth of opaque geometry (tested, not written)"));
+        inputs.push(texture(
+            "depth",
+            Access::DepthTarget,
+            DEPTH,
+            "camera depth of opaque geometry (tested, not written)",
+        ));
         PassTypeSpec {
             name: "hair_weighted_average".into(),
             description: "Sum α·rgb, α and the fragment count of the hair, unsorted (weighted-average blending).".into(),
@@ -49,7 +54,11 @@ impl PassType for HairWeightedAverage {
     fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
         transparency::defines(pass, "weighted_average")
     }
-    fn raster_state(&self, _pass: &ScheduledPass, _caps: &Capabilities) -> Result<RasterState, String> {
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
         Ok(RasterState {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
             blend: vec![Some(ADDITIVE), Some(ADDITIVE)],
@@ -64,14 +73,21 @@ impl PassType for WeightedAverageResolve {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
             name: "weighted_average_resolve".into(),
-            description: "Average colour and alpha over the depth complexity; blend n average fragments.".into(),
+            description:
+                "Average colour and alpha over the depth complexity; blend n average fragments."
+                    .into(),
             source: "000_785589f319b01ef5.txt §2.2".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
                 texture("sums", Access::Sampled, HDR, "Σ α·rgb, Σ α"),
                 texture("count", Access::Sampled, COUNT_FORMATS, "n per pixel"),
             ],
-            outputs: vec![texture("color", Access::ColorTarget, HDR, "hair, premultiplied")],
+            outputs: vec![texture(
+                "color",
+                Access::ColorTarget,
+                HDR,
+                "hair, premultiplied",
+            )],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,
@@ -79,6 +95,9 @@ impl PassType for WeightedAverageResolve {
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(("shaders/passes/weighted_average_resolve.wgsl", include_str!("../../../shaders/passes/weighted_average_resolve.wgsl")))
+        Some((
+            "shaders/passes/weighted_average_resolve.wgsl",
+            include_str!("../../../shaders/passes/weighted_average_resolve.wgsl"),
+        ))
     }
 }

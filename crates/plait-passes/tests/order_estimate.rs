@@ -76,7 +76,9 @@ fn cases() -> Vec<(TexelMaps, f32)> {
 fn gpu_order_estimate_matches_cpu_mirror() {
     let gpu = gpu();
     let mut shaders = ShaderLibrary::new().expect("library modules compose");
-    let module = shaders.compose(Path::new("order_estimate_probe.wgsl"), PROBE, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let module = shaders
+        .compose(Path::new("order_estimate_probe.wgsl"), PROBE, &[])
+        .unwrap_or_else(|e| panic!("{e}"));
     let cases = cases();
     let mut bytes: Vec<u8> = Vec::new();
     for (maps, rel) in &cases {
@@ -123,8 +125,14 @@ fn gpu_order_estimate_matches_cpu_mirror() {
         label: None,
         layout: &pipeline.get_bind_group_layout(0),
         entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: input.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: output.as_entire_binding() },
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
         ],
     });
     let mut encoder = device.create_command_encoder(&Default::default());
@@ -137,7 +145,10 @@ fn gpu_order_estimate_matches_cpu_mirror() {
     encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
     gpu.queue.submit([encoder.finish()]);
     let data = plait_gpu::readback::map_buffer(device, &readback).expect("readback");
-    let gpu_results: Vec<f32> = data.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let gpu_results: Vec<f32> = data
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
     let mut worst = 0.0f32;
     for (i, ((maps, rel), got)) in cases.iter().zip(&gpu_results).enumerate() {
         let want = order_estimate(maps, *rel);
@@ -150,6 +161,9 @@ fn gpu_order_estimate_matches_cpu_mirror() {
         );
         worst = worst.max((got - want).abs());
     }
-    assert!(gpu_results.iter().any(|&v| v > 10.0), "the cases must exercise non-trivial orders");
+    assert!(
+        gpu_results.iter().any(|&v| v > 10.0),
+        "the cases must exercise non-trivial orders"
+    );
     eprintln!("{} cases, worst |GPU - CPU| = {worst}", cases.len());
 }

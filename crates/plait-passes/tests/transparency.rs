@@ -39,23 +39,47 @@ fn render(gpu: &Gpu, pipeline: &str, sets: &[String], material_alpha: f32) -> Re
     let meshes = scene.opaque_meshes();
     let library = plait_passes::library();
     let loaded = plait_graph::load(&path, sets).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
-    let opts = CompileOptions { screen: SIZE, max_texture_dimension: gpu.capabilities.max_texture_dimension };
-    let mut schedule = plait_graph::compile(&loaded, &library.registry(), &opts).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+    let opts = CompileOptions {
+        screen: SIZE,
+        max_texture_dimension: gpu.capabilities.max_texture_dimension,
+    };
+    let mut schedule = plait_graph::compile(&loaded, &library.registry(), &opts)
+        .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     plait_passes::check(&mut schedule, &library).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     let output = schedule.resources[schedule.outputs[0]].name.clone();
     let bounds = scene.opaque_bounds().union(&strands.bounds());
     let frame = plait_gpu::frame::FrameUniforms::new(&scene, &strands, bounds, SIZE, 0);
     let geometry = SceneGeometry::upload(&gpu.device, &strands, &meshes);
-    let renderer = Renderer::new(gpu, schedule, &library, geometry, &frame, path.parent().unwrap()).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
-    let report = renderer.render().unwrap_or_else(|e| panic!("{pipeline}: {e}"));
-    let image = renderer.read_resource(&output).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
-    Render { pixels: image.bytes, report }
+    let renderer = Renderer::new(
+        gpu,
+        schedule,
+        &library,
+        geometry,
+        &frame,
+        path.parent().unwrap(),
+    )
+    .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+    let report = renderer
+        .render()
+        .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+    let image = renderer
+        .read_resource(&output)
+        .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+    Render {
+        pixels: image.bytes,
+        report,
+    }
 }
 
 /// Per-channel absolute differences of the RGB channels, sorted.
 fn differences(a: &Render, b: &Render) -> Vec<u8> {
     assert_eq!(a.pixels.len(), b.pixels.len());
-    let mut d: Vec<u8> = a.pixels.chunks(4).zip(b.pixels.chunks(4)).flat_map(|(p, q)| (0..3).map(move |c| p[c].abs_diff(q[c]))).collect();
+    let mut d: Vec<u8> = a
+        .pixels
+        .chunks(4)
+        .zip(b.pixels.chunks(4))
+        .flat_map(|(p, q)| (0..3).map(move |c| p[c].abs_diff(q[c])))
+        .collect();
     d.sort_unstable();
     d
 }
@@ -69,8 +93,16 @@ fn percentile(d: &[u8], p: f64) -> u8 {
 }
 
 fn stat(report: &FrameReport, pass: &str, name: &str) -> f64 {
-    let p = report.passes.iter().find(|p| p.name == pass).unwrap_or_else(|| panic!("no pass {pass}"));
-    p.stats.iter().find(|(n, _)| n == name).map(|(_, v)| *v).unwrap_or_else(|| panic!("{pass} reports no `{name}`"))
+    let p = report
+        .passes
+        .iter()
+        .find(|p| p.name == pass)
+        .unwrap_or_else(|| panic!("no pass {pass}"));
+    p.stats
+        .iter()
+        .find(|(n, _)| n == name)
+        .map(|(_, v)| *v)
+        .unwrap_or_else(|| panic!("{pass} reports no `{name}`"))
 }
 
 #[test]
@@ -85,14 +117,24 @@ fn transparency_methods_against_depth_peeling() {
     let peeled = render(&gpu, "depth_peeling.toml", &[], alpha);
     let layers = stat(&peeled.report, "hair_peel", "layers");
     eprintln!("depth peeling: {layers} layers");
-    assert!(layers >= 2.0, "the small scene has overlapping strands, got {layers} layers");
-    assert_eq!(stat(&peeled.report, "hair_peel", "capped"), 0.0, "the occlusion query should stop peeling before the cap");
+    assert!(
+        layers >= 2.0,
+        "the small scene has overlapping strands, got {layers} layers"
+    );
+    assert_eq!(
+        stat(&peeled.report, "hair_peel", "capped"),
+        0.0,
+        "the occlusion query should stop peeling before the cap"
+    );
 
     let lists = render(&gpu, "linked_list.toml", &[], alpha);
     let d = differences(&lists, &peeled);
     let (m, p99, max) = (mean(&d), percentile(&d, 0.99), d[d.len() - 1]);
     eprintln!("linked_list vs depth_peeling: mean {m:.3}, p99 {p99}, max {max} (of 255)");
-    assert!(m <= 0.5 && p99 <= 4, "fragment lists must match depth peeling: mean {m:.3}, p99 {p99}");
+    assert!(
+        m <= 0.5 && p99 <= 4,
+        "fragment lists must match depth peeling: mean {m:.3}, p99 {p99}"
+    );
 
     let occupancy = differences(&render(&gpu, "occupancy.toml", &[], alpha), &peeled);
     let opaque = differences(&render(&gpu, "opaque.toml", &[], alpha), &peeled);
@@ -105,13 +147,21 @@ fn transparency_methods_against_depth_peeling() {
         mean(&coverage),
         mean(&opaque)
     );
-    assert!(mean(&occupancy) < mean(&opaque), "occupancy-order blending must beat no transparency");
+    assert!(
+        mean(&occupancy) < mean(&opaque),
+        "occupancy-order blending must beat no transparency"
+    );
 }
 
 #[test]
 fn depth_peeling_layer_cap() {
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("GPU tests need an adapter: {e}"));
-    let capped = render(&gpu, "depth_peeling.toml", &["params.peel_layers=2".to_string()], 1.0);
+    let capped = render(
+        &gpu,
+        "depth_peeling.toml",
+        &["params.peel_layers=2".to_string()],
+        1.0,
+    );
     assert_eq!(stat(&capped.report, "hair_peel", "layers"), 2.0);
     assert_eq!(stat(&capped.report, "hair_peel", "capped"), 1.0);
 }

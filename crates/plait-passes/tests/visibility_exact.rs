@@ -77,8 +77,16 @@ fn push(strands: &mut Strands, a: Vec3, b: Vec3) {
 fn build(layers: &[f32]) -> (Scene, Strands, FrameUniforms, Mat4) {
     let scene = scene();
     let mut strands = Strands::new();
-    push(&mut strands, Vec3::new(-1.0, 1.0, -1.0), Vec3::new(-0.98, 1.0, -1.0));
-    push(&mut strands, Vec3::new(1.0, 0.0, 1.0), Vec3::new(0.98, 0.0, 1.0));
+    push(
+        &mut strands,
+        Vec3::new(-1.0, 1.0, -1.0),
+        Vec3::new(-0.98, 1.0, -1.0),
+    );
+    push(
+        &mut strands,
+        Vec3::new(1.0, 0.0, 1.0),
+        Vec3::new(0.98, 0.0, 1.0),
+    );
     let frame = frame_for(&scene, &strands);
     let m = Mat4::from_cols_array_2d(&frame.light_view_proj);
     let inv = m.inverse();
@@ -90,12 +98,19 @@ fn build(layers: &[f32]) -> (Scene, Strands, FrameUniforms, Mat4) {
     };
     for &y in layers {
         for row in ROWS.0..ROWS.1 {
-            push(&mut strands, at(STRAND_COLS.0, row, ndc_z(y)), at(STRAND_COLS.1, row, ndc_z(y)));
+            push(
+                &mut strands,
+                at(STRAND_COLS.0, row, ndc_z(y)),
+                at(STRAND_COLS.1, row, ndc_z(y)),
+            );
         }
     }
     let check = frame_for(&scene, &strands);
     let m2 = Mat4::from_cols_array_2d(&check.light_view_proj);
-    assert!(m.abs_diff_eq(m2, 1e-5), "layer strands moved the light frustum");
+    assert!(
+        m.abs_diff_eq(m2, 1e-5),
+        "layer strands moved the light frustum"
+    );
     (scene, strands, check, m)
 }
 
@@ -125,16 +140,37 @@ struct Probed {
     overflow: Option<Vec<u32>>,
 }
 
-fn probe(gpu: &Gpu, variant: &str, scene: &Scene, strands: &Strands, frame: &FrameUniforms, depth0: f32, depth_step: f32) -> Probed {
-    let opts = CompileOptions { screen: (MAP, MAP), max_texture_dimension: gpu.capabilities.max_texture_dimension };
+fn probe(
+    gpu: &Gpu,
+    variant: &str,
+    scene: &Scene,
+    strands: &Strands,
+    frame: &FrameUniforms,
+    depth0: f32,
+    depth_step: f32,
+) -> Probed {
+    let opts = CompileOptions {
+        screen: (MAP, MAP),
+        max_texture_dimension: gpu.capabilities.max_texture_dimension,
+    };
     let library = plait_passes::library();
     let sets = [format!("params.light_size={MAP}")];
     let variant_path = repo().join("pipelines").join(format!("{variant}.toml"));
     // The variant's own hair pass says which provider, maps and params it uses.
     let base = plait_graph::load(&variant_path, &sets).unwrap_or_else(|e| panic!("{variant}: {e}"));
-    let base = plait_graph::compile(&base, &library.registry(), &opts).unwrap_or_else(|e| panic!("{variant}: {e}"));
-    let hair = base.passes.iter().find(|p| p.name == "hair").expect("variant has a hair pass");
-    let visibility = hair.params.get("visibility").and_then(|v| v.as_str()).unwrap_or("none").to_string();
+    let base = plait_graph::compile(&base, &library.registry(), &opts)
+        .unwrap_or_else(|e| panic!("{variant}: {e}"));
+    let hair = base
+        .passes
+        .iter()
+        .find(|p| p.name == "hair")
+        .expect("variant has a hair pass");
+    let visibility = hair
+        .params
+        .get("visibility")
+        .and_then(|v| v.as_str())
+        .unwrap_or("none")
+        .to_string();
     let reads: Vec<String> = hair
         .reads
         .iter()
@@ -178,18 +214,48 @@ params = {{ {params} }}
         reads = reads.join(", "),
         params = params.join(", "),
     );
-    let path = repo().join("pipelines").join(format!("probe_{variant}.toml"));
-    let pipeline = plait_graph::load_str(&path, &text, &sets).unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
-    let mut schedule = plait_graph::compile(&pipeline, &library.registry(), &opts).unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
-    plait_passes::check(&mut schedule, &library).unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
+    let path = repo()
+        .join("pipelines")
+        .join(format!("probe_{variant}.toml"));
+    let pipeline = plait_graph::load_str(&path, &text, &sets)
+        .unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
+    let mut schedule = plait_graph::compile(&pipeline, &library.registry(), &opts)
+        .unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
+    plait_passes::check(&mut schedule, &library)
+        .unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
     let has_overflow = schedule.resource("light_overflow").is_some();
     let geometry = SceneGeometry::upload(&gpu.device, strands, &scene.opaque_meshes());
-    let renderer = Renderer::new(gpu, schedule, &library, geometry, frame, &repo().join("pipelines")).unwrap_or_else(|e| panic!("probe_{variant}: {e}"));
-    renderer.render().unwrap_or_else(|e| panic!("probe_{variant}: {e}"));
-    let words = |name: &str| -> Vec<u8> { renderer.read_buffer(name).unwrap_or_else(|e| panic!("{variant} {name}: {e}")) };
-    let visibility = words("probe_out").chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-    let overflow = has_overflow.then(|| words("light_overflow").chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect());
-    Probed { visibility, overflow }
+    let renderer = Renderer::new(
+        gpu,
+        schedule,
+        &library,
+        geometry,
+        frame,
+        &repo().join("pipelines"),
+    )
+    .unwrap_or_else(|e| panic!("probe_{variant}: {e}"));
+    renderer
+        .render()
+        .unwrap_or_else(|e| panic!("probe_{variant}: {e}"));
+    let words = |name: &str| -> Vec<u8> {
+        renderer
+            .read_buffer(name)
+            .unwrap_or_else(|e| panic!("{variant} {name}: {e}"))
+    };
+    let visibility = words("probe_out")
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
+    let overflow = has_overflow.then(|| {
+        words("light_overflow")
+            .chunks_exact(4)
+            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect()
+    });
+    Probed {
+        visibility,
+        overflow,
+    }
 }
 
 /// Mean and max |V - exp(-w·n)| and the max error in the count n, per variant.
@@ -227,15 +293,27 @@ fn run(layers: &[f32], name: &str) -> Vec<(&'static str, f64, f32, f32)> {
             count_err = count_err.max((-(v.max(1e-30)).ln() / w - n).abs());
         }
         let mean = sum / got.visibility.len() as f64;
-        eprintln!("{variant:22} mean |V - exp(-w n)| = {mean:.5}  max = {max:.5}  max count error = {count_err:.3}");
+        eprintln!(
+            "{variant:22} mean |V - exp(-w n)| = {mean:.5}  max = {max:.5}  max count error = {count_err:.3}"
+        );
         if let Some(o) = &got.overflow {
-            assert_eq!(o[0], 0, "{variant}: {} fragments dropped from the light lists", o[0]);
+            assert_eq!(
+                o[0], 0,
+                "{variant}: {} fragments dropped from the light lists",
+                o[0]
+            );
         }
         errors.push((variant, mean, max, count_err));
     }
     let (_, exact_mean, exact_max, exact_count) = errors[0];
-    assert!(exact_count < 1e-3, "{name}: exact_shadow must count exactly: max count error {exact_count}");
-    assert!(exact_max < 1e-4, "{name}: exact_shadow visibility off by {exact_max}");
+    assert!(
+        exact_count < 1e-3,
+        "{name}: exact_shadow must count exactly: max count error {exact_count}"
+    );
+    assert!(
+        exact_max < 1e-4,
+        "{name}: exact_shadow visibility off by {exact_max}"
+    );
     for &(variant, mean, max, _) in &errors[1..] {
         assert!(
             // 1e-6: float rounding of exp() between equally exact methods.
@@ -259,5 +337,10 @@ fn exact_shadow_is_the_ground_truth_on_clumped_layers() {
     let errors = run(CLUMPED, "clumped");
     // Clumps defeat uniform slicing: some approximation must err visibly, or
     // the scene tests nothing.
-    assert!(errors.iter().filter(|e| e.0 != "no_self_shadow" && e.0 != "exact_shadow").any(|e| e.2 > 0.02));
+    assert!(
+        errors
+            .iter()
+            .filter(|e| e.0 != "no_self_shadow" && e.0 != "exact_shadow")
+            .any(|e| e.2 > 0.02)
+    );
 }

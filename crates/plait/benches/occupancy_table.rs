@@ -37,20 +37,43 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let arg = |name: &str| args.iter().position(|a| a == name).and_then(|i| args.get(i + 1)).cloned();
-    let repeats: usize = arg("--repeats").and_then(|s| s.parse().ok()).unwrap_or(3).max(1);
+    let arg = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+            .cloned()
+    };
+    let repeats: usize = arg("--repeats")
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3)
+        .max(1);
     let size = arg("--size")
-        .and_then(|s| s.split_once('x').and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?))))
+        .and_then(|s| {
+            s.split_once('x')
+                .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+        })
         .unwrap_or((800, 600));
     let root = repo_root();
     let pipeline = root.join("pipelines/occupancy.toml");
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
     if !gpu.capabilities.timestamps {
-        eprintln!("{} has no timestamp queries: no GPU times to report", gpu.adapter_name());
+        eprintln!(
+            "{} has no timestamp queries: no GPU times to report",
+            gpu.adapter_name()
+        );
         return;
     }
-    println!("occupancy.toml, {}x{}, median of {repeats} frames after one warm-up, on {} ({})", size.0, size.1, gpu.adapter_name(), gpu.backend_name());
-    let scenes = [("default", root.join("examples/scenes/default.toml")), ("dense", root.join("examples/scenes/dense.toml"))];
+    println!(
+        "occupancy.toml, {}x{}, median of {repeats} frames after one warm-up, on {} ({})",
+        size.0,
+        size.1,
+        gpu.adapter_name(),
+        gpu.backend_name()
+    );
+    let scenes = [
+        ("default", root.join("examples/scenes/default.toml")),
+        ("dense", root.join("examples/scenes/dense.toml")),
+    ];
     let mut columns = Vec::new();
     for (name, path) in &scenes {
         let started = Instant::now();
@@ -67,13 +90,31 @@ fn main() {
             }
             frame.push(report.total_gpu_ms.unwrap_or(f64::NAN));
         }
-        let names: Vec<String> = prepared.schedule().passes.iter().map(|p| p.name.clone()).collect();
-        let medians: Vec<(String, f64)> = names.into_iter().zip(per_pass.into_iter().map(median)).collect();
-        columns.push((*name, data.strands.strand_count(), data.strands.segment_count(), groom_ms, medians, median(frame)));
+        let names: Vec<String> = prepared
+            .schedule()
+            .passes
+            .iter()
+            .map(|p| p.name.clone())
+            .collect();
+        let medians: Vec<(String, f64)> = names
+            .into_iter()
+            .zip(per_pass.into_iter().map(median))
+            .collect();
+        columns.push((
+            *name,
+            data.strands.strand_count(),
+            data.strands.segment_count(),
+            groom_ms,
+            medians,
+            median(frame),
+        ));
     }
     print!("{:<28} {:>12}", "Algorithm step", "paper ms");
     for (name, strands, segments, ..) in &columns {
-        print!(" {:>22}", format!("{name} ({strands}×{})", segments / strands.max(&1)));
+        print!(
+            " {:>22}",
+            format!("{name} ({strands}×{})", segments / strands.max(&1))
+        );
     }
     println!();
     print!("{:<28} {:>12}", "Generate hair (CPU)", "2.9");
@@ -82,11 +123,17 @@ fn main() {
     }
     println!();
     for (row, pass, paper) in ROWS {
-        print!("{row:<28} {:>12}", paper.map(|p| format!("{p:.2}")).unwrap_or_default());
+        print!(
+            "{row:<28} {:>12}",
+            paper.map(|p| format!("{p:.2}")).unwrap_or_default()
+        );
         if !pass.is_empty() {
             for c in &columns {
                 let ms = c.4.iter().find(|(n, _)| n == pass).map(|(_, ms)| *ms);
-                print!(" {:>22}", ms.map(|m| format!("{m:.1}")).unwrap_or_else(|| "—".into()));
+                print!(
+                    " {:>22}",
+                    ms.map(|m| format!("{m:.1}")).unwrap_or_else(|| "—".into())
+                );
             }
         }
         println!();

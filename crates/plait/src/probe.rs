@@ -40,7 +40,12 @@ impl ProbeGrid {
             lo = lo.min(p);
             hi = hi.max(p);
         }
-        let uv = |x: f32, y: f32| [(x * 0.5 + 0.5).clamp(0.0, 1.0), (0.5 - y * 0.5).clamp(0.0, 1.0)];
+        let uv = |x: f32, y: f32| {
+            [
+                (x * 0.5 + 0.5).clamp(0.0, 1.0),
+                (0.5 - y * 0.5).clamp(0.0, 1.0),
+            ]
+        };
         ProbeGrid {
             uv0: uv(lo.x, hi.y),
             uv1: uv(hi.x, lo.y),
@@ -64,7 +69,10 @@ impl ProbeGrid {
     pub fn ray_uv(&self, r: u32) -> [f32; 2] {
         let (x, y) = (r % self.rays.0, r / self.rays.0);
         let f = |a: f32, b: f32, i: u32, n: u32| a + (b - a) * (i as f32 + 0.5) / n as f32;
-        [f(self.uv0[0], self.uv1[0], x, self.rays.0), f(self.uv0[1], self.uv1[1], y, self.rays.1)]
+        [
+            f(self.uv0[0], self.uv1[0], x, self.rays.0),
+            f(self.uv0[1], self.uv1[1], y, self.rays.1),
+        ]
     }
 }
 
@@ -81,7 +89,10 @@ fn literal(v: &Value) -> String {
     match v {
         Value::Str(s) => format!("{s:?}"),
         Value::Float(f) => format!("{f:?}"),
-        Value::List(items) => format!("[{}]", items.iter().map(literal).collect::<Vec<_>>().join(", ")),
+        Value::List(items) => format!(
+            "[{}]",
+            items.iter().map(literal).collect::<Vec<_>>().join(", ")
+        ),
         other => other.to_string(),
     }
 }
@@ -103,8 +114,13 @@ pub fn probe_visibility(
         .iter()
         .filter(|p| p.params.contains_key("visibility"))
         .max_by_key(|p| p.name == "hair");
-    let Some(shading) = shading else { return Ok(None) };
-    let visibility = shading.params["visibility"].as_str().unwrap_or("none").to_owned();
+    let Some(shading) = shading else {
+        return Ok(None);
+    };
+    let visibility = shading.params["visibility"]
+        .as_str()
+        .unwrap_or("none")
+        .to_owned();
     let reads: Vec<String> = shading
         .reads
         .iter()
@@ -126,7 +142,10 @@ pub fn probe_visibility(
         format!("probe_depth0 = {:?}", grid.depth_range.0),
         format!("probe_depth1 = {:?}", grid.depth_range.1),
     ]);
-    let file_name = pipeline.file_name().and_then(|f| f.to_str()).unwrap_or("pipeline.toml");
+    let file_name = pipeline
+        .file_name()
+        .and_then(|f| f.to_str())
+        .unwrap_or("pipeline.toml");
     let shader = repo_root().join("shaders/visibility_probe.wgsl");
     let mut text = String::new();
     let _ = write!(
@@ -140,12 +159,18 @@ pub fn probe_visibility(
         reads = reads.join(", "),
         params = params.join(", "),
     );
-    let probe_path = pipeline.with_file_name(format!("{}.probe.toml", file_name.trim_end_matches(".toml")));
+    let probe_path = pipeline.with_file_name(format!(
+        "{}.probe.toml",
+        file_name.trim_end_matches(".toml")
+    ));
     let loaded = plait_graph::load_str(&probe_path, &text, sets)?;
     let schedule = check_pipeline(loaded, &opts)?;
     let prepared = build(gpu, schedule, &probe_path, scene, size)?;
     prepared.renderer.render()?;
     let bytes = prepared.renderer.read_buffer("probe_out")?;
-    let values = bytes.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let values = bytes
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
     Ok(Some(Probed { visibility, values }))
 }

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use plait_gpu::frame::FrameUniforms;
 use plait_gpu::geometry::SceneGeometry;
-use plait_gpu::{GpuError, Gpu, Renderer};
+use plait_gpu::{Gpu, GpuError, Renderer};
 use plait_graph::{CompileOptions, Errors, Schedule};
 use plait_hair::scene::{Background, Scene, SceneError};
 
@@ -34,7 +34,9 @@ pub fn repo_root() -> PathBuf {
 /// A pipeline named on the command line, or the default one: relative to the
 /// working directory first, then to the plait checkout.
 pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
-    let candidate = given.map(Path::to_path_buf).unwrap_or_else(|| PathBuf::from(DEFAULT_PIPELINE));
+    let candidate = given
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from(DEFAULT_PIPELINE));
     if candidate.exists() || candidate.is_absolute() {
         return candidate;
     }
@@ -44,12 +46,19 @@ pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
 
 /// Load, compile and check a pipeline against the pass library, shaders
 /// included (naga), without a GPU.
-pub fn compile_checked(path: &Path, sets: &[String], opts: &CompileOptions) -> Result<Schedule, Errors> {
+pub fn compile_checked(
+    path: &Path,
+    sets: &[String],
+    opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
     check_pipeline(plait_graph::load(path, sets)?, opts)
 }
 
 /// Compile and check a loaded pipeline (see [`compile_checked`]).
-pub fn check_pipeline(pipeline: plait_graph::Pipeline, opts: &CompileOptions) -> Result<Schedule, Errors> {
+pub fn check_pipeline(
+    pipeline: plait_graph::Pipeline,
+    opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
     let library = plait_passes::library();
     let mut schedule = plait_graph::compile(&pipeline, &library.registry(), opts)?;
     plait_passes::check(&mut schedule, &library)?;
@@ -72,12 +81,20 @@ impl SceneData {
         let background = match &scene.background {
             Background::Image(path) => Some(
                 image::open(path)
-                    .map_err(|e| SceneError::Invalid { path: path.clone(), message: format!("cannot read the background image: {e}") })?
+                    .map_err(|e| SceneError::Invalid {
+                        path: path.clone(),
+                        message: format!("cannot read the background image: {e}"),
+                    })?
                     .to_rgba8(),
             ),
             Background::Color(_) => None,
         };
-        Ok(SceneData { scene, strands, meshes, background })
+        Ok(SceneData {
+            scene,
+            strands,
+            meshes,
+            background,
+        })
     }
 
     /// The scene file, or the built-in default scene.
@@ -127,17 +144,37 @@ pub fn prepare<'g>(
 
 /// Compile options for rendering at `size` on `gpu`.
 pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
-    CompileOptions { screen: size, max_texture_dimension: gpu.capabilities.max_texture_dimension }
+    CompileOptions {
+        screen: size,
+        max_texture_dimension: gpu.capabilities.max_texture_dimension,
+    }
 }
 
 /// Build a checked schedule for `scene` at `size` on `gpu`; `pipeline` is the
 /// file it came from (relative shader paths resolve against its folder).
-pub fn build<'g>(gpu: &'g Gpu, schedule: Schedule, pipeline: &Path, scene: &SceneData, size: (u32, u32)) -> Result<Prepared<'g>, SessionError> {
-    let output = schedule.outputs.first().map(|&id| schedule.resources[id].name.clone()).ok_or(SessionError::NoOutput)?;
+pub fn build<'g>(
+    gpu: &'g Gpu,
+    schedule: Schedule,
+    pipeline: &Path,
+    scene: &SceneData,
+    size: (u32, u32),
+) -> Result<Prepared<'g>, SessionError> {
+    let output = schedule
+        .outputs
+        .first()
+        .map(|&id| schedule.resources[id].name.clone())
+        .ok_or(SessionError::NoOutput)?;
     let frame = scene.frame(size, 0);
     let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
-    let mut renderer = Renderer::new(gpu, schedule, &plait_passes::library(), geometry, &frame, base_dir)?;
+    let mut renderer = Renderer::new(
+        gpu,
+        schedule,
+        &plait_passes::library(),
+        geometry,
+        &frame,
+        base_dir,
+    )?;
     if let Some(image) = &scene.background {
         renderer.set_background_image(image);
     }

@@ -5,14 +5,33 @@ use plait_graph::*;
 use std::path::Path;
 
 fn slot(name: &str, kind: ResourceKind, access: Access, formats: Formats) -> SlotSpec {
-    SlotSpec { name: name.into(), kind, access, formats, loads: false, optional: false, doc: String::new() }
+    SlotSpec {
+        name: name.into(),
+        kind,
+        access,
+        formats,
+        loads: false,
+        optional: false,
+        doc: String::new(),
+    }
 }
 
 fn param(name: &str, ty: ParamType, default: Option<Value>) -> ParamSpec {
-    ParamSpec { name: name.into(), ty, default, doc: String::new() }
+    ParamSpec {
+        name: name.into(),
+        ty,
+        default,
+        doc: String::new(),
+    }
 }
 
-fn pass_type(name: &str, shape: PassShape, inputs: Vec<SlotSpec>, outputs: Vec<SlotSpec>, params: Vec<ParamSpec>) -> PassTypeSpec {
+fn pass_type(
+    name: &str,
+    shape: PassShape,
+    inputs: Vec<SlotSpec>,
+    outputs: Vec<SlotSpec>,
+    params: Vec<ParamSpec>,
+) -> PassTypeSpec {
     PassTypeSpec {
         name: name.into(),
         description: String::new(),
@@ -37,19 +56,48 @@ pub fn registry() -> Registry {
         "depth_range",
         PassShape::Raster,
         vec![],
-        vec![slot("range", Texture, Access::ColorTarget, depth_formats.clone())],
+        vec![slot(
+            "range",
+            Texture,
+            Access::ColorTarget,
+            depth_formats.clone(),
+        )],
         vec![],
     ));
     r.register(pass_type(
         "shade",
         PassShape::Fullscreen,
         vec![slot("shadow", Texture, Access::Sampled, depth_formats)],
-        vec![slot("color", Texture, Access::ColorTarget, Formats::OneOf(vec![Format::Rgba16Float, Format::Rgba8Unorm]))],
+        vec![slot(
+            "color",
+            Texture,
+            Access::ColorTarget,
+            Formats::OneOf(vec![Format::Rgba16Float, Format::Rgba8Unorm]),
+        )],
         vec![
-            param("color", ParamType::Vec3, Some(Value::List(vec![Value::Float(1.0); 3]))),
-            param("mode", ParamType::Enum(vec!["kajiya".into(), "marschner".into()]), Some(Value::Str("kajiya".into()))),
-            param("strength", ParamType::Float { min: 0.0, max: 10.0 }, Some(Value::Float(1.0))),
-            param("slices", ParamType::Int { min: 1, max: 1024 }, Some(Value::Int(16))),
+            param(
+                "color",
+                ParamType::Vec3,
+                Some(Value::List(vec![Value::Float(1.0); 3])),
+            ),
+            param(
+                "mode",
+                ParamType::Enum(vec!["kajiya".into(), "marschner".into()]),
+                Some(Value::Str("kajiya".into())),
+            ),
+            param(
+                "strength",
+                ParamType::Float {
+                    min: 0.0,
+                    max: 10.0,
+                },
+                Some(Value::Float(1.0)),
+            ),
+            param(
+                "slices",
+                ParamType::Int { min: 1, max: 1024 },
+                Some(Value::Int(16)),
+            ),
         ],
     ));
     r.register(pass_type(
@@ -59,9 +107,20 @@ pub fn registry() -> Registry {
         vec![slot("dst", Texture, Access::ColorTarget, Formats::Any)],
         vec![param("radius", ParamType::Int { min: 1, max: 64 }, None)],
     ));
-    let mut acc = slot("acc", Texture, Access::ColorTarget, Formats::OneOf(vec![Format::Rgba16Float]));
+    let mut acc = slot(
+        "acc",
+        Texture,
+        Access::ColorTarget,
+        Formats::OneOf(vec![Format::Rgba16Float]),
+    );
     acc.loads = true;
-    r.register(pass_type("accumulate", PassShape::Fullscreen, vec![slot("src", Texture, Access::Sampled, Formats::Any)], vec![acc], vec![]));
+    r.register(pass_type(
+        "accumulate",
+        PassShape::Fullscreen,
+        vec![slot("src", Texture, Access::Sampled, Formats::Any)],
+        vec![acc],
+        vec![],
+    ));
     let mut data_only = pass_type("fullscreen", PassShape::Fullscreen, vec![], vec![], vec![]);
     data_only.dynamic_slots = true;
     data_only.needs_shader = true;
@@ -122,7 +181,11 @@ pub fn errors_of(text: &str, sets: &[&str]) -> Vec<Error> {
 
 /// `path:line:column` of a file location.
 pub fn at(line: u32, column: u32) -> Location {
-    Location::File { path: PATH.into(), line, column }
+    Location::File {
+        path: PATH.into(),
+        line,
+        column,
+    }
 }
 
 /// Replaces exactly one occurrence of `from`.
