@@ -71,8 +71,8 @@ pub fn line_diff(expected: &str, actual: &str) -> String {
         return "(texts differ only in trailing newlines)".into();
     };
     let start = first.saturating_sub(3);
-    for i in start..first {
-        out += &format!("   {}\n", e[i]);
+    for l in &e[start..first] {
+        out += &format!("   {l}\n");
     }
     // Show up to 20 lines of each side from the first difference.
     for l in e.iter().skip(first).take(20) {

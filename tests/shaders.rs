@@ -194,13 +194,13 @@ fn every_shader_composes_and_validates() {
 
     // Pass types whose built-in shader path does not exist on disk.
     for t in passes.types.values() {
-        if let Some((p, _)) = t.shader() {
-            if !root.join(p).is_file() {
-                failures.push(format!(
-                    "pass type `{}` names shader {p}, which is not a file in the checkout",
-                    t.spec().name
-                ));
-            }
+        if let Some((p, _)) = t.shader()
+            && !root.join(p).is_file()
+        {
+            failures.push(format!(
+                "pass type `{}` names shader {p}, which is not a file in the checkout",
+                t.spec().name
+            ));
         }
     }
 

@@ -737,33 +737,6 @@ fn print_summary(report: &Report) {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sweep_syntax() {
-        let s = parse_sweep("params.slices=32, 64,128").unwrap();
-        assert_eq!(s.key, "params.slices");
-        assert_eq!(s.values, ["32", "64", "128"]);
-        assert!(parse_sweep("params.slices").is_err());
-        assert!(parse_sweep("=1,2").is_err());
-        assert!(parse_sweep("k=1,,2").is_err());
-        assert!(parse_sweep("k=1,1").is_err());
-    }
-
-    #[test]
-    fn names_and_quoting() {
-        assert_eq!(sanitize("forward@a b/c"), "forward@a_b_c");
-        let mut taken = vec![];
-        assert_eq!(unique("a".into(), &mut taken), "a");
-        assert_eq!(unique("a".into(), &mut taken), "a-2");
-        assert_eq!(shell_quote("--size"), "--size");
-        assert_eq!(shell_quote("a b"), "'a b'");
-        assert_eq!(shell_quote("it's"), "'it'\\''s'");
-    }
-}
-
 /// Visibility of a variant against the reference along the probe rays: the
 /// mean and max |ΔV| over the samples of rays that pass through hair (the
 /// reference sees less than full light somewhere along them), and the curves
@@ -814,5 +787,32 @@ fn visibility_error(grid: &ProbeGrid, reference: &Probed, variant: &Probed) -> V
         curves,
         mean_abs_error: if count > 0 { sum / count as f64 } else { 0.0 },
         max_abs_error: max,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sweep_syntax() {
+        let s = parse_sweep("params.slices=32, 64,128").unwrap();
+        assert_eq!(s.key, "params.slices");
+        assert_eq!(s.values, ["32", "64", "128"]);
+        assert!(parse_sweep("params.slices").is_err());
+        assert!(parse_sweep("=1,2").is_err());
+        assert!(parse_sweep("k=1,,2").is_err());
+        assert!(parse_sweep("k=1,1").is_err());
+    }
+
+    #[test]
+    fn names_and_quoting() {
+        assert_eq!(sanitize("forward@a b/c"), "forward@a_b_c");
+        let mut taken = vec![];
+        assert_eq!(unique("a".into(), &mut taken), "a");
+        assert_eq!(unique("a".into(), &mut taken), "a-2");
+        assert_eq!(shell_quote("--size"), "--size");
+        assert_eq!(shell_quote("a b"), "'a b'");
+        assert_eq!(shell_quote("it's"), "'it'\\''s'");
     }
 }
