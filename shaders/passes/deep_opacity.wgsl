@@ -5,7 +5,8 @@
 // layer go to the last. Each fragment counts itself in its layer (atomicAdd:
 // exact counts, the paper's additive blending). K = the `layers` buffer's u32
 // words per texel.
-#import plait::frame::{frame, view_proj, view_linear_depth}
+#import plait::frame::{frame, view_linear_depth}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> layers: array<atomic<u32>>;
@@ -16,25 +17,13 @@ struct DomParams {
 }
 @group(1) @binding(2) var<uniform> dom_params: DomParams;
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-}
-
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-}
-
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    return out;
+fn vs_main(v: MapVertex) -> MapFragment {
+    return map_vertex(v);
 }
 
 @fragment
-fn fs_main(in: VertexOut) {
+fn fs_main(in: MapFragment) {
     let size = textureDimensions(range);
     let texel = min(vec2<u32>(in.clip.xy), size - 1u);
     let z0 = textureLoad(range, vec2<i32>(texel), 0).x;

@@ -5,7 +5,8 @@
 // assigns each to the nearest mean of stage s - 1. Each stage accumulates, per
 // cluster, (count, Σz, Σz²) of z = depth relative to the texel range, fixed
 // point × 2^18, with atomicAdd. Layout: [stage][texel][cluster][3] u32.
-#import plait::frame::{view_proj, view_linear_depth}
+#import plait::frame::{view_linear_depth}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> clusters: array<atomic<u32>>;
@@ -13,25 +14,13 @@
 const K: u32 = 4u;
 const SCALE: f32 = 262144.0; // 2^18
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-}
-
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-}
-
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    return out;
+fn vs_main(v: MapVertex) -> MapFragment {
+    return map_vertex(v);
 }
 
 @fragment
-fn fs_main(in: VertexOut) {
+fn fs_main(in: MapFragment) {
     let size = textureDimensions(range);
     let texel = min(vec2<u32>(in.clip.xy), size - 1u);
     let texels = size.x * size.y;

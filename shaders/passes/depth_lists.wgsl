@@ -2,32 +2,21 @@
 // (the exact fragment count of 000_785589f319b01ef5.txt §3, Fig. 5). A slot
 // comes from atomicAdd on the texel's counter; past the capacity (the `lists`
 // buffer's words per texel) the fragment is dropped and counted in `overflow`.
-#import plait::frame::{view_proj, view_linear_depth}
+#import plait::frame::{view_linear_depth}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> lists: array<u32>;
 @group(1) @binding(2) var<storage, read_write> counts: array<atomic<u32>>;
 @group(1) @binding(3) var<storage, read_write> overflow: array<atomic<u32>>;
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-}
-
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-}
-
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    return out;
+fn vs_main(v: MapVertex) -> MapFragment {
+    return map_vertex(v);
 }
 
 @fragment
-fn fs_main(in: VertexOut) {
+fn fs_main(in: MapFragment) {
     let size = textureDimensions(range);
     let texel = min(vec2<u32>(in.clip.xy), size - 1u);
     let index = texel.y * size.x + texel.x;

@@ -4,26 +4,15 @@
 // test Greater, writing green), the paper's faster choice over one min/max
 // blended pass — and one that needs no FLOAT32_BLENDABLE.
 #import plait::frame::{view_proj, view_linear_depth, shadow_sampler}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
 
 // Depth of opaque geometry from the same view (the opaque shadow map for the
 // light, the camera depth for the camera): hair behind it is not recorded (§3.5).
 @group(1) @binding(0) var opaque_depth: texture_depth_2d;
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-}
-
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-}
-
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    return out;
+fn vs_main(v: MapVertex) -> MapFragment {
+    return map_vertex(v);
 }
 
 // True where the fragment at `world` lies behind opaque geometry of this view.
@@ -35,7 +24,7 @@ fn behind_opaque(world: vec3<f32>) -> bool {
 }
 
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(in: MapFragment) -> @location(0) vec4<f32> {
     if (behind_opaque(in.world)) {
         discard;
     }

@@ -2,32 +2,21 @@
 // bitwise-OR blending), 000_785589f319b01ef5.txt §3.1. Slice k of a texel
 // covers relative depth [k, k+1) / S within the texel's depth range; S = 32 ×
 // the words per texel of the `bits` buffer (128 for 16 bytes per texel).
-#import plait::frame::{view_proj, view_linear_depth}
+#import plait::frame::{view_linear_depth}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> bits: array<atomic<u32>>;
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-}
-
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-}
-
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    return out;
+fn vs_main(v: MapVertex) -> MapFragment {
+    return map_vertex(v);
 }
 
 // No colour output: the depth attachment (opaque depth, test only) rejects
 // hair behind opaque geometry (§3.5); the fragment only sets its bit.
 @fragment
-fn fs_main(in: VertexOut) {
+fn fs_main(in: MapFragment) {
     let size = textureDimensions(range);
     let texel = min(vec2<u32>(in.clip.xy), size - 1u);
     let r = textureLoad(range, vec2<i32>(texel), 0);

@@ -27,6 +27,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/shadow.wgsl"),
     ),
     (
+        "shaders/lib/hair_map.wgsl",
+        include_str!("../../../shaders/lib/hair_map.wgsl"),
+    ),
+    (
         "shaders/lib/occupancy.wgsl",
         include_str!("../../../shaders/lib/occupancy.wgsl"),
     ),
