@@ -218,6 +218,49 @@ fn occupancy_on_stray_strands_matches_its_golden_image() {
     check_golden("occupancy_stray", &image).unwrap_or_else(|e| panic!("{e}"));
 }
 
+/// A variant reached with `--set` renders the same image as the variant's
+/// file: the overrides and `extends` go through one merge.
+#[test]
+fn set_reaches_a_variant_with_the_same_image() {
+    let (_lock, gpu) = gpu();
+    let scene = scene();
+    let image = |pipeline: &str, sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let path = repo_root().join(pipeline);
+        let prepared = prepare(&gpu, &path, &sets, &scene, SIZE)
+            .unwrap_or_else(|e| panic!("{pipeline} {sets:?}: {e}"));
+        prepared
+            .renderer
+            .render()
+            .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+        prepared
+            .image()
+            .unwrap_or_else(|e| panic!("{pipeline}: {e}"))
+    };
+    let by_file = image("pipelines/occupancy_no_slab.toml", &[]);
+    let by_set = image("pipelines/occupancy.toml", &["params.slabs=1"]);
+    assert!(
+        by_file == by_set,
+        "occupancy.toml --set params.slabs=1 differs from occupancy_no_slab.toml"
+    );
+    let unbind = [
+        "passes.hair.params.visibility=none",
+        "passes.hair.reads.vis_range=",
+        "passes.hair.reads.vis_bits=",
+        "passes.hair.reads.vis_slabs=",
+        "passes.opaque.params.visibility=none",
+        "passes.opaque.reads.vis_range=",
+        "passes.opaque.reads.vis_bits=",
+        "passes.opaque.reads.vis_slabs=",
+    ];
+    let by_file = image("pipelines/no_self_shadow.toml", &[]);
+    let by_set = image("pipelines/occupancy.toml", &unbind);
+    assert!(
+        by_file == by_set,
+        "occupancy.toml with the --set flags of no_self_shadow.toml's header differs from it"
+    );
+}
+
 /// A scene's background image shows where nothing covers it, stretched over
 /// the frame: its left half orange, its right half blue.
 #[test]
