@@ -195,6 +195,10 @@ impl PendingDir {
     /// Move the finished report into place (replacing an earlier one).
     fn commit(self) -> Result<()> {
         let temp = self.temp.keep();
+        crate::output::readable_by_all(&temp, 0o755);
+        for entry in std::fs::read_dir(&temp).into_iter().flatten().flatten() {
+            crate::output::readable_by_all(&entry.path(), 0o644);
+        }
         let mut old = None;
         if self.out.exists() {
             let aside = tempfile::Builder::new()

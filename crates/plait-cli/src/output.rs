@@ -45,9 +45,23 @@ impl PendingFile {
             .write_all(bytes)
             .with_context(|| format!("writing {}", self.path.display()))?;
         self.temp.as_file().sync_all().ok();
+        // Temporary files are private (0600); the output is an ordinary file.
+        readable_by_all(self.temp.path(), 0o644);
         self.temp
             .persist(&self.path)
             .map_err(|e| anyhow::anyhow!("cannot write {}: {}", self.path.display(), e.error))?;
         Ok(())
     }
+}
+
+/// Give a finished output the permissions an ordinary file or directory has
+/// (temporary ones are created private).
+pub fn readable_by_all(path: &Path, mode: u32) {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode)).ok();
+    }
+    #[cfg(not(unix))]
+    let _ = (path, mode);
 }
