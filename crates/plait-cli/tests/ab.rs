@@ -1,24 +1,10 @@
 //! `plait ab` end to end (issue 6): the report directory, identical
 //! pipelines compare as identical, sweeps give one row per value, bad input exits 2.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+use common::{plait, text};
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn plait(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_plait"))
-        .current_dir(root())
-        .args(args)
-        .output()
-        .expect("run plait")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
+use std::path::Path;
 
 fn read_json(dir: &Path) -> serde_json::Value {
     let bytes = std::fs::read(dir.join("report.json")).expect("report.json");

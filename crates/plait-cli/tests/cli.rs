@@ -6,27 +6,11 @@
 //! the offending line of each carries a `<- error` comment, and the test
 //! checks that the error points at that line.
 
+mod common;
+use common::{plait, root, text};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("checkout root")
-}
-
-fn plait(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_plait"))
-        .current_dir(root())
-        .args(args)
-        .output()
-        .expect("run plait")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
+use std::process::Output;
 
 fn fixture(name: &str) -> PathBuf {
     root().join("tests/fixtures/bad").join(name)

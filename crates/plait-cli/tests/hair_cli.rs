@@ -1,18 +1,9 @@
 //! `plait hair generate` / `plait hair info` end to end (issue 3).
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn plait(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_plait"))
-        .args(args)
-        .output()
-        .expect("run plait")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
+mod common;
+use common::{plait, text};
 
 fn generate(dir: &Path, name: &str) -> std::path::PathBuf {
     let out = dir.join(name);
