@@ -5,9 +5,9 @@
 //! restores the intensity the weights should have summed to is Λ / hair.a.
 
 use plait_gpu::pass::{BuiltinShader, PassType};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec};
+use plait_graph::{Access, PassShape, PassTypeSpec};
 
-use crate::spec_util::{HDR, buffer, texture};
+use crate::spec_util::{HDR, buffer, final_image, texture};
 
 pub struct Compose;
 
@@ -37,16 +37,7 @@ impl PassType for Compose {
                     "camera-view slab counts (slab pass): n per pixel",
                 ),
             ],
-            outputs: vec![texture(
-                "color",
-                Access::ColorTarget,
-                &[
-                    Format::Rgba8UnormSrgb,
-                    Format::Rgba8Unorm,
-                    Format::Rgba16Float,
-                ],
-                "final image",
-            )],
+            outputs: vec![final_image()],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,

@@ -12,9 +12,9 @@
 
 use plait_gpu::Define;
 use plait_gpu::pass::{BuiltinShader, PassType, default_defines};
-use plait_graph::{Access, Format, ParamSpec, PassShape, PassTypeSpec, ScheduledPass, SlotSpec};
+use plait_graph::{Access, ParamSpec, PassShape, PassTypeSpec, ScheduledPass, SlotSpec};
 
-use crate::spec_util::{DEPTH, HDR, texture};
+use crate::spec_util::{DEPTH, HDR, final_image, texture};
 use crate::visibility;
 
 pub const HAIR_SHADER: BuiltinShader = (
@@ -75,16 +75,7 @@ impl PassType for ComposeHairOver {
                     "opaque objects, premultiplied; background where alpha < 1",
                 ),
             ],
-            outputs: vec![texture(
-                "color",
-                Access::ColorTarget,
-                &[
-                    Format::Rgba8UnormSrgb,
-                    Format::Rgba8Unorm,
-                    Format::Rgba16Float,
-                ],
-                "final image",
-            )],
+            outputs: vec![final_image()],
             params: vec![],
             dynamic_slots: false,
             needs_shader: false,
