@@ -4,7 +4,7 @@
 // probe p = (ray r, depth step d), p = r · depths + d, rays on a uv grid of
 // `rays_x` × `rays_y` over [uv0, uv1], depths evenly from `depth0` to `depth1`
 // in the light's NDC depth. `plait ab` uses it for the visibility curves of
-// 000_785589f319b01ef5.txt Fig. 5; tests use it against analytic visibility.
+// Sintorn & Assarsson 2009 Fig. 5; tests use it against analytic visibility.
 #import plait::frame::frame
 #import plait::self_shadow::self_shadow
 

@@ -207,7 +207,7 @@ fn every_pipeline_matches_its_golden_image() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// The stray strands lifted off the head (000_785589f319b01ef5.txt Fig. 4–5)
+/// The stray strands lifted off the head (Sintorn & Assarsson 2009 Fig. 4–5)
 /// are the case where self-shadowing methods differ most: the default
 /// pipeline on the stray-strand scene has a golden image of its own.
 #[test]

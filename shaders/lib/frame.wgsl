@@ -30,7 +30,7 @@ struct Frame {
     ambient: vec4<f32>,
     // xy: render size in pixels; zw: 1 / size.
     screen_size: vec4<f32>,
-    // xy: sub-pixel jitter in light-map texels (000_785589f319b01ef5.txt Fig. 9); z: time in s; w: frame index.
+    // xy: sub-pixel jitter in light-map texels (Sintorn & Assarsson 2009 Fig. 9); z: time in s; w: frame index.
     jitter: vec4<f32>,
     // x, y: camera near and far; z, w: light near and far (world units).
     near_far: vec4<f32>,

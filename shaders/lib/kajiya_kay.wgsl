@@ -1,6 +1,6 @@
 // plait::kajiya_kay — the Kajiya-Kay hair shading model.
 //
-// Halén & Wester 2007 (004_51cca5cde985008c.txt §3.2.1): diffuse is proportional
+// Halén & Wester (2007 §3.2.1): diffuse is proportional
 // to sin(T, L), specular to (cos(T,L) cos(T,E) + sin(T,L) sin(T,E))^p. The shift
 // moves the highlight along the strand as the cuticle tilt does.
 #define_import_path plait::kajiya_kay

@@ -1,5 +1,5 @@
 // plait::occupancy — reading the occupancy, slab and depth-range maps of
-// Sintorn & Assarsson 2009 (000_785589f319b01ef5.txt §3.1–3.2).
+// Sintorn & Assarsson (2009 §3.1–3.2).
 //
 // Per texel the maps hold: a depth range [near, far] (rg32float, linear depth
 // of the view), WORDS 32-bit words of occupancy bits (one bit per slice; slice

@@ -1,4 +1,4 @@
-// plait::shadow — opaque objects' shadow map lookups (000_785589f319b01ef5.txt §3.5).
+// plait::shadow — opaque objects' shadow map lookups (Sintorn & Assarsson 2009 §3.5).
 #define_import_path plait::shadow
 
 #import plait::frame::{light_uv_depth, shadow_sampler}

@@ -1,5 +1,5 @@
 // compose: the occupancy-order blended hair image over the scene
-// (000_785589f319b01ef5.txt §3.4). The scene (opaque objects over the
+// (Sintorn & Assarsson 2009 §3.4). The scene (opaque objects over the
 // background) is attenuated by (1-α)^n, n the hair fragments of the pixel
 // (the sum of the camera-view slab counts); the hair image, whose alpha
 // should sum to Λ = 1-(1-α)^n, is rescaled to it: rgb · Λ / a. (The paper

@@ -1,7 +1,7 @@
 // compose_hair_over: the hair image (premultiplied, blended front to back by
 // depth peeling, sorted fragment lists or weighted averages) over the scene
 // over the background: f = hair + (1 - hair.a) · behind
-// (000_785589f319b01ef5.txt §2.2).
+// (Sintorn & Assarsson 2009 §2.2).
 #import plait::frame::{frame, fullscreen_position, background_at}
 
 @group(1) @binding(0) var hair: texture_2d<f32>;

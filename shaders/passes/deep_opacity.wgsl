@@ -1,4 +1,4 @@
-// deep_opacity: the opacity map of deep opacity maps (001_68f346f76bfc3699.txt
+// deep_opacity: the opacity map of deep opacity maps (Yuksel & Keyser 2008
 // §3, step two). z0 = the texel's nearest hair (red of the depth_range map,
 // step one); layer k spans [z0 + d_{k-1}, z0 + d_k) with linearly increasing
 // sizes d_k - d_{k-1} = k · layer_size (world units); fragments beyond the last

@@ -1,6 +1,6 @@
 // density_clustering: k-means (K = 4) of the fragment depths of each light
-// texel, one hair draw per iteration (002_82b70f3f3a265fe6.txt; summarised in
-// 004_51cca5cde985008c.txt §3.3.2). The pass defines STAGE per draw: stage 0
+// texel, one hair draw per iteration (Mertens et al. 2004; summarised in
+// Halén & Wester 2007 §3.3.2). The pass defines STAGE per draw: stage 0
 // assigns fragments to 4 uniform slices of the texel's hair range; stage s > 0
 // assigns each to the nearest mean of stage s - 1. Each stage accumulates, per
 // cluster, (count, Σz, Σz²) of z = depth relative to the texel range, fixed

@@ -1,5 +1,5 @@
 // depth_lists: every hair fragment's linear light depth in its texel's list
-// (the exact fragment count of 000_785589f319b01ef5.txt §3, Fig. 5). A slot
+// (the exact fragment count of Sintorn & Assarsson 2009 §3, Fig. 5). A slot
 // comes from atomicAdd on the texel's counter; past the capacity (the `lists`
 // buffer's words per texel) the fragment is dropped and counted in `overflow`.
 #import plait::frame::{view_linear_depth}

@@ -1,4 +1,4 @@
-// depth_range: nearest and farthest hair depth per texel (000_785589f319b01ef5.txt
+// depth_range: nearest and farthest hair depth per texel (Sintorn & Assarsson 2009
 // §3.1, Fig. 7), as linear depth of the pass's view in an rg32float target.
 // Drawn twice by the pass (near: depth test Less, writing red; far: depth
 // test Greater, writing green), the paper's faster choice over one min/max

@@ -2,7 +2,7 @@
 // hair_fragment_list, plait::transparency::fragment_list), keep the nearest
 // `max_sorted` (≤ 256) fragments sorted by depth (insertion sort), blend them front to
 // back: C += (1 - A) · α · rgb, A += (1 - A) · α — exactly what depth peeling
-// computes one layer at a time (000_785589f319b01ef5.txt §2.2).
+// computes one layer at a time (Sintorn & Assarsson 2009 §2.2).
 #import plait::frame::{frame, fullscreen_position}
 
 @group(1) @binding(0) var<storage, read> list_heads: array<u32>;

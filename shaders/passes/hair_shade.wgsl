@@ -1,5 +1,5 @@
-// hair_shade: Kajiya-Kay shading of hair fragments (004_51cca5cde985008c.txt §3.2.1),
-// shadowed by opaque objects (000_785589f319b01ef5.txt §3.5) and by the hair
+// hair_shade: Kajiya-Kay shading of hair fragments (Halén & Wester 2007 §3.2.1),
+// shadowed by opaque objects (Sintorn & Assarsson 2009 §3.5) and by the hair
 // itself through the visibility provider chosen by the `visibility` param,
 // blended into the colour target by the `blend` param.
 #import plait::frame::{frame, view_proj, to_light}
@@ -27,7 +27,7 @@
 
 #ifdef BLEND_OCCUPANCY_ORDER
 // Camera-view depth-range, occupancy and slab maps: the depth order of each
-// hair fragment among the pixel's fragments (000_785589f319b01ef5.txt §3.2, §3.4).
+// hair fragment among the pixel's fragments (Sintorn & Assarsson 2009 §3.2, §3.4).
 @group(1) @binding(16) var order_range: texture_2d<f32>;
 @group(1) @binding(17) var<storage, read> order_bits: array<u32>;
 @group(1) @binding(18) var<storage, read> order_slabs: array<u32>;

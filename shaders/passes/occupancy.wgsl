@@ -1,5 +1,5 @@
 // occupancy: one bit per depth slice per texel, set with atomicOr (wgpu has no
-// bitwise-OR blending), 000_785589f319b01ef5.txt §3.1. Slice k of a texel
+// bitwise-OR blending), Sintorn & Assarsson 2009 §3.1. Slice k of a texel
 // covers relative depth [k, k+1) / S within the texel's depth range; S = 32 ×
 // the words per texel of the `bits` buffer (128 for 16 bytes per texel).
 #import plait::frame::{view_linear_depth}

@@ -1,7 +1,7 @@
 // opacity_shadow_maps: N uniform slices of the texel's hair range [near, far]
 // (per-texel range from depth_range), every fragment counted in its slice with
 // atomicAdd, all N in one hair draw — the one-pass opacity shadow maps of
-// 004_51cca5cde985008c.txt §3.3.2, §5.7 (there: 4 targets × 4 channels,
+// Halén & Wester 2007 §3.3.2, §5.7 (there: 4 targets × 4 channels,
 // additive blending). N = the `slices` buffer's u32 words per texel.
 #import plait::frame::{view_linear_depth}
 #import plait::hair_map::{MapVertex, MapFragment, map_vertex}

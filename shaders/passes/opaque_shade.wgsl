@@ -1,6 +1,6 @@
 // opaque_shade: the head and the ground, Lambert-lit, shadowed by the opaque
 // shadow map and by the hair through the visibility provider
-// (000_785589f319b01ef5.txt §3.5: hair shadows on opaque objects come from the
+// (Sintorn & Assarsson 2009 §3.5: hair shadows on opaque objects come from the
 // same light maps the hair uses for itself).
 #import plait::frame::{frame, view_proj, to_light}
 #import plait::shadow::opaque_shadow

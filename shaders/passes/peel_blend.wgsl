@@ -1,6 +1,6 @@
 // peel_blend: one peeled layer (premultiplied) goes UNDER the layers peeled
 // before it — front-to-back "under" blending, dst += (1 - dst.a) · layer, set
-// in the blend state (000_785589f319b01ef5.txt §2.2; depth_peeling.rs).
+// in the blend state (Sintorn & Assarsson 2009 §2.2; depth_peeling.rs).
 #import plait::frame::fullscreen_position
 
 @group(1) @binding(0) var layer: texture_2d<f32>;

@@ -1,6 +1,6 @@
 // shadow_map: depth of the drawn geometry from the pass's view, no colour.
-// Used for the opaque shadow map (000_785589f319b01ef5.txt §3.5) and, drawing
-// hair, for the modified shadow map's nearest-hair depth (004_51cca5cde985008c.txt §3.3.2).
+// Used for the opaque shadow map (Sintorn & Assarsson 2009 §3.5) and, drawing
+// hair, for the modified shadow map's nearest-hair depth (Halén & Wester 2007 §3.3.2).
 #import plait::frame::view_proj
 
 struct VertexIn {

@@ -1,5 +1,5 @@
 // slab: the number of hair fragments per slab of slices per texel
-// (000_785589f319b01ef5.txt §3.1, Fig. 8), counted exactly with atomicAdd
+// (Sintorn & Assarsson 2009 §3.1, Fig. 8), counted exactly with atomicAdd
 // (the paper's additive float blending would need FLOAT32_BLENDABLE and loses
 // precision past 2048 fragments in 16-bit floats). Slabs per texel = the
 // `slabs` buffer's u32 words per texel (4 for the paper's 4 slabs of 32 slices).

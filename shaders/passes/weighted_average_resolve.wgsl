@@ -1,4 +1,4 @@
-// weighted_average_resolve (Bavoil & Myers 2008; 000_785589f319b01ef5.txt §2.2):
+// weighted_average_resolve (Bavoil & Myers 2008; Sintorn & Assarsson 2009 §2.2):
 // average colour C = Σα·rgb / Σα, average alpha ᾱ = Σα / n over the depth
 // complexity n, and the hair as n fragments of (C, ᾱ) blended:
 // premultiplied (C · (1 - (1-ᾱ)ⁿ), 1 - (1-ᾱ)ⁿ).

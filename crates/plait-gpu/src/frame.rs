@@ -107,7 +107,7 @@ impl FrameUniforms {
 }
 
 /// The light's view and projection, fitted tightly to the hair so the light
-/// maps spend their texels on it (Halén & Wester, 004_51cca5cde985008c.txt §5.7):
+/// maps spend their texels on it (Halén & Wester 2007 §5.7):
 /// x/y cover the occluders, depth runs from the nearest occluder to the farthest
 /// receiver so hair shadows reach the ground.
 #[derive(Clone, Copy, Debug)]

@@ -142,7 +142,7 @@ pub enum PassShape {
 pub struct PassTypeSpec {
     pub name: String,
     pub description: String,
-    /// Paper and section the pass implements, e.g. `000_785589f319b01ef5.txt §3.1`.
+    /// Paper and section the pass implements, e.g. Sintorn & Assarsson 2009 §3.1`.
     pub source: String,
     pub shape: PassShape,
     pub inputs: Vec<SlotSpec>,

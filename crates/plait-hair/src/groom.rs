@@ -4,11 +4,11 @@
 //! scalp along its normal, then bend downward under a gravity-like pull, and
 //! are pushed out of the head so the hair drapes around it. Wavy and curly
 //! styles add periodic offsets perpendicular to the strand. Stray strands
-//! stand off the main volume — the case of `000_785589f319b01ef5.txt` Fig. 4
+//! stand off the main volume — the case of Sintorn & Assarsson 2009 Fig. 4
 //! and 5, where a lone strand between the light and the hair makes a sharp
 //! early dip in visibility.
 //!
-//! Guide strands (`004_51cca5cde985008c.txt` §2.5, after [ND05]): with
+//! Guide strands (Halén & Wester 2007 §2.5, after [ND05]): with
 //! `guides = Some(g)`, about `g` guide strands grow at the vertices of a grid
 //! over the scalp's (polar, azimuth) parameter square; the grid is
 //! triangulated (two triangles per cell) and each rendered strand is the
@@ -138,7 +138,7 @@ pub struct GroomSpec {
     /// Extra strands lifted off the main volume (appended after the others).
     pub stray_strands: u32,
     /// If set, about this many guide strands are grown and the rendered
-    /// strands are interpolated from them (004 §2.5).
+    /// strands are interpolated from them (Halén & Wester 2007 §2.5).
     pub guides: Option<u32>,
 }
 
@@ -482,7 +482,7 @@ fn locate(u: f32, v: f32, rows: usize, cols: usize) -> ([(usize, usize); 3], [f3
     }
 }
 
-/// Barycentric blend of three guide strands (004 §2.5), translated so it
+/// Barycentric blend of three guide strands (Halén & Wester 2007 §2.5), translated so it
 /// starts at `root`, its offsets from the root scaled by `scale`.
 fn blend(tri: [&Vec<Vec3>; 3], w: [f32; 3], root: Vec3, scale: f32) -> Vec<Vec3> {
     let n = tri.iter().map(|g| g.len()).min().unwrap_or(0);

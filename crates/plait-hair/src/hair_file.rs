@@ -1,4 +1,4 @@
-//! Cem Yuksel's binary `.hair` format (layout in `../shared/seeds/README.md`).
+//! Cem Yuksel's binary `.hair` format (layout in `docs/formats.md`).
 //!
 //! Layout, all little-endian:
 //!

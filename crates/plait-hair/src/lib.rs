@@ -5,10 +5,10 @@
 //!   color), its bounds, and its GPU line-list layout [`StrandVertex`].
 //! - [`mesh`]: opaque geometry (head ellipsoid, ground plane).
 //! - [`groom`]: deterministic procedural grooms, guide strands with barycentric
-//!   interpolation (`004_51cca5cde985008c.txt` §2.5), stray strands
-//!   (`000_785589f319b01ef5.txt` Fig. 4/5).
+//!   interpolation (Halén & Wester 2007 §2.5), stray strands
+//!   (Sintorn & Assarsson 2009 Fig. 4/5).
 //! - [`scene`]: the TOML scene file every pipeline renders, light frustum
-//!   fitting (`004_51cca5cde985008c.txt` §5.7).
+//!   fitting (Halén & Wester 2007 §5.7).
 
 pub mod groom;
 pub mod hair_file;

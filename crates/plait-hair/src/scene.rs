@@ -7,7 +7,7 @@
 //! directory of the scene file.
 //!
 //! [`Light::view_proj`] fits the light's frustum tightly to the hair
-//! (`004_51cca5cde985008c.txt` §5.7: near/far fitted to the model, the
+//! (Halén & Wester 2007 §5.7: near/far fitted to the model, the
 //! field of view fitted to its extremes), with the depth range running from
 //! the nearest occluder to the farthest receiver so hair shadows reach the
 //! ground.
@@ -304,7 +304,7 @@ impl Light {
         }
     }
 
-    /// Light view-projection fitted tightly (004 §5.7): x/y (for a spot, the
+    /// Light view-projection fitted tightly (Halén & Wester 2007 §5.7): x/y (for a spot, the
     /// frustum's side planes, capped by its cone) fitted to the occluders'
     /// bounds as seen from the light; depth from the nearest occluder point
     /// to the farthest receiver point, so shadows cast by the occluders reach
@@ -424,7 +424,7 @@ impl TryFrom<BackgroundToml> for Background {
     }
 }
 
-/// Hair shading parameters (Kajiya-Kay, 004 §3.2.1).
+/// Hair shading parameters (Kajiya-Kay, Halén & Wester 2007 §3.2.1).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct HairMaterial {

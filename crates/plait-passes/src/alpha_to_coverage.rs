@@ -1,4 +1,4 @@
-//! `hair_alpha_to_coverage`: alpha to coverage (004_51cca5cde985008c.txt
+//! `hair_alpha_to_coverage`: alpha to coverage (Halén & Wester 2007
 //! §3.1.2, §5.6; NVIDIA 2005): the hair is drawn like opaque geometry — depth
 //! test and write, no sorting — into a multisampled target, and the
 //! fragment's alpha decides how many of the pixel's samples it covers; the
@@ -39,13 +39,13 @@ impl PassType for HairCoverage {
             (
                 "hair_alpha_to_coverage",
                 "Hair with depth write; alpha becomes MSAA sample coverage; resolved into color_resolve.",
-                "004_51cca5cde985008c.txt §3.1.2, §5.6",
+                "Halén & Wester 2007 §3.1.2, §5.6",
             )
         } else {
             (
                 "hair_opaque",
                 "Hair as opaque strands (alpha 1) with depth test and write: no transparency.",
-                "000_785589f319b01ef5.txt Fig. 2 (no transparency)",
+                "Sintorn & Assarsson 2009 Fig. 2 (no transparency)",
             )
         };
         PassTypeSpec {

@@ -1,5 +1,5 @@
 //! `compose`: the occupancy-order blended hair over the scene
-//! (000_785589f319b01ef5.txt §3.4): scene × (1-α)^n + hair.rgb × Λ / hair.a,
+//! (Sintorn & Assarsson 2009 §3.4): scene × (1-α)^n + hair.rgb × Λ / hair.a,
 //! Λ = 1-(1-α)^n, n the pixel's hair fragments from the camera-view slab
 //! counts. The paper prints the correction as hair.a / Λ; the factor that
 //! restores the intensity the weights should have summed to is Λ / hair.a.
@@ -16,7 +16,7 @@ impl PassType for Compose {
         PassTypeSpec {
             name: "compose".into(),
             description: "Order-blended hair over the scene with the Λ correction, to sRGB.".into(),
-            source: "000_785589f319b01ef5.txt §3.4".into(),
+            source: "Sintorn & Assarsson 2009 §3.4".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
                 texture(

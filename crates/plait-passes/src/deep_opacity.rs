@@ -1,5 +1,5 @@
 //! `deep_opacity`: the opacity map of deep opacity maps (Yuksel & Keyser
-//! 2008, 001_68f346f76bfc3699.txt §3, Fig. 2).
+//! 2008, Yuksel & Keyser 2008 §3, Fig. 2).
 //!
 //! Step one of the paper — the per-texel start depth z0 of the hair — is the
 //! near depth (red) of a `depth_range` pass, reused. This pass is step two:
@@ -32,7 +32,7 @@ impl PassType for DeepOpacity {
         PassTypeSpec {
             name: "deep_opacity".into(),
             description: "Deep opacity map: fragment count per layer after the texel's start depth z0 (atomicAdd), K u32 per texel.".into(),
-            source: "001_68f346f76bfc3699.txt §3".into(),
+            source: "Yuksel & Keyser 2008 §3".into(),
             shape: PassShape::Raster,
             inputs: vec![
                 texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view; near (red) is z0"),

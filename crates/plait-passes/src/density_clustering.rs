@@ -1,6 +1,6 @@
 //! `density_clustering`: self-shadowing by density clustering (Mertens, Kautz,
-//! Bekaert & Van Reeth 2004, 002_82b70f3f3a265fe6.txt — the sketch's
-//! construction of V; as summarised in 004_51cca5cde985008c.txt §3.3.2).
+//! Bekaert & Van Reeth 2004 — the sketch's
+//! construction of V; as summarised in Halén & Wester 2007 §3.3.2).
 //!
 //! Per light texel the fragment depths along the line of sight are summarised
 //! into K = 4 clusters by k-means, iterated INSIDE this one pass by drawing the
@@ -8,7 +8,7 @@
 //! - draw 0: the clusters are 4 uniform slices of the texel's hair range
 //!   (near/far from `depth_range`); each fragment adds itself (count, Σz,
 //!   Σz²) to its slice — "rendering uniform slices yielding the mean z-value
-//!   of each slice, one k-means iteration" (004 §3.3.2);
+//!   of each slice, one k-means iteration" (Halén & Wester 2007 §3.3.2);
 //! - draws 1..=`iterations`: each fragment joins the cluster whose mean (from
 //!   the previous draw's sums) is nearest and adds itself there.
 //!
@@ -21,7 +21,7 @@
 //! proportional to the standard deviation of each cluster"), holding its
 //! fragment count; the density integrated up to z gives the fragment count
 //! in front, visibility exp(-w · ∫d) — piecewise linear, as in the paper.
-//! Mertens et al. found one iteration enough (004 §3.3.2): uniform slices,
+//! Mertens et al. found one iteration enough (Halén & Wester 2007 §3.3.2): uniform slices,
 //! then one reassignment that also gathers σ — `iterations = 1` (2 draws).
 //!
 //! Memory: (iterations + 1) × 4 × 3 × 4 B per texel = 24 MiB at 512² with
@@ -52,7 +52,7 @@ fn spec() -> PassTypeSpec {
     PassTypeSpec {
         name: "density_clustering".into(),
         description: "K = 4 k-means clusters of fragment depth per texel (count, Σz, Σz²), refined over several hair draws in one pass.".into(),
-        source: "002_82b70f3f3a265fe6.txt; 004_51cca5cde985008c.txt §3.3.2".into(),
+        source: "Mertens et al. 2004; Halén & Wester 2007 §3.3.2".into(),
         shape: PassShape::Raster,
         inputs: vec![
             texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view (depth_range): initial uniform clusters"),

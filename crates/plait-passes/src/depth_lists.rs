@@ -1,5 +1,5 @@
 //! `depth_lists`: exact self-shadowing, the ground truth — every hair
-//! fragment's light depth stored per light texel (000_785589f319b01ef5.txt
+//! fragment's light depth stored per light texel (Sintorn & Assarsson 2009
 //! §3, Fig. 5: the exact number of fragments in front, which the occupancy
 //! order of §3.2 estimates).
 //!
@@ -32,7 +32,7 @@ impl PassType for DepthLists {
         PassTypeSpec {
             name: "depth_lists".into(),
             description: "Every hair fragment's linear depth per texel (capacity from the buffer size), with counters and an overflow count.".into(),
-            source: "000_785589f319b01ef5.txt §3, Fig. 5".into(),
+            source: "Sintorn & Assarsson 2009 §3, Fig. 5".into(),
             shape: PassShape::Raster,
             inputs: vec![
                 texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view: gives the map size"),

@@ -1,5 +1,5 @@
 //! `hair_depth_peel`: depth peeling, the ground truth of hair transparency
-//! (000_785589f319b01ef5.txt §2.2 and Fig. 2, "depth-peeling (ground truth …
+//! (Sintorn & Assarsson 2009 §2.2 and Fig. 2, "depth-peeling (ground truth …
 //! 112 layers)"; §3.4 calls it "the only non-approximate method").
 //!
 //! The hair is drawn once per depth layer, front to back: layer k keeps the
@@ -64,7 +64,7 @@ fn spec() -> PassTypeSpec {
     PassTypeSpec {
         name: "hair_depth_peel".into(),
         description: "Depth peeling front to back until an occlusion query reports no fragments (ground truth).".into(),
-        source: "000_785589f319b01ef5.txt §2.2, §3.4, Fig. 2".into(),
+        source: "Sintorn & Assarsson 2009 §2.2, §3.4, Fig. 2".into(),
         shape: PassShape::Raster,
         inputs,
         outputs: vec![

@@ -1,5 +1,5 @@
 //! `depth_range`: nearest and farthest hair depth per texel
-//! (000_785589f319b01ef5.txt §3.1, Fig. 7), from the light for self-shadowing
+//! (Sintorn & Assarsson 2009 §3.1, Fig. 7), from the light for self-shadowing
 //! or from the camera for occupancy-order blending.
 //!
 //! The paper found two depth-tested draws faster than one min/max-blended
@@ -30,7 +30,7 @@ fn spec() -> PassTypeSpec {
         description:
             "Nearest (red) and farthest (green) hair depth per texel, linear in the view's depth."
                 .into(),
-        source: "000_785589f319b01ef5.txt §3.1, Fig. 7".into(),
+        source: "Sintorn & Assarsson 2009 §3.1, Fig. 7".into(),
         shape: PassShape::Raster,
         inputs: vec![texture(
             "opaque_depth",

@@ -1,5 +1,5 @@
-//! `hair_shade`: Kajiya-Kay hair (004_51cca5cde985008c.txt §3.2.1), shadowed by
-//! opaque objects (000_785589f319b01ef5.txt §3.5) and by the hair itself through
+//! `hair_shade`: Kajiya-Kay hair (Halén & Wester 2007 §3.2.1), shadowed by
+//! opaque objects (Sintorn & Assarsson 2009 §3.5) and by the hair itself through
 //! the visibility provider, blended "over" the colour target.
 //!
 //! Transparency by the `blend` param:
@@ -7,7 +7,7 @@
 //!   occupancy-order blending removes;
 //! - `occupancy_order`: each fragment weighted (1-α)^o · α with o its depth
 //!   order estimated from camera-view occupancy maps (the `order_*` slots),
-//!   added unsorted into a float target (000_785589f319b01ef5.txt §3.4); the
+//!   added unsorted into a float target (Sintorn & Assarsson 2009 §3.4); the
 //!   `compose` pass applies the Λ correction.
 
 use plait_gpu::Capabilities;
@@ -72,7 +72,7 @@ impl PassType for HairShade {
             description:
                 "Kajiya-Kay hair shading with opaque and self shadows, blended over the target."
                     .into(),
-            source: "004_51cca5cde985008c.txt §3.2.1; 000_785589f319b01ef5.txt §3.2-3.5".into(),
+            source: "Halén & Wester 2007 §3.2.1; Sintorn & Assarsson 2009 §3.2-3.5".into(),
             shape: PassShape::Raster,
             inputs,
             outputs: vec![

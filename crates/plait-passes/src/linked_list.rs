@@ -1,5 +1,5 @@
 //! Per-pixel fragment lists, sorted exactly: the order-independent way to get
-//! depth peeling's image (000_785589f319b01ef5.txt §2.2, Fig. 2 ground truth)
+//! depth peeling's image (Sintorn & Assarsson 2009 §2.2, Fig. 2 ground truth)
 //! in one geometry pass.
 //!
 //! `hair_fragment_list` appends every shaded hair fragment in front of the
@@ -51,7 +51,7 @@ impl PassType for HairFragmentList {
         PassTypeSpec {
             name: "hair_fragment_list".into(),
             description: "Append every shaded hair fragment to its pixel's linked list (atomic counter + head pointers).".into(),
-            source: "000_785589f319b01ef5.txt §2.2 (exact order, as depth peeling)".into(),
+            source: "Sintorn & Assarsson 2009 §2.2 (exact order, as depth peeling)".into(),
             shape: PassShape::Raster,
             inputs,
             outputs: vec![
@@ -91,7 +91,7 @@ impl PassType for FragmentListResolve {
             name: "fragment_list_resolve".into(),
             description: "Sort each pixel's fragment list by depth and blend it front to back."
                 .into(),
-            source: "000_785589f319b01ef5.txt §2.2".into(),
+            source: "Sintorn & Assarsson 2009 §2.2".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
                 buffer("list_heads", Access::StorageRead, "head node + 1 per pixel"),

@@ -1,5 +1,5 @@
 //! `occupancy`: the occupancy map of Sintorn & Assarsson
-//! (000_785589f319b01ef5.txt §3.1): one bit per depth slice per texel, set
+//! (Sintorn & Assarsson 2009 §3.1): one bit per depth slice per texel, set
 //! with `atomicOr` on a storage buffer — wgpu has no bitwise-OR blending.
 //!
 //! The `bits` buffer holds `words` u32 per texel (row-major, texel-major),
@@ -26,7 +26,7 @@ impl PassType for Occupancy {
             description:
                 "One bit per depth slice per texel (atomicOr), 32 slices per u32 word of `bits`."
                     .into(),
-            source: "000_785589f319b01ef5.txt §3.1".into(),
+            source: "Sintorn & Assarsson 2009 §3.1".into(),
             shape: PassShape::Raster,
             inputs: vec![
                 texture(

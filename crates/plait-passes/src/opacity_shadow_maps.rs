@@ -1,7 +1,7 @@
 //! `opacity_shadow_maps`: opacity shadow maps (Kim & Neumann 2001, in the
 //! one-pass form of Nguyen & Donnelly 2005 described by
-//! 004_51cca5cde985008c.txt §3.3.2 and §5.7; compared in
-//! 001_68f346f76bfc3699.txt §2).
+//! Halén & Wester 2007 §3.3.2 and §5.7; compared in
+//! Yuksel & Keyser 2008 §2).
 //!
 //! N uniform slices between the hair's near and far depth; every fragment is
 //! counted in its slice with `atomicAdd` on a storage buffer (N u32 per
@@ -39,7 +39,7 @@ impl PassType for OpacityShadowMaps {
         PassTypeSpec {
             name: "opacity_shadow_maps".into(),
             description: "Opacity shadow maps: fragment count per uniform slice of the texel's hair range (atomicAdd), N u32 per texel, one draw.".into(),
-            source: "004_51cca5cde985008c.txt §3.3.2, §5.7; 001_68f346f76bfc3699.txt §2".into(),
+            source: "Halén & Wester 2007 §3.3.2, §5.7; Yuksel & Keyser 2008 §2".into(),
             shape: PassShape::Raster,
             inputs: vec![
                 texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view (depth_range): the slicing range"),

@@ -1,5 +1,5 @@
 //! `hair_opaque`: no transparency — strands drawn as opaque lines with depth
-//! test and write, the right-most image of 000_785589f319b01ef5.txt Fig. 2
+//! test and write, the right-most image of Sintorn & Assarsson 2009 Fig. 2
 //! ("using no transparency"). The cheapest method, and the baseline the
 //! blending methods are measured against (§2.2: thin strands need alpha to
 //! look thin). The draw is [`HairCoverage`] with alpha forced to 1 and no

@@ -1,6 +1,6 @@
 //! `opaque_shade`: the head and the ground, Lambert-lit, shadowed by the opaque
 //! shadow map and by hair through the visibility provider
-//! (000_785589f319b01ef5.txt §3.5).
+//! (Sintorn & Assarsson 2009 §3.5).
 
 use plait_gpu::pass::{BuiltinShader, PassType};
 use plait_graph::{Access, PassShape, PassTypeSpec};
@@ -22,7 +22,7 @@ impl PassType for OpaqueShade {
         PassTypeSpec {
             name: "opaque_shade".into(),
             description: "Lambert shading of opaque geometry with opaque and hair shadows.".into(),
-            source: "000_785589f319b01ef5.txt §3.5".into(),
+            source: "Sintorn & Assarsson 2009 §3.5".into(),
             shape: PassShape::Raster,
             inputs,
             outputs: vec![

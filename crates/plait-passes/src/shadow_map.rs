@@ -1,8 +1,8 @@
 //! `shadow_map`: depth from a view, no colour.
 //!
-//! The opaque shadow map of Sintorn & Assarsson (000_785589f319b01ef5.txt §3.5)
+//! The opaque shadow map of Sintorn & Assarsson (2009 §3.5)
 //! when drawing opaque geometry from the light; the nearest-hair depth of the
-//! modified shadow map (004_51cca5cde985008c.txt §3.3.2) when drawing hair.
+//! modified shadow map (Halén & Wester 2007 §3.3.2) when drawing hair.
 
 use plait_gpu::pass::{BuiltinShader, PassType};
 use plait_graph::{Access, PassShape, PassTypeSpec};
@@ -16,7 +16,7 @@ impl PassType for ShadowMap {
         PassTypeSpec {
             name: "shadow_map".into(),
             description: "Depth of the drawn geometry from the pass's view (no colour).".into(),
-            source: "000_785589f319b01ef5.txt §3.5; 004_51cca5cde985008c.txt §3.3.2".into(),
+            source: "Sintorn & Assarsson 2009 §3.5; Halén & Wester 2007 §3.3.2".into(),
             shape: PassShape::Raster,
             inputs: vec![],
             outputs: vec![texture(

@@ -1,5 +1,5 @@
 //! `slab`: fragment counts per slab of slices per texel
-//! (000_785589f319b01ef5.txt §3.1, Fig. 8), counted exactly with `atomicAdd`
+//! (Sintorn & Assarsson 2009 §3.1, Fig. 8), counted exactly with `atomicAdd`
 //! on a storage buffer: the paper's additive blending into a float target
 //! would need `FLOAT32_BLENDABLE` here and rounds counts past 2048 in 16-bit
 //! floats. `slabs` u32 counters per texel; 4 is the paper's choice for 128
@@ -19,7 +19,7 @@ impl PassType for Slab {
         PassTypeSpec {
             name: "slab".into(),
             description: "Fragment count per slab per texel (atomicAdd), one u32 per slab.".into(),
-            source: "000_785589f319b01ef5.txt §3.1, Fig. 8".into(),
+            source: "Sintorn & Assarsson 2009 §3.1, Fig. 8".into(),
             shape: PassShape::Raster,
             inputs: vec![
                 texture(

@@ -4,7 +4,7 @@
 //! `plait::transparency::*` WGSL module that turns the shaded colour and alpha
 //! into fragment outputs, and in what resolves and composes the result.
 //!
-//! Methods (000_785589f319b01ef5.txt §2.2, §3.4, Fig. 2; 004_51cca5cde985008c.txt
+//! Methods (Sintorn & Assarsson 2009 §2.2, §3.4, Fig. 2; Halén & Wester 2007
 //! §3.1.2, §5.6): depth peeling (`depth_peeling`), per-pixel fragment lists
 //! (`linked_list`), weighted-average blending (`weighted_average`), alpha to
 //! coverage (`alpha_to_coverage`), none (`opaque_hair`). `compose_hair_over`
@@ -59,7 +59,7 @@ impl PassType for ComposeHairOver {
         PassTypeSpec {
             name: "compose_hair_over".into(),
             description: "Premultiplied hair over the scene over the background, to sRGB.".into(),
-            source: "000_785589f319b01ef5.txt §2.2 (f = αc + (1-α)b)".into(),
+            source: "Sintorn & Assarsson 2009 §2.2 (f = αc + (1-α)b)".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
                 texture(

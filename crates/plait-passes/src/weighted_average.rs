@@ -1,4 +1,4 @@
-//! Weighted-average blending (Bavoil & Myers 2008), as 000_785589f319b01ef5.txt
+//! Weighted-average blending (Bavoil & Myers 2008), as Sintorn & Assarsson 2009
 //! §2.2 describes it and Fig. 2 shows it ("weighted-average blending (72 fps)",
 //! "very dull … compared to the depth-peeled image").
 //!
@@ -35,7 +35,7 @@ impl PassType for HairWeightedAverage {
         PassTypeSpec {
             name: "hair_weighted_average".into(),
             description: "Sum α·rgb, α and the fragment count of the hair, unsorted (weighted-average blending).".into(),
-            source: "000_785589f319b01ef5.txt §2.2, Fig. 2".into(),
+            source: "Sintorn & Assarsson 2009 §2.2, Fig. 2".into(),
             shape: PassShape::Raster,
             inputs,
             outputs: vec![
@@ -76,7 +76,7 @@ impl PassType for WeightedAverageResolve {
             description:
                 "Average colour and alpha over the depth complexity; blend n average fragments."
                     .into(),
-            source: "000_785589f319b01ef5.txt §2.2".into(),
+            source: "Sintorn & Assarsson 2009 §2.2".into(),
             shape: PassShape::Fullscreen,
             inputs: vec![
                 texture("sums", Access::Sampled, HDR, "Σ α·rgb, Σ α"),

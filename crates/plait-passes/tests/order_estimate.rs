@@ -1,4 +1,4 @@
-//! The order estimate of 000_785589f319b01ef5.txt §3.2 as the GPU computes it:
+//! The order estimate of Sintorn & Assarsson 2009 §3.2 as the GPU computes it:
 //! `order_estimate` from `shaders/lib/occupancy.wgsl`, run in a compute shader
 //! on synthetic texels, must equal the CPU mirror
 //! `plait_passes::occupancy::order_estimate` — whose accuracy against exact

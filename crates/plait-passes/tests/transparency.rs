@@ -1,5 +1,5 @@
 //! Transparency methods against the ground truth (issue 5;
-//! 000_785589f319b01ef5.txt §2.2, §3.4, Fig. 2), on the GPU at a small size:
+//! Sintorn & Assarsson 2009 §2.2, §3.4, Fig. 2), on the GPU at a small size:
 //!
 //! - `linked_list.toml` (fragment lists sorted exactly) equals
 //!   `depth_peeling.toml` within a mean absolute error of 0.5/255 and a 99th

@@ -3,7 +3,7 @@
 //! light texel row of a square region, between a straight-down directional
 //! light and a ground plane. Every texel of the region holds exactly one
 //! fragment per layer, so a point between layers k-1 and k has exactly k hair
-//! fragments in front of it (000_785589f319b01ef5.txt §3, Fig. 5) and
+//! fragments in front of it (Sintorn & Assarsson 2009 §3, Fig. 5) and
 //! visibility exp(-w·k), w = shadow_weight.
 //!
 //! Each variant file in `pipelines/` is extended by a probe pipeline (light

@@ -1,4 +1,4 @@
-//! The timing table of 000_785589f319b01ef5.txt §4, measured on this machine:
+//! The timing table of Sintorn & Assarsson 2009 §4, measured on this machine:
 //! `cargo bench -p plait --bench occupancy_table [-- --repeats N --size WxH]`.
 //!
 //! Renders `pipelines/occupancy.toml` on the default scene (10,000 strands) and

@@ -1,6 +1,6 @@
 //! Visibility probes: what a pipeline's self-shadowing technique says about
 //! light reaching points along rays from the light — the curves of Figure 5 of
-//! 000_785589f319b01ef5.txt, and the numbers `plait ab` compares between
+//! Sintorn & Assarsson 2009, and the numbers `plait ab` compares between
 //! variants.
 //!
 //! The probe is data: the variant file is extended by one data-only compute

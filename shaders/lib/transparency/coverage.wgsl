@@ -1,8 +1,8 @@
 // plait::transparency::coverage — strands written like opaque geometry, with
 // depth test and write. With `alpha_to_coverage` the fragment's alpha picks how
-// many of the pixel's MSAA samples it covers (004_51cca5cde985008c.txt §3.1.2,
+// many of the pixel's MSAA samples it covers (Halén & Wester 2007 §3.1.2,
 // §5.6) and the resolve averages them; without it (OPAQUE_HAIR) alpha is 1:
-// no transparency at all (000_785589f319b01ef5.txt Fig. 2, right).
+// no transparency at all (Sintorn & Assarsson 2009 Fig. 2, right).
 #define_import_path plait::transparency::coverage
 
 struct FragmentOut {

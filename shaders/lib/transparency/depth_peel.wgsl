@@ -1,5 +1,5 @@
 // plait::transparency::depth_peel — one layer of depth peeling
-// (000_785589f319b01ef5.txt §2.2, Fig. 2 "ground truth"): keep only fragments
+// (Sintorn & Assarsson 2009 §2.2, Fig. 2 "ground truth"): keep only fragments
 // strictly behind the previous layer's depth and in front of the opaque depth;
 // the pass's depth test (Less) then leaves the nearest of them — the layer.
 #define_import_path plait::transparency::depth_peel

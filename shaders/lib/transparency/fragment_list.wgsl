@@ -4,7 +4,7 @@
 // in with an atomic exchange of the pixel's head pointer. Nodes past the
 // capacity are dropped and counted (counter word 1). The resolve pass sorts
 // each list by depth and blends it front to back: exact order, the same
-// result as depth peeling (000_785589f319b01ef5.txt §2.2) in one geometry pass.
+// result as depth peeling (Sintorn & Assarsson 2009 §2.2) in one geometry pass.
 #define_import_path plait::transparency::fragment_list
 
 // Head pointer per pixel: 0 = empty, else node index + 1.

@@ -1,5 +1,5 @@
 // plait::transparency::weighted_average — weighted-average blending
-// (Bavoil & Myers 2008, as summarised in 000_785589f319b01ef5.txt §2.2):
+// (Bavoil & Myers 2008, as summarised in Sintorn & Assarsson 2009 §2.2):
 // one unsorted additive pass sums α·rgb and α into `color` and the depth
 // complexity n into `count`; the resolve pass averages.
 #define_import_path plait::transparency::weighted_average

@@ -1,5 +1,5 @@
 // plait::visibility::deep_opacity — deep opacity maps (Yuksel & Keyser 2008,
-// 001_68f346f76bfc3699.txt §3, step three). Per light texel: z0 (the near
+// Yuksel & Keyser 2008 §3, step three). Per light texel: z0 (the near
 // depth of the light depth-range map) and K fragment counts, one per layer
 // [z0 + d_{k-1}, z0 + d_k), d_k = layer_size · k(k+1)/2 (linearly increasing
 // sizes; the last layer also holds everything beyond it). The opacity at a

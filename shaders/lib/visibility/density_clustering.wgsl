@@ -1,5 +1,5 @@
 // plait::visibility::density_clustering — density clustering (Mertens et al.
-// 2004, 002_82b70f3f3a265fe6.txt; 004_51cca5cde985008c.txt §3.3.2). Per light
+// 2004; Halén & Wester 2007 §3.3.2). Per light
 // texel: 4 k-means clusters of fragment depth (count n, Σz, Σz², z relative to
 // the texel's hair range, fixed point × 2^18; the last stage of the
 // density_clustering pass). Each cluster is a histogram bin of density

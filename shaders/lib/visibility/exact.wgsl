@@ -1,6 +1,6 @@
 // plait::visibility::exact — exact self-shadowing, the ground truth: the
 // number n of hair fragments in front of a point from the light
-// (000_785589f319b01ef5.txt §3, Fig. 5; the occupancy order o estimates it),
+// (Sintorn & Assarsson 2009 §3, Fig. 5; the occupancy order o estimates it),
 // counted in the point's light texel over the depth lists of the depth_lists
 // pass. Visibility = exp(-w · n), w = shadow_weight. A point's own strand is
 // kept out by `exact_bias` (world units along the light). Where a list

@@ -1,6 +1,6 @@
 // plait::visibility::modified_shadow_map — one depth map of the nearest hair from
 // the light; transmittance exp(-k Δz) with Δz the distance behind that hair.
-// Halén & Wester 2007, 004_51cca5cde985008c.txt §3.3.2 ("modified shadow map").
+// Halén & Wester 2007 §3.3.2 ("modified shadow map").
 // Cheap (one depth texture), but it cannot tell sparse hair from dense hair.
 #define_import_path plait::visibility::modified_shadow_map
 

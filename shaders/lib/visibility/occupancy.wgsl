@@ -1,5 +1,5 @@
 // plait::visibility::occupancy — self-shadowing from the light-view occupancy
-// + slab + depth-range maps (000_785589f319b01ef5.txt §3.3): opacity = o · w,
+// + slab + depth-range maps (Sintorn & Assarsson 2009 §3.3): opacity = o · w,
 // visibility = exp(-opacity), o the order estimate of §3.2. Map lookups are
 // jittered by up to half a texel (Fig. 9) against silhouette aliasing.
 // The number of slabs is read from the slab buffer's size: one counter per

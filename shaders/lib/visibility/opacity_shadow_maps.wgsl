@@ -1,5 +1,5 @@
 // plait::visibility::opacity_shadow_maps — opacity shadow maps (Kim & Neumann
-// 2001; 004_51cca5cde985008c.txt §3.3.2 formulas 3.1-3.2, §5.7 formula 5.1).
+// 2001; Halén & Wester 2007 §3.3.2 formulas 3.1-3.2, §5.7 formula 5.1).
 // Per light texel: N fragment counts, one per uniform slice of the texel's
 // hair range [near, far] (per-texel range, from the light depth-range map).
 // σ(z_i) at slice boundary i is the sum of the slices before it; σ(z) is
