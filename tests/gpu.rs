@@ -6,30 +6,20 @@
 //! own device so uncaptured GPU errors cannot be blamed on another test.
 
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, MutexGuard};
+use std::sync::MutexGuard;
 
 use image::RgbaImage;
 use plait::session::{SceneData, compile_checked, prepare};
 use plait_gpu::Gpu;
 use plait_graph::CompileOptions;
-use plait_tests::{bless, pipeline_files, rel, repo_root};
+use plait_tests::{bless, open_gpu, pipeline_files, rel, repo_root};
 
 /// Golden-image size and scene: small enough for a software rasterizer.
 const SIZE: (u32, u32) = (256, 192);
 const SCENE: &str = "examples/scenes/small.toml";
 
-static GPU_LOCK: Mutex<()> = Mutex::new(());
-
-/// Open the GPU or fail with the device crate's message, which says how to
-/// install lavapipe (`apt-get install -y mesa-vulkan-drivers`).
 fn gpu() -> (MutexGuard<'static, ()>, Gpu) {
-    let guard = GPU_LOCK
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    match Gpu::new() {
-        Ok(gpu) => (guard, gpu),
-        Err(e) => panic!("GPU tests need an adapter and none could be opened: {e}"),
-    }
+    open_gpu()
 }
 
 fn scene() -> SceneData {

@@ -50,7 +50,10 @@ impl FrameUniforms {
         let mean_alpha = if strands.alpha.is_empty() {
             1.0
         } else {
-            strands.alpha.iter().sum::<f32>() / strands.alpha.len() as f32
+            // Summed in f64: the mean of N equal alphas is that alpha exactly,
+            // whatever N (an f32 sum drifts with the count).
+            (strands.alpha.iter().map(|&a| a as f64).sum::<f64>() / strands.alpha.len() as f64)
+                as f32
         };
         let aspect = size.0 as f32 / size.1.max(1) as f32;
         let view = scene.camera.view();
@@ -108,8 +111,9 @@ impl FrameUniforms {
 
 /// The light's view and projection, fitted tightly to the hair so the light
 /// maps spend their texels on it (Halén & Wester 2007 §5.7):
-/// x/y cover the occluders, depth runs from the nearest occluder to the farthest
-/// receiver so hair shadows reach the ground.
+/// x/y cover the occluders (the hair), depth runs from the nearest object of
+/// the scene to the farthest receiver so hair shadows reach the ground and
+/// opaque objects between the light and the hair shadow it.
 #[derive(Clone, Copy, Debug)]
 pub struct LightFrustum {
     pub view: Mat4,
@@ -142,8 +146,12 @@ impl LightFrustum {
         let to_view = |p: Vec3| view.transform_point3(p);
         let occ: Vec<Vec3> = occluders.corners().into_iter().map(to_view).collect();
         let rec: Vec<Vec3> = receivers.corners().into_iter().map(to_view).collect();
+        // Anything nearer the light than the hair can shadow it, opaque objects
+        // included: the near plane takes every receiver too, or an opaque
+        // occluder in front of the hair would be clipped out of the shadow map.
         let near = occ
             .iter()
+            .chain(rec.iter())
             .map(|p| -p.z)
             .fold(f32::INFINITY, f32::min)
             .max(1e-3);
