@@ -688,7 +688,7 @@ pub fn run(args: AbArgs) -> Result<()> {
             order: "interleaved".into(),
             sets,
             reference: reference.display().to_string(),
-            metrics: "RMSE and PSNR (peak 1) on 8-bit sRGB RGB values normalized to 0..1; SSIM (Wang et al. 2004) on Rec.601 luma, 11×11 Gaussian window σ=1.5, K1=0.01, K2=0.03; ꟻLIP: LDR-FLIP (nv-flip) at 67 pixels per degree, mean of the error map".into(),
+            metrics: "RMSE and PSNR (peak 1) on 8-bit sRGB RGB values normalized to 0..1; SSIM (Wang et al. 2004) on Rec.601 luma, 11×11 Gaussian window σ=1.5, K1=0.01, K2=0.03; ꟻLIP: LDR-FLIP (nv-flip) at 67 pixels per degree, mean of the error map; visibility |ΔV|: every provider and the reference probed at the same points with the same light-map lookup (the texel the point falls in, no Fig. 9 jitter), hair in front = nearer the light by more than the self-shadow bias".into(),
             pipelines: pipelines_prov,
             builtin_shaders: builtin_shaders(),
             scenes: scene_hashes,

@@ -27,7 +27,17 @@ pub struct FrameUniforms {
     pub jitter: [f32; 4],
     pub near_far: [f32; 4],
     pub hair_stats: [f32; 4],
+    /// The comparison conventions every visibility provider shares
+    /// (docs/design.md, "In front of"): x = self-shadow bias in light linear
+    /// depth, y = 1 to jitter light-map lookups by up to half a texel
+    /// (Sintorn & Assarsson 2009 Fig. 9), 0 for exact texel lookups.
+    pub conventions: [f32; 4],
 }
+
+/// Hair nearer the light than a point by at most this much (world units) is
+/// not "in front of" it: the point's own fragment and strand never shadow it.
+/// About one strand's thickness in the scenes plait ships.
+pub const SELF_SHADOW_BIAS: f32 = 0.01;
 
 /// Size of `FrameUniforms` in bytes (also checked against the WGSL struct by a test).
 pub const FRAME_UNIFORMS_SIZE: u64 = std::mem::size_of::<FrameUniforms>() as u64;
@@ -95,6 +105,12 @@ impl FrameUniforms {
             ],
             jitter: [0.0, 0.0, 0.0, frame_index as f32],
             near_far: [scene.camera.near, scene.camera.far, light.near, light.far],
+            conventions: [
+                SELF_SHADOW_BIAS / (light.far - light.near).max(1e-6),
+                1.0,
+                0.0,
+                0.0,
+            ],
             hair_stats: [
                 (mean_alpha * scene.material.alpha).clamp(0.0, 1.0),
                 strands.strand_count() as f32,
@@ -102,6 +118,14 @@ impl FrameUniforms {
                 0.0,
             ],
         }
+    }
+
+    /// Whether light-map lookups are jittered (shading: yes, against
+    /// silhouette aliasing; measuring visibility: no, so every provider and
+    /// the reference read the same texel).
+    pub fn with_light_jitter(mut self, on: bool) -> Self {
+        self.conventions[1] = if on { 1.0 } else { 0.0 };
+        self
     }
 
     pub fn camera_view_proj(&self) -> Mat4 {

@@ -166,6 +166,12 @@ pub fn probe_visibility(
     let loaded = plait_graph::load_str(&probe_path, &text, sets)?;
     let schedule = check_pipeline(loaded, &opts)?;
     let prepared = build(gpu, schedule, &probe_path, scene, size)?;
+    // Like with like: every provider and the reference read the texel the
+    // point falls in (no Fig. 9 jitter, which is for shading), with the one
+    // "in front of" convention of the frame (docs/design.md).
+    prepared
+        .renderer
+        .set_frame(&scene.frame(size, 0).with_light_jitter(false));
     prepared.renderer.render()?;
     let bytes = prepared.renderer.read_buffer("probe_out")?;
     let values = bytes
