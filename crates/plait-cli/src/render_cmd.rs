@@ -84,6 +84,7 @@ pub fn render(
         &CompileOptions {
             screen: size,
             max_texture_dimension: u32::MAX,
+            max_buffer_binding_size: u64::MAX,
         },
     )?;
     let data = SceneData::new(scene.clone())?;

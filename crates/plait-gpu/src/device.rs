@@ -20,6 +20,8 @@ pub struct Capabilities {
     pub early_depth_test: bool,
     /// `max_texture_dimension_2d` of the adapter.
     pub max_texture_dimension: u32,
+    /// `max_storage_buffer_binding_size` of the adapter.
+    pub max_storage_buffer_binding_size: u64,
 }
 
 /// The device plait renders with.
@@ -142,6 +144,9 @@ impl Gpu {
             float32_blendable: features.contains(wgpu::Features::FLOAT32_BLENDABLE),
             early_depth_test: features.contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST),
             max_texture_dimension: limits.max_texture_dimension_2d,
+            max_storage_buffer_binding_size: limits
+                .max_storage_buffer_binding_size
+                .min(limits.max_buffer_size),
         };
         Ok(Gpu {
             adapter,

@@ -119,6 +119,17 @@ pub trait PassType: Send + Sync {
         default_threads(pass, schedule)
     }
 
+    /// Sizes the pass's shaders rely on that a pipeline file can get wrong
+    /// (u32 words per texel of a map), checked by `plait check` before any
+    /// GPU work; the message says what size would do.
+    fn check_sizes(
+        &self,
+        _pass: &ScheduledPass,
+        _resources: &[plait_graph::ResolvedResource],
+    ) -> Result<(), String> {
+        Ok(())
+    }
+
     /// Build the GPU objects of a pass. Types with loops of their own
     /// (depth peeling, k-means) override this; most use the default.
     fn build(
@@ -303,6 +314,9 @@ pub fn check_pass(
         }
     };
     let spec = t.spec();
+    if let Err(message) = t.check_sizes(pass, schedule_resources) {
+        errors.push(err(&pass.location, message));
+    }
     let bindings = reflect::bindings(&module);
     let group1: Vec<&ShaderBinding> = bindings.iter().filter(|b| b.group == 1).collect();
     for b in bindings.iter().filter(|b| b.group > 1) {

@@ -112,6 +112,24 @@ fn resolve_resource(
                 ));
                 return None;
             }
+            let limit = opts.max_buffer_binding_size;
+            if bytes as u64 > limit {
+                errors.push(bad(
+                    &size.location,
+                    format!(
+                        "buffer `{}` is {} ({bytes} bytes); a pass can bind at most {} ({limit} bytes) as storage{}",
+                        r.name,
+                        mib(bytes as u64),
+                        mib(limit),
+                        if limit == crate::schedule::DEFAULT_MAX_BUFFER_BINDING_SIZE {
+                            " — WebGPU's default limit, which `plait check` assumes; `plait render` uses the adapter's"
+                        } else {
+                            " on this adapter"
+                        }
+                    ),
+                ));
+                return None;
+            }
             Some(ResourceDesc::Buffer { size: bytes as u64 })
         }
         SizeDecl::Screen { .. } | SizeDecl::Extent { .. } => {
@@ -156,6 +174,16 @@ fn resolve_resource(
             };
             let layers = count(&r.layers, "layers")?;
             let samples = count(&r.samples, "samples")?;
+            if !crate::schedule::SAMPLE_COUNTS.contains(&samples) {
+                let at = r.samples.as_ref().map_or(&r.location, |v| &v.location);
+                errors.push(bad(
+                    at,
+                    format!(
+                        "samples is {samples}; no texture format allows it (counts are 1, 2, 4, 8 or 16, and each format allows a subset: rgba16float 1 or 4 on lavapipe)"
+                    ),
+                ));
+                return None;
+            }
             let format = r.format.as_ref()?.value;
             Some(ResourceDesc::Texture {
                 format,
@@ -905,4 +933,13 @@ fn plan_memory(resources: &mut [ResolvedResource]) -> (Vec<PhysicalResource>, Me
         unpooled_bytes: resources.iter().map(|r| r.desc.bytes()).sum(),
     };
     (physical, memory)
+}
+
+/// `1.5 MiB`, `1 GiB`: a byte count for messages.
+fn mib(bytes: u64) -> String {
+    if bytes >= 1 << 30 && bytes.is_multiple_of(1 << 30) {
+        format!("{} GiB", bytes >> 30)
+    } else {
+        format!("{:.1} MiB", bytes as f64 / (1u64 << 20) as f64)
+    }
 }

@@ -42,6 +42,7 @@ fn render(gpu: &Gpu, pipeline: &str, sets: &[String], material_alpha: f32) -> Re
     let opts = CompileOptions {
         screen: SIZE,
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
+        ..Default::default()
     };
     let mut schedule = plait_graph::compile(&loaded, &library.registry(), &opts)
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));

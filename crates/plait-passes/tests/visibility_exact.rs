@@ -152,6 +152,7 @@ fn probe(
     let opts = CompileOptions {
         screen: (MAP, MAP),
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
+        ..Default::default()
     };
     let library = plait_passes::library();
     let sets = [format!("params.light_size={MAP}")];
