@@ -85,6 +85,19 @@ fn light_linear_depth(world: vec3<f32>) -> f32 {
     return (view_z - frame.near_far.z) / (frame.near_far.w - frame.near_far.z);
 }
 
+// Light linear depth (as `light_linear_depth`) of a depth the light's
+// projection stored in a depth map: the same value for an orthographic
+// (directional) light; undone from the perspective of a spot light.
+fn light_depth_to_linear(stored: f32) -> f32 {
+    if (frame.light_direction.w < 0.5) {
+        return stored;
+    }
+    let n = frame.near_far.z;
+    let f = frame.near_far.w;
+    let distance = f * n / (f - stored * (f - n));
+    return (distance - n) / (f - n);
+}
+
 // Linear depth (0 at near, 1 at far) of a world-space point in the pass's
 // view: the light's for `view = "light"`, the camera's otherwise. The
 // occupancy maps slice this depth uniformly.

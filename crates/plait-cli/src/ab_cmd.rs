@@ -12,11 +12,11 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use plait::probe::{ProbeGrid, Probed, probe_visibility};
+use plait::probe::{ProbeGrid, Probed, probe_visibility, visibility_error};
 use plait::session::{Prepared, SceneData, compile_checked, prepare, resolve_pipeline};
 use plait_compare::report::{
     Adapter, FileHash, Memory, PassStats, PipelineProvenance, Provenance, Report, ResourceMemory,
-    Run, SCHEMA, SceneResult, Sweep, Timing, Variant, Visibility, VisibilityCurve,
+    Run, SCHEMA, SceneResult, Sweep, Timing, Variant,
 };
 use plait_compare::{Stats, heatmap};
 use plait_gpu::Gpu;
@@ -738,59 +738,6 @@ fn print_summary(report: &Report) {
                 run.metrics.flip_mean
             );
         }
-    }
-}
-
-/// Visibility of a variant against the reference along the probe rays: the
-/// mean and max |ΔV| over the samples of rays that pass through hair (the
-/// reference sees less than full light somewhere along them), and the curves
-/// of the four rays through the most hair.
-fn visibility_error(grid: &ProbeGrid, reference: &Probed, variant: &Probed) -> Visibility {
-    let depths = grid.depths as usize;
-    let rays = grid.ray_count();
-    let ray = |values: &[f32], r: usize| values[r * depths..(r + 1) * depths].to_vec();
-    let through_hair: Vec<usize> = (0..rays)
-        .filter(|&r| ray(&reference.values, r).iter().any(|&v| v < 0.999))
-        .collect();
-    let (mut sum, mut max, mut count) = (0.0f64, 0.0f64, 0usize);
-    for &r in &through_hair {
-        for (a, b) in ray(&reference.values, r)
-            .iter()
-            .zip(ray(&variant.values, r))
-        {
-            let e = (*a as f64 - b as f64).abs();
-            sum += e;
-            max = max.max(e);
-            count += 1;
-        }
-    }
-    let mut darkest = through_hair.clone();
-    darkest.sort_by(|&a, &b| {
-        reference.values[(a + 1) * depths - 1].total_cmp(&reference.values[(b + 1) * depths - 1])
-    });
-    let curves = darkest
-        .iter()
-        .take(4)
-        .map(|&r| {
-            let uv = grid.ray_uv(r as u32);
-            VisibilityCurve {
-                light_uv: uv,
-                depth: (0..grid.depths).map(|d| grid.depth(d) as f64).collect(),
-                exact: ray(&reference.values, r)
-                    .iter()
-                    .map(|&v| v as f64)
-                    .collect(),
-                approx: ray(&variant.values, r).iter().map(|&v| v as f64).collect(),
-            }
-        })
-        .collect();
-    Visibility {
-        provider: variant.visibility.clone(),
-        reference_provider: reference.visibility.clone(),
-        rays_through_hair: through_hair.len(),
-        curves,
-        mean_abs_error: if count > 0 { sum / count as f64 } else { 0.0 },
-        max_abs_error: max,
     }
 }
 
