@@ -55,9 +55,9 @@ impl DepthGuard {
     }
 
     /// Apply the guard to the composed module's fragment entry point.
-    pub fn apply(self, module: &mut naga::Module) -> Result<(), String> {
+    pub fn apply(self, module: &mut naga::Module) {
         match self {
-            DepthGuard::Unneeded => Ok(()),
+            DepthGuard::Unneeded => {}
             DepthGuard::EarlyTest => {
                 for ep in module
                     .entry_points
@@ -66,7 +66,6 @@ impl DepthGuard {
                 {
                     ep.early_depth_test = Some(naga::EarlyDepthTest::Force);
                 }
-                Ok(())
             }
             DepthGuard::InShader(compare) => insert_depth_test(module, compare),
         }
@@ -147,11 +146,11 @@ fn insert_depth_test(
         let mut member = None;
         if direct.is_none() {
             for (i, a) in f.arguments.iter().enumerate() {
-                if let TypeInner::Struct { members, .. } = &module.types[a.ty].inner {
-                    if let Some(m) = members.iter().position(|m| is_position(&m.binding)) {
-                        member = Some((i, m as u32));
-                        break;
-                    }
+                if let TypeInner::Struct { members, .. } = &module.types[a.ty].inner
+                    && let Some(m) = members.iter().position(|m| is_position(&m.binding))
+                {
+                    member = Some((i, m as u32));
+                    break;
                 }
             }
         }
@@ -244,5 +243,4 @@ fn insert_depth_test(
         guarded.append(&mut body);
         f.body = guarded;
     }
-    Ok(())
 }

@@ -670,7 +670,7 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             });
         }
     }
-    guard.apply(&mut module).map_err(|m| pass_error(pass, m))?;
+    guard.apply(&mut module);
 
     // Group 1 from reflection.
     let mut layout_entries = Vec::new();
