@@ -90,12 +90,9 @@ fn reject_op(compare: wgpu::CompareFunction) -> Option<BinaryOperator> {
 
 /// `if (position.z <reject> textureLoad(guard, vec2<i32>(position.xy), 0)) { discard; }`
 /// as the first statement of every fragment entry point.
-fn insert_depth_test(
-    module: &mut naga::Module,
-    compare: wgpu::CompareFunction,
-) -> Result<(), String> {
+fn insert_depth_test(module: &mut naga::Module, compare: wgpu::CompareFunction) {
     let Some(op) = reject_op(compare) else {
-        return Ok(());
+        return;
     };
     let depth_ty = module.types.insert(
         Type {
