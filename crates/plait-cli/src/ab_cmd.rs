@@ -252,15 +252,16 @@ impl Progress {
         }
     }
 
-    fn step(&mut self, message: String) {
+    fn step(&mut self, message: String) -> std::io::Result<()> {
         self.done += 1;
         match &self.bar {
             Some(b) => {
                 b.set_message(message);
                 b.inc(1);
             }
-            None => println!("[{}/{}] {message}", self.done, self.total),
+            None => outln!("[{}/{}] {message}", self.done, self.total)?,
         }
+        Ok(())
     }
 
     fn finish(&self) {
@@ -479,7 +480,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                 .with_context(|| {
                     format!("pipeline {} on scene {scene_name}", p.pipeline.display())
                 })?;
-            progress.step(format!("{scene_name}: built {}", p.label));
+            progress.step(format!("{scene_name}: built {}", p.label))?;
             prepared.push(pr);
         }
         if si == 0 {
@@ -522,7 +523,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                 .render()
                 .map_err(|e| anyhow::anyhow!("{e:#}"))
                 .with_context(|| format!("{} on scene {scene_name} (warm-up)", p.label))?;
-            progress.step(format!("{scene_name}: warm-up {}", p.label));
+            progress.step(format!("{scene_name}: warm-up {}", p.label))?;
         }
         let n = plans.len();
         let mut wall: Vec<Vec<f64>> = vec![Vec::new(); n];
@@ -555,7 +556,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                     r + 1,
                     args.repeats,
                     p.label
-                ));
+                ))?;
             }
         }
         // Images and metrics against the reference.
@@ -581,7 +582,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                     p.label
                 )
             })?;
-            progress.step(format!("{scene_name}: compared {}", p.label));
+            progress.step(format!("{scene_name}: compared {}", p.label))?;
             comparisons.push(c);
         }
         // Self-shadowing: every variant's visibility provider probed along the
@@ -606,7 +607,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                 }
                 None => None,
             };
-            progress.step(format!("{scene_name}: probed {}", p.label));
+            progress.step(format!("{scene_name}: probed {}", p.label))?;
             visibilities.push(v);
         }
         // One difference scale per scene, so the heat maps compare.
@@ -708,23 +709,29 @@ pub fn run(args: AbArgs) -> Result<()> {
     )?;
     let out = args.out.clone();
     pending.commit()?;
-    print_summary(&report);
-    println!("wrote {}", out.join("report.html").display());
+    print_summary(&report)?;
+    outln!("wrote {}", out.join("report.html").display())?;
     Ok(())
 }
 
-fn print_summary(report: &Report) {
+fn print_summary(report: &Report) -> std::io::Result<()> {
     for scene in &report.scenes {
-        println!("scene {}:", scene.name);
-        println!(
+        outln!("scene {}:", scene.name)?;
+        outln!(
             "{:<36} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8}",
-            "variant", "frame ms", "peak MiB", "RMSE", "PSNR", "SSIM", "FLIP"
-        );
+            "variant",
+            "frame ms",
+            "peak MiB",
+            "RMSE",
+            "PSNR",
+            "SSIM",
+            "FLIP"
+        )?;
         for run in &scene.runs {
             let Some(v) = report.variant(&run.variant) else {
                 continue;
             };
-            println!(
+            outln!(
                 "{:<36} {:>10} {:>10.2} {:>9.5} {:>9} {:>8.5} {:>8.5}",
                 v.label,
                 format!("{:.3}", plait_compare::report::cost_ms(&run.timing)),
@@ -736,9 +743,10 @@ fn print_summary(report: &Report) {
                     .unwrap_or_else(|| "inf".into()),
                 run.metrics.ssim,
                 run.metrics.flip_mean
-            );
+            )?;
         }
     }
+    Ok(())
 }
 
 /// Visibility of a variant against the reference along the probe rays: the

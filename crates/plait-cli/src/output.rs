@@ -1,4 +1,5 @@
-//! Output files written all at once: a temporary file beside the target,
+//! Standard output that reports a closed pipe instead of panicking, and
+//! output files written all at once: a temporary file beside the target,
 //! renamed into place only when complete, so a failure or an interrupt never
 //! leaves a half-written file. The temporary file is created before any GPU
 //! work, so an unwritable path fails at once.
@@ -7,6 +8,33 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+
+/// `println!` that returns the write error instead of panicking, so
+/// `plait passes | head -1` ends quietly when `head` closes the pipe
+/// (`main` turns a broken pipe into a silent exit).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*)
+    }};
+}
+
+/// `print!` counterpart of [`outln!`].
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        write!(std::io::stdout().lock(), $($arg)*)
+    }};
+}
+
+/// Whether an error is a write to a reader that went away (`| head`).
+pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
+    error.chain().any(|cause| {
+        cause
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
 
 pub struct PendingFile {
     path: PathBuf,

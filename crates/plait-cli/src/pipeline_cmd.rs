@@ -37,12 +37,12 @@ pub fn check(args: CheckArgs) -> Result<()> {
                 } else {
                     format!(", {} culled", s.culled.len())
                 };
-                println!(
+                outln!(
                     "ok  {}: {} passes{culled}, {} resources",
                     path.display(),
                     s.passes.len(),
                     s.resources.len()
-                );
+                )?;
             }
             Err(e) => failures.push(format!("{e:#}")),
         }
@@ -98,7 +98,7 @@ pub fn graph(args: GraphArgs) -> Result<()> {
     match out {
         Some(file) => file.commit(text.as_bytes()),
         None => {
-            print!("{text}");
+            out!("{text}")?;
             Ok(())
         }
     }
@@ -138,25 +138,25 @@ pub fn passes(args: PassesArgs) -> Result<()> {
     let specs: Vec<PassTypeSpec> = library.types.values().map(|t| t.spec()).collect();
     if args.json {
         let all: Vec<_> = specs.iter().map(spec_json).collect();
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&all).context("serializing pass specs")?
-        );
+        )?;
         return Ok(());
     }
     for spec in &specs {
-        println!("{} ({:?}) — {}", spec.name, spec.shape, spec.description);
+        outln!("{} ({:?}) — {}", spec.name, spec.shape, spec.description)?;
         if spec.source != "plait" {
-            println!("  source: {}", spec.source);
+            outln!("  source: {}", spec.source)?;
         }
         if spec.dynamic_slots {
-            println!(
+            outln!(
                 "  slots: the shader's group-1 bindings, matched by name; params fill its `params` uniform"
-            );
+            )?;
         }
         for (title, slots) in [("inputs", &spec.inputs), ("outputs", &spec.outputs)] {
             if !slots.is_empty() {
-                println!("  {title}:");
+                outln!("  {title}:")?;
             }
             for s in slots {
                 let mut flags = Vec::new();
@@ -175,14 +175,17 @@ pub fn passes(args: PassesArgs) -> Result<()> {
                     plait_graph::ResourceKind::Texture => format!(" ({})", s.formats),
                     plait_graph::ResourceKind::Buffer => String::new(),
                 };
-                println!(
+                outln!(
                     "    {:<12} {} {:?}{formats}{flags} — {}",
-                    s.name, s.kind, s.access, s.doc
-                );
+                    s.name,
+                    s.kind,
+                    s.access,
+                    s.doc
+                )?;
             }
         }
         if !spec.params.is_empty() {
-            println!("  params:");
+            outln!("  params:")?;
         }
         for p in &spec.params {
             let default = p
@@ -190,12 +193,12 @@ pub fn passes(args: PassesArgs) -> Result<()> {
                 .as_ref()
                 .map(|d| format!(" = {d}"))
                 .unwrap_or_else(|| " (required)".into());
-            println!("    {:<12} {:?}{default} — {}", p.name, p.ty, p.doc);
+            outln!("    {:<12} {:?}{default} — {}", p.name, p.ty, p.doc)?;
         }
         if !spec.required_features.is_empty() {
-            println!("  needs: {}", spec.required_features.join(", "));
+            outln!("  needs: {}", spec.required_features.join(", "))?;
         }
-        println!();
+        outln!()?;
     }
     Ok(())
 }

@@ -126,12 +126,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
         eprintln!("note: {note}");
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&report_json(&pipeline, &r, &args.out))?
-        );
+        )?;
     } else {
-        print_table(&pipeline, &r, &args.out);
+        print_table(&pipeline, &r, &args.out)?;
     }
     Ok(())
 }
@@ -204,40 +204,43 @@ fn ms(v: Option<f64>) -> String {
     v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "n/a".into())
 }
 
-fn print_table(pipeline: &Path, r: &Rendered, out: &Path) {
+fn print_table(pipeline: &Path, r: &Rendered, out: &Path) -> std::io::Result<()> {
     let s = &r.schedule;
-    println!(
+    outln!(
         "{} on {} ({}), {}x{}",
         pipeline.display(),
         r.adapter,
         r.backend,
         r.image.width(),
         r.image.height()
-    );
-    println!("{:<20} {:<16} {:>10}", "pass", "type", "GPU ms");
+    )?;
+    outln!("{:<20} {:<16} {:>10}", "pass", "type", "GPU ms")?;
     for (p, t) in s.passes.iter().zip(&r.report.passes) {
-        println!("{:<20} {:<16} {:>10}", p.name, p.type_name, ms(t.gpu_ms));
+        outln!("{:<20} {:<16} {:>10}", p.name, p.type_name, ms(t.gpu_ms))?;
     }
     for c in &s.culled {
-        println!(
+        outln!(
             "{:<20} {:<16} {:>10}  ({})",
-            c.pass.name, c.pass.type_name, "culled", c.reason
-        );
+            c.pass.name,
+            c.pass.type_name,
+            "culled",
+            c.reason
+        )?;
     }
-    println!(
+    outln!(
         "{:<20} {:<16} {:>10}",
         "frame",
         "",
         ms(r.report.total_gpu_ms)
-    );
+    )?;
     if r.report.total_gpu_ms.is_none() {
-        println!("(this adapter has no timestamp queries: GPU times are not available)");
+        outln!("(this adapter has no timestamp queries: GPU times are not available)")?;
     }
-    println!(
+    outln!(
         "memory: {:.2} MiB in {} allocations ({:.2} MiB without sharing)",
         s.memory.peak_bytes as f64 / 1048576.0,
         s.physical.len(),
         s.memory.unpooled_bytes as f64 / 1048576.0
-    );
-    println!("wrote {}", out.display());
+    )?;
+    outln!("wrote {}", out.display())
 }
