@@ -93,3 +93,40 @@ pub fn readable_by_all(path: &Path, mode: u32) {
     #[cfg(not(unix))]
     let _ = (path, mode);
 }
+
+/// The image format an output path asks for by its extension: `.png`, or
+/// `.jpg`/`.jpeg` (8-bit RGB, the alpha channel dropped). Anything else is
+/// refused before any work, rather than writing PNG bytes under another name.
+pub fn image_format(path: &Path, flag: &str) -> Result<image::ImageFormat> {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match extension.as_deref() {
+        Some("png") => Ok(image::ImageFormat::Png),
+        Some("jpg" | "jpeg") => Ok(image::ImageFormat::Jpeg),
+        Some(other) => anyhow::bail!(
+            "{flag} {}: cannot write `.{other}` images; use a .png or .jpg/.jpeg file name",
+            path.display()
+        ),
+        None => anyhow::bail!(
+            "{flag} {}: the file name needs an extension, .png or .jpg/.jpeg",
+            path.display()
+        ),
+    }
+}
+
+/// `image` encoded as `format` (from [`image_format`]).
+pub fn encode_image(image: &image::RgbaImage, format: image::ImageFormat) -> Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    let mut cursor = std::io::Cursor::new(&mut bytes);
+    if format == image::ImageFormat::Jpeg {
+        // JPEG has no alpha: the final images are opaque anyway.
+        image::DynamicImage::ImageRgba8(image.clone())
+            .to_rgb8()
+            .write_to(&mut cursor, format)
+    } else {
+        image.write_to(&mut cursor, format)
+    }
+    .with_context(|| format!("encoding {format:?}"))?;
+    Ok(bytes)
+}

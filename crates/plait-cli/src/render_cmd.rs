@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use plait::session::{SceneData, compile_checked, prepare, resolve_pipeline};
 use plait_gpu::{FrameReport, Gpu};
@@ -19,10 +19,10 @@ pub struct RenderArgs {
     /// Scene file (default: the built-in scene).
     #[arg(long)]
     scene: Option<PathBuf>,
-    /// Where to write the image.
+    /// Where to write the image: a .png, or a .jpg/.jpeg file.
     #[arg(long, default_value = "plait.png")]
     out: PathBuf,
-    /// Render size, `WIDTHxHEIGHT`.
+    /// Render size, `WIDTHxHEIGHT` (a lowercase or capital x).
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
     /// Write this texture resource instead of the pipeline's output (look at
@@ -37,7 +37,7 @@ pub struct RenderArgs {
     set: SetArgs,
 }
 
-/// `--size 960x720`.
+/// `--size 960x720` (`960X720` too: the README's `WxH` with either x).
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`{text}` is not WIDTHxHEIGHT (e.g. 960x720)");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
@@ -107,6 +107,7 @@ pub fn render(
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
+    let format = crate::output::image_format(&args.out, "--out")?;
     let out = PendingFile::create(&args.out, "--out")?;
     let pipeline = resolve_pipeline(args.pipeline.as_deref());
     let scene = load_scene(args.scene.as_deref())?;
@@ -117,11 +118,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         args.size,
         args.show.as_deref(),
     )?;
-    let mut png = Vec::new();
-    r.image
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .context("encoding PNG")?;
-    out.commit(&png)?;
+    out.commit(&crate::output::encode_image(&r.image, format)?)?;
     for note in &r.notes {
         eprintln!("note: {note}");
     }

@@ -24,6 +24,7 @@ pub mod load;
 pub mod schedule;
 pub mod snapshot;
 pub mod spec;
+pub mod suggest;
 pub mod value;
 
 pub use error::{Error, ErrorKind, Errors, Location, Spanned};

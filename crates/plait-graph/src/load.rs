@@ -99,10 +99,13 @@ pub struct PassDecl {
 /// Loads a pipeline file, following `extends` and applying `--set` flags
 /// (`overrides` holds the `key=value` texts).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Pipeline, Errors> {
+    // The file as a whole: a file that cannot be read has no line 1.
     let text = std::fs::read_to_string(path).map_err(|e| {
         Error::new(
-            file_location(path, 1, 1),
-            ErrorKind::Io(format!("{}: {e}", path.display())),
+            Location::Path {
+                path: path.to_path_buf(),
+            },
+            ErrorKind::Io(e.to_string()),
         )
     })?;
     load_str(path, &text, overrides)
@@ -141,6 +144,7 @@ pub fn location_order(a: &Location, b: &Location) -> std::cmp::Ordering {
     fn key(l: &Location) -> (u8, &Path, u32, u32, &str) {
         match l {
             Location::File { path, line, column } => (0, path.as_path(), *line, *column, ""),
+            Location::Path { path } => (0, path.as_path(), 0, 0, ""),
             Location::Flag { flag } => (1, Path::new(""), 0, 0, flag.as_str()),
             Location::Builtin => (2, Path::new(""), 0, 0, ""),
         }
@@ -399,6 +403,15 @@ fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>)
             None => break,
         }
     }
+    if let Err(reason) = check_override_target(&root.value, &path) {
+        return errors.push(Error::new(
+            location.clone(),
+            ErrorKind::UnknownSetKey {
+                key: key.trim().to_owned(),
+                reason,
+            },
+        ));
+    }
     let value_text = value_text.trim();
     // A value that starts like structured TOML must be valid TOML: a bare
     // word may be a string, but `[1,` is a mistake, not the text "[1,".
@@ -426,6 +439,94 @@ fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>)
         node = Spanned::new(Node::Table(table), location.clone());
     }
     merge(root, node);
+}
+
+/// A `--set` key must name something the pipeline has: a param, a pass, a
+/// resource, or a key such tables accept. A typo (`params.slice` for
+/// `params.slices`) would otherwise add a key nothing reads and be silently
+/// ignored. A pass's params and slots are checked against its type later,
+/// where a param the file leaves at its default can still be set.
+fn check_override_target(root: &Node, path: &[&str]) -> Result<(), String> {
+    let Node::Table(top) = root else {
+        return Ok(());
+    };
+    let keys_of = |section: &str| -> Vec<&str> {
+        match top.get(section).map(|e| &e.value.value) {
+            Some(Node::Table(t)) => t.keys().map(String::as_str).collect(),
+            _ => Vec::new(),
+        }
+    };
+    let unknown = |what: &str, name: &str, known: &[&str]| {
+        let list = if known.is_empty() {
+            "there are none".to_owned()
+        } else {
+            format!("known: {}", known.join(", "))
+        };
+        format!(
+            "there is no {what} `{name}`{} ({list})",
+            crate::suggest::did_you_mean(name, known.iter().copied())
+        )
+    };
+    let section = path[0];
+    if !TOP_KEYS.contains(&section) {
+        return Err(unknown("section", section, TOP_KEYS));
+    }
+    let Some(&name) = path.get(1) else {
+        return Ok(());
+    };
+    let field = path.get(2).copied();
+    match section {
+        "params" => {
+            let params = keys_of("params");
+            if !params.contains(&name) {
+                return Err(unknown("param", name, &params));
+            }
+        }
+        "passes" => {
+            let passes = keys_of("passes");
+            if !passes.contains(&name) {
+                return Err(unknown("pass", name, &passes));
+            }
+            if let Some(field) = field
+                && !PASS_KEYS.contains(&field)
+            {
+                return Err(unknown(
+                    &format!("key in [passes.{name}]"),
+                    field,
+                    PASS_KEYS,
+                ));
+            }
+        }
+        "resources" => {
+            let resources = keys_of("resources");
+            if !resources.contains(&name) {
+                return Err(unknown("resource", name, &resources));
+            }
+            let accepted: Vec<&str> = TEXTURE_KEYS
+                .iter()
+                .chain(BUFFER_KEYS)
+                .copied()
+                .collect::<indexmap::IndexSet<_>>()
+                .into_iter()
+                .collect();
+            if let Some(field) = field
+                && !accepted.contains(&field)
+            {
+                return Err(unknown(
+                    &format!("key in [resources.{name}]"),
+                    field,
+                    &accepted,
+                ));
+            }
+        }
+        "pipeline" => {
+            if !PIPELINE_KEYS.contains(&name) {
+                return Err(unknown("key in [pipeline]", name, PIPELINE_KEYS));
+            }
+        }
+        _ => {}
+    }
+    Ok(())
 }
 
 /// TOML if it parses (`64`, `0.5`, `[1, 2]`, `"x"`), else the bare text as
@@ -633,7 +734,8 @@ impl Builder<'_> {
                 self.schema(
                     &entry.key,
                     format!(
-                        "unknown key `{key}` in {context} (accepted: {})",
+                        "unknown key `{key}` in {context}{} (accepted: {})",
+                        crate::suggest::did_you_mean(key, accepted.iter().copied()),
                         accepted.join(", ")
                     ),
                 );
@@ -676,8 +778,9 @@ impl Builder<'_> {
             self.schema(
                 &s.location,
                 format!(
-                    "{context} is `{}`; accepted: {}",
+                    "{context} is `{}`{}; accepted: {}",
                     s.value,
+                    crate::suggest::did_you_mean(&s.value, accepted.iter().copied()),
                     accepted.join(", ")
                 ),
             );
