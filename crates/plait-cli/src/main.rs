@@ -13,6 +13,7 @@ mod ab_cmd;
 mod hair_cmd;
 mod pipeline_cmd;
 mod render_cmd;
+mod show;
 
 use std::io::Write as _;
 

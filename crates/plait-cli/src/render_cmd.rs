@@ -26,8 +26,9 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
     /// Write this texture resource instead of the pipeline's output (look at
-    /// any intermediate: a light map, the hair image, …). Floats are shown as
-    /// linear values encoded to sRGB, single channels as grey.
+    /// any intermediate: a light map, the hair image, …). Colour in 0…1 is
+    /// encoded to sRGB; other values (depths, ranges, counts) are mapped from
+    /// their smallest to their largest value, which a note reports.
     #[arg(long, value_name = "RESOURCE")]
     show: Option<String>,
     /// Print one JSON object on standard output instead of the table.
@@ -68,7 +69,8 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
 }
 
 /// Render `pipeline` on `scene` at `size`: compile and check without the GPU
-/// first, then open the device, build, render, read the first output.
+/// first, then open the device, build, render, read the first output (or the
+/// texture `show` names, checked before any GPU work).
 pub fn render(
     pipeline: &Path,
     sets: &[String],
@@ -76,33 +78,51 @@ pub fn render(
     size: (u32, u32),
     show: Option<&str>,
 ) -> Result<Rendered> {
+    let mut sets = sets.to_vec();
+    if let Some(name) = show {
+        let loaded = plait_graph::load(pipeline, &sets)?;
+        crate::show::check_name(&loaded, name)?;
+        sets.push(crate::show::extra_output_set(&loaded, name));
+    }
     // Everything that can fail without a GPU fails before one is opened.
     // The adapter's texture limit is checked once the device is open.
-    compile_checked(
+    let checked = compile_checked(
         pipeline,
-        sets,
+        &sets,
         &CompileOptions {
             screen: size,
             max_texture_dimension: u32::MAX,
         },
     )?;
+    if let Some(name) = show {
+        crate::show::check_readable(&checked, name)?;
+    }
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
-    let mut prepared = prepare(&gpu, pipeline, sets, &data, size)?;
+    let mut prepared = prepare(&gpu, pipeline, &sets, &data, size)?;
     if let Some(name) = show {
         prepared.output = name.to_owned();
     }
     // The first frame includes pipeline warm-up in the driver; time the second.
     prepared.renderer.render()?;
     let report = prepared.renderer.render()?;
-    let image = prepared.image()?;
+    let mut notes = prepared.renderer.notes().to_vec();
+    let image = match show {
+        Some(name) => {
+            let texels = prepared.renderer.read_resource(name)?;
+            let (image, note) = crate::show::picture(name, &texels);
+            notes.extend(note);
+            image
+        }
+        None => prepared.image()?,
+    };
     Ok(Rendered {
         schedule: prepared.schedule().clone(),
         report,
         image,
         adapter: gpu.adapter_name().to_owned(),
         backend: gpu.backend_name(),
-        notes: prepared.renderer.notes().to_vec(),
+        notes,
     })
 }
 
