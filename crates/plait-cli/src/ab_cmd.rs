@@ -362,11 +362,24 @@ fn builtin_shaders() -> Vec<FileHash> {
         .iter()
         .map(|(name, text)| hash_text(name, text))
         .collect();
+    // Several pass types share one WGSL file (hair_shade.wgsl serves six):
+    // list each file once, with the pass types that use it.
     let library = plait_passes::library();
+    let mut files: Vec<(&str, &str, Vec<&str>)> = Vec::new();
     for (type_name, t) in &library.types {
         if let Some((name, text)) = t.shader() {
-            out.push(hash_text(&format!("{name} (pass type {type_name})"), text));
+            match files.iter_mut().find(|(n, x, _)| *n == name && *x == text) {
+                Some((_, _, types)) => types.push(type_name),
+                None => files.push((name, text, vec![type_name])),
+            }
         }
+    }
+    for (name, text, types) in files {
+        let what = if types.len() == 1 { "type" } else { "types" };
+        out.push(hash_text(
+            &format!("{name} (pass {what} {})", types.join(", ")),
+            text,
+        ));
     }
     out
 }
