@@ -22,6 +22,7 @@ pub mod error;
 pub mod expr;
 pub mod format;
 pub mod load;
+mod overrides;
 pub mod schedule;
 pub mod snapshot;
 pub mod spec;
