@@ -499,18 +499,11 @@ pub fn run(args: AbArgs) -> Result<()> {
         if si == 0 {
             for (p, pr) in plans.iter().zip(&prepared) {
                 let s = pr.schedule();
-                let graph_file = match plait_graph::to_svg(s) {
-                    Ok(svg) => {
-                        let name = format!("graph-{}.svg", p.id);
-                        pending.write(&name, svg.as_bytes())?;
-                        graphs.push((p.id.clone(), svg));
-                        Some(name)
-                    }
-                    Err(e) => {
-                        eprintln!("warning: {}: {e}", p.label);
-                        None
-                    }
-                };
+                let svg = plait_graph::to_svg(s);
+                let graph_name = format!("graph-{}.svg", p.id);
+                pending.write(&graph_name, svg.as_bytes())?;
+                graphs.push((p.id.clone(), svg));
+                let graph_file = Some(graph_name);
                 if !pipelines_prov
                     .iter()
                     .any(|pp| pp.path == p.pipeline.display().to_string())

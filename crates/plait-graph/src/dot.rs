@@ -15,16 +15,10 @@ pub fn to_dot(schedule: &Schedule) -> String {
     render(schedule)
 }
 
-/// Why an SVG could not be drawn (kept for callers; drawing the grid
-/// picture cannot fail).
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("cannot draw the schedule as SVG: {0}")]
-pub struct SvgError(pub String);
-
 /// An SVG picture of the schedule: passes as rows, resources as lifetime
 /// columns (see [`crate::svg`]).
-pub fn to_svg(schedule: &Schedule) -> Result<String, SvgError> {
-    Ok(crate::svg::schedule_svg(schedule))
+pub fn to_svg(schedule: &Schedule) -> String {
+    crate::svg::schedule_svg(schedule)
 }
 
 /// Escapes one piece of label text for a DOT string.
