@@ -252,15 +252,16 @@ impl Progress {
         }
     }
 
-    fn step(&mut self, message: String) {
+    fn step(&mut self, message: String) -> std::io::Result<()> {
         self.done += 1;
         match &self.bar {
             Some(b) => {
                 b.set_message(message);
                 b.inc(1);
             }
-            None => println!("[{}/{}] {message}", self.done, self.total),
+            None => outln!("[{}/{}] {message}", self.done, self.total)?,
         }
+        Ok(())
     }
 
     fn finish(&self) {
@@ -361,11 +362,24 @@ fn builtin_shaders() -> Vec<FileHash> {
         .iter()
         .map(|(name, text)| hash_text(name, text))
         .collect();
+    // Several pass types share one WGSL file (hair_shade.wgsl serves six):
+    // list each file once, with the pass types that use it.
     let library = plait_passes::library();
+    let mut files: Vec<(&str, &str, Vec<&str>)> = Vec::new();
     for (type_name, t) in &library.types {
         if let Some((name, text)) = t.shader() {
-            out.push(hash_text(&format!("{name} (pass type {type_name})"), text));
+            match files.iter_mut().find(|(n, x, _)| *n == name && *x == text) {
+                Some((_, _, types)) => types.push(type_name),
+                None => files.push((name, text, vec![type_name])),
+            }
         }
+    }
+    for (name, text, types) in files {
+        let what = if types.len() == 1 { "type" } else { "types" };
+        out.push(hash_text(
+            &format!("{name} (pass {what} {})", types.join(", ")),
+            text,
+        ));
     }
     out
 }
@@ -479,24 +493,17 @@ pub fn run(args: AbArgs) -> Result<()> {
                 .with_context(|| {
                     format!("pipeline {} on scene {scene_name}", p.pipeline.display())
                 })?;
-            progress.step(format!("{scene_name}: built {}", p.label));
+            progress.step(format!("{scene_name}: built {}", p.label))?;
             prepared.push(pr);
         }
         if si == 0 {
             for (p, pr) in plans.iter().zip(&prepared) {
                 let s = pr.schedule();
-                let graph_file = match plait_graph::to_svg(s) {
-                    Ok(svg) => {
-                        let name = format!("graph-{}.svg", p.id);
-                        pending.write(&name, svg.as_bytes())?;
-                        graphs.push((p.id.clone(), svg));
-                        Some(name)
-                    }
-                    Err(e) => {
-                        eprintln!("warning: {}: {e}", p.label);
-                        None
-                    }
-                };
+                let svg = plait_graph::to_svg(s);
+                let graph_name = format!("graph-{}.svg", p.id);
+                pending.write(&graph_name, svg.as_bytes())?;
+                graphs.push((p.id.clone(), svg));
+                let graph_file = Some(graph_name);
                 if !pipelines_prov
                     .iter()
                     .any(|pp| pp.path == p.pipeline.display().to_string())
@@ -522,7 +529,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                 .render()
                 .map_err(|e| anyhow::anyhow!("{e:#}"))
                 .with_context(|| format!("{} on scene {scene_name} (warm-up)", p.label))?;
-            progress.step(format!("{scene_name}: warm-up {}", p.label));
+            progress.step(format!("{scene_name}: warm-up {}", p.label))?;
         }
         let n = plans.len();
         let mut wall: Vec<Vec<f64>> = vec![Vec::new(); n];
@@ -555,7 +562,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                     r + 1,
                     args.repeats,
                     p.label
-                ));
+                ))?;
             }
         }
         // Images and metrics against the reference.
@@ -581,7 +588,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                     p.label
                 )
             })?;
-            progress.step(format!("{scene_name}: compared {}", p.label));
+            progress.step(format!("{scene_name}: compared {}", p.label))?;
             comparisons.push(c);
         }
         // Self-shadowing: every variant's visibility provider probed along the
@@ -606,7 +613,7 @@ pub fn run(args: AbArgs) -> Result<()> {
                 }
                 None => None,
             };
-            progress.step(format!("{scene_name}: probed {}", p.label));
+            progress.step(format!("{scene_name}: probed {}", p.label))?;
             visibilities.push(v);
         }
         // One difference scale per scene, so the heat maps compare.
@@ -708,23 +715,29 @@ pub fn run(args: AbArgs) -> Result<()> {
     )?;
     let out = args.out.clone();
     pending.commit()?;
-    print_summary(&report);
-    println!("wrote {}", out.join("report.html").display());
+    print_summary(&report)?;
+    outln!("wrote {}", out.join("report.html").display())?;
     Ok(())
 }
 
-fn print_summary(report: &Report) {
+fn print_summary(report: &Report) -> std::io::Result<()> {
     for scene in &report.scenes {
-        println!("scene {}:", scene.name);
-        println!(
+        outln!("scene {}:", scene.name)?;
+        outln!(
             "{:<36} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8}",
-            "variant", "frame ms", "peak MiB", "RMSE", "PSNR", "SSIM", "FLIP"
-        );
+            "variant",
+            "frame ms",
+            "peak MiB",
+            "RMSE",
+            "PSNR",
+            "SSIM",
+            "FLIP"
+        )?;
         for run in &scene.runs {
             let Some(v) = report.variant(&run.variant) else {
                 continue;
             };
-            println!(
+            outln!(
                 "{:<36} {:>10} {:>10.2} {:>9.5} {:>9} {:>8.5} {:>8.5}",
                 v.label,
                 format!("{:.3}", plait_compare::report::cost_ms(&run.timing)),
@@ -736,9 +749,10 @@ fn print_summary(report: &Report) {
                     .unwrap_or_else(|| "inf".into()),
                 run.metrics.ssim,
                 run.metrics.flip_mean
-            );
+            )?;
         }
     }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -225,7 +225,14 @@ fn check_param(spec: &ParamSpec, value: &Value, opts: &CompileOptions) -> Result
             .ok_or_else(|| format!("expected a string, found {value}")),
         ParamType::Enum(choices) => match value.as_str() {
             Some(s) if choices.iter().any(|c| c == s) => Ok(Value::Str(s.to_owned())),
-            _ => Err(format!("{value} is not one of: {}", choices.join(", "))),
+            _ => Err(format!(
+                "{value} is not one of: {}{}",
+                choices.join(", "),
+                value
+                    .as_str()
+                    .map(|s| crate::suggest::did_you_mean(s, choices.iter().map(String::as_str)))
+                    .unwrap_or_default()
+            )),
         },
         ParamType::Vec3 => match value.as_vec3() {
             Some(v) => Ok(Value::List(
@@ -438,7 +445,13 @@ fn bind_slots(
         let Some(index) = pipeline.resources.get_index_of(&resource.value) else {
             errors.push(Error::new(
                 resource.location.clone(),
-                ErrorKind::UndeclaredResource(resource.value.clone()),
+                ErrorKind::UndeclaredResource {
+                    name: resource.value.clone(),
+                    hint: crate::suggest::did_you_mean(
+                        &resource.value,
+                        pipeline.resources.keys().map(String::as_str),
+                    ),
+                },
             ));
             continue;
         };
@@ -563,7 +576,13 @@ fn check_outputs(
         match pipeline.resources.get_index_of(&output.value) {
             None => errors.push(Error::new(
                 output.location.clone(),
-                ErrorKind::UnknownOutput(output.value.clone()),
+                ErrorKind::UnknownOutput {
+                    name: output.value.clone(),
+                    hint: crate::suggest::did_you_mean(
+                        &output.value,
+                        pipeline.resources.keys().map(String::as_str),
+                    ),
+                },
             )),
             Some(i) if !passes.iter().any(|p| writes_to(p, i).is_some()) => {
                 errors.push(Error::new(
