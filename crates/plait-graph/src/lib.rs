@@ -28,6 +28,7 @@ pub mod snapshot;
 pub mod spec;
 pub mod suggest;
 pub mod svg;
+pub mod techniques;
 pub mod value;
 
 pub use error::{Error, ErrorKind, Errors, Location, Spanned};

@@ -21,6 +21,7 @@ use crate::error::{Error, ErrorKind, Errors, Location, Spanned};
 use crate::format::Format;
 use crate::overrides::apply_override;
 use crate::spec::ResourceKind;
+use crate::techniques::apply_techniques;
 use crate::value::Value;
 
 /// A loaded pipeline file (after `extends`, `--set` and `${param}`), not yet
@@ -29,8 +30,10 @@ use crate::value::Value;
 pub struct Pipeline {
     pub name: Spanned<String>,
     pub description: Spanned<String>,
-    /// The pipeline file and every file it extends, child first.
+    /// The pipeline file, every file it extends, then the technique files.
     pub files: Vec<PathBuf>,
+    /// `[techniques]`: the technique chosen for each choice point.
+    pub techniques: Vec<crate::schedule::ChosenTechnique>,
     pub outputs: Vec<Spanned<String>>,
     /// `[params]` with every `${…}` resolved.
     pub params: IndexMap<String, Spanned<Value>>,
@@ -124,14 +127,31 @@ pub fn load_str(
     let mut chain = Vec::new();
     let mut root = load_chain(path_for_messages, text, &mut chain, &mut files)?;
     let mut errors = Vec::new();
-    for flag in overrides {
+    // Technique choices first, so `--set` can reach the params, resources and
+    // passes of the technique it chose.
+    let (choices, rest): (Vec<&String>, Vec<&String>) = overrides
+        .iter()
+        .partition(|f| f.trim_start().starts_with("techniques."));
+    for flag in choices {
+        apply_override(&mut root, flag, &mut errors);
+    }
+    let mut techniques = Vec::new();
+    if errors.is_empty() {
+        techniques = apply_techniques(&mut root, path_for_messages, &mut files, &mut errors);
+    }
+    if !errors.is_empty() {
+        errors.sort_by(|a, b| location_order(&a.location, &b.location));
+        return Err(Errors(errors));
+    }
+    for flag in rest {
         apply_override(&mut root, flag, &mut errors);
     }
     if !errors.is_empty() {
         return Err(Errors(errors));
     }
     let root = substitute_params(root, &mut errors);
-    let pipeline = build_pipeline(root, files, path_for_messages, &mut errors);
+    let mut pipeline = build_pipeline(root, files, path_for_messages, &mut errors);
+    pipeline.techniques = techniques;
     if errors.is_empty() {
         Ok(pipeline)
     } else {
@@ -216,7 +236,7 @@ impl<'a> SourceMap<'a> {
     }
 }
 
-fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
+pub(crate) fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
     let map = SourceMap::new(path, text);
     let table = toml::de::DeTable::parse(text).map_err(|e| {
         let location = map.location(e.span().map_or(0, |s| s.start));
@@ -504,12 +524,12 @@ fn whole_reference(s: &str) -> Option<&str> {
 // ---------------------------------------------------------------------------
 // Schema
 
-pub(crate) const TOP_KEYS: &[&str] = &["pipeline", "params", "resources", "passes"];
+pub(crate) const TOP_KEYS: &[&str] = &["pipeline", "techniques", "params", "resources", "passes"];
 pub(crate) const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "outputs"];
 pub(crate) const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
 pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size"];
 pub(crate) const PASS_KEYS: &[&str] = &[
-    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled",
+    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses",
 ];
 const VIEWS: &[&str] = &["light", "camera"];
 const DRAWS: &[&str] = &["hair", "opaque"];
@@ -625,6 +645,7 @@ fn build_pipeline(
         name: Spanned::new(String::new(), root_location.clone()),
         description: Spanned::new(String::new(), root_location.clone()),
         files,
+        techniques: Vec::new(),
         outputs: Vec::new(),
         params: IndexMap::new(),
         resources: IndexMap::new(),
