@@ -24,6 +24,7 @@ pub mod format;
 pub mod load;
 mod overrides;
 pub mod schedule;
+mod shader_path;
 pub mod snapshot;
 pub mod spec;
 pub mod suggest;
