@@ -1,10 +1,12 @@
-//! The charts of a scene: error against cost, and error and cost against swept values.
+//! The charts of a scene: error against cost; with sweeps, error and cost
+//! against the first sweep's values; with two sweeps, the grid of every
+//! combination as coloured cells.
 
-use crate::plot::{Chart, Point, Series, svg};
+use crate::plot::{Chart, Grid, Point, Series, grid_svg, svg};
 
 use super::{Report, Run, SceneResult, Variant, cost_ms};
 
-fn cost_label(report: &Report) -> &'static str {
+pub(super) fn cost_label(report: &Report) -> &'static str {
     if report.provenance.timestamps {
         "GPU ms per frame (median)"
     } else {
@@ -24,8 +26,68 @@ fn sweep_x(values: &[String]) -> (Vec<f64>, bool) {
     }
 }
 
-/// Every chart of a scene: error vs cost (marker area ∝ peak memory), and
-/// with a sweep, error and cost against the swept value.
+/// Runs drawn as one series: their name and the runs.
+struct Group<'r> {
+    name: String,
+    runs: Vec<(&'r Run, &'r Variant)>,
+}
+
+/// A scene's runs grouped into series: by pipeline, and by the values of
+/// the sweeps from `split_from` on (so the points of a series differ only
+/// in the sweeps before it). The reference is a group of its own.
+fn groups<'r>(report: &'r Report, scene: &'r SceneResult, split_from: usize) -> Vec<Group<'r>> {
+    let mut keyed: Vec<((String, Vec<&str>), Group<'r>)> = Vec::new();
+    for run in &scene.runs {
+        let Some(v) = report.variant(&run.variant) else {
+            continue;
+        };
+        let rest: Vec<&str> = v
+            .sweep_values
+            .values()
+            .skip(split_from)
+            .map(String::as_str)
+            .collect();
+        let key = (v.pipeline.clone(), rest);
+        let key = if v.is_reference {
+            (format!("{} (reference)", v.pipeline), Vec::new())
+        } else {
+            key
+        };
+        match keyed.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, group)) => group.runs.push((run, v)),
+            None => {
+                let name = if v.is_reference {
+                    format!("{} (reference)", v.pipeline_stem())
+                } else {
+                    let shared: Vec<String> = v
+                        .sweep_values
+                        .iter()
+                        .skip(split_from)
+                        .map(|(k, x)| format!("{k}={x}"))
+                        .collect();
+                    if shared.is_empty() {
+                        v.pipeline_stem()
+                    } else {
+                        format!("{} [{}]", v.pipeline_stem(), shared.join(", "))
+                    }
+                };
+                keyed.push((
+                    key,
+                    Group {
+                        name,
+                        runs: vec![(run, v)],
+                    },
+                ));
+            }
+        }
+    }
+    keyed.into_iter().map(|(_, group)| group).collect()
+}
+
+/// Every chart of a scene: error vs cost (marker area ∝ peak memory); with
+/// sweeps, error and cost against the first sweep's values (one line per
+/// pipeline and value of the second sweep); with two sweeps, each
+/// pipeline's grid of error and of cost.
 pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
     let max_mem = report
         .variants
@@ -35,76 +97,53 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
         .unwrap_or(1)
         .max(1) as f64;
     let radius = |bytes: u64| 3.0 + 13.0 * (bytes as f64 / max_mem).sqrt();
-    // Group runs by pipeline (sweep points of one pipeline form one series).
-    let mut groups: Vec<(String, Vec<(&Run, &Variant)>)> = Vec::new();
-    for run in &scene.runs {
-        let Some(v) = report.variant(&run.variant) else {
-            continue;
-        };
-        let key = if v.is_reference {
-            format!("{} (reference)", v.pipeline_stem())
-        } else {
-            v.pipeline.clone()
-        };
-        match groups.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, list)) => list.push((run, v)),
-            None => groups.push((key, vec![(run, v)])),
-        }
-    }
-    let name_of = |key: &str, list: &[(&Run, &Variant)]| {
-        list.first()
-            .map(|(_, v)| {
-                if v.is_reference {
-                    key.to_string()
-                } else {
-                    v.pipeline_stem()
-                }
-            })
-            .unwrap_or_default()
-    };
-    let mut charts = Vec::new();
-    let series = |y: &dyn Fn(&Run) -> f64,
+    let series = |groups: &[Group<'_>],
+                  joined: bool,
+                  y: &dyn Fn(&Run) -> f64,
                   x: &dyn Fn(&Run, &Variant) -> Option<f64>,
                   sized: bool|
      -> Vec<Series> {
         groups
             .iter()
-            .map(|(key, list)| Series {
-                name: name_of(key, list),
-                line: list.len() > 1,
-                points: list
+            .map(|group| Series {
+                name: group.name.clone(),
+                line: joined && group.runs.len() > 1,
+                points: group
+                    .runs
                     .iter()
                     .filter_map(|(r, v)| {
                         Some(Point {
                             x: x(r, v)?,
                             y: y(r),
-                            size: if sized {
-                                Some(radius(v.memory.peak_bytes))
-                            } else {
-                                None
-                            },
-                            label: v.sweep_value.clone(),
+                            size: sized.then(|| radius(v.memory.peak_bytes)),
+                            label: v.sweep_label(),
                         })
                     })
                     .collect(),
             })
             .collect()
     };
+    let mut charts = Vec::new();
+    // A line through a pipeline's points follows one sweep; across a grid
+    // it would zig-zag, so grid points stand alone here.
+    let by_pipeline = groups(report, scene, report.sweeps.len());
     charts.push(svg(&Chart {
         title: format!("{}: error vs cost", scene.name),
         x_label: cost_label(report).into(),
         y_label: "ꟻLIP mean vs reference".into(),
         note: Some("marker area ∝ peak memory; labels: sweep value".into()),
         series: series(
+            &by_pipeline,
+            report.sweeps.len() < 2,
             &|r| r.metrics.flip_mean,
             &|r, _| Some(cost_ms(&r.timing)),
             true,
         ),
     }));
-    if let Some(sw) = &report.sweep {
+    if let Some(sw) = report.sweeps.first() {
         let (xs, numeric) = sweep_x(&sw.values);
         let x_of = |_: &Run, v: &Variant| -> Option<f64> {
-            let val = v.sweep_value.as_ref()?;
+            let val = v.sweep_values.get(&sw.key)?;
             sw.values.iter().position(|s| s == val).map(|i| xs[i])
         };
         let x_label = if numeric {
@@ -112,6 +151,7 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
         } else {
             format!("{} (index: {})", sw.key, sw.values.join(", "))
         };
+        let lines = groups(report, scene, 1);
         for (title, y_label, y) in [
             (
                 "ꟻLIP mean",
@@ -126,12 +166,85 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
                 x_label: x_label.clone(),
                 y_label: y_label.into(),
                 note: None,
-                series: series(y, &x_of, false)
+                series: series(&lines, true, y, &x_of, false)
                     .into_iter()
                     .filter(|s| !s.points.is_empty())
                     .collect(),
             }));
         }
     }
+    if let [rows, columns] = report.sweeps.as_slice() {
+        for pipeline in grid_pipelines(report) {
+            for (what, value) in [
+                (
+                    "ꟻLIP mean",
+                    &(|r: &Run| Some(r.metrics.flip_mean)) as &dyn Fn(&Run) -> Option<f64>,
+                ),
+                (cost_label(report), &|r: &Run| Some(cost_ms(&r.timing))),
+            ] {
+                charts.push(grid_svg(&Grid {
+                    title: format!("{}: {} — {what}", scene.name, stem(pipeline)),
+                    row_label: rows.key.clone(),
+                    column_label: columns.key.clone(),
+                    rows: rows.values.clone(),
+                    columns: columns.values.clone(),
+                    cells: grid_cells(report, scene, pipeline, value),
+                    note: Some("darker = larger".into()),
+                }));
+            }
+        }
+    }
     charts
+}
+
+fn stem(pipeline: &str) -> String {
+    std::path::Path::new(pipeline)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| pipeline.to_string())
+}
+
+/// The pipelines swept over the grid, in the order of the variants.
+pub(super) fn grid_pipelines(report: &Report) -> Vec<&str> {
+    let mut out: Vec<&str> = Vec::new();
+    for v in report.variants.iter().filter(|v| !v.is_reference) {
+        if !out.contains(&v.pipeline.as_str()) {
+            out.push(&v.pipeline);
+        }
+    }
+    out
+}
+
+/// `cells[row][column]` of one pipeline on one scene: `value` of the run at
+/// the first sweep's row-th value and the second sweep's column-th value
+/// (`None` when there is no such run, or no such value).
+pub(super) fn grid_cells(
+    report: &Report,
+    scene: &SceneResult,
+    pipeline: &str,
+    value: &dyn Fn(&Run) -> Option<f64>,
+) -> Vec<Vec<Option<f64>>> {
+    let [rows, columns] = report.sweeps.as_slice() else {
+        return Vec::new();
+    };
+    let at = |row: &str, column: &str| {
+        scene.runs.iter().find(|run| {
+            report.variant(&run.variant).is_some_and(|v| {
+                !v.is_reference
+                    && v.pipeline == pipeline
+                    && v.sweep_values.get(&rows.key).map(String::as_str) == Some(row)
+                    && v.sweep_values.get(&columns.key).map(String::as_str) == Some(column)
+            })
+        })
+    };
+    rows.values
+        .iter()
+        .map(|row| {
+            columns
+                .values
+                .iter()
+                .map(|column| at(row, column).and_then(value))
+                .collect()
+        })
+        .collect()
 }

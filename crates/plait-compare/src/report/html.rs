@@ -5,7 +5,8 @@ use std::fmt::Write as _;
 use crate::Stats;
 use crate::plot::{Chart, Point, Series, escape, svg};
 
-use super::{FileHash, Provenance, Report, Variant, scene_charts};
+use super::charts::{cost_label, grid_cells, grid_pipelines};
+use super::{FileHash, Provenance, Report, Run, SceneResult, Variant, cost_ms, scene_charts};
 
 fn ms(s: &Option<Stats>) -> String {
     match s {
@@ -100,7 +101,7 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
                 "<tr{}><td class=l>{}</td><td class=l>{}</td><td>{}</td><td class=l>{}</td><td>{:.3}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 if v.is_reference { " class=ref" } else { "" },
                 escape(&v.label),
-                escape(v.sweep_value.as_deref().unwrap_or("")),
+                escape(&v.sweep_label().unwrap_or_default()),
                 ms(&run.timing.total_gpu_ms),
                 spread(&run.timing.total_gpu_ms),
                 run.timing.wall_ms.median,
@@ -113,6 +114,7 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
             );
         }
         h.push_str("</table>");
+        h.push_str(&grid_tables(report, scene));
 
         // Images.
         let _ = write!(
@@ -328,7 +330,7 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     row(&mut h, "command", &p.command_line);
     row(&mut h, "working directory", &p.working_directory);
     row(&mut h, "--set", &p.sets.join(" "));
-    if let Some(sw) = &report.sweep {
+    for sw in &report.sweeps {
         row(
             &mut h,
             "--sweep",
@@ -354,6 +356,64 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     }
     h.push_str("</table><p class=note>Every number above is in report.json.</p>");
     let _ = write!(h, "<script>{JS}</script></body></html>");
+    h
+}
+
+/// With two sweeps, each pipeline's numbers as tables: a row per value of
+/// the first sweep, a column per value of the second (empty without).
+fn grid_tables(report: &Report, scene: &SceneResult) -> String {
+    let [rows, columns] = report.sweeps.as_slice() else {
+        return String::new();
+    };
+    let with_visibility = scene.runs.iter().any(|r| r.visibility.is_some());
+    let mut measures: Vec<(&str, usize, &dyn Fn(&Run) -> Option<f64>)> = vec![
+        ("ꟻLIP mean", 5, &|r| Some(r.metrics.flip_mean)),
+        ("RMSE", 5, &|r| Some(r.metrics.rmse)),
+        (cost_label(report), 3, &|r| Some(cost_ms(&r.timing))),
+    ];
+    if with_visibility {
+        measures.push(("mean |ΔV| (self-shadowing)", 4, &|r| {
+            r.visibility.as_ref().map(|v| v.mean_abs_error)
+        }));
+    }
+    let mut h = String::new();
+    for pipeline in grid_pipelines(report) {
+        let _ = write!(
+            h,
+            "<h4>{}: {} (rows) × {} (columns)</h4><div class=grid>",
+            escape(pipeline),
+            escape(&rows.key),
+            escape(&columns.key)
+        );
+        for (what, digits, value) in &measures {
+            let cells = grid_cells(report, scene, pipeline, *value);
+            let _ = write!(
+                h,
+                "<table><caption style=\"text-align:left;font-weight:bold\">{}</caption><tr><th class=l>{} \\ {}</th>",
+                escape(what),
+                escape(&rows.key),
+                escape(&columns.key)
+            );
+            for c in &columns.values {
+                let _ = write!(h, "<th>{}</th>", escape(c));
+            }
+            h.push_str("</tr>");
+            for (name, row) in rows.values.iter().zip(&cells) {
+                let _ = write!(h, "<tr><th class=l>{}</th>", escape(name));
+                for cell in row {
+                    match cell {
+                        Some(v) => {
+                            let _ = write!(h, "<td>{}</td>", num(*v, *digits));
+                        }
+                        None => h.push_str("<td>–</td>"),
+                    }
+                }
+                h.push_str("</tr>");
+            }
+            h.push_str("</table>");
+        }
+        h.push_str("</div>");
+    }
     h
 }
 

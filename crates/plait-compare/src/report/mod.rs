@@ -2,10 +2,10 @@
 //! self-contained `report.html` (inline CSS, JS and SVG; images referenced
 //! relatively from the report's directory, so it opens from disk offline).
 //!
-//! # `report.json` (schema `plait-ab/1`)
+//! # `report.json` (schema `plait-ab/2`)
 //! ```text
-//! { schema, provenance {…}, sweep: {key, values} | null,
-//!   variants: [ {id, label, pipeline, is_reference, sweep_value, sets, schedule_name,
+//! { schema, provenance {…}, sweeps: [ {key, values} ],
+//!   variants: [ {id, label, pipeline, is_reference, sweep_values: {key: value, …}, sets, schedule_name,
 //!                memory {peak_bytes, unpooled_bytes, allocations, resources: [{name, desc, bytes, shares_memory_with}]},
 //!                graph_svg: file name | null} ],
 //!   scenes: [ {name, path, reference_image,
@@ -16,12 +16,18 @@
 //! ```
 //! `Stats` is `{median, min, max, q1, q3, samples}` in milliseconds.
 //!
-//! `visibility` is reserved for self-shadowing error (Figure 5 of the
-//! occupancy-map paper): for variants whose pipeline produces a visibility
-//! provider, curves of visibility against depth for sampled light texels
-//! (exact and reconstructed) with the mean and max absolute error over the
-//! hair fragments. `plait ab` does not compute it yet and writes `null`; the
-//! HTML report draws the curves whenever it is filled.
+//! `sweeps` holds the `--sweep`s in order: none, one (a variant per value)
+//! or two (a grid: every combination; the HTML tables put the first sweep's
+//! values in rows and the second's in columns). A variant's `sweep_values`
+//! names its value of each sweep, keys in the order of `sweeps` (empty for
+//! the reference and without sweeps). Schema 1 had one `sweep` (or `null`)
+//! and a `sweep_value` per variant.
+//!
+//! `visibility` is the self-shadowing error (Sintorn & Assarsson 2009
+//! Fig. 5): for variants whose pipeline has a visibility provider, curves of
+//! visibility against depth along probe rays from the light (the
+//! reference's and the variant's) with the mean and max absolute error over
+//! the rays through the hair; `null` when the reference has no provider.
 
 mod charts;
 mod html;
@@ -31,17 +37,19 @@ mod tests;
 pub use charts::scene_charts;
 pub use html::html;
 
+use indexmap::IndexMap;
 use serde::Serialize;
 
 use crate::{Metrics, Stats};
 
-pub const SCHEMA: &str = "plait-ab/1";
+pub const SCHEMA: &str = "plait-ab/2";
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
     pub schema: String,
     pub provenance: Provenance,
-    pub sweep: Option<Sweep>,
+    /// The `--sweep`s in order: none, one, or two (a grid).
+    pub sweeps: Vec<Sweep>,
     pub variants: Vec<Variant>,
     pub scenes: Vec<SceneResult>,
 }
@@ -103,15 +111,17 @@ pub struct Sweep {
     pub values: Vec<String>,
 }
 
-/// One pipeline (at one sweep value), or the reference.
+/// One pipeline (at one point of the sweeps), or the reference.
 #[derive(Clone, Debug, Serialize)]
 pub struct Variant {
     pub id: String,
     pub label: String,
     pub pipeline: String,
     pub is_reference: bool,
-    pub sweep_value: Option<String>,
-    /// Every `--set` applied (the sweep's last).
+    /// This variant's value of each sweep, by key, in the order of
+    /// [`Report::sweeps`]; empty for the reference and without sweeps.
+    pub sweep_values: IndexMap<String, String>,
+    /// Every `--set` applied (the sweeps' last).
     pub sets: Vec<String>,
     pub schedule_name: String,
     pub memory: Memory,
@@ -221,6 +231,17 @@ pub fn cost_ms(t: &Timing) -> f64 {
 }
 
 impl Variant {
+    /// The sweep values, comma-separated (`64` or `64, exact`); `None` without.
+    pub fn sweep_label(&self) -> Option<String> {
+        (!self.sweep_values.is_empty()).then(|| {
+            self.sweep_values
+                .values()
+                .map(String::as_str)
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+    }
+
     /// The pipeline's file stem (`forward` for `pipelines/forward.toml`).
     pub fn pipeline_stem(&self) -> String {
         std::path::Path::new(&self.pipeline)

@@ -11,7 +11,9 @@ fn sample() -> Report {
         label: id.into(),
         pipeline: "pipelines/forward.toml".into(),
         is_reference: reference,
-        sweep_value: sweep.map(str::to_string),
+        sweep_values: sweep
+            .map(|x| IndexMap::from([("params.x".to_string(), x.to_string())]))
+            .unwrap_or_default(),
         sets: vec![],
         schedule_name: "forward".into(),
         memory: Memory {
@@ -69,10 +71,10 @@ fn sample() -> Report {
             scenes: vec![],
             unix_time: 0,
         },
-        sweep: Some(Sweep {
+        sweeps: vec![Sweep {
             key: "params.x".into(),
             values: vec!["1".into(), "2".into()],
-        }),
+        }],
         variants: vec![
             variant("reference", true, None),
             variant("a@1", false, Some("1")),
@@ -177,4 +179,117 @@ fn sweep_gives_extra_charts_and_json_has_nulls() {
     let json = serde_json::to_value(&r).unwrap();
     assert!(json["scenes"][0]["runs"][0]["visibility"].is_null());
     assert_eq!(json["variants"].as_array().unwrap().len(), 3);
+}
+
+/// The sample with a second sweep: `a` at x ∈ {1, 2} × y ∈ {p, q, r}, one
+/// combination (2, r) missing; ꟻLIP = x/4 + (index of y)/8, exact in binary.
+fn grid_sample() -> Report {
+    let mut r = sample();
+    r.sweeps.push(Sweep {
+        key: "techniques.y".into(),
+        values: vec!["p".into(), "q".into(), "r".into()],
+    });
+    let template_variant = r.variants[1].clone();
+    let template_run = r.scenes[0].runs[1].clone();
+    r.variants.truncate(1);
+    r.scenes[0].runs.truncate(1);
+    for x in ["1", "2"] {
+        for (i, y) in ["p", "q", "r"].into_iter().enumerate() {
+            if (x, y) == ("2", "r") {
+                continue;
+            }
+            let id = format!("a@{x}@{y}");
+            let mut v = template_variant.clone();
+            v.id = id.clone();
+            v.label = id.clone();
+            v.sweep_values = IndexMap::from([
+                ("params.x".to_string(), x.to_string()),
+                ("techniques.y".to_string(), y.to_string()),
+            ]);
+            r.variants.push(v);
+            let mut run = template_run.clone();
+            run.variant = id;
+            run.metrics.flip_mean = x.parse::<f64>().unwrap() / 4.0 + i as f64 / 8.0;
+            r.scenes[0].runs.push(run);
+        }
+    }
+    r
+}
+
+#[test]
+fn two_sweeps_make_a_grid_in_tables_charts_and_json() {
+    let r = grid_sample();
+    // Cells: rows = the first sweep's values, columns = the second's.
+    let cells = charts::grid_cells(&r, &r.scenes[0], "pipelines/forward.toml", &|run| {
+        Some(run.metrics.flip_mean)
+    });
+    assert_eq!(
+        cells,
+        vec![
+            vec![Some(0.25), Some(0.375), Some(0.5)],
+            vec![Some(0.5), Some(0.625), None],
+        ]
+    );
+    let page = html(&r, &[]);
+    assert!(
+        page.contains("pipelines/forward.toml: params.x (rows) × techniques.y (columns)"),
+        "{page}"
+    );
+    assert!(
+        page.contains("<th class=l>params.x \\ techniques.y</th><th>p</th><th>q</th><th>r</th>")
+    );
+    assert!(page.contains("<tr><th class=l>2</th><td>0.50000</td><td>0.62500</td><td>–</td></tr>"));
+    assert!(
+        page.contains("<td class=l>1, q</td>"),
+        "the summary's sweep column"
+    );
+    assert_eq!(page.matches("<th class=l>--sweep</th>").count(), 2);
+    // error vs cost, three lines against params.x (one per value of y), and
+    // the two grids (error, cost) of the one pipeline.
+    let charts = scene_charts(&r, &r.scenes[0]);
+    assert_eq!(charts.len(), 1 + 3 + 2);
+    assert!(
+        charts[1].contains("forward [techniques.y=q]"),
+        "{}",
+        charts[1]
+    );
+    assert!(charts[4].contains("params.x = 1, techniques.y = q: 0.3750"));
+    // Points of a grid are not joined across it on the error-vs-cost chart.
+    assert!(!charts[0].contains("<polyline"));
+    assert!(charts[1].contains("<polyline"));
+    let json = serde_json::to_value(&r).unwrap();
+    assert_eq!(json["schema"], "plait-ab/2");
+    assert_eq!(json["sweeps"][1]["key"], "techniques.y");
+    let v = &json["variants"][2];
+    assert_eq!(v["sweep_values"]["params.x"], "1");
+    assert_eq!(v["sweep_values"]["techniques.y"], "q");
+    assert_eq!(
+        v["sweep_values"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .collect::<Vec<_>>(),
+        ["params.x", "techniques.y"],
+        "keys in the order of the sweeps"
+    );
+    assert!(
+        json["variants"][0]["sweep_values"]
+            .as_object()
+            .unwrap()
+            .is_empty()
+    );
+}
+
+#[test]
+fn one_sweep_keeps_its_charts_and_no_grid() {
+    let r = sample();
+    let page = html(&r, &[]);
+    assert!(!page.contains("(rows) ×"));
+    let charts = scene_charts(&r, &r.scenes[0]);
+    assert!(charts[1].contains("s: ꟻLIP mean vs params.x"));
+    assert!(charts[1].contains("<polyline"), "the sweep's points joined");
+    assert!(
+        charts[0].contains("<polyline"),
+        "error vs cost joins one sweep too"
+    );
 }
