@@ -359,6 +359,9 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     h
 }
 
+/// A number of a run as a grid table shows it: title, digits, value.
+type Measure<'a> = (&'a str, usize, &'a dyn Fn(&Run) -> Option<f64>);
+
 /// With two sweeps, each pipeline's numbers as tables: a row per value of
 /// the first sweep, a column per value of the second (empty without).
 fn grid_tables(report: &Report, scene: &SceneResult) -> String {
@@ -366,7 +369,7 @@ fn grid_tables(report: &Report, scene: &SceneResult) -> String {
         return String::new();
     };
     let with_visibility = scene.runs.iter().any(|r| r.visibility.is_some());
-    let mut measures: Vec<(&str, usize, &dyn Fn(&Run) -> Option<f64>)> = vec![
+    let mut measures: Vec<Measure<'_>> = vec![
         ("ꟻLIP mean", 5, &|r| Some(r.metrics.flip_mean)),
         ("RMSE", 5, &|r| Some(r.metrics.rmse)),
         (cost_label(report), 3, &|r| Some(cost_ms(&r.timing))),
