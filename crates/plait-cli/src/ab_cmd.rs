@@ -208,10 +208,16 @@ pub fn run(args: AbArgs) -> Result<()> {
 }
 
 fn print_summary(report: &Report) -> std::io::Result<()> {
+    // Grid labels name two sweeps: widen the column rather than break it.
+    let width = report
+        .variants
+        .iter()
+        .map(|v| v.label.chars().count())
+        .fold(36, usize::max);
     for scene in &report.scenes {
         outln!("scene {}:", scene.name)?;
         outln!(
-            "{:<36} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8}",
+            "{:<width$} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8}",
             "variant",
             "frame ms",
             "peak MiB",
@@ -225,7 +231,7 @@ fn print_summary(report: &Report) -> std::io::Result<()> {
                 continue;
             };
             outln!(
-                "{:<36} {:>10} {:>10.2} {:>9.5} {:>9} {:>8.5} {:>8.5}",
+                "{:<width$} {:>10} {:>10.2} {:>9.5} {:>9} {:>8.5} {:>8.5}",
                 v.label,
                 format!("{:.3}", plait_compare::report::cost_ms(&run.timing)),
                 v.memory.peak_bytes as f64 / 1048576.0,

@@ -59,16 +59,18 @@ fn groups<'r>(report: &'r Report, scene: &'r SceneResult, split_from: usize) -> 
                 let name = if v.is_reference {
                     format!("{} (reference)", v.pipeline_stem())
                 } else {
-                    let shared: Vec<String> = v
+                    // The keys are in the chart's note: the legend
+                    // keeps to the pipeline and the values.
+                    let shared: Vec<&str> = v
                         .sweep_values
-                        .iter()
+                        .values()
                         .skip(split_from)
-                        .map(|(k, x)| format!("{k}={x}"))
+                        .map(String::as_str)
                         .collect();
                     if shared.is_empty() {
                         v.pipeline_stem()
                     } else {
-                        format!("{} [{}]", v.pipeline_stem(), shared.join(", "))
+                        format!("{}, {}", v.pipeline_stem(), shared.join(", "))
                     }
                 };
                 keyed.push((
@@ -101,7 +103,8 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
                   joined: bool,
                   y: &dyn Fn(&Run) -> f64,
                   x: &dyn Fn(&Run, &Variant) -> Option<f64>,
-                  sized: bool|
+                  sized: bool,
+                  labelled: bool|
      -> Vec<Series> {
         groups
             .iter()
@@ -116,7 +119,7 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
                             x: x(r, v)?,
                             y: y(r),
                             size: sized.then(|| radius(v.memory.peak_bytes)),
-                            label: v.sweep_label(),
+                            label: if labelled { v.sweep_label() } else { None },
                         })
                     })
                     .collect(),
@@ -131,12 +134,16 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
         title: format!("{}: error vs cost", scene.name),
         x_label: cost_label(report).into(),
         y_label: "ꟻLIP mean vs reference".into(),
-        note: Some("marker area ∝ peak memory; labels: sweep value".into()),
+        note: Some(match report.sweeps.as_slice() {
+            [a, b] => format!("marker area ∝ peak memory; labels: {}, {}", a.key, b.key),
+            _ => "marker area ∝ peak memory; labels: sweep value".into(),
+        }),
         series: series(
             &by_pipeline,
             report.sweeps.len() < 2,
             &|r| r.metrics.flip_mean,
             &|r, _| Some(cost_ms(&r.timing)),
+            true,
             true,
         ),
     }));
@@ -165,8 +172,14 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
                 title: format!("{}: {title} vs {}", scene.name, sw.key),
                 x_label: x_label.clone(),
                 y_label: y_label.into(),
-                note: None,
-                series: series(&lines, true, y, &x_of, false)
+                // One sweep: points labelled with their value, as they
+                // always were; a grid: one line per value of the second
+                // sweep, named in the legend.
+                note: report
+                    .sweeps
+                    .get(1)
+                    .map(|second| format!("one line per pipeline and {}", second.key)),
+                series: series(&lines, true, y, &x_of, false, report.sweeps.len() < 2)
                     .into_iter()
                     .filter(|s| !s.points.is_empty())
                     .collect(),

@@ -248,10 +248,12 @@ fn two_sweeps_make_a_grid_in_tables_charts_and_json() {
     // the two grids (error, cost) of the one pipeline.
     let charts = scene_charts(&r, &r.scenes[0]);
     assert_eq!(charts.len(), 1 + 3 + 2);
+    assert!(charts[1].contains(">forward, q</text>"), "{}", charts[1]);
+    assert!(charts[1].contains("one line per pipeline and techniques.y"));
+    assert!(charts[0].contains("labels: params.x, techniques.y"));
     assert!(
-        charts[1].contains("forward [techniques.y=q]"),
-        "{}",
-        charts[1]
+        !charts[1].contains("font-size=\"9\""),
+        "no point labels on a grid's lines: the legend names them"
     );
     assert!(charts[4].contains("params.x = 1, techniques.y = q: 0.3750"));
     // Points of a grid are not joined across it on the error-vs-cost chart.
