@@ -107,9 +107,7 @@ pub fn run(
                 files.write(&graph_file, svg.as_bytes())?;
                 graphs.push((v.id.clone(), svg));
                 let path = v.pipeline.display().to_string();
-                if !pipelines.iter().any(|known| known.path == path) {
-                    pipelines.push(pipeline_provenance(&v.pipeline, schedule)?);
-                }
+                merge_provenance(&mut pipelines, pipeline_provenance(&v.pipeline, schedule)?);
                 variants.push(Variant {
                     id: v.id.clone(),
                     label: v.label.clone(),
@@ -170,6 +168,26 @@ pub fn run(
         plait_compare::report::html(&report, &graphs).as_bytes(),
     )?;
     Ok(report)
+}
+
+/// Add a variant's files to the provenance: one entry per pipeline file,
+/// holding the files of every sweep point of it (a swept `--set` can name
+/// other shaders or technique files than the first point does).
+fn merge_provenance(pipelines: &mut Vec<PipelineProvenance>, new: PipelineProvenance) {
+    let Some(known) = pipelines.iter_mut().find(|p| p.path == new.path) else {
+        pipelines.push(new);
+        return;
+    };
+    for file in new.files {
+        if !known.files.contains(&file) {
+            known.files.push(file);
+        }
+    }
+    for shader in new.shaders {
+        if !known.shaders.contains(&shader) {
+            known.shaders.push(shader);
+        }
+    }
 }
 
 /// Every variant built for `scene`.
@@ -345,4 +363,44 @@ fn scene_result(
         reference_image,
         runs,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use plait_compare::report::FileHash;
+
+    fn file(path: &str) -> FileHash {
+        FileHash {
+            path: path.into(),
+            sha256: format!("sha-of-{path}"),
+            bytes: 1,
+        }
+    }
+
+    /// Sweep points of one pipeline that use different shaders: every
+    /// shader listed, each once, under the one pipeline.
+    #[test]
+    fn sweep_points_add_their_files_to_their_pipeline() {
+        let point = |shader: &str| PipelineProvenance {
+            path: "pipelines/occupancy.toml".into(),
+            files: vec![file("pipelines/occupancy.toml")],
+            shaders: vec![file("shaders/compose_over.wgsl"), file(shader)],
+        };
+        let mut all = Vec::new();
+        merge_provenance(&mut all, point("shaders/a.wgsl"));
+        merge_provenance(&mut all, point("shaders/b.wgsl"));
+        merge_provenance(&mut all, point("shaders/a.wgsl"));
+        assert_eq!(all.len(), 1);
+        let shaders: Vec<&str> = all[0].shaders.iter().map(|f| f.path.as_str()).collect();
+        assert_eq!(
+            shaders,
+            [
+                "shaders/compose_over.wgsl",
+                "shaders/a.wgsl",
+                "shaders/b.wgsl"
+            ]
+        );
+        assert_eq!(all[0].files.len(), 1);
+    }
 }
