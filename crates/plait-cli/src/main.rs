@@ -10,6 +10,7 @@
 #[macro_use]
 mod output;
 mod ab_cmd;
+mod args;
 mod hair_cmd;
 mod pipeline_cmd;
 mod render_cmd;
