@@ -487,3 +487,54 @@ fn bad_input_exits_2_naming_the_flag_or_file() {
         assert!(!Path::new(out).exists(), "{args:?} left a report behind");
     }
 }
+
+/// Technique keys sweep like any other: a self-shadowing × transparency grid
+/// in one report, whose point equal to the reference renders it exactly.
+#[test]
+fn technique_sweeps_make_a_grid() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let out = tmp.path().join("grid");
+    let o = plait(&[
+        "ab",
+        "pipelines/occupancy.toml",
+        "--reference",
+        "pipelines/reference.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "48x36",
+        "--repeats",
+        "1",
+        "--sweep",
+        "techniques.self_shadow=deep_opacity,exact",
+        "--sweep",
+        "techniques.transparency=weighted_average,depth_peeling",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "stderr: {}", text(&o.stderr));
+    let v = read_json(&out);
+    let runs = v["scenes"][0]["runs"].as_array().expect("runs");
+    assert_eq!(runs.len(), 5, "2 × 2 grid + the reference");
+    let rmse = |self_shadow: &str, transparency: &str| {
+        let variant = v["variants"]
+            .as_array()
+            .expect("variants")
+            .iter()
+            .find(|x| {
+                x["sweep_values"]["techniques.self_shadow"] == self_shadow
+                    && x["sweep_values"]["techniques.transparency"] == transparency
+            })
+            .expect("grid point");
+        runs.iter()
+            .find(|r| r["variant"] == variant["id"])
+            .and_then(|r| r["metrics"]["rmse"].as_f64())
+            .expect("rmse")
+    };
+    assert_eq!(
+        rmse("exact", "depth_peeling"),
+        0.0,
+        "the reference's own choices"
+    );
+    assert!(rmse("deep_opacity", "weighted_average") > 0.0);
+}
