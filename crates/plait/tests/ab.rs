@@ -118,6 +118,15 @@ fn a_tiny_run_reports_every_variant_and_writes_its_files() {
     assert_eq!(json["provenance"]["command_line"], "test 'a b'");
     let html = std::fs::read_to_string(dir.path().join("report.html")).expect("html");
     assert!(html.contains("occupancy") && html.contains("Provenance"));
+    // The Markdown tables the README's gallery is made from: a row per variant.
+    let md = std::fs::read_to_string(dir.path().join("report.md")).expect("report.md");
+    for v in &report.variants {
+        assert!(
+            md.contains(&format!("| {}", v.label)),
+            "{} not in report.md:\n{md}",
+            v.label
+        );
+    }
     // forward.toml is both a variant and the reference: its files once.
     assert_eq!(report.provenance.pipelines.len(), 2);
 }

@@ -31,11 +31,13 @@
 
 mod charts;
 mod html;
+mod markdown;
 #[cfg(test)]
 mod tests;
 
 pub use charts::scene_charts;
 pub use html::html;
+pub use markdown::markdown;
 
 use indexmap::IndexMap;
 use serde::Serialize;

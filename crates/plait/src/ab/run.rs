@@ -77,7 +77,7 @@ fn render_error(what: String) -> impl FnOnce(SessionError) -> AbError {
 }
 
 /// Run `plan` on `gpu`, writing the report's files into `dir` (which must
-/// exist): `report.json`, `report.html`, each variant's image, difference
+/// exist): `report.json`, `report.html`, `report.md`, each variant's image, difference
 /// and ꟻLIP maps per scene, the reference's image, and each variant's
 /// schedule as SVG. `progress` hears of every step.
 pub fn run(
@@ -166,6 +166,10 @@ pub fn run(
     files.write(
         "report.html",
         plait_compare::report::html(&report, &graphs).as_bytes(),
+    )?;
+    files.write(
+        "report.md",
+        plait_compare::report::markdown(&report).as_bytes(),
     )?;
     Ok(report)
 }
