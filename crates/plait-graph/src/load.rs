@@ -95,6 +95,8 @@ pub struct PassDecl {
     pub params: IndexMap<String, Spanned<Value>>,
     /// Resolved path (see [`resolve_shader`]); the location is where it was written.
     pub shader: Option<Spanned<PathBuf>>,
+    /// `depth`, `blend`, `cull` ([`crate::raster_decl`]).
+    pub raster: crate::raster_decl::RasterDecl,
     pub location: Location,
 }
 
@@ -216,7 +218,7 @@ impl<'a> SourceMap<'a> {
     }
 }
 
-fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
+pub(crate) fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
     let map = SourceMap::new(path, text);
     let table = toml::de::DeTable::parse(text).map_err(|e| {
         let location = map.location(e.span().map_or(0, |s| s.start));
@@ -509,7 +511,8 @@ pub(crate) const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "o
 pub(crate) const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
 pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size"];
 pub(crate) const PASS_KEYS: &[&str] = &[
-    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled",
+    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "depth", "blend",
+    "cull",
 ];
 const VIEWS: &[&str] = &["light", "camera"];
 const DRAWS: &[&str] = &["hair", "opaque"];
@@ -918,6 +921,7 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
         writes,
         params,
         shader,
+        raster: crate::raster_decl::parse(t, &format!("passes.{name}"), b.errors),
         location: entry.key.clone(),
     })
 }

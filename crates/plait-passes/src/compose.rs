@@ -14,10 +14,6 @@ pub struct Compose;
 impl PassType for Compose {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "compose".into(),
-            description: "Order-blended hair over the scene with the Λ correction, to sRGB.".into(),
-            source: "Sintorn & Assarsson 2009 §3.4".into(),
-            shape: PassShape::Fullscreen,
             inputs: vec![
                 texture(
                     "hair",
@@ -38,16 +34,15 @@ impl PassType for Compose {
                 ),
             ],
             outputs: vec![final_image()],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "compose",
+                PassShape::Fullscreen,
+                "Sintorn & Assarsson 2009 §3.4",
+                "Order-blended hair over the scene with the Λ correction, to sRGB.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/compose.wgsl",
-            include_str!("../../../shaders/passes/compose.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/compose.wgsl"))
     }
 }

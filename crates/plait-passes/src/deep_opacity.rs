@@ -29,26 +29,42 @@ pub struct DeepOpacity;
 impl PassType for DeepOpacity {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "deep_opacity".into(),
-            description: "Deep opacity map: fragment count per layer after the texel's start depth z0 (atomicAdd), K u32 per texel.".into(),
-            source: "Yuksel & Keyser 2008 §3".into(),
-            shape: PassShape::Raster,
             inputs: vec![
-                texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view; near (red) is z0"),
-                texture("depth", Access::DepthTarget, DEPTH, "opaque depth of the same view, tested not written"),
+                texture(
+                    "range",
+                    Access::Sampled,
+                    &[Format::Rg32Float],
+                    "depth range of the same view; near (red) is z0",
+                ),
+                texture(
+                    "depth",
+                    Access::DepthTarget,
+                    DEPTH,
+                    "opaque depth of the same view, tested not written",
+                ),
             ],
-            outputs: vec![buffer("layers", Access::StorageWrite, "fragment counts: K × u32 per texel")],
-            params: vec![float("layer_size", 0.05, 1e-6, 1e6, "size of the first layer in world units; layer k is k times as thick")],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            outputs: vec![buffer(
+                "layers",
+                Access::StorageWrite,
+                "fragment counts: K × u32 per texel",
+            )],
+            params: vec![float(
+                "layer_size",
+                0.05,
+                1e-6,
+                1e6,
+                "size of the first layer in world units; layer k is k times as thick",
+            )],
+            ..PassTypeSpec::new(
+                "deep_opacity",
+                PassShape::Raster,
+                "Yuksel & Keyser 2008 §3",
+                "Deep opacity map: fragment count per layer after the texel's start depth z0 (atomicAdd), K u32 per texel.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/deep_opacity.wgsl",
-            include_str!("../../../shaders/passes/deep_opacity.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/deep_opacity.wgsl"))
     }
     fn check_sizes(
         &self,

@@ -29,30 +29,47 @@ pub const MAX_CAPACITY: u64 = 1024;
 impl PassType for DepthLists {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "depth_lists".into(),
-            description: "Every hair fragment's linear depth per texel (capacity from the buffer size), with counters and an overflow count.".into(),
-            source: "Sintorn & Assarsson 2009 §3, Fig. 5".into(),
-            shape: PassShape::Raster,
             inputs: vec![
-                texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view: gives the map size"),
-                texture("depth", Access::DepthTarget, DEPTH, "opaque depth of the same view, tested not written"),
+                texture(
+                    "range",
+                    Access::Sampled,
+                    &[Format::Rg32Float],
+                    "depth range of the same view: gives the map size",
+                ),
+                texture(
+                    "depth",
+                    Access::DepthTarget,
+                    DEPTH,
+                    "opaque depth of the same view, tested not written",
+                ),
             ],
             outputs: vec![
-                buffer("lists", Access::StorageWrite, "capacity × f32 depths per texel"),
-                buffer("counts", Access::StorageWrite, "fragments per texel (may exceed capacity)"),
-                buffer("overflow", Access::StorageWrite, "[0] dropped fragments, [1] overflowing texels"),
+                buffer(
+                    "lists",
+                    Access::StorageWrite,
+                    "capacity × f32 depths per texel",
+                ),
+                buffer(
+                    "counts",
+                    Access::StorageWrite,
+                    "fragments per texel (may exceed capacity)",
+                ),
+                buffer(
+                    "overflow",
+                    Access::StorageWrite,
+                    "[0] dropped fragments, [1] overflowing texels",
+                ),
             ],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "depth_lists",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §3, Fig. 5",
+                "Every hair fragment's linear depth per texel (capacity from the buffer size), with counters and an overflow count.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/depth_lists.wgsl",
-            include_str!("../../../shaders/passes/depth_lists.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/depth_lists.wgsl"))
     }
     fn check_sizes(
         &self,

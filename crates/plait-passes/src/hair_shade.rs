@@ -68,12 +68,6 @@ impl PassType for HairShade {
             "transparency: draw-order `over`, or occupancy-order weights (§3.4)",
         ));
         PassTypeSpec {
-            name: "hair_shade".into(),
-            description:
-                "Kajiya-Kay hair shading with opaque and self shadows, blended over the target."
-                    .into(),
-            source: "Halén & Wester 2007 §3.2.1; Sintorn & Assarsson 2009 §3.2-3.5".into(),
-            shape: PassShape::Raster,
             inputs,
             outputs: vec![
                 texture(
@@ -85,17 +79,17 @@ impl PassType for HairShade {
                 .loads(),
             ],
             params,
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "hair_shade",
+                PassShape::Raster,
+                "Halén & Wester 2007 §3.2.1; Sintorn & Assarsson 2009 §3.2-3.5",
+                "Kajiya-Kay hair shading with opaque and self shadows, blended over the target.",
+            )
         }
     }
 
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/hair_shade.wgsl",
-            include_str!("../../../shaders/passes/hair_shade.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/hair_shade.wgsl"))
     }
 
     fn raster_state(

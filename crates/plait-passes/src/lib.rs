@@ -27,7 +27,6 @@ pub mod visibility;
 pub mod weighted_average;
 
 use plait_gpu::pass::{PassLibrary, check_pass};
-use plait_gpu::{ShaderError, ShaderLibrary};
 use plait_graph::{Errors, Schedule};
 
 /// Every pass type plait ships.
@@ -53,15 +52,15 @@ pub fn library() -> PassLibrary {
     lib.add(alpha_to_coverage::HAIR_ALPHA_TO_COVERAGE);
     lib.add(opaque_hair::HAIR_OPAQUE);
     lib.add(transparency::ComposeHairOver);
-    lib.add(data_only::Fullscreen);
-    lib.add(data_only::Compute);
+    lib.add(data_only::FULLSCREEN);
+    lib.add(data_only::RASTER);
+    lib.add(data_only::COMPUTE);
     lib
 }
 
 /// Check every pass (live and culled) against its shader with naga, and
 /// settle how the slots of data-only passes are accessed.
 pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Errors> {
-    let mut shaders = ShaderLibrary::new().map_err(shader_library_error)?;
     let mut errors = Vec::new();
     let resources = schedule.resources.clone();
     let passes = schedule
@@ -70,7 +69,7 @@ pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Error
         .chain(schedule.culled.iter_mut().map(|c| &mut c.pass));
     for pass in passes {
         if let Some(t) = library.get(&pass.type_name) {
-            errors.extend(check_pass(t, pass, &resources, &mut shaders));
+            errors.extend(check_pass(t, pass, &resources));
         }
     }
     if errors.is_empty() {
@@ -78,14 +77,4 @@ pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Error
     } else {
         Err(Errors(errors))
     }
-}
-
-fn shader_library_error(e: ShaderError) -> Errors {
-    Errors(vec![plait_graph::Error::new(
-        plait_graph::Location::Builtin,
-        plait_graph::ErrorKind::Shader {
-            path: e.path,
-            message: e.message,
-        },
-    )])
 }

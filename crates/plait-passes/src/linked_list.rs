@@ -49,20 +49,31 @@ impl PassType for HairFragmentList {
             "the same depth, sampled: list writes must not wait for the late depth test",
         ));
         PassTypeSpec {
-            name: "hair_fragment_list".into(),
-            description: "Append every shaded hair fragment to its pixel's linked list (atomic counter + head pointers).".into(),
-            source: "Sintorn & Assarsson 2009 §2.2 (exact order, as depth peeling)".into(),
-            shape: PassShape::Raster,
             inputs,
             outputs: vec![
-                buffer("list_heads", Access::StorageWrite, "head node + 1 per pixel (0 = empty)"),
-                buffer("list_nodes", Access::StorageWrite, "16 B per node; its size is the capacity"),
-                buffer("list_counter", Access::StorageWrite, "[nodes allocated, fragments dropped on overflow]"),
+                buffer(
+                    "list_heads",
+                    Access::StorageWrite,
+                    "head node + 1 per pixel (0 = empty)",
+                ),
+                buffer(
+                    "list_nodes",
+                    Access::StorageWrite,
+                    "16 B per node; its size is the capacity",
+                ),
+                buffer(
+                    "list_counter",
+                    Access::StorageWrite,
+                    "[nodes allocated, fragments dropped on overflow]",
+                ),
             ],
             params: transparency::shading_params(),
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "hair_fragment_list",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §2.2 (exact order, as depth peeling)",
+                "Append every shaded hair fragment to its pixel's linked list (atomic counter + head pointers).",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
@@ -88,11 +99,6 @@ pub struct FragmentListResolve;
 impl PassType for FragmentListResolve {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "fragment_list_resolve".into(),
-            description: "Sort each pixel's fragment list by depth and blend it front to back."
-                .into(),
-            source: "Sintorn & Assarsson 2009 §2.2".into(),
-            shape: PassShape::Fullscreen,
             inputs: vec![
                 buffer("list_heads", Access::StorageRead, "head node + 1 per pixel"),
                 buffer("list_nodes", Access::StorageRead, "the nodes"),
@@ -110,15 +116,17 @@ impl PassType for FragmentListResolve {
                 256,
                 "nearest fragments kept and sorted per pixel (like depth peeling's layer cap)",
             )],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "fragment_list_resolve",
+                PassShape::Fullscreen,
+                "Sintorn & Assarsson 2009 §2.2",
+                "Sort each pixel's fragment list by depth and blend it front to back.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/fragment_list_resolve.wgsl",
-            include_str!("../../../shaders/passes/fragment_list_resolve.wgsl"),
+        Some(plait_gpu::builtin_shader!(
+            "passes/fragment_list_resolve.wgsl"
         ))
     }
 }

@@ -22,12 +22,6 @@ pub struct Occupancy;
 impl PassType for Occupancy {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "occupancy".into(),
-            description:
-                "One bit per depth slice per texel (atomicOr), 32 slices per u32 word of `bits`."
-                    .into(),
-            source: "Sintorn & Assarsson 2009 §3.1".into(),
-            shape: PassShape::Raster,
             inputs: vec![
                 texture(
                     "range",
@@ -47,17 +41,16 @@ impl PassType for Occupancy {
                 Access::StorageWrite,
                 "occupancy bits: words × u32 per texel",
             )],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "occupancy",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §3.1",
+                "One bit per depth slice per texel (atomicOr), 32 slices per u32 word of `bits`.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/occupancy.wgsl",
-            include_str!("../../../shaders/passes/occupancy.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/occupancy.wgsl"))
     }
     fn check_sizes(
         &self,

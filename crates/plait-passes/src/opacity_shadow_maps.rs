@@ -36,25 +36,36 @@ pub const MAX_SLICES: u64 = 256;
 impl PassType for OpacityShadowMaps {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "opacity_shadow_maps".into(),
-            description: "Opacity shadow maps: fragment count per uniform slice of the texel's hair range (atomicAdd), N u32 per texel, one draw.".into(),
-            source: "Halén & Wester 2007 §3.3.2, §5.7; Yuksel & Keyser 2008 §2".into(),
-            shape: PassShape::Raster,
             inputs: vec![
-                texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view (depth_range): the slicing range"),
-                texture("depth", Access::DepthTarget, DEPTH, "opaque depth of the same view, tested not written"),
+                texture(
+                    "range",
+                    Access::Sampled,
+                    &[Format::Rg32Float],
+                    "depth range of the same view (depth_range): the slicing range",
+                ),
+                texture(
+                    "depth",
+                    Access::DepthTarget,
+                    DEPTH,
+                    "opaque depth of the same view, tested not written",
+                ),
             ],
-            outputs: vec![buffer("slices", Access::StorageWrite, "fragment counts: N × u32 per texel")],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            outputs: vec![buffer(
+                "slices",
+                Access::StorageWrite,
+                "fragment counts: N × u32 per texel",
+            )],
+            ..PassTypeSpec::new(
+                "opacity_shadow_maps",
+                PassShape::Raster,
+                "Halén & Wester 2007 §3.3.2, §5.7; Yuksel & Keyser 2008 §2",
+                "Opacity shadow maps: fragment count per uniform slice of the texel's hair range (atomicAdd), N u32 per texel, one draw.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/opacity_shadow_maps.wgsl",
-            include_str!("../../../shaders/passes/opacity_shadow_maps.wgsl"),
+        Some(plait_gpu::builtin_shader!(
+            "passes/opacity_shadow_maps.wgsl"
         ))
     }
     fn check_sizes(

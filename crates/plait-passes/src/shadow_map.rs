@@ -14,28 +14,22 @@ pub struct ShadowMap;
 impl PassType for ShadowMap {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "shadow_map".into(),
-            description: "Depth of the drawn geometry from the pass's view (no colour).".into(),
-            source: "Sintorn & Assarsson 2009 §3.5; Halén & Wester 2007 §3.3.2".into(),
-            shape: PassShape::Raster,
-            inputs: vec![],
             outputs: vec![texture(
                 "depth",
                 Access::DepthTarget,
                 DEPTH,
                 "nearest depth per texel",
             )],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "shadow_map",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §3.5; Halén & Wester 2007 §3.3.2",
+                "Depth of the drawn geometry from the pass's view (no colour).",
+            )
         }
     }
 
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/shadow_map.wgsl",
-            include_str!("../../../shaders/passes/shadow_map.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/shadow_map.wgsl"))
     }
 }

@@ -16,10 +16,6 @@ pub struct Slab;
 impl PassType for Slab {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "slab".into(),
-            description: "Fragment count per slab per texel (atomicAdd), one u32 per slab.".into(),
-            source: "Sintorn & Assarsson 2009 §3.1, Fig. 8".into(),
-            shape: PassShape::Raster,
             inputs: vec![
                 texture(
                     "range",
@@ -39,17 +35,16 @@ impl PassType for Slab {
                 Access::StorageWrite,
                 "fragment counts: slabs × u32 per texel",
             )],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "slab",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §3.1, Fig. 8",
+                "Fragment count per slab per texel (atomicAdd), one u32 per slab.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/slab.wgsl",
-            include_str!("../../../shaders/passes/slab.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/slab.wgsl"))
     }
     fn check_sizes(
         &self,

@@ -17,10 +17,7 @@ use plait_graph::{Access, ParamSpec, PassShape, PassTypeSpec, ScheduledPass, Slo
 use crate::spec_util::{DEPTH, HDR, final_image, texture};
 use crate::visibility;
 
-pub const HAIR_SHADER: BuiltinShader = (
-    "shaders/passes/hair_shade.wgsl",
-    include_str!("../../../shaders/passes/hair_shade.wgsl"),
-);
+pub const HAIR_SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/hair_shade.wgsl");
 
 /// The shading inputs of every hair pass: the opaque shadow map and the
 /// visibility provider's light maps.
@@ -57,10 +54,6 @@ pub struct ComposeHairOver;
 impl PassType for ComposeHairOver {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "compose_hair_over".into(),
-            description: "Premultiplied hair over the scene over the background, to sRGB.".into(),
-            source: "Sintorn & Assarsson 2009 §2.2 (f = αc + (1-α)b)".into(),
-            shape: PassShape::Fullscreen,
             inputs: vec![
                 texture(
                     "hair",
@@ -76,16 +69,15 @@ impl PassType for ComposeHairOver {
                 ),
             ],
             outputs: vec![final_image()],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "compose_hair_over",
+                PassShape::Fullscreen,
+                "Sintorn & Assarsson 2009 §2.2 (f = αc + (1-α)b)",
+                "Premultiplied hair over the scene over the background, to sRGB.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/compose_hair_over.wgsl",
-            include_str!("../../../shaders/passes/compose_hair_over.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/compose_hair_over.wgsl"))
     }
 }

@@ -33,19 +33,23 @@ impl PassType for HairWeightedAverage {
             "camera depth of opaque geometry (tested, not written)",
         ));
         PassTypeSpec {
-            name: "hair_weighted_average".into(),
-            description: "Sum α·rgb, α and the fragment count of the hair, unsorted (weighted-average blending).".into(),
-            source: "Sintorn & Assarsson 2009 §2.2, Fig. 2".into(),
-            shape: PassShape::Raster,
             inputs,
             outputs: vec![
                 texture("color", Access::ColorTarget, HDR, "Σ α·rgb, Σ α"),
-                texture("count", Access::ColorTarget, COUNT_FORMATS, "n: hair fragments per pixel (red)"),
+                texture(
+                    "count",
+                    Access::ColorTarget,
+                    COUNT_FORMATS,
+                    "n: hair fragments per pixel (red)",
+                ),
             ],
             params: transparency::shading_params(),
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "hair_weighted_average",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §2.2, Fig. 2",
+                "Sum α·rgb, α and the fragment count of the hair, unsorted (weighted-average blending).",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
@@ -72,12 +76,6 @@ pub struct WeightedAverageResolve;
 impl PassType for WeightedAverageResolve {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
-            name: "weighted_average_resolve".into(),
-            description:
-                "Average colour and alpha over the depth complexity; blend n average fragments."
-                    .into(),
-            source: "Sintorn & Assarsson 2009 §2.2".into(),
-            shape: PassShape::Fullscreen,
             inputs: vec![
                 texture("sums", Access::Sampled, HDR, "Σ α·rgb, Σ α"),
                 texture("count", Access::Sampled, COUNT_FORMATS, "n per pixel"),
@@ -88,16 +86,17 @@ impl PassType for WeightedAverageResolve {
                 HDR,
                 "hair, premultiplied",
             )],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "weighted_average_resolve",
+                PassShape::Fullscreen,
+                "Sintorn & Assarsson 2009 §2.2",
+                "Average colour and alpha over the depth complexity; blend n average fragments.",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/weighted_average_resolve.wgsl",
-            include_str!("../../../shaders/passes/weighted_average_resolve.wgsl"),
+        Some(plait_gpu::builtin_shader!(
+            "passes/weighted_average_resolve.wgsl"
         ))
     }
 }

@@ -33,16 +33,10 @@ fn pass_type(
     params: Vec<ParamSpec>,
 ) -> PassTypeSpec {
     PassTypeSpec {
-        name: name.into(),
-        description: String::new(),
-        source: String::new(),
-        shape,
         inputs,
         outputs,
         params,
-        dynamic_slots: false,
-        needs_shader: false,
-        required_features: Vec::new(),
+        ..PassTypeSpec::new(name, shape, "", "")
     }
 }
 
