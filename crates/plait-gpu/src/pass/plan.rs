@@ -189,8 +189,11 @@ impl BindingPlan {
                 }
             }
         }
+        // (A culled pass's writes may name resources the schedule dropped.)
+        let all_writes_live = pass.writes.iter().all(|b| resources.get(b.resource).is_some());
         if dynamic_slots
             && is_raster
+            && all_writes_live
             && color_targets == 0
             && !plan
                 .settled
