@@ -14,9 +14,9 @@
 
 use indexmap::IndexMap;
 
-use crate::error::{Error, ErrorKind, Location, Spanned};
+use crate::error::{Error, Location, Spanned};
 use crate::load::{Entry, Node, Table};
-use crate::value::Value;
+use crate::node_reader::Reader;
 
 /// The keys of a pass table that hold raster state.
 pub const RASTER_KEYS: &[&str] = &["depth", "blend", "cull"];
@@ -249,7 +249,7 @@ impl RasterDecl {
 /// Read the raster keys of a pass table (`context` names it in messages,
 /// e.g. `passes.light_occupancy`). Other keys are left to the caller.
 pub(crate) fn parse(table: &Table, context: &str, errors: &mut Vec<Error>) -> RasterDecl {
-    let mut p = Parser { errors };
+    let mut p = Reader { errors };
     let mut out = RasterDecl::default();
     if let Some(e) = table.get("depth") {
         out.depth = p.depth(e, &format!("{context}.depth"));
@@ -273,64 +273,7 @@ pub(crate) fn parse(table: &Table, context: &str, errors: &mut Vec<Error>) -> Ra
     out
 }
 
-struct Parser<'e> {
-    errors: &'e mut Vec<Error>,
-}
-
-impl Parser<'_> {
-    fn schema(&mut self, location: &Location, message: String) {
-        self.errors
-            .push(Error::new(location.clone(), ErrorKind::Schema(message)));
-    }
-
-    fn table<'t>(&mut self, node: &'t Spanned<Node>, context: &str) -> Option<&'t Table> {
-        match &node.value {
-            Node::Table(t) => Some(t),
-            _ => {
-                self.schema(&node.location, format!("{context} must be a table"));
-                None
-            }
-        }
-    }
-
-    fn keys(&mut self, table: &Table, accepted: &[&str], context: &str) {
-        for (key, entry) in table {
-            if !accepted.contains(&key.as_str()) {
-                self.schema(
-                    &entry.key,
-                    format!(
-                        "unknown key `{key}` in {context}{} (accepted: {})",
-                        crate::suggest::did_you_mean(key, accepted.iter().copied()),
-                        accepted.join(", ")
-                    ),
-                );
-            }
-        }
-    }
-
-    /// A string that must be one of `accepted`.
-    fn named(&mut self, node: &Spanned<Node>, context: &str, accepted: &[&str]) -> Option<String> {
-        let Node::Scalar(Value::Str(s)) = &node.value else {
-            self.schema(
-                &node.location,
-                format!("{context} must be a string, one of {}", accepted.join(", ")),
-            );
-            return None;
-        };
-        if accepted.contains(&s.as_str()) {
-            return Some(s.clone());
-        }
-        self.schema(
-            &node.location,
-            format!(
-                "{context} is `{s}`{}; accepted: {}",
-                crate::suggest::did_you_mean(s, accepted.iter().copied()),
-                accepted.join(", ")
-            ),
-        );
-        None
-    }
-
+impl Reader<'_> {
     fn depth(&mut self, entry: &Entry, context: &str) -> Option<Spanned<DepthDecl>> {
         let t = self.table(&entry.value, context)?;
         self.keys(t, &["compare", "write"], context);
@@ -348,19 +291,9 @@ impl Parser<'_> {
                 return None;
             }
         };
-        let write = match t.get("write").map(|e| &e.value) {
+        let write = match t.get("write") {
             None => None,
-            Some(Spanned {
-                value: Node::Scalar(Value::Bool(b)),
-                ..
-            }) => Some(*b),
-            Some(other) => {
-                self.schema(
-                    &other.location,
-                    format!("{context}.write must be true or false"),
-                );
-                return None;
-            }
+            Some(e) => Some(self.bool(&e.value, &format!("{context}.write"))?),
         };
         Some(Spanned::new(
             DepthDecl { compare, write },

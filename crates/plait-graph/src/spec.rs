@@ -110,6 +110,18 @@ pub struct SlotSpec {
     pub loads: bool,
     pub optional: bool,
     pub doc: String,
+    /// The shader variable the slot feeds, when it is not named like the
+    /// slot: one kernel can serve pass types whose slots are named for their
+    /// papers (`slab`'s `slabs` and `opacity_shadow_maps`' `slices` are both
+    /// `counts` of `slice_counts.wgsl`).
+    pub binding: Option<String>,
+}
+
+impl SlotSpec {
+    /// The name of the shader binding this slot feeds.
+    pub fn binding_name(&self) -> &str {
+        self.binding.as_deref().unwrap_or(&self.name)
+    }
 }
 
 /// The type of a pass param.

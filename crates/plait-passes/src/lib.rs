@@ -5,22 +5,17 @@
 //! `plait render` both run before any GPU work.
 
 pub mod alpha_to_coverage;
-pub mod compose;
 pub mod data_only;
-pub mod deep_opacity;
+pub mod data_pass;
 pub mod density_clustering;
-pub mod depth_lists;
 pub mod depth_peeling;
 pub mod depth_range;
 pub mod hair_shade;
 pub mod linked_list;
 pub mod occupancy;
-pub mod opacity_shadow_maps;
 pub mod opaque_hair;
 pub mod opaque_shade;
 pub mod per_texel;
-pub mod shadow_map;
-pub mod slab;
 pub mod spec_util;
 pub mod transparency;
 pub mod visibility;
@@ -32,26 +27,20 @@ use plait_graph::{Errors, Schedule};
 /// Every pass type plait ships.
 pub fn library() -> PassLibrary {
     let mut lib = PassLibrary::default();
-    lib.add(shadow_map::ShadowMap);
+    // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml).
+    for t in data_pass::builtin_types() {
+        lib.add(t);
+    }
     lib.add(depth_range::DepthRange);
-    lib.add(occupancy::Occupancy);
-    lib.add(slab::Slab);
-    lib.add(deep_opacity::DeepOpacity);
-    lib.add(opacity_shadow_maps::OpacityShadowMaps);
     lib.add(density_clustering::DensityClustering);
-    lib.add(depth_lists::DepthLists);
     lib.add(opaque_shade::OpaqueShade);
     lib.add(hair_shade::HairShade);
-    lib.add(compose::Compose);
     // Transparency methods (issue 5): each shades with hair_shade.wgsl.
     lib.add(depth_peeling::HairDepthPeel);
     lib.add(linked_list::HairFragmentList);
-    lib.add(linked_list::FragmentListResolve);
     lib.add(weighted_average::HairWeightedAverage);
-    lib.add(weighted_average::WeightedAverageResolve);
     lib.add(alpha_to_coverage::HAIR_ALPHA_TO_COVERAGE);
     lib.add(opaque_hair::HAIR_OPAQUE);
-    lib.add(transparency::ComposeHairOver);
     lib.add(data_only::FULLSCREEN);
     lib.add(data_only::RASTER);
     lib.add(data_only::COMPUTE);

@@ -28,7 +28,7 @@ use plait_gpu::pass::{BuiltinShader, DepthMode, PassType, RasterState};
 use plait_gpu::{Capabilities, Define};
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
-use crate::spec_util::{DEPTH, HDR, buffer, int, texture};
+use crate::spec_util::{DEPTH, buffer, texture};
 use crate::transparency::{self, HAIR_SHADER};
 
 pub struct HairFragmentList;
@@ -91,42 +91,5 @@ impl PassType for HairFragmentList {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
             ..RasterState::default()
         })
-    }
-}
-
-pub struct FragmentListResolve;
-
-impl PassType for FragmentListResolve {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            inputs: vec![
-                buffer("list_heads", Access::StorageRead, "head node + 1 per pixel"),
-                buffer("list_nodes", Access::StorageRead, "the nodes"),
-            ],
-            outputs: vec![texture(
-                "color",
-                Access::ColorTarget,
-                HDR,
-                "hair, premultiplied, blended front to back",
-            )],
-            params: vec![int(
-                "max_sorted",
-                256,
-                1,
-                256,
-                "nearest fragments kept and sorted per pixel (like depth peeling's layer cap)",
-            )],
-            ..PassTypeSpec::new(
-                "fragment_list_resolve",
-                PassShape::Fullscreen,
-                "Sintorn & Assarsson 2009 §2.2",
-                "Sort each pixel's fragment list by depth and blend it front to back.",
-            )
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(plait_gpu::builtin_shader!(
-            "passes/fragment_list_resolve.wgsl"
-        ))
     }
 }

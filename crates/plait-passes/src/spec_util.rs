@@ -15,6 +15,7 @@ pub fn texture(name: &str, access: Access, formats: &[Format], doc: &str) -> Slo
         loads: false,
         optional: false,
         doc: doc.into(),
+        binding: None,
     }
 }
 
@@ -27,6 +28,7 @@ pub fn buffer(name: &str, access: Access, doc: &str) -> SlotSpec {
         loads: false,
         optional: false,
         doc: doc.into(),
+        binding: None,
     }
 }
 

@@ -11,10 +11,10 @@
 //! puts a front-to-back premultiplied hair image over the scene.
 
 use plait_gpu::Define;
-use plait_gpu::pass::{BuiltinShader, PassType, default_defines};
-use plait_graph::{Access, ParamSpec, PassShape, PassTypeSpec, ScheduledPass, SlotSpec};
+use plait_gpu::pass::{BuiltinShader, default_defines};
+use plait_graph::{Access, ParamSpec, ScheduledPass, SlotSpec};
 
-use crate::spec_util::{DEPTH, HDR, final_image, texture};
+use crate::spec_util::{DEPTH, texture};
 use crate::visibility;
 
 pub const HAIR_SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/hair_shade.wgsl");
@@ -45,39 +45,4 @@ pub fn defines(pass: &ScheduledPass, module: &str) -> Vec<(String, Define)> {
         Define::Bool(true),
     ));
     d
-}
-
-/// `compose_hair_over`: premultiplied hair (blended front to back) over the
-/// scene over the background, to the output format.
-pub struct ComposeHairOver;
-
-impl PassType for ComposeHairOver {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            inputs: vec![
-                texture(
-                    "hair",
-                    Access::Sampled,
-                    HDR,
-                    "hair, premultiplied, accumulated front to back",
-                ),
-                texture(
-                    "scene",
-                    Access::Sampled,
-                    HDR,
-                    "opaque objects, premultiplied; background where alpha < 1",
-                ),
-            ],
-            outputs: vec![final_image()],
-            ..PassTypeSpec::new(
-                "compose_hair_over",
-                PassShape::Fullscreen,
-                "Sintorn & Assarsson 2009 §2.2 (f = αc + (1-α)b)",
-                "Premultiplied hair over the scene over the background, to sRGB.",
-            )
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(plait_gpu::builtin_shader!("passes/compose_hair_over.wgsl"))
-    }
 }

@@ -70,33 +70,3 @@ impl PassType for HairWeightedAverage {
         })
     }
 }
-
-pub struct WeightedAverageResolve;
-
-impl PassType for WeightedAverageResolve {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            inputs: vec![
-                texture("sums", Access::Sampled, HDR, "Σ α·rgb, Σ α"),
-                texture("count", Access::Sampled, COUNT_FORMATS, "n per pixel"),
-            ],
-            outputs: vec![texture(
-                "color",
-                Access::ColorTarget,
-                HDR,
-                "hair, premultiplied",
-            )],
-            ..PassTypeSpec::new(
-                "weighted_average_resolve",
-                PassShape::Fullscreen,
-                "Sintorn & Assarsson 2009 §2.2",
-                "Average colour and alpha over the depth complexity; blend n average fragments.",
-            )
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(plait_gpu::builtin_shader!(
-            "passes/weighted_average_resolve.wgsl"
-        ))
-    }
-}

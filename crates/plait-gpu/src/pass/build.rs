@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use plait_graph::{Format, PassShape, ScheduledPass};
 
 use super::pass_type::{BuildContext, BuiltinShader, PassType, shader_source};
-use super::plan::{BindingPlan, BindingSource, unguardable};
+use super::plan::{BindingPlan, BindingSource, binding_aliases, unguardable};
 use super::record::{DrawWhat, ShaderPass, ShaderPassKind};
 use super::state::{DepthMode, RasterState, from_decl};
 use crate::GpuError;
@@ -34,6 +34,8 @@ pub struct ShaderDraw {
     pub shape: PassShape,
     /// Slots are the shader's bindings (data-only pass types).
     pub dynamic_slots: bool,
+    /// `(slot, shader binding)` where a slot feeds a binding of another name.
+    pub aliases: Vec<(String, String)>,
     /// Raster and fullscreen draws.
     pub state: RasterState,
     /// Compute dispatches: threads to cover.
@@ -60,6 +62,7 @@ impl ShaderDraw {
             defines: t.defines(pass),
             shape: spec.shape,
             dynamic_slots: spec.dynamic_slots,
+            aliases: binding_aliases(&spec),
             state,
             threads: t.compute_threads(pass, ctx.schedule),
             required_features: spec.required_features,
@@ -79,6 +82,7 @@ impl ShaderDraw {
             defines,
             shape,
             dynamic_slots: false,
+            aliases: Vec::new(),
             state,
             threads: [1, 1, 1],
             required_features: Vec::new(),
@@ -165,6 +169,7 @@ fn build_inner(
         &ctx.schedule.resources,
         draw.shape,
         draw.dynamic_slots,
+        &draw.aliases,
     );
     if let Some(e) = errors.first() {
         // `plait check` reports these with their place; here only the first.

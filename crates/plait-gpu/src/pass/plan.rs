@@ -103,7 +103,16 @@ impl BindingPlan {
         resources: &[ResolvedResource],
         shape: PassShape,
         dynamic_slots: bool,
+        aliases: &[(String, String)],
     ) -> (BindingPlan, Vec<GraphError>) {
+        // The shader variable a slot feeds: its own name unless the type says.
+        let binding_of = |slot: &str| -> String {
+            aliases
+                .iter()
+                .find(|(s, _)| s == slot)
+                .map_or(slot, |(_, b)| b.as_str())
+                .to_owned()
+        };
         let mut errors = Vec::new();
         let err = |loc: &Location, message: String| {
             GraphError::new(
@@ -137,7 +146,7 @@ impl BindingPlan {
                 // A culled pass's binding to a resource nothing live uses.
                 continue;
             };
-            match group1.iter().find(|s| s.name == b.slot) {
+            match group1.iter().find(|s| s.name == binding_of(&b.slot)) {
                 None if dynamic_slots => {
                     // Not a shader binding: an attachment of a raster pass.
                     let is_depth = matches!(res.desc, ResourceDesc::Texture { format, .. } if format.is_depth());
@@ -190,7 +199,10 @@ impl BindingPlan {
             }
         }
         // (A culled pass's writes may name resources the schedule dropped.)
-        let all_writes_live = pass.writes.iter().all(|b| resources.get(b.resource).is_some());
+        let all_writes_live = pass
+            .writes
+            .iter()
+            .all(|b| resources.get(b.resource).is_some());
         if dynamic_slots
             && is_raster
             && all_writes_live
@@ -301,7 +313,7 @@ impl BindingPlan {
                 .reads
                 .iter()
                 .chain(pass.writes.iter())
-                .find(|s| s.slot == sb.name);
+                .find(|s| binding_of(&s.slot) == sb.name);
             let source = if let Some(s) = slot {
                 BindingSource::Slot {
                     resource: s.resource,
@@ -355,6 +367,15 @@ impl BindingPlan {
         }
         (plan, errors)
     }
+}
+
+/// `(slot, shader binding)` for the slots of `spec` that feed a binding of another name.
+pub fn binding_aliases(spec: &plait_graph::PassTypeSpec) -> Vec<(String, String)> {
+    spec.inputs
+        .iter()
+        .chain(spec.outputs.iter())
+        .filter_map(|s| Some((s.name.clone(), s.binding.clone()?)))
+        .collect()
 }
 
 /// A uniform filled from the pass params by member name: `params`, or a
@@ -497,8 +518,14 @@ pub fn check_pass(
     if let Err(message) = t.check_sizes(pass, resources) {
         errors.push(err(&pass.location, message));
     }
-    let (plan, plan_errors) =
-        BindingPlan::new(&module, pass, resources, spec.shape, spec.dynamic_slots);
+    let (plan, plan_errors) = BindingPlan::new(
+        &module,
+        pass,
+        resources,
+        spec.shape,
+        spec.dynamic_slots,
+        &binding_aliases(&spec),
+    );
     errors.extend(plan_errors);
     for &(is_write, i, access) in &plan.settled {
         let list = if is_write {

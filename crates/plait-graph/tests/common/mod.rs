@@ -13,6 +13,7 @@ fn slot(name: &str, kind: ResourceKind, access: Access, formats: Formats) -> Slo
         loads: false,
         optional: false,
         doc: String::new(),
+        binding: None,
     }
 }
 
