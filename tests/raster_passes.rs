@@ -124,10 +124,7 @@ fn the_fixture_checks() {
 
 #[test]
 fn a_blend_its_target_format_cannot_do_is_an_error_at_the_blend() {
-    let (from, to) = (
-        "format = \"rgba16float\"",
-        "format = \"r32uint\"",
-    );
+    let (from, to) = ("format = \"rgba16float\"", "format = \"r32uint\"");
     // The shader's vec4<f32> output does not fit r32uint either; the blend is
     // what this test is about, so the shader is swapped for a uint one.
     let path = repo_root().join("tests/fixtures/raster_counts.toml");
