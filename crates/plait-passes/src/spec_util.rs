@@ -78,17 +78,3 @@ pub fn choice(name: &str, default: &str, options: &[&str], doc: &str) -> ParamSp
 
 pub const DEPTH: &[Format] = &[Format::Depth32Float];
 pub const HDR: &[Format] = &[Format::Rgba16Float, Format::Rgba32Float];
-
-/// The output of a compose pass: the final image, 8-bit (sRGB or not) or half float.
-pub fn final_image() -> SlotSpec {
-    texture(
-        "color",
-        Access::ColorTarget,
-        &[
-            Format::Rgba8UnormSrgb,
-            Format::Rgba8Unorm,
-            Format::Rgba16Float,
-        ],
-        "final image",
-    )
-}
