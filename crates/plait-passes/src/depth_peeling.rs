@@ -27,8 +27,8 @@
 use std::cell::Cell;
 
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw,
-    ShaderPass, build_draw, default_defines,
+    BlendPreset, BuildContext, BuiltinShader, PassType, PreparedPass, RasterState, RecordContext,
+    ShaderDraw, ShaderPass, blend_preset, build_draw, default_defines,
 };
 use plait_gpu::{Define, GpuError};
 use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
@@ -182,7 +182,7 @@ impl PassType for HairDepthPeel {
             PassShape::Fullscreen,
             default_defines(&blend_pass),
             RasterState {
-                blend: vec![Some(UNDER)],
+                blend: vec![blend_preset(BlendPreset::Under)],
                 load_colors: true,
                 ..RasterState::default()
             },
@@ -224,20 +224,6 @@ impl PassType for HairDepthPeel {
         }))
     }
 }
-
-/// Front-to-back "under": dst.rgb += (1 - dst.a) · src.rgb, dst.a likewise (src premultiplied).
-const UNDER: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-    alpha: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-};
 
 struct Peeling {
     name: String,

@@ -11,7 +11,7 @@
 //!   `compose` pass applies the Λ correction.
 
 use plait_gpu::Capabilities;
-use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
+use plait_gpu::pass::{BlendPreset, BuiltinShader, DepthMode, PassType, RasterState, blend_preset};
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::spec_util::{DEPTH, HDR, SlotExt, buffer, choice, texture};
@@ -20,8 +20,6 @@ use crate::visibility;
 pub struct HairShade;
 
 /// Premultiplied-alpha "over".
-const OVER: wgpu::BlendState = wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING;
-
 impl PassType for HairShade {
     fn spec(&self) -> PassTypeSpec {
         let mut inputs = vec![
@@ -98,12 +96,12 @@ impl PassType for HairShade {
         _caps: &Capabilities,
     ) -> Result<RasterState, String> {
         let blend = match pass.params.get("blend").and_then(|v| v.as_str()) {
-            Some("occupancy_order") => ADDITIVE,
-            _ => OVER,
+            Some("occupancy_order") => BlendPreset::Additive,
+            _ => BlendPreset::Over,
         };
         Ok(RasterState {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
-            blend: vec![Some(blend)],
+            blend: vec![blend_preset(blend)],
             ..RasterState::default()
         })
     }

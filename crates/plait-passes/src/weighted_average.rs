@@ -12,7 +12,7 @@
 //! Cost: one hair draw + one fullscreen pass. Memory: two screen-size float
 //! targets (rgba16float sums, r16float count — exact counts to 2048).
 
-use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
+use plait_gpu::pass::{BlendPreset, BuiltinShader, DepthMode, PassType, RasterState, blend_preset};
 use plait_gpu::{Capabilities, Define};
 use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
 
@@ -65,7 +65,7 @@ impl PassType for HairWeightedAverage {
     ) -> Result<RasterState, String> {
         Ok(RasterState {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
-            blend: vec![Some(ADDITIVE), Some(ADDITIVE)],
+            blend: vec![blend_preset(BlendPreset::Additive); 2],
             ..RasterState::default()
         })
     }

@@ -33,9 +33,10 @@ pub use pass_type::{
     BuildContext, BuiltinShader, PassLibrary, PassType, PreparedPass, RecordContext,
     SCENE_BINDINGS, shader_source,
 };
+pub use plait_graph::raster_decl::BlendPreset;
 pub use plan::{BindingPlan, check_pass};
 pub use record::{DrawWhat, ShaderPass, ShaderPassKind};
-pub use state::{ADDITIVE, DepthMode, RasterState};
+pub use state::{DepthMode, RasterState, blend_preset};
 
 /// `(path, text)` of a WGSL file under `shaders/`, compiled into the calling
 /// crate: `builtin_shader!("passes/occupancy.wgsl")`. The path is written once.

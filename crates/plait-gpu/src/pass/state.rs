@@ -4,7 +4,7 @@
 //! with the checks that need the pass's targets.
 
 use plait_graph::raster_decl::{
-    Blend, BlendComponent, BlendFactor, BlendOp, Compare, Cull, RasterDecl,
+    Blend, BlendComponent, BlendFactor, BlendOp, BlendPreset, Compare, Cull, RasterDecl,
 };
 use plait_graph::{Access, Format, Location, ResolvedResource, ResourceDesc, ScheduledPass};
 
@@ -58,19 +58,11 @@ impl Default for RasterState {
     }
 }
 
-/// Additive blending of colour and alpha (accumulation targets).
-pub const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-    alpha: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-};
+/// A named blend state (the presets of pipeline files), for Rust pass types
+/// too, so a preset means the same everywhere; `None` for `replace`.
+pub fn blend_preset(preset: BlendPreset) -> Option<wgpu::BlendState> {
+    blend_state(Blend::Preset(preset))
+}
 
 /// The wgpu blend state of a TOML blend (`None`: replace).
 pub fn blend_state(blend: Blend) -> Option<wgpu::BlendState> {
@@ -244,5 +236,30 @@ pub fn from_decl(
         Ok(state)
     } else {
         Err(errors)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_are_the_usual_blend_states() {
+        assert_eq!(blend_preset(BlendPreset::Replace), None);
+        assert_eq!(
+            blend_preset(BlendPreset::Over),
+            Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING)
+        );
+        assert_eq!(
+            blend_preset(BlendPreset::Alpha),
+            Some(wgpu::BlendState::ALPHA_BLENDING)
+        );
+        let additive = blend_preset(BlendPreset::Additive).expect("blends");
+        assert_eq!(additive.color, additive.alpha);
+        assert_eq!(additive.color.src_factor, wgpu::BlendFactor::One);
+        assert_eq!(additive.color.dst_factor, wgpu::BlendFactor::One);
+        let under = blend_preset(BlendPreset::Under).expect("blends");
+        assert_eq!(under.color.src_factor, wgpu::BlendFactor::OneMinusDstAlpha);
+        assert_eq!(under.color.dst_factor, wgpu::BlendFactor::One);
     }
 }
