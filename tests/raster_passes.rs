@@ -215,3 +215,23 @@ fn a_blend_for_a_slot_that_is_no_colour_target_suggests_one() {
         "{err}"
     );
 }
+
+/// A culled data-only pass is still checked against its shader, but outputs
+/// the schedule dropped with it are not held against its state.
+#[test]
+fn a_culled_raster_pass_with_state_checks() {
+    let path = repo_root().join("tests/fixtures/raster_counts.toml");
+    let pipeline =
+        plait_graph::load(&path, &["pipeline.outputs=[\"slab_counts\"]".into()]).expect("loads");
+    let schedule = check_pipeline(pipeline, &CompileOptions::default())
+        .unwrap_or_else(|e| panic!("culled passes with state must check: {e}"));
+    let culled: Vec<&str> = schedule
+        .culled
+        .iter()
+        .map(|c| c.pass.name.as_str())
+        .collect();
+    assert!(
+        culled.contains(&"blended_counts") && culled.contains(&"atomic_counts"),
+        "{culled:?}"
+    );
+}

@@ -155,7 +155,14 @@ pub fn from_decl(
         .iter()
         .filter(|b| b.access == Access::ColorTarget && !is_resolve_slot(pass, &b.slot))
         .collect();
+    // A culled pass may bind resources the schedule dropped: what they would
+    // have been is unknown, so they are not held against it.
+    let dropped = |b: &plait_graph::Binding| resources.get(b.resource).is_none();
+    let any_dropped = pass.reads.iter().chain(pass.writes.iter()).any(dropped);
     for (slot, blend) in &decl.blend {
+        if pass.writes.iter().any(|b| &b.slot == slot && dropped(b)) {
+            continue;
+        }
         let Some(index) = targets.iter().position(|b| &b.slot == slot) else {
             let names: Vec<&str> = targets.iter().map(|b| b.slot.as_str()).collect();
             errors.push((
@@ -205,6 +212,7 @@ pub fn from_decl(
     if let Some(depth) = &decl.depth {
         let compare = compare_function(depth.compare);
         match (depth_target, depth.write) {
+            (None, _) if any_dropped => {}
             (None, _) => errors.push((
                 depth.location.clone(),
                 "a depth test needs a depth input: bind a depth32float texture under `reads` (tested only) or `writes` (tested and written)".into(),
