@@ -16,19 +16,21 @@
 //! By concern: [`pass_type`] (the trait, its contexts, the library),
 //! [`defaults`] (defines and thread counts a type gets unless it says
 //! otherwise), [`state`] (fixed-function state, from Rust or from TOML),
-//! [`plan`] (which shader binding each slot feeds — computed once per pass
+//! [`layout`] (bind group layouts), [`plan`] (which shader binding each slot feeds — computed once per pass
 //! from the schedule and naga's reflection, used by `plait check`, build and
 //! record), [`build`] (bind groups and pipelines) and [`record`] (commands).
 
 pub mod build;
 pub mod defaults;
+pub mod layout;
 pub mod pass_type;
 pub mod plan;
 pub mod record;
 pub mod state;
 
-pub use build::{ShaderDraw, build_draw, build_shader_pass, frame_layout, raster_state_of};
+pub use build::{ShaderDraw, build_draw, build_shader_pass, raster_state_of};
 pub use defaults::{default_defines, default_threads};
+pub use layout::frame_layout;
 pub use pass_type::{
     BuildContext, BuiltinShader, PassLibrary, PassType, PreparedPass, RecordContext,
     SCENE_BINDINGS, shader_source,
