@@ -114,6 +114,8 @@ pub struct PassDecl {
     pub params: IndexMap<String, Spanned<Value>>,
     /// Resolved path (see [`resolve_shader`]); the location is where it was written.
     pub shader: Option<Spanned<PathBuf>>,
+    /// `depth`, `blend`, `cull` ([`crate::raster_decl`]).
+    pub raster: crate::raster_decl::RasterDecl,
     pub location: Location,
 }
 

@@ -17,7 +17,8 @@ pub(crate) const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "o
 pub(crate) const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
 pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size"];
 pub(crate) const PASS_KEYS: &[&str] = &[
-    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses",
+    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses", "depth",
+    "blend", "cull",
 ];
 const VIEWS: &[&str] = &["light", "camera"];
 const DRAWS: &[&str] = &["hair", "opaque"];
@@ -427,6 +428,7 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
         writes,
         params,
         shader,
+        raster: crate::raster_decl::parse(t, &format!("passes.{name}"), b.errors),
         location: entry.key.clone(),
     })
 }

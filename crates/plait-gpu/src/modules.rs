@@ -1,0 +1,73 @@
+//! Composed shader modules, cached for the whole process.
+//!
+//! `plait check` and every build of a pass compose the same shader with the
+//! same defines: checking a pipeline, building it, rendering it again at
+//! another size and every variant of an A/B run. Composition (naga_oil, then
+//! naga validation) costs far more than a lookup, so each distinct
+//! (path, source, defines) is composed once and shared.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use crate::shader::{Define, ShaderError, ShaderLibrary};
+
+type Key = (PathBuf, String, Vec<(String, Define)>);
+
+#[derive(Default)]
+struct Modules {
+    /// Created on first use: loading the library modules is itself a cost.
+    library: Option<ShaderLibrary>,
+    composed: HashMap<Key, Arc<naga::Module>>,
+}
+
+static MODULES: Mutex<Option<Modules>> = Mutex::new(None);
+
+/// The composed, validated module of `source` with `defines` (`path` names it
+/// in messages). Failures are not cached: they are reported, then fixed.
+pub fn compose(
+    path: &Path,
+    source: &str,
+    defines: &[(String, Define)],
+) -> Result<Arc<naga::Module>, ShaderError> {
+    // A panic elsewhere while holding the lock leaves a cache that is still
+    // consistent (entries are inserted whole), so a poisoned lock is reused.
+    let mut guard = MODULES.lock().unwrap_or_else(|p| p.into_inner());
+    let modules = guard.get_or_insert_with(Modules::default);
+    let key: Key = (path.to_owned(), source.to_owned(), defines.to_vec());
+    if let Some(m) = modules.composed.get(&key) {
+        return Ok(m.clone());
+    }
+    let library = match &mut modules.library {
+        Some(l) => l,
+        None => modules.library.insert(ShaderLibrary::new()?),
+    };
+    let module = Arc::new(library.compose(path, source, defines)?);
+    modules.composed.insert(key, module.clone());
+    Ok(module)
+}
+
+/// How many distinct modules have been composed (for tests of the cache).
+pub fn composed_count() -> usize {
+    MODULES
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .as_ref()
+        .map_or(0, |m| m.composed.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_same_shader_is_composed_once() {
+        let source = "@compute @workgroup_size(1) fn main() {}";
+        let path = Path::new("cache_test.wgsl");
+        let a = compose(path, source, &[]).expect("composes");
+        let b = compose(path, source, &[]).expect("composes");
+        assert!(Arc::ptr_eq(&a, &b), "the second compose is a cache hit");
+        let c = compose(path, source, &[("X".into(), Define::Bool(true))]).expect("composes");
+        assert!(!Arc::ptr_eq(&a, &c), "other defines are another module");
+    }
+}
