@@ -33,7 +33,7 @@ enum Command {
     Graph(pipeline_cmd::GraphArgs),
     /// List the registered pass types with their inputs, outputs and params.
     Passes(pipeline_cmd::PassesArgs),
-    /// Inspect and generate `.hair` files.
+    /// Inspect, convert and generate `.hair` and `.tfx` files.
     Hair(hair_cmd::HairArgs),
     /// Run several pipelines on the same scene(s) and write one report
     Ab(ab_cmd::AbArgs),
