@@ -227,7 +227,11 @@ fn tfx_info(path: &Path, file: &TfxFile, warnings: Vec<String>, json: bool) -> a
     println!("file:         {}", path.display());
     println!("format:       TressFX .tfx, version {}", file.version);
     println!("strands:      {} (guide strands)", file.strand_count());
-    println!("vertices:     {} per strand, {} in all", file.vertices_per_strand, file.vertex_count());
+    println!(
+        "vertices:     {} per strand, {} in all",
+        file.vertices_per_strand,
+        file.vertex_count()
+    );
     println!("arrays:       {}", file.arrays().join(", "));
     if file.major_version() == 3 {
         println!(
@@ -242,7 +246,12 @@ fn tfx_info(path: &Path, file: &TfxFile, warnings: Vec<String>, json: bool) -> a
     Ok(())
 }
 
-fn hair_info(path: &Path, file: &HairFile, warnings: Vec<String>, json: bool) -> anyhow::Result<()> {
+fn hair_info(
+    path: &Path,
+    file: &HairFile,
+    warnings: Vec<String>,
+    json: bool,
+) -> anyhow::Result<()> {
     let (min, max) = bounds_of(file.bounds());
     if json {
         let v = serde_json::json!({

@@ -79,8 +79,7 @@ impl Asset {
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<(Asset, Vec<String>), AssetError> {
         match Format::detect(path, bytes) {
             Some(Format::Hair) => {
-                let (file, warnings) =
-                    HairFile::from_bytes(bytes).map_err(|e| e.in_file(path))?;
+                let (file, warnings) = HairFile::from_bytes(bytes).map_err(|e| e.in_file(path))?;
                 Ok((Asset::Hair(file), texts(&warnings)))
             }
             Some(Format::Tfx) => {

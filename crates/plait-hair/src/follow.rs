@@ -111,7 +111,8 @@ fn copy_strand(
         out.thickness
             .push(from.thickness.get(i).copied().unwrap_or(1.0));
         out.alpha.push(from.alpha.get(i).copied().unwrap_or(1.0));
-        out.color.push(from.color.get(i).copied().unwrap_or(Vec3::ONE));
+        out.color
+            .push(from.color.get(i).copied().unwrap_or(Vec3::ONE));
     }
     out.offsets.push(out.points.len() as u32);
 }
@@ -170,14 +171,21 @@ mod tests {
             // the look comes from the guide
             let r = out.strand_range(s);
             assert_eq!(out.color[r.start], g.color[g.strand_range(guide).start]);
-            assert_eq!(out.thickness[r.end - 1], g.thickness[g.strand_range(guide).end - 1]);
+            assert_eq!(
+                out.thickness[r.end - 1],
+                g.thickness[g.strand_range(guide).end - 1]
+            );
         }
         // the guide itself comes first, unchanged; follows differ
         assert_eq!(out.strand(0), g.strand(0));
         assert_ne!(out.strand(1), out.strand(2));
         // deterministic by seed
         assert_eq!(spec.apply(&g), out);
-        let other = FollowStrands { seed: 8, ..spec.clone() }.apply(&g);
+        let other = FollowStrands {
+            seed: 8,
+            ..spec.clone()
+        }
+        .apply(&g);
         assert_ne!(other, out);
     }
 

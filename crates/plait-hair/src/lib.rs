@@ -38,6 +38,6 @@ pub use scene::{
     Background, Camera, CameraFit, Framing, Ground, Hair, HairMaterial, HairSource, Head, Light,
     LightKind, Scene, SceneError,
 };
+pub use strands::{Aabb, StrandVertex, Strands};
 pub use tfx::{TfxError, TfxFile, TfxWarning};
 pub use transform::{Scale, Transform};
-pub use strands::{Aabb, StrandVertex, Strands};

@@ -333,7 +333,6 @@ impl Light {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -378,13 +377,15 @@ mod tests {
         }
     }
 
-
     #[test]
     fn fitted_light_comes_from_above_the_camera_side() {
         let camera = Camera::looking_down_z();
         let light = Light::fitted(&camera, 2.0);
         let to_light = light.direction_to_light();
-        assert!(to_light.y > 0.6 && to_light.z > 0.3 && to_light.x > 0.2, "{to_light}");
+        assert!(
+            to_light.y > 0.6 && to_light.z > 0.3 && to_light.x > 0.2,
+            "{to_light}"
+        );
         assert_eq!(light.radiance(), Vec3::splat(2.0));
     }
 }

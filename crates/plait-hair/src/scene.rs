@@ -13,8 +13,8 @@ use glam::Vec3;
 use serde::Deserialize;
 
 use crate::asset::{Asset, AssetError};
-pub use crate::camera::{Camera, CameraFit};
 use crate::camera::CameraSetting;
+pub use crate::camera::{Camera, CameraFit};
 use crate::groom::{GroomSpec, HeadShape, ScalpRegion, Style};
 use crate::hair_file::HairError;
 pub use crate::hair_source::{Hair, HairSource};
@@ -414,16 +414,19 @@ impl Scene {
                 let (asset, _warnings) = Asset::read(path)?;
                 (asset.strands(), path.clone())
             }
-            HairSource::Procedural(spec) => {
-                (crate::groom::generate(spec), PathBuf::from("<procedural groom>"))
-            }
+            HairSource::Procedural(spec) => (
+                crate::groom::generate(spec),
+                PathBuf::from("<procedural groom>"),
+            ),
         };
         let invalid = |message: String| SceneError::Invalid {
             path: origin.clone(),
             message,
         };
         if let Some(follow) = &self.hair.follow {
-            follow.check_size(&strands).map_err(|m| invalid(format!("hair.{m}")))?;
+            follow
+                .check_size(&strands)
+                .map_err(|m| invalid(format!("hair.{m}")))?;
             strands = follow.apply(&strands);
         }
         if let Some(transform) = &self.hair.transform {

@@ -237,7 +237,13 @@ const V4_ARRAYS: [ArraySpec; 5] = [
 // numFollowHairsPerGuideHair, bothEndsImmovable and 31 reserved u32.
 const V3_ARRAYS: [ArraySpec; 6] = [
     array("positions", "verticesOffset", 144, 12, true),
-    array("strand thickness", "perStrandThicknessOffset", 148, 4, false),
+    array(
+        "strand thickness",
+        "perStrandThicknessOffset",
+        148,
+        4,
+        false,
+    ),
     array("strand UV", "perStrandTexCoordOffset", 152, 8, false),
     array("vertex colour", "perVertexColorOffset", 156, 16, true),
     array("guide flags", "guideHairStrandOffset", 160, 4, false),
@@ -419,14 +425,13 @@ impl TfxFile {
     /// mass are not used by plait, so they are kept as they are).
     fn check_finite(&self) -> Result<(), TfxError> {
         let per = self.vertices_per_strand.max(1) as usize;
-        let bad = |array: &'static str, index: usize, per: usize, value: &[f32]| {
-            TfxError::NonFinite {
+        let bad =
+            |array: &'static str, index: usize, per: usize, value: &[f32]| TfxError::NonFinite {
                 array,
                 strand: index / per,
                 vertex: index % per,
                 value: value.to_vec(),
-            }
-        };
+            };
         if let Some(i) = self.positions.iter().position(|p| !all_finite(p)) {
             return Err(bad("position", i, per, &self.positions[i]));
         }
@@ -450,7 +455,7 @@ impl TfxFile {
     pub fn to_bytes(&self) -> Result<Vec<u8>, TfxError> {
         let per = self.vertices_per_strand;
         let n = self.positions.len();
-        if per < 2 || n == 0 || n % per as usize != 0 {
+        if per < 2 || n == 0 || !n.is_multiple_of(per as usize) {
             return Err(TfxError::Unrepresentable(format!(
                 "{n} vertices are not whole strands of {per} (≥ 2) vertices"
             )));
@@ -575,9 +580,8 @@ impl TfxFile {
         strands: &Strands,
         vertices_per_strand: Option<u32>,
     ) -> Result<TfxFile, TfxError> {
-        let per = vertices_per_strand.unwrap_or_else(|| {
-            strands.ranges().map(|r| r.len()).max().unwrap_or(0).max(2) as u32
-        });
+        let per = vertices_per_strand
+            .unwrap_or_else(|| strands.ranges().map(|r| r.len()).max().unwrap_or(0).max(2) as u32);
         if per < 2 {
             return Err(TfxError::Unrepresentable(format!(
                 "{per} vertices per strand: a strand needs at least 2"

@@ -51,7 +51,8 @@ impl Transform {
     /// The matrix `T · Rz · Ry · Rx · S`.
     pub fn matrix(&self) -> Mat4 {
         let [x, y, z] = self.rotate_degrees.map(f32::to_radians);
-        let rotation = Quat::from_rotation_z(z) * Quat::from_rotation_y(y) * Quat::from_rotation_x(x);
+        let rotation =
+            Quat::from_rotation_z(z) * Quat::from_rotation_y(y) * Quat::from_rotation_x(x);
         Mat4::from_scale_rotation_translation(
             self.scale.vector(),
             rotation,
@@ -151,7 +152,11 @@ mod tests {
             translate: [f32::NAN, 0.0, 0.0],
             ..Transform::default()
         };
-        assert!(t.validate().unwrap_err().contains("hair.transform.translate"));
+        assert!(
+            t.validate()
+                .unwrap_err()
+                .contains("hair.transform.translate")
+        );
         let t = Transform {
             scale: Scale::Uniform(f32::INFINITY),
             ..Transform::default()

@@ -15,7 +15,11 @@ fn u32le(out: &mut Vec<u8>, v: u32) {
 
 /// Vertex `k` of strand `s`: distinct, exactly representable values.
 fn vertex(s: usize, k: usize) -> [f32; 3] {
-    [s as f32 * 0.5, -(k as f32) * 0.25, 1.0 + s as f32 + k as f32 * 0.125]
+    [
+        s as f32 * 0.5,
+        -(k as f32) * 0.25,
+        1.0 + s as f32 + k as f32 * 0.125,
+    ]
 }
 
 /// A TressFX 4 file: 160-byte header (version, strands, vertices per strand,
@@ -100,11 +104,17 @@ fn reads_a_tressfx4_file_built_byte_by_byte() {
     assert_eq!((f.version, f.vertices_per_strand), (4.0, 4));
     assert_eq!((f.strand_count(), f.vertex_count()), (3, 12));
     assert_eq!(f.positions[6], vertex(1, 2));
-    assert_eq!(f.inverse_mass.as_ref().expect("v4 has w")[..4], [0.0, 0.0, 1.0, 1.0]);
+    assert_eq!(
+        f.inverse_mass.as_ref().expect("v4 has w")[..4],
+        [0.0, 0.0, 1.0, 1.0]
+    );
     assert_eq!(f.strand_uv.as_ref().expect("uv")[2], [0.25, 0.5]);
     assert!(f.vertex_uv.is_none());
     assert_eq!(f.strand_thickness, Some(vec![0.01, 0.02, 0.03]));
-    assert_eq!(f.vertex_color.as_ref().expect("colours")[5], [0.5, 0.25, 5.0 / 64.0, 0.75]);
+    assert_eq!(
+        f.vertex_color.as_ref().expect("colours")[5],
+        [0.5, 0.25, 5.0 / 64.0, 0.75]
+    );
     assert_eq!(f.major_version(), 4);
 }
 
@@ -166,7 +176,11 @@ fn strands_of_other_lengths_are_resampled_by_arc_length() {
     use glam::Vec3;
     let mut s = Strands::new();
     // 3 points over a length of 4 (uneven segments), and 5 points
-    let bent = [Vec3::ZERO, Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 3.0, 0.0)];
+    let bent = [
+        Vec3::ZERO,
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(1.0, 3.0, 0.0),
+    ];
     s.push_strand(&bent, |_| 1.0, |_| 1.0, Vec3::ONE);
     let line: Vec<Vec3> = (0..5).map(|i| Vec3::new(0.0, -(i as f32), 0.0)).collect();
     s.push_strand(&line, |_| 1.0, |_| 1.0, Vec3::ONE);
@@ -176,7 +190,10 @@ fn strands_of_other_lengths_are_resampled_by_arc_length() {
     // the bent strand: 5 points 1 apart along the path
     let expect = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [1.0, 2.0], [1.0, 3.0]];
     for (p, e) in f.positions[..5].iter().zip(expect) {
-        assert!((p[0] - e[0]).abs() < 1e-6 && (p[1] - e[1]).abs() < 1e-6, "{p:?}");
+        assert!(
+            (p[0] - e[0]).abs() < 1e-6 && (p[1] - e[1]).abs() < 1e-6,
+            "{p:?}"
+        );
     }
     // the straight one is kept as it is
     let line: Vec<[f32; 3]> = line.iter().map(|p| p.to_array()).collect();
@@ -202,11 +219,18 @@ fn truncated_files_name_the_array_and_field() {
     }
     let e = err(&bytes[..V4_HEADER_SIZE + 100]);
     let msg = e.to_string();
-    assert!(msg.contains("positions") && msg.contains("offsetVertexPosition"), "{msg}");
+    assert!(
+        msg.contains("positions") && msg.contains("offsetVertexPosition"),
+        "{msg}"
+    );
     let e = err(&bytes[..50]);
     assert!(e.to_string().contains("160-byte TressFX 4 header"), "{e}");
     let v3 = v3_file(2, 4, 0);
-    assert!(err(&v3[..200]).to_string().contains("296-byte TressFX 3 header"));
+    assert!(
+        err(&v3[..200])
+            .to_string()
+            .contains("296-byte TressFX 3 header")
+    );
 }
 
 #[test]
@@ -240,7 +264,10 @@ fn offsets_inside_the_header_and_missing_positions_are_refused() {
     let mut bytes = v4_file(1, 4);
     set_u32(&mut bytes, 16, 8); // strand UVs inside the header
     let msg = err(&bytes).to_string();
-    assert!(msg.contains("offsetStrandUV") && msg.contains("inside"), "{msg}");
+    assert!(
+        msg.contains("offsetStrandUV") && msg.contains("inside"),
+        "{msg}"
+    );
     let mut bytes = v4_file(1, 4);
     set_u32(&mut bytes, 12, 0);
     assert!(err(&bytes).to_string().contains("offsetVertexPosition"));
@@ -254,7 +281,10 @@ fn non_finite_values_name_strand_and_vertex() {
         let at = V4_HEADER_SIZE + (2 * 4 + 1) * 16 + 4;
         bytes[at..at + 4].copy_from_slice(&bad.to_le_bytes());
         let msg = err(&bytes).to_string();
-        assert!(msg.contains(&format!("{array} of strand 2, vertex 1")), "{msg}");
+        assert!(
+            msg.contains(&format!("{array} of strand 2, vertex 1")),
+            "{msg}"
+        );
     }
     let mut bytes = v4_file(3, 4);
     let thick = u32::from_le_bytes(bytes[24..28].try_into().unwrap()) as usize;
@@ -271,22 +301,40 @@ fn versions_other_than_3_and_4_are_refused_and_odd_vertex_counts_warned() {
     }
     let mut bytes = v4_file(2, 4);
     bytes[..4].copy_from_slice(&4.1f32.to_le_bytes());
-    assert!(TfxFile::from_bytes(&bytes).is_ok(), "4.1 reads as TressFX 4");
+    assert!(
+        TfxFile::from_bytes(&bytes).is_ok(),
+        "4.1 reads as TressFX 4"
+    );
     let (_, warnings) = TfxFile::from_bytes(&v4_file(2, 5)).expect("5 vertices read");
-    assert_eq!(warnings, vec![TfxWarning::VertexCountNotTressFx { count: 5 }]);
+    assert_eq!(
+        warnings,
+        vec![TfxWarning::VertexCountNotTressFx { count: 5 }]
+    );
 }
 
 #[test]
 fn formats_are_told_apart_by_content_then_name() {
     let tfx = v4_file(1, 4);
     assert_eq!(Format::detect(Path::new("x.bin"), &tfx), Some(Format::Tfx));
-    assert_eq!(Format::detect(Path::new("x.tfx"), b"junk"), Some(Format::Tfx));
-    assert_eq!(Format::detect(Path::new("x.tfx"), b"HAIRjunk"), Some(Format::Hair));
+    assert_eq!(
+        Format::detect(Path::new("x.tfx"), b"junk"),
+        Some(Format::Tfx)
+    );
+    assert_eq!(
+        Format::detect(Path::new("x.tfx"), b"HAIRjunk"),
+        Some(Format::Hair)
+    );
     assert_eq!(Format::detect(Path::new("x.bin"), b"junk"), None);
     let e = Asset::from_bytes(Path::new("dir/x.bin"), b"junk").unwrap_err();
-    assert!(e.to_string().starts_with("dir/x.bin: not a hair asset"), "{e}");
+    assert!(
+        e.to_string().starts_with("dir/x.bin: not a hair asset"),
+        "{e}"
+    );
     let e = Asset::from_bytes(Path::new("dir/m.tfx"), &tfx[..100]).unwrap_err();
-    assert!(e.to_string().starts_with("dir/m.tfx: file is 100 bytes"), "{e}");
+    assert!(
+        e.to_string().starts_with("dir/m.tfx: file is 100 bytes"),
+        "{e}"
+    );
     let (asset, _) = Asset::from_bytes(Path::new("m.tfx"), &tfx).expect("reads");
     assert_eq!(asset.strands().point_count(), 4);
 }
@@ -297,6 +345,9 @@ fn read_names_the_file() {
     let path = dir.path().join("short.tfx");
     std::fs::write(&path, &v4_file(2, 4)[..170]).expect("write");
     let e = TfxFile::read(&path).unwrap_err();
-    assert!(e.to_string().starts_with(&path.display().to_string()), "{e}");
+    assert!(
+        e.to_string().starts_with(&path.display().to_string()),
+        "{e}"
+    );
     assert!(matches!(e.root(), TfxError::Truncated { .. }));
 }
