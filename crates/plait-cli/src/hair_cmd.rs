@@ -82,7 +82,7 @@ pub fn run(args: HairArgs) -> anyhow::Result<()> {
             hair.set_info(&format!(
                 "plait hair generate --style {style} --seed {seed}"
             ));
-            hair.write(&out)?;
+            PendingFile::create(&out, "--out")?.commit(&hair.to_bytes())?;
             println!(
                 "wrote {}: {} strands, {} points, {} segments",
                 out.display(),
