@@ -36,14 +36,23 @@ fn interrupt_when_started(mut child: Child, dir: &Path) -> (Option<i32>, String)
     while temporaries(dir).is_empty() {
         if let Some(status) = child.try_wait().expect("wait") {
             let out = child.wait_with_output().expect("output");
-            panic!("finished ({status}) before it could be interrupted: {}", text(&out.stderr));
+            panic!(
+                "finished ({status}) before it could be interrupted: {}",
+                text(&out.stderr)
+            );
         }
-        assert!(start.elapsed() < Duration::from_secs(60), "no temporary appeared");
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "no temporary appeared"
+        );
         std::thread::sleep(Duration::from_millis(5));
     }
     // The temporary is registered for removal right after it is created.
     std::thread::sleep(Duration::from_millis(300));
-    assert!(child.try_wait().expect("wait").is_none(), "still running when interrupted");
+    assert!(
+        child.try_wait().expect("wait").is_none(),
+        "still running when interrupted"
+    );
     let sent = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()

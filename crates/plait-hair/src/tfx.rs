@@ -367,7 +367,8 @@ impl TfxFile {
                 });
             }
             let count = if spec.per_vertex { vertices } else { strands };
-            let expected = count * spec.element_bytes;
+            // Saturating: u32 × u32 × 16 can pass 2^64 (found by fuzzing).
+            let expected = count.saturating_mul(spec.element_bytes);
             let present = len.saturating_sub(offset);
             if expected > present {
                 return Err(TfxError::Truncated {

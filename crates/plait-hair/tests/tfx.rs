@@ -254,6 +254,12 @@ fn counts_that_disagree_with_the_file_size_fail_before_allocating() {
         let msg = err(&bytes).to_string();
         assert!(msg.contains(field), "{msg}");
     }
+    // Regression (fuzzing): u32::MAX strands × u32::MAX vertices × 16 bytes
+    // overflowed the size check.
+    let mut bytes = v4_file(3, 4);
+    set_u32(&mut bytes, 4, u32::MAX);
+    set_u32(&mut bytes, 8, u32::MAX);
+    assert!(matches!(err(&bytes), TfxError::Truncated { .. }));
     let mut v3 = v3_file(2, 4, 0);
     set_u32(&mut v3, 4, 0);
     assert!(err(&v3).to_string().contains("numGuideHairStrands"));
