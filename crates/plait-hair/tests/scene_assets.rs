@@ -221,6 +221,8 @@ fn bad_assets_are_named_when_the_hair_loads() {
         ("bad.tfx", "field `version` is 0"),
         ("bad.bin", "not a hair asset"),
         ("missing.tfx", "missing.tfx"),
+        ("/dev/zero", "not a regular file"),
+        (".", "not a regular file"),
     ] {
         let s = scene(
             dir.path(),

@@ -92,7 +92,9 @@ fn main() {
     let mut samples = Vec::new();
     for frame in 0..frames {
         // A new frame index each frame (it drives the jitter), as an animation would.
-        prepared.renderer.set_frame(&scene.frame(size, frame as u32));
+        prepared
+            .renderer
+            .set_frame(&scene.frame(size, frame as u32));
         prepared
             .renderer
             .render()
