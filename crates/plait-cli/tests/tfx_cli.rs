@@ -156,3 +156,62 @@ fn bad_tfx_input_exits_2_naming_the_file_and_writes_nothing() {
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o.stderr).contains("x.obj: the output's extension must be .hair or .tfx"));
 }
+
+/// A scene naming a `.tfx` groom in its own units and axes, with follow
+/// strands, a fitted camera and light and no head, renders framed.
+#[test]
+fn a_tfx_scene_renders_framed() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // 40 guides of 8 vertices, 200 units tall along +Z (a Z-up asset).
+    let mut b = Vec::new();
+    for w in [4.0f32.to_bits(), 40, 8, 160] {
+        b.extend_from_slice(&w.to_le_bytes());
+    }
+    b.resize(160, 0);
+    for s in 0..40 {
+        for k in 0..8 {
+            let x = (s % 8) as f32 * 10.0 + k as f32 * 2.0;
+            let y = (s / 8) as f32 * 10.0;
+            for c in [x, y, 200.0 - 25.0 * k as f32, 1.0] {
+                b.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+    }
+    write(dir.path(), "g.tfx", &b);
+    let scene = write(
+        dir.path(),
+        "s.toml",
+        b"camera = \"fit\"\nlight = \"fit\"\n[hair]\nfile = \"g.tfx\"\nfollow_strands = 3\nfollow_radius = 2\n\
+          [hair.transform]\nrotate_degrees = [-90, 0, 0]\n[material]\ncolor = [0.8, 0.6, 0.4]\n",
+    );
+    let out = dir.path().join("g.png");
+    let o = plait(&[
+        "render",
+        "--scene",
+        s(&scene),
+        "--size",
+        "64x48",
+        "--out",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let img = image::open(&out).expect("png").to_rgba8();
+    let background = *img.get_pixel(0, 0);
+    let (mut lo, mut hi) = ((u32::MAX, u32::MAX), (0, 0));
+    for (x, y, p) in img.enumerate_pixels() {
+        if *p != background {
+            lo = (lo.0.min(x), lo.1.min(y));
+            hi = (hi.0.max(x), hi.1.max(y));
+        }
+    }
+    // The groom fills most of the frame's height and is centred in it.
+    assert!(
+        hi.1 > lo.1 && hi.1 - lo.1 >= 30,
+        "hair spans rows {lo:?}..{hi:?}"
+    );
+    let centre = (lo.0 + hi.0) / 2;
+    assert!(
+        (20..=44).contains(&centre),
+        "hair centred at column {centre}"
+    );
+}
