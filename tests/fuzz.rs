@@ -500,7 +500,7 @@ fn fuzz_pipeline_loader() {
     let top = repo_root().join("pipelines/fuzz.toml");
     let opts = plait_graph::CompileOptions {
         screen: (64, 48),
-        max_texture_dimension: 8192,
+        ..plait_graph::CompileOptions::default()
     };
     let mut checked = 0u32;
     fuzz("pipeline", 5_000, strategy, |input| {

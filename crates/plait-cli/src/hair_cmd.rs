@@ -83,13 +83,13 @@ pub fn run(args: HairArgs) -> anyhow::Result<()> {
                 "plait hair generate --style {style} --seed {seed}"
             ));
             PendingFile::create(&out, "--out")?.commit(&hair.to_bytes())?;
-            println!(
+            outln!(
                 "wrote {}: {} strands, {} points, {} segments",
                 out.display(),
                 strands.strand_count(),
                 strands.point_count(),
                 strands.segment_count()
-            );
+            )?;
             Ok(())
         }
     }
@@ -167,12 +167,12 @@ fn convert(input: &Path, output: &Path, vertices_per_strand: Option<u32>) -> any
     pending.commit(&bytes)?;
     let (written, _) = Asset::from_bytes(output, &bytes)?;
     let out = written.strands();
-    println!(
+    outln!(
         "wrote {}: {} strands, {} points",
         output.display(),
         out.strand_count(),
         out.point_count()
-    );
+    )?;
     Ok(())
 }
 
@@ -221,25 +221,26 @@ fn tfx_info(path: &Path, file: &TfxFile, warnings: Vec<String>, json: bool) -> a
             "bounds": { "min": min, "max": max },
             "warnings": warnings,
         });
-        println!("{v}");
+        outln!("{v}")?;
         return Ok(());
     }
-    println!("file:         {}", path.display());
-    println!("format:       TressFX .tfx, version {}", file.version);
-    println!("strands:      {} (guide strands)", file.strand_count());
-    println!(
+    outln!("file:         {}", path.display())?;
+    outln!("format:       TressFX .tfx, version {}", file.version)?;
+    outln!("strands:      {} (guide strands)", file.strand_count())?;
+    outln!(
         "vertices:     {} per strand, {} in all",
         file.vertices_per_strand,
         file.vertex_count()
-    );
-    println!("arrays:       {}", file.arrays().join(", "));
+    )?;
+    outln!("arrays:       {}", file.arrays().join(", "))?;
     if file.major_version() == 3 {
-        println!(
+        outln!(
             "header:       {} follow strands per guide, both ends immovable: {}",
-            file.follow_strands_per_guide, file.both_ends_immovable
-        );
+            file.follow_strands_per_guide,
+            file.both_ends_immovable
+        )?;
     }
-    println!("bounds:       min {min:?} max {max:?}");
+    outln!("bounds:       min {min:?} max {max:?}")?;
     for w in &warnings {
         eprintln!("warning: {}: {w}", path.display());
     }
@@ -271,14 +272,14 @@ fn hair_info(
             "info": file.info_string(),
             "warnings": warnings,
         });
-        println!("{v}");
+        outln!("{v}")?;
     } else {
-        println!("file:         {}", path.display());
-        println!("strands:      {}", file.strand_count());
-        println!("points:       {}", file.point_count());
-        println!("segments:     {}", file.segment_count());
-        println!("arrays:       {}", file.arrays().join(", "));
-        println!(
+        outln!("file:         {}", path.display())?;
+        outln!("strands:      {}", file.strand_count())?;
+        outln!("points:       {}", file.point_count())?;
+        outln!("segments:     {}", file.segment_count())?;
+        outln!("arrays:       {}", file.arrays().join(", "))?;
+        outln!(
             "defaults:     segments {}, thickness {}, transparency {}, color [{}, {}, {}]",
             file.default_segments,
             file.default_thickness,
@@ -286,9 +287,9 @@ fn hair_info(
             file.default_color[0],
             file.default_color[1],
             file.default_color[2]
-        );
-        println!("bounds:       min {min:?} max {max:?}");
-        println!("info:         {:?}", file.info_string());
+        )?;
+        outln!("bounds:       min {min:?} max {max:?}")?;
+        outln!("info:         {:?}", file.info_string())?;
         for w in &warnings {
             eprintln!("warning: {}: {w}", path.display());
         }

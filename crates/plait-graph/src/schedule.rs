@@ -203,13 +203,24 @@ pub struct CompileOptions {
     pub screen: (u32, u32),
     /// The adapter's `max_texture_dimension_2d` (8192 when checking without a GPU, WebGPU's default).
     pub max_texture_dimension: u32,
+    /// The largest buffer a pass can bind as storage: the adapter's
+    /// `max_storage_buffer_binding_size`, or WebGPU's default (128 MiB) when
+    /// checking without a GPU — a pipeline that passes runs on any adapter.
+    pub max_buffer_binding_size: u64,
 }
+
+/// WebGPU's default `max_storage_buffer_binding_size`.
+pub const DEFAULT_MAX_BUFFER_BINDING_SIZE: u64 = 128 << 20;
+
+/// Sample counts a texture may have; each format allows a subset.
+pub const SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 
 impl Default for CompileOptions {
     fn default() -> Self {
         CompileOptions {
             screen: (960, 720),
             max_texture_dimension: 8192,
+            max_buffer_binding_size: DEFAULT_MAX_BUFFER_BINDING_SIZE,
         }
     }
 }
