@@ -20,9 +20,9 @@
 //! long run (README): `PLAIT_FUZZ_SCALE=41 PLAIT_FUZZ_SEED=2 cargo test -p
 //! plait-tests --test fuzz -- --nocapture --test-threads=2`.
 //!
-//! Not coverage-guided: cargo-fuzz needs a nightly toolchain and its own
-//! crate outside the workspace's `--locked` CI; proptest runs on stable
-//! inside the ordinary test suite, so CI keeps fuzzing every parser.
+//! Not coverage-guided: that is `fuzz/` (cargo-fuzz, nightly, its own
+//! workspace); proptest runs on stable inside the ordinary test suite, so CI
+//! keeps fuzzing every parser, shaders included.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;

@@ -17,7 +17,10 @@ fuzz_target!(|bytes: &[u8]| {
         .take(4)
         .map(|s| String::from_utf8_lossy(s).into_owned())
         .collect();
-    let top = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../pipelines/fuzz.toml"));
+    let top = PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../pipelines/fuzz.toml"
+    ));
     let Ok(pipeline) = plait_graph::load_str(&top, text, &sets) else {
         return;
     };

@@ -15,7 +15,9 @@ fuzz_target!(|bytes: &[u8]| {
     };
     let mut strands = Strands::new();
     for i in 0..4 {
-        let pts: Vec<Vec3> = (0..6).map(|k| Vec3::new(i as f32, -(k as f32), 0.0)).collect();
+        let pts: Vec<Vec3> = (0..6)
+            .map(|k| Vec3::new(i as f32, -(k as f32), 0.0))
+            .collect();
         strands.push_strand(&pts, |_| 1.0, |_| 1.0, Vec3::ONE);
     }
     if let Some(follow) = &scene.hair.follow
