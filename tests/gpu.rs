@@ -214,8 +214,9 @@ fn occupancy_on_stray_strands_matches_its_golden_image() {
     check_golden("occupancy_stray", &image).unwrap_or_else(|e| panic!("{e}"));
 }
 
-/// A variant reached with `--set` renders the same image as the variant's
-/// file: the overrides and `extends` go through one merge.
+/// A gallery variant is one key: its file renders the same image as the
+/// default pipeline with that key set on the command line (the overrides and
+/// `extends` go through one merge, techniques through one loader).
 #[test]
 fn set_reaches_a_variant_with_the_same_image() {
     let (_lock, gpu) = gpu();
@@ -233,28 +234,31 @@ fn set_reaches_a_variant_with_the_same_image() {
             .image()
             .unwrap_or_else(|e| panic!("{pipeline}: {e}"))
     };
-    let by_file = image("pipelines/occupancy_no_slab.toml", &[]);
-    let by_set = image("pipelines/occupancy.toml", &["params.slabs=1"]);
-    assert!(
-        by_file == by_set,
-        "occupancy.toml --set params.slabs=1 differs from occupancy_no_slab.toml"
-    );
-    let unbind = [
-        "passes.hair.params.visibility=none",
-        "passes.hair.reads.vis_range=",
-        "passes.hair.reads.vis_bits=",
-        "passes.hair.reads.vis_slabs=",
-        "passes.opaque.params.visibility=none",
-        "passes.opaque.reads.vis_range=",
-        "passes.opaque.reads.vis_bits=",
-        "passes.opaque.reads.vis_slabs=",
-    ];
-    let by_file = image("pipelines/no_self_shadow.toml", &[]);
-    let by_set = image("pipelines/occupancy.toml", &unbind);
-    assert!(
-        by_file == by_set,
-        "occupancy.toml with the --set flags of no_self_shadow.toml's header differs from it"
-    );
+    for (file, sets) in [
+        (
+            "occupancy_no_slab",
+            &["techniques.self_shadow=occupancy_no_slab"][..],
+        ),
+        ("no_self_shadow", &["techniques.self_shadow=none"][..]),
+        (
+            "weighted_average",
+            &["techniques.transparency=weighted_average"][..],
+        ),
+        (
+            "reference",
+            &[
+                "techniques.self_shadow=exact",
+                "techniques.transparency=depth_peeling",
+            ][..],
+        ),
+    ] {
+        let by_file = image(&format!("pipelines/{file}.toml"), &[]);
+        let by_set = image("pipelines/occupancy.toml", sets);
+        assert!(
+            by_file == by_set,
+            "occupancy.toml --set {sets:?} differs from {file}.toml"
+        );
+    }
 }
 
 /// A scene's background image shows where nothing covers it, stretched over

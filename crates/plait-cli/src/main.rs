@@ -10,10 +10,12 @@
 #[macro_use]
 mod output;
 mod ab_cmd;
+mod args;
 mod hair_cmd;
 mod pipeline_cmd;
 mod render_cmd;
 mod show;
+mod techniques_cmd;
 
 use std::io::Write as _;
 
@@ -40,6 +42,8 @@ enum Command {
     Graph(pipeline_cmd::GraphArgs),
     /// List the registered pass types with their inputs, outputs and params.
     Passes(pipeline_cmd::PassesArgs),
+    /// List the choice points and their techniques (`--set techniques.POINT=NAME`): papers, params, memory.
+    Techniques(techniques_cmd::TechniquesArgs),
     /// Inspect, convert and generate `.hair` and `.tfx` files.
     Hair(hair_cmd::HairArgs),
     /// Run several pipelines on the same scene(s) and write one report
@@ -60,6 +64,7 @@ fn main() {
         Command::Check(args) => pipeline_cmd::check(args),
         Command::Graph(args) => pipeline_cmd::graph(args),
         Command::Passes(args) => pipeline_cmd::passes(args),
+        Command::Techniques(args) => techniques_cmd::run(args),
         Command::Hair(args) => hair_cmd::run(args),
         Command::Ab(args) => ab_cmd::run(args),
     };

@@ -403,6 +403,14 @@ fn resolve_pass(
         shader: decl.shader.as_ref().map(|s| s.value.clone()),
         shader_location: decl.shader.as_ref().map(|s| s.location.clone()),
         location: decl.location.clone(),
+        technique: match &decl.location {
+            Location::File { path, .. } => pipeline
+                .techniques
+                .iter()
+                .find(|t| t.owns(path))
+                .map(|t| t.label()),
+            _ => None,
+        },
     }
 }
 
@@ -886,6 +894,7 @@ fn build_schedule(
         name: pipeline.name.value.clone(),
         description: pipeline.description.value.clone(),
         files: pipeline.files.clone(),
+        techniques: pipeline.techniques.clone(),
         params: pipeline
             .params
             .iter()

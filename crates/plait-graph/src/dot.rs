@@ -75,6 +75,25 @@ fn render(schedule: &Schedule) -> String {
         );
     }
     let _ = writeln!(out, "  output [shape=doublecircle, label=\"output\"];");
+    // Each chosen technique's passes in a cluster: what a swap changes.
+    for (k, technique) in schedule.techniques.iter().enumerate() {
+        let label = technique.label();
+        let members: Vec<String> = all
+            .iter()
+            .enumerate()
+            .filter(|(_, (p, _))| p.technique.as_deref() == Some(label.as_str()))
+            .map(|(i, _)| format!("p{i}"))
+            .collect();
+        if members.is_empty() {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "  subgraph cluster_{k} {{ label={}; style=rounded; color=grey; {}; }}",
+            quote(&format!("technique {label}")),
+            members.join("; ")
+        );
+    }
 
     for (i, (pass, culled)) in all.iter().enumerate() {
         // What this pass sees of a resource was made by the latest earlier writer.

@@ -24,10 +24,12 @@ pub mod format;
 pub mod load;
 mod overrides;
 pub mod schedule;
+mod shader_path;
 pub mod snapshot;
 pub mod spec;
 pub mod suggest;
 pub mod svg;
+pub mod techniques;
 pub mod value;
 
 pub use error::{Error, ErrorKind, Errors, Location, Spanned};

@@ -163,6 +163,12 @@ fn check_override_target(root: &Node, path: &[&str]) -> Result<(), String> {
                 ));
             }
         }
+        "techniques" => {
+            let points = keys_of("techniques");
+            if !points.contains(&name) {
+                return Err(unknown("choice point in [techniques]", name, &points));
+            }
+        }
         "pipeline" if !PIPELINE_KEYS.contains(&name) => {
             return Err(unknown("key in [pipeline]", name, PIPELINE_KEYS));
         }

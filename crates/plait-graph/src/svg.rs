@@ -36,6 +36,9 @@ const BUFFER_COLOUR: &str = "#c0661a";
 const GREY: &str = "#888888";
 const GUIDE: &str = "#e4e4e4";
 
+/// Fills of the pass labels of each chosen technique, in `[techniques]` order.
+const TECHNIQUE_TINTS: &[&str] = &["#e3edfb", "#fcebd9", "#e2f2e5", "#efe3fa", "#fbf3d5"];
+
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
@@ -182,7 +185,20 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
             notes.push(format!("one allocation for {}", names.join(", ")));
         }
     }
-    let height = (legend_y + 18.0 * (1 + notes.len()) as f64 + MARGIN).ceil();
+    // Each technique's passes share a tint, named in the legend: what a
+    // `--set techniques.…` swap changes.
+    let technique_labels: Vec<String> = schedule.techniques.iter().map(|t| t.label()).collect();
+    let tint = |pass: &ScheduledPass| {
+        pass.technique
+            .as_ref()
+            .and_then(|t| technique_labels.iter().position(|l| l == t))
+            .map_or("white", |i| TECHNIQUE_TINTS[i % TECHNIQUE_TINTS.len()])
+    };
+    let technique_rows = usize::from(!technique_labels.is_empty());
+    // The legend's second line (texture / buffer) holds the first note.
+    let technique_y = legend_y + 18.0 * (1 + notes.len().max(1)) as f64;
+    let height =
+        (legend_y + 18.0 * (notes.len().max(1) + technique_rows) as f64 + 18.0 + MARGIN).ceil();
 
     let mut out = String::new();
     let _ = write!(
@@ -248,9 +264,10 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
         );
         let _ = write!(
             out,
-            r#"<rect x="{MARGIN}" y="{}" width="{label_w}" height="{}" rx="3" fill="white" stroke="{colour}"{dash}/>"#,
+            r#"<rect x="{MARGIN}" y="{}" width="{label_w}" height="{}" rx="3" fill="{}" stroke="{colour}"{dash}/>"#,
             y - ROW_H / 2.0 + 3.0,
-            ROW_H - 6.0
+            ROW_H - 6.0,
+            tint(rows[i].0)
         );
         let _ = write!(
             out,
@@ -379,6 +396,21 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
             legend_y + 18.0 + 18.0 * k as f64,
             escape(note)
         );
+    }
+    if !technique_labels.is_empty() {
+        let y = technique_y;
+        let mut x = MARGIN;
+        for (k, label) in technique_labels.iter().enumerate() {
+            let _ = write!(
+                out,
+                r#"<rect x="{x}" y="{}" width="11" height="11" fill="{}" stroke="{GREY}"/><text x="{}" y="{y}" fill="{GREY}">{}</text>"#,
+                y - 9.0,
+                TECHNIQUE_TINTS[k % TECHNIQUE_TINTS.len()],
+                x + 16.0,
+                escape(&format!("technique {label}"))
+            );
+            x += 16.0 + text_width(&format!("technique {label}")) + 18.0;
+        }
     }
     out.push_str("</svg>\n");
     out
