@@ -5,7 +5,7 @@
 //!
 //! Everything is written into a temporary directory beside `--out` and
 //! renamed into place at the end, so a failure or an interrupt never leaves
-//! a half-written report (at worst a hidden `.plait-ab-*` directory).
+//! a half-written report; an interrupt removes the temporary directory.
 
 use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
@@ -54,6 +54,7 @@ struct PendingDir {
     out: PathBuf,
     parent: PathBuf,
     temp: tempfile::TempDir,
+    _interrupt: crate::output::InterruptGuard,
 }
 
 impl PendingDir {
@@ -96,6 +97,7 @@ impl PendingDir {
         Ok(PendingDir {
             out: out.to_path_buf(),
             parent,
+            _interrupt: crate::output::remove_on_interrupt(temp.path()),
             temp,
         })
     }
@@ -105,8 +107,13 @@ impl PendingDir {
         self.temp.path()
     }
 
-    /// Move the finished report into place (replacing an earlier one).
+    /// Move the finished report into place (replacing an earlier one),
+    /// with interrupts held off until it is.
     fn commit(self) -> Result<()> {
+        crate::output::uninterrupted(|| self.move_into_place())
+    }
+
+    fn move_into_place(self) -> Result<()> {
         let temp = self.temp.keep();
         crate::output::readable_by_all(&temp, 0o755);
         for entry in std::fs::read_dir(&temp).into_iter().flatten().flatten() {

@@ -75,8 +75,9 @@ pub struct SceneData {
 }
 
 impl SceneData {
-    pub fn new(scene: Scene) -> Result<Self, SceneError> {
-        let strands = scene.strands()?;
+    pub fn new(mut scene: Scene) -> Result<Self, SceneError> {
+        // Loads the hair and fits a camera or light given as "fit" to it.
+        let strands = scene.load_hair()?;
         let meshes = scene.opaque_meshes();
         let background = match &scene.background {
             Background::Image(path) => Some(
