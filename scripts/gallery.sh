@@ -14,7 +14,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
 # Self-shadowing against exact shadows, on three scenes.
-"$plait" ab pipelines/{occupancy,occupancy_no_slab,deep_opacity,opacity_shadow_maps,density_clustering,modified_shadow_map,no_self_shadow}.toml \
+"$plait" ab pipelines/{occupancy,occupancy_no_slab,deep_opacity,opacity_shadow_maps,density_clustering,modified_shadow_map,tressfx_shadow,no_self_shadow}.toml \
     --reference pipelines/exact_shadow.toml \
     --scene examples/scenes/small.toml --scene examples/scenes/stray.toml --scene examples/scenes/default.toml \
     --size 320x240 --repeats 1 --out "$out/shadows"
@@ -27,7 +27,7 @@ trap 'rm -rf "$out"' EXIT
 
 # Thumbnails: the default scene for self-shadowing, the stray scene for transparency.
 mkdir -p docs/variants
-for v in occupancy occupancy_no_slab deep_opacity opacity_shadow_maps density_clustering modified_shadow_map no_self_shadow; do
+for v in occupancy occupancy_no_slab deep_opacity opacity_shadow_maps density_clustering modified_shadow_map tressfx_shadow no_self_shadow; do
     cp "$out/shadows/default-$v.png" "docs/variants/$v.png"
 done
 cp "$out/shadows/default-reference.png" docs/variants/exact_shadow.png
