@@ -15,7 +15,7 @@ use clap::{Parser, Subcommand};
 #[derive(Parser)]
 #[command(
     name = "plait",
-    version,
+    version = env!("PLAIT_BUILD_VERSION"),
     about = "Real-time strand-hair render pipelines as data"
 )]
 struct Cli {

@@ -246,8 +246,9 @@ pub fn shader_source(
     t: &dyn PassType,
     pass: &ScheduledPass,
 ) -> Result<(PathBuf, Cow<'static, str>), (Location, String)> {
-    if let Some((path, text)) = t.shader() {
-        return Ok((PathBuf::from(path), Cow::Borrowed(text)));
+    if let Some((name, text)) = t.shader() {
+        let loc = pass.location.clone();
+        return crate::shader::library_source(name, text).map_err(|e| (loc, e.message));
     }
     let loc = pass
         .shader_location
@@ -256,8 +257,8 @@ pub fn shader_source(
     let Some(path) = &pass.shader else {
         return Err((loc, "needs `shader = \"path.wgsl\"`".into()));
     };
-    match std::fs::read_to_string(path) {
-        Ok(text) => Ok((path.clone(), Cow::Owned(text))),
+    match crate::shader::read_shader_file(path) {
+        Ok(text) => Ok((path.clone(), text)),
         Err(e) => Err((loc, format!("cannot read shader {}: {e}", path.display()))),
     }
 }
@@ -989,16 +990,16 @@ fn shader_source_for_build<T: PassType + ?Sized>(
     t: &T,
     pass: &ScheduledPass,
 ) -> Result<(PathBuf, Cow<'static, str>), GpuError> {
-    if let Some((path, text)) = t.shader() {
-        return Ok((PathBuf::from(path), Cow::Borrowed(text)));
+    if let Some((name, text)) = t.shader() {
+        return Ok(crate::shader::library_source(name, text)?);
     }
     let path = pass
         .shader
         .clone()
         .ok_or_else(|| pass_error(pass, "needs `shader = \"path.wgsl\"`"))?;
-    let text = std::fs::read_to_string(&path)
+    let text = crate::shader::read_shader_file(&path)
         .map_err(|e| pass_error(pass, format!("cannot read shader {}: {e}", path.display())))?;
-    Ok((path, Cow::Owned(text)))
+    Ok((path, text))
 }
 
 impl PreparedPass for ShaderPass {

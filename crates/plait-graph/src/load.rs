@@ -99,7 +99,7 @@ pub struct PassDecl {
 /// Loads a pipeline file, following `extends` and applying `--set` flags
 /// (`overrides` holds the `key=value` texts).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Pipeline, Errors> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = plait_assets::read_to_string(path).map_err(|e| {
         Error::new(
             file_location(path, 1, 1),
             ErrorKind::Io(format!("{}: {e}", path.display())),
@@ -345,11 +345,17 @@ fn load_chain(
         )
         .into());
     };
-    let base_path = path.parent().unwrap_or(Path::new("")).join(base_name);
+    let next_to_file = path.parent().unwrap_or(Path::new("")).join(base_name);
+    // A pipeline copied out of the library still finds the file it extends.
+    let base_path = if plait_assets::exists(&next_to_file) {
+        next_to_file
+    } else {
+        plait_assets::find_named(base_name, "pipelines").unwrap_or(next_to_file)
+    };
     if chain.contains(&canonical(&base_path)) {
         return Err(Error::new(extends.location, ErrorKind::ExtendsCycle(base_path)).into());
     }
-    let base_text = std::fs::read_to_string(&base_path).map_err(|e| {
+    let base_text = plait_assets::read_to_string(&base_path).map_err(|e| {
         Error::new(
             extends.location.clone(),
             ErrorKind::Io(format!("{}: {e}", base_path.display())),
@@ -1025,7 +1031,9 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
 
 /// A shader path is relative to the file that wrote it; failing that, to the
 /// repository root (the first ancestor holding `shaders/`), so pipelines can
-/// say `shader = "shaders/x.wgsl"`. The first candidate that exists wins; if
+/// say `shader = "shaders/x.wgsl"`; failing that, on the library search path
+/// (`plait_assets::find_named`), so a pipeline copied out of the repository
+/// still finds the library's shaders. The first candidate that exists wins; if
 /// none does, the file-relative path is kept for the error message of
 /// whoever opens it.
 pub fn resolve_shader(written: &str, location: &Location) -> PathBuf {
@@ -1034,14 +1042,21 @@ pub fn resolve_shader(written: &str, location: &Location) -> PathBuf {
         _ => std::env::current_dir().unwrap_or_default(),
     };
     let next_to_file = base_dir.join(written);
-    if next_to_file.exists() {
+    if plait_assets::exists(&next_to_file) {
         return next_to_file;
     }
     // Lexical ancestors first, so relative inputs give relative (stable,
     // snapshot-friendly) paths; then the canonical ones, for `x.toml` run
     // from inside `pipelines/`.
     let absolute_base = std::fs::canonicalize(&base_dir).unwrap_or_else(|_| base_dir.clone());
-    for base in [&base_dir, &absolute_base] {
+    // A built-in copy has no disk ancestors (its last lexical one, "", would
+    // be the working directory).
+    let ancestors = if plait_assets::is_builtin(&base_dir) {
+        vec![]
+    } else {
+        vec![&base_dir, &absolute_base]
+    };
+    for base in ancestors {
         let root = base.ancestors().find(|a| a.join("shaders").is_dir());
         if let Some(root) = root {
             let candidate = root.join(written);
@@ -1050,5 +1065,5 @@ pub fn resolve_shader(written: &str, location: &Location) -> PathBuf {
             }
         }
     }
-    next_to_file
+    plait_assets::find_named(written, "shaders").unwrap_or(next_to_file)
 }
