@@ -9,6 +9,7 @@ mod hair_cmd;
 mod output;
 mod pipeline_cmd;
 mod render_cmd;
+mod view_cmd;
 
 use clap::{Parser, Subcommand};
 
@@ -37,6 +38,8 @@ enum Command {
     Hair(hair_cmd::HairArgs),
     /// Run several pipelines on the same scene(s) and write one report
     Ab(ab_cmd::AbArgs),
+    /// Open a window that renders a pipeline live and reloads it on every save.
+    View(view_cmd::ViewArgs),
 }
 
 fn main() {
@@ -54,6 +57,7 @@ fn main() {
         Command::Passes(args) => pipeline_cmd::passes(args),
         Command::Hair(args) => hair_cmd::run(args),
         Command::Ab(args) => ab_cmd::run(args),
+        Command::View(args) => view_cmd::run(args),
     };
     if let Err(e) = result {
         // `Errors` already prefixes each line with `error:`.
