@@ -164,22 +164,42 @@ fn painter(event_loop: &ActiveEventLoop) -> Result<Painter, String> {
             )
             .map_err(|e| format!("cannot open a window: {e}"))?,
     );
-    let mut desc = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(window.clone()));
-    // As plait's own device: no debug labels (they crash Mesa 22's lavapipe).
-    desc.flags = wgpu::InstanceFlags::empty().with_env();
-    desc.backends =
-        wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN | wgpu::Backends::GL);
-    let instance = wgpu::Instance::new(desc);
-    let surface = instance
-        .create_surface(window.clone())
-        .map_err(|e| format!("cannot draw into the window: {e}"))?;
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        force_fallback_adapter: false,
-        compatible_surface: Some(&surface),
-        apply_limit_buckets: false,
-    }))
-    .map_err(|e| format!("no GPU adapter can draw into the window: {e}"))?;
+    // As plait's own device: Vulkan first, GL only when Vulkan has no adapter
+    // for this window (probing EGL is noisy); WGPU_BACKEND picks one.
+    let tries = match wgpu::Backends::from_env() {
+        Some(b) => vec![b],
+        None => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
+    };
+    let mut last_error = String::from("no backend tried");
+    let mut found = None;
+    for backends in tries {
+        let mut desc = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(window.clone()));
+        // No debug labels: they crash Mesa 22's lavapipe (WGPU_DEBUG=1 turns them on).
+        desc.flags = wgpu::InstanceFlags::empty().with_env();
+        desc.backends = backends;
+        let instance = wgpu::Instance::new(desc);
+        let surface = match instance.create_surface(window.clone()) {
+            Ok(s) => s,
+            Err(e) => {
+                last_error = format!("cannot draw into the window: {e}");
+                continue;
+            }
+        };
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: Some(&surface),
+            apply_limit_buckets: false,
+        }));
+        match adapter {
+            Ok(a) => {
+                found = Some((surface, a));
+                break;
+            }
+            Err(e) => last_error = format!("no GPU adapter can draw into the window: {e}"),
+        }
+    }
+    let (surface, adapter) = found.ok_or(last_error)?;
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some("plait view window"),
         ..Default::default()

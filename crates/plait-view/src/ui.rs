@@ -50,6 +50,12 @@ fn toml_text(value: &Value) -> String {
     }
 }
 
+/// Whether the user touched a widget, as opposed to the widget adjusting a
+/// value it was shown (egui rounds values to what it displays).
+fn by_user(r: &egui::Response) -> bool {
+    r.dragged() || r.drag_stopped() || r.clicked() || r.has_focus() || r.lost_focus()
+}
+
 fn mib(bytes: u64) -> String {
     format!("{:.2}", bytes as f64 / 1048576.0)
 }
@@ -149,13 +155,14 @@ fn controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
         for (name, value) in c.params.iter_mut() {
             ui.label(name.as_str());
             let commit = match value {
+                // Committed when a drag ends or a typed value is entered.
                 Value::Int(i) => {
                     let r = ui.add(egui::DragValue::new(i).speed(1.0));
-                    r.drag_stopped() || (r.changed() && !r.dragged())
+                    r.drag_stopped() || (r.changed() && by_user(&r) && !r.dragged())
                 }
                 Value::Float(f) => {
                     let r = ui.add(egui::DragValue::new(f).speed(0.01).max_decimals(6));
-                    r.drag_stopped() || (r.changed() && !r.dragged())
+                    r.drag_stopped() || (r.changed() && by_user(&r) && !r.dragged())
                 }
                 Value::Bool(b) => ui.checkbox(b, "").changed(),
                 Value::Str(text) => {
@@ -184,17 +191,18 @@ fn controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
     ui.separator();
     ui.heading("Light");
     if let Some(light) = &mut c.light {
+        // No step_by: snapping would move the scene's own light on first show.
         let a = ui.add(
             egui::Slider::new(&mut light.azimuth, -180.0..=180.0)
                 .text("azimuth °")
-                .step_by(1.0),
+                .max_decimals(1),
         );
         let e = ui.add(
-            egui::Slider::new(&mut light.elevation, -89.0..=89.0)
+            egui::Slider::new(&mut light.elevation, -89.9..=89.9)
                 .text("elevation °")
-                .step_by(1.0),
+                .max_decimals(1),
         );
-        if a.changed() || e.changed() {
+        if (a.changed() && by_user(&a)) || (e.changed() && by_user(&e)) {
             send(Command::Light(Some(light.direction())));
         }
     }
