@@ -30,7 +30,15 @@ impl Drop for Killed {
 /// Start Xvfb on a free display; returns it and the `DISPLAY` value.
 fn xvfb() -> (Killed, String) {
     let child = Command::new("Xvfb")
-        .args(["-displayfd", "1", "-screen", "0", "1280x800x24", "-nolisten", "tcp"])
+        .args([
+            "-displayfd",
+            "1",
+            "-screen",
+            "0",
+            "1280x800x24",
+            "-nolisten",
+            "tcp",
+        ])
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
@@ -69,7 +77,12 @@ fn lines(stderr: impl Read + Send + 'static) -> Receiver<String> {
 }
 
 /// Wait for a line containing `needle`; everything seen goes to `log`.
-fn wait_for(rx: &Receiver<String>, needle: &str, within: Duration, log: &mut Vec<String>) -> String {
+fn wait_for(
+    rx: &Receiver<String>,
+    needle: &str,
+    within: Duration,
+    log: &mut Vec<String>,
+) -> String {
     let deadline = Instant::now() + within;
     loop {
         let left = deadline.saturating_duration_since(Instant::now());
@@ -145,7 +158,12 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
     let mut child = Killed(viewer.spawn().expect("start plait view"));
     let stderr = lines(child.0.stderr.take().expect("piped stderr"));
     let mut log = Vec::new();
-    wait_for(&stderr, "plait view: built", Duration::from_secs(120), &mut log);
+    wait_for(
+        &stderr,
+        "plait view: built",
+        Duration::from_secs(120),
+        &mut log,
+    );
 
     // Break it: an unknown name on a known line.
     let broken = format!("{original}\nfn broken() -> f32 {{\n    return not_defined;\n}}\n");
@@ -172,21 +190,41 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
         "return vec4<f32>(c.rgb + (1.0 - c.a) * background_at(pixel.xy), 1.0);",
         "return vec4<f32>(0.5 * (c.rgb + (1.0 - c.a) * background_at(pixel.xy)), 1.0);",
     );
-    assert_ne!(fixed, original, "compose_over.wgsl changed: update this test's edit");
+    assert_ne!(
+        fixed, original,
+        "compose_over.wgsl changed: update this test's edit"
+    );
     let saved = Instant::now();
     std::fs::write(&shader, &fixed).expect("fix the shader");
-    wait_for(&stderr, "plait view: reloaded", Duration::from_secs(120), &mut log);
+    wait_for(
+        &stderr,
+        "plait view: reloaded",
+        Duration::from_secs(120),
+        &mut log,
+    );
     eprintln!("reloaded {:?} after the fix was saved", saved.elapsed());
-    wait_for(&stderr, "plait view: wrote", Duration::from_secs(120), &mut log);
+    wait_for(
+        &stderr,
+        "plait view: wrote",
+        Duration::from_secs(120),
+        &mut log,
+    );
     let deadline = Instant::now() + Duration::from_secs(60);
     let status = loop {
         if let Some(s) = child.0.try_wait().expect("wait for plait view") {
             break s;
         }
-        assert!(Instant::now() < deadline, "plait view did not quit after its screenshot");
+        assert!(
+            Instant::now() < deadline,
+            "plait view did not quit after its screenshot"
+        );
         std::thread::sleep(Duration::from_millis(50));
     };
-    assert!(status.success(), "plait view failed: {status}\n{}", log.join("\n"));
+    assert!(
+        status.success(),
+        "plait view failed: {status}\n{}",
+        log.join("\n")
+    );
 
     // The same state through `plait render`.
     let reference = dir.path().join("render.png");
@@ -199,11 +237,12 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
         .output()
         .expect("run plait render");
     assert!(o.status.success(), "plait render: {}", text(&o.stderr));
-    // Same device kind, pipeline, scene, size and frame inputs: the images
-    // agree to rounding (blending order is fixed by the draw order).
+    // Same adapter, pipeline, scene, size and frame inputs: identical on
+    // lavapipe (blending order is fixed by the draw order); one step of
+    // 8-bit rounding is allowed for drivers that schedule differently.
     let (mean, max) = mean_abs_difference(&shot, &reference);
     assert!(
-        mean < 0.5 && max <= 2,
+        max <= 1,
         "screenshot vs render: mean |Δ| {mean:.3}/255, max {max}/255"
     );
     // And the fix took effect: the original shader renders brighter.
@@ -219,5 +258,71 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
         .expect("run plait render");
     assert!(o.status.success(), "plait render: {}", text(&o.stderr));
     let (mean, _) = mean_abs_difference(&shot, &before);
-    assert!(mean > 5.0, "the screenshot should show the fixed (darker) shader: mean |Δ| {mean:.2}");
+    assert!(
+        mean > 5.0,
+        "the screenshot should show the fixed (darker) shader: mean |Δ| {mean:.2}"
+    );
+}
+
+#[test]
+fn render_watch_renders_again_on_every_save_and_survives_an_error() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let original =
+        std::fs::read_to_string(root().join("shaders/compose_over.wgsl")).expect("compose_over");
+    let shader = dir.path().join("compose.wgsl");
+    std::fs::write(&shader, &original).expect("write shader");
+    let pipeline = dir.path().join("reload.toml");
+    std::fs::write(&pipeline, PIPELINE).expect("write pipeline");
+    let scene = root().join("examples/scenes/small.toml");
+    let out = dir.path().join("out.png");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_plait"));
+    cmd.arg("render")
+        .arg(&pipeline)
+        .args([
+            "--watch",
+            "--size",
+            "48x36",
+            "--set",
+            "params.light_size=128",
+        ])
+        .arg("--scene")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    let mut child = Killed(cmd.spawn().expect("start plait render --watch"));
+    let stderr = lines(child.0.stderr.take().expect("piped stderr"));
+    let mut log = Vec::new();
+    wait_for(&stderr, "watching", Duration::from_secs(120), &mut log);
+    let first = std::fs::read(&out).expect("the first render");
+
+    std::fs::write(&shader, format!("{original}\nfn broken( {{\n")).expect("break");
+    wait_for(&stderr, "compose.wgsl:", Duration::from_secs(60), &mut log);
+    wait_for(&stderr, "watching", Duration::from_secs(60), &mut log);
+    assert_eq!(
+        std::fs::read(&out).expect("still there"),
+        first,
+        "a failed render leaves the last image alone"
+    );
+
+    let darker = original.replace("c.rgb + (1.0 - c.a)", "0.5 * c.rgb + (1.0 - c.a)");
+    assert_ne!(
+        darker, original,
+        "compose_over.wgsl changed: update this test's edit"
+    );
+    std::fs::write(&shader, &darker).expect("fix");
+    wait_for(&stderr, "watching", Duration::from_secs(60), &mut log);
+    assert!(
+        !log.iter()
+            .skip_while(|l| !l.contains("compose.wgsl:"))
+            .any(|l| l.contains("panicked")),
+        "{}",
+        log.join("\n")
+    );
+    assert_ne!(
+        std::fs::read(&out).expect("rendered again"),
+        first,
+        "the fixed shader should have rendered a new image"
+    );
 }
