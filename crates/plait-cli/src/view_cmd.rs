@@ -20,6 +20,9 @@ pub struct ViewArgs {
     /// Render size, `WIDTHxHEIGHT` (small: every frame is rendered).
     #[arg(long, value_parser = parse_size, default_value = "400x300")]
     size: (u32, u32),
+    /// Start with this texture or buffer in the resource inspector.
+    #[arg(long, value_name = "RESOURCE")]
+    inspect: Option<String>,
     /// Write the pipeline's output to this PNG and quit (after --after-frames
     /// frames of the current state and --after-reloads reloads).
     #[arg(long, value_name = "FILE.png")]
@@ -46,6 +49,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
         scene: args.scene,
         size: args.size,
         sets: args.set.sets,
+        inspect: args.inspect,
         screenshot,
     })?;
     Ok(())

@@ -10,7 +10,8 @@ use winit::event::WindowEvent;
 use winit::event_loop::ActiveEventLoop;
 use winit::window::{Window, WindowId};
 
-use crate::engine::{Command, Shared};
+use crate::engine::Command;
+use crate::published::Shared;
 use crate::ui::{self, Controls};
 
 /// Sent by the engine when it has something new to show.
@@ -41,12 +42,16 @@ pub struct App {
 }
 
 impl App {
-    pub fn new(commands: Sender<Command>, shared: Arc<Mutex<Shared>>) -> Self {
+    pub fn new(
+        commands: Sender<Command>,
+        shared: Arc<Mutex<Shared>>,
+        inspect: Option<String>,
+    ) -> Self {
         App {
             commands,
             shared,
             painter: None,
-            controls: Controls::new(),
+            controls: Controls::new(inspect),
             failure: None,
         }
     }

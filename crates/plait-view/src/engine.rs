@@ -16,14 +16,17 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use plait::session::{self, Prepared, SceneData};
 use plait_gpu::Gpu;
-use plait_graph::{ResourceDesc, Schedule, Value};
+use plait_graph::{ResourceDesc, Schedule};
 use plait_hair::scene::{Background, Camera, HairSource, LightKind};
 
 use crate::inspect::{self, Display, Inspected};
+use crate::published::{Shared, describe_schedule, texture_sizes};
 use crate::watch::FileWatcher;
 
 /// Frames a pass's median GPU time is taken over.
 const TIMING_WINDOW: usize = 15;
+/// At most ~30 frames a second: a fast pipeline need not keep every core busy.
+const MIN_FRAME_INTERVAL: Duration = Duration::from_millis(33);
 
 /// What the viewer was asked to show.
 #[derive(Clone, Debug)]
@@ -33,6 +36,8 @@ pub struct EngineOptions {
     pub size: (u32, u32),
     /// `--set` flags from the command line, applied before the params edited live.
     pub sets: Vec<String>,
+    /// The resource the inspector starts with.
+    pub inspect: Option<String>,
     pub screenshot: Option<Screenshot>,
 }
 
@@ -62,66 +67,6 @@ pub enum Command {
     Inspect(Option<String>, Option<Display>),
     Pause(bool),
     Quit,
-}
-
-/// One pass's row in the timing table.
-#[derive(Clone, Debug)]
-pub struct PassRow {
-    pub name: String,
-    pub type_name: String,
-    /// Median over the last frames, when the adapter has timestamps.
-    pub median_ms: Option<f64>,
-    /// Bytes of the resources the pass writes.
-    pub writes_bytes: u64,
-}
-
-/// One resource in the inspector's list.
-#[derive(Clone, Debug)]
-pub struct ResourceRow {
-    pub name: String,
-    pub label: String,
-    pub desc: ResourceDesc,
-    pub words_per_texel: u32,
-}
-
-/// What the window shows; the engine replaces parts of it as it goes.
-#[derive(Default)]
-pub struct Shared {
-    /// Bumped on every change, so the window knows when to re-upload images.
-    pub version: u64,
-    pub pipeline: PathBuf,
-    pub adapter: String,
-    /// The pipeline's `[params]` after `--set` and live edits.
-    pub params: Vec<(String, Value)>,
-    /// Live edits, as the `--set` flags they become.
-    pub edits: Vec<String>,
-    pub resources: Vec<ResourceRow>,
-    pub output_name: String,
-    pub passes: Vec<PassRow>,
-    pub culled: Vec<(String, String)>,
-    pub frame_median_ms: Option<f64>,
-    pub peak_bytes: u64,
-    pub notes: Vec<String>,
-    /// The last good frame's output.
-    pub output: Option<Arc<Inspected>>,
-    /// The inspected resource (when not the output).
-    pub inspected: Option<Arc<Inspected>>,
-    /// The last reload's or frame's error, with file:line:column.
-    pub error: Option<String>,
-    pub status: String,
-    /// Frames since the last successful build, and in all.
-    pub frames: u64,
-    pub total_frames: u64,
-    /// Successful rebuilds after the first build.
-    pub reloads: u32,
-    /// The scene file's camera and light, to reset the controls to.
-    pub scene_camera: Option<Camera>,
-    pub scene_light: Option<Vec3>,
-    pub scene_version: u64,
-    /// The screenshot was written (or the engine stopped): the window closes.
-    pub finished: bool,
-    /// Why the engine stopped, if it failed.
-    pub fatal: Option<String>,
 }
 
 /// A pipeline built and ready.
@@ -460,6 +405,7 @@ impl<'g> Engine<'g> {
     fn run(&mut self, commands: &Receiver<Command>) {
         self.load_scene();
         self.rebuild();
+        let mut last_frame = Instant::now();
         loop {
             let idle = self.paused
                 || self.live.as_ref().is_none_or(|l| l.failed)
@@ -468,7 +414,7 @@ impl<'g> Engine<'g> {
             let wait = if idle {
                 Duration::from_millis(50)
             } else {
-                Duration::ZERO
+                MIN_FRAME_INTERVAL.saturating_sub(last_frame.elapsed())
             };
             match commands.recv_timeout(wait) {
                 Ok(c) => {
@@ -495,71 +441,12 @@ impl<'g> Engine<'g> {
                 }
                 self.rebuild();
             }
-            if !idle {
+            if !idle && last_frame.elapsed() >= MIN_FRAME_INTERVAL {
+                last_frame = Instant::now();
                 self.render();
             }
         }
     }
-}
-
-fn describe_schedule(s: &mut Shared, schedule: &Schedule) {
-    s.params = schedule
-        .params
-        .iter()
-        .map(|(k, v)| (k.clone(), v.clone()))
-        .collect();
-    let sizes = texture_sizes(schedule);
-    s.resources = schedule
-        .resources
-        .iter()
-        .map(|r| ResourceRow {
-            name: r.name.clone(),
-            label: r.desc.label(),
-            desc: r.desc.clone(),
-            words_per_texel: match r.desc {
-                ResourceDesc::Buffer { size } => inspect::buffer_layout(size, &sizes).per_texel,
-                ResourceDesc::Texture { .. } => 0,
-            },
-        })
-        .collect();
-    s.passes = schedule
-        .passes
-        .iter()
-        .map(|p| {
-            let mut written: Vec<usize> = p.writes.iter().map(|b| b.resource).collect();
-            written.sort_unstable();
-            written.dedup();
-            PassRow {
-                name: p.name.clone(),
-                type_name: p.type_name.clone(),
-                median_ms: None,
-                writes_bytes: written
-                    .iter()
-                    .filter_map(|&id| schedule.resources.get(id))
-                    .map(|r| r.desc.bytes())
-                    .sum(),
-            }
-        })
-        .collect();
-    s.culled = schedule
-        .culled
-        .iter()
-        .map(|c| (c.pass.name.clone(), c.reason.clone()))
-        .collect();
-    s.peak_bytes = schedule.memory.peak_bytes;
-    s.frame_median_ms = None;
-}
-
-/// Every texture size of the schedule, for laying buffers out.
-fn texture_sizes(schedule: &Schedule) -> Vec<(u32, u32)> {
-    schedule
-        .resources
-        .iter()
-        .filter_map(|r| match r.desc {
-            ResourceDesc::Texture { width, height, .. } => Some((width, height)),
-            ResourceDesc::Buffer { .. } => None,
-        })
-        .collect()
 }
 
 fn inspect_resource(
@@ -568,9 +455,13 @@ fn inspect_resource(
     name: &str,
     display: Option<Display>,
 ) -> Result<Inspected, String> {
-    let id = schedule
-        .resource(name)
-        .ok_or_else(|| format!("error: no resource `{name}` in this pipeline"))?;
+    let id = schedule.resource(name).ok_or_else(|| {
+        let names: Vec<&str> = schedule.resources.iter().map(|r| r.name.as_str()).collect();
+        format!(
+            "error: --inspect: no resource `{name}` in this pipeline (it has {})",
+            names.join(", ")
+        )
+    })?;
     let desc = &schedule.resources[id].desc;
     let display = display.unwrap_or_else(|| inspect::default_display(desc));
     let r = &prepared.renderer;
@@ -636,6 +527,7 @@ pub fn run(
         s.adapter = format!("{} ({})", gpu.adapter_name(), gpu.backend_name());
         s.pipeline = opts.pipeline.clone();
     }
+    let inspect = opts.inspect.clone();
     let mut engine = Engine {
         pipeline: opts.pipeline.clone(),
         opts,
@@ -649,7 +541,7 @@ pub fn run(
         edits: Vec::new(),
         camera: None,
         light: None,
-        inspect: (None, None),
+        inspect: (inspect, None),
         paused: false,
         live: None,
         timings: HashMap::new(),

@@ -118,7 +118,7 @@ pub fn buffer_layout(bytes: u64, sizes: &[(u32, u32)]) -> BufferLayout {
         .iter()
         .filter(|(w, h)| {
             let texels = *w as u64 * *h as u64;
-            texels > 0 && words >= texels && words % texels == 0
+            texels > 0 && words >= texels && words.is_multiple_of(texels)
         })
         .max_by_key(|(w, h)| *w as u64 * *h as u64);
     match best {

@@ -16,6 +16,7 @@ mod app;
 pub mod engine;
 pub mod inspect;
 pub mod orbit;
+pub mod published;
 mod ui;
 pub mod watch;
 
@@ -32,6 +33,8 @@ pub struct ViewOptions {
     /// Render size: the pipeline renders at this size whatever the window's.
     pub size: (u32, u32),
     pub sets: Vec<String>,
+    /// Start with this resource in the inspector (`None`: the output).
+    pub inspect: Option<String>,
     pub screenshot: Option<Screenshot>,
 }
 
@@ -55,13 +58,14 @@ pub fn run(opts: ViewOptions) -> Result<(), ViewError> {
         .build()
         .map_err(|e| ViewError::NoDisplay(e.to_string()))?;
     let (tx, rx) = mpsc::channel();
-    let shared = Arc::new(Mutex::new(engine::Shared::default()));
+    let shared = Arc::new(Mutex::new(published::Shared::default()));
     let proxy = event_loop.create_proxy();
     let engine_options = engine::EngineOptions {
         pipeline: opts.pipeline,
         scene: opts.scene,
         size: opts.size,
         sets: opts.sets,
+        inspect: opts.inspect.clone(),
         screenshot: opts.screenshot,
     };
     let wake_proxy = proxy;
@@ -75,7 +79,7 @@ pub fn run(opts: ViewOptions) -> Result<(), ViewError> {
             engine::run(engine_options, rx, engine_shared, wake);
         })
         .map_err(|e| ViewError::Engine(format!("cannot start the render thread: {e}")))?;
-    let mut app = app::App::new(tx, shared.clone());
+    let mut app = app::App::new(tx, shared.clone(), opts.inspect);
     event_loop
         .run_app(&mut app)
         .map_err(|e| ViewError::Window(e.to_string()))?;

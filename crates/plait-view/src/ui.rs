@@ -9,9 +9,10 @@ use egui::{Color32, RichText, TextureHandle, TextureOptions};
 use plait_graph::{ResourceDesc, Value};
 use plait_hair::scene::Camera;
 
-use crate::engine::{Command, Shared};
+use crate::engine::Command;
 use crate::inspect::{self, Display, Inspected};
 use crate::orbit::{LightAngles, Orbit};
+use crate::published::Shared;
 
 /// State of the controls, kept between frames.
 #[derive(Default)]
@@ -33,9 +34,10 @@ pub struct Controls {
 }
 
 impl Controls {
-    pub fn new() -> Self {
+    pub fn new(inspected: Option<String>) -> Self {
         Controls {
             gallery: plait_assets::list("pipelines", "toml"),
+            inspected,
             ..Default::default()
         }
     }
