@@ -326,3 +326,23 @@ fn render_watch_renders_again_on_every_save_and_survives_an_error() {
         "the fixed shader should have rendered a new image"
     );
 }
+
+#[test]
+fn without_a_display_the_viewer_says_what_to_do() {
+    let o = Command::new(env!("CARGO_BIN_EXE_plait"))
+        .arg("view")
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run plait view");
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
+    let stderr = text(&o.stderr);
+    assert!(
+        stderr.starts_with("error: cannot open a window: ")
+            && stderr.contains("DISPLAY")
+            && stderr.contains("xvfb-run -a plait view")
+            && stderr.contains("plait render --watch")
+            && !stderr.contains(".rs:"),
+        "{stderr}"
+    );
+}

@@ -52,11 +52,21 @@ pub enum ViewError {
     Engine(String),
 }
 
+/// winit's message without the source location it starts with
+/// (`os error at …/mod.rs:765: neither … is set.`).
+fn window_system_reason(text: &str) -> String {
+    let reason = match text.split_once(".rs:") {
+        Some((_, rest)) => rest.split_once(": ").map_or(rest, |(_, r)| r),
+        None => text,
+    };
+    reason.trim().trim_end_matches('.').to_owned()
+}
+
 /// Open the window and run until it is closed (or the screenshot is written).
 pub fn run(opts: ViewOptions) -> Result<(), ViewError> {
     let event_loop = winit::event_loop::EventLoop::<app::Wake>::with_user_event()
         .build()
-        .map_err(|e| ViewError::NoDisplay(e.to_string()))?;
+        .map_err(|e| ViewError::NoDisplay(window_system_reason(&e.to_string())))?;
     let (tx, rx) = mpsc::channel();
     let shared = Arc::new(Mutex::new(published::Shared::default()));
     let proxy = event_loop.create_proxy();

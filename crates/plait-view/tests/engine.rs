@@ -81,7 +81,10 @@ fn start(inspect: Option<&str>) -> Running {
 }
 
 fn param(s: &Shared, name: &str) -> Option<Value> {
-    s.params.iter().find(|(k, _)| k == name).map(|(_, v)| v.clone())
+    s.params
+        .iter()
+        .find(|(k, _)| k == name)
+        .map(|(_, v)| v.clone())
 }
 
 #[test]
@@ -143,7 +146,9 @@ fn params_recompile_live_errors_keep_the_last_frame_and_buffers_are_inspected() 
 
     // Fixed by resetting the edits: it recovers.
     e.send(Command::ResetParams);
-    e.until("the recovery", |s| s.reloads == 2 && s.error.is_none() && s.frames >= 1);
+    e.until("the recovery", |s| {
+        s.reloads == 2 && s.error.is_none() && s.frames >= 1
+    });
     assert_eq!(
         param(&e.shared.lock().expect("state"), "slices"),
         Some(Value::Int(128))
