@@ -101,6 +101,14 @@ fn wait_for(
     }
 }
 
+/// Save as editors do: a whole new file renamed over the old one, so the
+/// watcher never sees it half written.
+fn save(path: &Path, text: &str) {
+    let tmp = path.with_extension("tmp-save");
+    std::fs::write(&tmp, text).expect("write");
+    std::fs::rename(&tmp, path).expect("rename");
+}
+
 const PIPELINE: &str = r#"
 [pipeline]
 name = "reload"
@@ -171,7 +179,7 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
         .lines()
         .position(|l| l.contains("not_defined"))
         .expect("the broken line");
-    std::fs::write(&shader, &broken).expect("break the shader");
+    save(&shader, &broken);
     let first = wait_for(&stderr, "error: ", Duration::from_secs(120), &mut log);
     assert!(
         first.contains("reload.toml:7:") && first.contains("not_defined"),
@@ -195,7 +203,7 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
         "compose_over.wgsl changed: update this test's edit"
     );
     let saved = Instant::now();
-    std::fs::write(&shader, &fixed).expect("fix the shader");
+    save(&shader, &fixed);
     wait_for(
         &stderr,
         "plait view: reloaded",
@@ -297,7 +305,7 @@ fn render_watch_renders_again_on_every_save_and_survives_an_error() {
     wait_for(&stderr, "watching", Duration::from_secs(120), &mut log);
     let first = std::fs::read(&out).expect("the first render");
 
-    std::fs::write(&shader, format!("{original}\nfn broken( {{\n")).expect("break");
+    save(&shader, &format!("{original}\nfn broken( {{\n"));
     wait_for(&stderr, "compose.wgsl:", Duration::from_secs(60), &mut log);
     wait_for(&stderr, "watching", Duration::from_secs(60), &mut log);
     assert_eq!(
@@ -311,7 +319,7 @@ fn render_watch_renders_again_on_every_save_and_survives_an_error() {
         darker, original,
         "compose_over.wgsl changed: update this test's edit"
     );
-    std::fs::write(&shader, &darker).expect("fix");
+    save(&shader, &darker);
     wait_for(&stderr, "watching", Duration::from_secs(60), &mut log);
     assert!(
         !log.iter()
