@@ -178,3 +178,28 @@ fn version_names_the_build() {
         );
     }
 }
+
+#[test]
+fn every_built_in_gallery_pipeline_checks_without_any_folder_on_the_search_path() {
+    let bin = tempfile::tempdir().expect("temp dir");
+    let cwd = tempfile::tempdir().expect("temp dir");
+    let gallery: Vec<String> = std::fs::read_dir(root().join("pipelines"))
+        .expect("pipelines/")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".toml"))
+        .map(|n| format!("<built-in>/pipelines/{n}"))
+        .collect();
+    assert!(gallery.len() >= 10, "{gallery:?}");
+    let mut args = vec!["check"];
+    args.extend(gallery.iter().map(String::as_str));
+    // Their `extends` and `../shaders/…` resolve among the built-in copies.
+    let o = installed(bin.path(), cwd.path(), Some(""), &args);
+    assert_ok("check the built-in gallery", &o);
+    assert_eq!(
+        text(&o.stdout)
+            .lines()
+            .filter(|l| l.starts_with("ok "))
+            .count(),
+        gallery.len()
+    );
+}
