@@ -134,7 +134,9 @@ impl<'g> Engine<'g> {
         sets
     }
 
-    fn load_scene(&mut self) {
+    /// Load (or reload) the scene; on failure the last good one stays and the
+    /// error is published.
+    fn load_scene(&mut self) -> bool {
         match SceneData::load(self.opts.scene.as_deref()) {
             Ok(data) => {
                 self.base = Some(data.scene.clone());
@@ -159,11 +161,13 @@ impl<'g> Engine<'g> {
                     s.scene_light = Some(light);
                     s.scene_version += 1;
                 });
+                true
             }
             Err(e) => {
                 let text = error_text(&e);
                 eprintln!("{text}");
                 self.update(|s| s.error = Some(text));
+                false
             }
         }
     }
@@ -436,10 +440,16 @@ impl<'g> Engine<'g> {
                     eprintln!("plait view: {} changed", f.display());
                 }
                 let scene_changed = changed.iter().any(|c| self.scene_files.contains(c));
-                if scene_changed || self.scene.is_none() {
-                    self.load_scene();
+                // A broken scene keeps its error on screen until it is fixed
+                // (a rebuild on the old scene would clear it).
+                let scene_ok = if scene_changed || self.scene.is_none() {
+                    self.load_scene()
+                } else {
+                    true
+                };
+                if scene_ok {
+                    self.rebuild();
                 }
-                self.rebuild();
             }
             if !idle && last_frame.elapsed() >= MIN_FRAME_INTERVAL {
                 last_frame = Instant::now();
