@@ -39,6 +39,26 @@ pub struct ViewArgs {
 }
 
 pub fn run(args: ViewArgs) -> Result<()> {
+    // A bad screenshot path fails now, not after the window has rendered.
+    if let Some(path) = &args.screenshot {
+        if !path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+        {
+            anyhow::bail!(
+                "--screenshot {}: the screenshot is a PNG; name it `….png`",
+                path.display()
+            );
+        }
+        let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
+        if let Some(dir) = dir.filter(|d| !d.is_dir()) {
+            anyhow::bail!(
+                "--screenshot {}: no folder {}",
+                path.display(),
+                dir.display()
+            );
+        }
+    }
     let screenshot = args.screenshot.map(|path| plait_view::Screenshot {
         path,
         after_frames: args.after_frames,

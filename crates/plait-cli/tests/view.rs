@@ -354,3 +354,23 @@ fn without_a_display_the_viewer_says_what_to_do() {
         "{stderr}"
     );
 }
+
+#[test]
+fn bad_screenshot_paths_fail_before_a_window_opens() {
+    for (path, expected) in [
+        ("/no/such/folder/shot.png", "no folder /no/such/folder"),
+        ("shot.jpg", "the screenshot is a PNG"),
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_plait"))
+            .args(["view", "--screenshot", path])
+            .env_remove("DISPLAY")
+            .output()
+            .expect("run plait view");
+        assert_eq!(o.status.code(), Some(2));
+        let stderr = text(&o.stderr);
+        assert!(
+            stderr.starts_with(&format!("error: --screenshot {path}: {expected}")),
+            "{stderr}"
+        );
+    }
+}
