@@ -339,8 +339,14 @@ impl<'g> Engine<'g> {
             s.frame_median_ms = frame_median;
             s.output = Some(output_view);
             match inspected {
-                Ok(i) => s.inspected = i.map(Arc::new),
-                Err(e) => s.error = Some(e),
+                Ok(i) => {
+                    s.inspected = i.map(Arc::new);
+                    s.inspect_error = None;
+                }
+                Err(e) => {
+                    s.inspected = None;
+                    s.inspect_error = Some(e);
+                }
             }
             s.frames = frames;
             s.total_frames += 1;

@@ -52,6 +52,8 @@ pub struct Shared {
     pub output: Option<Arc<Inspected>>,
     /// The inspected resource (when not the output).
     pub inspected: Option<Arc<Inspected>>,
+    /// Why the inspected resource cannot be shown (e.g. multisampled).
+    pub inspect_error: Option<String>,
     /// The last reload's or frame's error, with file:line:column.
     pub error: Option<String>,
     pub status: String,

@@ -345,13 +345,12 @@ fn viewport(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
         s.output.clone()
     };
     let Some(shown) = shown else {
-        ui.centered_and_justified(|ui| {
-            ui.label(if s.error.is_some() {
-                "no frame yet: fix the error above"
-            } else {
-                "building…"
-            });
-        });
+        let message = match (&s.inspect_error, &s.error) {
+            (Some(e), _) if c.inspected.is_some() => e.as_str(),
+            (_, Some(_)) => "no frame yet: fix the error above",
+            _ => "building…",
+        };
+        ui.centered_and_justified(|ui| ui.label(message));
         return;
     };
     let stale = c
