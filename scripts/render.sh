@@ -2,7 +2,9 @@
 # The README's render command: make sure a Vulkan driver exists, then render
 # the default pipeline (pipelines/occupancy.toml) on the built-in scene.
 # Extra arguments go to `plait render` (e.g. --size 1280x960 --out hair.png).
+# It runs where you are, so relative paths (--out mine.png, a pipeline or
+# scene file) are relative to your directory, as with the `plait` binary.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-bash scripts/ensure-vulkan.sh
-exec cargo run --quiet --locked -p plait-cli -- render "$@"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$root/scripts/ensure-vulkan.sh"
+exec cargo run --quiet --locked --manifest-path "$root/Cargo.toml" -p plait-cli -- render "$@"

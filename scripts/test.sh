@@ -21,6 +21,15 @@ if [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}" ]; then
     fi
 fi
 
+# Without XDG_RUNTIME_DIR there is no Wayland display, yet Mesa's device-select
+# layer asks for one on every device the GPU tests open, and libwayland prints
+# "XDG_RUNTIME_DIR is invalid or not set" each time. The layer only picks the
+# GPU that drives a display, so switch it off by its own variable (the `plait`
+# binary does the same for itself; see quiet_display_probe_when_headless).
+if [ -z "${XDG_RUNTIME_DIR:-}" ] && [ -z "${WAYLAND_SOCKET:-}" ]; then
+    export NODEVICE_SELECT="${NODEVICE_SELECT:-1}"
+fi
+
 # Two test threads per binary: the GPU tests serialize themselves (one
 # lavapipe device uses every core); the CPU tests run alongside.
 exec cargo test --workspace --locked --no-fail-fast "$@" -- --test-threads=2

@@ -1,6 +1,24 @@
 //! Helpers shared by plait's cross-crate tests (`tests/*.rs`).
 
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard};
+
+static GPU_LOCK: Mutex<()> = Mutex::new(());
+
+/// Open the GPU or fail with the device crate's message, which says how to
+/// install lavapipe (`apt-get install -y mesa-vulkan-drivers`) — never a skip.
+/// The lock keeps a test binary's GPU tests one at a time: lavapipe already
+/// uses every core for one device, and each test opens its own device so
+/// uncaptured GPU errors cannot be blamed on another test.
+pub fn open_gpu() -> (MutexGuard<'static, ()>, plait_gpu::Gpu) {
+    let guard = GPU_LOCK
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    match plait_gpu::Gpu::new() {
+        Ok(gpu) => (guard, gpu),
+        Err(e) => panic!("GPU tests need an adapter and none could be opened: {e}"),
+    }
+}
 
 /// The checkout root (the parent of `tests/`).
 pub fn repo_root() -> PathBuf {

@@ -81,6 +81,7 @@ fn scheduled_pass(
         shader: None,
         shader_location: None,
         location: Location::Builtin,
+        technique: None,
     }
 }
 

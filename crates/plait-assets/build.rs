@@ -1,4 +1,5 @@
-//! Embeds every `pipelines/*.toml` and `shaders/**/*.wgsl` of the checkout as
+//! Embeds every `pipelines/*.toml`, `techniques/**/*.toml` and
+//! `shaders/**/*.wgsl` of the checkout as
 //! the built-in copies (the fallback when no folder of the search path holds a
 //! file), so new gallery files need no list to be kept by hand.
 
@@ -26,6 +27,7 @@ fn main() {
     let root = manifest.join("../..");
     let mut files = Vec::new();
     collect(&root, &root.join("pipelines"), "toml", false, &mut files);
+    collect(&root, &root.join("techniques"), "toml", true, &mut files);
     collect(&root, &root.join("shaders"), "wgsl", true, &mut files);
     files.sort();
     let mut code = String::from("pub(crate) const BUILTIN: &[(&str, &str)] = &[\n");
@@ -48,5 +50,6 @@ fn main() {
     std::fs::write(&out, code).expect("writing builtin.rs");
     // A directory makes cargo rescan it for any change (new files included).
     println!("cargo:rerun-if-changed=../../pipelines");
+    println!("cargo:rerun-if-changed=../../techniques");
     println!("cargo:rerun-if-changed=../../shaders");
 }

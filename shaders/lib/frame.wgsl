@@ -30,13 +30,18 @@ struct Frame {
     ambient: vec4<f32>,
     // xy: render size in pixels; zw: 1 / size.
     screen_size: vec4<f32>,
-    // xy: sub-pixel jitter in light-map texels (Sintorn & Assarsson 2009 Fig. 9); z: time in s; w: frame index.
+    // xy: unused; z: time in s; w: frame index.
     jitter: vec4<f32>,
     // x, y: camera near and far; z, w: light near and far (world units).
     near_far: vec4<f32>,
     // x: mean hair fragment alpha (material alpha × mean strand alpha), the
     // constant α of order-based blending; y: strands; z: segments.
     hair_stats: vec4<f32>,
+    // The conventions every visibility provider shares (docs/design.md, "In
+    // front of"): x = self-shadow bias in light linear depth; y = 1 to jitter
+    // light-map lookups by up to half a texel (Fig. 9), 0 to read the texel
+    // the point falls in.
+    conventions: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -80,6 +85,19 @@ fn light_linear_depth(world: vec3<f32>) -> f32 {
     return (view_z - frame.near_far.z) / (frame.near_far.w - frame.near_far.z);
 }
 
+// Light linear depth (as `light_linear_depth`) of a depth the light's
+// projection stored in a depth map: the same value for an orthographic
+// (directional) light; undone from the perspective of a spot light.
+fn light_depth_to_linear(stored: f32) -> f32 {
+    if (frame.light_direction.w < 0.5) {
+        return stored;
+    }
+    let n = frame.near_far.z;
+    let f = frame.near_far.w;
+    let distance = f * n / (f - stored * (f - n));
+    return (distance - n) / (f - n);
+}
+
 // Linear depth (0 at near, 1 at far) of a world-space point in the pass's
 // view: the light's for `view = "light"`, the camera's otherwise. The
 // occupancy maps slice this depth uniformly.
@@ -110,4 +128,38 @@ fn to_light(world: vec3<f32>) -> vec3<f32> {
 fn fullscreen_position(vertex_index: u32) -> vec4<f32> {
     let uv = vec2<f32>(f32((vertex_index << 1u) & 2u), f32(vertex_index & 2u));
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// A point's light-map lookup, the same for every visibility provider and the
+// exact reference (docs/design.md, "In front of"): the texel it reads and the
+// light depth below which hair counts as in front of the point.
+struct LightLookup {
+    // false outside the light map: fully lit.
+    inside: bool,
+    texel: vec2<u32>,
+    uv: vec2<f32>,
+    // Hair fragments with light linear depth < this are in front of the point:
+    // its own depth less the self-shadow bias, so it never counts itself.
+    in_front_below: f32,
+}
+
+// Hash of a world position to [-0.5, 0.5]², the per-point jitter of Fig. 9.
+fn jitter_hash(p: vec3<f32>) -> vec2<f32> {
+    let q = vec3<u32>(bitcast<u32>(p.x), bitcast<u32>(p.y), bitcast<u32>(p.z));
+    var h = (q.x * 0x9E3779B1u) ^ (q.y * 0x85EBCA77u) ^ (q.z * 0xC2B2AE3Du);
+    h = (h ^ (h >> 15u)) * 0x2C1B3C6Du;
+    h = (h ^ (h >> 12u)) * 0x297A2D39u;
+    h = h ^ (h >> 15u);
+    return vec2<f32>(f32(h & 0xFFFFu), f32(h >> 16u)) / 65535.0 - 0.5;
+}
+
+fn light_lookup(world: vec3<f32>, size: vec2<u32>) -> LightLookup {
+    var out: LightLookup;
+    let p = light_uv_depth(world);
+    out.inside = all(p.xy >= vec2<f32>(0.0)) && all(p.xy <= vec2<f32>(1.0));
+    let texels = p.xy * vec2<f32>(size) + jitter_hash(world) * frame.conventions.y;
+    out.texel = vec2<u32>(clamp(texels, vec2<f32>(0.0), vec2<f32>(size) - 1.0));
+    out.uv = (vec2<f32>(out.texel) + 0.5) / vec2<f32>(size);
+    out.in_front_below = light_linear_depth(world) - frame.conventions.x;
+    return out;
 }

@@ -66,13 +66,26 @@ fn count_bits(maps: ptr<function, TexelMaps>, first: u32, last: u32) -> u32 {
 // is interpolated linearly between the slice's start and end. Exact at slab
 // boundaries; inside a slab off by at most that slab's count F_i.
 fn order_estimate(maps: ptr<function, TexelMaps>, rel: f32) -> f32 {
+    return order_estimate_excluding(maps, rel, 0.0);
+}
+
+// The order of a fragment that is itself recorded in the maps (the camera
+// order of §3.4): the fragments strictly in front of it, its own count left
+// out — docs/design.md, "In front of". Its slice holds it, so the slice's
+// share interpolated across the slice is per_bit - 1 other fragments.
+fn fragment_order(maps: ptr<function, TexelMaps>, rel: f32) -> f32 {
+    return order_estimate_excluding(maps, rel, 1.0);
+}
+
+// `own` fragments at `rel` (0 or 1) are not counted in front of it.
+fn order_estimate_excluding(maps: ptr<function, TexelMaps>, rel: f32, own: f32) -> f32 {
     let words = (*maps).words;
     let slabs = (*maps).slabs;
     if (words == 0u || slabs == 0u || rel <= 0.0) {
         return 0.0;
     }
     if (rel >= 1.0) {
-        return total_fragments(maps);
+        return max(total_fragments(maps) - own, 0.0);
     }
     let slices = words * 32u;
     let per_slab = max(slices / slabs, 1u);
@@ -94,5 +107,5 @@ fn order_estimate(maps: ptr<function, TexelMaps>, rel: f32) -> f32 {
     let bits_through = count_bits(maps, first, slice + 1u);
     let at_start = before + per_bit * f32(bits_before);
     let at_end = before + per_bit * f32(bits_through);
-    return mix(at_start, at_end, frac);
+    return at_start + max(at_end - at_start - own, 0.0) * frac;
 }

@@ -8,7 +8,7 @@
 #import plait::self_shadow::self_shadow
 #ifdef BLEND_OCCUPANCY_ORDER
 #import plait::frame::camera_linear_depth
-#import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, order_estimate}
+#import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, fragment_order}
 #endif
 // Transparency modes of their own pass types (depth_peeling.rs, linked_list.rs,
 // weighted_average.rs, alpha_to_coverage.rs, opaque_hair.rs): each module hands
@@ -49,7 +49,7 @@ fn camera_order(pixel: vec2<u32>, depth: f32) -> f32 {
     for (var i = 0u; i < maps.slabs; i++) {
         maps.counts[i] = order_slabs[index * maps.slabs + i];
     }
-    return order_estimate(&maps, relative_depth(&maps, depth));
+    return fragment_order(&maps, relative_depth(&maps, depth));
 }
 #endif
 

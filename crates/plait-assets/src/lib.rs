@@ -1,7 +1,8 @@
 //! The pipelines and shaders plait ships, found at run time.
 //!
 //! A *library file* is named by its path inside a plait checkout
-//! (`pipelines/occupancy.toml`, `shaders/passes/hair_shade.wgsl`). It is read
+//! (`pipelines/occupancy.toml`, `techniques/self_shadow/occupancy.toml`,
+//! `shaders/passes/hair_shade.wgsl`). It is read
 //! from the first folder of the search path that holds it — so editing a
 //! shader needs no rebuild, and the viewer reloads it — and, when no folder
 //! does, from the copy built into the binary, so an installed `plait` works
@@ -180,6 +181,65 @@ pub fn exists(path: &Path) -> bool {
     }
 }
 
+/// Whether `path` is a folder: on disk, or a folder of the built-in copies
+/// (`<built-in>/techniques`).
+pub fn is_dir(path: &Path) -> bool {
+    if !is_builtin(path) {
+        return path.is_dir();
+    }
+    match builtin_key(path) {
+        Some(key) if key.is_empty() => true,
+        Some(key) => BUILTIN
+            .iter()
+            .any(|(k, _)| k.strip_prefix(&key).is_some_and(|r| r.starts_with('/'))),
+        None => false,
+    }
+}
+
+/// The entries of a folder (files and folders), on disk or built in; empty
+/// when it cannot be read.
+pub fn read_dir(path: &Path) -> Vec<PathBuf> {
+    if !is_builtin(path) {
+        return std::fs::read_dir(path)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|e| e.path())
+            .collect();
+    }
+    let Some(key) = builtin_key(path) else {
+        return Vec::new();
+    };
+    let prefix = if key.is_empty() {
+        key
+    } else {
+        format!("{key}/")
+    };
+    let mut names: Vec<&str> = BUILTIN
+        .iter()
+        .filter_map(|(k, _)| k.strip_prefix(&prefix))
+        .map(|rest| rest.split('/').next().unwrap_or(rest))
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    names.into_iter().map(|n| path.join(n)).collect()
+}
+
+/// The library folder `relative` (`techniques`): the first folder of the
+/// search path that has it, else the built-in copies' (`<built-in>/…`).
+pub fn find_dir(relative: &str) -> Option<PathBuf> {
+    let relative = normalize(Path::new(relative))?;
+    search_path()
+        .into_iter()
+        .map(|root| root.join(&relative))
+        .find(|p| p.is_dir())
+        .map(shorten)
+        .or_else(|| {
+            let builtin = Path::new(BUILTIN_ROOT).join(&relative);
+            is_dir(&builtin).then_some(builtin)
+        })
+}
+
 /// Every file `folder/*.EXT` of the library (`list("pipelines", "toml")`): one
 /// per file name, the first in search order (disk before built-in), sorted by
 /// name.
@@ -228,12 +288,33 @@ mod tests {
             "shaders/lib/frame.wgsl",
             "shaders/passes/hair_shade.wgsl",
             "shaders/compose_over.wgsl",
+            "techniques/self_shadow/occupancy.toml",
         ] {
             let text = builtin(name).unwrap_or_else(|| panic!("{name} is not built in"));
             assert!(!text.is_empty(), "{name} is empty");
         }
         assert!(builtin("pipelines/nope.toml").is_none());
         assert!(builtin("../Cargo.toml").is_none());
+    }
+
+    #[test]
+    fn built_in_folders_list_like_disk_folders() {
+        let root = Path::new("<built-in>/techniques");
+        assert!(is_dir(root));
+        assert!(is_dir(Path::new("<built-in>/techniques/self_shadow")));
+        assert!(!is_dir(Path::new(
+            "<built-in>/techniques/self_shadow/occupancy.toml"
+        )));
+        assert!(!is_dir(Path::new("<built-in>/nothing")));
+        let points = read_dir(root);
+        assert!(points.contains(&root.join("self_shadow")), "{points:?}");
+        assert!(points.contains(&root.join("transparency")), "{points:?}");
+        let files = read_dir(&root.join("self_shadow"));
+        assert!(
+            files.contains(&root.join("self_shadow/occupancy.toml")),
+            "{files:?}"
+        );
+        assert!(read_dir(Path::new("<built-in>/nothing")).is_empty());
     }
 
     #[test]

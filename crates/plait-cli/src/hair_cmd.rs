@@ -64,13 +64,13 @@ pub fn run(args: HairArgs) -> anyhow::Result<()> {
                 "plait hair generate --style {style} --seed {seed}"
             ));
             hair.write(&out)?;
-            println!(
+            outln!(
                 "wrote {}: {} strands, {} points, {} segments",
                 out.display(),
                 strands.strand_count(),
                 strands.point_count(),
                 strands.segment_count()
-            );
+            )?;
             Ok(())
         }
     }
@@ -135,14 +135,14 @@ fn info(path: &std::path::Path, json: bool) -> anyhow::Result<()> {
             "info": file.info_string(),
             "warnings": warnings,
         });
-        println!("{v}");
+        outln!("{v}")?;
     } else {
-        println!("file:         {}", path.display());
-        println!("strands:      {}", file.strand_count());
-        println!("points:       {}", file.point_count());
-        println!("segments:     {}", file.segment_count());
-        println!("arrays:       {}", file.arrays().join(", "));
-        println!(
+        outln!("file:         {}", path.display())?;
+        outln!("strands:      {}", file.strand_count())?;
+        outln!("points:       {}", file.point_count())?;
+        outln!("segments:     {}", file.segment_count())?;
+        outln!("arrays:       {}", file.arrays().join(", "))?;
+        outln!(
             "defaults:     segments {}, thickness {}, transparency {}, color [{}, {}, {}]",
             file.default_segments,
             file.default_thickness,
@@ -150,9 +150,9 @@ fn info(path: &std::path::Path, json: bool) -> anyhow::Result<()> {
             file.default_color[0],
             file.default_color[1],
             file.default_color[2]
-        );
-        println!("bounds:       min {min:?} max {max:?}");
-        println!("info:         {:?}", file.info_string());
+        )?;
+        outln!("bounds:       min {min:?} max {max:?}")?;
+        outln!("info:         {:?}", file.info_string())?;
         for w in &warnings {
             eprintln!("warning: {}: {w}", path.display());
         }

@@ -1,4 +1,5 @@
-//! Output files written all at once: a temporary file beside the target,
+//! Standard output that reports a closed pipe instead of panicking, and
+//! output files written all at once: a temporary file beside the target,
 //! renamed into place only when complete, so a failure or an interrupt never
 //! leaves a half-written file. The temporary file is created before any GPU
 //! work, so an unwritable path fails at once.
@@ -7,6 +8,33 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+
+/// `println!` that returns the write error instead of panicking, so
+/// `plait passes | head -1` ends quietly when `head` closes the pipe
+/// (`main` turns a broken pipe into a silent exit).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*)
+    }};
+}
+
+/// `print!` counterpart of [`outln!`].
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        write!(std::io::stdout().lock(), $($arg)*)
+    }};
+}
+
+/// Whether an error is a write to a reader that went away (`| head`).
+pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
+    error.chain().any(|cause| {
+        cause
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
 
 pub struct PendingFile {
     path: PathBuf,
@@ -64,4 +92,41 @@ pub fn readable_by_all(path: &Path, mode: u32) {
     }
     #[cfg(not(unix))]
     let _ = (path, mode);
+}
+
+/// The image format an output path asks for by its extension: `.png`, or
+/// `.jpg`/`.jpeg` (8-bit RGB, the alpha channel dropped). Anything else is
+/// refused before any work, rather than writing PNG bytes under another name.
+pub fn image_format(path: &Path, flag: &str) -> Result<image::ImageFormat> {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match extension.as_deref() {
+        Some("png") => Ok(image::ImageFormat::Png),
+        Some("jpg" | "jpeg") => Ok(image::ImageFormat::Jpeg),
+        Some(other) => anyhow::bail!(
+            "{flag} {}: cannot write `.{other}` images; use a .png or .jpg/.jpeg file name",
+            path.display()
+        ),
+        None => anyhow::bail!(
+            "{flag} {}: the file name needs an extension, .png or .jpg/.jpeg",
+            path.display()
+        ),
+    }
+}
+
+/// `image` encoded as `format` (from [`image_format`]).
+pub fn encode_image(image: &image::RgbaImage, format: image::ImageFormat) -> Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    let mut cursor = std::io::Cursor::new(&mut bytes);
+    if format == image::ImageFormat::Jpeg {
+        // JPEG has no alpha: the final images are opaque anyway.
+        image::DynamicImage::ImageRgba8(image.clone())
+            .to_rgb8()
+            .write_to(&mut cursor, format)
+    } else {
+        image.write_to(&mut cursor, format)
+    }
+    .with_context(|| format!("encoding {format:?}"))?;
+    Ok(bytes)
 }

@@ -5,15 +5,18 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use plait::session::compile_checked;
-use plait_graph::{CompileOptions, PassTypeSpec};
+use plait_graph::{
+    CompileOptions, Formats, ParamType, PassShape, PassTypeSpec, ResourceKind, SlotSpec,
+};
 
 use crate::output::PendingFile;
 
 /// `--set key=value` in one place for every command.
 #[derive(Args, Clone, Debug, Default)]
 pub struct SetArgs {
-    /// Override a key of the pipeline file, e.g. `--set params.slices=64`
-    /// or `--set passes.self_shadow.type=deep_opacity` (repeatable).
+    /// Override a key of the pipeline file (repeatable; the key must exist),
+    /// e.g. `--set params.slices=64` or `--set passes.hair.params.shadow_weight=0.3`.
+    /// Other techniques are files: pipelines/deep_opacity.toml, … (README).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
 }
@@ -37,12 +40,12 @@ pub fn check(args: CheckArgs) -> Result<()> {
                 } else {
                     format!(", {} culled", s.culled.len())
                 };
-                println!(
+                outln!(
                     "ok  {}: {} passes{culled}, {} resources",
                     path.display(),
                     s.passes.len(),
                     s.resources.len()
-                );
+                )?;
             }
             Err(e) => failures.push(format!("{e:#}")),
         }
@@ -91,14 +94,13 @@ pub fn graph(args: GraphArgs) -> Result<()> {
     let schedule = compile_checked(&args.pipeline, &args.set.sets, &opts)?;
     let text = match args.format {
         GraphFormat::Dot => plait_graph::to_dot(&schedule),
-        GraphFormat::Svg => plait_graph::to_svg(&schedule)
-            .map_err(|e| anyhow::anyhow!("drawing the graph: {}", e.0))?,
+        GraphFormat::Svg => plait_graph::to_svg(&schedule),
         GraphFormat::Text => plait_graph::schedule_text(&schedule),
     };
     match out {
         Some(file) => file.commit(text.as_bytes()),
         None => {
-            print!("{text}");
+            out!("{text}")?;
             Ok(())
         }
     }
@@ -111,8 +113,24 @@ pub struct PassesArgs {
     json: bool,
 }
 
+/// The param's accepted values as data: `{"kind": "number", "min": …, "max": …}`.
+fn param_type_json(ty: &ParamType) -> serde_json::Value {
+    match ty {
+        ParamType::Int { min, max } => {
+            serde_json::json!({ "kind": "integer", "min": min, "max": max })
+        }
+        ParamType::Float { min, max } => {
+            serde_json::json!({ "kind": "number", "min": min, "max": max })
+        }
+        ParamType::Bool => serde_json::json!({ "kind": "bool" }),
+        ParamType::Str => serde_json::json!({ "kind": "text" }),
+        ParamType::Enum(choices) => serde_json::json!({ "kind": "one_of", "choices": choices }),
+        ParamType::Vec3 => serde_json::json!({ "kind": "vec3" }),
+    }
+}
+
 fn spec_json(spec: &PassTypeSpec) -> serde_json::Value {
-    let slot = |s: &plait_graph::SlotSpec| {
+    let slot = |s: &SlotSpec| {
         serde_json::json!({
             "name": s.name, "kind": s.kind, "access": s.access, "formats": s.formats.to_string(),
             "loads": s.loads, "optional": s.optional, "doc": s.doc,
@@ -126,11 +144,58 @@ fn spec_json(spec: &PassTypeSpec) -> serde_json::Value {
         "inputs": spec.inputs.iter().map(slot).collect::<Vec<_>>(),
         "outputs": spec.outputs.iter().map(slot).collect::<Vec<_>>(),
         "params": spec.params.iter().map(|p| serde_json::json!({
-            "name": p.name, "type": format!("{:?}", p.ty), "default": p.default, "doc": p.doc,
+            "name": p.name, "type": param_type_json(&p.ty), "accepts": p.ty.to_string(),
+            "default": p.default, "doc": p.doc,
         })).collect::<Vec<_>>(),
         "dynamic_slots": spec.dynamic_slots,
         "required_features": spec.required_features,
     })
+}
+
+/// What a pass type is, in words, with what a raster pass needs set.
+fn shape_words(shape: PassShape) -> &'static str {
+    match shape {
+        PassShape::Raster => {
+            "raster pass: draws the scene from `view` (light | camera), `draw` (hair | opaque)"
+        }
+        PassShape::Fullscreen => "fullscreen pass",
+        PassShape::Compute => "compute pass",
+    }
+}
+
+/// `rg32float texture, sampled` / `buffer, storage, written`.
+fn slot_words(slot: &SlotSpec) -> String {
+    let mut words = match slot.kind {
+        ResourceKind::Texture => match &slot.formats {
+            Formats::Any => format!("texture (any format), {}", slot.access),
+            formats => format!("{formats} texture, {}", slot.access),
+        },
+        ResourceKind::Buffer => format!("buffer, {}", slot.access),
+    };
+    if slot.loads {
+        words.push_str(", adds to what is there");
+    }
+    if slot.optional {
+        words.push_str(", optional");
+    }
+    words
+}
+
+/// Rows of `name  what — doc`, the names padded to one column.
+fn print_rows(title: &str, rows: &[(String, String, String)]) -> std::io::Result<()> {
+    if rows.is_empty() {
+        return Ok(());
+    }
+    outln!("  {title}:")?;
+    let width = rows
+        .iter()
+        .map(|(n, _, _)| n.chars().count())
+        .max()
+        .unwrap_or(0);
+    for (name, what, doc) in rows {
+        outln!("    {name:<width$}  {what} — {doc}")?;
+    }
+    Ok(())
 }
 
 pub fn passes(args: PassesArgs) -> Result<()> {
@@ -138,64 +203,60 @@ pub fn passes(args: PassesArgs) -> Result<()> {
     let specs: Vec<PassTypeSpec> = library.types.values().map(|t| t.spec()).collect();
     if args.json {
         let all: Vec<_> = specs.iter().map(spec_json).collect();
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&all).context("serializing pass specs")?
-        );
+        )?;
         return Ok(());
     }
     for spec in &specs {
-        println!("{} ({:?}) — {}", spec.name, spec.shape, spec.description);
+        outln!("{} — {}", spec.name, spec.description)?;
+        outln!("  {}", shape_words(spec.shape))?;
         if spec.source != "plait" {
-            println!("  source: {}", spec.source);
+            outln!("  paper: {}", spec.source)?;
         }
         if spec.dynamic_slots {
-            println!(
+            outln!(
                 "  slots: the shader's group-1 bindings, matched by name; params fill its `params` uniform"
-            );
+            )?;
         }
-        for (title, slots) in [("inputs", &spec.inputs), ("outputs", &spec.outputs)] {
-            if !slots.is_empty() {
-                println!("  {title}:");
-            }
-            for s in slots {
-                let mut flags = Vec::new();
-                if s.optional {
-                    flags.push("optional");
-                }
-                if s.loads {
-                    flags.push("loads");
-                }
-                let flags = if flags.is_empty() {
-                    String::new()
-                } else {
-                    format!(" [{}]", flags.join(", "))
+        let slot_rows = |slots: &[SlotSpec]| -> Vec<(String, String, String)> {
+            slots
+                .iter()
+                .map(|s| (s.name.clone(), slot_words(s), s.doc.clone()))
+                .collect()
+        };
+        print_rows("inputs", &slot_rows(&spec.inputs))?;
+        print_rows("outputs", &slot_rows(&spec.outputs))?;
+        let params: Vec<_> = spec
+            .params
+            .iter()
+            .map(|p| {
+                let default = match &p.default {
+                    Some(d) => format!(", default {}", value_words(d)),
+                    None => ", required".into(),
                 };
-                let formats = match s.kind {
-                    plait_graph::ResourceKind::Texture => format!(" ({})", s.formats),
-                    plait_graph::ResourceKind::Buffer => String::new(),
-                };
-                println!(
-                    "    {:<12} {} {:?}{formats}{flags} — {}",
-                    s.name, s.kind, s.access, s.doc
-                );
-            }
-        }
-        if !spec.params.is_empty() {
-            println!("  params:");
-        }
-        for p in &spec.params {
-            let default = p
-                .default
-                .as_ref()
-                .map(|d| format!(" = {d}"))
-                .unwrap_or_else(|| " (required)".into());
-            println!("    {:<12} {:?}{default} — {}", p.name, p.ty, p.doc);
-        }
+                (p.name.clone(), format!("{}{default}", p.ty), p.doc.clone())
+            })
+            .collect();
+        print_rows("params", &params)?;
         if !spec.required_features.is_empty() {
-            println!("  needs: {}", spec.required_features.join(", "));
+            outln!(
+                "  needs the GPU feature: {}",
+                spec.required_features.join(", ")
+            )?;
         }
-        println!();
+        outln!()?;
     }
+    outln!("Papers are cited by author and year; docs/bibliography.md gives each in full.")?;
     Ok(())
+}
+
+/// A default value as it would be written in a pipeline file, numbers short.
+fn value_words(value: &plait_graph::Value) -> String {
+    match value {
+        plait_graph::Value::Float(x) => plait_graph::spec::short_number(*x),
+        plait_graph::Value::Str(s) => s.clone(),
+        other => other.to_string(),
+    }
 }

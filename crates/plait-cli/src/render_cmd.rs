@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use plait::session::{SceneData, compile_checked, prepare, resolve_pipeline};
 use plait_gpu::{FrameReport, Gpu};
@@ -19,15 +19,16 @@ pub struct RenderArgs {
     /// Scene file (default: the built-in scene).
     #[arg(long)]
     scene: Option<PathBuf>,
-    /// Where to write the image.
+    /// Where to write the image: a .png, or a .jpg/.jpeg file.
     #[arg(long, default_value = "plait.png")]
     out: PathBuf,
-    /// Render size, `WIDTHxHEIGHT`.
+    /// Render size, `WIDTHxHEIGHT` (a lowercase or capital x).
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
     /// Write this texture resource instead of the pipeline's output (look at
-    /// any intermediate: a light map, the hair image, …). Floats are shown as
-    /// linear values encoded to sRGB, single channels as grey.
+    /// any intermediate: a light map, the hair image, …). Colour in 0…1 is
+    /// encoded to sRGB; other values (depths, ranges, counts) are mapped from
+    /// their smallest to their largest value, which a note reports.
     #[arg(long, value_name = "RESOURCE")]
     show: Option<String>,
     /// Print one JSON object on standard output instead of the table.
@@ -41,7 +42,7 @@ pub struct RenderArgs {
     set: SetArgs,
 }
 
-/// `--size 960x720`.
+/// `--size 960x720` (`960X720` too: the README's `WxH` with either x).
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`{text}` is not WIDTHxHEIGHT (e.g. 960x720)");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
@@ -72,7 +73,8 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
 }
 
 /// Render `pipeline` on `scene` at `size`: compile and check without the GPU
-/// first, then open the device, build, render, read the first output.
+/// first, then open the device, build, render, read the first output (or the
+/// texture `show` names, checked before any GPU work).
 pub fn render(
     pipeline: &Path,
     sets: &[String],
@@ -80,33 +82,52 @@ pub fn render(
     size: (u32, u32),
     show: Option<&str>,
 ) -> Result<Rendered> {
+    let mut sets = sets.to_vec();
+    if let Some(name) = show {
+        let loaded = plait_graph::load(pipeline, &sets)?;
+        crate::show::check_name(&loaded, name)?;
+        sets.push(crate::show::extra_output_set(&loaded, name));
+    }
     // Everything that can fail without a GPU fails before one is opened.
     // The adapter's texture limit is checked once the device is open.
-    compile_checked(
+    let checked = compile_checked(
         pipeline,
-        sets,
+        &sets,
         &CompileOptions {
             screen: size,
             max_texture_dimension: u32::MAX,
+            max_buffer_binding_size: u64::MAX,
         },
     )?;
+    if let Some(name) = show {
+        crate::show::check_readable(&checked, name)?;
+    }
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
-    let mut prepared = prepare(&gpu, pipeline, sets, &data, size)?;
+    let mut prepared = prepare(&gpu, pipeline, &sets, &data, size)?;
     if let Some(name) = show {
         prepared.output = name.to_owned();
     }
     // The first frame includes pipeline warm-up in the driver; time the second.
     prepared.renderer.render()?;
     let report = prepared.renderer.render()?;
-    let image = prepared.image()?;
+    let mut notes = prepared.renderer.notes().to_vec();
+    let image = match show {
+        Some(name) => {
+            let texels = prepared.renderer.read_resource(name)?;
+            let (image, note) = crate::show::picture(name, &texels);
+            notes.extend(note);
+            image
+        }
+        None => prepared.image()?,
+    };
     Ok(Rendered {
         schedule: prepared.schedule().clone(),
         report,
         image,
         adapter: gpu.adapter_name().to_owned(),
         backend: gpu.backend_name(),
-        notes: prepared.renderer.notes().to_vec(),
+        notes,
     })
 }
 
@@ -120,7 +141,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         || {
             // An error is reported and the watch goes on: fixing the file renders again.
             if let Err(e) = render_once(&args) {
-                let text = format!("{e:#}");
+                let text = crate::error_text(&e);
                 let prefix = if text.starts_with("error:") {
                     ""
                 } else {
@@ -135,6 +156,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
 }
 
 fn render_once(args: &RenderArgs) -> Result<()> {
+    let format = crate::output::image_format(&args.out, "--out")?;
     let out = PendingFile::create(&args.out, "--out")?;
     let pipeline = resolve_pipeline(args.pipeline.as_deref());
     let scene = load_scene(args.scene.as_deref())?;
@@ -145,21 +167,17 @@ fn render_once(args: &RenderArgs) -> Result<()> {
         args.size,
         args.show.as_deref(),
     )?;
-    let mut png = Vec::new();
-    r.image
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .context("encoding PNG")?;
-    out.commit(&png)?;
+    out.commit(&crate::output::encode_image(&r.image, format)?)?;
     for note in &r.notes {
         eprintln!("note: {note}");
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&report_json(&pipeline, &r, &args.out))?
-        );
+        )?;
     } else {
-        print_table(&pipeline, &r, &args.out);
+        print_table(&pipeline, &r, &args.out)?;
     }
     Ok(())
 }
@@ -232,40 +250,43 @@ fn ms(v: Option<f64>) -> String {
     v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "n/a".into())
 }
 
-fn print_table(pipeline: &Path, r: &Rendered, out: &Path) {
+fn print_table(pipeline: &Path, r: &Rendered, out: &Path) -> std::io::Result<()> {
     let s = &r.schedule;
-    println!(
+    outln!(
         "{} on {} ({}), {}x{}",
         pipeline.display(),
         r.adapter,
         r.backend,
         r.image.width(),
         r.image.height()
-    );
-    println!("{:<20} {:<16} {:>10}", "pass", "type", "GPU ms");
+    )?;
+    outln!("{:<20} {:<16} {:>10}", "pass", "type", "GPU ms")?;
     for (p, t) in s.passes.iter().zip(&r.report.passes) {
-        println!("{:<20} {:<16} {:>10}", p.name, p.type_name, ms(t.gpu_ms));
+        outln!("{:<20} {:<16} {:>10}", p.name, p.type_name, ms(t.gpu_ms))?;
     }
     for c in &s.culled {
-        println!(
+        outln!(
             "{:<20} {:<16} {:>10}  ({})",
-            c.pass.name, c.pass.type_name, "culled", c.reason
-        );
+            c.pass.name,
+            c.pass.type_name,
+            "culled",
+            c.reason
+        )?;
     }
-    println!(
+    outln!(
         "{:<20} {:<16} {:>10}",
         "frame",
         "",
         ms(r.report.total_gpu_ms)
-    );
+    )?;
     if r.report.total_gpu_ms.is_none() {
-        println!("(this adapter has no timestamp queries: GPU times are not available)");
+        outln!("(this adapter has no timestamp queries: GPU times are not available)")?;
     }
-    println!(
+    outln!(
         "memory: {:.2} MiB in {} allocations ({:.2} MiB without sharing)",
         s.memory.peak_bytes as f64 / 1048576.0,
         s.physical.len(),
         s.memory.unpooled_bytes as f64 / 1048576.0
-    );
-    println!("wrote {}", out.display());
+    )?;
+    outln!("wrote {}", out.display())
 }

@@ -39,6 +39,18 @@ fn forward_against_itself_is_identical_and_report_is_complete() {
     assert!(text(&o.stdout).contains("[1/"), "{}", text(&o.stdout));
     let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
     assert!(html.contains("<svg") && html.contains("flip") && html.contains("Provenance"));
+    // Provenance names each file once: hair_shade.wgsl serves six pass types,
+    // forward.toml is both the variant and the reference.
+    assert_eq!(
+        html.matches("<code>shaders/passes/hair_shade.wgsl").count(),
+        1,
+        "hair_shade.wgsl listed more than once"
+    );
+    assert_eq!(
+        html.matches("<code>pipelines/forward.toml ").count(),
+        1,
+        "forward.toml listed more than once"
+    );
     assert!(
         !html.contains("<script src") && !html.contains("<link "),
         "self-contained"

@@ -629,3 +629,60 @@ fn missing_background_image_names_the_file() {
         Some(dir.path()),
     );
 }
+
+/// `plait check` refuses, before any GPU work, what rendering would refuse:
+/// sizes a pass cannot index, buffers past the storage-binding limit, sample
+/// counts no format allows.
+#[test]
+fn check_rejects_what_rendering_would() {
+    let cases: [(&str, &str, &[&str]); 4] = [
+        (
+            "pipelines/occupancy.toml",
+            "params.slices=48",
+            &["occupancy.toml:", "light_bits", "multiple of 32"],
+        ),
+        (
+            "pipelines/occupancy.toml",
+            "params.light_size=8192",
+            &["occupancy.toml:", "light_bits", "1 GiB", "128.0 MiB"],
+        ),
+        (
+            "pipelines/alpha_to_coverage.toml",
+            "params.samples=3",
+            &["alpha_to_coverage.toml:", "samples is 3"],
+        ),
+        (
+            "pipelines/occupancy.toml",
+            "params.light_size=16384",
+            &["occupancy.toml:", "16384", "8192"],
+        ),
+    ];
+    for (pipeline, set, expected) in cases {
+        let o = plait(&["check", pipeline, "--set", set]);
+        assert_fails(
+            &format!("plait check {pipeline} --set {set}"),
+            &o,
+            expected,
+            None,
+        );
+    }
+}
+
+/// Every gallery pipeline passes `plait check` at the default size, within
+/// WebGPU's default limits.
+#[test]
+fn every_gallery_pipeline_checks() {
+    for entry in std::fs::read_dir(root().join("pipelines")).expect("pipelines/") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let o = plait(&["check", path.to_str().expect("utf-8")]);
+            assert_eq!(
+                o.status.code(),
+                Some(0),
+                "{}: {}",
+                path.display(),
+                text(&o.stderr)
+            );
+        }
+    }
+}

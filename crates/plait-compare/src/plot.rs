@@ -126,27 +126,28 @@ pub fn svg(chart: &Chart) -> String {
     let (mut y0, mut y1) = pts
         .iter()
         .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.y), b.max(p.y)));
-    let pad = |a: &mut f64, b: &mut f64| {
+    let pw = w - left - right;
+    let ph = h - top - bottom;
+    // Markers are drawn whole inside the frame: the largest marker's radius
+    // plus a gap is kept free on every side, so a point at the edge of the
+    // data (an error of 0, the cheapest variant) never sits on the frame.
+    let max_radius = pts
+        .iter()
+        .map(|p| p.size.unwrap_or(4.0))
+        .fold(4.0, f64::max);
+    let pad = |a: &mut f64, b: &mut f64, plot_px: f64| {
         if *b - *a < 1e-12 {
             let d = if a.abs() > 0.0 { a.abs() * 0.1 } else { 1.0 };
             *a -= d;
             *b += d;
-        } else {
-            let d = (*b - *a) * 0.08;
-            *a -= d;
-            *b += d;
         }
+        let keep_px = (max_radius + 6.0).min(plot_px / 4.0);
+        let d = (*b - *a) * keep_px / (plot_px - 2.0 * keep_px);
+        *a -= d;
+        *b += d;
     };
-    pad(&mut x0, &mut x1);
-    pad(&mut y0, &mut y1);
-    if y0 < 0.0 && pts.iter().all(|p| p.y >= 0.0) {
-        y0 = 0.0;
-    }
-    if x0 < 0.0 && pts.iter().all(|p| p.x >= 0.0) {
-        x0 = 0.0;
-    }
-    let pw = w - left - right;
-    let ph = h - top - bottom;
+    pad(&mut x0, &mut x1, pw);
+    pad(&mut y0, &mut y1, ph);
     let sx = |x: f64| left + (x - x0) / (x1 - x0) * pw;
     let sy = |y: f64| top + ph - (y - y0) / (y1 - y0) * ph;
     let _ = write!(
@@ -252,6 +253,59 @@ mod tests {
             vec![0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
         );
         assert_eq!(ticks(3.0, 3.0, 5), vec![3.0]);
+    }
+
+    /// `(cx, cy, r)` of every data marker (legend markers have no `<title>`).
+    fn markers(svg: &str) -> Vec<(f64, f64, f64)> {
+        svg.split("<circle ")
+            .skip(1)
+            .filter(|c| c.contains("<title>"))
+            .map(|c| {
+                let attr = |k: &str| -> f64 {
+                    let start = c.find(&format!("{k}=\"")).unwrap() + k.len() + 2;
+                    let end = c[start..].find('"').unwrap() + start;
+                    c[start..end].parse().unwrap()
+                };
+                (attr("cx"), attr("cy"), attr("r"))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn markers_stay_inside_the_frame() {
+        // The reference at error 0 and the costliest variant with the
+        // largest marker: both at the edges of the data.
+        let point = |x: f64, y: f64, size: f64| Point {
+            x,
+            y,
+            size: Some(size),
+            label: None,
+        };
+        let c = Chart {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            note: None,
+            series: vec![Series {
+                name: "s".into(),
+                line: false,
+                points: vec![
+                    point(1.0, 0.0, 16.0),
+                    point(9.0, 0.3, 16.0),
+                    point(4.0, 0.1, 3.0),
+                ],
+            }],
+        };
+        let s = svg(&c);
+        let (left, top, right, bottom) = (70.0, 44.0, 640.0 - 170.0, 400.0 - 50.0);
+        let marks = markers(&s);
+        assert_eq!(marks.len(), 3);
+        for (cx, cy, r) in marks {
+            assert!(
+                cx - r > left && cx + r < right && cy - r > top && cy + r < bottom,
+                "marker at ({cx}, {cy}) r {r} touches the frame"
+            );
+        }
     }
 
     #[test]

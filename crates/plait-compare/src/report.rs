@@ -553,6 +553,17 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
                 continue;
             };
             any = true;
+            if renders_like_the_reference(report, v) {
+                // The reference's provider against itself: curves on top of
+                // each other, differing only by noise. Say so instead.
+                let _ = write!(
+                    h,
+                    "<p>{} ({}): the reference itself — no curves to compare</p>",
+                    escape(&v.label),
+                    escape(&vis.provider)
+                );
+                continue;
+            }
             let _ = write!(
                 h,
                 "<p>{} ({}): mean |ΔV| {:.4}, max |ΔV| {:.4} over {} rays through the hair</p><div class=grid>",
@@ -624,8 +635,8 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         h.push_str("</table>");
     }
 
-    // Graphs.
-    h.push_str("<h2>Pipelines</h2>");
+    // Graphs, at their own size (a few hundred pixels: readable as they are).
+    h.push_str("<h2>Pipelines</h2><div class=grid>");
     for (id, graph) in graphs {
         let label = report
             .variant(id)
@@ -633,11 +644,12 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
             .unwrap_or_else(|| id.clone());
         let _ = write!(
             h,
-            "<h4>{}</h4><div class=graph>{}</div>",
+            "<div><h4>{}</h4><div class=graph>{}</div></div>",
             escape(&label),
             strip_xml_prolog(graph)
         );
     }
+    h.push_str("</div>");
 
     // Provenance.
     h.push_str("<h2>Provenance</h2><table>");
@@ -676,14 +688,12 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     for s in &p.scenes {
         row(&mut h, "scene", &format!("{}  sha256 {}", s.path, s.sha256));
     }
-    for pp in &p.pipelines {
-        for f in pp.files.iter().chain(&pp.shaders) {
-            row(
-                &mut h,
-                &format!("{} file", pp.path),
-                &format!("{}  sha256 {}", f.path, f.sha256),
-            );
-        }
+    for (f, users) in provenance_files(p) {
+        row(
+            &mut h,
+            &format!("file of {}", users.join(", ")),
+            &format!("{}  sha256 {}", f.path, f.sha256),
+        );
     }
     for f in &p.builtin_shaders {
         row(
@@ -695,6 +705,36 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     h.push_str("</table><p class=note>Every number above is in report.json.</p>");
     let _ = write!(h, "<script>{JS}</script></body></html>");
     h
+}
+
+/// Whether `v` renders exactly what the reference renders: the reference
+/// itself, or the same pipeline file with the same `--set`s.
+fn renders_like_the_reference(report: &Report, v: &Variant) -> bool {
+    v.is_reference
+        || report
+            .variants
+            .iter()
+            .find(|r| r.is_reference)
+            .is_some_and(|r| r.pipeline == v.pipeline && r.sets == v.sets)
+}
+
+/// Every pipeline file and shader once (pipelines that extend one base, or
+/// share shaders, name the same file), with the pipelines that use it.
+fn provenance_files(p: &Provenance) -> Vec<(&FileHash, Vec<&str>)> {
+    let mut out: Vec<(&FileHash, Vec<&str>)> = Vec::new();
+    for pp in &p.pipelines {
+        for f in pp.files.iter().chain(&pp.shaders) {
+            match out.iter_mut().find(|(seen, _)| *seen == f) {
+                Some((_, users)) => {
+                    if !users.contains(&pp.path.as_str()) {
+                        users.push(&pp.path);
+                    }
+                }
+                None => out.push((f, vec![&pp.path])),
+            }
+        }
+    }
+    out
 }
 
 fn strip_xml_prolog(svg: &str) -> &str {
@@ -806,6 +846,74 @@ mod tests {
         assert!(!page.contains("<script src") && !page.contains("<link"));
         assert!(page.contains("a@1.png") && page.contains("r.png"));
         assert!(page.contains("Not computed"));
+    }
+
+    fn visibility(provider: &str) -> Visibility {
+        Visibility {
+            provider: provider.into(),
+            reference_provider: "exact".into(),
+            rays_through_hair: 3,
+            curves: vec![VisibilityCurve {
+                light_uv: [0.5, 0.5],
+                depth: vec![0.1, 0.2],
+                exact: vec![1.0, 0.5],
+                approx: vec![1.0, 0.6],
+            }],
+            mean_abs_error: 0.05,
+            max_abs_error: 0.1,
+        }
+    }
+
+    /// The reference's provider plotted against itself is noise: the report
+    /// says "the reference itself" instead; a real variant gets its curves.
+    #[test]
+    fn the_reference_gets_no_visibility_curves() {
+        let mut r = sample();
+        r.variants[1].pipeline = "pipelines/occupancy.toml".into();
+        r.scenes[0].runs[0].visibility = Some(visibility("exact"));
+        r.scenes[0].runs[1].visibility = Some(visibility("occupancy"));
+        let page = html(&r, &[]);
+        assert!(
+            page.contains("reference (exact): the reference itself — no curves to compare"),
+            "{page}"
+        );
+        assert!(page.contains("a@1: light uv"), "the variant's curve");
+        assert!(
+            !page.contains("reference: light uv"),
+            "the reference's curve"
+        );
+        // The same pipeline as the reference (a@2 renders forward.toml too).
+        r.scenes[0].runs[2].visibility = Some(visibility("exact"));
+        r.variants[2].sets = r.variants[0].sets.clone();
+        let page = html(&r, &[]);
+        assert!(page.contains("a@2 (exact): the reference itself"), "{page}");
+    }
+
+    #[test]
+    fn provenance_lists_each_file_once() {
+        let mut r = sample();
+        let file = |path: &str| FileHash {
+            path: path.into(),
+            sha256: format!("sha-of-{path}"),
+            bytes: 1,
+        };
+        let pipeline = |path: &str, extra: &str| PipelineProvenance {
+            path: path.into(),
+            files: vec![file(path), file("pipelines/occupancy.toml")],
+            shaders: vec![file(extra)],
+        };
+        r.provenance.pipelines = vec![
+            pipeline("pipelines/deep_opacity.toml", "shaders/compose_over.wgsl"),
+            pipeline("pipelines/exact_shadow.toml", "shaders/compose_over.wgsl"),
+        ];
+        let page = html(&r, &[]);
+        assert_eq!(
+            page.matches("<code>pipelines/occupancy.toml ").count(),
+            1,
+            "{page}"
+        );
+        assert_eq!(page.matches("<code>shaders/compose_over.wgsl ").count(), 1);
+        assert!(page.contains("file of pipelines/deep_opacity.toml, pipelines/exact_shadow.toml"));
     }
 
     #[test]

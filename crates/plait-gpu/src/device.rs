@@ -14,8 +14,14 @@ pub struct Capabilities {
     pub timestamps: bool,
     /// Additive blending into 32-bit float targets (`FLOAT32_BLENDABLE`).
     pub float32_blendable: bool,
+    /// Fragment shaders can force the depth test before they run
+    /// (`SHADER_EARLY_DEPTH_TEST`); without it storage writes are guarded by a
+    /// test in the shader (`depth_guard`).
+    pub early_depth_test: bool,
     /// `max_texture_dimension_2d` of the adapter.
     pub max_texture_dimension: u32,
+    /// `max_storage_buffer_binding_size` of the adapter.
+    pub max_storage_buffer_binding_size: u64,
 }
 
 /// The device plait renders with.
@@ -34,10 +40,16 @@ pub struct Gpu {
 impl Gpu {
     /// Open the best adapter: Vulkan first (lavapipe on CI), then GL; `WGPU_BACKEND` overrides.
     pub fn new() -> Result<Gpu, GpuError> {
-        pollster::block_on(Self::new_async())
+        pollster::block_on(Self::new_async(&[]))
     }
 
-    async fn new_async() -> Result<Gpu, GpuError> {
+    /// [`Gpu::new`] pretending the adapter lacks the named optional features
+    /// (as `PLAIT_DISABLE_FEATURES` does): how tests reach the fallbacks.
+    pub fn new_without_features(names: &[&str]) -> Result<Gpu, GpuError> {
+        pollster::block_on(Self::new_async(names))
+    }
+
+    async fn new_async(disabled: &[&str]) -> Result<Gpu, GpuError> {
         // Vulkan first (lavapipe on CI); GL (llvmpipe) only when Vulkan has no
         // adapter, since probing EGL prints noise on headless machines.
         // WGPU_BACKEND picks one explicitly.
@@ -81,12 +93,18 @@ impl Gpu {
         let wanted = wgpu::Features::TIMESTAMP_QUERY
             | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
             | wgpu::Features::FLOAT32_BLENDABLE
+            | wgpu::Features::SHADER_EARLY_DEPTH_TEST
             | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
         let mut features = available & wanted;
         // PLAIT_DISABLE_FEATURES=FLOAT32_BLENDABLE,TIMESTAMP_QUERY pretends the
         // adapter lacks them: how the fallbacks for weaker adapters are tested here.
-        if let Ok(list) = std::env::var("PLAIT_DISABLE_FEATURES") {
-            for name in list.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        let from_env = std::env::var("PLAIT_DISABLE_FEATURES").unwrap_or_default();
+        {
+            let names = from_env
+                .split(',')
+                .map(str::trim)
+                .chain(disabled.iter().copied());
+            for name in names.filter(|n| !n.is_empty()) {
                 match wgpu::Features::from_name(name) {
                     Some(f) => features.remove(f),
                     None => {
@@ -124,7 +142,11 @@ impl Gpu {
         let capabilities = Capabilities {
             timestamps,
             float32_blendable: features.contains(wgpu::Features::FLOAT32_BLENDABLE),
+            early_depth_test: features.contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST),
             max_texture_dimension: limits.max_texture_dimension_2d,
+            max_storage_buffer_binding_size: limits
+                .max_storage_buffer_binding_size
+                .min(limits.max_buffer_size),
         };
         Ok(Gpu {
             adapter,

@@ -27,7 +27,17 @@ pub struct FrameUniforms {
     pub jitter: [f32; 4],
     pub near_far: [f32; 4],
     pub hair_stats: [f32; 4],
+    /// The comparison conventions every visibility provider shares
+    /// (docs/design.md, "In front of"): x = self-shadow bias in light linear
+    /// depth, y = 1 to jitter light-map lookups by up to half a texel
+    /// (Sintorn & Assarsson 2009 Fig. 9), 0 for exact texel lookups.
+    pub conventions: [f32; 4],
 }
+
+/// Hair nearer the light than a point by at most this much (world units) is
+/// not "in front of" it: the point's own fragment and strand never shadow it.
+/// About one strand's thickness in the scenes plait ships.
+pub const SELF_SHADOW_BIAS: f32 = 0.01;
 
 /// Size of `FrameUniforms` in bytes (also checked against the WGSL struct by a test).
 pub const FRAME_UNIFORMS_SIZE: u64 = std::mem::size_of::<FrameUniforms>() as u64;
@@ -50,7 +60,10 @@ impl FrameUniforms {
         let mean_alpha = if strands.alpha.is_empty() {
             1.0
         } else {
-            strands.alpha.iter().sum::<f32>() / strands.alpha.len() as f32
+            // Summed in f64: the mean of N equal alphas is that alpha exactly,
+            // whatever N (an f32 sum drifts with the count).
+            (strands.alpha.iter().map(|&a| a as f64).sum::<f64>() / strands.alpha.len() as f64)
+                as f32
         };
         let aspect = size.0 as f32 / size.1.max(1) as f32;
         let view = scene.camera.view();
@@ -92,6 +105,12 @@ impl FrameUniforms {
             ],
             jitter: [0.0, 0.0, 0.0, frame_index as f32],
             near_far: [scene.camera.near, scene.camera.far, light.near, light.far],
+            conventions: [
+                SELF_SHADOW_BIAS / (light.far - light.near).max(1e-6),
+                1.0,
+                0.0,
+                0.0,
+            ],
             hair_stats: [
                 (mean_alpha * scene.material.alpha).clamp(0.0, 1.0),
                 strands.strand_count() as f32,
@@ -101,6 +120,14 @@ impl FrameUniforms {
         }
     }
 
+    /// Whether light-map lookups are jittered (shading: yes, against
+    /// silhouette aliasing; measuring visibility: no, so every provider and
+    /// the reference read the same texel).
+    pub fn with_light_jitter(mut self, on: bool) -> Self {
+        self.conventions[1] = if on { 1.0 } else { 0.0 };
+        self
+    }
+
     pub fn camera_view_proj(&self) -> Mat4 {
         Mat4::from_cols_array_2d(&self.camera_view_proj)
     }
@@ -108,8 +135,9 @@ impl FrameUniforms {
 
 /// The light's view and projection, fitted tightly to the hair so the light
 /// maps spend their texels on it (Halén & Wester 2007 §5.7):
-/// x/y cover the occluders, depth runs from the nearest occluder to the farthest
-/// receiver so hair shadows reach the ground.
+/// x/y cover the occluders (the hair), depth runs from the nearest object of
+/// the scene to the farthest receiver so hair shadows reach the ground and
+/// opaque objects between the light and the hair shadow it.
 #[derive(Clone, Copy, Debug)]
 pub struct LightFrustum {
     pub view: Mat4,
@@ -142,8 +170,12 @@ impl LightFrustum {
         let to_view = |p: Vec3| view.transform_point3(p);
         let occ: Vec<Vec3> = occluders.corners().into_iter().map(to_view).collect();
         let rec: Vec<Vec3> = receivers.corners().into_iter().map(to_view).collect();
+        // Anything nearer the light than the hair can shadow it, opaque objects
+        // included: the near plane takes every receiver too, or an opaque
+        // occluder in front of the hair would be clipped out of the shadow map.
         let near = occ
             .iter()
+            .chain(rec.iter())
             .map(|p| -p.z)
             .fold(f32::INFINITY, f32::min)
             .max(1e-3);

@@ -3,6 +3,7 @@
 //! lavapipe in CI); optional features are probed and used when present.
 
 pub mod cache;
+pub mod depth_guard;
 pub mod device;
 pub mod executor;
 pub mod frame;

@@ -21,6 +21,7 @@ use plait_graph::{
     ResourceDesc, ResourceKind, Schedule, ScheduledPass, Value,
 };
 
+use crate::depth_guard::{DepthGuard, GUARD_BINDING};
 use crate::frame::FRAME_UNIFORMS_SIZE;
 use crate::geometry::{SceneGeometry, hair_vertex_layout, opaque_vertex_layout};
 use crate::pool::{ResourcePool, texture_format};
@@ -116,6 +117,17 @@ pub trait PassType: Send + Sync {
     /// texture (width × height) or buffer (one thread per 4 bytes).
     fn compute_threads(&self, pass: &ScheduledPass, schedule: &Schedule) -> [u32; 3] {
         default_threads(pass, schedule)
+    }
+
+    /// Sizes the pass's shaders rely on that a pipeline file can get wrong
+    /// (u32 words per texel of a map), checked by `plait check` before any
+    /// GPU work; the message says what size would do.
+    fn check_sizes(
+        &self,
+        _pass: &ScheduledPass,
+        _resources: &[plait_graph::ResolvedResource],
+    ) -> Result<(), String> {
+        Ok(())
     }
 
     /// Build the GPU objects of a pass. Types with loops of their own
@@ -303,6 +315,9 @@ pub fn check_pass(
         }
     };
     let spec = t.spec();
+    if let Err(message) = t.check_sizes(pass, schedule_resources) {
+        errors.push(err(&pass.location, message));
+    }
     let bindings = reflect::bindings(&module);
     let group1: Vec<&ShaderBinding> = bindings.iter().filter(|b| b.group == 1).collect();
     for b in bindings.iter().filter(|b| b.group > 1) {
@@ -609,10 +624,54 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
     source: &str,
 ) -> Result<ShaderPass, GpuError> {
     let defines = t.defines(pass);
-    let module = ctx.shaders.compose(path, source, &defines)?;
+    let mut module = ctx.shaders.compose(path, source, &defines)?;
     let bindings = reflect::bindings(&module);
     let is_compute = spec.shape == PassShape::Compute;
     let device = ctx.device;
+    let raster_state = if is_compute {
+        None
+    } else {
+        Some(
+            t.raster_state(pass, ctx.capabilities)
+                .map_err(|m| pass_error(pass, m))?,
+        )
+    };
+    // The depth attachment: written by the pass, or only tested (read).
+    let depth_binding = pass
+        .writes
+        .iter()
+        .map(|b| (b, true))
+        .chain(pass.reads.iter().map(|b| (b, false)))
+        .find(|(b, _)| b.access == Access::DepthTarget);
+    let guard = match (&raster_state, depth_binding) {
+        (Some(state), Some(_)) => DepthGuard::choose(
+            Some(match state.depth {
+                DepthMode::TestWrite(c) | DepthMode::TestOnly(c) => c,
+            }),
+            bindings.iter().any(|b| b.group == 1 && b.writes()),
+            ctx.capabilities.early_depth_test,
+        ),
+        _ => DepthGuard::Unneeded,
+    };
+    if let (DepthGuard::InShader(_), Some((b, written))) = (guard, depth_binding) {
+        let multisampled = matches!(
+            ctx.schedule.resources[b.resource].desc,
+            ResourceDesc::Texture { samples, .. } if samples > 1
+        );
+        let writes_depth = written
+            && matches!(
+                raster_state.as_ref().map(|s| s.depth),
+                Some(DepthMode::TestWrite(_))
+            );
+        if multisampled || writes_depth {
+            return Err(GpuError::MissingFeature {
+                pass: pass.name.clone(),
+                feature: "SHADER_EARLY_DEPTH_TEST (storage writes behind a multisampled or written depth target cannot be tested in the shader)".into(),
+                adapter: ctx.adapter_name.to_owned(),
+            });
+        }
+    }
+    guard.apply(&mut module);
 
     // Group 1 from reflection.
     let mut layout_entries = Vec::new();
@@ -739,6 +798,19 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             scene_entries.push((b.binding, buf));
         }
     }
+    if let (DepthGuard::InShader(_), Some((b, _))) = (guard, depth_binding) {
+        layout_entries.push(wgpu::BindGroupLayoutEntry {
+            binding: GUARD_BINDING,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        });
+        resource_entries.push((GUARD_BINDING, b.resource));
+    }
     let group1_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(&pass.name),
         entries: &layout_entries,
@@ -786,7 +858,7 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             })
         })
     };
-    let shader_key: [&dyn std::fmt::Debug; 4] = [&path, &source, &defines, &layout_entries];
+    let shader_key: [&dyn std::fmt::Debug; 5] = [&path, &source, &defines, &layout_entries, &guard];
     let clears: Vec<_> = pass
         .writes
         .iter()
@@ -819,9 +891,7 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             workgroups,
         }
     } else {
-        let state = t
-            .raster_state(pass, ctx.capabilities)
-            .map_err(|m| pass_error(pass, m))?;
+        let state = raster_state.expect("raster passes have a raster state");
         let draw = match spec.shape {
             PassShape::Fullscreen => DrawWhat::Fullscreen,
             _ => match pass.draw.as_deref() {
@@ -882,12 +952,6 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             }));
             colors.push((b.resource, b.loads || state.load_colors));
         }
-        let depth_binding = pass
-            .writes
-            .iter()
-            .map(|b| (b, true))
-            .chain(pass.reads.iter().map(|b| (b, false)))
-            .find(|(b, _)| b.access == Access::DepthTarget);
         let mut depth = None;
         let depth_stencil = match depth_binding {
             Some((b, written)) => {

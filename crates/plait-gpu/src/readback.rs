@@ -109,7 +109,7 @@ fn linear_to_srgb(x: f32) -> u8 {
 impl TexelData {
     /// Texel `i` as linear RGBA floats (sRGB formats decoded by the caller's intent:
     /// 8-bit values are returned as stored).
-    fn texel(&self, i: usize) -> [f32; 4] {
+    pub fn texel(&self, i: usize) -> [f32; 4] {
         let b = &self.bytes;
         let f32_at = |o: usize| f32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
         let u32_at = |o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]) as f32;

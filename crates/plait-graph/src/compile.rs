@@ -112,6 +112,24 @@ fn resolve_resource(
                 ));
                 return None;
             }
+            let limit = opts.max_buffer_binding_size;
+            if bytes as u64 > limit {
+                errors.push(bad(
+                    &size.location,
+                    format!(
+                        "buffer `{}` is {} ({bytes} bytes); a pass can bind at most {} ({limit} bytes) as storage{}",
+                        r.name,
+                        mib(bytes as u64),
+                        mib(limit),
+                        if limit == crate::schedule::DEFAULT_MAX_BUFFER_BINDING_SIZE {
+                            " — WebGPU's default limit, which `plait check` assumes; `plait render` uses the adapter's"
+                        } else {
+                            " on this adapter"
+                        }
+                    ),
+                ));
+                return None;
+            }
             Some(ResourceDesc::Buffer { size: bytes as u64 })
         }
         SizeDecl::Screen { .. } | SizeDecl::Extent { .. } => {
@@ -156,6 +174,16 @@ fn resolve_resource(
             };
             let layers = count(&r.layers, "layers")?;
             let samples = count(&r.samples, "samples")?;
+            if !crate::schedule::SAMPLE_COUNTS.contains(&samples) {
+                let at = r.samples.as_ref().map_or(&r.location, |v| &v.location);
+                errors.push(bad(
+                    at,
+                    format!(
+                        "samples is {samples}; no texture format allows it (counts are 1, 2, 4, 8 or 16, and each format allows a subset: rgba16float 1 or 4 on lavapipe)"
+                    ),
+                ));
+                return None;
+            }
             let format = r.format.as_ref()?.value;
             Some(ResourceDesc::Texture {
                 format,
@@ -197,7 +225,14 @@ fn check_param(spec: &ParamSpec, value: &Value, opts: &CompileOptions) -> Result
             .ok_or_else(|| format!("expected a string, found {value}")),
         ParamType::Enum(choices) => match value.as_str() {
             Some(s) if choices.iter().any(|c| c == s) => Ok(Value::Str(s.to_owned())),
-            _ => Err(format!("{value} is not one of: {}", choices.join(", "))),
+            _ => Err(format!(
+                "{value} is not one of: {}{}",
+                choices.join(", "),
+                value
+                    .as_str()
+                    .map(|s| crate::suggest::did_you_mean(s, choices.iter().map(String::as_str)))
+                    .unwrap_or_default()
+            )),
         },
         ParamType::Vec3 => match value.as_vec3() {
             Some(v) => Ok(Value::List(
@@ -368,6 +403,14 @@ fn resolve_pass(
         shader: decl.shader.as_ref().map(|s| s.value.clone()),
         shader_location: decl.shader.as_ref().map(|s| s.location.clone()),
         location: decl.location.clone(),
+        technique: match &decl.location {
+            Location::File { path, .. } => pipeline
+                .techniques
+                .iter()
+                .find(|t| t.owns(path))
+                .map(|t| t.label()),
+            _ => None,
+        },
     }
 }
 
@@ -410,7 +453,13 @@ fn bind_slots(
         let Some(index) = pipeline.resources.get_index_of(&resource.value) else {
             errors.push(Error::new(
                 resource.location.clone(),
-                ErrorKind::UndeclaredResource(resource.value.clone()),
+                ErrorKind::UndeclaredResource {
+                    name: resource.value.clone(),
+                    hint: crate::suggest::did_you_mean(
+                        &resource.value,
+                        pipeline.resources.keys().map(String::as_str),
+                    ),
+                },
             ));
             continue;
         };
@@ -535,7 +584,13 @@ fn check_outputs(
         match pipeline.resources.get_index_of(&output.value) {
             None => errors.push(Error::new(
                 output.location.clone(),
-                ErrorKind::UnknownOutput(output.value.clone()),
+                ErrorKind::UnknownOutput {
+                    name: output.value.clone(),
+                    hint: crate::suggest::did_you_mean(
+                        &output.value,
+                        pipeline.resources.keys().map(String::as_str),
+                    ),
+                },
             )),
             Some(i) if !passes.iter().any(|p| writes_to(p, i).is_some()) => {
                 errors.push(Error::new(
@@ -839,6 +894,7 @@ fn build_schedule(
         name: pipeline.name.value.clone(),
         description: pipeline.description.value.clone(),
         files: pipeline.files.clone(),
+        techniques: pipeline.techniques.clone(),
         params: pipeline
             .params
             .iter()
@@ -905,4 +961,13 @@ fn plan_memory(resources: &mut [ResolvedResource]) -> (Vec<PhysicalResource>, Me
         unpooled_bytes: resources.iter().map(|r| r.desc.bytes()).sum(),
     };
     (physical, memory)
+}
+
+/// `1.5 MiB`, `1 GiB`: a byte count for messages.
+fn mib(bytes: u64) -> String {
+    if bytes >= 1 << 30 && bytes.is_multiple_of(1 << 30) {
+        format!("{} GiB", bytes >> 30)
+    } else {
+        format!("{:.1} MiB", bytes as f64 / (1u64 << 20) as f64)
+    }
 }

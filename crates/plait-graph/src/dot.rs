@@ -1,5 +1,5 @@
-//! The schedule as a picture: Graphviz DOT, or SVG drawn in-process with
-//! `layout-rs` (no Graphviz install needed).
+//! The schedule as Graphviz DOT (for `dot -Tsvg`); the built-in SVG picture
+//! is drawn by [`crate::svg`], with no Graphviz install needed.
 //!
 //! Passes are nodes in execution order; an edge goes from the pass that
 //! produced the version of a resource a pass sees to that pass, labelled with
@@ -12,41 +12,13 @@ use crate::schedule::{Binding, DROPPED_RESOURCE, Schedule, ScheduledPass};
 
 /// Graphviz DOT of the schedule (for `dot -Tsvg`).
 pub fn to_dot(schedule: &Schedule) -> String {
-    render(schedule, Dialect::Graphviz)
+    render(schedule)
 }
 
-/// Why an SVG could not be drawn.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("cannot draw the schedule as SVG: {0}")]
-pub struct SvgError(pub String);
-
-/// An SVG picture of the schedule, laid out by `layout-rs`.
-pub fn to_svg(schedule: &Schedule) -> Result<String, SvgError> {
-    use layout::backends::svg::SVGWriter;
-    use layout::gv::{DotParser, GraphBuilder};
-
-    let dot = render(schedule, Dialect::LayoutRs);
-    let mut parser = DotParser::new(&dot);
-    let graph = parser.process().map_err(SvgError)?;
-    // layout-rs is a young crate; a panic inside it must not take the caller down.
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        let mut builder = GraphBuilder::new();
-        builder.visit_graph(&graph);
-        let mut visual = builder.get();
-        let mut svg = SVGWriter::new();
-        visual.do_it(false, false, false, &mut svg);
-        svg.finalize()
-    }))
-    .map_err(|_| SvgError("layout-rs failed to lay the graph out".into()))
-}
-
-#[derive(Clone, Copy, PartialEq)]
-enum Dialect {
-    /// Full DOT with ordering hints.
-    Graphviz,
-    /// The subset layout-rs understands (no invisible ordering edges, which
-    /// it would draw).
-    LayoutRs,
+/// An SVG picture of the schedule: passes as rows, resources as lifetime
+/// columns (see [`crate::svg`]).
+pub fn to_svg(schedule: &Schedule) -> String {
+    crate::svg::schedule_svg(schedule)
 }
 
 /// Escapes one piece of label text for a DOT string.
@@ -75,7 +47,7 @@ fn resource_label(schedule: &Schedule, binding: &Binding) -> String {
     }
 }
 
-fn render(schedule: &Schedule, dialect: Dialect) -> String {
+fn render(schedule: &Schedule) -> String {
     // Live passes in execution order, then culled ones; `p{i}` node ids.
     let all: Vec<(&ScheduledPass, bool)> = schedule
         .passes
@@ -87,10 +59,8 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "digraph {} {{", quote(&schedule.name));
     let _ = writeln!(out, "  rankdir=TB;");
-    if dialect == Dialect::Graphviz {
-        let _ = writeln!(out, "  node [shape=box, fontname=\"sans-serif\"];");
-        let _ = writeln!(out, "  edge [fontname=\"sans-serif\", fontsize=10];");
-    }
+    let _ = writeln!(out, "  node [shape=box, fontname=\"sans-serif\"];");
+    let _ = writeln!(out, "  edge [fontname=\"sans-serif\", fontsize=10];");
     for (i, (pass, culled)) in all.iter().enumerate() {
         let kind = format!(
             "{}{}",
@@ -105,6 +75,25 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
         );
     }
     let _ = writeln!(out, "  output [shape=doublecircle, label=\"output\"];");
+    // Each chosen technique's passes in a cluster: what a swap changes.
+    for (k, technique) in schedule.techniques.iter().enumerate() {
+        let label = technique.label();
+        let members: Vec<String> = all
+            .iter()
+            .enumerate()
+            .filter(|(_, (p, _))| p.technique.as_deref() == Some(label.as_str()))
+            .map(|(i, _)| format!("p{i}"))
+            .collect();
+        if members.is_empty() {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "  subgraph cluster_{k} {{ label={}; style=rounded; color=grey; {}; }}",
+            quote(&format!("technique {label}")),
+            members.join("; ")
+        );
+    }
 
     for (i, (pass, culled)) in all.iter().enumerate() {
         // What this pass sees of a resource was made by the latest earlier writer.
@@ -149,7 +138,7 @@ fn render(schedule: &Schedule, dialect: Dialect) -> String {
             let _ = writeln!(out, "  p{w} -> output [label={text}];");
         }
     }
-    if dialect == Dialect::Graphviz && schedule.passes.len() > 1 {
+    if schedule.passes.len() > 1 {
         // Heavy invisible edges keep the execution order top-down.
         let chain: Vec<String> = (0..schedule.passes.len())
             .map(|i| format!("p{i}"))

@@ -13,6 +13,8 @@ pub enum Location {
         line: u32,
         column: u32,
     },
+    /// A whole file, where no line is meant (it cannot be read at all).
+    Path { path: PathBuf },
     /// A `--set key=value` flag (the whole flag text).
     Flag { flag: String },
     /// Built in defaults (a pass type's default param, the default scene…).
@@ -25,6 +27,7 @@ impl fmt::Display for Location {
             Location::File { path, line, column } => {
                 write!(f, "{}:{line}:{column}", path.display())
             }
+            Location::Path { path } => write!(f, "{}", path.display()),
             Location::Flag { flag } => write!(f, "--set {flag}"),
             Location::Builtin => f.write_str("<builtin>"),
         }
@@ -79,11 +82,17 @@ pub enum ErrorKind {
     ExtendsCycle(PathBuf),
     #[error("malformed --set `{flag}`: {reason}")]
     MalformedSet { flag: String, reason: String },
+    /// A `--set` key that names nothing in the pipeline (the location is the flag).
+    #[error("{reason}")]
+    UnknownSetKey { key: String, reason: String },
     #[error("`${{{0}}}` is not defined in [params]")]
     UndefinedParam(String),
-    #[error("unknown pass type `{name}` (known: {known})")]
+    #[error("unknown pass type `{name}`{} (known: {known})", hint(name, known))]
     UnknownPassType { name: String, known: String },
-    #[error("pass `{pass}` of type `{pass_type}` has no param `{param}` (it has: {known})")]
+    #[error(
+        "pass `{pass}` of type `{pass_type}` has no param `{param}`{} (it has: {known})",
+        hint(param, known)
+    )]
     UnknownParam {
         pass: String,
         pass_type: String,
@@ -97,7 +106,8 @@ pub enum ErrorKind {
         reason: String,
     },
     #[error(
-        "pass `{pass}` of type `{pass_type}` has no {direction} slot `{slot}` (it has: {known})"
+        "pass `{pass}` of type `{pass_type}` has no {direction} slot `{slot}`{} (it has: {known})",
+        hint(slot, known)
     )]
     UnknownSlot {
         pass: String,
@@ -112,8 +122,12 @@ pub enum ErrorKind {
         direction: &'static str,
         slot: String,
     },
-    #[error("resource `{0}` is used but not declared in [resources]")]
-    UndeclaredResource(String),
+    #[error("resource `{name}` is used but not declared in [resources]{hint}")]
+    UndeclaredResource {
+        name: String,
+        /// `; did you mean …?` or empty.
+        hint: String,
+    },
     #[error("resource `{resource}` is read by pass `{reader}` but no pass writes it")]
     NeverWritten { resource: String, reader: String },
     #[error(
@@ -146,8 +160,12 @@ pub enum ErrorKind {
         slot: String,
         expected: String,
     },
-    #[error("output `{0}` is not a declared resource")]
-    UnknownOutput(String),
+    #[error("output `{name}` is not a declared resource{hint}")]
+    UnknownOutput {
+        name: String,
+        /// `; did you mean …?` or empty.
+        hint: String,
+    },
     #[error("output `{0}` is not written by any pass")]
     OutputNeverWritten(String),
     #[error("shader {path}: {message}")]
@@ -178,6 +196,11 @@ pub enum ErrorKind {
     },
     #[error("resource `{resource}`: {reason}")]
     BadResource { resource: String, reason: String },
+}
+
+/// `; did you mean …?` for `name` among a `known` list joined by ", ".
+fn hint(name: &str, known: &str) -> String {
+    crate::suggest::did_you_mean(name, known.split(", "))
 }
 
 /// Every problem found in one load or compile; `Display` prints one per line.

@@ -4,7 +4,8 @@
 //! overrides and `${param}` substitution, keeping the source location of every
 //! value); `compile` checks it against a [`Registry`] of pass types and builds
 //! the petgraph schedule, resource lifetimes and the memory plan; `dot` prints
-//! the schedule as Graphviz (or SVG) and `snapshot` as stable text.
+//! the schedule as Graphviz, `svg` draws it as a picture and `snapshot` as
+//! stable text.
 //!
 //! ```no_run
 //! # use plait_graph::*;
@@ -21,9 +22,13 @@ pub mod error;
 pub mod expr;
 pub mod format;
 pub mod load;
+mod overrides;
 pub mod schedule;
 pub mod snapshot;
 pub mod spec;
+pub mod suggest;
+pub mod svg;
+pub mod techniques;
 pub mod value;
 
 pub use error::{Error, ErrorKind, Errors, Location, Spanned};

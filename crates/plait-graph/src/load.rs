@@ -5,7 +5,8 @@
 //! 1. parse each file of the `extends` chain into a [`Node`] tree whose every
 //!    value carries its `file:line:column`;
 //! 2. merge base ← child key by key (tables recursively, everything else
-//!    replaced), then apply `--set` flags through the same merge;
+//!    replaced), then apply `--set` flags through the same merge
+//!    ([`crate::overrides`]);
 //! 3. substitute `${name}` from `[params]`;
 //! 4. check the schema (unknown keys, value types) and build a [`Pipeline`].
 //!
@@ -18,7 +19,9 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Error, ErrorKind, Errors, Location, Spanned};
 use crate::format::Format;
+use crate::overrides::apply_override;
 use crate::spec::ResourceKind;
+use crate::techniques::apply_techniques;
 use crate::value::Value;
 
 /// A loaded pipeline file (after `extends`, `--set` and `${param}`), not yet
@@ -27,8 +30,10 @@ use crate::value::Value;
 pub struct Pipeline {
     pub name: Spanned<String>,
     pub description: Spanned<String>,
-    /// The pipeline file and every file it extends, child first.
+    /// The pipeline file, every file it extends, then the technique files.
     pub files: Vec<PathBuf>,
+    /// `[techniques]`: the technique chosen for each choice point.
+    pub techniques: Vec<crate::schedule::ChosenTechnique>,
     pub outputs: Vec<Spanned<String>>,
     /// `[params]` with every `${…}` resolved.
     pub params: IndexMap<String, Spanned<Value>>,
@@ -99,10 +104,13 @@ pub struct PassDecl {
 /// Loads a pipeline file, following `extends` and applying `--set` flags
 /// (`overrides` holds the `key=value` texts).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Pipeline, Errors> {
+    // The file as a whole: a file that cannot be read has no line 1.
     let text = plait_assets::read_to_string(path).map_err(|e| {
         Error::new(
-            file_location(path, 1, 1),
-            ErrorKind::Io(format!("{}: {e}", path.display())),
+            Location::Path {
+                path: path.to_path_buf(),
+            },
+            ErrorKind::Io(e.to_string()),
         )
     })?;
     load_str(path, &text, overrides)
@@ -119,14 +127,31 @@ pub fn load_str(
     let mut chain = Vec::new();
     let mut root = load_chain(path_for_messages, text, &mut chain, &mut files)?;
     let mut errors = Vec::new();
-    for flag in overrides {
+    // Technique choices first, so `--set` can reach the params, resources and
+    // passes of the technique it chose.
+    let (choices, rest): (Vec<&String>, Vec<&String>) = overrides
+        .iter()
+        .partition(|f| f.trim_start().starts_with("techniques."));
+    for flag in choices {
+        apply_override(&mut root, flag, &mut errors);
+    }
+    let mut techniques = Vec::new();
+    if errors.is_empty() {
+        techniques = apply_techniques(&mut root, path_for_messages, &mut files, &mut errors);
+    }
+    if !errors.is_empty() {
+        errors.sort_by(|a, b| location_order(&a.location, &b.location));
+        return Err(Errors(errors));
+    }
+    for flag in rest {
         apply_override(&mut root, flag, &mut errors);
     }
     if !errors.is_empty() {
         return Err(Errors(errors));
     }
     let root = substitute_params(root, &mut errors);
-    let pipeline = build_pipeline(root, files, path_for_messages, &mut errors);
+    let mut pipeline = build_pipeline(root, files, path_for_messages, &mut errors);
+    pipeline.techniques = techniques;
     if errors.is_empty() {
         Ok(pipeline)
     } else {
@@ -141,6 +166,7 @@ pub fn location_order(a: &Location, b: &Location) -> std::cmp::Ordering {
     fn key(l: &Location) -> (u8, &Path, u32, u32, &str) {
         match l {
             Location::File { path, line, column } => (0, path.as_path(), *line, *column, ""),
+            Location::Path { path } => (0, path.as_path(), 0, 0, ""),
             Location::Flag { flag } => (1, Path::new(""), 0, 0, flag.as_str()),
             Location::Builtin => (2, Path::new(""), 0, 0, ""),
         }
@@ -162,29 +188,29 @@ fn file_location(path: &Path, line: u32, column: u32) -> Location {
 /// A TOML value with locations on every value and key; what `extends` and
 /// `--set` merge.
 #[derive(Clone, Debug)]
-enum Node {
+pub(crate) enum Node {
     Scalar(Value),
     List(Vec<Spanned<Node>>),
     Table(Table),
 }
 
-type Table = IndexMap<String, Entry>;
+pub(crate) type Table = IndexMap<String, Entry>;
 
 #[derive(Clone, Debug)]
-struct Entry {
-    key: Location,
-    value: Spanned<Node>,
+pub(crate) struct Entry {
+    pub(crate) key: Location,
+    pub(crate) value: Spanned<Node>,
 }
 
 /// Maps byte offsets of one file to 1-based line:column (columns in chars).
-struct SourceMap<'a> {
+pub(crate) struct SourceMap<'a> {
     path: &'a Path,
     text: &'a str,
     line_starts: Vec<usize>,
 }
 
 impl<'a> SourceMap<'a> {
-    fn new(path: &'a Path, text: &'a str) -> Self {
+    pub(crate) fn new(path: &'a Path, text: &'a str) -> Self {
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
         SourceMap {
@@ -210,7 +236,7 @@ impl<'a> SourceMap<'a> {
     }
 }
 
-fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
+pub(crate) fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
     let map = SourceMap::new(path, text);
     let table = toml::de::DeTable::parse(text).map_err(|e| {
         let location = map.location(e.span().map_or(0, |s| s.start));
@@ -244,7 +270,7 @@ fn convert_table(
     out
 }
 
-fn convert_value(
+pub(crate) fn convert_value(
     value: &toml::Spanned<toml::de::DeValue<'_>>,
     map: &SourceMap<'_>,
     errors: &mut Vec<Error>,
@@ -294,7 +320,7 @@ fn convert_value(
 
 /// Child wins: tables merge recursively, anything else is replaced along
 /// with its location.
-fn merge(base: &mut Spanned<Node>, child: Spanned<Node>) {
+pub(crate) fn merge(base: &mut Spanned<Node>, child: Spanned<Node>) {
     match (&mut base.value, child.value) {
         (Node::Table(base_table), Node::Table(child_table)) => {
             for (key, entry) in child_table {
@@ -364,115 +390,6 @@ fn load_chain(
     let mut base = load_chain(&base_path, &base_text, chain, files)?;
     merge(&mut base, child);
     Ok(base)
-}
-
-// ---------------------------------------------------------------------------
-// --set
-
-fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>) {
-    let location = Location::Flag {
-        flag: flag.to_owned(),
-    };
-    let malformed = |reason: &str| {
-        Error::new(
-            location.clone(),
-            ErrorKind::MalformedSet {
-                flag: flag.to_owned(),
-                reason: reason.to_owned(),
-            },
-        )
-    };
-    let Some((key, value_text)) = flag.split_once('=') else {
-        return errors.push(malformed("expected `key=value`, e.g. `params.slices=64`"));
-    };
-    let path: Vec<&str> = key.trim().split('.').map(str::trim).collect();
-    if path.iter().any(|p| p.is_empty()) {
-        return errors.push(malformed(
-            "the key has an empty part; write a dotted path like `passes.shade.params.color`",
-        ));
-    }
-    // Every key on the way must be a table (or absent, then it is created).
-    let mut cursor = &root.value;
-    for (depth, part) in path.iter().enumerate() {
-        let Node::Table(table) = cursor else {
-            let prefix = path[..depth].join(".");
-            return errors.push(malformed(&format!(
-                "`{prefix}` is a value, not a table, so `{key}` cannot be set"
-            )));
-        };
-        match table.get(*part) {
-            Some(entry) => cursor = &entry.value.value,
-            None => break,
-        }
-    }
-    let value_text = value_text.trim();
-    // A value that starts like structured TOML must be valid TOML: a bare
-    // word may be a string, but `[1,` is a mistake, not the text "[1,".
-    if value_text.starts_with(['[', '{', '"', '\''])
-        && toml::de::DeValue::parse(value_text).is_err()
-    {
-        let reason = toml::de::DeValue::parse(value_text)
-            .err()
-            .map(|e| e.message().to_owned())
-            .unwrap_or_default();
-        return errors.push(malformed(&format!(
-            "the value `{value_text}` is not valid TOML: {reason}"
-        )));
-    }
-    let mut node = Spanned::new(parse_flag_value(value_text, &location), location.clone());
-    for part in path.iter().rev() {
-        let mut table = Table::new();
-        table.insert(
-            (*part).to_owned(),
-            Entry {
-                key: location.clone(),
-                value: node,
-            },
-        );
-        node = Spanned::new(Node::Table(table), location.clone());
-    }
-    merge(root, node);
-}
-
-/// TOML if it parses (`64`, `0.5`, `[1, 2]`, `"x"`), else the bare text as
-/// a string, so `type=deep_opacity` needs no quotes.
-fn parse_flag_value(text: &str, location: &Location) -> Node {
-    let Ok(parsed) = toml::de::DeValue::parse(text) else {
-        return Node::Scalar(Value::Str(text.to_owned()));
-    };
-    // Locations inside a flag all point at the flag itself.
-    let map = SourceMap::new(Path::new(""), text);
-    let mut errors = Vec::new();
-    match convert_value(&parsed, &map, &mut errors) {
-        Some(node) => relocate(node.value, location),
-        None => Node::Scalar(Value::Str(text.to_owned())),
-    }
-}
-
-fn relocate(node: Node, location: &Location) -> Node {
-    match node {
-        Node::Scalar(v) => Node::Scalar(v),
-        Node::List(items) => Node::List(
-            items
-                .into_iter()
-                .map(|i| Spanned::new(relocate(i.value, location), location.clone()))
-                .collect(),
-        ),
-        Node::Table(t) => Node::Table(
-            t.into_iter()
-                .map(|(k, e)| {
-                    let value = Spanned::new(relocate(e.value.value, location), location.clone());
-                    (
-                        k,
-                        Entry {
-                            key: location.clone(),
-                            value,
-                        },
-                    )
-                })
-                .collect(),
-        ),
-    }
 }
 
 // ---------------------------------------------------------------------------
@@ -613,12 +530,12 @@ fn whole_reference(s: &str) -> Option<&str> {
 // ---------------------------------------------------------------------------
 // Schema
 
-const TOP_KEYS: &[&str] = &["pipeline", "params", "resources", "passes"];
-const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "outputs"];
-const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
-const BUFFER_KEYS: &[&str] = &["kind", "size"];
-const PASS_KEYS: &[&str] = &[
-    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled",
+pub(crate) const TOP_KEYS: &[&str] = &["pipeline", "techniques", "params", "resources", "passes"];
+pub(crate) const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "outputs"];
+pub(crate) const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
+pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size"];
+pub(crate) const PASS_KEYS: &[&str] = &[
+    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses",
 ];
 const VIEWS: &[&str] = &["light", "camera"];
 const DRAWS: &[&str] = &["hair", "opaque"];
@@ -639,7 +556,8 @@ impl Builder<'_> {
                 self.schema(
                     &entry.key,
                     format!(
-                        "unknown key `{key}` in {context} (accepted: {})",
+                        "unknown key `{key}` in {context}{} (accepted: {})",
+                        crate::suggest::did_you_mean(key, accepted.iter().copied()),
                         accepted.join(", ")
                     ),
                 );
@@ -682,8 +600,9 @@ impl Builder<'_> {
             self.schema(
                 &s.location,
                 format!(
-                    "{context} is `{}`; accepted: {}",
+                    "{context} is `{}`{}; accepted: {}",
                     s.value,
+                    crate::suggest::did_you_mean(&s.value, accepted.iter().copied()),
                     accepted.join(", ")
                 ),
             );
@@ -732,6 +651,7 @@ fn build_pipeline(
         name: Spanned::new(String::new(), root_location.clone()),
         description: Spanned::new(String::new(), root_location.clone()),
         files,
+        techniques: Vec::new(),
         outputs: Vec::new(),
         params: IndexMap::new(),
         resources: IndexMap::new(),

@@ -2,7 +2,7 @@
 //! crate turns into command buffers (vello's `Recording` → engine split).
 
 use indexmap::IndexMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::error::Location;
 use crate::format::Format;
@@ -102,6 +102,27 @@ pub struct Binding {
     pub location: Location,
 }
 
+/// A technique a pipeline chose for one of its choice points.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ChosenTechnique {
+    pub point: String,
+    pub name: String,
+    pub path: PathBuf,
+}
+
+impl ChosenTechnique {
+    /// `self_shadow/occupancy`.
+    pub fn label(&self) -> String {
+        format!("{}/{}", self.point, self.name)
+    }
+
+    /// Whether `file` belongs to this technique: the technique file itself or
+    /// a fragment it includes from its point's folder.
+    pub fn owns(&self, file: &Path) -> bool {
+        file.parent() == self.path.parent()
+    }
+}
+
 /// A pass, resolved against its type and placed in the schedule.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct ScheduledPass {
@@ -122,6 +143,8 @@ pub struct ScheduledPass {
     pub shader_location: Option<Location>,
     #[serde(skip)]
     pub location: Location,
+    /// The technique that declared the pass (`self_shadow/occupancy`), if any.
+    pub technique: Option<String>,
 }
 
 /// Why a pass does not run.
@@ -165,8 +188,10 @@ pub struct MemoryReport {
 pub struct Schedule {
     pub name: String,
     pub description: String,
-    /// The pipeline file and every file it extends, child first.
+    /// The pipeline file, every file it extends, then the technique files.
     pub files: Vec<PathBuf>,
+    /// `[techniques]`: the technique chosen for each choice point.
+    pub techniques: Vec<ChosenTechnique>,
     /// Resolved `[params]` (after `--set`), for passes that read pipeline-wide values.
     pub params: IndexMap<String, Value>,
     /// Live passes in execution order.
@@ -203,13 +228,24 @@ pub struct CompileOptions {
     pub screen: (u32, u32),
     /// The adapter's `max_texture_dimension_2d` (8192 when checking without a GPU, WebGPU's default).
     pub max_texture_dimension: u32,
+    /// The largest buffer a pass can bind as storage: the adapter's
+    /// `max_storage_buffer_binding_size`, or WebGPU's default (128 MiB) when
+    /// checking without a GPU — a pipeline that passes runs on any adapter.
+    pub max_buffer_binding_size: u64,
 }
+
+/// WebGPU's default `max_storage_buffer_binding_size`.
+pub const DEFAULT_MAX_BUFFER_BINDING_SIZE: u64 = 128 << 20;
+
+/// Sample counts a texture may have; each format allows a subset.
+pub const SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 
 impl Default for CompileOptions {
     fn default() -> Self {
         CompileOptions {
             screen: (960, 720),
             max_texture_dimension: 8192,
+            max_buffer_binding_size: DEFAULT_MAX_BUFFER_BINDING_SIZE,
         }
     }
 }

@@ -17,8 +17,22 @@ pub fn schedule_text(s: &Schedule) -> String {
     if !s.description.is_empty() {
         let _ = writeln!(out, "  {}", s.description);
     }
-    let files: Vec<String> = s.files.iter().map(|f| f.display().to_string()).collect();
+    let files: Vec<String> = s
+        .files
+        .iter()
+        .filter(|f| !s.techniques.iter().any(|t| &t.path == *f))
+        .map(|f| f.display().to_string())
+        .collect();
     let _ = writeln!(out, "files: {}", files.join(" extends "));
+    for t in &s.techniques {
+        let _ = writeln!(
+            out,
+            "technique {} = {} ({})",
+            t.point,
+            t.name,
+            t.path.display()
+        );
+    }
     if !s.params.is_empty() {
         let _ = writeln!(out, "\nparams:");
         for (k, v) in &s.params {

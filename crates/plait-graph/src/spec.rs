@@ -45,6 +45,20 @@ pub enum Access {
     Uniform,
 }
 
+/// In words, for listings (`plait passes`): "sampled", "storage, written"…
+impl std::fmt::Display for Access {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Access::Sampled => "sampled",
+            Access::StorageRead => "storage, read",
+            Access::StorageWrite => "storage, written",
+            Access::ColorTarget => "colour target",
+            Access::DepthTarget => "depth target",
+            Access::Uniform => "uniform",
+        })
+    }
+}
+
 impl Access {
     pub fn is_write(self) -> bool {
         matches!(
@@ -114,6 +128,33 @@ pub enum ParamType {
     Enum(Vec<String>),
     /// An RGB or XYZ triple of floats.
     Vec3,
+}
+
+/// The accepted values in words, for listings and messages:
+/// `integer 0 … 8`, `number 1e-6 … 1e6`, `one of over | occupancy_order`.
+impl std::fmt::Display for ParamType {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ParamType::Int { min, max } => write!(f, "integer {min} … {max}"),
+            ParamType::Float { min, max } => {
+                write!(f, "number {} … {}", short_number(*min), short_number(*max))
+            }
+            ParamType::Bool => f.write_str("true or false"),
+            ParamType::Str => f.write_str("text"),
+            ParamType::Enum(choices) => write!(f, "one of {}", choices.join(" | ")),
+            ParamType::Vec3 => f.write_str("three numbers [x, y, z]"),
+        }
+    }
+}
+
+/// `1e-6`, `0.05`, `100`, `1e6`: plain within 0.001..10000, else a power of ten.
+pub fn short_number(x: f64) -> String {
+    let magnitude = x.abs();
+    if x == 0.0 || (1e-3..1e4).contains(&magnitude) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }
 
 #[derive(Clone, Debug)]

@@ -332,11 +332,21 @@ fn undeclared_resources_and_outputs() {
         "reads = { shadow = \"dpeth\" }",
     );
     let errors = errors_of(&text, &[]);
-    assert_eq!(errors[0].kind, ErrorKind::UnknownOutput("missing".into()));
+    assert_eq!(
+        errors[0].kind,
+        ErrorKind::UnknownOutput {
+            name: "missing".into(),
+            hint: String::new()
+        }
+    );
     assert_eq!(errors[0].location, at(3, 21));
+    // A typo of a declared resource suggests it.
     assert_eq!(
         errors[1].kind,
-        ErrorKind::UndeclaredResource("dpeth".into())
+        ErrorKind::UndeclaredResource {
+            name: "dpeth".into(),
+            hint: "; did you mean `depth`?".into()
+        }
     );
 }
 
@@ -373,4 +383,124 @@ fn missing_file_is_an_io_error_not_a_panic() {
         .0
         .remove(0);
     assert!(matches!(e.kind, ErrorKind::Io(_)));
+    // The file is named without a line: it has none to point at.
+    assert_eq!(
+        e.location,
+        Location::Path {
+            path: "does/not/exist.toml".into()
+        }
+    );
+    assert!(
+        e.to_string()
+            .starts_with("does/not/exist.toml: cannot read file:"),
+        "{e}"
+    );
+}
+
+/// A `--set` key that names nothing is an error on the flag that suggests the
+/// nearest name, instead of a new key nothing reads.
+#[test]
+fn set_keys_that_match_nothing_suggest_the_nearest_name() {
+    let cases: [(&str, &str); 7] = [
+        (
+            "params.sise=64",
+            "there is no param `sise`; did you mean `size`?",
+        ),
+        (
+            "passes.shaed.type=blur",
+            "there is no pass `shaed`; did you mean `shade`?",
+        ),
+        (
+            "passes.shade.prams.strength=2",
+            "there is no key in [passes.shade] `prams`; did you mean `params`?",
+        ),
+        (
+            "resources.finl.size=\"screen/2\"",
+            "there is no resource `finl`; did you mean `final`?",
+        ),
+        ("resources.final.formt=rgba8unorm", "did you mean `format`?"),
+        (
+            "pipline.name=x",
+            "there is no section `pipline`; did you mean `pipeline`?",
+        ),
+        ("pipeline.outptus=[]", "did you mean `outputs`?"),
+    ];
+    for (flag, message) in cases {
+        let e = only_error(GOOD, &[flag]);
+        assert_eq!(e.location, Location::Flag { flag: flag.into() }, "{e}");
+        assert!(
+            matches!(&e.kind, ErrorKind::UnknownSetKey { .. }),
+            "{flag}: {e:?}"
+        );
+        assert!(e.to_string().contains(message), "{flag}: {e}");
+    }
+    // A name far from every candidate lists them without a guess.
+    let e = only_error(GOOD, &["params.zzz=1"]);
+    assert!(
+        e.to_string()
+            .ends_with("there is no param `zzz` (known: size)"),
+        "{e}"
+    );
+}
+
+/// What `--set` may still do: set a param the pass type has but the file
+/// leaves at its default, and a param of the file.
+#[test]
+fn set_keys_the_pipeline_has_are_accepted() {
+    compile_text(GOOD, &["passes.shade.params.strength=2", "params.size=64"])
+        .expect("existing keys");
+}
+
+#[test]
+fn misspelt_names_in_a_file_suggest_the_nearest() {
+    let cases: [(&str, &str, &str); 5] = [
+        (
+            "type = \"shade\"",
+            "type = \"shdae\"",
+            "unknown pass type `shdae`; did you mean `shade`?",
+        ),
+        (
+            "reads = { shadow = \"depth\" }",
+            "reads = { shadwo = \"depth\" }",
+            "has no input slot `shadwo`; did you mean `shadow`?",
+        ),
+        (
+            "writes = { color = \"final\" }",
+            "writes = { color = \"final\" }\nparams = { strenght = 2.0 }",
+            "has no param `strenght`; did you mean `strength`?",
+        ),
+        (
+            "writes = { color = \"final\" }",
+            "writes = { color = \"final\" }\nparams = { mode = \"marchner\" }",
+            "did you mean `marschner`?",
+        ),
+        (
+            "draw = \"hair\"",
+            "draw = \"hiar\"",
+            "passes.light_range.draw is `hiar`; did you mean `hair`?",
+        ),
+    ];
+    for (from, to, message) in cases {
+        let text = edit(GOOD, from, to);
+        let errors = errors_of(&text, &[]);
+        assert!(
+            errors.iter().any(|e| e.to_string().contains(message)),
+            "{to}: expected `{message}` in:\n{}",
+            Errors(errors.clone())
+        );
+    }
+    let text = edit(
+        GOOD,
+        "kind = \"texture\"\nformat = \"rg32float\"",
+        "kind = \"texture\"\nfromat = \"rg32float\"",
+    );
+    let errors = errors_of(&text, &[]);
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.to_string().contains("unknown key `fromat`")
+                && e.to_string().contains("did you mean `format`?")),
+        "{}",
+        Errors(errors.clone())
+    );
 }

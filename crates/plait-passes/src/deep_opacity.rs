@@ -18,9 +18,8 @@
 //! `size = "${light_size} * ${light_size} * ${dom_layers} * 4"`).
 //! Memory: 512² × 3 × 4 B = 3 MiB, plus the 2 MiB depth range.
 
-use plait_gpu::GpuError;
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
+use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass};
 
 use crate::per_texel::check_words;
 use crate::spec_util::{DEPTH, buffer, float, texture};
@@ -51,12 +50,12 @@ impl PassType for DeepOpacity {
             include_str!("../../../shaders/passes/deep_opacity.wgsl"),
         ))
     }
-    fn build(
+    fn check_sizes(
         &self,
         pass: &ScheduledPass,
-        ctx: &mut BuildContext<'_>,
-    ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        check_words(pass, ctx, "layers", "range", 1, 32)?;
-        build_shader_pass(self, pass, ctx)
+        resources: &[ResolvedResource],
+    ) -> Result<(), String> {
+        check_words(pass, resources, "layers", "range", 1, 32)?;
+        Ok(())
     }
 }

@@ -31,7 +31,9 @@ use plait_gpu::pass::{
     BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, build_shader_pass,
 };
 use plait_gpu::{Define, GpuError};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass, Value};
+use plait_graph::{
+    Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, Value,
+};
 
 use crate::per_texel::check_words;
 use crate::spec_util::{DEPTH, buffer, int, texture};
@@ -107,6 +109,32 @@ impl PassType for DensityClustering {
         d.push(("STAGE".into(), Define::UInt(0)));
         d
     }
+    fn check_sizes(
+        &self,
+        pass: &ScheduledPass,
+        resources: &[ResolvedResource],
+    ) -> Result<(), String> {
+        let iterations = match pass.params.get("iterations") {
+            Some(Value::Int(i)) => *i as u64,
+            _ => 1,
+        };
+        let per_stage = CLUSTERS * WORDS_PER_CLUSTER;
+        if let Some(words) = check_words(
+            pass,
+            resources,
+            "clusters",
+            "range",
+            per_stage,
+            per_stage * 9,
+        )? && words != per_stage * (iterations + 1)
+        {
+            return Err(format!(
+                "`clusters` holds {words} words per texel; iterations = {iterations} needs (iterations + 1) × {per_stage} = {}",
+                per_stage * (iterations + 1)
+            ));
+        }
+        Ok(())
+    }
     fn build(
         &self,
         pass: &ScheduledPass,
@@ -116,18 +144,6 @@ impl PassType for DensityClustering {
             Some(Value::Int(i)) => *i as u64,
             _ => 1,
         };
-        let per_stage = CLUSTERS * WORDS_PER_CLUSTER;
-        if let Some(words) = check_words(pass, ctx, "clusters", "range", per_stage, per_stage * 9)?
-            && words != per_stage * (iterations + 1)
-        {
-            return Err(GpuError::Pass {
-                pass: pass.name.clone(),
-                message: format!(
-                    "`clusters` holds {words} words per texel; iterations = {iterations} needs (iterations + 1) × {per_stage} = {}",
-                    per_stage * (iterations + 1)
-                ),
-            });
-        }
         let mut draws = Vec::new();
         for stage in 0..=iterations as u32 {
             // Only the first draw clears the buffer; later draws add to it.

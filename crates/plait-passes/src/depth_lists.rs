@@ -15,9 +15,8 @@
 //! Memory: 512² × capacity × 4 B (96 MiB at capacity 96) + 1 MiB counters —
 //! a reference, not a real-time method.
 
-use plait_gpu::GpuError;
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
+use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass};
 
 use crate::per_texel::check_words;
 use crate::spec_util::{DEPTH, buffer, texture};
@@ -55,13 +54,13 @@ impl PassType for DepthLists {
             include_str!("../../../shaders/passes/depth_lists.wgsl"),
         ))
     }
-    fn build(
+    fn check_sizes(
         &self,
         pass: &ScheduledPass,
-        ctx: &mut BuildContext<'_>,
-    ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        check_words(pass, ctx, "lists", "range", 1, MAX_CAPACITY)?;
-        check_words(pass, ctx, "counts", "range", 1, 1)?;
-        build_shader_pass(self, pass, ctx)
+        resources: &[ResolvedResource],
+    ) -> Result<(), String> {
+        check_words(pass, resources, "lists", "range", 1, MAX_CAPACITY)?;
+        check_words(pass, resources, "counts", "range", 1, 1)?;
+        Ok(())
     }
 }

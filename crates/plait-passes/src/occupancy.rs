@@ -11,10 +11,10 @@
 //! [`order_estimate`] is the CPU mirror of `order_estimate` in
 //! `shaders/lib/occupancy.wgsl` (§3.2); a GPU test proves them equal.
 
-use plait_gpu::GpuError;
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass};
+use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass};
 
+use crate::per_texel::check_words;
 use crate::spec_util::{DEPTH, buffer, texture};
 
 pub struct Occupancy;
@@ -59,53 +59,20 @@ impl PassType for Occupancy {
             include_str!("../../../shaders/passes/occupancy.wgsl"),
         ))
     }
-    fn build(
+    fn check_sizes(
         &self,
         pass: &ScheduledPass,
-        ctx: &mut BuildContext<'_>,
-    ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        check_per_texel_buffer(pass, ctx, "bits", "range")?;
-        build_shader_pass(self, pass, ctx)
-    }
-}
-
-/// A per-texel buffer must hold a whole, non-zero number of u32 words for
-/// every texel of the map it goes with, or the shader's indexing is wrong.
-pub fn check_per_texel_buffer(
-    pass: &ScheduledPass,
-    ctx: &BuildContext<'_>,
-    buffer_slot: &str,
-    texture_slot: &str,
-) -> Result<(), GpuError> {
-    let desc = |slot: &str| {
-        pass.reads
-            .iter()
-            .chain(pass.writes.iter())
-            .find(|b| b.slot == slot)
-            .map(|b| {
-                (
-                    ctx.schedule.resources[b.resource].name.clone(),
-                    ctx.schedule.resources[b.resource].desc.clone(),
+        resources: &[ResolvedResource],
+    ) -> Result<(), String> {
+        // 32 slices per word; up to 32 words (1024 slices), as plait::occupancy reads them.
+        check_words(pass, resources, "bits", "range", 1, 32)
+            .map(|_| ())
+            .map_err(|m| {
+                format!(
+                    "{m} (one word holds 32 slices: slices must be a multiple of 32, at most 1024)"
                 )
             })
-    };
-    let (
-        Some((buffer_name, ResourceDesc::Buffer { size })),
-        Some((_, ResourceDesc::Texture { width, height, .. })),
-    ) = (desc(buffer_slot), desc(texture_slot))
-    else {
-        return Ok(());
-    };
-    let per_texel = 4 * width as u64 * height as u64;
-    if size == 0 || size % per_texel != 0 || size / per_texel > 32 {
-        return Err(GpuError::Pass {
-            pass: pass.name.clone(),
-            message: format!(
-                "buffer `{buffer_name}` has {size} bytes; it needs 1 to 32 u32 words per texel of the {width}x{height} map, i.e. a multiple of {per_texel} bytes"
-            ),
-        });
     }
-    Ok(())
 }
 
 /// The maps of one texel, as the shaders read them.
@@ -120,13 +87,25 @@ pub struct TexelMaps {
 /// Estimated number of fragments in front of relative depth `rel` in the
 /// texel's range (§3.2) — the CPU mirror of the WGSL `order_estimate`.
 pub fn order_estimate(maps: &TexelMaps, rel: f32) -> f32 {
+    order_estimate_excluding(maps, rel, 0.0)
+}
+
+/// The order of a fragment recorded in the maps itself: the fragments
+/// strictly in front of it, its own count left out (docs/design.md, "In front
+/// of") — the CPU mirror of the WGSL `fragment_order`.
+pub fn fragment_order(maps: &TexelMaps, rel: f32) -> f32 {
+    order_estimate_excluding(maps, rel, 1.0)
+}
+
+/// `own` fragments (0 or 1) at `rel` are not counted in front of it.
+fn order_estimate_excluding(maps: &TexelMaps, rel: f32, own: f32) -> f32 {
     let words = maps.bits.len() as u32;
     let slabs = maps.counts.len() as u32;
     if words == 0 || slabs == 0 || rel <= 0.0 {
         return 0.0;
     }
     if rel >= 1.0 {
-        return maps.counts.iter().map(|&c| c as f32).sum();
+        return (maps.counts.iter().map(|&c| c as f32).sum::<f32>() - own).max(0.0);
     }
     let slices = words * 32;
     let per_slab = (slices / slabs).max(1);
@@ -149,7 +128,7 @@ pub fn order_estimate(maps: &TexelMaps, rel: f32) -> f32 {
     };
     let at_start = before + per_bit * count_bits(first, slice) as f32;
     let at_end = before + per_bit * count_bits(first, slice + 1) as f32;
-    at_start + (at_end - at_start) * frac
+    at_start + (at_end - at_start - own).max(0.0) * frac
 }
 
 /// Build a texel's maps from fragment relative depths in [0, 1], as the
@@ -243,6 +222,47 @@ mod tests {
             let o = order_estimate(&maps, i as f32 / 2000.0);
             assert!(o + 1e-4 >= last);
             last = o;
+        }
+    }
+
+    /// A fragment never counts itself (docs/design.md, "In front of"): alone
+    /// in its slice it gets exactly the fragments before it.
+    #[test]
+    fn a_fragment_does_not_count_itself() {
+        let d = depths();
+        let maps = maps_from_depths(&d, 4, 4);
+        assert_eq!(
+            fragment_order(&maps, 0.01),
+            0.0,
+            "the stray fragment in front of all"
+        );
+        assert_eq!(
+            fragment_order(&maps, 0.97),
+            (d.len() - 1) as f32,
+            "the farthest, alone in its slab"
+        );
+        assert_eq!(fragment_order(&maps, 1.0), (d.len() - 1) as f32);
+        // Each fragment alone in its slice: the strict count exactly, where
+        // the point estimate adds the fragment's own fraction of its slice.
+        let spread: Vec<f32> = (0..40).map(|i| (i as f32 * 3.0 + 1.3) / 128.0).collect();
+        let sparse = maps_from_depths(&spread, 4, 4);
+        for (i, &x) in spread.iter().enumerate() {
+            assert!(
+                (fragment_order(&sparse, x) - i as f32).abs() < 1e-4,
+                "fragment {i}"
+            );
+            assert!(
+                order_estimate(&sparse, x) > i as f32 + 0.2,
+                "fragment {i} counts itself in part"
+            );
+        }
+        // Never more than the point estimate, never negative.
+        for &x in &d {
+            let (own_left_out, point) = (fragment_order(&maps, x), order_estimate(&maps, x));
+            assert!(
+                (0.0..=point + 1e-4).contains(&own_left_out),
+                "at {x}: {own_left_out} vs {point}"
+            );
         }
     }
 }

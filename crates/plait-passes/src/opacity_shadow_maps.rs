@@ -22,9 +22,8 @@
 //! Memory: 512² × 16 × 4 B = 16 MiB (the paper's 4 rgba16f targets would
 //! be 8 MiB, rgba8 4 MiB), plus the 2 MiB depth range.
 
-use plait_gpu::GpuError;
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
+use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass};
 
 use crate::per_texel::check_words;
 use crate::spec_util::{DEPTH, buffer, texture};
@@ -58,12 +57,12 @@ impl PassType for OpacityShadowMaps {
             include_str!("../../../shaders/passes/opacity_shadow_maps.wgsl"),
         ))
     }
-    fn build(
+    fn check_sizes(
         &self,
         pass: &ScheduledPass,
-        ctx: &mut BuildContext<'_>,
-    ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        check_words(pass, ctx, "slices", "range", 1, MAX_SLICES)?;
-        build_shader_pass(self, pass, ctx)
+        resources: &[ResolvedResource],
+    ) -> Result<(), String> {
+        check_words(pass, resources, "slices", "range", 1, MAX_SLICES)?;
+        Ok(())
     }
 }

@@ -1,34 +1,30 @@
 //! Size checks for light-map buffers that hold a fixed number of u32 words per
-//! texel of a map they go with (deep opacity layers, opacity shadow map
-//! slices, density clusters, exact fragment lists): a wrong size would make
-//! the shaders index the wrong texel, so it is refused when the pass is built.
+//! texel of a map they go with (occupancy bits, slab counts, deep opacity
+//! layers, opacity shadow map slices, density clusters, exact fragment lists):
+//! a wrong size would make the shaders index the wrong texel, so `plait check`
+//! refuses it (`PassType::check_sizes`) before any GPU work.
 
-use plait_gpu::GpuError;
-use plait_gpu::pass::BuildContext;
-use plait_graph::{ResourceDesc, ScheduledPass};
+use plait_graph::{ResolvedResource, ResourceDesc, ScheduledPass};
 
 /// The buffer bound to `buffer_slot` must hold `k · multiple` u32 words per
 /// texel of the texture bound to `texture_slot`, with 1 ≤ k·multiple ≤ `max`.
 /// Returns the words per texel (or `None` when a slot is unbound).
 pub fn check_words(
     pass: &ScheduledPass,
-    ctx: &BuildContext<'_>,
+    resources: &[ResolvedResource],
     buffer_slot: &str,
     texture_slot: &str,
     multiple: u64,
     max: u64,
-) -> Result<Option<u64>, GpuError> {
+) -> Result<Option<u64>, String> {
     let desc = |slot: &str| {
         pass.reads
             .iter()
             .chain(pass.writes.iter())
             .find(|b| b.slot == slot)
-            .map(|b| {
-                (
-                    ctx.schedule.resources[b.resource].name.clone(),
-                    ctx.schedule.resources[b.resource].desc.clone(),
-                )
-            })
+            // A culled pass may name resources the schedule dropped.
+            .and_then(|b| resources.get(b.resource))
+            .map(|r| (r.name.clone(), r.desc.clone()))
     };
     let (
         Some((buffer_name, ResourceDesc::Buffer { size })),
@@ -43,14 +39,12 @@ pub fn check_words(
         || !size.is_multiple_of(per_texel)
         || !words.is_multiple_of(multiple)
         || words > max
+        || words == 0
     {
-        return Err(GpuError::Pass {
-            pass: pass.name.clone(),
-            message: format!(
-                "buffer `{buffer_name}` has {size} bytes; it needs a multiple of {multiple} u32 words (at most {max}) per texel of the {width}x{height} map, i.e. a multiple of {} bytes",
-                per_texel * multiple
-            ),
-        });
+        return Err(format!(
+            "buffer `{buffer_name}` (slot `{buffer_slot}`) has {size} bytes; it needs a multiple of {multiple} u32 words (at most {max}) per texel of the {width}x{height} map, i.e. a multiple of {} bytes",
+            per_texel * multiple
+        ));
     }
     Ok(Some(words))
 }

@@ -5,11 +5,10 @@
 //! floats. `slabs` u32 counters per texel; 4 is the paper's choice for 128
 //! slices, 1 turns the method into "occupancy bits alone" (F/S per set bit).
 
-use plait_gpu::GpuError;
-use plait_gpu::pass::{BuildContext, BuiltinShader, PassType, PreparedPass, build_shader_pass};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
+use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass};
 
-use crate::occupancy::check_per_texel_buffer;
+use crate::per_texel::check_words;
 use crate::spec_util::{DEPTH, buffer, texture};
 
 pub struct Slab;
@@ -52,12 +51,12 @@ impl PassType for Slab {
             include_str!("../../../shaders/passes/slab.wgsl"),
         ))
     }
-    fn build(
+    fn check_sizes(
         &self,
         pass: &ScheduledPass,
-        ctx: &mut BuildContext<'_>,
-    ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        check_per_texel_buffer(pass, ctx, "slabs", "range")?;
-        build_shader_pass(self, pass, ctx)
+        resources: &[ResolvedResource],
+    ) -> Result<(), String> {
+        // One counter per slab, up to 32 slabs, as plait::occupancy reads them.
+        check_words(pass, resources, "slabs", "range", 1, 32).map(|_| ())
     }
 }

@@ -53,25 +53,25 @@ pub fn slots() -> Vec<SlotSpec> {
         buffer(
             "vis_layers",
             Access::StorageRead,
-            "deep_opacity: fragment count per layer after z0 (001_… §3)",
+            "deep_opacity: fragment count per layer after z0 (Yuksel & Keyser 2008 §3)",
         )
         .optional(),
         buffer(
             "vis_slices",
             Access::StorageRead,
-            "opacity_shadow_maps: fragment count per uniform slice (004_… §5.7)",
+            "opacity_shadow_maps: fragment count per uniform slice (Halén & Wester 2007 §5.7)",
         )
         .optional(),
         buffer(
             "vis_clusters",
             Access::StorageRead,
-            "density_clustering: k-means stages of (count, Σz, Σz²) per cluster (002_…)",
+            "density_clustering: k-means stages of (count, Σz, Σz²) per cluster (Mertens et al. 2004)",
         )
         .optional(),
         buffer(
             "vis_lists",
             Access::StorageRead,
-            "exact: every fragment's light depth per texel (000_… Fig. 5)",
+            "exact: every fragment's light depth per texel (Sintorn & Assarsson 2009 Fig. 5)",
         )
         .optional(),
         buffer(
@@ -112,13 +112,6 @@ pub fn params() -> Vec<ParamSpec> {
             1e-6,
             1e6,
             "deep_opacity: first layer thickness in world units (layer k is k times as thick)",
-        ),
-        float(
-            "exact_bias",
-            0.01,
-            0.0,
-            1e6,
-            "exact: depth (world units) within which a fragment is not in front of the point",
         ),
     ]
 }

@@ -2,13 +2,14 @@
 //! Sintorn & Assarsson 2009 §2.2, §3.4, Fig. 2), on the GPU at a small size:
 //!
 //! - `linked_list.toml` (fragment lists sorted exactly) equals
-//!   `depth_peeling.toml` within a mean absolute error of 0.5/255 and a 99th
-//!   percentile of 4/255 per channel of the 8-bit sRGB output — differences
+//!   `depth_peeling.toml` within a mean absolute error of 0.03/255 and a 99th
+//!   percentile of 1/255 per channel of the 8-bit sRGB output — differences
 //!   come only from 16-bit colours in the list nodes vs. the rgba16float layer
 //!   target, and from fragments at exactly equal depth (peeling keeps one);
 //! - occupancy-order blending (`occupancy.toml`) is closer to depth peeling
-//!   than no transparency (`opaque.toml`) — Fig. 2's ordering — for
-//!   translucent strands (strand alpha 0.4; see the test for α = 0.8);
+//!   than weighted average and no transparency (`opaque.toml`) — Fig. 2's
+//!   ordering — for translucent strands (strand alpha 0.4; `tests/claims.rs`
+//!   checks the scene's own 0.8);
 //! - depth peeling stops on its occlusion query before the layer cap, and
 //!   reports the layers it used.
 
@@ -42,6 +43,7 @@ fn render(gpu: &Gpu, pipeline: &str, sets: &[String], material_alpha: f32) -> Re
     let opts = CompileOptions {
         screen: SIZE,
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
+        ..Default::default()
     };
     let mut schedule = plait_graph::compile(&loaded, &library.registry(), &opts)
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
@@ -109,10 +111,8 @@ fn stat(report: &FrameReport, pass: &str, name: &str) -> f64 {
 fn transparency_methods_against_depth_peeling() {
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("GPU tests need an adapter: {e}"));
     // Translucent strands (0.8 × 0.5 = 0.4), the regime the paper renders hair
-    // in (§2.2: "a very low alpha value"). At the small scene's own 0.8 the
-    // ordering flips: no transparency errs less (2.6/255) than occupancy-order
-    // blending (7.8/255), whose (1-α)^o weights amplify order-estimate errors
-    // at high α (§3.4 assumes one common α).
+    // in (§2.2: "a very low alpha value"); `tests/claims.rs` covers the small
+    // scene's own alpha 0.8.
     let alpha = 0.5;
     let peeled = render(&gpu, "depth_peeling.toml", &[], alpha);
     let layers = stat(&peeled.report, "hair_peel", "layers");
@@ -132,7 +132,9 @@ fn transparency_methods_against_depth_peeling() {
     let (m, p99, max) = (mean(&d), percentile(&d, 0.99), d[d.len() - 1]);
     eprintln!("linked_list vs depth_peeling: mean {m:.3}, p99 {p99}, max {max} (of 255)");
     assert!(
-        m <= 0.5 && p99 <= 4,
+        // Measured: mean 0.009, p99 0, max 38 (a few pixels with fragments at
+        // equal depth, of which peeling keeps one): 3× the measured mean.
+        m <= 0.03 && p99 <= 1,
         "fragment lists must match depth peeling: mean {m:.3}, p99 {p99}"
     );
 
@@ -147,9 +149,10 @@ fn transparency_methods_against_depth_peeling() {
         mean(&coverage),
         mean(&opaque)
     );
+    // Measured: occupancy 0.220, weighted_average 0.542, opaque 6.765 (of 255).
     assert!(
-        mean(&occupancy) < mean(&opaque),
-        "occupancy-order blending must beat no transparency"
+        mean(&occupancy) < mean(&weighted) && mean(&occupancy) < mean(&opaque),
+        "occupancy-order blending must beat weighted average and no transparency"
     );
 }
 

@@ -129,7 +129,7 @@ fn provider_params(visibility: &str) -> &'static [&'static str] {
     match visibility {
         "occupancy" | "opacity_shadow_maps" | "density_clustering" => &["shadow_weight"],
         "deep_opacity" => &["shadow_weight", "layer_size"],
-        "exact" => &["shadow_weight", "exact_bias"],
+        "exact" => &["shadow_weight"],
         "modified_shadow_map" => &["density"],
         _ => &[],
     }
@@ -152,6 +152,7 @@ fn probe(
     let opts = CompileOptions {
         screen: (MAP, MAP),
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
+        ..Default::default()
     };
     let library = plait_passes::library();
     let sets = [format!("params.light_size={MAP}")];

@@ -13,6 +13,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 use glam::Vec3;
+use plait_compare::report::{Visibility, VisibilityCurve};
 use plait_gpu::Gpu;
 use plait_graph::Value;
 
@@ -167,6 +168,12 @@ pub fn probe_visibility(
     let loaded = plait_graph::load_str(&probe_path, &text, sets)?;
     let schedule = check_pipeline(loaded, &opts)?;
     let prepared = build(gpu, schedule, &probe_path, scene, size)?;
+    // Like with like: every provider and the reference read the texel the
+    // point falls in (no Fig. 9 jitter, which is for shading), with the one
+    // "in front of" convention of the frame (docs/design.md).
+    prepared
+        .renderer
+        .set_frame(&scene.frame(size, 0).with_light_jitter(false));
     prepared.renderer.render()?;
     let bytes = prepared.renderer.read_buffer("probe_out")?;
     let values = bytes
@@ -174,4 +181,57 @@ pub fn probe_visibility(
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
         .collect();
     Ok(Some(Probed { visibility, values }))
+}
+
+/// Visibility of a variant against the reference along the probe rays: the
+/// mean and max |ΔV| over the samples of rays that pass through hair (the
+/// reference sees less than full light somewhere along them), and the curves
+/// of the four rays through the most hair.
+pub fn visibility_error(grid: &ProbeGrid, reference: &Probed, variant: &Probed) -> Visibility {
+    let depths = grid.depths as usize;
+    let rays = grid.ray_count();
+    let ray = |values: &[f32], r: usize| values[r * depths..(r + 1) * depths].to_vec();
+    let through_hair: Vec<usize> = (0..rays)
+        .filter(|&r| ray(&reference.values, r).iter().any(|&v| v < 0.999))
+        .collect();
+    let (mut sum, mut max, mut count) = (0.0f64, 0.0f64, 0usize);
+    for &r in &through_hair {
+        for (a, b) in ray(&reference.values, r)
+            .iter()
+            .zip(ray(&variant.values, r))
+        {
+            let e = (*a as f64 - b as f64).abs();
+            sum += e;
+            max = max.max(e);
+            count += 1;
+        }
+    }
+    let mut darkest = through_hair.clone();
+    darkest.sort_by(|&a, &b| {
+        reference.values[(a + 1) * depths - 1].total_cmp(&reference.values[(b + 1) * depths - 1])
+    });
+    let curves = darkest
+        .iter()
+        .take(4)
+        .map(|&r| {
+            let uv = grid.ray_uv(r as u32);
+            VisibilityCurve {
+                light_uv: uv,
+                depth: (0..grid.depths).map(|d| grid.depth(d) as f64).collect(),
+                exact: ray(&reference.values, r)
+                    .iter()
+                    .map(|&v| v as f64)
+                    .collect(),
+                approx: ray(&variant.values, r).iter().map(|&v| v as f64).collect(),
+            }
+        })
+        .collect();
+    Visibility {
+        provider: variant.visibility.clone(),
+        reference_provider: reference.visibility.clone(),
+        rays_through_hair: through_hair.len(),
+        curves,
+        mean_abs_error: if count > 0 { sum / count as f64 } else { 0.0 },
+        max_abs_error: max,
+    }
 }

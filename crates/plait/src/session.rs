@@ -202,6 +202,7 @@ pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
     CompileOptions {
         screen: size,
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
+        max_buffer_binding_size: gpu.capabilities.max_storage_buffer_binding_size,
     }
 }
 

@@ -8,13 +8,13 @@
 // linearly. Visibility = exp(-w · count), w = shadow_weight as in occupancy.
 #define_import_path plait::visibility::deep_opacity
 
-#import plait::frame::{frame, light_uv_depth, light_linear_depth}
+#import plait::frame::{frame, light_lookup}
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
 @group(1) @binding(10) var<storage, read> vis_layers: array<u32>;
 
 struct VisibilityParams {
-    // Opacity added by one hair fragment in front (w of 000_… §3.3).
+    // Opacity added by one hair fragment in front (w of Sintorn & Assarsson 2009 §3.3).
     shadow_weight: f32,
     // Thickness of the first layer, world units (same value as the deep_opacity pass's).
     layer_size: f32,
@@ -48,11 +48,10 @@ fn deep_opacity_count(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
 }
 
 fn hair_visibility(world: vec3<f32>) -> f32 {
-    let p = light_uv_depth(world);
-    if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
+    let size = textureDimensions(vis_range);
+    let lookup = light_lookup(world, size);
+    if (!lookup.inside) {
         return 1.0;
     }
-    let size = textureDimensions(vis_range);
-    let texel = min(vec2<u32>(p.xy * vec2<f32>(size)), size - 1u);
-    return exp(-visibility_params.shadow_weight * deep_opacity_count(texel, size, light_linear_depth(world)));
+    return exp(-visibility_params.shadow_weight * deep_opacity_count(lookup.texel, size, lookup.in_front_below));
 }

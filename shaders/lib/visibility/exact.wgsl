@@ -2,36 +2,34 @@
 // number n of hair fragments in front of a point from the light
 // (Sintorn & Assarsson 2009 §3, Fig. 5; the occupancy order o estimates it),
 // counted in the point's light texel over the depth lists of the depth_lists
-// pass. Visibility = exp(-w · n), w = shadow_weight. A point's own strand is
-// kept out by `exact_bias` (world units along the light). Where a list
+// pass. Visibility = exp(-w · n), w = shadow_weight. "In front of" is the
+// convention every provider shares (`plait::frame::light_lookup`): nearer the
+// light by more than the self-shadow bias, so a point never counts itself. Where a list
 // overflowed, the dropped fragments are assumed distributed like the stored
 // ones (the pass's `overflow` buffer says whether that happened).
 #define_import_path plait::visibility::exact
 
-#import plait::frame::{frame, light_uv_depth, light_linear_depth}
+#import plait::frame::light_lookup
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
 @group(1) @binding(10) var<storage, read> vis_lists: array<u32>;
 @group(1) @binding(11) var<storage, read> vis_counts: array<u32>;
 
 struct VisibilityParams {
-    // Opacity added by one hair fragment in front (w of 000_… §3.3).
+    // Opacity added by one hair fragment in front (w of Sintorn & Assarsson 2009 §3.3).
     shadow_weight: f32,
-    // Depth tolerance (world units) below which a fragment is not "in front".
-    exact_bias: f32,
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
 
-// Hair fragments in front of linear light depth `depth` at `texel`.
-fn exact_count(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
+// Hair fragments at `texel` nearer the light than linear depth `below`.
+fn exact_count(texel: vec2<u32>, size: vec2<u32>, below: f32) -> f32 {
     let index = texel.y * size.x + texel.x;
     let capacity = arrayLength(&vis_lists) / (size.x * size.y);
     let total = vis_counts[index];
     let stored = min(total, capacity);
-    let limit = depth - visibility_params.exact_bias / (frame.near_far.w - frame.near_far.z);
     var n = 0u;
     for (var i = 0u; i < stored; i++) {
-        if (bitcast<f32>(vis_lists[index * capacity + i]) < limit) {
+        if (bitcast<f32>(vis_lists[index * capacity + i]) < below) {
             n++;
         }
     }
@@ -42,11 +40,10 @@ fn exact_count(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
 }
 
 fn hair_visibility(world: vec3<f32>) -> f32 {
-    let p = light_uv_depth(world);
-    if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
+    let size = textureDimensions(vis_range);
+    let lookup = light_lookup(world, size);
+    if (!lookup.inside) {
         return 1.0;
     }
-    let size = textureDimensions(vis_range);
-    let texel = min(vec2<u32>(p.xy * vec2<f32>(size)), size - 1u);
-    return exp(-visibility_params.shadow_weight * exact_count(texel, size, light_linear_depth(world)));
+    return exp(-visibility_params.shadow_weight * exact_count(lookup.texel, size, lookup.in_front_below));
 }

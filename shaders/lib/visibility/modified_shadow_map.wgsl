@@ -4,7 +4,7 @@
 // Cheap (one depth texture), but it cannot tell sparse hair from dense hair.
 #define_import_path plait::visibility::modified_shadow_map
 
-#import plait::frame::{frame, light_uv_depth, nearest_sampler}
+#import plait::frame::{frame, light_lookup, light_depth_to_linear, nearest_sampler}
 
 // Nearest hair depth from the light (a `shadow_map` pass drawing hair).
 @group(1) @binding(8) var vis_depth: texture_depth_2d;
@@ -16,13 +16,13 @@ struct VisibilityParams {
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
 
 fn hair_visibility(world: vec3<f32>) -> f32 {
-    let p = light_uv_depth(world);
-    if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0))) {
+    let lookup = light_lookup(world, textureDimensions(vis_depth));
+    if (!lookup.inside) {
         return 1.0;
     }
-    // Sampled, not loaded: GL cannot textureLoad depth textures.
-    let first = textureSampleLevel(vis_depth, nearest_sampler, p.xy, 0);
-    // Orthographic light: stored depth is linear, so the difference scales to world units.
-    let behind = max(0.0, p.z - first) * (frame.near_far.w - frame.near_far.z);
+    // Sampled at the texel's centre, not loaded: GL cannot textureLoad depth textures.
+    let first = light_depth_to_linear(textureSampleLevel(vis_depth, nearest_sampler, lookup.uv, 0));
+    // Linear light depth: the difference scales to world units.
+    let behind = max(0.0, lookup.in_front_below - first) * (frame.near_far.w - frame.near_far.z);
     return exp(-visibility_params.density * behind);
 }

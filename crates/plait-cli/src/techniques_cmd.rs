@@ -1,0 +1,77 @@
+//! `plait techniques`: every choice point, its techniques, their papers,
+//! params and memory — read from the technique files, so a new file shows up
+//! without a rebuild.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, anyhow};
+use clap::Args;
+
+#[derive(Args)]
+pub struct TechniquesArgs {
+    /// Print one JSON array instead of text.
+    #[arg(long)]
+    json: bool,
+    /// The techniques folder (default: the one the default pipeline uses).
+    #[arg(long, value_name = "DIR")]
+    dir: Option<PathBuf>,
+}
+
+pub fn run(args: TechniquesArgs) -> Result<()> {
+    let root = match args.dir {
+        Some(d) => d,
+        None => {
+            let pipeline = plait::session::resolve_pipeline(None);
+            plait_graph::techniques::techniques_root(&pipeline).ok_or_else(|| {
+                anyhow!(
+                    "no `techniques/` folder beside {} or above it",
+                    pipeline.display()
+                )
+            })?
+        }
+    };
+    let catalog = plait_graph::techniques::catalog(&root)
+        .map_err(|errors| anyhow!("{}", plait_graph::Errors(errors)))?;
+    if args.json {
+        let all: Vec<_> = catalog
+            .iter()
+            .map(|t| {
+                serde_json::json!({
+                    "point": t.point, "name": t.name, "file": t.path.display().to_string(),
+                    "description": t.description, "source": t.source, "memory": t.memory,
+                    "params": t.params.iter().map(|(k, v)| serde_json::json!({"name": k, "default": v})).collect::<Vec<_>>(),
+                })
+            })
+            .collect();
+        outln!(
+            "{}",
+            serde_json::to_string_pretty(&all).context("serializing the techniques")?
+        )?;
+        return Ok(());
+    }
+    let mut point = None;
+    for t in &catalog {
+        if point != Some(&t.point) {
+            point = Some(&t.point);
+            outln!(
+                "\n{} — `--set techniques.{}=NAME` ({})",
+                t.point,
+                t.point,
+                root.join(&t.point).display()
+            )?;
+        }
+        outln!("  {:<22} {}", t.name, t.description)?;
+        if !t.source.is_empty() && t.source != "—" {
+            outln!("  {:<22} paper: {}", "", t.source)?;
+        }
+        if !t.params.is_empty() {
+            let params: Vec<String> = t.params.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+            outln!("  {:<22} params: {}", "", params.join(", "))?;
+        }
+        if !t.memory.is_empty() {
+            outln!("  {:<22} memory: {}", "", t.memory)?;
+        }
+    }
+    outln!("\nPapers: docs/bibliography.md")?;
+    Ok(())
+}

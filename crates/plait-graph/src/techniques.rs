@@ -1,0 +1,585 @@
+//! Techniques: a pipeline's `[techniques]` table names one technique per
+//! choice point, and one key swaps it:
+//!
+//! ```toml
+//! [techniques]
+//! self_shadow = "deep_opacity"
+//! transparency = "weighted_average"
+//! ```
+//!
+//! A technique is one file of data, `techniques/<point>/<name>.toml`: its
+//! params, resources and passes (merged into the pipeline, which may tune them:
+//! the pipeline's own keys win), and the contract it fulfils:
+//!
+//! ```toml
+//! [technique]
+//! point = "self_shadow"            # the choice point it fills
+//! description = "…"
+//! source = "Yuksel & Keyser 2008 §3"
+//! memory = "…"                     # a formula, for `plait techniques`
+//! includes = ["light_range.toml"]  # shared fragments, relative to this file
+//!
+//! [technique.exports]              # what every pass that `uses` the point receives
+//! reads = { vis_range = "light_range", vis_layers = "light_dom" }
+//! params = { visibility = "deep_opacity" }
+//! ```
+//!
+//! A pass consumes a choice point with `uses = ["self_shadow"]`: the chosen
+//! technique's exports are merged into its `reads` and `params` (the pass's
+//! own entries win). No pass in a pipeline file names a technique's maps, so
+//! every combination of choices composes without a new file.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::{Error, ErrorKind, Location, Spanned};
+use crate::load::{Entry, Node, Table, merge, parse_file};
+use crate::schedule::ChosenTechnique;
+use crate::suggest::{did_you_mean, nearest_first};
+use crate::value::Value;
+
+/// The folder technique files live in, under the first ancestor of the
+/// pipeline's folder that has one.
+pub const TECHNIQUES_DIR: &str = "techniques";
+
+/// Keys of a technique file's `[technique]` table.
+const TECHNIQUE_KEYS: &[&str] = &[
+    "point",
+    "description",
+    "source",
+    "memory",
+    "includes",
+    "exports",
+];
+/// Top-level tables a technique file may hold.
+const FILE_KEYS: &[&str] = &["technique", "params", "resources", "passes"];
+/// What exports may carry.
+const EXPORT_KEYS: &[&str] = &["reads", "params"];
+
+/// The techniques folder nearest `pipeline`: its own folder's, or an
+/// ancestor's — relative to the working directory when it is below it, so
+/// messages name `techniques/…` as a user would. A pipeline outside any
+/// checkout (copied elsewhere, or a built-in copy) uses the library's
+/// (`plait_assets::find_dir`: the search path, then the built-in copies).
+pub fn techniques_root(pipeline: &Path) -> Option<PathBuf> {
+    if plait_assets::is_builtin(pipeline) {
+        return plait_assets::find_dir(TECHNIQUES_DIR);
+    }
+    techniques_beside(pipeline).or_else(|| plait_assets::find_dir(TECHNIQUES_DIR))
+}
+
+fn techniques_beside(pipeline: &Path) -> Option<PathBuf> {
+    let dir = pipeline.parent().unwrap_or(Path::new(""));
+    let absolute = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+    let found = absolute
+        .ancestors()
+        .map(|a| a.join(TECHNIQUES_DIR))
+        .find(|t| t.is_dir())?;
+    let cwd = std::env::current_dir()
+        .ok()
+        .and_then(|c| std::fs::canonicalize(c).ok());
+    Some(
+        match cwd.and_then(|c| found.strip_prefix(c).ok().map(Path::to_path_buf)) {
+            Some(relative) => relative,
+            None => found,
+        },
+    )
+}
+
+/// The choice points under `root` (its sub-folders), sorted.
+pub fn points(root: &Path) -> Vec<String> {
+    list(root, plait_assets::is_dir)
+}
+
+/// The techniques of `point` under `root` (its `.toml` files, by stem), sorted.
+pub fn choices(root: &Path, point: &str) -> Vec<String> {
+    list(&root.join(point), |p| {
+        p.extension().is_some_and(|e| e == "toml")
+    })
+    .into_iter()
+    .filter(|name| !is_fragment(&root.join(point), name))
+    .collect()
+}
+
+/// Fragments shared between techniques (`includes`) are files without a
+/// `[technique]` table; they are not choices.
+fn is_fragment(dir: &Path, stem: &str) -> bool {
+    plait_assets::read_to_string(&dir.join(format!("{stem}.toml")))
+        .map(|text| !text.lines().any(|l| l.trim() == "[technique]"))
+        .unwrap_or(true)
+}
+
+fn list(dir: &Path, keep: impl Fn(&Path) -> bool) -> Vec<String> {
+    // Built-in copies (`<built-in>/techniques`) list like folders on disk.
+    let mut names: Vec<String> = plait_assets::read_dir(dir)
+        .into_iter()
+        .filter(|p| keep(p))
+        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_owned))
+        .collect();
+    names.sort();
+    names
+}
+
+/// What one technique file says about itself, for `plait techniques`.
+#[derive(Clone, Debug)]
+pub struct TechniqueInfo {
+    pub point: String,
+    pub name: String,
+    pub path: PathBuf,
+    pub description: String,
+    pub source: String,
+    pub memory: String,
+    /// Its `[params]`, as written (`${…}` not substituted).
+    pub params: Vec<(String, String)>,
+}
+
+/// Every technique under `root`, by point then name; files that do not parse
+/// are reported as errors.
+pub fn catalog(root: &Path) -> Result<Vec<TechniqueInfo>, Vec<Error>> {
+    let mut out = Vec::new();
+    let mut errors = Vec::new();
+    for point in points(root) {
+        for name in choices(root, &point) {
+            let path = root.join(&point).join(format!("{name}.toml"));
+            match read_technique(&path) {
+                Ok(tree) => {
+                    let text = |key: &str| {
+                        technique_table(&tree)
+                            .and_then(|t| t.get(key))
+                            .and_then(|e| match &e.value.value {
+                                Node::Scalar(Value::Str(s)) => Some(s.clone()),
+                                _ => None,
+                            })
+                            .unwrap_or_default()
+                    };
+                    let params = table(&tree, "params")
+                        .map(|t| {
+                            t.iter()
+                                .map(|(k, e)| (k.clone(), describe(&e.value.value)))
+                                .collect()
+                        })
+                        .unwrap_or_default();
+                    out.push(TechniqueInfo {
+                        point: point.clone(),
+                        name: name.clone(),
+                        description: text("description"),
+                        source: text("source"),
+                        memory: text("memory"),
+                        params,
+                        path,
+                    });
+                }
+                Err(mut e) => errors.append(&mut e),
+            }
+        }
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
+    }
+}
+
+fn describe(node: &Node) -> String {
+    match node {
+        Node::Scalar(v) => v.to_string(),
+        Node::List(items) => format!(
+            "[{}]",
+            items
+                .iter()
+                .map(|i| describe(&i.value))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        Node::Table(_) => "{…}".into(),
+    }
+}
+
+fn schema(location: &Location, message: String) -> Error {
+    Error::new(location.clone(), ErrorKind::Schema(message))
+}
+
+fn table<'a>(node: &'a Spanned<Node>, key: &str) -> Option<&'a Table> {
+    match &node.value {
+        Node::Table(t) => match &t.get(key)?.value.value {
+            Node::Table(inner) => Some(inner),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+fn technique_table(node: &Spanned<Node>) -> Option<&Table> {
+    table(node, "technique")
+}
+
+/// A technique file with its `includes` (and theirs) merged under it.
+fn read_technique(path: &Path) -> Result<Spanned<Node>, Vec<Error>> {
+    read_with_includes(path, &mut Vec::new())
+}
+
+fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<Node>, Vec<Error>> {
+    chain.push(path.to_path_buf());
+    let text = plait_assets::read_to_string(path).map_err(|e| {
+        vec![Error::new(
+            Location::Path {
+                path: path.to_path_buf(),
+            },
+            ErrorKind::Io(e.to_string()),
+        )]
+    })?;
+    let tree = parse_file(path, &text).map_err(|e| e.0)?;
+    let mut errors = Vec::new();
+    let Node::Table(top) = &tree.value else {
+        return Ok(tree);
+    };
+    for (key, entry) in top {
+        if !FILE_KEYS.contains(&key.as_str()) {
+            errors.push(schema(
+                &entry.key,
+                format!(
+                    "a technique file holds [technique], [params], [resources] and [passes]; `{key}` is not one of them{}",
+                    did_you_mean(key, FILE_KEYS.iter().copied())
+                ),
+            ));
+        }
+    }
+    let Some(technique) = technique_table(&tree) else {
+        // A shared fragment: data only.
+        return if errors.is_empty() {
+            Ok(tree)
+        } else {
+            Err(errors)
+        };
+    };
+    for (key, entry) in technique {
+        if !TECHNIQUE_KEYS.contains(&key.as_str()) {
+            errors.push(schema(
+                &entry.key,
+                format!(
+                    "[technique] has no key `{key}`{} (keys: {})",
+                    did_you_mean(key, TECHNIQUE_KEYS.iter().copied()),
+                    TECHNIQUE_KEYS.join(", ")
+                ),
+            ));
+        }
+    }
+    let mut merged: Option<Spanned<Node>> = None;
+    if let Some(includes) = technique.get("includes") {
+        let Node::List(items) = &includes.value.value else {
+            errors.push(schema(
+                &includes.value.location,
+                "`includes` must be a list of file names".into(),
+            ));
+            return Err(errors);
+        };
+        for item in items {
+            let Node::Scalar(Value::Str(name)) = &item.value else {
+                errors.push(schema(
+                    &item.location,
+                    "`includes` must list file names".into(),
+                ));
+                continue;
+            };
+            let included = path.parent().unwrap_or(Path::new("")).join(name);
+            if chain.contains(&included) {
+                errors.push(schema(
+                    &item.location,
+                    format!("`includes` loops back to {}", included.display()),
+                ));
+                continue;
+            }
+            if !plait_assets::exists(&included) {
+                errors.push(Error::new(
+                    item.location.clone(),
+                    ErrorKind::Io(format!("{}: no such file", included.display())),
+                ));
+                continue;
+            }
+            match read_with_includes(&included, chain) {
+                Ok(fragment) => match &mut merged {
+                    Some(m) => merge(m, fragment),
+                    None => merged = Some(fragment),
+                },
+                Err(e) => errors.extend(e),
+            }
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    Ok(match merged {
+        Some(mut base) => {
+            merge(&mut base, tree);
+            base
+        }
+        None => tree,
+    })
+}
+
+/// Replace the `[techniques]` table of `root` (the pipeline after `extends`
+/// and `--set`) by the chosen techniques' data, and give every pass that
+/// `uses` a choice point that point's exports. Technique files read are added
+/// to `files`.
+pub(crate) fn apply_techniques(
+    root: &mut Spanned<Node>,
+    pipeline_path: &Path,
+    files: &mut Vec<PathBuf>,
+    errors: &mut Vec<Error>,
+) -> Vec<ChosenTechnique> {
+    let mut chosen_list = Vec::new();
+    let Node::Table(top) = &mut root.value else {
+        return chosen_list;
+    };
+    let chosen = top.shift_remove("techniques");
+    let mut exports: Vec<(String, Location, Option<Table>, Option<Table>)> = Vec::new();
+    let mut combined: Option<Spanned<Node>> = None;
+    // Which technique defined each resource and pass, to refuse two of them
+    // defining the same name.
+    let mut owners: Vec<(String, String, String)> = Vec::new();
+    if let Some(entry) = &chosen {
+        let Node::Table(points_table) = &entry.value.value else {
+            errors.push(schema(
+                &entry.value.location,
+                "[techniques] maps each choice point to a technique name, e.g. `self_shadow = \"occupancy\"`".into(),
+            ));
+            return chosen_list;
+        };
+        let Some(root_dir) = techniques_root(pipeline_path) else {
+            errors.push(schema(
+                &entry.key,
+                format!(
+                    "no `{TECHNIQUES_DIR}/` folder beside {} or above it, so no technique can be found",
+                    pipeline_path.display()
+                ),
+            ));
+            return chosen_list;
+        };
+        let known_points = points(&root_dir);
+        for (point, choice) in points_table {
+            if !known_points.contains(point) {
+                errors.push(schema(
+                    &choice.key,
+                    format!(
+                        "no choice point `{point}`{} (points: {})",
+                        did_you_mean(point, known_points.iter().map(String::as_str)),
+                        known_points.join(", ")
+                    ),
+                ));
+                continue;
+            }
+            let Node::Scalar(Value::Str(name)) = &choice.value.value else {
+                errors.push(schema(
+                    &choice.value.location,
+                    format!("techniques.{point} names a technique: a string"),
+                ));
+                continue;
+            };
+            let valid = choices(&root_dir, point);
+            if !valid.contains(name) {
+                let ranked = nearest_first(name, valid.iter().map(String::as_str));
+                errors.push(schema(
+                    &choice.value.location,
+                    format!(
+                        "no {point} technique `{name}`{} (choices: {})",
+                        did_you_mean(name, valid.iter().map(String::as_str)),
+                        ranked.join(" | ")
+                    ),
+                ));
+                continue;
+            }
+            let path = root_dir.join(point).join(format!("{name}.toml"));
+            let tree = match read_technique(&path) {
+                Ok(t) => t,
+                Err(mut e) => {
+                    errors.append(&mut e);
+                    continue;
+                }
+            };
+            files.push(path.clone());
+            chosen_list.push(ChosenTechnique {
+                point: point.clone(),
+                name: name.clone(),
+                path: path.clone(),
+            });
+            let Some(technique) = technique_table(&tree) else {
+                continue;
+            };
+            match technique.get("point").map(|e| &e.value) {
+                Some(Spanned {
+                    value: Node::Scalar(Value::Str(p)),
+                    ..
+                }) if p == point => {}
+                Some(other) => errors.push(schema(
+                    &other.location,
+                    format!("this technique fills the choice point `{point}` (it is in {TECHNIQUES_DIR}/{point}/); write `point = \"{point}\"`"),
+                )),
+                None => errors.push(schema(
+                    &tree.location,
+                    format!("[technique] needs `point = \"{point}\"`"),
+                )),
+            }
+            let (mut reads, mut params) = (None, None);
+            if let Some(e) = technique.get("exports") {
+                match &e.value.value {
+                    Node::Table(t) => {
+                        for (key, x) in t {
+                            let slot = match &x.value.value {
+                                Node::Table(inner) => Some(inner.clone()),
+                                _ => {
+                                    errors.push(schema(
+                                        &x.value.location,
+                                        format!("exports.{key} must be a table"),
+                                    ));
+                                    None
+                                }
+                            };
+                            match key.as_str() {
+                                "reads" => reads = slot,
+                                "params" => params = slot,
+                                _ => errors.push(schema(
+                                    &x.key,
+                                    format!(
+                                        "exports has `reads` and `params`; not `{key}`{}",
+                                        did_you_mean(key, EXPORT_KEYS.iter().copied())
+                                    ),
+                                )),
+                            }
+                        }
+                    }
+                    _ => errors.push(schema(&e.value.location, "exports must be a table".into())),
+                }
+            }
+            exports.push((point.clone(), choice.value.location.clone(), reads, params));
+            // Two techniques may not define the same resource or pass.
+            for section in ["resources", "passes"] {
+                if let Some(t) = table(&tree, section) {
+                    for (item, e) in t {
+                        if let Some((_, other, _)) =
+                            owners.iter().find(|(s, _, i)| s == section && i == item)
+                        {
+                            errors.push(schema(
+                                &e.key,
+                                format!(
+                                    "{section}.{item} is defined by technique `{other}` too: two techniques cannot define the same name"
+                                ),
+                            ));
+                        } else {
+                            owners.push((
+                                section.to_owned(),
+                                format!("{point}/{name}"),
+                                item.clone(),
+                            ));
+                        }
+                    }
+                }
+            }
+            let Node::Table(mut t) = tree.value else {
+                continue;
+            };
+            t.shift_remove("technique");
+            let data = Spanned::new(Node::Table(t), tree.location);
+            match &mut combined {
+                Some(c) => merge(c, data),
+                None => combined = Some(data),
+            }
+        }
+    }
+    if !errors.is_empty() {
+        return chosen_list;
+    }
+    // The pipeline's own keys win over the techniques'.
+    if let Some(mut base) = combined {
+        let pipeline = std::mem::replace(
+            root,
+            Spanned::new(Node::Table(Table::new()), base.location.clone()),
+        );
+        merge(&mut base, pipeline);
+        *root = base;
+    }
+    give_exports(root, &exports, chosen.is_some(), errors);
+    chosen_list
+}
+
+/// Merge each used point's exports into the passes that `uses` it.
+fn give_exports(
+    root: &mut Spanned<Node>,
+    exports: &[(String, Location, Option<Table>, Option<Table>)],
+    has_table: bool,
+    errors: &mut Vec<Error>,
+) {
+    let Node::Table(top) = &mut root.value else {
+        return;
+    };
+    let Some(Entry {
+        value: Spanned {
+            value: Node::Table(passes),
+            ..
+        },
+        ..
+    }) = top.get_mut("passes")
+    else {
+        return;
+    };
+    for (pass_name, pass) in passes.iter_mut() {
+        let Node::Table(fields) = &mut pass.value.value else {
+            continue;
+        };
+        let Some(uses) = fields.shift_remove("uses") else {
+            continue;
+        };
+        let Node::List(items) = &uses.value.value else {
+            errors.push(schema(
+                &uses.value.location,
+                format!(
+                    "passes.{pass_name}.uses lists choice points, e.g. `uses = [\"self_shadow\"]`"
+                ),
+            ));
+            continue;
+        };
+        for item in items {
+            let Node::Scalar(Value::Str(point)) = &item.value else {
+                errors.push(schema(
+                    &item.location,
+                    "`uses` lists choice point names".into(),
+                ));
+                continue;
+            };
+            let Some((_, _, reads, params)) = exports.iter().find(|(p, ..)| p == point) else {
+                let known: Vec<&str> = exports.iter().map(|(p, ..)| p.as_str()).collect();
+                errors.push(schema(
+                    &item.location,
+                    if has_table {
+                        format!(
+                            "pass `{pass_name}` uses `{point}`, which [techniques] does not choose{} (chosen: {})",
+                            did_you_mean(point, known.iter().copied()),
+                            known.join(", ")
+                        )
+                    } else {
+                        format!("pass `{pass_name}` uses `{point}`, but the pipeline has no [techniques] table choosing one")
+                    },
+                ));
+                continue;
+            };
+            for (section, export) in [("reads", reads), ("params", params)] {
+                let Some(export) = export else { continue };
+                let exported = Spanned::new(Node::Table(export.clone()), item.location.clone());
+                match fields.get_mut(section) {
+                    Some(own) => {
+                        // The pass's own entries win: merge them over the exports.
+                        let mine = std::mem::replace(&mut own.value, exported);
+                        merge(&mut own.value, mine);
+                    }
+                    None => {
+                        fields.insert(
+                            section.to_owned(),
+                            Entry {
+                                key: item.location.clone(),
+                                value: exported,
+                            },
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

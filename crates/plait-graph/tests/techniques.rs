@@ -1,0 +1,288 @@
+//! `[techniques]`: one key swaps a technique; every bad choice, file or
+//! contract is an error with file:line:column (or the flag) that lists the
+//! valid names.
+
+use std::path::{Path, PathBuf};
+
+use plait_graph::{Error, Location, load};
+
+/// A pipeline file plus technique files in a fresh folder.
+struct Tree {
+    dir: tempfile::TempDir,
+}
+
+impl Tree {
+    fn new(files: &[(&str, &str)]) -> Tree {
+        let dir = tempfile::tempdir().expect("tempdir");
+        for (path, text) in files {
+            let p = dir.path().join(path);
+            std::fs::create_dir_all(p.parent().expect("parent")).expect("mkdir");
+            std::fs::write(p, text).expect("write");
+        }
+        Tree { dir }
+    }
+
+    fn path(&self, p: &str) -> PathBuf {
+        self.dir.path().join(p)
+    }
+}
+
+const PIPELINE: &str = r#"[pipeline]
+name = "p"
+outputs = ["out"]
+
+[techniques]
+shading = "flat"
+
+[resources.out]
+kind = "texture"
+format = "rgba8unorm"
+size = [4, 4]
+
+[passes.draw]
+type = "fullscreen"
+shader = "s.wgsl"
+uses = ["shading"]
+writes = { out = "out" }
+"#;
+
+const FLAT: &str = r#"[technique]
+point = "shading"
+description = "flat colour"
+
+[technique.exports]
+params = { look = "flat", strength = "${flat_strength}" }
+reads = { lut = "flat_lut" }
+
+[params]
+flat_strength = 0.5
+
+[resources.flat_lut]
+kind = "texture"
+format = "rgba8unorm"
+size = [2, 2]
+
+[passes.make_lut]
+type = "fullscreen"
+shader = "lut.wgsl"
+writes = { lut = "flat_lut" }
+"#;
+
+const TOON: &str = r#"[technique]
+point = "shading"
+description = "bands"
+
+[technique.exports]
+params = { look = "toon" }
+"#;
+
+fn tree() -> Tree {
+    Tree::new(&[
+        ("pipelines/p.toml", PIPELINE),
+        ("techniques/shading/flat.toml", FLAT),
+        ("techniques/shading/toon.toml", TOON),
+    ])
+}
+
+fn errors_of(path: &Path, sets: &[&str]) -> Vec<Error> {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    match load(path, &sets) {
+        Ok(_) => panic!("expected an error loading {}", path.display()),
+        Err(e) => e.0,
+    }
+}
+
+fn at(e: &Error) -> (String, u32, u32) {
+    match &e.location {
+        Location::File { path, line, column } => (
+            path.file_name().unwrap().to_string_lossy().into_owned(),
+            *line,
+            *column,
+        ),
+        other => (format!("{other}"), 0, 0),
+    }
+}
+
+#[test]
+fn a_choice_brings_its_data_and_exports_to_the_passes_that_use_it() {
+    let t = tree();
+    let p = load(&t.path("pipelines/p.toml"), &[]).expect("loads");
+    assert!(p.resources.contains_key("flat_lut"));
+    assert!(p.passes.contains_key("make_lut"));
+    let draw = &p.passes["draw"];
+    assert_eq!(
+        draw.reads.get("lut").map(|r| r.value.as_str()),
+        Some("flat_lut")
+    );
+    assert_eq!(draw.params["look"].value.to_string(), "\"flat\"");
+    // Technique params are substituted like the pipeline's own.
+    assert_eq!(draw.params["strength"].value.to_string(), "0.5");
+    assert_eq!(p.techniques.len(), 1);
+    assert_eq!(p.techniques[0].label(), "shading/flat");
+    assert!(
+        p.files
+            .iter()
+            .any(|f| f.ends_with("techniques/shading/flat.toml"))
+    );
+}
+
+#[test]
+fn one_key_swaps_the_technique() {
+    let t = tree();
+    let p = load(
+        &t.path("pipelines/p.toml"),
+        &["techniques.shading=toon".into()],
+    )
+    .expect("loads");
+    assert!(!p.resources.contains_key("flat_lut"), "flat's data is gone");
+    assert_eq!(
+        p.passes["draw"].params["look"].value.to_string(),
+        "\"toon\""
+    );
+    assert!(!p.passes["draw"].reads.contains_key("lut"));
+}
+
+#[test]
+fn the_pipeline_and_set_tune_a_techniques_params() {
+    let t = tree();
+    let p = load(
+        &t.path("pipelines/p.toml"),
+        &["params.flat_strength=0.9".into()],
+    )
+    .expect("a technique's param can be set");
+    assert_eq!(p.passes["draw"].params["strength"].value.to_string(), "0.9");
+}
+
+#[test]
+fn an_unknown_choice_lists_the_choices() {
+    let t = tree();
+    let e = errors_of(&t.path("pipelines/p.toml"), &["techniques.shading=ton"]);
+    let text = e[0].to_string();
+    assert!(matches!(&e[0].location, Location::Flag { flag } if flag == "techniques.shading=ton"));
+    assert!(text.contains("did you mean `toon`"), "{text}");
+    assert!(text.contains("toon | flat"), "{text}");
+
+    let bad = PIPELINE.replace("shading = \"flat\"", "shading = \"flta\"");
+    let t = Tree::new(&[
+        ("pipelines/p.toml", &bad),
+        ("techniques/shading/flat.toml", FLAT),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    assert_eq!(at(&e[0]), ("p.toml".into(), 6, 11), "{}", e[0]);
+    assert!(e[0].to_string().contains("did you mean `flat`"));
+}
+
+#[test]
+fn an_unknown_choice_point_lists_the_points() {
+    let bad = PIPELINE.replace("shading = \"flat\"", "shadnig = \"flat\"");
+    let t = Tree::new(&[
+        ("pipelines/p.toml", &bad),
+        ("techniques/shading/flat.toml", FLAT),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    assert_eq!(at(&e[0]), ("p.toml".into(), 6, 1), "{}", e[0]);
+    assert!(
+        e[0].to_string().contains("did you mean `shading`"),
+        "{}",
+        e[0]
+    );
+}
+
+#[test]
+fn using_a_point_nobody_chose_is_an_error() {
+    let bad = PIPELINE.replace("uses = [\"shading\"]", "uses = [\"shadow\"]");
+    let t = Tree::new(&[
+        ("pipelines/p.toml", &bad),
+        ("techniques/shading/flat.toml", FLAT),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    assert_eq!(at(&e[0]), ("p.toml".into(), 16, 9), "{}", e[0]);
+    assert!(e[0].to_string().contains("chosen: shading"), "{}", e[0]);
+}
+
+#[test]
+fn two_techniques_defining_one_name_is_an_error() {
+    let pipeline = PIPELINE.replace(
+        "shading = \"flat\"",
+        "shading = \"flat\"\nlighting = \"sky\"",
+    );
+    let sky = r#"[technique]
+point = "lighting"
+description = "sky"
+
+[resources.flat_lut]
+kind = "texture"
+format = "rgba8unorm"
+size = [2, 2]
+"#;
+    let t = Tree::new(&[
+        ("pipelines/p.toml", &pipeline),
+        ("techniques/shading/flat.toml", FLAT),
+        ("techniques/lighting/sky.toml", sky),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    let text = e
+        .iter()
+        .map(|e| e.to_string())
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(
+        text.contains("resources.flat_lut is defined by technique `shading/flat` too"),
+        "{text}"
+    );
+    assert!(
+        e.iter().any(|e| at(e) == ("sky.toml".into(), 5, 12)),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_technique_in_the_wrong_folder_or_with_unknown_keys_is_an_error() {
+    let wrong_point = FLAT.replace("point = \"shading\"", "point = \"lighting\"");
+    let t = Tree::new(&[
+        ("pipelines/p.toml", PIPELINE),
+        ("techniques/shading/flat.toml", &wrong_point),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    assert_eq!(at(&e[0]), ("flat.toml".into(), 2, 9), "{}", e[0]);
+
+    let typo = FLAT.replace("description =", "descripton =");
+    let t = Tree::new(&[
+        ("pipelines/p.toml", PIPELINE),
+        ("techniques/shading/flat.toml", &typo),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    assert_eq!(at(&e[0]), ("flat.toml".into(), 3, 1), "{}", e[0]);
+    assert!(
+        e[0].to_string().contains("did you mean `description`"),
+        "{}",
+        e[0]
+    );
+}
+
+#[test]
+fn includes_share_a_fragment_and_a_missing_one_names_itself() {
+    let with_include = FLAT.replace(
+        "description = \"flat colour\"",
+        "description = \"flat colour\"\nincludes = [\"common.toml\"]",
+    );
+    let common = "[resources.shared]\nkind = \"buffer\"\nsize = 16\n";
+    let t = Tree::new(&[
+        ("pipelines/p.toml", PIPELINE),
+        ("techniques/shading/flat.toml", &with_include),
+        ("techniques/shading/common.toml", common),
+    ]);
+    let p = load(&t.path("pipelines/p.toml"), &[]).expect("loads");
+    assert!(p.resources.contains_key("shared"));
+    // A fragment is not a choice.
+    let choices = plait_graph::techniques::choices(&t.path("techniques"), "shading");
+    assert_eq!(choices, vec!["flat".to_string()]);
+
+    let t = Tree::new(&[
+        ("pipelines/p.toml", PIPELINE),
+        ("techniques/shading/flat.toml", &with_include),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    assert_eq!(at(&e[0]), ("flat.toml".into(), 4, 13), "{}", e[0]);
+    assert!(e[0].to_string().contains("common.toml"), "{}", e[0]);
+}

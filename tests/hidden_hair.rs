@@ -1,0 +1,229 @@
+//! GPU tier: hair hidden behind opaque geometry never counts.
+//!
+//! A fragment shader with storage writes performs them even when the depth
+//! test that runs after it rejects the fragment; the engine forces the test to
+//! run first (`plait_gpu::depth_guard`). These tests check the guarantee for
+//! every map every pipeline builds, from the light and from the camera, and on
+//! both of the engine's paths (early depth test, and the in-shader test used
+//! where the adapter lacks `SHADER_EARLY_DEPTH_TEST`).
+
+use std::path::Path;
+
+use glam::Vec3;
+use plait::session::{SceneData, compile_checked, gpu_options, prepare};
+use plait_gpu::Gpu;
+use plait_graph::{Access, ResourceDesc};
+use plait_tests::{open_gpu, pipeline_files, rel, repo_root};
+
+const SIZE: (u32, u32) = (96, 72);
+
+/// The small test scene's groom, fewer strands so every pipeline runs in seconds.
+fn small_scene() -> SceneData {
+    let path = repo_root().join("examples/scenes/small.toml");
+    let mut data = SceneData::load(Some(&path)).expect("examples/scenes/small.toml loads");
+    let all = data.strands.clone();
+    let mut few = plait_hair::Strands::new();
+    for s in (0..all.strand_count()).step_by(4) {
+        let range = all.offsets[s] as usize..all.offsets[s + 1] as usize;
+        few.push_strand(
+            &all.points[range.clone()],
+            |_| 0.01,
+            |_| 0.8,
+            all.color[range.start],
+        );
+    }
+    data.strands = few;
+    data
+}
+
+/// Short strands well inside the head (an ellipsoid of radii ≥ 0.9 at the
+/// origin): every fragment of them is behind the head's surface, from the
+/// light and from the camera.
+fn add_hidden_strands(strands: &mut plait_hair::Strands, count: usize) {
+    for i in 0..count {
+        let a = i as f32 * 2.399_963; // golden angle: spread without randomness
+        let r = 0.15 + 0.3 * ((i * 7 % count) as f32 / count as f32);
+        let start = Vec3::new(
+            r * a.cos(),
+            0.4 * (i as f32 / count as f32) - 0.2,
+            r * a.sin(),
+        );
+        let points: Vec<Vec3> = (0..8)
+            .map(|k| start + Vec3::new(0.03 * k as f32, -0.04 * k as f32, 0.02 * k as f32))
+            .collect();
+        strands.push_strand(&points, |_| 0.01, |_| 0.8, Vec3::new(0.9, 0.2, 0.1));
+    }
+}
+
+/// Every resource a hair-drawing raster pass writes (the light and camera maps
+/// of every technique), as `--set pipeline.outputs=[…]` so none of them
+/// shares memory with a later resource and each can be read after the frame.
+fn hair_maps(gpu: &Gpu, pipeline: &Path) -> (Vec<(String, bool)>, String) {
+    let schedule = compile_checked(pipeline, &[], &gpu_options(gpu, SIZE))
+        .unwrap_or_else(|e| panic!("{}: {e}", rel(pipeline)));
+    let mut maps: Vec<(String, bool)> = Vec::new();
+    for pass in schedule
+        .passes
+        .iter()
+        .filter(|p| p.draw.as_deref() == Some("hair"))
+    {
+        for w in &pass.writes {
+            if !matches!(w.access, Access::StorageWrite | Access::ColorTarget) {
+                continue;
+            }
+            let desc = &schedule.resources[w.resource].desc;
+            let readable = match desc {
+                ResourceDesc::Buffer { .. } => true,
+                ResourceDesc::Texture { samples, .. } => *samples == 1,
+            };
+            // Fragment lists hold node indices in the order the GPU's threads
+            // allocated them, which adding geometry may change; their fragment
+            // count (`list_counter`) and the resolved image are compared instead.
+            let pointers = matches!(w.slot.as_str(), "list_heads" | "list_nodes");
+            if readable && !pointers && !maps.iter().any(|(n, _)| n == &w.resource_name) {
+                maps.push((
+                    w.resource_name.clone(),
+                    matches!(desc, ResourceDesc::Buffer { .. }),
+                ));
+            }
+        }
+    }
+    let mut outputs: Vec<String> = schedule
+        .outputs
+        .iter()
+        .map(|&id| schedule.resources[id].name.clone())
+        .collect();
+    // The final image is compared too.
+    for name in &outputs {
+        if !maps.iter().any(|(n, _)| n == name) {
+            maps.push((name.clone(), false));
+        }
+    }
+    outputs.extend(maps.iter().map(|(n, _)| n.clone()));
+    outputs.dedup();
+    let set = format!(
+        "pipeline.outputs=[{}]",
+        outputs
+            .iter()
+            .map(|n| format!("{n:?}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    (maps, set)
+}
+
+/// Each map's contents after one frame, in an order-independent form: the
+/// sorted 32-bit words (fragment lists fill in whatever order the GPU runs
+/// fragments; counts, bits and depths must still agree exactly).
+fn render_maps(gpu: &Gpu, pipeline: &Path, scene: &SceneData) -> Vec<(String, Vec<u32>)> {
+    let (maps, set) = hair_maps(gpu, pipeline);
+    let prepared = prepare(gpu, pipeline, &[set], scene, SIZE)
+        .unwrap_or_else(|e| panic!("preparing {}: {e}", rel(pipeline)));
+    prepared
+        .renderer
+        .render()
+        .unwrap_or_else(|e| panic!("rendering {}: {e}", rel(pipeline)));
+    maps.into_iter()
+        .map(|(name, is_buffer)| {
+            let bytes = if is_buffer {
+                prepared.renderer.read_buffer(&name)
+            } else {
+                prepared.renderer.read_resource(&name).map(|t| t.bytes)
+            }
+            .unwrap_or_else(|e| panic!("{}: reading {name}: {e}", rel(pipeline)));
+            let mut words: Vec<u32> = bytes
+                .chunks_exact(4)
+                .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                .collect();
+            words.sort_unstable();
+            (name, words)
+        })
+        .collect()
+}
+
+fn assert_same_maps(gpu: &Gpu, visible: &SceneData, with_hidden: &SceneData, path_name: &str) {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for pipeline in pipeline_files() {
+        let a = render_maps(gpu, &pipeline, visible);
+        let b = render_maps(gpu, &pipeline, with_hidden);
+        for ((name, wa), (_, wb)) in a.iter().zip(&b) {
+            checked += 1;
+            if wa != wb {
+                let differing = wa.iter().zip(wb).filter(|(x, y)| x != y).count();
+                failures.push(format!(
+                    "{}: `{name}` differs once hidden hair is added ({differing} of {} words)",
+                    rel(&pipeline),
+                    wa.len()
+                ));
+            }
+        }
+    }
+    assert!(checked > 20, "only {checked} maps were compared");
+    assert!(
+        failures.is_empty(),
+        "hidden hair changed maps ({path_name}):\n{}",
+        failures.join("\n")
+    );
+}
+
+/// Half the hair hidden inside the head gives exactly the maps of the scene
+/// with that half removed — for every resource every hair pass of every
+/// pipeline writes.
+#[test]
+fn hidden_hair_leaves_every_map_as_if_it_were_absent() {
+    let (_lock, gpu) = open_gpu();
+    assert!(
+        gpu.capabilities.early_depth_test,
+        "lavapipe has SHADER_EARLY_DEPTH_TEST; this test checks the early-test path"
+    );
+    let visible = small_scene();
+    let mut hidden = small_scene();
+    add_hidden_strands(&mut hidden.strands, visible.strands.strand_count());
+    // The light frustum is fitted to the hair's bounds: the hidden strands lie
+    // inside the visible groom's box, so both scenes frame the same maps.
+    assert_eq!(visible.strands.bounds(), hidden.strands.bounds());
+    assert_same_maps(&gpu, &visible, &hidden, "early depth test");
+}
+
+/// Hair that lies entirely behind the head leaves every storage map at zero.
+#[test]
+fn hair_entirely_behind_the_head_writes_no_map() {
+    let (_lock, gpu) = open_gpu();
+    let mut scene = small_scene();
+    scene.strands = plait_hair::Strands::new();
+    add_hidden_strands(&mut scene.strands, 200);
+    let mut failures = Vec::new();
+    for pipeline in pipeline_files() {
+        let (maps, _) = hair_maps(&gpu, &pipeline);
+        for (name, words) in render_maps(&gpu, &pipeline, &scene) {
+            let is_buffer = maps.iter().any(|(n, b)| n == &name && *b);
+            if is_buffer && words.iter().any(|&w| w != 0) {
+                failures.push(format!(
+                    "{}: `{name}` has {} non-zero words",
+                    rel(&pipeline),
+                    words.iter().filter(|&&w| w != 0).count()
+                ));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "hidden hair was counted:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// The same guarantee where the adapter has no early depth test: the engine
+/// tests depth in the shader instead (`PLAIT_DISABLE_FEATURES` pretends the
+/// feature is missing).
+#[test]
+fn in_shader_depth_test_gives_the_same_guarantee() {
+    let (_lock, _) = open_gpu();
+    let gpu = Gpu::new_without_features(&["SHADER_EARLY_DEPTH_TEST"]).expect("GPU");
+    assert!(!gpu.capabilities.early_depth_test);
+    let visible = small_scene();
+    let mut hidden = small_scene();
+    add_hidden_strands(&mut hidden.strands, visible.strands.strand_count());
+    assert_same_maps(&gpu, &visible, &hidden, "in-shader depth test");
+}
