@@ -57,7 +57,10 @@ pub enum Command {
     OpenPipeline(PathBuf),
     /// Set a `[params]` value (`name`, value as TOML text); recompiles.
     SetParam(String, String),
-    /// Drop every live param edit.
+    /// Choose the technique of a choice point (`point`, technique name);
+    /// recompiles. Param edits are dropped: the new technique may not have them.
+    SetTechnique(String, String),
+    /// Drop every live edit (params and techniques).
     ResetParams,
     /// Look from here (`None`: the scene's own camera).
     Camera(Option<Camera>),
@@ -88,6 +91,7 @@ struct Engine<'g> {
     /// The scene file and the files it names, absolute (as the watcher reports them).
     scene_files: Vec<PathBuf>,
     pipeline: PathBuf,
+    /// Live edits as (`--set` key, TOML value): `params.slices`, `techniques.self_shadow`.
     edits: Vec<(String, String)>,
     camera: Option<Camera>,
     light: Option<Vec3>,
@@ -130,7 +134,7 @@ impl<'g> Engine<'g> {
 
     fn sets(&self) -> Vec<String> {
         let mut sets = self.opts.sets.clone();
-        sets.extend(self.edits.iter().map(|(k, v)| format!("params.{k}={v}")));
+        sets.extend(self.edits.iter().map(|(k, v)| format!("{k}={v}")));
         sets
     }
 
@@ -389,8 +393,16 @@ impl<'g> Engine<'g> {
                 self.rebuild();
             }
             Command::SetParam(name, value) => {
-                self.edits.retain(|(k, _)| *k != name);
-                self.edits.push((name, value));
+                let key = format!("params.{name}");
+                self.edits.retain(|(k, _)| *k != key);
+                self.edits.push((key, value));
+                self.rebuild();
+            }
+            Command::SetTechnique(point, name) => {
+                let key = format!("techniques.{point}");
+                self.edits
+                    .retain(|(k, _)| k.starts_with("techniques.") && *k != key);
+                self.edits.push((key, format!("{name:?}")));
                 self.rebuild();
             }
             Command::ResetParams => {

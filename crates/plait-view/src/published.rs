@@ -41,6 +41,8 @@ pub struct Shared {
     pub params: Vec<(String, Value)>,
     /// Live edits, as the `--set` flags they become.
     pub edits: Vec<String>,
+    /// Each choice point of the pipeline: its chosen technique and the choices.
+    pub techniques: Vec<TechniqueChoice>,
     pub resources: Vec<ResourceRow>,
     pub output_name: String,
     pub passes: Vec<PassRow>,
@@ -72,7 +74,30 @@ pub struct Shared {
     pub fatal: Option<String>,
 }
 
+/// A choice point and what can fill it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TechniqueChoice {
+    pub point: String,
+    pub chosen: String,
+    pub choices: Vec<String>,
+}
+
 pub(crate) fn describe_schedule(s: &mut Shared, schedule: &Schedule) {
+    s.techniques = schedule
+        .techniques
+        .iter()
+        .map(|t| {
+            // The technique file is `<techniques root>/<point>/<name>.toml`.
+            let root = t.path.parent().and_then(|p| p.parent());
+            TechniqueChoice {
+                point: t.point.clone(),
+                chosen: t.name.clone(),
+                choices: root
+                    .map(|r| plait_graph::techniques::choices(r, &t.point))
+                    .unwrap_or_else(|| vec![t.name.clone()]),
+            }
+        })
+        .collect();
     s.params = schedule
         .params
         .iter()

@@ -149,7 +149,29 @@ fn controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
                 }
             }
         });
-    ui.small("The gallery (pipelines/*.toml on the search path). Technique drop-downs wait for a [techniques] table.");
+    ui.small("The gallery (pipelines/*.toml on the search path).");
+
+    if !s.techniques.is_empty() {
+        ui.separator();
+        ui.heading("Techniques");
+        egui::Grid::new("techniques").num_columns(2).show(ui, |ui| {
+            for t in &s.techniques {
+                ui.label(&t.point);
+                egui::ComboBox::from_id_salt(("technique", &t.point))
+                    .selected_text(&t.chosen)
+                    .show_ui(ui, |ui| {
+                        for choice in &t.choices {
+                            if ui.selectable_label(*choice == t.chosen, choice).clicked()
+                                && *choice != t.chosen
+                            {
+                                send(Command::SetTechnique(t.point.clone(), choice.clone()));
+                            }
+                        }
+                    });
+                ui.end_row();
+            }
+        });
+    }
 
     ui.separator();
     ui.heading("Params");
@@ -185,7 +207,7 @@ fn controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
     });
     if !s.edits.is_empty() {
         ui.small(format!("live: {}", s.edits.join(" ")));
-        if ui.button("reset params").clicked() {
+        if ui.button("reset edits").clicked() {
             send(Command::ResetParams);
         }
     }

@@ -153,6 +153,39 @@ fn params_recompile_live_errors_keep_the_last_frame_and_buffers_are_inspected() 
         param(&e.shared.lock().expect("state"), "slices"),
         Some(Value::Int(128))
     );
+
+    // A technique chosen from its drop-down: the graph is rebuilt with it.
+    {
+        let s = e.shared.lock().expect("state");
+        let point = s
+            .techniques
+            .iter()
+            .find(|t| t.point == "self_shadow")
+            .expect("the self_shadow choice point");
+        assert_eq!(point.chosen, "occupancy");
+        assert!(
+            point.choices.iter().any(|c| c == "deep_opacity"),
+            "{:?}",
+            point.choices
+        );
+    }
+    e.send(Command::SetTechnique(
+        "self_shadow".into(),
+        "deep_opacity".into(),
+    ));
+    e.until("the technique swap", |s| s.reloads == 3 && s.frames >= 1);
+    let s = e.shared.lock().expect("state");
+    let point = s
+        .techniques
+        .iter()
+        .find(|t| t.point == "self_shadow")
+        .expect("the self_shadow choice point");
+    assert_eq!(point.chosen, "deep_opacity");
+    assert_eq!(
+        s.edits,
+        vec!["techniques.self_shadow=\"deep_opacity\"".to_owned()]
+    );
+    assert!(s.error.is_none(), "{:?}", s.error);
 }
 
 #[test]
