@@ -357,20 +357,33 @@ fn pipeline_provenance(path: &Path, s: &Schedule) -> Result<PipelineProvenance> 
     })
 }
 
+/// A library file as the run uses it: the copy on the search path when there
+/// is one (`PLAIT_PATH`, the checkout), else the built-in text.
+fn as_used(name: &'static str, text: &'static str) -> (String, String) {
+    match plait_gpu::shader::library_source(name, text) {
+        Ok((path, used)) => (path.display().to_string(), used.into_owned()),
+        Err(_) => (name.to_owned(), text.to_owned()),
+    }
+}
+
 fn builtin_shaders() -> Vec<FileHash> {
     let mut out: Vec<FileHash> = plait_gpu::shader::LIBRARY_MODULES
         .iter()
-        .map(|(name, text)| hash_text(name, text))
+        .map(|(name, text)| {
+            let (path, used) = as_used(name, text);
+            hash_text(&path, &used)
+        })
         .collect();
     // Several pass types share one WGSL file (hair_shade.wgsl serves six):
     // list each file once, with the pass types that use it.
     let library = plait_passes::library();
-    let mut files: Vec<(&str, &str, Vec<&str>)> = Vec::new();
+    let mut files: Vec<(String, String, Vec<&str>)> = Vec::new();
     for (type_name, t) in &library.types {
         if let Some((name, text)) = t.shader() {
-            match files.iter_mut().find(|(n, x, _)| *n == name && *x == text) {
+            let (path, used) = as_used(name, text);
+            match files.iter_mut().find(|(n, x, _)| *n == path && *x == used) {
                 Some((_, _, types)) => types.push(type_name),
-                None => files.push((name, text, vec![type_name])),
+                None => files.push((path, used, vec![type_name])),
             }
         }
     }
@@ -378,7 +391,7 @@ fn builtin_shaders() -> Vec<FileHash> {
         let what = if types.len() == 1 { "type" } else { "types" };
         out.push(hash_text(
             &format!("{name} (pass {what} {})", types.join(", ")),
-            text,
+            &text,
         ));
     }
     out
