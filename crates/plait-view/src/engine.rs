@@ -486,7 +486,8 @@ fn inspect_resource(
     let id = schedule.resource(name).ok_or_else(|| {
         let names: Vec<&str> = schedule.resources.iter().map(|r| r.name.as_str()).collect();
         format!(
-            "error: --inspect: no resource `{name}` in this pipeline (it has {})",
+            "error: --inspect: no resource `{name}` in this pipeline{} (it has {})",
+            plait_graph::suggest::did_you_mean(name, names.iter().copied()),
             names.join(", ")
         )
     })?;

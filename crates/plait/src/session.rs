@@ -53,9 +53,9 @@ pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
 }
 
 /// The files on disk a render of `pipeline` reads, for watching them: the
-/// pipeline and every file it extends, the shaders of its passes (files it
-/// names and the pass types' own), the shader library, the scene and the
-/// files the scene names. Best effort: a pipeline that does not load still
+/// pipeline and every file it extends, the technique files, the shaders of
+/// its passes (files it names and the pass types' own), the shader library,
+/// the scene and the files the scene names. Best effort: a pipeline that does not load still
 /// yields itself and the files its errors point at. Built-in copies are left
 /// out (they cannot change).
 pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> Vec<PathBuf> {
@@ -78,6 +78,20 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
             plait_graph::Location::File { path, .. } => Some(path.clone()),
             _ => None,
         })),
+    }
+    // Technique files and the fragments they include: the whole folder.
+    if let Some(root) = plait_graph::techniques::techniques_root(pipeline) {
+        let mut folders = vec![root];
+        while let Some(folder) = folders.pop() {
+            for entry in std::fs::read_dir(&folder).into_iter().flatten().flatten() {
+                let path = entry.path();
+                if path.is_dir() {
+                    folders.push(path);
+                } else if path.extension().is_some_and(|e| e == "toml") {
+                    files.push(path);
+                }
+            }
+        }
     }
     for (name, _) in plait_gpu::shader::LIBRARY_MODULES {
         files.extend(plait_assets::find_on_disk(name));
