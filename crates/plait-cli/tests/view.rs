@@ -374,3 +374,80 @@ fn bad_screenshot_paths_fail_before_a_window_opens() {
         );
     }
 }
+
+/// Copy a folder tree.
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).expect("mkdir");
+    for entry in std::fs::read_dir(from).expect("read_dir").flatten() {
+        let (src, dst) = (entry.path(), to.join(entry.file_name()));
+        if src.is_dir() {
+            copy_tree(&src, &dst);
+        } else {
+            std::fs::copy(&src, &dst).expect("copy");
+        }
+    }
+}
+
+#[test]
+fn an_edited_library_module_reaches_the_gpu_without_a_restart() {
+    // The shader library on PLAIT_PATH, so the test edits a copy.
+    let library = tempfile::tempdir().expect("temp dir");
+    copy_tree(&root().join("shaders"), &library.path().join("shaders"));
+    let frame_wgsl = library.path().join("shaders/lib/frame.wgsl");
+    let original = std::fs::read_to_string(&frame_wgsl).expect("frame.wgsl");
+    let plait_path = library.path().to_str().expect("utf-8").to_owned();
+    let pipeline = root().join("pipelines/forward.toml");
+    let scene = root().join("examples/scenes/small.toml");
+    let shot = library.path().join("shot.png");
+    let args = [
+        "--scene",
+        scene.to_str().expect("utf-8"),
+        "--size",
+        "96x72",
+        "--set",
+        "params.light_size=256",
+    ];
+    let (_server, display) = xvfb();
+    let mut child = Killed(
+        Command::new(env!("CARGO_BIN_EXE_plait"))
+            .arg("view")
+            .arg(&pipeline)
+            .args(args)
+            .arg("--screenshot")
+            .arg(&shot)
+            .args(["--after-frames", "1", "--after-reloads", "1"])
+            .env("DISPLAY", &display)
+            .env("PLAIT_PATH", &plait_path)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("start plait view"),
+    );
+    let stderr = lines(child.0.stderr.take().expect("piped stderr"));
+    let mut log = Vec::new();
+    wait_for(
+        &stderr,
+        "plait view: built",
+        Duration::from_secs(120),
+        &mut log,
+    );
+    // Every shader imports frame.wgsl; a red background shows the edit arrived.
+    let red = original.replace(
+        "    return frame.background.rgb;\n}",
+        "    return vec3<f32>(1.0, 0.0, 0.0);\n}",
+    );
+    assert_ne!(red, original, "frame.wgsl changed: update this test's edit");
+    save(&frame_wgsl, &red);
+    wait_for(
+        &stderr,
+        "plait view: wrote",
+        Duration::from_secs(120),
+        &mut log,
+    );
+    let image = image::open(&shot).expect("screenshot").to_rgb8();
+    assert_eq!(
+        image.get_pixel(0, 0).0,
+        [255, 0, 0],
+        "the background should be the edited module's red"
+    );
+}

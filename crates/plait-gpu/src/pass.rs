@@ -858,7 +858,10 @@ fn build_shader_pass_inner<T: PassType + ?Sized>(
             })
         })
     };
-    let shader_key: [&dyn std::fmt::Debug; 5] = [&path, &source, &defines, &layout_entries, &guard];
+    // The library modules' digest too: they may be edited while plait runs.
+    let library = ctx.shaders.library_digest();
+    let shader_key: [&dyn std::fmt::Debug; 6] =
+        [&path, &source, &library, &defines, &layout_entries, &guard];
     let clears: Vec<_> = pass
         .writes
         .iter()

@@ -134,6 +134,9 @@ pub enum Define {
 /// The composer with plait's library modules loaded.
 pub struct ShaderLibrary {
     composer: Composer,
+    /// Digest of the library modules' texts as read: part of every pipeline
+    /// cache key, since an edited module changes every shader importing it.
+    digest: u64,
 }
 
 impl ShaderLibrary {
@@ -142,8 +145,10 @@ impl ShaderLibrary {
         composer.validate = true;
         // Library modules import each other; naga_oil needs them added in dependency
         // order, and LIBRARY_MODULES is kept in that order.
+        let mut digest = std::hash::DefaultHasher::new();
         for (name, builtin) in LIBRARY_MODULES {
             let (path, source) = library_source(name, builtin)?;
+            std::hash::Hash::hash(&*source, &mut digest);
             let file_path = path.display().to_string();
             let added = composer.add_composable_module(ComposableModuleDescriptor {
                 source: &source,
@@ -160,7 +165,15 @@ impl ShaderLibrary {
                 });
             }
         }
-        Ok(ShaderLibrary { composer })
+        Ok(ShaderLibrary {
+            composer,
+            digest: std::hash::Hasher::finish(&digest),
+        })
+    }
+
+    /// Digest of the library modules as read (see the field).
+    pub fn library_digest(&self) -> u64 {
+        self.digest
     }
 
     /// Compose and validate a shader. `path` is only used in messages.
