@@ -74,13 +74,14 @@ fn occupancy_follows_visibility_better_than_deep_opacity_maps() {
 fn every_self_shadowing_technique_keeps_its_measured_error() {
     let (_lock, gpu) = open_gpu();
     // (pipeline, measured mean |ΔV| on small, allowed band)
-    let expected: [(&str, f64, (f64, f64)); 7] = [
+    let expected: [(&str, f64, (f64, f64)); 8] = [
         ("occupancy", MEASURED_OCCUPANCY, (0.0, 0.0004)),
         ("occupancy_no_slab", MEASURED_NO_SLAB, (0.0002, 0.0015)),
         ("deep_opacity", MEASURED_DOM, (0.002, 0.01)),
         ("opacity_shadow_maps", MEASURED_OSM, (0.0001, 0.001)),
         ("density_clustering", MEASURED_DC, (0.00005, 0.001)),
         ("modified_shadow_map", MEASURED_MSM, (0.1, 0.25)),
+        ("tressfx_shadow", MEASURED_TRESSFX, (0.06, 0.11)),
         ("no_self_shadow", MEASURED_NONE, (0.08, 0.18)),
     ];
     let names: Vec<&str> = expected.iter().map(|e| e.0).collect();
@@ -105,6 +106,7 @@ const MEASURED_DOM: f64 = 0.0048;
 const MEASURED_OSM: f64 = 0.0003;
 const MEASURED_DC: f64 = 0.0002;
 const MEASURED_MSM: f64 = 0.171;
+const MEASURED_TRESSFX: f64 = 0.0847;
 const MEASURED_NONE: f64 = 0.127;
 
 struct ImageError {

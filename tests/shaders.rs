@@ -80,6 +80,7 @@ fn scheduled_pass(
         params,
         shader: None,
         shader_location: None,
+        raster: Default::default(),
         location: Location::Builtin,
         technique: None,
     }

@@ -16,6 +16,8 @@
 #import plait::visibility::density_clustering::hair_visibility
 #else ifdef VISIBILITY_EXACT
 #import plait::visibility::exact::hair_visibility
+#else ifdef VISIBILITY_TRESSFX
+#import plait::visibility::tressfx::hair_visibility
 #else
 #import plait::visibility::none::hair_visibility
 #endif

@@ -1,9 +1,11 @@
-//! `plait hair info` and `plait hair generate`.
+//! `plait hair info`, `plait hair convert` and `plait hair generate`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
-use plait_hair::{GroomSpec, HairFile, Style, generate};
+use plait_hair::{Asset, Format, GroomSpec, HairFile, Strands, Style, TfxFile, generate};
+
+use crate::output::PendingFile;
 
 /// `plait hair ...`
 #[derive(clap::Args, Debug)]
@@ -16,13 +18,25 @@ pub struct HairArgs {
 /// The `hair` subcommands.
 #[derive(clap::Subcommand, Debug)]
 pub enum HairCommand {
-    /// Print a .hair file's counts, arrays, defaults, bounds and info string.
+    /// Print a .hair or .tfx file's counts, arrays, header fields and bounds.
     Info {
-        /// The .hair file.
+        /// The .hair or .tfx file.
         file: PathBuf,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+    },
+    /// Convert between .hair and .tfx (the output's extension picks the format).
+    Convert {
+        /// The .hair or .tfx file to read.
+        input: PathBuf,
+        /// The file to write: *.hair or *.tfx.
+        output: PathBuf,
+        /// Vertices per strand in a .tfx output (default: the most any
+        /// strand has); strands with another count are resampled by arc
+        /// length. TressFX itself loads 4, 8, 16, 32 or 64.
+        #[arg(long)]
+        vertices_per_strand: Option<u32>,
     },
     /// Write a procedural groom as a .hair file.
     Generate {
@@ -48,6 +62,11 @@ pub enum HairCommand {
 pub fn run(args: HairArgs) -> anyhow::Result<()> {
     match args.command {
         HairCommand::Info { file, json } => info(&file, json),
+        HairCommand::Convert {
+            input,
+            output,
+            vertices_per_strand,
+        } => convert(&input, &output, vertices_per_strand),
         HairCommand::Generate {
             style,
             strands,
@@ -63,7 +82,7 @@ pub fn run(args: HairArgs) -> anyhow::Result<()> {
             hair.set_info(&format!(
                 "plait hair generate --style {style} --seed {seed}"
             ));
-            hair.write(&out)?;
+            PendingFile::create(&out, "--out")?.commit(&hair.to_bytes())?;
             outln!(
                 "wrote {}: {} strands, {} points, {} segments",
                 out.display(),
@@ -109,18 +128,136 @@ pub fn generate_spec(
     Ok(spec)
 }
 
-fn info(path: &std::path::Path, json: bool) -> anyhow::Result<()> {
-    let (file, warnings) = HairFile::read(path)?;
-    let b = file.bounds();
-    let (min, max) = if b.is_empty() {
+fn convert(input: &Path, output: &Path, vertices_per_strand: Option<u32>) -> anyhow::Result<()> {
+    let Some(format) = Format::from_extension(output) else {
+        bail!(
+            "{}: the output's extension must be .hair or .tfx",
+            output.display()
+        );
+    };
+    if vertices_per_strand.is_some() && format != Format::Tfx {
+        bail!("--vertices-per-strand applies to a .tfx output only");
+    }
+    if let Some(n) = vertices_per_strand
+        && !(2..=65536).contains(&n)
+    {
+        bail!("--vertices-per-strand must be in 2..=65536, got {n}");
+    }
+    // Reserve the output first, so an unwritable path fails before reading.
+    let pending = PendingFile::create(output, "OUTPUT")?;
+    let (asset, warnings) = Asset::read(input)?;
+    for w in &warnings {
+        eprintln!("warning: {}: {w}", input.display());
+    }
+    let strands = asset.strands();
+    let bytes = match format {
+        Format::Hair => {
+            let mut hair = strands
+                .to_hair_file()
+                .with_context(|| format!("converting {} to .hair", input.display()))?;
+            hair.set_info(&format!(
+                "plait hair convert {}",
+                input.file_name().unwrap_or_default().to_string_lossy()
+            ));
+            hair.to_bytes()
+        }
+        Format::Tfx => tfx_bytes(&strands, vertices_per_strand)
+            .with_context(|| format!("converting {} to .tfx", input.display()))?,
+    };
+    pending.commit(&bytes)?;
+    let (written, _) = Asset::from_bytes(output, &bytes)?;
+    let out = written.strands();
+    outln!(
+        "wrote {}: {} strands, {} points",
+        output.display(),
+        out.strand_count(),
+        out.point_count()
+    )?;
+    Ok(())
+}
+
+fn tfx_bytes(strands: &Strands, vertices_per_strand: Option<u32>) -> anyhow::Result<Vec<u8>> {
+    let counts: std::collections::BTreeSet<usize> = strands.ranges().map(|r| r.len()).collect();
+    let file = TfxFile::from_strands(strands, vertices_per_strand)?;
+    if counts.len() > 1 || counts.first() != Some(&(file.vertices_per_strand as usize)) {
+        eprintln!(
+            "note: strands resampled by arc length to {} vertices each (.tfx holds one count per file)",
+            file.vertices_per_strand
+        );
+    }
+    Ok(file.to_bytes()?)
+}
+
+fn info(path: &Path, json: bool) -> anyhow::Result<()> {
+    let (asset, warnings) = Asset::read(path)?;
+    match asset {
+        Asset::Hair(file) => hair_info(path, &file, warnings, json),
+        Asset::Tfx(file) => tfx_info(path, &file, warnings, json),
+    }
+}
+
+fn bounds_of(b: plait_hair::Aabb) -> ([f32; 3], [f32; 3]) {
+    if b.is_empty() {
         ([0.0f32; 3], [0.0f32; 3])
     } else {
         (b.min.to_array(), b.max.to_array())
-    };
-    let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
+    }
+}
+
+fn tfx_info(path: &Path, file: &TfxFile, warnings: Vec<String>, json: bool) -> anyhow::Result<()> {
+    let (min, max) = bounds_of(file.bounds());
     if json {
         let v = serde_json::json!({
             "file": path.display().to_string(),
+            "format": "tfx",
+            "version": file.version,
+            "strands": file.strand_count(),
+            "vertices_per_strand": file.vertices_per_strand,
+            "points": file.vertex_count(),
+            "segments": file.strand_count() * (file.vertices_per_strand as usize - 1),
+            "arrays": file.arrays(),
+            "follow_strands_per_guide": file.follow_strands_per_guide,
+            "both_ends_immovable": file.both_ends_immovable,
+            "bounds": { "min": min, "max": max },
+            "warnings": warnings,
+        });
+        outln!("{v}")?;
+        return Ok(());
+    }
+    outln!("file:         {}", path.display())?;
+    outln!("format:       TressFX .tfx, version {}", file.version)?;
+    outln!("strands:      {} (guide strands)", file.strand_count())?;
+    outln!(
+        "vertices:     {} per strand, {} in all",
+        file.vertices_per_strand,
+        file.vertex_count()
+    )?;
+    outln!("arrays:       {}", file.arrays().join(", "))?;
+    if file.major_version() == 3 {
+        outln!(
+            "header:       {} follow strands per guide, both ends immovable: {}",
+            file.follow_strands_per_guide,
+            file.both_ends_immovable
+        )?;
+    }
+    outln!("bounds:       min {min:?} max {max:?}")?;
+    for w in &warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok(())
+}
+
+fn hair_info(
+    path: &Path,
+    file: &HairFile,
+    warnings: Vec<String>,
+    json: bool,
+) -> anyhow::Result<()> {
+    let (min, max) = bounds_of(file.bounds());
+    if json {
+        let v = serde_json::json!({
+            "file": path.display().to_string(),
+            "format": "hair",
             "strands": file.strand_count(),
             "points": file.point_count(),
             "segments": file.segment_count(),

@@ -10,6 +10,7 @@
 #[macro_use]
 mod output;
 mod ab_cmd;
+mod args;
 mod hair_cmd;
 mod pipeline_cmd;
 mod render_cmd;
@@ -44,7 +45,7 @@ enum Command {
     Passes(pipeline_cmd::PassesArgs),
     /// List the choice points and their techniques (`--set techniques.POINT=NAME`): papers, params, memory.
     Techniques(techniques_cmd::TechniquesArgs),
-    /// Inspect and generate `.hair` files.
+    /// Inspect, convert and generate `.hair` and `.tfx` files.
     Hair(hair_cmd::HairArgs),
     /// Run several pipelines on the same scene(s) and write one report
     Ab(ab_cmd::AbArgs),

@@ -3,11 +3,79 @@
 //! renamed into place only when complete, so a failure or an interrupt never
 //! leaves a half-written file. The temporary file is created before any GPU
 //! work, so an unwritable path fails at once.
+//!
+//! An interrupt (Ctrl-C, SIGTERM) ends the process without running
+//! destructors, so temporaries are also registered with [`remove_on_interrupt`]:
+//! the signal handler deletes what is registered and exits with 130. Moving
+//! a finished output into place happens inside [`uninterrupted`], which the
+//! handler waits for, so an interrupt never falls between two renames.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard, Once};
 
 use anyhow::{Context, Result};
+
+/// Temporary files and directories to delete if the process is interrupted.
+static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Held while outputs move into place; the handler waits for it.
+static MOVING: Mutex<()> = Mutex::new(());
+static HANDLER: Once = Once::new();
+
+fn lock<T>(m: &'static Mutex<T>) -> MutexGuard<'static, T> {
+    m.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+fn temporaries() -> MutexGuard<'static, Vec<PathBuf>> {
+    lock(&TEMPORARIES)
+}
+
+/// Deletes `path` (a file or a directory tree) if the process is
+/// interrupted before the returned guard is dropped.
+pub fn remove_on_interrupt(path: &Path) -> InterruptGuard {
+    HANDLER.call_once(|| {
+        // If no handler can be installed (another one is), an interrupt
+        // simply leaves the temporaries, as before.
+        let _ = ctrlc::set_handler(|| {
+            let _moving = lock(&MOVING);
+            let paths = std::mem::take(&mut *temporaries());
+            for path in paths {
+                if path.is_dir() {
+                    std::fs::remove_dir_all(&path).ok();
+                } else {
+                    std::fs::remove_file(&path).ok();
+                }
+            }
+            eprintln!("interrupted: temporary outputs removed");
+            std::process::exit(130);
+        });
+    });
+    temporaries().push(path.to_path_buf());
+    InterruptGuard {
+        path: path.to_path_buf(),
+    }
+}
+
+/// Unregisters its path when dropped.
+pub struct InterruptGuard {
+    path: PathBuf,
+}
+
+impl Drop for InterruptGuard {
+    fn drop(&mut self) {
+        let mut list = temporaries();
+        if let Some(i) = list.iter().rposition(|p| *p == self.path) {
+            list.remove(i);
+        }
+    }
+}
+
+/// Runs `f` (moving outputs into place) with interrupts held off: the
+/// handler waits for it to finish.
+pub fn uninterrupted<T>(f: impl FnOnce() -> T) -> T {
+    let _held = lock(&MOVING);
+    f()
+}
 
 /// `println!` that returns the write error instead of panicking, so
 /// `plait passes | head -1` ends quietly when `head` closes the pipe
@@ -39,6 +107,7 @@ pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
 pub struct PendingFile {
     path: PathBuf,
     temp: tempfile::NamedTempFile,
+    _interrupt: InterruptGuard,
 }
 
 impl PendingFile {
@@ -63,6 +132,7 @@ impl PendingFile {
             })?;
         Ok(PendingFile {
             path: path.to_path_buf(),
+            _interrupt: remove_on_interrupt(temp.path()),
             temp,
         })
     }
@@ -75,9 +145,9 @@ impl PendingFile {
         self.temp.as_file().sync_all().ok();
         // Temporary files are private (0600); the output is an ordinary file.
         readable_by_all(self.temp.path(), 0o644);
-        self.temp
-            .persist(&self.path)
-            .map_err(|e| anyhow::anyhow!("cannot write {}: {}", self.path.display(), e.error))?;
+        let PendingFile { path, temp, .. } = self;
+        uninterrupted(|| temp.persist(&path))
+            .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), e.error))?;
         Ok(())
     }
 }

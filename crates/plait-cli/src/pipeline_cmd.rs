@@ -9,17 +9,8 @@ use plait_graph::{
     CompileOptions, Formats, ParamType, PassShape, PassTypeSpec, ResourceKind, SlotSpec,
 };
 
+use crate::args::SetArgs;
 use crate::output::PendingFile;
-
-/// `--set key=value` in one place for every command.
-#[derive(Args, Clone, Debug, Default)]
-pub struct SetArgs {
-    /// Override a key of the pipeline file (repeatable; the key must exist),
-    /// e.g. `--set params.slices=64` or `--set passes.hair.params.shadow_weight=0.3`.
-    /// Other techniques are files: pipelines/deep_opacity.toml, … (README).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
-}
 
 #[derive(Args)]
 pub struct CheckArgs {
@@ -75,7 +66,7 @@ pub struct GraphArgs {
     #[arg(long)]
     out: Option<PathBuf>,
     /// Render size the schedule is compiled for, `WIDTHxHEIGHT`.
-    #[arg(long, value_parser = crate::render_cmd::parse_size, default_value = "960x720")]
+    #[arg(long, value_parser = crate::args::parse_size, default_value = "960x720")]
     size: (u32, u32),
     #[command(flatten)]
     set: SetArgs,

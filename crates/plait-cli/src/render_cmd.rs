@@ -9,8 +9,8 @@ use plait_gpu::{FrameReport, Gpu};
 use plait_graph::{CompileOptions, Schedule};
 use plait_hair::scene::Scene;
 
+use crate::args::{SetArgs, parse_size};
 use crate::output::PendingFile;
-use crate::pipeline_cmd::SetArgs;
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -40,18 +40,6 @@ pub struct RenderArgs {
     watch: bool,
     #[command(flatten)]
     set: SetArgs,
-}
-
-/// `--size 960x720` (`960X720` too: the README's `WxH` with either x).
-pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("`{text}` is not WIDTHxHEIGHT (e.g. 960x720)");
-    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
-    let w: u32 = w.trim().parse().map_err(|_| bad())?;
-    let h: u32 = h.trim().parse().map_err(|_| bad())?;
-    if w == 0 || h == 0 || w > 16384 || h > 16384 {
-        return Err(format!("`{text}`: width and height must be 1..=16384"));
-    }
-    Ok((w, h))
 }
 
 /// A rendered frame with everything the report needs.

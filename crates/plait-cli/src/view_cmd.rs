@@ -6,8 +6,7 @@ use anyhow::Result;
 use clap::Args;
 use plait::session::resolve_pipeline;
 
-use crate::pipeline_cmd::SetArgs;
-use crate::render_cmd::parse_size;
+use crate::args::{SetArgs, parse_size};
 
 #[derive(Args)]
 pub struct ViewArgs {

@@ -1,5 +1,7 @@
-//! `plait ab` end to end (issue 6): the report directory, identical
-//! pipelines compare as identical, sweeps give one row per value, bad input exits 2.
+//! `plait ab` end to end through the binary (issue 6, issue 10): the report
+//! directory, identical pipelines compare as identical, a sweep gives one
+//! row per value, two sweeps a grid, bad input exits 2. The run itself is
+//! tested in-process in `crates/plait/tests/ab.rs`.
 
 mod common;
 use common::{plait, text};
@@ -56,7 +58,7 @@ fn forward_against_itself_is_identical_and_report_is_complete() {
         "self-contained"
     );
     let v = read_json(&out);
-    assert_eq!(v["schema"], "plait-ab/1");
+    assert_eq!(v["schema"], "plait-ab/2");
     let variants = v["variants"].as_array().expect("variants");
     assert_eq!(variants.len(), 2, "the variant and the reference");
     assert_eq!(
@@ -187,13 +189,14 @@ fn sweep_gives_one_row_per_value() {
     ]);
     assert!(o.status.success(), "stderr: {}", text(&o.stderr));
     let v = read_json(&out);
-    assert_eq!(v["sweep"]["key"], "params.hair_density");
+    assert_eq!(v["sweeps"][0]["key"], "params.hair_density");
+    assert_eq!(v["sweeps"].as_array().map(Vec::len), Some(1));
     let variants = v["variants"].as_array().expect("variants");
     assert_eq!(variants.len(), 3, "two sweep rows and the reference");
     let values: Vec<_> = variants
         .iter()
         .filter(|x| x["is_reference"] == false)
-        .map(|x| x["sweep_value"].clone())
+        .map(|x| x["sweep_values"]["params.hair_density"].clone())
         .collect();
     assert_eq!(values, [serde_json::json!("10"), serde_json::json!("40")]);
     let runs = v["scenes"][0]["runs"].as_array().expect("runs");
@@ -209,6 +212,88 @@ fn sweep_gives_one_row_per_value() {
     assert!(by("forward@10")["metrics"]["rmse"].as_f64().expect("rmse") > 0.0);
     let html = std::fs::read_to_string(out.join("report.html")).expect("html");
     assert!(html.contains("vs params.hair_density"), "sweep curves");
+}
+
+/// `--sweep` twice: every combination, rows = the first key's values,
+/// columns = the second's, in one report.
+#[test]
+fn two_sweeps_make_a_grid() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let out = tmp.path().join("grid");
+    let o = plait(&[
+        "ab",
+        "pipelines/forward.toml",
+        "--reference",
+        "pipelines/forward.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--repeats",
+        "1",
+        "--sweep",
+        "params.hair_density=10,40",
+        "--sweep",
+        "params.light_size=128,256",
+        "--set",
+        "params.light_size=256",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "stderr: {}", text(&o.stderr));
+    let v = read_json(&out);
+    let keys: Vec<_> = v["sweeps"]
+        .as_array()
+        .expect("sweeps")
+        .iter()
+        .map(|s| s["key"].clone())
+        .collect();
+    assert_eq!(keys, ["params.hair_density", "params.light_size"]);
+    let ids: Vec<_> = v["variants"]
+        .as_array()
+        .expect("variants")
+        .iter()
+        .map(|x| x["id"].as_str().expect("id").to_string())
+        .collect();
+    assert_eq!(
+        ids,
+        [
+            "forward@10@128",
+            "forward@10@256",
+            "forward@40@128",
+            "forward@40@256",
+            "reference"
+        ]
+    );
+    assert_eq!(
+        v["variants"][1]["sweep_values"]["params.hair_density"],
+        "10"
+    );
+    assert_eq!(v["variants"][1]["sweep_values"]["params.light_size"], "256");
+    // The grid point with the reference's own values renders the reference.
+    let rmse = |id: &str| {
+        v["scenes"][0]["runs"]
+            .as_array()
+            .expect("runs")
+            .iter()
+            .find(|r| r["variant"] == id)
+            .and_then(|r| r["metrics"]["rmse"].as_f64())
+            .expect("rmse")
+    };
+    assert_eq!(rmse("forward@40@256"), 0.0);
+    assert!(rmse("forward@10@128") > 0.0);
+    let html = std::fs::read_to_string(out.join("report.html")).expect("html");
+    assert!(
+        html.contains("params.hair_density (rows) × params.light_size (columns)"),
+        "grid tables"
+    );
+    assert!(html.contains(
+        "<th class=l>params.hair_density \\ params.light_size</th><th>128</th><th>256</th>"
+    ));
+    assert!(
+        html.contains("ꟻLIP mean vs params.hair_density"),
+        "sweep curves"
+    );
 }
 
 #[test]
@@ -343,6 +428,53 @@ fn bad_input_exits_2_naming_the_flag_or_file() {
             vec!["ab", "--reference", "pipelines/forward.toml", "--out", out],
             "PIPELINE",
         ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--sweep",
+                "params.a=1,2",
+                "--sweep",
+                "params.b=1,2",
+                "--sweep",
+                "params.c=1,2",
+                "--out",
+                out,
+            ],
+            "at most two sweeps",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--sweep",
+                "params.light_size=128",
+                "--sweep",
+                "params.light_size=256",
+                "--out",
+                out,
+            ],
+            "--sweep params.light_size: the key is swept twice",
+        ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--sweep",
+                "params.light_size=128,256",
+                "--sweep",
+                "params.light_sise=1,2",
+                "--out",
+                out,
+            ],
+            "(--sweep params.light_size=128 --sweep params.light_sise=1)",
+        ),
     ];
     for (args, needle) in cases {
         let o = plait(&args);
@@ -354,4 +486,55 @@ fn bad_input_exits_2_naming_the_flag_or_file() {
         );
         assert!(!Path::new(out).exists(), "{args:?} left a report behind");
     }
+}
+
+/// Technique keys sweep like any other: a self-shadowing × transparency grid
+/// in one report, whose point equal to the reference renders it exactly.
+#[test]
+fn technique_sweeps_make_a_grid() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let out = tmp.path().join("grid");
+    let o = plait(&[
+        "ab",
+        "pipelines/occupancy.toml",
+        "--reference",
+        "pipelines/reference.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "48x36",
+        "--repeats",
+        "1",
+        "--sweep",
+        "techniques.self_shadow=deep_opacity,exact",
+        "--sweep",
+        "techniques.transparency=weighted_average,depth_peeling",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "stderr: {}", text(&o.stderr));
+    let v = read_json(&out);
+    let runs = v["scenes"][0]["runs"].as_array().expect("runs");
+    assert_eq!(runs.len(), 5, "2 × 2 grid + the reference");
+    let rmse = |self_shadow: &str, transparency: &str| {
+        let variant = v["variants"]
+            .as_array()
+            .expect("variants")
+            .iter()
+            .find(|x| {
+                x["sweep_values"]["techniques.self_shadow"] == self_shadow
+                    && x["sweep_values"]["techniques.transparency"] == transparency
+            })
+            .expect("grid point");
+        runs.iter()
+            .find(|r| r["variant"] == variant["id"])
+            .and_then(|r| r["metrics"]["rmse"].as_f64())
+            .expect("rmse")
+    };
+    assert_eq!(
+        rmse("exact", "depth_peeling"),
+        0.0,
+        "the reference's own choices"
+    );
+    assert!(rmse("deep_opacity", "weighted_average") > 0.0);
 }

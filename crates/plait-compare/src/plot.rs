@@ -242,6 +242,172 @@ pub fn svg(chart: &Chart) -> String {
     out
 }
 
+/// A table of numbers drawn as coloured cells: one row per value of the
+/// first sweep, one column per value of the second.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Grid {
+    pub title: String,
+    /// What the rows are (the first sweep's key).
+    pub row_label: String,
+    /// What the columns are (the second sweep's key).
+    pub column_label: String,
+    pub rows: Vec<String>,
+    pub columns: Vec<String>,
+    /// `cells[row][column]`; `None` where nothing was measured.
+    pub cells: Vec<Vec<Option<f64>>>,
+    pub note: Option<String>,
+}
+
+/// Light to dark blue (ColorBrewer "Blues", its ends): a sequential scale
+/// that reads as "more" without a legend of hues.
+const LIGHT: [f64; 3] = [247.0, 251.0, 255.0];
+const DARK: [f64; 3] = [8.0, 48.0, 107.0];
+
+fn shade(t: f64) -> String {
+    let c = |i: usize| (LIGHT[i] + (DARK[i] - LIGHT[i]) * t.clamp(0.0, 1.0)).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", c(0), c(1), c(2))
+}
+
+/// Four significant digits, as in the report's tables.
+fn fmt_cell(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 6) as usize;
+    format!("{v:.digits$}")
+}
+
+/// The grid as a standalone `<svg>`: each cell shaded from the smallest
+/// value (lightest) to the largest (darkest), its number written in it.
+pub fn grid_svg(grid: &Grid) -> String {
+    let columns = grid.columns.len().max(1);
+    let cell_w = (480.0 / columns as f64).clamp(56.0, 110.0);
+    let cell_h = 28.0;
+    let (left, top) = (130.0, 76.0);
+    let w = (left + cell_w * columns as f64 + 20.0).max(420.0);
+    let h = top + cell_h * grid.rows.len().max(1) as f64 + 44.0;
+    let values: Vec<f64> = grid
+        .cells
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .filter(|v| v.is_finite())
+        .collect();
+    let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let t_of = |v: f64| if hi > lo { (v - lo) / (hi - lo) } else { 0.5 };
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w} {h}" width="{w}" height="{h}" font-family="sans-serif" font-size="11">"#
+    );
+    let _ = write!(out, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+    let _ = write!(
+        out,
+        r#"<text x="{}" y="18" font-size="14" text-anchor="middle">{}</text>"#,
+        w / 2.0,
+        escape(&grid.title)
+    );
+    if let Some(note) = &grid.note {
+        let _ = write!(
+            out,
+            r##"<text x="{}" y="33" fill="#555" text-anchor="middle">{}</text>"##,
+            w / 2.0,
+            escape(note)
+        );
+    }
+    let _ = write!(
+        out,
+        r#"<text x="{}" y="52" text-anchor="middle">{} →</text>"#,
+        left + cell_w * columns as f64 / 2.0,
+        escape(&grid.column_label)
+    );
+    let _ = write!(
+        out,
+        r#"<text x="{}" y="68" text-anchor="end">{} ↓</text>"#,
+        left - 6.0,
+        escape(&grid.row_label)
+    );
+    for (c, name) in grid.columns.iter().enumerate() {
+        let _ = write!(
+            out,
+            r#"<text x="{:.1}" y="68" text-anchor="middle">{}</text>"#,
+            left + cell_w * (c as f64 + 0.5),
+            escape(name)
+        );
+    }
+    for (r, name) in grid.rows.iter().enumerate() {
+        let y = top + cell_h * r as f64;
+        let _ = write!(
+            out,
+            r#"<text x="{}" y="{:.1}" text-anchor="end">{}</text>"#,
+            left - 6.0,
+            y + cell_h / 2.0 + 4.0,
+            escape(name)
+        );
+        for c in 0..grid.columns.len() {
+            let x = left + cell_w * c as f64;
+            let cell = grid
+                .cells
+                .get(r)
+                .and_then(|row| row.get(c))
+                .copied()
+                .flatten();
+            let (fill, text, ink) = match cell {
+                Some(v) if v.is_finite() => {
+                    let t = t_of(v);
+                    (
+                        shade(t),
+                        fmt_cell(v),
+                        if t > 0.55 { "white" } else { "#222" },
+                    )
+                }
+                _ => ("#f0f0f0".to_string(), "–".to_string(), "#777"),
+            };
+            let _ = write!(
+                out,
+                r##"<rect x="{x:.1}" y="{y:.1}" width="{cell_w:.1}" height="{cell_h}" fill="{fill}" stroke="#fff"><title>{} = {}, {} = {}: {}</title></rect><text x="{:.1}" y="{:.1}" text-anchor="middle" fill="{ink}">{}</text>"##,
+                escape(&grid.row_label),
+                escape(name),
+                escape(&grid.column_label),
+                escape(&grid.columns[c]),
+                escape(&text),
+                x + cell_w / 2.0,
+                y + cell_h / 2.0 + 4.0,
+                escape(&text)
+            );
+        }
+    }
+    if !values.is_empty() {
+        // The scale: lightest = smallest value, darkest = largest.
+        let y = top + cell_h * grid.rows.len() as f64 + 14.0;
+        let steps = 24;
+        let bar_w = 160.0;
+        for i in 0..steps {
+            let _ = write!(
+                out,
+                r#"<rect x="{:.1}" y="{y:.1}" width="{:.1}" height="10" fill="{}"/>"#,
+                left + bar_w * i as f64 / steps as f64,
+                bar_w / steps as f64 + 0.5,
+                shade(i as f64 / (steps - 1) as f64)
+            );
+        }
+        let _ = write!(
+            out,
+            r#"<text x="{}" y="{:.1}" text-anchor="end">{}</text><text x="{}" y="{:.1}">{}</text>"#,
+            left - 4.0,
+            y + 9.0,
+            fmt_cell(lo),
+            left + bar_w + 4.0,
+            y + 9.0,
+            fmt_cell(hi)
+        );
+    }
+    out.push_str("</svg>");
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -347,5 +513,38 @@ mod tests {
             })
             .contains("no data")
         );
+    }
+
+    #[test]
+    fn grid_has_a_cell_per_combination_shaded_by_value() {
+        let g = Grid {
+            title: "small: occupancy — ꟻLIP".into(),
+            row_label: "params.light_size".into(),
+            column_label: "techniques.self_shadow".into(),
+            rows: vec!["128".into(), "256".into()],
+            columns: vec!["occupancy".into(), "deep_opacity".into(), "<x>".into()],
+            cells: vec![
+                vec![Some(0.1), Some(0.3), None],
+                vec![Some(0.2), Some(0.123456), Some(0.0)],
+            ],
+            note: None,
+        };
+        let s = grid_svg(&g);
+        assert!(s.starts_with("<svg") && s.ends_with("</svg>"));
+        // One titled cell per combination, the missing one marked.
+        assert_eq!(s.matches("<title>").count(), 6);
+        assert!(
+            s.contains("params.light_size = 256, techniques.self_shadow = deep_opacity: 0.1235")
+        );
+        assert!(s.contains(">–</text>"), "the cell without a value");
+        assert!(s.contains("&lt;x&gt;") && !s.contains("<x>"));
+        // The smallest value is the lightest shade, the largest the darkest.
+        let fill = |value: &str| {
+            let at = s.find(&format!(": {value}</title>")).unwrap();
+            let start = s[..at].rfind("fill=\"").unwrap() + 6;
+            s[start..start + 7].to_string()
+        };
+        assert_eq!(fill("0"), shade(0.0));
+        assert_eq!(fill("0.3000"), shade(1.0));
     }
 }

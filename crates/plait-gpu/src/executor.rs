@@ -11,7 +11,6 @@ use crate::geometry::SceneGeometry;
 use crate::pass::{BuildContext, PassLibrary, PreparedPass, RecordContext, frame_layout};
 use crate::pool::ResourcePool;
 use crate::readback::{TexelData, map_buffer, read_texture};
-use crate::shader::ShaderLibrary;
 use crate::{Gpu, GpuError};
 
 /// GPU time of one pass.
@@ -116,7 +115,6 @@ impl<'g> Renderer<'g> {
             shadow,
         };
         let frame_bind_group = frame_group.bind(device, &frame_buffer, &background_view(gpu, None));
-        let mut shaders = ShaderLibrary::new()?;
         let mut passes = Vec::with_capacity(schedule.passes.len());
         for pass in &schedule.passes {
             let t = library.get(&pass.type_name).ok_or_else(|| GpuError::Pass {
@@ -132,7 +130,6 @@ impl<'g> Renderer<'g> {
                 pool: &pool,
                 geometry: &geometry,
                 frame_layout: &frame_group.layout,
-                shaders: &mut shaders,
                 base_dir,
             };
             passes.push(t.build(pass, &mut ctx)?);
@@ -366,7 +363,7 @@ fn downgrade_float32_blending(
         let Some(t) = library.get(&pass.type_name) else {
             continue;
         };
-        let Ok(state) = t.raster_state(pass, caps) else {
+        let Ok(state) = crate::pass::raster_state_of(t, pass, &schedule.resources, caps) else {
             continue;
         };
         for (i, b) in pass

@@ -8,6 +8,7 @@ pub mod device;
 pub mod executor;
 pub mod frame;
 pub mod geometry;
+pub mod modules;
 pub mod pass;
 pub mod pool;
 pub mod readback;

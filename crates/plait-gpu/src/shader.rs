@@ -67,6 +67,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/visibility/exact.wgsl"),
     ),
     (
+        "shaders/lib/visibility/tressfx.wgsl",
+        include_str!("../../../shaders/lib/visibility/tressfx.wgsl"),
+    ),
+    (
         "shaders/lib/self_shadow.wgsl",
         include_str!("../../../shaders/lib/self_shadow.wgsl"),
     ),

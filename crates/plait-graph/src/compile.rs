@@ -370,6 +370,21 @@ fn resolve_pass(
                 }
             }
         }
+        for (key, location) in decl.raster.keys() {
+            let applies =
+                spec.state_from_data && (key == "blend" || spec.shape == PassShape::Raster);
+            if !applies {
+                let why = if spec.state_from_data {
+                    "draws no scene geometry".to_owned()
+                } else {
+                    "sets its raster state in Rust (`depth`, `blend` and `cull` are for `type = \"raster\"`, `fullscreen` and pass types declared in TOML)".to_owned()
+                };
+                errors.push(pass_error(
+                    location,
+                    format!("type `{}` {why}, so `{key}` does not apply", spec.name),
+                ));
+            }
+        }
         match (&decl.shader, spec.needs_shader) {
             (None, true) => errors.push(pass_error(
                 &decl.location,
@@ -402,6 +417,7 @@ fn resolve_pass(
         params,
         shader: decl.shader.as_ref().map(|s| s.value.clone()),
         shader_location: decl.shader.as_ref().map(|s| s.location.clone()),
+        raster: decl.raster.clone(),
         location: decl.location.clone(),
         technique: match &decl.location {
             Location::File { path, .. } => pipeline

@@ -141,6 +141,9 @@ pub struct ScheduledPass {
     pub shader: Option<PathBuf>,
     #[serde(skip)]
     pub shader_location: Option<Location>,
+    /// Raster state the pass sets in its file (`depth`, `blend`, `cull`).
+    #[serde(skip)]
+    pub raster: crate::raster_decl::RasterDecl,
     #[serde(skip)]
     pub location: Location,
     /// The technique that declared the pass (`self_shadow/occupancy`), if any.

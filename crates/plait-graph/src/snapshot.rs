@@ -105,6 +105,9 @@ fn pass_text(out: &mut String, prefix: &str, p: &crate::schedule::ScheduledPass,
     if let Some(shader) = &p.shader {
         let _ = writeln!(out, "        shader: {}", shader.display());
     }
+    if !p.raster.is_empty() {
+        let _ = writeln!(out, "        state: {}", p.raster.describe());
+    }
     if !p.params.is_empty() {
         let params: Vec<String> = p.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
         let _ = writeln!(out, "        params: {}", params.join(", "));

@@ -110,6 +110,18 @@ pub struct SlotSpec {
     pub loads: bool,
     pub optional: bool,
     pub doc: String,
+    /// The shader variable the slot feeds, when it is not named like the
+    /// slot: one kernel can serve pass types whose slots are named for their
+    /// papers (`slab`'s `slabs` and `opacity_shadow_maps`' `slices` are both
+    /// `counts` of `slice_counts.wgsl`).
+    pub binding: Option<String>,
+}
+
+impl SlotSpec {
+    /// The name of the shader binding this slot feeds.
+    pub fn binding_name(&self) -> &str {
+        self.binding.as_deref().unwrap_or(&self.name)
+    }
 }
 
 /// The type of a pass param.
@@ -196,6 +208,40 @@ pub struct PassTypeSpec {
     pub needs_shader: bool,
     /// Optional GPU features the pass needs (names as in `wgpu::Features`).
     pub required_features: Vec<String>,
+    /// Passes of this type may set `depth`, `blend` and `cull`
+    /// ([`crate::raster_decl`]); other types choose their state in Rust.
+    pub state_from_data: bool,
+}
+
+impl PassTypeSpec {
+    /// A pass type with no slots or params yet; fill them with struct update
+    /// syntax: `PassTypeSpec { inputs, outputs, ..PassTypeSpec::new(…) }`.
+    pub fn new(name: &str, shape: PassShape, source: &str, description: &str) -> Self {
+        PassTypeSpec {
+            name: name.into(),
+            description: description.into(),
+            source: source.into(),
+            shape,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            params: Vec::new(),
+            dynamic_slots: false,
+            needs_shader: false,
+            required_features: Vec::new(),
+            state_from_data: false,
+        }
+    }
+
+    /// A data-only pass type: any slot names (the shader's bindings), params
+    /// from the shader's `params` uniform, `shader = "…"` from the pipeline.
+    pub fn data_only(name: &str, shape: PassShape, description: &str) -> Self {
+        PassTypeSpec {
+            dynamic_slots: true,
+            needs_shader: true,
+            state_from_data: shape != PassShape::Compute,
+            ..PassTypeSpec::new(name, shape, "plait", description)
+        }
+    }
 }
 
 /// All pass types known to a run, by name.

@@ -183,9 +183,12 @@ impl GroomSpec {
         }
         let total = (u64::from(self.strands) + u64::from(self.stray_strands))
             * (u64::from(self.segments) + 1);
-        if total > u64::from(u32::MAX) {
+        // Refused before generating: past this the vertices outgrow memory
+        // and any GPU buffer (see `follow::MAX_POINTS`).
+        if total > crate::follow::MAX_POINTS {
             return Err(format!(
-                "strands × (segments + 1) = {total} points exceeds 2^32-1"
+                "strands × (segments + 1) = {total} points exceeds plait's limit of {}",
+                crate::follow::MAX_POINTS
             ));
         }
         let finite_nonneg = [

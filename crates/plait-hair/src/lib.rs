@@ -7,20 +7,37 @@
 //! - [`groom`]: deterministic procedural grooms, guide strands with barycentric
 //!   interpolation (Halén & Wester 2007 §2.5), stray strands
 //!   (Sintorn & Assarsson 2009 Fig. 4/5).
-//! - [`scene`]: the TOML scene file every pipeline renders, light frustum
-//!   fitting (Halén & Wester 2007 §5.7).
+//! - [`tfx`]: AMD TressFX's binary `.tfx` format (versions 3 and 4), read and
+//!   written; [`asset`] tells the two formats apart.
+//! - [`follow`]: follow strands around guide strands, as TressFX makes them.
+//! - [`transform`]: placing a groom (scale, rotation, translation).
+//! - [`scene`]: the TOML scene file every pipeline renders; [`camera`] (a
+//!   look-at camera or one fitted to the hair), [`light`] (light frustum
+//!   fitting, Halén & Wester 2007 §5.7), [`hair_source`] (the `[hair]` table).
 
+pub mod asset;
+pub mod camera;
+pub mod follow;
 pub mod groom;
 pub mod hair_file;
+pub mod hair_source;
+pub mod light;
 pub mod mesh;
 pub mod rng;
 pub mod scene;
 mod strands;
+pub mod tfx;
+pub mod transform;
 
+pub use asset::{Asset, AssetError, Format};
+pub use follow::FollowStrands;
 pub use groom::{GroomSpec, HeadShape, ScalpRegion, Style, generate};
 pub use hair_file::{HairError, HairFile, HairWarning};
 pub use mesh::{Mesh, MeshVertex};
 pub use scene::{
-    Background, Camera, Ground, HairMaterial, HairSource, Head, Light, LightKind, Scene, SceneError,
+    Background, Camera, CameraFit, Framing, Ground, Hair, HairMaterial, HairSource, Head, Light,
+    LightKind, Scene, SceneError,
 };
 pub use strands::{Aabb, StrandVertex, Strands};
+pub use tfx::{TfxError, TfxFile, TfxWarning};
+pub use transform::{Scale, Transform};

@@ -1,26 +1,28 @@
 //! The scene file every pipeline renders (TOML; see `examples/scenes/`).
 //!
-//! A scene names its hair (a `.hair` file or a procedural groom), the opaque
-//! geometry (head, ground), a look-at camera, one light, the background and
-//! the hair material. Unknown fields are errors, reported as
-//! `path:line:column: message`. Relative paths are resolved against the
-//! directory of the scene file.
-//!
-//! [`Light::view_proj`] fits the light's frustum tightly to the hair
-//! (Halén & Wester 2007 §5.7: near/far fitted to the model, the
-//! field of view fitted to its extremes), with the depth range running from
-//! the nearest occluder to the farthest receiver so hair shadows reach the
-//! ground.
+//! A scene names its hair (a `.hair` or `.tfx` file or a procedural groom,
+//! with optional follow strands and placement: [`crate::hair_source`]), the
+//! opaque geometry (head, ground), a camera (look-at, or `"fit"` to the
+//! hair), one light (or `"fit"`), the background and the hair material.
+//! Unknown fields are errors, reported as `path:line:column: message`.
+//! Relative paths are resolved against the directory of the scene file.
 
 use std::path::{Path, PathBuf};
 
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 use serde::Deserialize;
 
+use crate::asset::{Asset, AssetError};
+use crate::camera::CameraSetting;
+pub use crate::camera::{Camera, CameraFit};
 use crate::groom::{GroomSpec, HeadShape, ScalpRegion, Style};
-use crate::hair_file::{HairError, HairFile};
+use crate::hair_file::HairError;
+pub use crate::hair_source::{Hair, HairSource};
+use crate::light::LightSetting;
+pub use crate::light::{Light, LightKind};
 use crate::mesh::Mesh;
 use crate::strands::{Aabb, Strands};
+use crate::tfx::TfxError;
 
 /// Errors loading a scene or its hair.
 #[derive(Debug, thiserror::Error)]
@@ -56,16 +58,22 @@ pub enum SceneError {
     /// The hair file could not be read (the error names it).
     #[error(transparent)]
     Hair(#[from] HairError),
+    /// The `.tfx` file could not be read (the error names it).
+    #[error(transparent)]
+    Tfx(#[from] TfxError),
+    /// The hair file is of neither format (the error names it).
+    #[error("{0}")]
+    UnknownAsset(String),
 }
 
-/// Where the hair comes from.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum HairSource {
-    /// A `.hair` file (relative to the scene file).
-    File(PathBuf),
-    /// A procedural groom.
-    Procedural(GroomSpec),
+impl From<AssetError> for SceneError {
+    fn from(e: AssetError) -> Self {
+        match e {
+            AssetError::Hair(e) => SceneError::Hair(e),
+            AssetError::Tfx(e) => SceneError::Tfx(e),
+            unknown @ AssetError::Unknown { .. } => SceneError::UnknownAsset(unknown.to_string()),
+        }
+    }
 }
 
 /// The head: an opaque ellipsoid.
@@ -100,300 +108,6 @@ pub struct Ground {
 
 fn default_ground_albedo() -> [f32; 3] {
     [0.6, 0.6, 0.6]
-}
-
-/// A look-at perspective camera.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Camera {
-    /// Eye position.
-    pub eye: [f32; 3],
-    /// Point looked at.
-    pub target: [f32; 3],
-    /// Up direction.
-    #[serde(default = "default_up")]
-    pub up: [f32; 3],
-    /// Vertical field of view in degrees.
-    pub fov_y_degrees: f32,
-    /// Near plane distance.
-    #[serde(default = "default_near")]
-    pub near: f32,
-    /// Far plane distance.
-    #[serde(default = "default_far")]
-    pub far: f32,
-}
-
-fn default_up() -> [f32; 3] {
-    [0.0, 1.0, 0.0]
-}
-fn default_near() -> f32 {
-    0.1
-}
-fn default_far() -> f32 {
-    100.0
-}
-
-impl Camera {
-    /// Right-handed look-at view matrix.
-    pub fn view(&self) -> Mat4 {
-        Mat4::look_at_rh(self.eye.into(), self.target.into(), self.up.into())
-    }
-
-    /// Right-handed perspective, depth 0..1 (wgpu).
-    pub fn projection(&self, aspect: f32) -> Mat4 {
-        Mat4::perspective_rh(self.fov_y_degrees.to_radians(), aspect, self.near, self.far)
-    }
-
-    /// `projection(aspect) * view()`.
-    pub fn view_proj(&self, aspect: f32) -> Mat4 {
-        self.projection(aspect) * self.view()
-    }
-}
-
-/// Kind of light.
-#[derive(Debug, Clone, PartialEq)]
-pub enum LightKind {
-    /// Parallel light travelling along `direction`.
-    Directional {
-        /// Direction the light travels (from the light toward the scene).
-        direction: [f32; 3],
-    },
-    /// A spot light at `position` pointing along `direction`.
-    Spot {
-        /// Position.
-        position: [f32; 3],
-        /// Axis direction (from the light toward the scene).
-        direction: [f32; 3],
-        /// Full apex angle of the cone, degrees.
-        cone_degrees: f32,
-    },
-}
-
-/// The one light. In TOML: `type = "directional"` with `direction`, or
-/// `type = "spot"` with `position`, `direction`, `cone_degrees`; plus
-/// `color` and `intensity`.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(try_from = "LightToml")]
-pub struct Light {
-    /// Directional or spot.
-    pub kind: LightKind,
-    /// Linear RGB color.
-    pub color: [f32; 3],
-    /// Scale on `color`.
-    pub intensity: f32,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LightToml {
-    #[serde(rename = "type")]
-    kind: String,
-    direction: [f32; 3],
-    position: Option<[f32; 3]>,
-    cone_degrees: Option<f32>,
-    #[serde(default = "white")]
-    color: [f32; 3],
-    #[serde(default = "one")]
-    intensity: f32,
-}
-
-fn white() -> [f32; 3] {
-    [1.0, 1.0, 1.0]
-}
-fn one() -> f32 {
-    1.0
-}
-
-impl TryFrom<LightToml> for Light {
-    type Error = String;
-    fn try_from(t: LightToml) -> Result<Light, String> {
-        if Vec3::from(t.direction).length_squared() == 0.0 || !Vec3::from(t.direction).is_finite() {
-            return Err("light.direction must be a finite non-zero vector".into());
-        }
-        let kind = match t.kind.as_str() {
-            "directional" => {
-                if t.position.is_some() || t.cone_degrees.is_some() {
-                    return Err("a directional light has no position or cone_degrees".into());
-                }
-                LightKind::Directional {
-                    direction: t.direction,
-                }
-            }
-            "spot" => {
-                let position = t.position.ok_or("a spot light needs position")?;
-                let cone_degrees = t.cone_degrees.ok_or("a spot light needs cone_degrees")?;
-                if !(cone_degrees > 0.0 && cone_degrees < 179.0) {
-                    return Err(format!(
-                        "light.cone_degrees must be in (0, 179), got {cone_degrees}"
-                    ));
-                }
-                LightKind::Spot {
-                    position,
-                    direction: t.direction,
-                    cone_degrees,
-                }
-            }
-            other => {
-                return Err(format!(
-                    "unknown light type {other:?} (expected \"directional\" or \"spot\")"
-                ));
-            }
-        };
-        Ok(Light {
-            kind,
-            color: t.color,
-            intensity: t.intensity,
-        })
-    }
-}
-
-impl Light {
-    /// Unit direction in which the light travels.
-    pub fn direction(&self) -> Vec3 {
-        let d = match &self.kind {
-            LightKind::Directional { direction } | LightKind::Spot { direction, .. } => {
-                Vec3::from(*direction)
-            }
-        };
-        d.normalize_or(Vec3::NEG_Y)
-    }
-
-    /// Unit vector from the scene toward the light (for a spot: the reverse
-    /// of its axis; use [`Light::direction_to_light_from`] per point).
-    pub fn direction_to_light(&self) -> Vec3 {
-        -self.direction()
-    }
-
-    /// Unit vector from `point` toward the light.
-    pub fn direction_to_light_from(&self, point: Vec3) -> Vec3 {
-        match &self.kind {
-            LightKind::Directional { .. } => self.direction_to_light(),
-            LightKind::Spot { position, .. } => {
-                (Vec3::from(*position) - point).normalize_or(self.direction_to_light())
-            }
-        }
-    }
-
-    /// `color * intensity`.
-    pub fn radiance(&self) -> Vec3 {
-        Vec3::from(self.color) * self.intensity
-    }
-
-    fn up_for(dir: Vec3) -> Vec3 {
-        if dir.cross(Vec3::Y).length_squared() < 1e-6 {
-            Vec3::Z
-        } else {
-            Vec3::Y
-        }
-    }
-
-    /// The light's view matrix (right-handed, looking along its direction).
-    /// For a directional light the eye is placed behind `occluders`.
-    pub fn view(&self, occluders: Aabb) -> Mat4 {
-        let dir = self.direction();
-        match &self.kind {
-            LightKind::Directional { .. } => {
-                let c = occluders.center();
-                let radius = occluders.extent().length() * 0.5 + 1.0;
-                Mat4::look_at_rh(c - dir * radius * 2.0, c, Self::up_for(dir))
-            }
-            LightKind::Spot { position, .. } => {
-                let p = Vec3::from(*position);
-                Mat4::look_at_rh(p, p + dir, Self::up_for(dir))
-            }
-        }
-    }
-
-    /// Light view-projection fitted tightly (Halén & Wester 2007 §5.7): x/y (for a spot, the
-    /// frustum's side planes, capped by its cone) fitted to the occluders'
-    /// bounds as seen from the light; depth from the nearest occluder point
-    /// to the farthest receiver point, so shadows cast by the occluders reach
-    /// every receiver. Depth maps to 0..1 (wgpu).
-    pub fn view_proj(&self, occluders: Aabb, receivers: Aabb) -> Mat4 {
-        let occ = if occluders.is_empty() {
-            Aabb::new(Vec3::splat(-1.0), Vec3::ONE)
-        } else {
-            occluders
-        };
-        let rec = if receivers.is_empty() {
-            occ
-        } else {
-            receivers.union(&occ)
-        };
-        let view = self.view(occ);
-        let occ_v: Vec<Vec3> = occ
-            .corners()
-            .iter()
-            .map(|&c| view.transform_point3(c))
-            .collect();
-        let rec_v: Vec<Vec3> = rec
-            .corners()
-            .iter()
-            .map(|&c| view.transform_point3(c))
-            .collect();
-        // distances along the view axis (-z in a right-handed view)
-        let near_occ = occ_v.iter().map(|p| -p.z).fold(f32::INFINITY, f32::min);
-        let far_all = rec_v.iter().map(|p| -p.z).fold(f32::NEG_INFINITY, f32::max);
-        let margin = (far_all - near_occ).abs().max(1e-3) * 0.01;
-        match &self.kind {
-            LightKind::Directional { .. } => {
-                let (mut l, mut r, mut b, mut t) = (
-                    f32::INFINITY,
-                    f32::NEG_INFINITY,
-                    f32::INFINITY,
-                    f32::NEG_INFINITY,
-                );
-                for p in &occ_v {
-                    l = l.min(p.x);
-                    r = r.max(p.x);
-                    b = b.min(p.y);
-                    t = t.max(p.y);
-                }
-                let pad = ((r - l).max(t - b) * 0.01).max(1e-4);
-                let proj = Mat4::orthographic_rh(
-                    l - pad,
-                    r + pad,
-                    b - pad,
-                    t + pad,
-                    near_occ - margin,
-                    far_all + margin,
-                );
-                proj * view
-            }
-            LightKind::Spot { cone_degrees, .. } => {
-                let half_cone = (cone_degrees.to_radians() * 0.5).tan();
-                let near = (near_occ - margin).max(far_all.max(1.0) * 1e-4).max(1e-3);
-                let far = far_all.max(near * 2.0) + margin;
-                // slopes x/-z, y/-z of occluder corners; corners behind the
-                // light make the fit meaningless, so fall back to the cone
-                let in_front = occ_v.iter().all(|p| -p.z > 1e-4);
-                let (mut l, mut r, mut b, mut t) = (-half_cone, half_cone, -half_cone, half_cone);
-                if in_front {
-                    let (mut l2, mut r2, mut b2, mut t2) = (
-                        f32::INFINITY,
-                        f32::NEG_INFINITY,
-                        f32::INFINITY,
-                        f32::NEG_INFINITY,
-                    );
-                    for p in &occ_v {
-                        let (sx, sy) = (p.x / -p.z, p.y / -p.z);
-                        l2 = l2.min(sx);
-                        r2 = r2.max(sx);
-                        b2 = b2.min(sy);
-                        t2 = t2.max(sy);
-                    }
-                    l = l2.max(-half_cone);
-                    r = r2.min(half_cone);
-                    b = b2.max(-half_cone);
-                    t = t2.min(half_cone);
-                    if l >= r || b >= t {
-                        (l, r, b, t) = (-half_cone, half_cone, -half_cone, half_cone);
-                    }
-                }
-                Mat4::frustum_rh(l * near, r * near, b * near, t * near, near, far) * view
-            }
-        }
-    }
 }
 
 /// What is behind everything.
@@ -456,30 +170,76 @@ impl Default for HairMaterial {
 }
 
 /// A complete scene.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
     /// The hair.
-    pub hair: HairSource,
+    pub hair: Hair,
     /// The opaque head, if any.
-    #[serde(default)]
     pub head: Option<Head>,
     /// The ground, if any.
-    #[serde(default)]
     pub ground: Option<Ground>,
-    /// The camera.
+    /// The camera (until [`Scene::load_hair`], a stand-in when it is fitted).
     pub camera: Camera,
-    /// The one light.
+    /// The one light (likewise).
     pub light: Light,
+    /// What is fitted to the hair when it is loaded.
+    pub framing: Framing,
     /// The background.
-    #[serde(default = "default_background")]
     pub background: Background,
     /// Hair material.
-    #[serde(default)]
     pub material: HairMaterial,
     /// Constant ambient light intensity.
-    #[serde(default = "default_ambient")]
     pub ambient: f32,
+}
+
+/// What [`Scene::load_hair`] fits to the hair's bounds.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Framing {
+    /// `camera = "fit"`: the camera is placed to see the hair (and head).
+    pub camera: Option<CameraFit>,
+    /// `light = "fit"`: the light's direction follows the camera.
+    pub light: bool,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneToml {
+    hair: Hair,
+    #[serde(default)]
+    head: Option<Head>,
+    #[serde(default)]
+    ground: Option<Ground>,
+    camera: CameraSetting,
+    light: LightSetting,
+    #[serde(default = "default_background")]
+    background: Background,
+    #[serde(default)]
+    material: HairMaterial,
+    #[serde(default = "default_ambient")]
+    ambient: f32,
+}
+
+impl From<SceneToml> for Scene {
+    fn from(t: SceneToml) -> Scene {
+        let (camera, camera_fit) = match t.camera {
+            CameraSetting::Fixed(c) => (c, None),
+            CameraSetting::Fit(fit) => (Camera::looking_down_z(), Some(fit)),
+        };
+        Scene {
+            hair: t.hair,
+            head: t.head,
+            ground: t.ground,
+            camera,
+            light: t.light.light,
+            framing: Framing {
+                camera: camera_fit,
+                light: t.light.fit,
+            },
+            background: t.background,
+            material: t.material,
+            ambient: t.ambient,
+        }
+    }
 }
 
 fn default_background() -> Background {
@@ -512,7 +272,7 @@ impl Scene {
             radii: [0.9, 1.05, 1.0],
         };
         Scene {
-            hair: HairSource::Procedural(GroomSpec {
+            hair: Hair::from(HairSource::Procedural(GroomSpec {
                 style: Style::Wavy,
                 strands: 10_000,
                 segments: 32,
@@ -537,7 +297,7 @@ impl Scene {
                 wave_period: None,
                 stray_strands: 0,
                 guides: None,
-            }),
+            })),
             head: Some(Head {
                 center: head.center,
                 radii: head.radii,
@@ -563,6 +323,7 @@ impl Scene {
                 color: [1.0, 0.97, 0.92],
                 intensity: 3.0,
             },
+            framing: Framing::default(),
             background: Background::Color([0.05, 0.06, 0.08]),
             material: HairMaterial::default(),
             ambient: 0.15,
@@ -572,7 +333,7 @@ impl Scene {
     /// Parses scene text; `path` is used in messages and to resolve relative
     /// paths (against its directory).
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
-        let mut scene: Scene = toml::from_str(text).map_err(|e| {
+        let parsed: SceneToml = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((1, 1), |s| line_col(text, s.start));
             SceneError::Parse {
                 path: path.to_path_buf(),
@@ -581,12 +342,13 @@ impl Scene {
                 message: e.message().trim().to_string(),
             }
         })?;
+        let mut scene = Scene::from(parsed);
         scene.validate().map_err(|message| SceneError::Invalid {
             path: path.to_path_buf(),
             message,
         })?;
         let dir = path.parent().unwrap_or(Path::new(""));
-        if let HairSource::File(p) = &mut scene.hair
+        if let HairSource::File(p) = &mut scene.hair.source
             && p.is_relative()
         {
             *p = dir.join(&*p);
@@ -611,8 +373,9 @@ impl Scene {
 
     /// Range checks after parsing; messages name the field.
     pub fn validate(&self) -> Result<(), String> {
-        if let HairSource::Procedural(g) = &self.hair {
-            g.validate().map_err(|m| format!("hair.procedural.{m}"))?;
+        self.hair.validate()?;
+        if let Some(fit) = &self.framing.camera {
+            fit.validate()?;
         }
         let c = &self.camera;
         if !(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0) {
@@ -630,6 +393,54 @@ impl Scene {
         if Vec3::from(c.eye) == Vec3::from(c.target) {
             return Err("camera.eye and camera.target must differ".into());
         }
+        // NaN or infinity anywhere would reach the shaders as black or
+        // garbage pixels, so every number is checked here, by name.
+        let l = &self.light;
+        let m = &self.material;
+        let mut numbers: Vec<(&str, &[f32])> = vec![
+            ("camera.eye", &c.eye),
+            ("camera.target", &c.target),
+            ("camera.up", &c.up),
+            ("light.color", &l.color),
+            ("light.intensity", std::slice::from_ref(&l.intensity)),
+            ("material.color", &m.color),
+            ("material.alpha", std::slice::from_ref(&m.alpha)),
+            ("material.diffuse", std::slice::from_ref(&m.diffuse)),
+            ("material.specular", std::slice::from_ref(&m.specular)),
+            (
+                "material.specular_exponent",
+                std::slice::from_ref(&m.specular_exponent),
+            ),
+            (
+                "material.specular_shift",
+                std::slice::from_ref(&m.specular_shift),
+            ),
+            ("ambient", std::slice::from_ref(&self.ambient)),
+        ];
+        if let LightKind::Spot { position, .. } = &l.kind {
+            numbers.push(("light.position", position));
+        }
+        if let Some(h) = &self.head {
+            numbers.extend([
+                ("head.center", &h.center[..]),
+                ("head.albedo", &h.albedo[..]),
+            ]);
+        }
+        if let Some(g) = &self.ground {
+            numbers.extend([
+                ("ground.height", std::slice::from_ref(&g.height)),
+                ("ground.albedo", &g.albedo[..]),
+            ]);
+        }
+        if let Background::Color(color) = &self.background {
+            numbers.push(("background.color", color));
+        }
+        if let Some((name, _)) = numbers
+            .iter()
+            .find(|(_, v)| !v.iter().all(|x| x.is_finite()))
+        {
+            return Err(format!("{name} must be finite"));
+        }
         if let Some(h) = &self.head
             && h.radii.iter().any(|r| r.is_nan() || *r <= 0.0)
         {
@@ -643,14 +454,61 @@ impl Scene {
         Ok(())
     }
 
-    /// The strands to render: the file's, or the generated groom.
+    /// The strands to render: the file's or the generated groom, with its
+    /// follow strands, placed by its transform.
     pub fn strands(&self) -> Result<Strands, SceneError> {
-        match &self.hair {
+        let (mut strands, origin) = match &self.hair.source {
             HairSource::File(path) => {
-                let (file, _warnings) = HairFile::read(path)?;
-                Ok(Strands::from_hair_file(&file))
+                let (asset, _warnings) = Asset::read(path)?;
+                (asset.strands(), path.clone())
             }
-            HairSource::Procedural(spec) => Ok(crate::groom::generate(spec)),
+            HairSource::Procedural(spec) => (
+                crate::groom::generate(spec),
+                PathBuf::from("<procedural groom>"),
+            ),
+        };
+        let invalid = |message: String| SceneError::Invalid {
+            path: origin.clone(),
+            message,
+        };
+        if let Some(follow) = &self.hair.follow {
+            follow
+                .check_size(&strands)
+                .map_err(|m| invalid(format!("hair.{m}")))?;
+            strands = follow.apply(&strands);
+        }
+        if let Some(transform) = &self.hair.transform {
+            transform.apply(&mut strands).map_err(invalid)?;
+        }
+        Ok(strands)
+    }
+
+    /// [`Scene::strands`], then the camera and light given as `"fit"` are
+    /// fitted to the hair (and head): what a renderer calls.
+    pub fn load_hair(&mut self) -> Result<Strands, SceneError> {
+        let strands = self.strands()?;
+        self.frame(strands.bounds());
+        Ok(strands)
+    }
+
+    /// Fits the camera and light given as `"fit"` to `hair` (the head is
+    /// added; the ground only widens the depth range).
+    pub fn frame(&mut self, hair: Aabb) {
+        let head = self
+            .head
+            .as_ref()
+            .map(|h| {
+                let (c, r) = (Vec3::from(h.center), Vec3::from(h.radii));
+                Aabb::new(c - r, c + r)
+            })
+            .unwrap_or(Aabb::EMPTY);
+        let subject = hair.union(&head);
+        if let Some(fit) = &self.framing.camera {
+            self.camera = fit.camera(subject, subject.union(&self.opaque_bounds()));
+        }
+        if self.framing.light {
+            let fitted = Light::fitted(&self.camera, self.light.intensity);
+            self.light.kind = fitted.kind;
         }
     }
 
@@ -701,7 +559,7 @@ mod tests {
     fn all_example_scenes_load_and_validate() {
         for name in ["small.toml", "default.toml", "dense.toml", "stray.toml"] {
             let s = Scene::load(examples().join(name)).unwrap_or_else(|e| panic!("{e}"));
-            let HairSource::Procedural(g) = &s.hair else {
+            let HairSource::Procedural(g) = &s.hair.source else {
                 panic!("{name}: procedural expected")
             };
             match name {
@@ -750,46 +608,6 @@ mod tests {
     }
 
     #[test]
-    fn light_frustum_fits_occluders_and_reaches_receivers() {
-        let occ = Aabb::new(Vec3::new(-1.0, -1.0, -1.0), Vec3::new(1.0, 1.0, 1.0));
-        let rec = Aabb::new(Vec3::new(-6.0, -2.7, -6.0), Vec3::new(6.0, -2.7, 6.0));
-        let lights = [
-            Light {
-                kind: LightKind::Directional {
-                    direction: [-0.5, -1.0, -0.6],
-                },
-                color: [1.0; 3],
-                intensity: 1.0,
-            },
-            Light {
-                kind: LightKind::Spot {
-                    position: [3.0, 6.0, 3.0],
-                    direction: [-3.0, -6.0, -3.0],
-                    cone_degrees: 60.0,
-                },
-                color: [1.0; 3],
-                intensity: 1.0,
-            },
-        ];
-        for light in lights {
-            let m = light.view_proj(occ, rec);
-            let proj: Vec<Vec3> = occ.corners().iter().map(|&c| m.project_point3(c)).collect();
-            for p in &proj {
-                assert!(p.x.abs() <= 1.0001 && p.y.abs() <= 1.0001, "{p}");
-                assert!((-1e-4..=1.0001).contains(&p.z), "{p}");
-            }
-            // tight: some corner touches each side within 5%
-            assert!(proj.iter().map(|p| p.x).fold(f32::MIN, f32::max) > 0.95);
-            assert!(proj.iter().map(|p| p.x).fold(f32::MAX, f32::min) < -0.95);
-            // the nearest occluder is near depth 0
-            assert!(proj.iter().map(|p| p.z).fold(f32::MAX, f32::min) < 0.05);
-            // the ground under the hair is inside the depth range
-            let g = m.project_point3(Vec3::new(0.0, -2.7, 0.0));
-            assert!((0.0..=1.0).contains(&g.z), "{g}");
-        }
-    }
-
-    #[test]
     fn parse_errors_have_line_and_column() {
         let p = Path::new("dir/scene.toml");
         let text = "[hair.procedural]\nstrands = 10\n\n[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\nfov_y_degrees = 40\nfov = 3\n";
@@ -812,7 +630,10 @@ mod tests {
         let path = dir.path().join("s.toml");
         std::fs::write(&path, text).expect("write");
         let s = Scene::load(&path).expect("loads");
-        assert_eq!(s.hair, HairSource::File(dir.path().join("models/x.hair")));
+        assert_eq!(
+            s.hair.source,
+            HairSource::File(dir.path().join("models/x.hair"))
+        );
         assert_eq!(s.background, Background::Image(dir.path().join("env.png")));
         let e = s.strands().unwrap_err();
         assert!(e.to_string().contains("x.hair"), "{e}");

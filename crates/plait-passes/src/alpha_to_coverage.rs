@@ -49,10 +49,6 @@ impl PassType for HairCoverage {
             )
         };
         PassTypeSpec {
-            name: name.into(),
-            description: description.into(),
-            source: source.into(),
-            shape: PassShape::Raster,
             inputs: transparency::shading_inputs(),
             outputs: vec![
                 texture(
@@ -78,9 +74,7 @@ impl PassType for HairCoverage {
                 .loads(),
             ],
             params: transparency::shading_params(),
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(name, PassShape::Raster, source, description)
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {

@@ -1,55 +1,50 @@
 //! The data-only pass types: a WGSL file and a few lines of TOML, no Rust.
 //!
 //! `fullscreen` draws one triangle over its colour targets (the pass's
-//! `writes` that the shader does not bind, in file order); `compute`
-//! dispatches one thread per texel of its first written texture (or per 4
-//! bytes of its first written buffer). Every other slot is matched by name to
-//! a shader binding in group 1, checked with naga's reflection when the
-//! pipeline is loaded; a `params` uniform is filled from the pass params by
-//! member name.
+//! `writes` that the shader does not bind, in file order); `raster` draws the
+//! scene's hair or opaque geometry (`draw`) from the light or the camera
+//! (`view`) into its colour and depth targets, with the state its TOML sets
+//! (`depth`, `blend`, `cull`); `compute` dispatches one thread per texel of
+//! its first written texture (or per 4 bytes of its first written buffer).
+//! Every other slot is matched by name to a shader binding in group 1, checked
+//! with naga's reflection when the pipeline is loaded; a `params` uniform is
+//! filled from the pass params by member name.
+//!
+//! A raster pass's storage writes respect its depth test whatever the shader
+//! does (the engine's `depth_guard`); `plait check` refuses a data-only pass
+//! whose depth target would make that impossible on some adapter.
 
 use plait_gpu::pass::{BuiltinShader, PassType};
 use plait_graph::{PassShape, PassTypeSpec};
 
-fn data_only(name: &str, shape: PassShape, description: &str) -> PassTypeSpec {
-    PassTypeSpec {
-        name: name.into(),
-        description: description.into(),
-        source: "plait".into(),
-        shape,
-        inputs: vec![],
-        outputs: vec![],
-        params: vec![],
-        dynamic_slots: true,
-        needs_shader: true,
-        required_features: vec![],
-    }
+/// One data-only pass type of `shape`.
+pub struct DataOnly {
+    pub name: &'static str,
+    pub shape: PassShape,
+    pub description: &'static str,
 }
 
-pub struct Fullscreen;
+pub const FULLSCREEN: DataOnly = DataOnly {
+    name: "fullscreen",
+    shape: PassShape::Fullscreen,
+    description: "A WGSL fragment shader over the whole target; slots are the shader's bindings; `blend` per colour target.",
+};
 
-impl PassType for Fullscreen {
+pub const RASTER: DataOnly = DataOnly {
+    name: "raster",
+    shape: PassShape::Raster,
+    description: "A WGSL vertex + fragment shader drawing `draw` from `view`; slots are the shader's bindings, other textures its targets; `depth`, `blend`, `cull` set its state.",
+};
+
+pub const COMPUTE: DataOnly = DataOnly {
+    name: "compute",
+    shape: PassShape::Compute,
+    description: "A WGSL compute shader; slots are the shader's bindings.",
+};
+
+impl PassType for DataOnly {
     fn spec(&self) -> PassTypeSpec {
-        data_only(
-            "fullscreen",
-            PassShape::Fullscreen,
-            "A WGSL fragment shader over the whole target; slots are the shader's bindings.",
-        )
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        None
-    }
-}
-
-pub struct Compute;
-
-impl PassType for Compute {
-    fn spec(&self) -> PassTypeSpec {
-        data_only(
-            "compute",
-            PassShape::Compute,
-            "A WGSL compute shader; slots are the shader's bindings.",
-        )
+        PassTypeSpec::data_only(self.name, self.shape, self.description)
     }
     fn shader(&self) -> Option<BuiltinShader> {
         None

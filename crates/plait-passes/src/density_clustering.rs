@@ -28,7 +28,7 @@
 //! one refinement, plus the 2 MiB depth range.
 
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, build_shader_pass,
+    BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, ShaderDraw, build_draw,
 };
 use plait_gpu::{Define, GpuError};
 use plait_graph::{
@@ -45,46 +45,49 @@ pub const CLUSTERS: u64 = 4;
 /// u32 words per cluster per stage: count, Σz, Σz² (fixed point).
 pub const WORDS_PER_CLUSTER: u64 = 3;
 
-const SHADER: BuiltinShader = (
-    "shaders/passes/density_clustering.wgsl",
-    include_str!("../../../shaders/passes/density_clustering.wgsl"),
-);
+const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/density_clustering.wgsl");
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
-        name: "density_clustering".into(),
-        description: "K = 4 k-means clusters of fragment depth per texel (count, Σz, Σz²), refined over several hair draws in one pass.".into(),
-        source: "Mertens et al. 2004; Halén & Wester 2007 §3.3.2".into(),
-        shape: PassShape::Raster,
         inputs: vec![
-            texture("range", Access::Sampled, &[Format::Rg32Float], "depth range of the same view (depth_range): initial uniform clusters"),
-            texture("depth", Access::DepthTarget, DEPTH, "opaque depth of the same view, tested not written"),
+            texture(
+                "range",
+                Access::Sampled,
+                &[Format::Rg32Float],
+                "depth range of the same view (depth_range): initial uniform clusters",
+            ),
+            texture(
+                "depth",
+                Access::DepthTarget,
+                DEPTH,
+                "opaque depth of the same view, tested not written",
+            ),
         ],
-        outputs: vec![buffer("clusters", Access::StorageWrite, "(iterations + 1) stages × 4 clusters × (count, Σz, Σz²) u32 per texel")],
-        params: vec![int("iterations", 1, 0, 8, "k-means refinements after the uniform-slice draw (the paper: 1 is enough)")],
-        dynamic_slots: false,
-        needs_shader: false,
-        required_features: vec![],
+        outputs: vec![buffer(
+            "clusters",
+            Access::StorageWrite,
+            "(iterations + 1) stages × 4 clusters × (count, Σz, Σz²) u32 per texel",
+        )],
+        params: vec![int(
+            "iterations",
+            1,
+            0,
+            8,
+            "k-means refinements after the uniform-slice draw (the paper: 1 is enough)",
+        )],
+        ..PassTypeSpec::new(
+            "density_clustering",
+            PassShape::Raster,
+            "Mertens et al. 2004; Halén & Wester 2007 §3.3.2",
+            "K = 4 k-means clusters of fragment depth per texel (count, Σz, Σz²), refined over several hair draws in one pass.",
+        )
     }
 }
 
-/// One hair draw: accumulates stage `stage`.
-struct Draw {
-    stage: u32,
-}
-
-impl PassType for Draw {
-    fn spec(&self) -> PassTypeSpec {
-        spec()
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(SHADER)
-    }
-    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
-        let mut d = plait_gpu::pass::default_defines(pass);
-        d.push(("STAGE".into(), Define::UInt(self.stage)));
-        d
-    }
+/// The draw of k-means stage `stage` (0: uniform slices) reads stage − 1.
+fn set_stage(defines: &mut Vec<(String, Define)>, stage: u32) {
+    defines.retain(|(k, _)| k != "STAGE");
+    defines.push(("STAGE".into(), Define::UInt(stage)));
 }
 
 struct Draws(Vec<Box<dyn PreparedPass>>);
@@ -106,7 +109,7 @@ impl PassType for DensityClustering {
     }
     fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
         let mut d = plait_gpu::pass::default_defines(pass);
-        d.push(("STAGE".into(), Define::UInt(0)));
+        set_stage(&mut d, 0);
         d
     }
     fn check_sizes(
@@ -144,7 +147,8 @@ impl PassType for DensityClustering {
             Some(Value::Int(i)) => *i as u64,
             _ => 1,
         };
-        let mut draws = Vec::new();
+        let mut draw = ShaderDraw::of(self, pass, ctx)?;
+        let mut draws: Vec<Box<dyn PreparedPass>> = Vec::new();
         for stage in 0..=iterations as u32 {
             // Only the first draw clears the buffer; later draws add to it.
             let mut p = pass.clone();
@@ -153,7 +157,8 @@ impl PassType for DensityClustering {
                     b.loads = true;
                 }
             }
-            draws.push(build_shader_pass(&Draw { stage }, &p, ctx)?);
+            set_stage(&mut draw.defines, stage);
+            draws.push(Box::new(build_draw(&draw, &p, ctx)?));
         }
         Ok(Box::new(Draws(draws)))
     }

@@ -27,10 +27,10 @@
 use std::cell::Cell;
 
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext,
-    ShaderPass, build_shader_pass_typed,
+    BlendPreset, BuildContext, BuiltinShader, PassType, PreparedPass, RasterState, RecordContext,
+    ShaderDraw, ShaderPass, blend_preset, build_draw, default_defines,
 };
-use plait_gpu::{Capabilities, Define, GpuError};
+use plait_gpu::{Define, GpuError};
 use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::spec_util::{DEPTH, HDR, int, texture};
@@ -62,21 +62,40 @@ fn spec() -> PassTypeSpec {
         "layers peeled between occlusion-query read-backs (each one a CPU-GPU round trip)",
     ));
     PassTypeSpec {
-        name: "hair_depth_peel".into(),
-        description: "Depth peeling front to back until an occlusion query reports no fragments (ground truth).".into(),
-        source: "Sintorn & Assarsson 2009 §2.2, §3.4, Fig. 2".into(),
-        shape: PassShape::Raster,
         inputs,
         outputs: vec![
-            texture("color", Access::ColorTarget, HDR, "hair, premultiplied, blended front to back"),
-            texture("layer", Access::ColorTarget, HDR, "scratch: the layer being peeled"),
-            texture("peel_depth", Access::DepthTarget, DEPTH, "scratch: depth of the layer being peeled"),
-            texture("peel_prev", Access::DepthTarget, DEPTH, "scratch: depth of the previous layer (ping-pong with peel_depth)"),
+            texture(
+                "color",
+                Access::ColorTarget,
+                HDR,
+                "hair, premultiplied, blended front to back",
+            ),
+            texture(
+                "layer",
+                Access::ColorTarget,
+                HDR,
+                "scratch: the layer being peeled",
+            ),
+            texture(
+                "peel_depth",
+                Access::DepthTarget,
+                DEPTH,
+                "scratch: depth of the layer being peeled",
+            ),
+            texture(
+                "peel_prev",
+                Access::DepthTarget,
+                DEPTH,
+                "scratch: depth of the previous layer (ping-pong with peel_depth)",
+            ),
         ],
         params,
-        dynamic_slots: false,
-        needs_shader: false,
-        required_features: vec![],
+        ..PassTypeSpec::new(
+            "hair_depth_peel",
+            PassShape::Raster,
+            "Sintorn & Assarsson 2009 §2.2, §3.4, Fig. 2",
+            "Depth peeling front to back until an occlusion query reports no fragments (ground truth).",
+        )
     }
 }
 
@@ -140,9 +159,12 @@ impl PassType for HairDepthPeel {
             });
             p
         };
+        // The peel draw: hair, depth test and write (Less), colour replaced —
+        // the type's own draw and state.
+        let peel_draw = ShaderDraw::of(self, pass, ctx)?;
         let peel = [
-            build_shader_pass_typed(&PeelDraw, &peel_pass(&depth_a, &depth_b), ctx)?,
-            build_shader_pass_typed(&PeelDraw, &peel_pass(&depth_b, &depth_a), ctx)?,
+            build_draw(&peel_draw, &peel_pass(&depth_a, &depth_b), ctx)?,
+            build_draw(&peel_draw, &peel_pass(&depth_b, &depth_a), ctx)?,
         ];
         let mut blend_pass = pass.clone();
         blend_pass.reads = vec![Binding {
@@ -154,7 +176,18 @@ impl PassType for HairDepthPeel {
             ..color.clone()
         }];
         blend_pass.params.clear();
-        let blend = build_shader_pass_typed(&PeelBlend, &blend_pass, ctx)?;
+        // The blend of one layer under the accumulated colour.
+        let blend_draw = ShaderDraw::builtin(
+            plait_gpu::builtin_shader!("passes/peel_blend.wgsl"),
+            PassShape::Fullscreen,
+            default_defines(&blend_pass),
+            RasterState {
+                blend: vec![blend_preset(BlendPreset::Under)],
+                load_colors: true,
+                ..RasterState::default()
+            },
+        );
+        let blend = build_draw(&blend_draw, &blend_pass, ctx)?;
 
         let device = ctx.device;
         let queries = device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -189,75 +222,6 @@ impl PassType for HairDepthPeel {
             layers: Cell::new(0),
             capped: Cell::new(false),
         }))
-    }
-}
-
-/// The peel draw: hair, depth test and write (Less), colour replaced.
-struct PeelDraw;
-
-impl PassType for PeelDraw {
-    fn spec(&self) -> PassTypeSpec {
-        spec()
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(HAIR_SHADER)
-    }
-    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
-        transparency::defines(pass, "depth_peel")
-    }
-    fn raster_state(
-        &self,
-        _pass: &ScheduledPass,
-        _caps: &Capabilities,
-    ) -> Result<RasterState, String> {
-        Ok(RasterState {
-            depth: DepthMode::TestWrite(wgpu::CompareFunction::Less),
-            clear_depth: 1.0,
-            ..RasterState::default()
-        })
-    }
-}
-
-/// Front-to-back "under": dst.rgb += (1 - dst.a) · src.rgb, dst.a likewise (src premultiplied).
-const UNDER: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-    alpha: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::OneMinusDstAlpha,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-};
-
-/// The blend of one layer under the accumulated colour.
-struct PeelBlend;
-
-impl PassType for PeelBlend {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            shape: PassShape::Fullscreen,
-            ..spec()
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/peel_blend.wgsl",
-            include_str!("../../../shaders/passes/peel_blend.wgsl"),
-        ))
-    }
-    fn raster_state(
-        &self,
-        _pass: &ScheduledPass,
-        _caps: &Capabilities,
-    ) -> Result<RasterState, String> {
-        Ok(RasterState {
-            blend: vec![Some(UNDER)],
-            load_colors: true,
-            ..RasterState::default()
-        })
     }
 }
 

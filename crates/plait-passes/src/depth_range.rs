@@ -8,30 +8,21 @@
 //! on every adapter: near with `Less` into red, far with `Greater` into green,
 //! sharing one scratch depth buffer. Empty texels keep near = 1 > far = 0.
 
+use plait_gpu::GpuError;
 use plait_gpu::pass::{
     BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext,
-    build_shader_pass,
+    ShaderDraw, build_draw,
 };
-use plait_gpu::{Capabilities, GpuError};
 use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::spec_util::{DEPTH, texture};
 
 pub struct DepthRange;
 
-const SHADER: BuiltinShader = (
-    "shaders/passes/depth_range.wgsl",
-    include_str!("../../../shaders/passes/depth_range.wgsl"),
-);
+const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/depth_range.wgsl");
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
-        name: "depth_range".into(),
-        description:
-            "Nearest (red) and farthest (green) hair depth per texel, linear in the view's depth."
-                .into(),
-        source: "Sintorn & Assarsson 2009 §3.1, Fig. 7".into(),
-        shape: PassShape::Raster,
         inputs: vec![texture(
             "opaque_depth",
             Access::Sampled,
@@ -52,53 +43,38 @@ fn spec() -> PassTypeSpec {
                 "depth buffer for the two depth-tested draws",
             ),
         ],
-        params: vec![],
-        dynamic_slots: false,
-        needs_shader: false,
-        required_features: vec![],
+        ..PassTypeSpec::new(
+            "depth_range",
+            PassShape::Raster,
+            "Sintorn & Assarsson 2009 §3.1, Fig. 7",
+            "Nearest (red) and farthest (green) hair depth per texel, linear in the view's depth.",
+        )
     }
 }
 
-/// One of the two draws.
-struct Draw {
-    far: bool,
-}
-
-impl PassType for Draw {
-    fn spec(&self) -> PassTypeSpec {
-        spec()
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(SHADER)
-    }
-    fn raster_state(
-        &self,
-        _pass: &ScheduledPass,
-        _caps: &Capabilities,
-    ) -> Result<RasterState, String> {
-        Ok(if self.far {
-            RasterState {
-                depth: DepthMode::TestWrite(wgpu::CompareFunction::Greater),
-                clear_depth: 0.0,
-                write_mask: vec![wgpu::ColorWrites::GREEN],
-                load_colors: true,
-                ..RasterState::default()
-            }
-        } else {
-            RasterState {
-                depth: DepthMode::TestWrite(wgpu::CompareFunction::Less),
-                clear_color: wgpu::Color {
-                    r: 1.0,
-                    g: 0.0,
-                    b: 0.0,
-                    a: 0.0,
-                },
-                clear_depth: 1.0,
-                write_mask: vec![wgpu::ColorWrites::RED],
-                ..RasterState::default()
-            }
-        })
-    }
+/// The two draws: near (`Less` into red) then far (`Greater` into green).
+fn draw_states() -> [RasterState; 2] {
+    [
+        RasterState {
+            depth: DepthMode::TestWrite(wgpu::CompareFunction::Less),
+            clear_color: wgpu::Color {
+                r: 1.0,
+                g: 0.0,
+                b: 0.0,
+                a: 0.0,
+            },
+            clear_depth: 1.0,
+            write_mask: vec![wgpu::ColorWrites::RED],
+            ..RasterState::default()
+        },
+        RasterState {
+            depth: DepthMode::TestWrite(wgpu::CompareFunction::Greater),
+            clear_depth: 0.0,
+            write_mask: vec![wgpu::ColorWrites::GREEN],
+            load_colors: true,
+            ..RasterState::default()
+        },
+    ]
 }
 
 struct TwoDraws {
@@ -125,8 +101,12 @@ impl PassType for DepthRange {
         pass: &ScheduledPass,
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        let near = build_shader_pass(&Draw { far: false }, pass, ctx)?;
-        let far = build_shader_pass(&Draw { far: true }, pass, ctx)?;
+        let mut draw = ShaderDraw::of(self, pass, ctx)?;
+        let [near_state, far_state] = draw_states();
+        draw.state = near_state;
+        let near = Box::new(build_draw(&draw, pass, ctx)?);
+        draw.state = far_state;
+        let far = Box::new(build_draw(&draw, pass, ctx)?);
         Ok(Box::new(TwoDraws { near, far }))
     }
 }

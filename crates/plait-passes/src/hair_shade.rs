@@ -11,7 +11,7 @@
 //!   `compose` pass applies the Λ correction.
 
 use plait_gpu::Capabilities;
-use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
+use plait_gpu::pass::{BlendPreset, BuiltinShader, DepthMode, PassType, RasterState, blend_preset};
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::spec_util::{DEPTH, HDR, SlotExt, buffer, choice, texture};
@@ -20,8 +20,6 @@ use crate::visibility;
 pub struct HairShade;
 
 /// Premultiplied-alpha "over".
-const OVER: wgpu::BlendState = wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING;
-
 impl PassType for HairShade {
     fn spec(&self) -> PassTypeSpec {
         let mut inputs = vec![
@@ -68,12 +66,6 @@ impl PassType for HairShade {
             "transparency: draw-order `over`, or occupancy-order weights (§3.4)",
         ));
         PassTypeSpec {
-            name: "hair_shade".into(),
-            description:
-                "Kajiya-Kay hair shading with opaque and self shadows, blended over the target."
-                    .into(),
-            source: "Halén & Wester 2007 §3.2.1; Sintorn & Assarsson 2009 §3.2-3.5".into(),
-            shape: PassShape::Raster,
             inputs,
             outputs: vec![
                 texture(
@@ -85,17 +77,17 @@ impl PassType for HairShade {
                 .loads(),
             ],
             params,
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "hair_shade",
+                PassShape::Raster,
+                "Halén & Wester 2007 §3.2.1; Sintorn & Assarsson 2009 §3.2-3.5",
+                "Kajiya-Kay hair shading with opaque and self shadows, blended over the target.",
+            )
         }
     }
 
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/hair_shade.wgsl",
-            include_str!("../../../shaders/passes/hair_shade.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/hair_shade.wgsl"))
     }
 
     fn raster_state(
@@ -104,12 +96,12 @@ impl PassType for HairShade {
         _caps: &Capabilities,
     ) -> Result<RasterState, String> {
         let blend = match pass.params.get("blend").and_then(|v| v.as_str()) {
-            Some("occupancy_order") => ADDITIVE,
-            _ => OVER,
+            Some("occupancy_order") => BlendPreset::Additive,
+            _ => BlendPreset::Over,
         };
         Ok(RasterState {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
-            blend: vec![Some(blend)],
+            blend: vec![blend_preset(blend)],
             ..RasterState::default()
         })
     }

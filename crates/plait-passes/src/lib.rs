@@ -5,63 +5,51 @@
 //! `plait render` both run before any GPU work.
 
 pub mod alpha_to_coverage;
-pub mod compose;
 pub mod data_only;
-pub mod deep_opacity;
+pub mod data_pass;
 pub mod density_clustering;
-pub mod depth_lists;
 pub mod depth_peeling;
 pub mod depth_range;
 pub mod hair_shade;
 pub mod linked_list;
 pub mod occupancy;
-pub mod opacity_shadow_maps;
 pub mod opaque_hair;
 pub mod opaque_shade;
 pub mod per_texel;
-pub mod shadow_map;
-pub mod slab;
 pub mod spec_util;
 pub mod transparency;
 pub mod visibility;
 pub mod weighted_average;
 
 use plait_gpu::pass::{PassLibrary, check_pass};
-use plait_gpu::{ShaderError, ShaderLibrary};
 use plait_graph::{Errors, Schedule};
 
 /// Every pass type plait ships.
 pub fn library() -> PassLibrary {
     let mut lib = PassLibrary::default();
-    lib.add(shadow_map::ShadowMap);
+    // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml).
+    for t in data_pass::builtin_types() {
+        lib.add(t);
+    }
     lib.add(depth_range::DepthRange);
-    lib.add(occupancy::Occupancy);
-    lib.add(slab::Slab);
-    lib.add(deep_opacity::DeepOpacity);
-    lib.add(opacity_shadow_maps::OpacityShadowMaps);
     lib.add(density_clustering::DensityClustering);
-    lib.add(depth_lists::DepthLists);
     lib.add(opaque_shade::OpaqueShade);
     lib.add(hair_shade::HairShade);
-    lib.add(compose::Compose);
     // Transparency methods (issue 5): each shades with hair_shade.wgsl.
     lib.add(depth_peeling::HairDepthPeel);
     lib.add(linked_list::HairFragmentList);
-    lib.add(linked_list::FragmentListResolve);
     lib.add(weighted_average::HairWeightedAverage);
-    lib.add(weighted_average::WeightedAverageResolve);
     lib.add(alpha_to_coverage::HAIR_ALPHA_TO_COVERAGE);
     lib.add(opaque_hair::HAIR_OPAQUE);
-    lib.add(transparency::ComposeHairOver);
-    lib.add(data_only::Fullscreen);
-    lib.add(data_only::Compute);
+    lib.add(data_only::FULLSCREEN);
+    lib.add(data_only::RASTER);
+    lib.add(data_only::COMPUTE);
     lib
 }
 
 /// Check every pass (live and culled) against its shader with naga, and
 /// settle how the slots of data-only passes are accessed.
 pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Errors> {
-    let mut shaders = ShaderLibrary::new().map_err(shader_library_error)?;
     let mut errors = Vec::new();
     let resources = schedule.resources.clone();
     let passes = schedule
@@ -70,7 +58,7 @@ pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Error
         .chain(schedule.culled.iter_mut().map(|c| &mut c.pass));
     for pass in passes {
         if let Some(t) = library.get(&pass.type_name) {
-            errors.extend(check_pass(t, pass, &resources, &mut shaders));
+            errors.extend(check_pass(t, pass, &resources));
         }
     }
     if errors.is_empty() {
@@ -78,14 +66,4 @@ pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Error
     } else {
         Err(Errors(errors))
     }
-}
-
-fn shader_library_error(e: ShaderError) -> Errors {
-    Errors(vec![plait_graph::Error::new(
-        plait_graph::Location::Builtin,
-        plait_graph::ErrorKind::Shader {
-            path: e.path,
-            message: e.message,
-        },
-    )])
 }

@@ -28,7 +28,7 @@ use plait_gpu::pass::{BuiltinShader, DepthMode, PassType, RasterState};
 use plait_gpu::{Capabilities, Define};
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
-use crate::spec_util::{DEPTH, HDR, buffer, int, texture};
+use crate::spec_util::{DEPTH, buffer, texture};
 use crate::transparency::{self, HAIR_SHADER};
 
 pub struct HairFragmentList;
@@ -49,20 +49,31 @@ impl PassType for HairFragmentList {
             "the same depth, sampled: list writes must not wait for the late depth test",
         ));
         PassTypeSpec {
-            name: "hair_fragment_list".into(),
-            description: "Append every shaded hair fragment to its pixel's linked list (atomic counter + head pointers).".into(),
-            source: "Sintorn & Assarsson 2009 §2.2 (exact order, as depth peeling)".into(),
-            shape: PassShape::Raster,
             inputs,
             outputs: vec![
-                buffer("list_heads", Access::StorageWrite, "head node + 1 per pixel (0 = empty)"),
-                buffer("list_nodes", Access::StorageWrite, "16 B per node; its size is the capacity"),
-                buffer("list_counter", Access::StorageWrite, "[nodes allocated, fragments dropped on overflow]"),
+                buffer(
+                    "list_heads",
+                    Access::StorageWrite,
+                    "head node + 1 per pixel (0 = empty)",
+                ),
+                buffer(
+                    "list_nodes",
+                    Access::StorageWrite,
+                    "16 B per node; its size is the capacity",
+                ),
+                buffer(
+                    "list_counter",
+                    Access::StorageWrite,
+                    "[nodes allocated, fragments dropped on overflow]",
+                ),
             ],
             params: transparency::shading_params(),
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "hair_fragment_list",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §2.2 (exact order, as depth peeling)",
+                "Append every shaded hair fragment to its pixel's linked list (atomic counter + head pointers).",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
@@ -80,45 +91,5 @@ impl PassType for HairFragmentList {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
             ..RasterState::default()
         })
-    }
-}
-
-pub struct FragmentListResolve;
-
-impl PassType for FragmentListResolve {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            name: "fragment_list_resolve".into(),
-            description: "Sort each pixel's fragment list by depth and blend it front to back."
-                .into(),
-            source: "Sintorn & Assarsson 2009 §2.2".into(),
-            shape: PassShape::Fullscreen,
-            inputs: vec![
-                buffer("list_heads", Access::StorageRead, "head node + 1 per pixel"),
-                buffer("list_nodes", Access::StorageRead, "the nodes"),
-            ],
-            outputs: vec![texture(
-                "color",
-                Access::ColorTarget,
-                HDR,
-                "hair, premultiplied, blended front to back",
-            )],
-            params: vec![int(
-                "max_sorted",
-                256,
-                1,
-                256,
-                "nearest fragments kept and sorted per pixel (like depth peeling's layer cap)",
-            )],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/fragment_list_resolve.wgsl",
-            include_str!("../../../shaders/passes/fragment_list_resolve.wgsl"),
-        ))
     }
 }

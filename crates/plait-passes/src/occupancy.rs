@@ -1,79 +1,9 @@
-//! `occupancy`: the occupancy map of Sintorn & Assarsson
-//! (Sintorn & Assarsson 2009 §3.1): one bit per depth slice per texel, set
-//! with `atomicOr` on a storage buffer — wgpu has no bitwise-OR blending.
-//!
-//! The `bits` buffer holds `words` u32 per texel (row-major, texel-major),
-//! giving 32 × words slices: 16 bytes per texel is the paper's 128 slices,
-//! more bytes give N × 128. Pipelines size it with
-//! `size = "${light_size} * ${light_size} * ${slices} / 8"`. Hair behind
-//! opaque geometry is rejected by the depth test against `depth` (§3.5).
+//! The occupancy maps as the shaders read them, on the CPU (Sintorn &
+//! Assarsson 2009 §3.1-3.2). The `occupancy` and `slab` pass types that build
+//! the maps are data (`shaders/passes/occupancy.toml`, `slab.toml`).
 //!
 //! [`order_estimate`] is the CPU mirror of `order_estimate` in
 //! `shaders/lib/occupancy.wgsl` (§3.2); a GPU test proves them equal.
-
-use plait_gpu::pass::{BuiltinShader, PassType};
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass};
-
-use crate::per_texel::check_words;
-use crate::spec_util::{DEPTH, buffer, texture};
-
-pub struct Occupancy;
-
-impl PassType for Occupancy {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            name: "occupancy".into(),
-            description:
-                "One bit per depth slice per texel (atomicOr), 32 slices per u32 word of `bits`."
-                    .into(),
-            source: "Sintorn & Assarsson 2009 §3.1".into(),
-            shape: PassShape::Raster,
-            inputs: vec![
-                texture(
-                    "range",
-                    Access::Sampled,
-                    &[Format::Rg32Float],
-                    "depth range of the same view (depth_range)",
-                ),
-                texture(
-                    "depth",
-                    Access::DepthTarget,
-                    DEPTH,
-                    "opaque depth of the same view, tested not written",
-                ),
-            ],
-            outputs: vec![buffer(
-                "bits",
-                Access::StorageWrite,
-                "occupancy bits: words × u32 per texel",
-            )],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/occupancy.wgsl",
-            include_str!("../../../shaders/passes/occupancy.wgsl"),
-        ))
-    }
-    fn check_sizes(
-        &self,
-        pass: &ScheduledPass,
-        resources: &[ResolvedResource],
-    ) -> Result<(), String> {
-        // 32 slices per word; up to 32 words (1024 slices), as plait::occupancy reads them.
-        check_words(pass, resources, "bits", "range", 1, 32)
-            .map(|_| ())
-            .map_err(|m| {
-                format!(
-                    "{m} (one word holds 32 slices: slices must be a multiple of 32, at most 1024)"
-                )
-            })
-    }
-}
 
 /// The maps of one texel, as the shaders read them.
 #[derive(Clone, Debug, Default)]

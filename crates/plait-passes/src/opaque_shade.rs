@@ -20,10 +20,6 @@ impl PassType for OpaqueShade {
         )];
         inputs.extend(visibility::slots());
         PassTypeSpec {
-            name: "opaque_shade".into(),
-            description: "Lambert shading of opaque geometry with opaque and hair shadows.".into(),
-            source: "Sintorn & Assarsson 2009 §3.5".into(),
-            shape: PassShape::Raster,
             inputs,
             outputs: vec![
                 texture(
@@ -40,16 +36,16 @@ impl PassType for OpaqueShade {
                 ),
             ],
             params: visibility::params(),
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "opaque_shade",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §3.5",
+                "Lambert shading of opaque geometry with opaque and hair shadows.",
+            )
         }
     }
 
     fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/opaque_shade.wgsl",
-            include_str!("../../../shaders/passes/opaque_shade.wgsl"),
-        ))
+        Some(plait_gpu::builtin_shader!("passes/opaque_shade.wgsl"))
     }
 }

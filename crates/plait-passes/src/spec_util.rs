@@ -15,6 +15,7 @@ pub fn texture(name: &str, access: Access, formats: &[Format], doc: &str) -> Slo
         loads: false,
         optional: false,
         doc: doc.into(),
+        binding: None,
     }
 }
 
@@ -27,6 +28,7 @@ pub fn buffer(name: &str, access: Access, doc: &str) -> SlotSpec {
         loads: false,
         optional: false,
         doc: doc.into(),
+        binding: None,
     }
 }
 
@@ -76,17 +78,3 @@ pub fn choice(name: &str, default: &str, options: &[&str], doc: &str) -> ParamSp
 
 pub const DEPTH: &[Format] = &[Format::Depth32Float];
 pub const HDR: &[Format] = &[Format::Rgba16Float, Format::Rgba32Float];
-
-/// The output of a compose pass: the final image, 8-bit (sRGB or not) or half float.
-pub fn final_image() -> SlotSpec {
-    texture(
-        "color",
-        Access::ColorTarget,
-        &[
-            Format::Rgba8UnormSrgb,
-            Format::Rgba8Unorm,
-            Format::Rgba16Float,
-        ],
-        "final image",
-    )
-}

@@ -11,16 +11,13 @@
 //! puts a front-to-back premultiplied hair image over the scene.
 
 use plait_gpu::Define;
-use plait_gpu::pass::{BuiltinShader, PassType, default_defines};
-use plait_graph::{Access, ParamSpec, PassShape, PassTypeSpec, ScheduledPass, SlotSpec};
+use plait_gpu::pass::{BuiltinShader, default_defines};
+use plait_graph::{Access, ParamSpec, ScheduledPass, SlotSpec};
 
-use crate::spec_util::{DEPTH, HDR, final_image, texture};
+use crate::spec_util::{DEPTH, texture};
 use crate::visibility;
 
-pub const HAIR_SHADER: BuiltinShader = (
-    "shaders/passes/hair_shade.wgsl",
-    include_str!("../../../shaders/passes/hair_shade.wgsl"),
-);
+pub const HAIR_SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/hair_shade.wgsl");
 
 /// The shading inputs of every hair pass: the opaque shadow map and the
 /// visibility provider's light maps.
@@ -48,44 +45,4 @@ pub fn defines(pass: &ScheduledPass, module: &str) -> Vec<(String, Define)> {
         Define::Bool(true),
     ));
     d
-}
-
-/// `compose_hair_over`: premultiplied hair (blended front to back) over the
-/// scene over the background, to the output format.
-pub struct ComposeHairOver;
-
-impl PassType for ComposeHairOver {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            name: "compose_hair_over".into(),
-            description: "Premultiplied hair over the scene over the background, to sRGB.".into(),
-            source: "Sintorn & Assarsson 2009 §2.2 (f = αc + (1-α)b)".into(),
-            shape: PassShape::Fullscreen,
-            inputs: vec![
-                texture(
-                    "hair",
-                    Access::Sampled,
-                    HDR,
-                    "hair, premultiplied, accumulated front to back",
-                ),
-                texture(
-                    "scene",
-                    Access::Sampled,
-                    HDR,
-                    "opaque objects, premultiplied; background where alpha < 1",
-                ),
-            ],
-            outputs: vec![final_image()],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/compose_hair_over.wgsl",
-            include_str!("../../../shaders/passes/compose_hair_over.wgsl"),
-        ))
-    }
 }

@@ -3,23 +3,27 @@
 //! shading pass imports `plait::self_shadow` (`shaders/lib/self_shadow.wgsl`),
 //! which picks the provider its `visibility` param names, and binds the
 //! provider's maps under the `vis_*` slots. Adding a provider is a WGSL module
-//! in `shaders/lib/visibility/`, one import line in `self_shadow.wgsl`, and its
-//! slots and params here — no shading pass changes.
+//! in `shaders/lib/visibility/` and one import line in `self_shadow.wgsl` (no
+//! shading pass changes; `plait::visibility::tressfx` was added so); maps or
+//! params no provider has used yet are declared here.
 
+use plait_gpu::shader::LIBRARY_MODULES;
 use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
 use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 
-/// The providers, by param value.
-pub const PROVIDERS: &[&str] = &[
-    "none",
-    "modified_shadow_map",
-    "occupancy",
-    "deep_opacity",
-    "opacity_shadow_maps",
-    "density_clustering",
-    "exact",
-];
+/// The providers, by param value: every module in `shaders/lib/visibility/`
+/// (`tressfx.wgsl` → `visibility = "tressfx"`), so a provider that needs no
+/// maps or params beyond those below is WGSL alone.
+pub fn providers() -> Vec<&'static str> {
+    LIBRARY_MODULES
+        .iter()
+        .filter_map(|(path, _)| {
+            path.strip_prefix("shaders/lib/visibility/")?
+                .strip_suffix(".wgsl")
+        })
+        .collect()
+}
 
 /// The optional input slots any provider may need.
 pub fn slots() -> Vec<SlotSpec> {
@@ -28,7 +32,7 @@ pub fn slots() -> Vec<SlotSpec> {
             "vis_depth",
             Access::Sampled,
             DEPTH,
-            "modified_shadow_map: nearest hair depth from the light",
+            "modified_shadow_map, tressfx: nearest hair depth from the light",
         )
         .optional(),
         texture(
@@ -89,7 +93,7 @@ pub fn params() -> Vec<ParamSpec> {
         choice(
             "visibility",
             "none",
-            PROVIDERS,
+            &providers(),
             "self-shadowing technique (visibility provider) used for hair shadows",
         ),
         float(
@@ -97,14 +101,14 @@ pub fn params() -> Vec<ParamSpec> {
             40.0,
             0.0,
             1e6,
-            "modified_shadow_map: extinction per world unit behind the first strand",
+            "modified_shadow_map, tressfx: extinction per world unit behind the first strand (tressfx: shadow_weight / fiber spacing)",
         ),
         float(
             "shadow_weight",
             0.05,
             0.0,
             100.0,
-            "occupancy, deep_opacity, opacity_shadow_maps, density_clustering, exact: opacity w added per hair fragment in front (§3.3)",
+            "occupancy, deep_opacity, opacity_shadow_maps, density_clustering, exact, tressfx: opacity w added per hair fragment in front (§3.3; tressfx: w = -ln(1 - α))",
         ),
         float(
             "layer_size",

@@ -12,7 +12,7 @@
 //! Cost: one hair draw + one fullscreen pass. Memory: two screen-size float
 //! targets (rgba16float sums, r16float count — exact counts to 2048).
 
-use plait_gpu::pass::{ADDITIVE, BuiltinShader, DepthMode, PassType, RasterState};
+use plait_gpu::pass::{BlendPreset, BuiltinShader, DepthMode, PassType, RasterState, blend_preset};
 use plait_gpu::{Capabilities, Define};
 use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
 
@@ -33,19 +33,23 @@ impl PassType for HairWeightedAverage {
             "camera depth of opaque geometry (tested, not written)",
         ));
         PassTypeSpec {
-            name: "hair_weighted_average".into(),
-            description: "Sum α·rgb, α and the fragment count of the hair, unsorted (weighted-average blending).".into(),
-            source: "Sintorn & Assarsson 2009 §2.2, Fig. 2".into(),
-            shape: PassShape::Raster,
             inputs,
             outputs: vec![
                 texture("color", Access::ColorTarget, HDR, "Σ α·rgb, Σ α"),
-                texture("count", Access::ColorTarget, COUNT_FORMATS, "n: hair fragments per pixel (red)"),
+                texture(
+                    "count",
+                    Access::ColorTarget,
+                    COUNT_FORMATS,
+                    "n: hair fragments per pixel (red)",
+                ),
             ],
             params: transparency::shading_params(),
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
+            ..PassTypeSpec::new(
+                "hair_weighted_average",
+                PassShape::Raster,
+                "Sintorn & Assarsson 2009 §2.2, Fig. 2",
+                "Sum α·rgb, α and the fragment count of the hair, unsorted (weighted-average blending).",
+            )
         }
     }
     fn shader(&self) -> Option<BuiltinShader> {
@@ -61,43 +65,8 @@ impl PassType for HairWeightedAverage {
     ) -> Result<RasterState, String> {
         Ok(RasterState {
             depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
-            blend: vec![Some(ADDITIVE), Some(ADDITIVE)],
+            blend: vec![blend_preset(BlendPreset::Additive); 2],
             ..RasterState::default()
         })
-    }
-}
-
-pub struct WeightedAverageResolve;
-
-impl PassType for WeightedAverageResolve {
-    fn spec(&self) -> PassTypeSpec {
-        PassTypeSpec {
-            name: "weighted_average_resolve".into(),
-            description:
-                "Average colour and alpha over the depth complexity; blend n average fragments."
-                    .into(),
-            source: "Sintorn & Assarsson 2009 §2.2".into(),
-            shape: PassShape::Fullscreen,
-            inputs: vec![
-                texture("sums", Access::Sampled, HDR, "Σ α·rgb, Σ α"),
-                texture("count", Access::Sampled, COUNT_FORMATS, "n per pixel"),
-            ],
-            outputs: vec![texture(
-                "color",
-                Access::ColorTarget,
-                HDR,
-                "hair, premultiplied",
-            )],
-            params: vec![],
-            dynamic_slots: false,
-            needs_shader: false,
-            required_features: vec![],
-        }
-    }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "shaders/passes/weighted_average_resolve.wgsl",
-            include_str!("../../../shaders/passes/weighted_average_resolve.wgsl"),
-        ))
     }
 }

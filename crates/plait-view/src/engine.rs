@@ -145,7 +145,7 @@ impl<'g> Engine<'g> {
             Ok(data) => {
                 self.base = Some(data.scene.clone());
                 self.scene_files = self.opts.scene.iter().cloned().collect();
-                if let HairSource::File(hair) = &data.scene.hair {
+                if let HairSource::File(hair) = &data.scene.hair.source {
                     self.scene_files.push(hair.clone());
                 }
                 if let Background::Image(image) = &data.scene.background {

@@ -7,12 +7,14 @@
 //! - [`graph`]: pipeline files, checks, schedule, memory plan (no GPU);
 //! - [`hair`]: strands, `.hair` files, grooms, scenes;
 //! - [`gpu`]: the wgpu executor;
-//! - [`passes`]: the pass library.
+//! - [`passes`]: the pass library;
+//! - [`ab`]: A/B runs, several pipelines against a reference, as one report.
 
 pub use plait_gpu as gpu;
 pub use plait_graph as graph;
 pub use plait_hair as hair;
 pub use plait_passes as passes;
 
+pub mod ab;
 pub mod probe;
 pub mod session;

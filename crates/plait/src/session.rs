@@ -99,7 +99,7 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
     if let Some(scene_path) = scene {
         files.push(scene_path.to_path_buf());
         if let Ok(loaded) = Scene::load(scene_path) {
-            if let plait_hair::scene::HairSource::File(hair) = &loaded.hair {
+            if let plait_hair::scene::HairSource::File(hair) = &loaded.hair.source {
                 files.push(hair.clone());
             }
             if let Background::Image(image) = &loaded.background {
@@ -144,8 +144,9 @@ pub struct SceneData {
 }
 
 impl SceneData {
-    pub fn new(scene: Scene) -> Result<Self, SceneError> {
-        let strands = scene.strands()?;
+    pub fn new(mut scene: Scene) -> Result<Self, SceneError> {
+        // Loads the hair and fits a camera or light given as "fit" to it.
+        let strands = scene.load_hair()?;
         let meshes = scene.opaque_meshes();
         let background = match &scene.background {
             Background::Image(path) => Some(

@@ -13,6 +13,7 @@ fn slot(name: &str, kind: ResourceKind, access: Access, formats: Formats) -> Slo
         loads: false,
         optional: false,
         doc: String::new(),
+        binding: None,
     }
 }
 
@@ -33,16 +34,10 @@ fn pass_type(
     params: Vec<ParamSpec>,
 ) -> PassTypeSpec {
     PassTypeSpec {
-        name: name.into(),
-        description: String::new(),
-        source: String::new(),
-        shape,
         inputs,
         outputs,
         params,
-        dynamic_slots: false,
-        needs_shader: false,
-        required_features: Vec::new(),
+        ..PassTypeSpec::new(name, shape, "", "")
     }
 }
 

@@ -1,0 +1,25 @@
+//! Flags several commands share, parsed in one place.
+
+use clap::Args;
+
+/// `--set key=value` in one place for every command.
+#[derive(Args, Clone, Debug, Default)]
+pub struct SetArgs {
+    /// Override a key of the pipeline file (repeatable; the key must exist),
+    /// e.g. `--set params.slices=64` or `--set passes.hair.params.shadow_weight=0.3`.
+    /// Other techniques are files: pipelines/deep_opacity.toml, … (README).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+}
+
+/// `--size 960x720` (`960X720` too: the README's `WxH` with either x).
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{text}` is not WIDTHxHEIGHT (e.g. 960x720)");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err(format!("`{text}`: width and height must be 1..=16384"));
+    }
+    Ok((w, h))
+}

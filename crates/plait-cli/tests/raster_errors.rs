@@ -1,0 +1,71 @@
+//! `plait check` and `plait render` on a bad data-only raster pass
+//! (`type = "raster"`): exit code 2, the error at the marked line of the
+//! pipeline file (file:line:column), no panic, no output file.
+//! Fixtures: `tests/fixtures/bad/raster_*.toml`.
+
+mod common;
+use common::{plait, root, text};
+
+fn bad_raster_pass(name: &str, message: &str) {
+    let path = root().join("tests/fixtures/bad").join(name);
+    let source = std::fs::read_to_string(&path).expect("fixture");
+    let line = source
+        .lines()
+        .position(|l| l.contains("<- error"))
+        .expect("an `<- error` marker")
+        + 1;
+    let at = format!("{name}:{line}:");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let png = dir.path().join("out.png");
+    let scene = root().join("examples/scenes/small.toml");
+    let p = path.to_str().expect("utf-8");
+    let render = [
+        "render",
+        p,
+        "--scene",
+        scene.to_str().expect("utf-8"),
+        "--size",
+        "64x48",
+        "--out",
+        png.to_str().expect("utf-8"),
+    ];
+    for args in [&["check", p][..], &render[..]] {
+        let o = plait(args);
+        let stderr = text(&o.stderr);
+        let context = format!(
+            "plait {} {name}: exit {:?}\n{stderr}",
+            args[0],
+            o.status.code()
+        );
+        assert_eq!(o.status.code(), Some(2), "{context}");
+        assert!(!stderr.contains("panicked"), "{context}");
+        assert!(stderr.contains(message), "lacks `{message}`: {context}");
+        let column = stderr
+            .find(&at)
+            .map(|i| &stderr[i + at.len()..])
+            .unwrap_or_else(|| panic!("not at `{at}`: {context}"));
+        assert!(
+            column.starts_with(|c: char| c.is_ascii_digit()),
+            "{context}"
+        );
+        assert!(!png.exists(), "an image was written: {context}");
+    }
+}
+
+#[test]
+fn a_blend_the_target_format_cannot_do() {
+    bad_raster_pass("raster_blend_uint.toml", "cannot be blended");
+}
+
+#[test]
+fn a_depth_test_without_a_depth_input() {
+    bad_raster_pass("raster_depth_without_input.toml", "needs a depth input");
+}
+
+#[test]
+fn a_storage_output_the_depth_guarantee_cannot_honour() {
+    bad_raster_pass(
+        "raster_storage_written_depth.toml",
+        "writes its depth target",
+    );
+}

@@ -1,0 +1,78 @@
+//! The report as Markdown tables (`report.md`): one table per scene, one row
+//! per variant — what the README's gallery tables are made from
+//! (`scripts/gallery.sh`), so no figure there is typed by hand.
+
+use std::fmt::Write as _;
+
+use super::{Report, cost_ms};
+
+/// `| variant | frame GPU ms | × reference | peak MiB | mean / max |ΔV| | RMSE | SSIM | FLIP |`
+/// per scene; |ΔV| only where the variants were probed.
+pub fn markdown(report: &Report) -> String {
+    let mut out = String::new();
+    let timing = if report.provenance.timestamps {
+        "frame GPU ms"
+    } else {
+        "frame wall ms"
+    };
+    let _ = writeln!(
+        out,
+        "<!-- made by plait ab ({} repeats, {}×{}, {}) -->",
+        report.provenance.repeats,
+        report.provenance.size[0],
+        report.provenance.size[1],
+        report.provenance.adapter.name
+    );
+    for scene in &report.scenes {
+        let probed = scene.runs.iter().any(|r| r.visibility.is_some());
+        let reference_ms = scene
+            .runs
+            .iter()
+            .find(|r| report.variant(&r.variant).is_some_and(|v| v.is_reference))
+            .map(|r| cost_ms(&r.timing));
+        let _ = writeln!(out, "\n**{}**\n", scene.name);
+        let _ = write!(
+            out,
+            "| variant | {timing} | × faster than the reference | peak MiB |"
+        );
+        if probed {
+            out.push_str(" mean / max \\|ΔV\\| |");
+        }
+        out.push_str(" RMSE | SSIM | FLIP |\n|---|---:|---:|---:|");
+        if probed {
+            out.push_str("---:|");
+        }
+        out.push_str("---:|---:|---:|\n");
+        for run in &scene.runs {
+            let Some(variant) = report.variant(&run.variant) else {
+                continue;
+            };
+            let ms = cost_ms(&run.timing);
+            let speedup = reference_ms.map_or(String::new(), |r| format!("{:.1}", r / ms));
+            let _ = write!(
+                out,
+                "| {}{} | {:.0} | {} | {:.1} |",
+                variant.label,
+                if variant.is_reference {
+                    " (reference)"
+                } else {
+                    ""
+                },
+                ms,
+                speedup,
+                variant.memory.peak_bytes as f64 / (1u64 << 20) as f64
+            );
+            if probed {
+                match &run.visibility {
+                    Some(v) => {
+                        let _ = write!(out, " {:.4} / {:.2} |", v.mean_abs_error, v.max_abs_error);
+                    }
+                    None => out.push_str(" |"),
+                }
+            }
+            let m = &run.metrics;
+            let _ = writeln!(out, " {:.4} | {:.3} | {:.3} |", m.rmse, m.ssim, m.flip_mean);
+        }
+    }
+    out
+}

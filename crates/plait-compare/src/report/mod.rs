@@ -1,0 +1,254 @@
+//! The A/B report: the data of `report.json` and its rendering as one
+//! self-contained `report.html` (inline CSS, JS and SVG; images referenced
+//! relatively from the report's directory, so it opens from disk offline).
+//!
+//! # `report.json` (schema `plait-ab/2`)
+//! ```text
+//! { schema, provenance {…}, sweeps: [ {key, values} ],
+//!   variants: [ {id, label, pipeline, is_reference, sweep_values: {key: value, …}, sets, schedule_name,
+//!                memory {peak_bytes, unpooled_bytes, allocations, resources: [{name, desc, bytes, shares_memory_with}]},
+//!                graph_svg: file name | null} ],
+//!   scenes: [ {name, path, reference_image,
+//!              runs: [ {variant, image, diff_image, flip_image, diff_scale,
+//!                       timing {total_gpu_ms: Stats|null, wall_ms: Stats, passes: [{name, type_name, gpu_ms: Stats|null}]},
+//!                       metrics {rmse, psnr_db, ssim, flip_mean, max_abs_diff},
+//!                       visibility: Visibility | null} ] } ] }
+//! ```
+//! `Stats` is `{median, min, max, q1, q3, samples}` in milliseconds.
+//!
+//! `sweeps` holds the `--sweep`s in order: none, one (a variant per value)
+//! or two (a grid: every combination; the HTML tables put the first sweep's
+//! values in rows and the second's in columns). A variant's `sweep_values`
+//! names its value of each sweep, keys in the order of `sweeps` (empty for
+//! the reference and without sweeps). Schema 1 had one `sweep` (or `null`)
+//! and a `sweep_value` per variant.
+//!
+//! `visibility` is the self-shadowing error (Sintorn & Assarsson 2009
+//! Fig. 5): for variants whose pipeline has a visibility provider, curves of
+//! visibility against depth along probe rays from the light (the
+//! reference's and the variant's) with the mean and max absolute error over
+//! the rays through the hair; `null` when the reference has no provider.
+
+mod charts;
+mod html;
+mod markdown;
+#[cfg(test)]
+mod tests;
+
+pub use charts::scene_charts;
+pub use html::html;
+pub use markdown::markdown;
+
+use indexmap::IndexMap;
+use serde::Serialize;
+
+use crate::{Metrics, Stats};
+
+pub const SCHEMA: &str = "plait-ab/2";
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub schema: String,
+    pub provenance: Provenance,
+    /// The `--sweep`s in order: none, one, or two (a grid).
+    pub sweeps: Vec<Sweep>,
+    pub variants: Vec<Variant>,
+    pub scenes: Vec<SceneResult>,
+}
+
+/// Where the numbers came from.
+#[derive(Clone, Debug, Serialize)]
+pub struct Provenance {
+    pub plait_version: String,
+    pub adapter: Adapter,
+    /// Whether per-pass GPU times come from timestamp queries.
+    pub timestamps: bool,
+    /// `argv`, exactly, and as one shell-quoted line.
+    pub command: Vec<String>,
+    pub command_line: String,
+    pub working_directory: String,
+    pub size: [u32; 2],
+    pub repeats: u32,
+    /// Frames rendered per variant before timing (excluded).
+    pub warmup_frames: u32,
+    /// `interleaved`: repeat r renders every variant once, in order, before repeat r+1.
+    pub order: String,
+    pub sets: Vec<String>,
+    pub reference: String,
+    pub metrics: String,
+    pub pipelines: Vec<PipelineProvenance>,
+    /// Shader modules compiled into the binary (the `plait::` import library and pass types' own WGSL).
+    pub builtin_shaders: Vec<FileHash>,
+    pub scenes: Vec<FileHash>,
+    pub unix_time: u64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Adapter {
+    pub name: String,
+    pub backend: String,
+    pub driver: String,
+    pub driver_info: String,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PipelineProvenance {
+    pub path: String,
+    /// The pipeline file and every file it extends.
+    pub files: Vec<FileHash>,
+    /// WGSL files named by its passes.
+    pub shaders: Vec<FileHash>,
+}
+
+#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+pub struct FileHash {
+    pub path: String,
+    pub sha256: String,
+    pub bytes: u64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Sweep {
+    pub key: String,
+    pub values: Vec<String>,
+}
+
+/// One pipeline (at one point of the sweeps), or the reference.
+#[derive(Clone, Debug, Serialize)]
+pub struct Variant {
+    pub id: String,
+    pub label: String,
+    pub pipeline: String,
+    pub is_reference: bool,
+    /// This variant's value of each sweep, by key, in the order of
+    /// [`Report::sweeps`]; empty for the reference and without sweeps.
+    pub sweep_values: IndexMap<String, String>,
+    /// Every `--set` applied (the sweeps' last).
+    pub sets: Vec<String>,
+    pub schedule_name: String,
+    pub memory: Memory,
+    /// File name of the schedule's picture (also inlined in the HTML).
+    pub graph_svg: Option<String>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Memory {
+    /// Bytes of all allocations, with sharing.
+    pub peak_bytes: u64,
+    /// Bytes if no resource shared an allocation.
+    pub unpooled_bytes: u64,
+    pub allocations: usize,
+    pub resources: Vec<ResourceMemory>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct ResourceMemory {
+    pub name: String,
+    pub desc: String,
+    pub bytes: u64,
+    pub shares_memory_with: Vec<String>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneResult {
+    pub name: String,
+    /// `null` for the built-in default scene.
+    pub path: Option<String>,
+    pub reference_image: String,
+    pub runs: Vec<Run>,
+}
+
+/// One variant on one scene.
+#[derive(Clone, Debug, Serialize)]
+pub struct Run {
+    pub variant: String,
+    pub image: String,
+    /// |RGB difference| heat map, 0 → `diff_scale`.
+    pub diff_image: String,
+    pub diff_scale: f64,
+    /// ꟻLIP error map, 0 → 1.
+    pub flip_image: String,
+    pub timing: Timing,
+    pub metrics: Metrics,
+    pub visibility: Option<Visibility>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Timing {
+    /// First timestamp to last, over the repeats; `null` without timestamp queries.
+    pub total_gpu_ms: Option<Stats>,
+    /// `Renderer::render` on the CPU clock (submit + wait), over the repeats.
+    pub wall_ms: Stats,
+    pub passes: Vec<PassStats>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PassStats {
+    pub name: String,
+    pub type_name: String,
+    pub gpu_ms: Option<Stats>,
+}
+
+/// Self-shadowing error of one variant: its visibility provider probed along
+/// rays from the light through the hair, against the reference's.
+#[derive(Clone, Debug, Serialize)]
+pub struct Visibility {
+    /// The variant's provider (`occupancy`, `deep_opacity`, …).
+    pub provider: String,
+    /// The reference's provider (`exact` for `reference.toml`).
+    pub reference_provider: String,
+    /// Probe rays along which the reference sees hair; the errors are over their samples.
+    pub rays_through_hair: usize,
+    /// The rays through the most hair.
+    pub curves: Vec<VisibilityCurve>,
+    pub mean_abs_error: f64,
+    pub max_abs_error: f64,
+}
+
+/// Visibility against light depth along one ray from the light.
+#[derive(Clone, Debug, Serialize)]
+pub struct VisibilityCurve {
+    /// Where the ray crosses the light map (0..1, y down).
+    pub light_uv: [f32; 2],
+    /// Light NDC depth of each sample, spanning the hair.
+    pub depth: Vec<f64>,
+    /// The reference's visibility.
+    pub exact: Vec<f64>,
+    /// The variant's visibility.
+    pub approx: Vec<f64>,
+}
+
+impl Report {
+    pub fn variant(&self, id: &str) -> Option<&Variant> {
+        self.variants.iter().find(|v| v.id == id)
+    }
+}
+
+/// The cost used on plots: median total GPU ms, else median wall ms.
+pub fn cost_ms(t: &Timing) -> f64 {
+    t.total_gpu_ms
+        .as_ref()
+        .map(|s| s.median)
+        .unwrap_or(t.wall_ms.median)
+}
+
+impl Variant {
+    /// The sweep values, comma-separated (`64` or `64, exact`); `None` without.
+    pub fn sweep_label(&self) -> Option<String> {
+        (!self.sweep_values.is_empty()).then(|| {
+            self.sweep_values
+                .values()
+                .map(String::as_str)
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+    }
+
+    /// The pipeline's file stem (`forward` for `pipelines/forward.toml`).
+    pub fn pipeline_stem(&self) -> String {
+        std::path::Path::new(&self.pipeline)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| self.pipeline.clone())
+    }
+}

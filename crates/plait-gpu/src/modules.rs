@@ -1,0 +1,114 @@
+//! Composed shader modules, cached for the whole process.
+//!
+//! `plait check` and every build of a pass compose the same shader with the
+//! same defines: checking a pipeline, building it, rendering it again at
+//! another size and every variant of an A/B run. Composition (naga_oil, then
+//! naga validation) costs far more than a lookup, so each distinct
+//! (path, source, defines) is composed once and shared.
+//!
+//! The library modules are read from the search path, so they can change
+//! while plait runs (the viewer reloads on an edit): when any of them has
+//! changed on disk ([`library_stamp`]), the library is loaded again and
+//! everything composed with the old one is dropped.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use crate::shader::{Define, LIBRARY_MODULES, ShaderError, ShaderLibrary};
+
+type Key = (PathBuf, String, Vec<(String, Define)>);
+
+#[derive(Default)]
+struct Modules {
+    /// Created on first use: loading the library modules is itself a cost.
+    /// With the [`library_stamp`] it was loaded at.
+    library: Option<(u64, ShaderLibrary)>,
+    composed: HashMap<Key, Arc<naga::Module>>,
+}
+
+static MODULES: Mutex<Option<Modules>> = Mutex::new(None);
+
+/// The composed, validated module of `source` with `defines` (`path` names it
+/// in messages). Failures are not cached: they are reported, then fixed.
+pub fn compose(
+    path: &Path,
+    source: &str,
+    defines: &[(String, Define)],
+) -> Result<Arc<naga::Module>, ShaderError> {
+    // A panic elsewhere while holding the lock leaves a cache that is still
+    // consistent (entries are inserted whole), so a poisoned lock is reused.
+    let mut guard = MODULES.lock().unwrap_or_else(|p| p.into_inner());
+    let modules = guard.get_or_insert_with(Modules::default);
+    let stamp = library_stamp();
+    if modules.library.as_ref().is_some_and(|(s, _)| *s != stamp) {
+        modules.library = None;
+        modules.composed.clear();
+    }
+    let key: Key = (path.to_owned(), source.to_owned(), defines.to_vec());
+    if let Some(m) = modules.composed.get(&key) {
+        return Ok(m.clone());
+    }
+    let library = match &mut modules.library {
+        Some((_, l)) => l,
+        None => &mut modules.library.insert((stamp, ShaderLibrary::new()?)).1,
+    };
+    let module = Arc::new(library.compose(path, source, defines)?);
+    modules.composed.insert(key, module.clone());
+    Ok(module)
+}
+
+/// Where each library module is read from and when it last changed, hashed:
+/// cheap (no file is read) and different after an edit, or when a copy on
+/// the search path appears or goes.
+pub fn library_stamp() -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::hash::DefaultHasher::new();
+    for (name, _) in LIBRARY_MODULES {
+        match plait_assets::find_on_disk(name) {
+            Some(path) => {
+                let meta = std::fs::metadata(&path).ok();
+                (path, meta.as_ref().map(|m| m.len())).hash(&mut h);
+                meta.and_then(|m| m.modified().ok()).hash(&mut h);
+            }
+            None => name.hash(&mut h),
+        }
+    }
+    h.finish()
+}
+
+/// Digest of the library modules' text as loaded for the last composition,
+/// for pipeline cache keys (an edited module changes every shader).
+pub fn library_digest() -> u64 {
+    MODULES
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .as_ref()
+        .and_then(|m| m.library.as_ref())
+        .map_or(0, |(_, l)| l.library_digest())
+}
+
+/// How many distinct modules have been composed (for tests of the cache).
+pub fn composed_count() -> usize {
+    MODULES
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .as_ref()
+        .map_or(0, |m| m.composed.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_same_shader_is_composed_once() {
+        let source = "@compute @workgroup_size(1) fn main() {}";
+        let path = Path::new("cache_test.wgsl");
+        let a = compose(path, source, &[]).expect("composes");
+        let b = compose(path, source, &[]).expect("composes");
+        assert!(Arc::ptr_eq(&a, &b), "the second compose is a cache hit");
+        let c = compose(path, source, &[("X".into(), Define::Bool(true))]).expect("composes");
+        assert!(!Arc::ptr_eq(&a, &c), "other defines are another module");
+    }
+}

@@ -1,0 +1,172 @@
+//! The [`PassType`] trait, what building and recording a pass can use, and the
+//! library of pass types a run knows.
+
+use std::borrow::Cow;
+use std::path::{Path, PathBuf};
+
+use indexmap::IndexMap;
+use plait_graph::{Location, PassTypeSpec, RasterDecl, Schedule, ScheduledPass};
+
+use super::build::{ShaderDraw, build_draw};
+use super::defaults::{default_defines, default_threads};
+use super::state::RasterState;
+use crate::geometry::SceneGeometry;
+use crate::pool::ResourcePool;
+use crate::shader::Define;
+use crate::{Capabilities, GpuError};
+
+/// Names of scene buffers a shader can bind in group 1 without a slot.
+pub const SCENE_BINDINGS: &[&str] = &["hair_vertices", "hair_indices"];
+
+/// A WGSL source compiled into the pass library: `(path for messages, text)`,
+/// written with [`crate::builtin_shader!`].
+pub type BuiltinShader = (&'static str, &'static str);
+
+/// One pass type of the library.
+pub trait PassType: Send + Sync {
+    fn spec(&self) -> PassTypeSpec;
+
+    /// The pass's own WGSL; `None` means the pipeline file's `shader = "…"`.
+    fn shader(&self) -> Option<BuiltinShader>;
+
+    /// Shader defines. The default: every int and bool param as its
+    /// upper-case name (`slices = 128` → `#if SLICES == 128`).
+    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
+        default_defines(pass)
+    }
+
+    /// Pipeline state of a raster or fullscreen pass whose type sets it in
+    /// Rust. Types with `state_from_data` get theirs from
+    /// [`PassType::raster_decl`] instead.
+    fn raster_state(
+        &self,
+        _pass: &ScheduledPass,
+        _caps: &Capabilities,
+    ) -> Result<RasterState, String> {
+        Ok(RasterState::default())
+    }
+
+    /// The TOML raster state of a pass of a `state_from_data` type: the
+    /// pass's own keys, over the type's defaults where it has some.
+    fn raster_decl(&self, pass: &ScheduledPass) -> RasterDecl {
+        pass.raster.clone()
+    }
+
+    /// Threads of a compute pass; the default covers the first written
+    /// texture (width × height) or buffer (one thread per 4 bytes).
+    fn compute_threads(&self, pass: &ScheduledPass, schedule: &Schedule) -> [u32; 3] {
+        default_threads(pass, schedule)
+    }
+
+    /// Sizes the pass's shaders rely on that a pipeline file can get wrong
+    /// (u32 words per texel of a map), checked by `plait check` before any
+    /// GPU work; the message says what size would do.
+    fn check_sizes(
+        &self,
+        _pass: &ScheduledPass,
+        _resources: &[plait_graph::ResolvedResource],
+    ) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Build the GPU objects of a pass. Types with loops of their own
+    /// (depth peeling, k-means) override this; most use the default, one draw
+    /// or dispatch of the type's shader.
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
+        let draw = ShaderDraw::of(self, pass, ctx)?;
+        Ok(Box::new(build_draw(&draw, pass, ctx)?))
+    }
+}
+
+/// GPU objects of one pass, ready to record every frame.
+pub trait PreparedPass {
+    fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder);
+
+    /// Numbers the last `record` found out (e.g. the layers a depth-peeling
+    /// pass needed), reported per pass in the executor's `FrameReport`.
+    fn stats(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
+}
+
+/// What building a pass can use.
+pub struct BuildContext<'a> {
+    pub device: &'a wgpu::Device,
+    pub pipelines: &'a crate::cache::PipelineCache,
+    pub capabilities: &'a Capabilities,
+    pub adapter_name: &'a str,
+    pub schedule: &'a Schedule,
+    pub pool: &'a ResourcePool,
+    pub geometry: &'a SceneGeometry,
+    pub frame_layout: &'a wgpu::BindGroupLayout,
+    pub base_dir: &'a Path,
+}
+
+/// What recording a pass can use.
+pub struct RecordContext<'a> {
+    /// For passes that must see a GPU result mid-frame (an occlusion query):
+    /// they may finish the encoder they were given, submit it, wait, and go on
+    /// in a fresh one (`std::mem::replace`); the executor's timestamps stay valid.
+    /// The executor wraps each pass in a debug group named after the pass:
+    /// pop it before finishing the old encoder and push it on the new one.
+    pub device: &'a wgpu::Device,
+    pub queue: &'a wgpu::Queue,
+    pub frame_bind_group: &'a wgpu::BindGroup,
+    pub geometry: &'a SceneGeometry,
+    pub pool: &'a ResourcePool,
+    pub schedule: &'a Schedule,
+}
+
+/// The pass types available to a run, by name.
+#[derive(Default)]
+pub struct PassLibrary {
+    pub types: IndexMap<String, Box<dyn PassType>>,
+}
+
+impl PassLibrary {
+    pub fn add(&mut self, t: impl PassType + 'static) {
+        self.types.insert(t.spec().name.clone(), Box::new(t));
+    }
+
+    pub fn get(&self, name: &str) -> Option<&dyn PassType> {
+        self.types.get(name).map(|b| b.as_ref())
+    }
+
+    /// The specs for the graph crate's checks.
+    pub fn registry(&self) -> plait_graph::Registry {
+        let mut r = plait_graph::Registry::new();
+        for t in self.types.values() {
+            r.register(t.spec());
+        }
+        r
+    }
+}
+
+/// The shader source of a pass: built in, or the file the pipeline names.
+/// An error says where the pipeline named it (or should have).
+pub fn shader_source<T: PassType + ?Sized>(
+    t: &T,
+    pass: &ScheduledPass,
+) -> Result<(PathBuf, Cow<'static, str>), (Location, String)> {
+    if let Some((name, text)) = t.shader() {
+        // The copy on the search path when there is one (edits apply without
+        // a rebuild), else the built-in text.
+        return crate::shader::library_source(name, text)
+            .map_err(|e| (pass.location.clone(), e.message));
+    }
+    let loc = pass
+        .shader_location
+        .clone()
+        .unwrap_or_else(|| pass.location.clone());
+    let Some(path) = &pass.shader else {
+        return Err((loc, "needs `shader = \"path.wgsl\"`".into()));
+    };
+    match crate::shader::read_shader_file(path) {
+        Ok(text) => Ok((path.clone(), text)),
+        Err(e) => Err((loc, format!("cannot read shader {}: {e}", path.display()))),
+    }
+}

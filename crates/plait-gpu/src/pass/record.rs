@@ -1,0 +1,167 @@
+//! Recording a built pass: clears, attachments, the draw or dispatch.
+
+use super::pass_type::{PreparedPass, RecordContext};
+use super::state::RasterState;
+
+/// A pass built from one shader with bindings by name.
+pub struct ShaderPass {
+    pub name: String,
+    pub kind: ShaderPassKind,
+    pub bind_group: Option<wgpu::BindGroup>,
+    /// Storage outputs that start the pass zeroed (written, not loaded).
+    pub clears: Vec<plait_graph::ResourceId>,
+}
+
+pub enum ShaderPassKind {
+    Raster {
+        pipeline: wgpu::RenderPipeline,
+        colors: Vec<(plait_graph::ResourceId, bool)>,
+        /// Per colour target: the single-sampled texture its samples resolve into.
+        resolves: Vec<Option<plait_graph::ResourceId>>,
+        depth: Option<(plait_graph::ResourceId, bool, bool)>,
+        state: RasterState,
+        draw: DrawWhat,
+    },
+    Compute {
+        pipeline: wgpu::ComputePipeline,
+        workgroups: [u32; 3],
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DrawWhat {
+    Hair,
+    Opaque,
+    Fullscreen,
+}
+
+impl PreparedPass for ShaderPass {
+    fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        self.record_with_query(ctx, encoder, None);
+    }
+}
+
+impl ShaderPass {
+    /// Record the pass; a raster pass counts the samples that pass the depth
+    /// test in occlusion query `index` of `queries` (depth peeling's stop test).
+    pub fn record_with_query(
+        &self,
+        ctx: &RecordContext<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        query: Option<(&wgpu::QuerySet, u32)>,
+    ) {
+        for &id in &self.clears {
+            match ctx.pool.get(id) {
+                crate::pool::GpuResource::Buffer(b) => encoder.clear_buffer(b, 0, None),
+                crate::pool::GpuResource::Texture { texture, .. } => {
+                    encoder.clear_texture(texture, &wgpu::ImageSubresourceRange::default())
+                }
+            }
+        }
+        match &self.kind {
+            ShaderPassKind::Compute {
+                pipeline,
+                workgroups,
+            } => {
+                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(&self.name),
+                    timestamp_writes: None,
+                });
+                cpass.set_pipeline(pipeline);
+                cpass.set_bind_group(0, ctx.frame_bind_group, &[]);
+                if let Some(bg) = &self.bind_group {
+                    cpass.set_bind_group(1, bg, &[]);
+                }
+                cpass.dispatch_workgroups(workgroups[0], workgroups[1], workgroups[2]);
+            }
+            ShaderPassKind::Raster {
+                pipeline,
+                colors,
+                resolves,
+                depth,
+                state,
+                draw,
+            } => {
+                let color_attachments: Vec<_> = colors
+                    .iter()
+                    .zip(resolves)
+                    .map(|(&(id, loads), resolve)| {
+                        let view = ctx
+                            .pool
+                            .texture(id)
+                            .map(|(_, v)| v)
+                            .expect("colour targets are textures (checked at build)");
+                        Some(wgpu::RenderPassColorAttachment {
+                            view,
+                            depth_slice: None,
+                            resolve_target: resolve
+                                .and_then(|r| ctx.pool.texture(r))
+                                .map(|(_, v)| v),
+                            ops: wgpu::Operations {
+                                load: if loads {
+                                    wgpu::LoadOp::Load
+                                } else {
+                                    wgpu::LoadOp::Clear(state.clear_color)
+                                },
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })
+                    })
+                    .collect();
+                let depth_attachment = depth.map(|(id, loads, write)| {
+                    let view = ctx
+                        .pool
+                        .texture(id)
+                        .map(|(_, v)| v)
+                        .expect("depth targets are textures (checked at build)");
+                    wgpu::RenderPassDepthStencilAttachment {
+                        view,
+                        // Only tested, never written: attached read-only, so the
+                        // pass may also sample it (fragment lists test it by hand).
+                        depth_ops: (write || !loads).then_some(wgpu::Operations {
+                            load: if loads {
+                                wgpu::LoadOp::Load
+                            } else {
+                                wgpu::LoadOp::Clear(state.clear_depth)
+                            },
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    }
+                });
+                let mut rpass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(&self.name),
+                    color_attachments: &color_attachments,
+                    depth_stencil_attachment: depth_attachment,
+                    timestamp_writes: None,
+                    occlusion_query_set: query.map(|(q, _)| q),
+                    multiview_mask: None,
+                });
+                if let Some((_, index)) = query {
+                    rpass.begin_occlusion_query(index);
+                }
+                rpass.set_pipeline(pipeline);
+                rpass.set_bind_group(0, ctx.frame_bind_group, &[]);
+                if let Some(bg) = &self.bind_group {
+                    rpass.set_bind_group(1, bg, &[]);
+                }
+                let buffers = match draw {
+                    DrawWhat::Hair => ctx.geometry.hair.as_ref(),
+                    DrawWhat::Opaque => ctx.geometry.opaque.as_ref(),
+                    DrawWhat::Fullscreen => {
+                        rpass.draw(0..3, 0..1);
+                        None
+                    }
+                };
+                if let Some(b) = buffers {
+                    rpass.set_vertex_buffer(0, b.vertices.slice(..));
+                    rpass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    rpass.draw_indexed(0..b.index_count, 0, 0..1);
+                }
+                if query.is_some() {
+                    rpass.end_occlusion_query();
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,434 @@
+//! The pipeline file's schema: known keys, value types, and the typed
+//! [`Pipeline`] built from the merged tree.
+
+use indexmap::IndexMap;
+use std::path::{Path, PathBuf};
+
+use super::tree::{Entry, Node, Table};
+use super::{PassDecl, Pipeline, ResourceDecl, SizeDecl, file_location};
+use crate::error::{Error, ErrorKind, Location, Spanned};
+use crate::format::Format;
+use crate::shader_path::resolve_shader;
+use crate::spec::ResourceKind;
+use crate::value::Value;
+
+pub(crate) const TOP_KEYS: &[&str] = &["pipeline", "techniques", "params", "resources", "passes"];
+pub(crate) const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "outputs"];
+pub(crate) const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
+pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size"];
+pub(crate) const PASS_KEYS: &[&str] = &[
+    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses", "depth",
+    "blend", "cull",
+];
+const VIEWS: &[&str] = &["light", "camera"];
+const DRAWS: &[&str] = &["hair", "opaque"];
+
+struct Builder<'e> {
+    errors: &'e mut Vec<Error>,
+}
+
+impl Builder<'_> {
+    fn schema(&mut self, location: &Location, message: String) {
+        self.errors
+            .push(Error::new(location.clone(), ErrorKind::Schema(message)));
+    }
+
+    fn check_keys(&mut self, table: &Table, accepted: &[&str], context: &str) {
+        for (key, entry) in table {
+            if !accepted.contains(&key.as_str()) {
+                self.schema(
+                    &entry.key,
+                    format!(
+                        "unknown key `{key}` in {context}{} (accepted: {})",
+                        crate::suggest::did_you_mean(key, accepted.iter().copied()),
+                        accepted.join(", ")
+                    ),
+                );
+            }
+        }
+    }
+
+    fn table<'t>(&mut self, entry: &'t Entry, context: &str) -> Option<&'t Table> {
+        match &entry.value.value {
+            Node::Table(t) => Some(t),
+            _ => {
+                self.schema(&entry.value.location, format!("{context} must be a table"));
+                None
+            }
+        }
+    }
+
+    fn string(&mut self, entry: &Entry, context: &str) -> Option<Spanned<String>> {
+        match &entry.value.value {
+            Node::Scalar(Value::Str(s)) => {
+                Some(Spanned::new(s.clone(), entry.value.location.clone()))
+            }
+            _ => {
+                self.schema(&entry.value.location, format!("{context} must be a string"));
+                None
+            }
+        }
+    }
+
+    fn one_of(
+        &mut self,
+        entry: &Entry,
+        context: &str,
+        accepted: &[&str],
+    ) -> Option<Spanned<String>> {
+        let s = self.string(entry, context)?;
+        if accepted.contains(&s.value.as_str()) {
+            Some(s)
+        } else {
+            self.schema(
+                &s.location,
+                format!(
+                    "{context} is `{}`{}; accepted: {}",
+                    s.value,
+                    crate::suggest::did_you_mean(&s.value, accepted.iter().copied()),
+                    accepted.join(", ")
+                ),
+            );
+            None
+        }
+    }
+
+    fn value(&mut self, node: &Spanned<Node>, context: &str) -> Option<Value> {
+        match &node.value {
+            Node::Scalar(v) => Some(v.clone()),
+            Node::List(items) => items
+                .iter()
+                .map(|i| self.value(i, context))
+                .collect::<Option<Vec<_>>>()
+                .map(Value::List),
+            Node::Table(_) => {
+                self.schema(&node.location, format!("{context} cannot be a table"));
+                None
+            }
+        }
+    }
+
+    /// `{slot = "resource"}` tables.
+    fn string_map(&mut self, entry: &Entry, context: &str) -> IndexMap<String, Spanned<String>> {
+        let mut out = IndexMap::new();
+        if let Some(t) = self.table(entry, context) {
+            for (k, e) in t {
+                if let Some(s) = self.string(e, &format!("{context}.{k}")) {
+                    out.insert(k.clone(), s);
+                }
+            }
+        }
+        out
+    }
+}
+
+pub(super) fn build_pipeline(
+    root: Spanned<Node>,
+    files: Vec<PathBuf>,
+    top_path: &Path,
+    errors: &mut Vec<Error>,
+) -> Pipeline {
+    let mut b = Builder { errors };
+    let root_location = file_location(top_path, 1, 1);
+    let mut pipeline = Pipeline {
+        name: Spanned::new(String::new(), root_location.clone()),
+        description: Spanned::new(String::new(), root_location.clone()),
+        files,
+        techniques: Vec::new(),
+        outputs: Vec::new(),
+        params: IndexMap::new(),
+        resources: IndexMap::new(),
+        passes: IndexMap::new(),
+        outputs_location: root_location.clone(),
+    };
+    let Node::Table(top) = &root.value else {
+        return pipeline;
+    };
+    b.check_keys(top, TOP_KEYS, "the pipeline file");
+
+    match top.get("pipeline") {
+        None => b.schema(
+            &root_location,
+            "missing [pipeline] table (name, outputs)".into(),
+        ),
+        Some(entry) => {
+            if let Some(t) = b.table(entry, "[pipeline]") {
+                b.check_keys(t, PIPELINE_KEYS, "[pipeline]");
+                pipeline.outputs_location = entry.value.location.clone();
+                match t.get("name") {
+                    Some(e) => {
+                        pipeline.name = b.string(e, "pipeline.name").unwrap_or(pipeline.name)
+                    }
+                    None => b.schema(&entry.key, "[pipeline] needs a `name`".into()),
+                }
+                if let Some(e) = t.get("description") {
+                    pipeline.description = b
+                        .string(e, "pipeline.description")
+                        .unwrap_or(pipeline.description);
+                }
+                match t.get("outputs").map(|e| &e.value) {
+                    Some(Spanned {
+                        value: Node::List(items),
+                        location,
+                    }) => {
+                        pipeline.outputs_location = location.clone();
+                        for item in items {
+                            match &item.value {
+                                Node::Scalar(Value::Str(s)) => pipeline
+                                    .outputs
+                                    .push(Spanned::new(s.clone(), item.location.clone())),
+                                _ => b.schema(
+                                    &item.location,
+                                    "pipeline.outputs must list resource names".into(),
+                                ),
+                            }
+                        }
+                    }
+                    Some(other) => b.schema(
+                        &other.location,
+                        "pipeline.outputs must be a list of resource names".into(),
+                    ),
+                    None => b.schema(&entry.key, "[pipeline] needs `outputs = [\"…\"]`".into()),
+                }
+            }
+        }
+    }
+
+    if let Some(entry) = top.get("params")
+        && let Some(t) = b.table(entry, "[params]")
+    {
+        for (name, e) in t {
+            if let Some(v) = b.value(&e.value, &format!("params.{name}")) {
+                pipeline
+                    .params
+                    .insert(name.clone(), Spanned::new(v, e.value.location.clone()));
+            }
+        }
+    }
+
+    if let Some(entry) = top.get("resources")
+        && let Some(t) = b.table(entry, "[resources]")
+    {
+        for (name, e) in t {
+            if let Some(r) = build_resource(&mut b, name, e) {
+                pipeline.resources.insert(name.clone(), r);
+            }
+        }
+    }
+
+    if let Some(entry) = top.get("passes")
+        && let Some(t) = b.table(entry, "[passes]")
+    {
+        for (name, e) in t {
+            if let Some(p) = build_pass(&mut b, name, e) {
+                pipeline.passes.insert(name.clone(), p);
+            }
+        }
+    }
+    pipeline
+}
+
+fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<ResourceDecl> {
+    let context = format!("[resources.{name}]");
+    let t = b.table(entry, &context)?;
+    let Some(kind_entry) = t.get("kind") else {
+        b.schema(
+            &entry.key,
+            format!("{context} needs `kind = \"texture\"` or `\"buffer\"`"),
+        );
+        return None;
+    };
+    let kind_name = b.one_of(
+        kind_entry,
+        &format!("resources.{name}.kind"),
+        &["texture", "buffer"],
+    )?;
+    let kind = if kind_name.value == "texture" {
+        ResourceKind::Texture
+    } else {
+        ResourceKind::Buffer
+    };
+    b.check_keys(
+        t,
+        if kind == ResourceKind::Texture {
+            TEXTURE_KEYS
+        } else {
+            BUFFER_KEYS
+        },
+        &format!("{context} ({kind})"),
+    );
+    let Some(size_entry) = t.get("size") else {
+        b.schema(&entry.key, format!("{context} needs a `size`"));
+        return None;
+    };
+    let size_node = &size_entry.value;
+    let size = match kind {
+        ResourceKind::Buffer => {
+            match &size_node.value {
+                Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => {
+                    SizeDecl::Bytes(Spanned::new(v.clone(), size_node.location.clone()))
+                }
+                _ => {
+                    b.schema(&size_node.location, format!("resources.{name}.size of a buffer is a byte count (integer or expression)"));
+                    return None;
+                }
+            }
+        }
+        ResourceKind::Texture => {
+            match &size_node.value {
+                Node::Scalar(Value::Str(s)) => match parse_screen_size(s) {
+                    Some(divisor) => SizeDecl::Screen {
+                        divisor,
+                        location: size_node.location.clone(),
+                    },
+                    None => {
+                        b.schema(&size_node.location, format!("resources.{name}.size is `{s}`; accepted: [width, height], \"screen\", \"screen/N\""));
+                        return None;
+                    }
+                },
+                Node::List(items) if items.len() == 2 => {
+                    let dim = |n: &Spanned<Node>| match &n.value {
+                        Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => {
+                            Some(Spanned::new(v.clone(), n.location.clone()))
+                        }
+                        _ => None,
+                    };
+                    match (dim(&items[0]), dim(&items[1])) {
+                        (Some(width), Some(height)) => SizeDecl::Extent {
+                            width,
+                            height,
+                            location: size_node.location.clone(),
+                        },
+                        _ => {
+                            b.schema(
+                                &size_node.location,
+                                format!(
+                                    "resources.{name}.size must hold two integers or expressions"
+                                ),
+                            );
+                            return None;
+                        }
+                    }
+                }
+                _ => {
+                    b.schema(&size_node.location, format!("resources.{name}.size must be [width, height], \"screen\" or \"screen/N\""));
+                    return None;
+                }
+            }
+        }
+    };
+    let format = match (kind, t.get("format")) {
+        (ResourceKind::Texture, Some(e)) => {
+            let s = b.string(e, &format!("resources.{name}.format"))?;
+            match s.value.parse::<Format>() {
+                Ok(f) => Some(Spanned::new(f, s.location)),
+                Err(err) => {
+                    b.schema(&s.location, err.to_string());
+                    return None;
+                }
+            }
+        }
+        (ResourceKind::Texture, None) => {
+            b.schema(
+                &entry.key,
+                format!("{context} is a texture and needs a `format`"),
+            );
+            return None;
+        }
+        _ => None,
+    };
+    let int_field = |key: &str| {
+        t.get(key)
+            .map(|e| e.value.clone())
+            .and_then(|n| match n.value {
+                Node::Scalar(v) => Some(Spanned::new(v, n.location)),
+                _ => None,
+            })
+    };
+    Some(ResourceDecl {
+        name: name.to_owned(),
+        kind: Spanned::new(kind, kind_name.location),
+        format,
+        size,
+        layers: int_field("layers"),
+        samples: int_field("samples"),
+        location: entry.key.clone(),
+    })
+}
+
+/// `"screen"` → 1, `"screen/4"` → 4.
+fn parse_screen_size(s: &str) -> Option<u32> {
+    let s = s.trim();
+    if s == "screen" {
+        return Some(1);
+    }
+    let divisor: u32 = s
+        .strip_prefix("screen")?
+        .trim()
+        .strip_prefix('/')?
+        .trim()
+        .parse()
+        .ok()?;
+    (divisor > 0).then_some(divisor)
+}
+
+fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl> {
+    let context = format!("[passes.{name}]");
+    let t = b.table(entry, &context)?;
+    b.check_keys(t, PASS_KEYS, &context);
+    if let Some(e) = t.get("enabled") {
+        match &e.value.value {
+            Node::Scalar(Value::Bool(false)) => return None,
+            Node::Scalar(Value::Bool(true)) => {}
+            _ => b.schema(
+                &e.value.location,
+                format!("passes.{name}.enabled must be true or false"),
+            ),
+        }
+    }
+    let Some(type_entry) = t.get("type") else {
+        b.schema(&entry.key, format!("{context} needs a `type`"));
+        return None;
+    };
+    let type_name = b.string(type_entry, &format!("passes.{name}.type"))?;
+    let view = t
+        .get("view")
+        .and_then(|e| b.one_of(e, &format!("passes.{name}.view"), VIEWS));
+    let draw = t
+        .get("draw")
+        .and_then(|e| b.one_of(e, &format!("passes.{name}.draw"), DRAWS));
+    let reads = t
+        .get("reads")
+        .map(|e| b.string_map(e, &format!("passes.{name}.reads")))
+        .unwrap_or_default();
+    let writes = t
+        .get("writes")
+        .map(|e| b.string_map(e, &format!("passes.{name}.writes")))
+        .unwrap_or_default();
+    let mut params = IndexMap::new();
+    if let Some(e) = t.get("params")
+        && let Some(pt) = b.table(e, &format!("passes.{name}.params"))
+    {
+        for (k, pe) in pt {
+            if let Some(v) = b.value(&pe.value, &format!("passes.{name}.params.{k}")) {
+                params.insert(k.clone(), Spanned::new(v, pe.value.location.clone()));
+            }
+        }
+    }
+    let shader = t
+        .get("shader")
+        .and_then(|e| b.string(e, &format!("passes.{name}.shader")))
+        .map(|s| Spanned::new(resolve_shader(&s.value, &s.location), s.location));
+    Some(PassDecl {
+        name: name.to_owned(),
+        type_name,
+        view,
+        draw,
+        reads,
+        writes,
+        params,
+        shader,
+        raster: crate::raster_decl::parse(t, &format!("passes.{name}"), b.errors),
+        location: entry.key.clone(),
+    })
+}

@@ -1,0 +1,97 @@
+//! A/B runs (`plait ab`): several pipelines on the same scenes, timed with
+//! interleaved repeats and compared with a reference pipeline, as one
+//! [`Report`](plait_compare::report::Report) plus the images and schedule
+//! pictures it names.
+//!
+//! - [`plan`]: what will run — each pipeline at every point of the sweeps
+//!   (one sweep: a variant per value; two: a grid, every combination), then
+//!   the reference — checked, and the scenes loaded, before any GPU work.
+//! - [`run()`]: build, warm up, time interleaved repeats, read the images,
+//!   compare them with the reference's, probe the self-shadowing; writes its
+//!   files into a directory the caller owns (the CLI makes it a temporary
+//!   one and renames it into place) and reports progress through a callback.
+//! - `measure`: timings and memory in the report's shapes.
+//! - `provenance`: hashes of every file the numbers depend on.
+
+mod measure;
+pub mod plan;
+mod provenance;
+mod run;
+
+use std::path::PathBuf;
+
+pub use plan::{AbOptions, Plan, ScenePlan, SweepSpec, VariantPlan};
+pub use provenance::shell_quote;
+pub use run::{Step, run};
+
+use crate::session::SessionError;
+
+/// Why an A/B run stopped. Everything a user can get wrong (files, flags,
+/// pipelines) is found by [`Plan::new`], before any GPU work.
+#[derive(Debug, thiserror::Error)]
+pub enum AbError {
+    #[error("no pipeline to compare")]
+    NoPipelines,
+    #[error("pipeline {}: no such file", .0.display())]
+    MissingPipeline(PathBuf),
+    #[error("--reference {}: no such file", .0.display())]
+    MissingReference(PathBuf),
+    #[error("--repeats must be at least 1")]
+    NoRepeats,
+    #[error("--sweep given {0} times; at most two sweeps (a grid of every combination)")]
+    TooManySweeps(usize),
+    #[error("--sweep {0}: the key is swept twice; give it once with all its values")]
+    SweptTwice(String),
+    /// A variant (or the reference) does not load or check; `what` says
+    /// which (`--sweep k=v`, `--reference`).
+    #[error("pipeline {}{what}", path.display())]
+    Pipeline {
+        path: PathBuf,
+        what: String,
+        #[source]
+        source: plait_graph::Errors,
+    },
+    #[error("{what}")]
+    Scene {
+        what: String,
+        #[source]
+        source: plait_hair::scene::SceneError,
+    },
+    /// Building, rendering, reading back or probing a variant on the GPU.
+    #[error("{what}")]
+    Render {
+        what: String,
+        #[source]
+        source: SessionError,
+    },
+    #[error("{what}")]
+    Compare {
+        what: String,
+        #[source]
+        source: plait_compare::CompareError,
+    },
+    #[error("reading {} to hash it", path.display())]
+    Read {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Writing a file of the report into the run's directory.
+    #[error("writing {name}")]
+    Write {
+        name: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("writing {name}")]
+    WriteImage {
+        name: String,
+        #[source]
+        source: image::ImageError,
+    },
+    #[error("writing report.json")]
+    Json(#[source] serde_json::Error),
+    /// The progress callback failed (e.g. its output was closed).
+    #[error("reporting progress")]
+    Progress(#[source] std::io::Error),
+}

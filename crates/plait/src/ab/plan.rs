@@ -1,0 +1,452 @@
+//! What an A/B run will do, decided before any GPU work: the variants (each
+//! pipeline at every point of the sweeps, then the reference), each loaded
+//! and checked, and the scenes, each loaded once.
+
+use std::path::{Path, PathBuf};
+
+use indexmap::IndexMap;
+use plait_graph::CompileOptions;
+
+use super::AbError;
+use crate::session::{SceneData, compile_checked, resolve_pipeline};
+
+/// A `--set` key and the values it takes, one variant each:
+/// `params.slices=32,64,128` or `techniques.self_shadow=occupancy,exact`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SweepSpec {
+    pub key: String,
+    pub values: Vec<String>,
+}
+
+/// Why a `--sweep` argument is not `KEY=V1,V2,…`.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct SweepSyntaxError(String);
+
+impl SweepSpec {
+    /// `KEY=V1,V2,…`: a key without spaces, then distinct, non-empty values.
+    pub fn parse(text: &str) -> Result<Self, SweepSyntaxError> {
+        let bad = |message: String| Err(SweepSyntaxError(message));
+        let Some((key, values)) = text.split_once('=') else {
+            return bad(format!(
+                "`{text}` is not KEY=V1,V2,… (e.g. params.slices=32,64,128)"
+            ));
+        };
+        let key = key.trim();
+        if key.is_empty() || key.contains(char::is_whitespace) {
+            return bad(format!(
+                "`{text}`: the key before `=` must be a --set key such as params.slices"
+            ));
+        }
+        let values: Vec<String> = values.split(',').map(|v| v.trim().to_string()).collect();
+        if values.iter().any(String::is_empty) {
+            return bad(format!("`{text}`: empty value in the comma-separated list"));
+        }
+        let mut seen = std::collections::HashSet::new();
+        if let Some(dup) = values.iter().find(|v| !seen.insert(v.as_str())) {
+            return bad(format!("`{text}`: value `{dup}` is listed twice"));
+        }
+        Ok(SweepSpec {
+            key: key.to_string(),
+            values,
+        })
+    }
+}
+
+/// Everything an A/B run is asked to do.
+#[derive(Clone, Debug)]
+pub struct AbOptions {
+    /// The variants' pipeline files.
+    pub pipelines: Vec<PathBuf>,
+    /// The ground truth every image is compared with; rendered with `sets`
+    /// but never swept.
+    pub reference: PathBuf,
+    /// Scene files; none = the built-in scene.
+    pub scenes: Vec<PathBuf>,
+    /// `--set key=value` for every variant and the reference.
+    pub sets: Vec<String>,
+    /// None, one (a variant per value) or two (a grid of every combination).
+    pub sweeps: Vec<SweepSpec>,
+    /// Timed frames per variant after one warm-up frame.
+    pub repeats: u32,
+    pub size: (u32, u32),
+    /// The command that asked for the run (`argv`), for the provenance.
+    pub command: Vec<String>,
+}
+
+impl AbOptions {
+    /// `pipelines` against `reference` on the built-in scene at 960×720,
+    /// five repeats, no `--set`, no sweep.
+    pub fn new(pipelines: Vec<PathBuf>, reference: PathBuf) -> Self {
+        AbOptions {
+            pipelines,
+            reference,
+            scenes: Vec::new(),
+            sets: Vec::new(),
+            sweeps: Vec::new(),
+            repeats: 5,
+            size: (960, 720),
+            command: Vec::new(),
+        }
+    }
+}
+
+/// One pipeline at one point of the sweeps, or the reference.
+#[derive(Clone, Debug)]
+pub struct VariantPlan {
+    /// Unique, usable in file names (`occupancy@64`).
+    pub id: String,
+    /// For people (`occupancy [params.slices=64]`).
+    pub label: String,
+    pub pipeline: PathBuf,
+    /// The run's `--set`s, then this variant's sweep values.
+    pub sets: Vec<String>,
+    /// Its value of each sweep, in the order of the sweeps.
+    pub sweep_values: IndexMap<String, String>,
+    pub is_reference: bool,
+}
+
+/// A scene, loaded once for every variant.
+pub struct ScenePlan {
+    /// Unique, usable in file names (the file's stem, `default` for the built-in one).
+    pub name: String,
+    /// `None` for the built-in scene.
+    pub path: Option<PathBuf>,
+    pub data: SceneData,
+}
+
+/// A checked A/B run, ready for [`run`](super::run()).
+pub struct Plan {
+    pub options: AbOptions,
+    /// The reference pipeline as resolved (a path that exists).
+    pub reference: PathBuf,
+    /// The variants, the reference last.
+    pub variants: Vec<VariantPlan>,
+    pub scenes: Vec<ScenePlan>,
+}
+
+impl Plan {
+    /// Resolve the pipelines, lay out the variants, load and check every one
+    /// (shaders included, with naga) and load the scenes — every error a
+    /// user can cause, before any GPU work.
+    pub fn new(options: AbOptions) -> Result<Self, AbError> {
+        if options.pipelines.is_empty() {
+            return Err(AbError::NoPipelines);
+        }
+        if options.repeats == 0 {
+            return Err(AbError::NoRepeats);
+        }
+        if options.sweeps.len() > 2 {
+            return Err(AbError::TooManySweeps(options.sweeps.len()));
+        }
+        if let [a, b] = options.sweeps.as_slice()
+            && a.key == b.key
+        {
+            return Err(AbError::SweptTwice(a.key.clone()));
+        }
+        let mut taken = Vec::new();
+        let mut variants = Vec::new();
+        let points = grid_points(&options.sweeps);
+        for given in &options.pipelines {
+            let pipeline = resolve_pipeline(Some(given));
+            if !pipeline.exists() {
+                return Err(AbError::MissingPipeline(given.clone()));
+            }
+            let base = stem(&pipeline);
+            for point in &points {
+                let mut sets = options.sets.clone();
+                sets.extend(point.iter().map(|(k, v)| format!("{k}={v}")));
+                let (id, label) = if point.is_empty() {
+                    (base.clone(), base.clone())
+                } else {
+                    let values: Vec<&str> = point.iter().map(|(_, v)| *v).collect();
+                    let settings: Vec<String> =
+                        point.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                    (
+                        format!("{base}@{}", values.join("@")),
+                        format!("{base} [{}]", settings.join(", ")),
+                    )
+                };
+                variants.push(VariantPlan {
+                    id: unique(sanitize(&id), &mut taken),
+                    label,
+                    pipeline: pipeline.clone(),
+                    sets,
+                    sweep_values: point
+                        .iter()
+                        .map(|(k, v)| (k.to_string(), v.to_string()))
+                        .collect(),
+                    is_reference: false,
+                });
+            }
+        }
+        let reference = resolve_pipeline(Some(&options.reference));
+        if !reference.exists() {
+            return Err(AbError::MissingReference(options.reference.clone()));
+        }
+        variants.push(VariantPlan {
+            id: unique("reference".into(), &mut taken),
+            label: format!("{} (reference)", stem(&reference)),
+            pipeline: reference.clone(),
+            sets: options.sets.clone(),
+            sweep_values: IndexMap::new(),
+            is_reference: true,
+        });
+
+        let compile = CompileOptions {
+            screen: options.size,
+            ..CompileOptions::default()
+        };
+        for v in &variants {
+            compile_checked(&v.pipeline, &v.sets, &compile).map_err(|source| {
+                AbError::Pipeline {
+                    path: v.pipeline.clone(),
+                    what: what_of(v),
+                    source,
+                }
+            })?;
+        }
+
+        let paths: Vec<Option<PathBuf>> = if options.scenes.is_empty() {
+            vec![None]
+        } else {
+            options.scenes.iter().cloned().map(Some).collect()
+        };
+        let mut scenes = Vec::new();
+        let mut scene_names = Vec::new();
+        for path in paths {
+            let data = SceneData::load(path.as_deref()).map_err(|source| AbError::Scene {
+                what: match &path {
+                    Some(p) => format!("--scene {}", p.display()),
+                    None => "the built-in scene".into(),
+                },
+                source,
+            })?;
+            let name = path
+                .as_deref()
+                .map(stem)
+                .unwrap_or_else(|| "default".into());
+            scenes.push(ScenePlan {
+                name: unique(sanitize(&name), &mut scene_names),
+                path,
+                data,
+            });
+        }
+        Ok(Plan {
+            options,
+            reference,
+            variants,
+            scenes,
+        })
+    }
+
+    /// Where the reference is in [`Plan::variants`].
+    pub fn reference_index(&self) -> usize {
+        self.variants
+            .iter()
+            .position(|v| v.is_reference)
+            .unwrap_or(self.variants.len() - 1)
+    }
+
+    /// How many progress steps [`run`](super::run()) reports: per scene and
+    /// variant, build, warm-up, each repeat, compare and probe.
+    pub fn step_count(&self) -> u64 {
+        let per_variant = 4 + self.options.repeats as u64;
+        self.scenes.len() as u64 * self.variants.len() as u64 * per_variant
+    }
+}
+
+/// How an error names a variant beyond its file: ` (--sweep k=v)`, ` (--reference)`.
+fn what_of(v: &VariantPlan) -> String {
+    if v.is_reference {
+        return " (--reference)".into();
+    }
+    if v.sweep_values.is_empty() {
+        return String::new();
+    }
+    let sweeps: Vec<String> = v
+        .sweep_values
+        .iter()
+        .map(|(k, x)| format!("--sweep {k}={x}"))
+        .collect();
+    format!(" ({})", sweeps.join(" "))
+}
+
+/// Every point of the sweeps, the first sweep outermost (so a grid reads
+/// row by row); one empty point without sweeps.
+fn grid_points(sweeps: &[SweepSpec]) -> Vec<Vec<(&str, &str)>> {
+    let mut points: Vec<Vec<(&str, &str)>> = vec![Vec::new()];
+    for sweep in sweeps {
+        points = points
+            .into_iter()
+            .flat_map(|point| {
+                sweep.values.iter().map(move |value| {
+                    let mut next = point.clone();
+                    next.push((sweep.key.as_str(), value.as_str()));
+                    next
+                })
+            })
+            .collect();
+    }
+    points
+}
+
+/// Keep names usable as file names.
+fn sanitize(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_' | '@' | '=') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+fn unique(id: String, taken: &mut Vec<String>) -> String {
+    let mut candidate = id.clone();
+    let mut n = 2;
+    while taken.contains(&candidate) {
+        candidate = format!("{id}-{n}");
+        n += 1;
+    }
+    taken.push(candidate.clone());
+    candidate
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "pipeline".into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sweep_syntax() {
+        let s = SweepSpec::parse("params.slices=32, 64,128").unwrap();
+        assert_eq!(s.key, "params.slices");
+        assert_eq!(s.values, ["32", "64", "128"]);
+        assert!(SweepSpec::parse("params.slices").is_err());
+        assert!(SweepSpec::parse("=1,2").is_err());
+        assert!(SweepSpec::parse("k=1,,2").is_err());
+        assert!(SweepSpec::parse("k=1,1").is_err());
+        let t = SweepSpec::parse("techniques.self_shadow=occupancy,exact").unwrap();
+        assert_eq!(t.values, ["occupancy", "exact"]);
+    }
+
+    #[test]
+    fn names_are_file_names_and_unique() {
+        assert_eq!(sanitize("forward@a b/c"), "forward@a_b_c");
+        let mut taken = vec![];
+        assert_eq!(unique("a".into(), &mut taken), "a");
+        assert_eq!(unique("a".into(), &mut taken), "a-2");
+    }
+
+    #[test]
+    fn two_sweeps_give_every_combination_row_by_row() {
+        let sweeps = [
+            SweepSpec::parse("params.a=1,2").unwrap(),
+            SweepSpec::parse("techniques.t=x,y,z").unwrap(),
+        ];
+        let points = grid_points(&sweeps);
+        assert_eq!(points.len(), 6);
+        assert_eq!(points[0], [("params.a", "1"), ("techniques.t", "x")]);
+        assert_eq!(points[2], [("params.a", "1"), ("techniques.t", "z")]);
+        assert_eq!(points[3], [("params.a", "2"), ("techniques.t", "x")]);
+        assert_eq!(grid_points(&sweeps[..1]).len(), 2);
+        assert_eq!(grid_points(&[]), [Vec::<(&str, &str)>::new()]);
+    }
+
+    fn options() -> AbOptions {
+        let root = crate::session::repo_root();
+        let mut o = AbOptions::new(
+            vec![root.join("pipelines/forward.toml")],
+            root.join("pipelines/forward.toml"),
+        );
+        o.scenes = vec![root.join("examples/scenes/small.toml")];
+        o.size = (64, 48);
+        o
+    }
+
+    /// Variants of a grid, named and set up before any GPU work.
+    #[test]
+    fn a_grid_plans_a_variant_per_combination_then_the_reference() {
+        let mut o = options();
+        o.sets = vec!["params.light_size=256".into()];
+        o.sweeps = vec![
+            SweepSpec::parse("params.hair_density=10,40").unwrap(),
+            SweepSpec::parse("params.light_size=128,256,512").unwrap(),
+        ];
+        let plan = Plan::new(o).expect("plan");
+        assert_eq!(plan.variants.len(), 2 * 3 + 1);
+        let v = &plan.variants[4];
+        assert_eq!(v.id, "forward@40@256");
+        assert_eq!(
+            v.label,
+            "forward [params.hair_density=40, params.light_size=256]"
+        );
+        assert_eq!(
+            v.sets,
+            [
+                "params.light_size=256",
+                "params.hair_density=40",
+                "params.light_size=256"
+            ]
+        );
+        assert_eq!(v.sweep_values["params.hair_density"], "40");
+        let reference = &plan.variants[plan.reference_index()];
+        assert!(reference.is_reference && reference.sweep_values.is_empty());
+        assert_eq!(reference.sets, ["params.light_size=256"]);
+        assert_eq!(plan.scenes[0].name, "small");
+        assert_eq!(plan.step_count(), 7 * (4 + 5));
+    }
+
+    #[test]
+    fn bad_plans_fail_naming_what_is_wrong() {
+        let mut o = options();
+        o.sweeps = vec![
+            SweepSpec::parse("params.a=1").unwrap(),
+            SweepSpec::parse("params.b=1").unwrap(),
+            SweepSpec::parse("params.c=1").unwrap(),
+        ];
+        assert!(matches!(Plan::new(o), Err(AbError::TooManySweeps(3))));
+        let mut o = options();
+        o.sweeps = vec![
+            SweepSpec::parse("params.light_size=128").unwrap(),
+            SweepSpec::parse("params.light_size=256").unwrap(),
+        ];
+        assert!(matches!(Plan::new(o), Err(AbError::SweptTwice(k)) if k == "params.light_size"));
+        // A value the pipeline refuses names the sweep point.
+        let mut o = options();
+        o.sweeps = vec![
+            SweepSpec::parse("params.light_size=128").unwrap(),
+            SweepSpec::parse("params.no_such_param=1,2").unwrap(),
+        ];
+        let e = Plan::new(o).err().expect("unknown param");
+        let text = format!("{e}: {}", std::error::Error::source(&e).expect("source"));
+        assert!(
+            text.contains("(--sweep params.light_size=128 --sweep params.no_such_param=1)")
+                && text.contains("no_such_param"),
+            "{text}"
+        );
+        let mut o = options();
+        o.reference = "pipelines/missing.toml".into();
+        assert_eq!(
+            Plan::new(o).err().expect("missing").to_string(),
+            "--reference pipelines/missing.toml: no such file"
+        );
+        let mut o = options();
+        o.scenes = vec!["nope.toml".into()];
+        assert!(
+            Plan::new(o)
+                .err()
+                .expect("missing scene")
+                .to_string()
+                .starts_with("--scene nope.toml")
+        );
+    }
+}

@@ -1,0 +1,410 @@
+//! Running a [`Plan`]: every variant built once per scene, one warm-up frame
+//! each, then interleaved timed repeats (A B C A B C …, so a machine that
+//! slows down mid-run slows every variant alike), then images, metrics
+//! against the reference, visibility probes, and the report's files.
+
+use std::path::Path;
+use std::time::Instant;
+
+use plait_compare::report::{
+    PipelineProvenance, Report, Run, SCHEMA, SceneResult, Sweep, Variant, Visibility,
+};
+use plait_compare::{Comparison, heatmap};
+use plait_gpu::Gpu;
+
+use super::measure::{Samples, memory};
+use super::provenance::{pipeline_provenance, provenance};
+use super::{AbError, Plan, ScenePlan, VariantPlan};
+use crate::probe::{ProbeGrid, probe_visibility, visibility_error};
+use crate::session::{Prepared, SessionError, prepare};
+
+/// One finished step of a run, for a progress display.
+#[derive(Clone, Copy, Debug)]
+pub struct Step<'a> {
+    /// Steps finished, this one included (1-based).
+    pub done: u64,
+    /// [`Plan::step_count`].
+    pub total: u64,
+    /// What was just done (`small: repeat 1/5 occupancy`).
+    pub message: &'a str,
+}
+
+/// The progress callback and its count. An error from the callback (its
+/// output closed) stops the run.
+struct Ticker<'p> {
+    done: u64,
+    total: u64,
+    callback: &'p mut dyn FnMut(Step<'_>) -> std::io::Result<()>,
+}
+
+impl Ticker<'_> {
+    fn step(&mut self, message: String) -> Result<(), AbError> {
+        self.done += 1;
+        (self.callback)(Step {
+            done: self.done,
+            total: self.total,
+            message: &message,
+        })
+        .map_err(AbError::Progress)
+    }
+}
+
+/// Where the report's files go.
+struct Files<'d> {
+    dir: &'d Path,
+}
+
+impl Files<'_> {
+    fn write(&self, name: &str, bytes: &[u8]) -> Result<(), AbError> {
+        std::fs::write(self.dir.join(name), bytes).map_err(|source| AbError::Write {
+            name: name.to_string(),
+            source,
+        })
+    }
+
+    fn write_png(&self, name: &str, img: impl Into<image::DynamicImage>) -> Result<(), AbError> {
+        let img: image::DynamicImage = img.into();
+        img.save_with_format(self.dir.join(name), image::ImageFormat::Png)
+            .map_err(|source| AbError::WriteImage {
+                name: name.to_string(),
+                source,
+            })
+    }
+}
+
+fn render_error(what: String) -> impl FnOnce(SessionError) -> AbError {
+    move |source| AbError::Render { what, source }
+}
+
+/// Run `plan` on `gpu`, writing the report's files into `dir` (which must
+/// exist): `report.json`, `report.html`, `report.md`, each variant's image, difference
+/// and ꟻLIP maps per scene, the reference's image, and each variant's
+/// schedule as SVG. `progress` hears of every step.
+pub fn run(
+    plan: &Plan,
+    gpu: &Gpu,
+    dir: &Path,
+    progress: &mut dyn FnMut(Step<'_>) -> std::io::Result<()>,
+) -> Result<Report, AbError> {
+    let mut ticker = Ticker {
+        done: 0,
+        total: plan.step_count(),
+        callback: progress,
+    };
+    let files = Files { dir };
+    let mut variants = Vec::new();
+    let mut graphs = Vec::new();
+    let mut pipelines: Vec<PipelineProvenance> = Vec::new();
+    let mut scenes = Vec::new();
+    for (index, scene) in plan.scenes.iter().enumerate() {
+        let prepared = build_all(plan, gpu, scene, &mut ticker)?;
+        if index == 0 {
+            // Schedules do not depend on the scene: describe them once.
+            for (v, p) in plan.variants.iter().zip(&prepared) {
+                let schedule = p.schedule();
+                let svg = plait_graph::to_svg(schedule);
+                let graph_file = format!("graph-{}.svg", v.id);
+                files.write(&graph_file, svg.as_bytes())?;
+                graphs.push((v.id.clone(), svg));
+                let path = v.pipeline.display().to_string();
+                merge_provenance(&mut pipelines, pipeline_provenance(&v.pipeline, schedule)?);
+                variants.push(Variant {
+                    id: v.id.clone(),
+                    label: v.label.clone(),
+                    pipeline: path,
+                    is_reference: v.is_reference,
+                    sweep_values: v.sweep_values.clone(),
+                    sets: v.sets.clone(),
+                    schedule_name: schedule.name.clone(),
+                    memory: memory(schedule),
+                    graph_svg: Some(graph_file),
+                });
+            }
+        }
+        let samples = time_interleaved(plan, scene, &prepared, &mut ticker)?;
+        let images = plan
+            .variants
+            .iter()
+            .zip(&prepared)
+            .map(|(v, p)| {
+                p.image().map_err(|e| AbError::Render {
+                    what: format!("reading the image of {} on scene {}", v.label, scene.name),
+                    source: e.into(),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let comparisons = compare_all(plan, scene, &images, &mut ticker)?;
+        let visibilities = probe_all(plan, gpu, scene, &mut ticker)?;
+        scenes.push(scene_result(
+            plan,
+            scene,
+            &files,
+            &prepared,
+            &samples,
+            &images,
+            comparisons,
+            visibilities,
+        )?);
+    }
+    let report = Report {
+        schema: SCHEMA.into(),
+        provenance: provenance(plan, gpu, pipelines)?,
+        sweeps: plan
+            .options
+            .sweeps
+            .iter()
+            .map(|s| Sweep {
+                key: s.key.clone(),
+                values: s.values.clone(),
+            })
+            .collect(),
+        variants,
+        scenes,
+    };
+    let json = serde_json::to_string_pretty(&report).map_err(AbError::Json)?;
+    files.write("report.json", json.as_bytes())?;
+    files.write(
+        "report.html",
+        plait_compare::report::html(&report, &graphs).as_bytes(),
+    )?;
+    files.write(
+        "report.md",
+        plait_compare::report::markdown(&report).as_bytes(),
+    )?;
+    Ok(report)
+}
+
+/// Add a variant's files to the provenance: one entry per pipeline file,
+/// holding the files of every sweep point of it (a swept `--set` can name
+/// other shaders or technique files than the first point does).
+fn merge_provenance(pipelines: &mut Vec<PipelineProvenance>, new: PipelineProvenance) {
+    let Some(known) = pipelines.iter_mut().find(|p| p.path == new.path) else {
+        pipelines.push(new);
+        return;
+    };
+    for file in new.files {
+        if !known.files.contains(&file) {
+            known.files.push(file);
+        }
+    }
+    for shader in new.shaders {
+        if !known.shaders.contains(&shader) {
+            known.shaders.push(shader);
+        }
+    }
+}
+
+/// Every variant built for `scene`.
+fn build_all<'g>(
+    plan: &Plan,
+    gpu: &'g Gpu,
+    scene: &ScenePlan,
+    ticker: &mut Ticker<'_>,
+) -> Result<Vec<Prepared<'g>>, AbError> {
+    let mut prepared = Vec::new();
+    for v in &plan.variants {
+        let p = prepare(gpu, &v.pipeline, &v.sets, &scene.data, plan.options.size).map_err(
+            render_error(format!(
+                "pipeline {} on scene {}",
+                v.pipeline.display(),
+                scene.name
+            )),
+        )?;
+        ticker.step(format!("{}: built {}", scene.name, v.label))?;
+        prepared.push(p);
+    }
+    Ok(prepared)
+}
+
+/// One warm-up frame per variant (not timed), then the repeats interleaved.
+fn time_interleaved(
+    plan: &Plan,
+    scene: &ScenePlan,
+    prepared: &[Prepared<'_>],
+    ticker: &mut Ticker<'_>,
+) -> Result<Vec<Samples>, AbError> {
+    for (v, p) in plan.variants.iter().zip(prepared) {
+        p.renderer.render().map_err(|e| AbError::Render {
+            what: format!("{} on scene {} (warm-up)", v.label, scene.name),
+            source: e.into(),
+        })?;
+        ticker.step(format!("{}: warm-up {}", scene.name, v.label))?;
+    }
+    let mut samples: Vec<Samples> = prepared
+        .iter()
+        .map(|p| Samples::new(p.schedule()))
+        .collect();
+    let repeats = plan.options.repeats;
+    for r in 0..repeats {
+        for ((v, p), s) in plan.variants.iter().zip(prepared).zip(&mut samples) {
+            let start = Instant::now();
+            let frame = p.renderer.render().map_err(|e| AbError::Render {
+                what: format!("{} on scene {} (repeat {})", v.label, scene.name, r + 1),
+                source: e.into(),
+            })?;
+            s.add(start.elapsed().as_secs_f64() * 1e3, &frame);
+            ticker.step(format!(
+                "{}: repeat {}/{repeats} {}",
+                scene.name,
+                r + 1,
+                v.label
+            ))?;
+        }
+    }
+    Ok(samples)
+}
+
+/// Every variant's image against the reference's.
+fn compare_all(
+    plan: &Plan,
+    scene: &ScenePlan,
+    images: &[image::RgbaImage],
+    ticker: &mut Ticker<'_>,
+) -> Result<Vec<Comparison>, AbError> {
+    let reference = &images[plan.reference_index()];
+    let mut comparisons = Vec::new();
+    for (v, img) in plan.variants.iter().zip(images) {
+        let c = plait_compare::compare(reference, img).map_err(|source| AbError::Compare {
+            what: format!(
+                "comparing {} with the reference on scene {}",
+                v.label, scene.name
+            ),
+            source,
+        })?;
+        ticker.step(format!("{}: compared {}", scene.name, v.label))?;
+        comparisons.push(c);
+    }
+    Ok(comparisons)
+}
+
+/// Self-shadowing: every variant's visibility provider probed along the
+/// same rays through the hair, against the reference's (Sintorn &
+/// Assarsson 2009 Fig. 5). `None` for all when the reference has no
+/// provider, and for a variant without one.
+fn probe_all(
+    plan: &Plan,
+    gpu: &Gpu,
+    scene: &ScenePlan,
+    ticker: &mut Ticker<'_>,
+) -> Result<Vec<Option<Visibility>>, AbError> {
+    let grid = ProbeGrid::through_hair(&scene.data, (16, 16), 48);
+    let probe = |v: &VariantPlan| {
+        probe_visibility(
+            gpu,
+            &v.pipeline,
+            &v.sets,
+            &scene.data,
+            plan.options.size,
+            &grid,
+        )
+        .map_err(render_error(format!(
+            "probing the self-shadowing of {} on scene {}",
+            v.label, scene.name
+        )))
+    };
+    let reference = probe(&plan.variants[plan.reference_index()])?;
+    let mut visibilities = Vec::new();
+    for v in &plan.variants {
+        let visibility = match &reference {
+            Some(reference) => probe(v)?.map(|probed| visibility_error(&grid, reference, &probed)),
+            None => None,
+        };
+        ticker.step(format!("{}: probed {}", scene.name, v.label))?;
+        visibilities.push(visibility);
+    }
+    Ok(visibilities)
+}
+
+/// A scene's runs, their images and heat maps written.
+#[allow(clippy::too_many_arguments)]
+fn scene_result(
+    plan: &Plan,
+    scene: &ScenePlan,
+    files: &Files<'_>,
+    prepared: &[Prepared<'_>],
+    samples: &[Samples],
+    images: &[image::RgbaImage],
+    comparisons: Vec<Comparison>,
+    visibilities: Vec<Option<Visibility>>,
+) -> Result<SceneResult, AbError> {
+    let reference_image = format!("{}-reference.png", scene.name);
+    files.write_png(&reference_image, images[plan.reference_index()].clone())?;
+    // One difference scale per scene, so the heat maps compare.
+    let max_diff = comparisons
+        .iter()
+        .map(|c| c.metrics.max_abs_diff)
+        .fold(0.0, f64::max);
+    let scale = heatmap::nice_scale(max_diff);
+    let mut runs = Vec::new();
+    for (i, (c, visibility)) in comparisons.into_iter().zip(visibilities).enumerate() {
+        let v = &plan.variants[i];
+        let image = format!("{}-{}.png", scene.name, v.id);
+        let diff_image = format!("{}-{}-diff.png", scene.name, v.id);
+        let flip_image = format!("{}-{}-flip.png", scene.name, v.id);
+        files.write_png(&image, images[i].clone())?;
+        files.write_png(
+            &diff_image,
+            heatmap::heatmap(&c.abs_diff, c.width, c.height, scale as f32),
+        )?;
+        files.write_png(
+            &flip_image,
+            heatmap::heatmap(&c.flip_map, c.width, c.height, 1.0),
+        )?;
+        runs.push(Run {
+            variant: v.id.clone(),
+            image,
+            diff_image,
+            diff_scale: scale,
+            flip_image,
+            timing: samples[i].timing(prepared[i].schedule()),
+            metrics: c.metrics,
+            visibility,
+        });
+    }
+    Ok(SceneResult {
+        name: scene.name.clone(),
+        path: scene.path.as_ref().map(|p| p.display().to_string()),
+        reference_image,
+        runs,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use plait_compare::report::FileHash;
+
+    fn file(path: &str) -> FileHash {
+        FileHash {
+            path: path.into(),
+            sha256: format!("sha-of-{path}"),
+            bytes: 1,
+        }
+    }
+
+    /// Sweep points of one pipeline that use different shaders: every
+    /// shader listed, each once, under the one pipeline.
+    #[test]
+    fn sweep_points_add_their_files_to_their_pipeline() {
+        let point = |shader: &str| PipelineProvenance {
+            path: "pipelines/occupancy.toml".into(),
+            files: vec![file("pipelines/occupancy.toml")],
+            shaders: vec![file("shaders/compose_over.wgsl"), file(shader)],
+        };
+        let mut all = Vec::new();
+        merge_provenance(&mut all, point("shaders/a.wgsl"));
+        merge_provenance(&mut all, point("shaders/b.wgsl"));
+        merge_provenance(&mut all, point("shaders/a.wgsl"));
+        assert_eq!(all.len(), 1);
+        let shaders: Vec<&str> = all[0].shaders.iter().map(|f| f.path.as_str()).collect();
+        assert_eq!(
+            shaders,
+            [
+                "shaders/compose_over.wgsl",
+                "shaders/a.wgsl",
+                "shaders/b.wgsl"
+            ]
+        );
+        assert_eq!(all[0].files.len(), 1);
+    }
+}

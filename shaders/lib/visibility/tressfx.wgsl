@@ -1,0 +1,62 @@
+// plait::visibility::tressfx — the "depth approximation" self-shadow of AMD
+// TressFX 4.1 (GPUOpen-Effects/TressFX, src/Shaders/TressFXLighting.hlsl:
+// `ComputeLightShadow` and `ComputeShadowAttenuation`). One depth map of the
+// nearest hair from the light; a point Δz behind the nearest hair of a texel
+// has (1 - α)^(Δz / s) of the light, s the fiber spacing — and at least one
+// fiber's worth once it is behind any hair; the 5×5 texels around the point
+// are averaged (percentage-closer filtering).
+//
+// Written against plait's contract, not copied: (1 - α)^n = exp(-w · n) with
+// w = -ln(1 - α) — the `shadow_weight` every provider and the exact reference
+// use (opacity per hair in front) — and n = Δz / s fibers in front, s = w / k
+// with k = `density`, the same extinction per world unit as the modified
+// shadow map. So TressFX is the modified shadow map (Halén & Wester 2007
+// §3.3.2) with 5×5 PCF and the one-fiber floor. TressFX samples its depth
+// atlas with a linear sampler at 25 offsets; plait reads the 25 texels
+// themselves. "In front of" is the one convention (docs/design.md):
+// `light_lookup`'s depth `in_front_below` = d - ε.
+#define_import_path plait::visibility::tressfx
+
+#import plait::frame::{frame, light_lookup, light_depth_to_linear, nearest_sampler}
+
+// Nearest hair depth from the light (a `shadow_map` pass drawing hair).
+@group(1) @binding(8) var vis_depth: texture_depth_2d;
+
+struct VisibilityParams {
+    // w = -ln(1 - α): a fiber lets exp(-w) = 1 - α of the light through.
+    shadow_weight: f32,
+    // k = w / s: extinction per world unit of hair behind the first strand.
+    density: f32,
+}
+@group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
+
+// TressFX's kernelLevel 2: a (2·2+1)² = 25-texel box.
+const KERNEL_LEVEL: i32 = 2;
+
+fn hair_visibility(world: vec3<f32>) -> f32 {
+    let size = textureDimensions(vis_depth);
+    let lookup = light_lookup(world, size);
+    if (!lookup.inside) {
+        return 1.0;
+    }
+    let w = visibility_params.shadow_weight;
+    // 1 / s: fibers per world unit along the light.
+    let fibers_per_unit = visibility_params.density / max(w, 1e-6);
+    let to_world = frame.near_far.w - frame.near_far.z;
+    var lit = 0.0;
+    for (var j = -KERNEL_LEVEL; j <= KERNEL_LEVEL; j++) {
+        for (var i = -KERNEL_LEVEL; i <= KERNEL_LEVEL; i++) {
+            // Sampled at texel centres, not loaded: GL cannot textureLoad depth textures.
+            let uv = lookup.uv + vec2<f32>(f32(i), f32(j)) / vec2<f32>(size);
+            let first = light_depth_to_linear(textureSampleLevel(vis_depth, nearest_sampler, uv, 0));
+            let behind = (lookup.in_front_below - first) * to_world;
+            if (behind <= 0.0) {
+                lit += 1.0;
+            } else {
+                lit += exp(-w * max(behind * fibers_per_unit, 1.0));
+            }
+        }
+    }
+    let taps = f32((2 * KERNEL_LEVEL + 1) * (2 * KERNEL_LEVEL + 1));
+    return lit / taps;
+}

@@ -1,0 +1,32 @@
+// slice_counts: the number of hair fragments per uniform slice of each texel's
+// hair depth range, counted exactly with atomicAdd. One kernel, two papers:
+// - `slab` (Sintorn & Assarsson 2009 §3.1, Fig. 8): fragment counts per slab
+//   of occupancy slices (4 slabs for the paper's 128 slices);
+// - `opacity_shadow_maps` (the one-pass opacity shadow maps of Halén & Wester
+//   2007 §3.3.2, §5.7; there 4 targets × 4 channels with additive blending):
+//   N slices in one hair draw.
+// The paper's additive float blending would need FLOAT32_BLENDABLE and loses
+// precision past 2048 fragments in 16-bit floats. Slices per texel = the
+// `counts` buffer's u32 words per texel (each pass type binds its own slot,
+// `slabs` or `slices`, to `counts`).
+#import plait::frame::{view_linear_depth}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
+
+@group(1) @binding(0) var range: texture_2d<f32>;
+@group(1) @binding(1) var<storage, read_write> counts: array<atomic<u32>>;
+
+@vertex
+fn vs_main(v: MapVertex) -> MapFragment {
+    return map_vertex(v);
+}
+
+@fragment
+fn fs_main(in: MapFragment) {
+    let size = textureDimensions(range);
+    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
+    let r = textureLoad(range, vec2<i32>(texel), 0);
+    let rel = (view_linear_depth(in.world) - r.x) / max(r.y - r.x, 1e-9);
+    let n = arrayLength(&counts) / (size.x * size.y);
+    let slice = min(u32(clamp(rel, 0.0, 1.0) * f32(n)), n - 1u);
+    atomicAdd(&counts[(texel.y * size.x + texel.x) * n + slice], 1u);
+}
