@@ -89,13 +89,14 @@ pub(super) fn pipeline_provenance(
     })
 }
 
-/// A library shader as the run uses it: the copy on the search path when
-/// there is one (`PLAIT_PATH`, the checkout), else the built-in text.
+/// A library shader, named as in the library, with the text the run uses:
+/// the copy on the search path when there is one (`PLAIT_PATH`, the
+/// checkout), else the built-in text.
 fn as_used(name: &'static str, text: &'static str) -> (String, String) {
-    match plait_gpu::shader::library_source(name, text) {
-        Ok((path, used)) => (path.display().to_string(), used.into_owned()),
-        Err(_) => (name.to_owned(), text.to_owned()),
-    }
+    let used = plait_gpu::shader::library_source(name, text)
+        .map(|(_, used)| used.into_owned())
+        .unwrap_or_else(|_| text.to_owned());
+    (name.to_owned(), used)
 }
 
 fn builtin_shaders() -> Vec<FileHash> {
