@@ -8,6 +8,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 # A Vulkan driver (ICD) is needed for the GPU tests; without one they FAIL
 # with a message saying how to install it (they are never skipped).
 bash scripts/ensure-vulkan.sh
+# Xvfb for the `plait view` test (a window on a virtual display).
+bash scripts/ensure-xvfb.sh
 
 # Pin the tests to lavapipe when it is installed, as blade's CI does: the
 # golden images were made with it, and other ICDs on a GPU-less machine only

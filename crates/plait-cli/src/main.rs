@@ -16,6 +16,7 @@ mod pipeline_cmd;
 mod render_cmd;
 mod show;
 mod techniques_cmd;
+mod view_cmd;
 
 use std::io::Write as _;
 
@@ -24,7 +25,7 @@ use clap::{Parser, Subcommand};
 #[derive(Parser)]
 #[command(
     name = "plait",
-    version,
+    version = env!("PLAIT_BUILD_VERSION"),
     about = "Real-time strand-hair render pipelines as data"
 )]
 struct Cli {
@@ -48,6 +49,8 @@ enum Command {
     Hair(hair_cmd::HairArgs),
     /// Run several pipelines on the same scene(s) and write one report
     Ab(ab_cmd::AbArgs),
+    /// Open a window that renders a pipeline live and reloads it on every save.
+    View(view_cmd::ViewArgs),
 }
 
 fn main() {
@@ -67,6 +70,7 @@ fn main() {
         Command::Techniques(args) => techniques_cmd::run(args),
         Command::Hair(args) => hair_cmd::run(args),
         Command::Ab(args) => ab_cmd::run(args),
+        Command::View(args) => view_cmd::run(args),
     };
     let result = result.and_then(|()| Ok(std::io::stdout().flush()?));
     if let Err(e) = result {

@@ -34,6 +34,10 @@ pub struct RenderArgs {
     /// Print one JSON object on standard output instead of the table.
     #[arg(long)]
     json: bool,
+    /// Render again on every save of the pipeline, a file it extends, a
+    /// shader it uses or the scene, until interrupted (Ctrl-C).
+    #[arg(long)]
+    watch: bool,
     #[command(flatten)]
     set: SetArgs,
 }
@@ -116,6 +120,30 @@ pub fn render(
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
+    if !args.watch {
+        return render_once(&args);
+    }
+    let pipeline = resolve_pipeline(args.pipeline.as_deref());
+    plait_view::watch::run_on_changes(
+        || plait::session::watched_files(&pipeline, &args.set.sets, args.scene.as_deref()),
+        || {
+            // An error is reported and the watch goes on: fixing the file renders again.
+            if let Err(e) = render_once(&args) {
+                let text = crate::error_text(&e);
+                let prefix = if text.starts_with("error:") {
+                    ""
+                } else {
+                    "error: "
+                };
+                eprintln!("{prefix}{text}");
+            }
+        },
+        |n| eprintln!("watching {n} files; save one to render again (Ctrl-C stops)"),
+    )?;
+    Ok(())
+}
+
+fn render_once(args: &RenderArgs) -> Result<()> {
     let format = crate::output::image_format(&args.out, "--out")?;
     let out = PendingFile::create(&args.out, "--out")?;
     let pipeline = resolve_pipeline(args.pipeline.as_deref());

@@ -5,19 +5,25 @@
 //! another size and every variant of an A/B run. Composition (naga_oil, then
 //! naga validation) costs far more than a lookup, so each distinct
 //! (path, source, defines) is composed once and shared.
+//!
+//! The library modules are read from the search path, so they can change
+//! while plait runs (the viewer reloads on an edit): when any of them has
+//! changed on disk ([`library_stamp`]), the library is loaded again and
+//! everything composed with the old one is dropped.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use crate::shader::{Define, ShaderError, ShaderLibrary};
+use crate::shader::{Define, LIBRARY_MODULES, ShaderError, ShaderLibrary};
 
 type Key = (PathBuf, String, Vec<(String, Define)>);
 
 #[derive(Default)]
 struct Modules {
     /// Created on first use: loading the library modules is itself a cost.
-    library: Option<ShaderLibrary>,
+    /// With the [`library_stamp`] it was loaded at.
+    library: Option<(u64, ShaderLibrary)>,
     composed: HashMap<Key, Arc<naga::Module>>,
 }
 
@@ -34,17 +40,52 @@ pub fn compose(
     // consistent (entries are inserted whole), so a poisoned lock is reused.
     let mut guard = MODULES.lock().unwrap_or_else(|p| p.into_inner());
     let modules = guard.get_or_insert_with(Modules::default);
+    let stamp = library_stamp();
+    if modules.library.as_ref().is_some_and(|(s, _)| *s != stamp) {
+        modules.library = None;
+        modules.composed.clear();
+    }
     let key: Key = (path.to_owned(), source.to_owned(), defines.to_vec());
     if let Some(m) = modules.composed.get(&key) {
         return Ok(m.clone());
     }
     let library = match &mut modules.library {
-        Some(l) => l,
-        None => modules.library.insert(ShaderLibrary::new()?),
+        Some((_, l)) => l,
+        None => &mut modules.library.insert((stamp, ShaderLibrary::new()?)).1,
     };
     let module = Arc::new(library.compose(path, source, defines)?);
     modules.composed.insert(key, module.clone());
     Ok(module)
+}
+
+/// Where each library module is read from and when it last changed, hashed:
+/// cheap (no file is read) and different after an edit, or when a copy on
+/// the search path appears or goes.
+pub fn library_stamp() -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::hash::DefaultHasher::new();
+    for (name, _) in LIBRARY_MODULES {
+        match plait_assets::find_on_disk(name) {
+            Some(path) => {
+                let meta = std::fs::metadata(&path).ok();
+                (path, meta.as_ref().map(|m| m.len())).hash(&mut h);
+                meta.and_then(|m| m.modified().ok()).hash(&mut h);
+            }
+            None => name.hash(&mut h),
+        }
+    }
+    h.finish()
+}
+
+/// Digest of the library modules' text as loaded for the last composition,
+/// for pipeline cache keys (an edited module changes every shader).
+pub fn library_digest() -> u64 {
+    MODULES
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .as_ref()
+        .and_then(|m| m.library.as_ref())
+        .map_or(0, |(_, l)| l.library_digest())
 }
 
 /// How many distinct modules have been composed (for tests of the cache).

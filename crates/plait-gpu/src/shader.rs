@@ -1,9 +1,13 @@
 //! Shader composition with naga_oil: `#import plait::frame`, `#ifdef`, params as defines.
 //!
-//! Library modules live in `shaders/lib/` and are compiled into the binary, so
-//! a pass shader anywhere on disk can import them. Errors carry the shader's
-//! path and naga's diagnostic with line and column.
+//! Library modules live in `shaders/lib/`. Like the pass types' own shaders
+//! they are read at run time from the library search path (`PLAIT_PATH`, or
+//! the checkout plait was built from) so an edit needs no rebuild, with the
+//! copies compiled into the binary as fallback ([`library_source`]); a pass
+//! shader anywhere on disk can import them. Errors carry the shader's path and
+//! naga's diagnostic with line and column.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -88,6 +92,32 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
     ),
 ];
 
+/// The text of a library file compiled into plait (a library module, a pass
+/// type's shader): the copy on the search path when there is one, so edits
+/// apply without a rebuild, else the built-in `text`. Returns the path
+/// messages should name.
+pub fn library_source(
+    name: &'static str,
+    text: &'static str,
+) -> Result<(PathBuf, Cow<'static, str>), ShaderError> {
+    match plait_assets::find_on_disk(name) {
+        Some(path) => match std::fs::read_to_string(&path) {
+            Ok(text) => Ok((path, Cow::Owned(text))),
+            Err(e) => Err(ShaderError {
+                message: format!("cannot read shader {}: {e}", path.display()),
+                path,
+            }),
+        },
+        None => Ok((PathBuf::from(name), Cow::Borrowed(text))),
+    }
+}
+
+/// Read a shader a pipeline names (`shader = "…"`): from disk, or a built-in
+/// copy (`<built-in>/shaders/…`).
+pub fn read_shader_file(path: &Path) -> std::io::Result<Cow<'static, str>> {
+    plait_assets::read_to_string(path)
+}
+
 /// A shader that failed to parse, compose or validate.
 #[derive(Debug, Clone, thiserror::Error)]
 #[error("{message}")]
@@ -108,6 +138,9 @@ pub enum Define {
 /// The composer with plait's library modules loaded.
 pub struct ShaderLibrary {
     composer: Composer,
+    /// Digest of the library modules' texts as read: part of every pipeline
+    /// cache key, since an edited module changes every shader importing it.
+    digest: u64,
 }
 
 impl ShaderLibrary {
@@ -116,10 +149,14 @@ impl ShaderLibrary {
         composer.validate = true;
         // Library modules import each other; naga_oil needs them added in dependency
         // order, and LIBRARY_MODULES is kept in that order.
-        for (path, source) in LIBRARY_MODULES {
+        let mut digest = std::hash::DefaultHasher::new();
+        for (name, builtin) in LIBRARY_MODULES {
+            let (path, source) = library_source(name, builtin)?;
+            std::hash::Hash::hash(&*source, &mut digest);
+            let file_path = path.display().to_string();
             let added = composer.add_composable_module(ComposableModuleDescriptor {
-                source,
-                file_path: path,
+                source: &source,
+                file_path: &file_path,
                 language: ShaderLanguage::Wgsl,
                 as_name: None,
                 additional_imports: &[],
@@ -127,12 +164,20 @@ impl ShaderLibrary {
             });
             if let Err(e) = added {
                 return Err(ShaderError {
-                    path: PathBuf::from(path),
+                    path,
                     message: e.emit_to_string(&composer),
                 });
             }
         }
-        Ok(ShaderLibrary { composer })
+        Ok(ShaderLibrary {
+            composer,
+            digest: std::hash::Hasher::finish(&digest),
+        })
+    }
+
+    /// Digest of the library modules as read (see the field).
+    pub fn library_digest(&self) -> u64 {
+        self.digest
     }
 
     /// Compose and validate a shader. `path` is only used in messages.

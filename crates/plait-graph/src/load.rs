@@ -123,7 +123,8 @@ pub struct PassDecl {
 /// (`overrides` holds the `key=value` texts).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Pipeline, Errors> {
     // The file as a whole: a file that cannot be read has no line 1.
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    // `plait_assets` reads built-in copies (`<built-in>/…`) too.
+    let text = plait_assets::read_to_string(path).map_err(|e| {
         Error::new(
             Location::Path {
                 path: path.to_path_buf(),

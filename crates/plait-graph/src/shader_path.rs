@@ -7,7 +7,9 @@ use crate::error::Location;
 
 /// A shader path is relative to the file that wrote it; failing that, to the
 /// repository root (the first ancestor holding `shaders/`), so pipelines can
-/// say `shader = "shaders/x.wgsl"`. The first candidate that exists wins; if
+/// say `shader = "shaders/x.wgsl"`; failing that, on the library search path
+/// (`plait_assets::find_named`), so a pipeline copied out of the repository
+/// still finds the library's shaders. The first candidate that exists wins; if
 /// none does, the file-relative path is kept for the error message of
 /// whoever opens it.
 pub fn resolve_shader(written: &str, location: &Location) -> PathBuf {
@@ -16,14 +18,21 @@ pub fn resolve_shader(written: &str, location: &Location) -> PathBuf {
         _ => std::env::current_dir().unwrap_or_default(),
     };
     let next_to_file = base_dir.join(written);
-    if next_to_file.exists() {
+    if plait_assets::exists(&next_to_file) {
         return next_to_file;
     }
     // Lexical ancestors first, so relative inputs give relative (stable,
     // snapshot-friendly) paths; then the canonical ones, for `x.toml` run
     // from inside `pipelines/`.
     let absolute_base = std::fs::canonicalize(&base_dir).unwrap_or_else(|_| base_dir.clone());
-    for base in [&base_dir, &absolute_base] {
+    // A built-in copy has no disk ancestors (its last lexical one, "", would
+    // be the working directory).
+    let ancestors = if plait_assets::is_builtin(&base_dir) {
+        vec![]
+    } else {
+        vec![&base_dir, &absolute_base]
+    };
+    for base in ancestors {
         let root = base.ancestors().find(|a| a.join("shaders").is_dir());
         if let Some(root) = root {
             let candidate = root.join(written);
@@ -32,5 +41,5 @@ pub fn resolve_shader(written: &str, location: &Location) -> PathBuf {
             }
         }
     }
-    next_to_file
+    plait_assets::find_named(written, "shaders").unwrap_or(next_to_file)
 }

@@ -57,8 +57,17 @@ const EXPORT_KEYS: &[&str] = &["reads", "params"];
 
 /// The techniques folder nearest `pipeline`: its own folder's, or an
 /// ancestor's — relative to the working directory when it is below it, so
-/// messages name `techniques/…` as a user would.
+/// messages name `techniques/…` as a user would. A pipeline outside any
+/// checkout (copied elsewhere, or a built-in copy) uses the library's
+/// (`plait_assets::find_dir`: the search path, then the built-in copies).
 pub fn techniques_root(pipeline: &Path) -> Option<PathBuf> {
+    if plait_assets::is_builtin(pipeline) {
+        return plait_assets::find_dir(TECHNIQUES_DIR);
+    }
+    techniques_beside(pipeline).or_else(|| plait_assets::find_dir(TECHNIQUES_DIR))
+}
+
+fn techniques_beside(pipeline: &Path) -> Option<PathBuf> {
     let dir = pipeline.parent().unwrap_or(Path::new(""));
     let absolute = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
     let found = absolute
@@ -78,7 +87,7 @@ pub fn techniques_root(pipeline: &Path) -> Option<PathBuf> {
 
 /// The choice points under `root` (its sub-folders), sorted.
 pub fn points(root: &Path) -> Vec<String> {
-    list(root, |p| p.is_dir())
+    list(root, plait_assets::is_dir)
 }
 
 /// The techniques of `point` under `root` (its `.toml` files, by stem), sorted.
@@ -94,17 +103,15 @@ pub fn choices(root: &Path, point: &str) -> Vec<String> {
 /// Fragments shared between techniques (`includes`) are files without a
 /// `[technique]` table; they are not choices.
 fn is_fragment(dir: &Path, stem: &str) -> bool {
-    std::fs::read_to_string(dir.join(format!("{stem}.toml")))
+    plait_assets::read_to_string(&dir.join(format!("{stem}.toml")))
         .map(|text| !text.lines().any(|l| l.trim() == "[technique]"))
         .unwrap_or(true)
 }
 
 fn list(dir: &Path, keep: impl Fn(&Path) -> bool) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
+    // Built-in copies (`<built-in>/techniques`) list like folders on disk.
+    let mut names: Vec<String> = plait_assets::read_dir(dir)
         .into_iter()
-        .flatten()
-        .flatten()
-        .map(|e| e.path())
         .filter(|p| keep(p))
         .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_owned))
         .collect();
@@ -212,7 +219,7 @@ fn read_technique(path: &Path) -> Result<Spanned<Node>, Vec<Error>> {
 
 fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<Node>, Vec<Error>> {
     chain.push(path.to_path_buf());
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = plait_assets::read_to_string(path).map_err(|e| {
         vec![Error::new(
             Location::Path {
                 path: path.to_path_buf(),
@@ -281,7 +288,7 @@ fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<N
                 ));
                 continue;
             }
-            if !included.is_file() {
+            if !plait_assets::exists(&included) {
                 errors.push(Error::new(
                     item.location.clone(),
                     ErrorKind::Io(format!("{}: no such file", included.display())),

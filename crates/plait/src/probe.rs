@@ -17,7 +17,7 @@ use plait_compare::report::{Visibility, VisibilityCurve};
 use plait_gpu::Gpu;
 use plait_graph::Value;
 
-use crate::session::{SceneData, SessionError, build, check_pipeline, gpu_options, repo_root};
+use crate::session::{SceneData, SessionError, build, check_pipeline, gpu_options};
 
 /// Rays on a uv grid of the light map, sampled at evenly spaced light depths.
 #[derive(Clone, Debug)]
@@ -147,7 +147,9 @@ pub fn probe_visibility(
         .file_name()
         .and_then(|f| f.to_str())
         .unwrap_or("pipeline.toml");
-    let shader = repo_root().join("shaders/visibility_probe.wgsl");
+    // Found like any shader a pipeline names: next to it, at its checkout's
+    // root, or on the library search path (built-in copy last).
+    let shader = "shaders/visibility_probe.wgsl";
     let mut text = String::new();
     let _ = write!(
         text,
@@ -156,7 +158,6 @@ pub fn probe_visibility(
          [passes.visibility_probe]\ntype = \"compute\"\nshader = {shader:?}\nreads = {{ {reads} }}\n\
          writes = {{ probe_out = \"probe_out\" }}\nparams = {{ {params} }}\n",
         bytes = grid.ray_count() * grid.depths as usize * 4,
-        shader = shader.display().to_string(),
         reads = reads.join(", "),
         params = params.join(", "),
     );

@@ -25,23 +25,92 @@ pub enum SessionError {
     NoOutput,
 }
 
-/// The checkout plait was built from (for finding `pipelines/` and `examples/`
-/// when run from elsewhere).
+/// The checkout plait was built from (benchmarks and tests that need its
+/// `examples/`); programs find library files through [`plait_assets`].
 pub fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// A pipeline named on the command line, or the default one: relative to the
-/// working directory first, then to the plait checkout.
+/// A pipeline named on the command line, or the default one. A path that
+/// exists (or is absolute) is taken as is; a plain relative name that does
+/// not exist is looked up on the library search path, as given and under
+/// `pipelines/` (`plait render forward.toml` from any directory), with the
+/// built-in copies last.
 pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
     let candidate = given
         .map(Path::to_path_buf)
         .unwrap_or_else(|| PathBuf::from(DEFAULT_PIPELINE));
-    if candidate.exists() || candidate.is_absolute() {
+    if candidate.exists() || candidate.is_absolute() || plait_assets::is_builtin(&candidate) {
         return candidate;
     }
-    let in_repo = repo_root().join(&candidate);
-    if in_repo.exists() { in_repo } else { candidate }
+    let plain = candidate
+        .components()
+        .all(|c| matches!(c, std::path::Component::Normal(_)));
+    let found = candidate.to_str().filter(|_| plain).and_then(|name| {
+        plait_assets::find(name).or_else(|| plait_assets::find(&format!("pipelines/{name}")))
+    });
+    found.unwrap_or(candidate)
+}
+
+/// The files on disk a render of `pipeline` reads, for watching them: the
+/// pipeline and every file it extends, the technique files, the shaders of
+/// its passes (files it names and the pass types' own), the shader library,
+/// the scene and the files the scene names. Best effort: a pipeline that does not load still
+/// yields itself and the files its errors point at. Built-in copies are left
+/// out (they cannot change).
+pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> Vec<PathBuf> {
+    let mut files = vec![pipeline.to_path_buf()];
+    match plait_graph::load(pipeline, sets) {
+        Ok(loaded) => {
+            files.extend(loaded.files.iter().cloned());
+            let library = plait_passes::library();
+            for pass in loaded.passes.values() {
+                if let Some(shader) = &pass.shader {
+                    files.push(shader.value.clone());
+                }
+                let own = library.get(&pass.type_name.value).and_then(|t| t.shader());
+                if let Some(path) = own.and_then(|(name, _)| plait_assets::find_on_disk(name)) {
+                    files.push(path);
+                }
+            }
+        }
+        Err(errors) => files.extend(errors.0.iter().filter_map(|e| match &e.location {
+            plait_graph::Location::File { path, .. } => Some(path.clone()),
+            _ => None,
+        })),
+    }
+    // Technique files and the fragments they include: the whole folder.
+    if let Some(root) = plait_graph::techniques::techniques_root(pipeline) {
+        let mut folders = vec![root];
+        while let Some(folder) = folders.pop() {
+            for entry in std::fs::read_dir(&folder).into_iter().flatten().flatten() {
+                let path = entry.path();
+                if path.is_dir() {
+                    folders.push(path);
+                } else if path.extension().is_some_and(|e| e == "toml") {
+                    files.push(path);
+                }
+            }
+        }
+    }
+    for (name, _) in plait_gpu::shader::LIBRARY_MODULES {
+        files.extend(plait_assets::find_on_disk(name));
+    }
+    if let Some(scene_path) = scene {
+        files.push(scene_path.to_path_buf());
+        if let Ok(loaded) = Scene::load(scene_path) {
+            if let plait_hair::scene::HairSource::File(hair) = &loaded.hair.source {
+                files.push(hair.clone());
+            }
+            if let Background::Image(image) = &loaded.background {
+                files.push(image.clone());
+            }
+        }
+    }
+    files.retain(|f| !plait_assets::is_builtin(f));
+    files.sort();
+    files.dedup();
+    files
 }
 
 /// Load, compile and check a pipeline against the pass library, shaders

@@ -221,9 +221,12 @@ fn build_inner(
             })
         })
     };
-    let shader_key: [&dyn std::fmt::Debug; 5] = [
+    // The library modules' digest too: they may be edited while plait runs.
+    let library = crate::modules::library_digest();
+    let shader_key: [&dyn std::fmt::Debug; 6] = [
         &draw.path,
         &draw.source,
+        &library,
         &draw.defines,
         &layout_entries,
         &guard,

@@ -152,8 +152,11 @@ pub fn shader_source<T: PassType + ?Sized>(
     t: &T,
     pass: &ScheduledPass,
 ) -> Result<(PathBuf, Cow<'static, str>), (Location, String)> {
-    if let Some((path, text)) = t.shader() {
-        return Ok((PathBuf::from(path), Cow::Borrowed(text)));
+    if let Some((name, text)) = t.shader() {
+        // The copy on the search path when there is one (edits apply without
+        // a rebuild), else the built-in text.
+        return crate::shader::library_source(name, text)
+            .map_err(|e| (pass.location.clone(), e.message));
     }
     let loc = pass
         .shader_location
@@ -162,8 +165,8 @@ pub fn shader_source<T: PassType + ?Sized>(
     let Some(path) = &pass.shader else {
         return Err((loc, "needs `shader = \"path.wgsl\"`".into()));
     };
-    match std::fs::read_to_string(path) {
-        Ok(text) => Ok((path.clone(), Cow::Owned(text))),
+    match crate::shader::read_shader_file(path) {
+        Ok(text) => Ok((path.clone(), text)),
         Err(e) => Err((loc, format!("cannot read shader {}: {e}", path.display()))),
     }
 }

@@ -194,11 +194,17 @@ pub(super) fn load_chain(
         )
         .into());
     };
-    let base_path = path.parent().unwrap_or(Path::new("")).join(base_name);
+    let next_to_file = path.parent().unwrap_or(Path::new("")).join(base_name);
+    // A pipeline copied out of the library still finds the file it extends.
+    let base_path = if plait_assets::exists(&next_to_file) {
+        next_to_file
+    } else {
+        plait_assets::find_named(base_name, "pipelines").unwrap_or(next_to_file)
+    };
     if chain.contains(&canonical(&base_path)) {
         return Err(Error::new(extends.location, ErrorKind::ExtendsCycle(base_path)).into());
     }
-    let base_text = std::fs::read_to_string(&base_path).map_err(|e| {
+    let base_text = plait_assets::read_to_string(&base_path).map_err(|e| {
         Error::new(
             extends.location.clone(),
             ErrorKind::Io(format!("{}: {e}", base_path.display())),

@@ -22,7 +22,13 @@ fn sha256_hex(bytes: &[u8]) -> String {
 }
 
 fn hash_file(path: &Path) -> Result<FileHash, AbError> {
-    let bytes = std::fs::read(path).map_err(|source| AbError::Read {
+    // A built-in copy (`<built-in>/pipelines/…`) is hashed as built in.
+    let read = if plait_assets::is_builtin(path) {
+        plait_assets::read_to_string(path).map(|t| t.into_owned().into_bytes())
+    } else {
+        std::fs::read(path)
+    };
+    let bytes = read.map_err(|source| AbError::Read {
         path: path.to_path_buf(),
         source,
     })?;
@@ -83,20 +89,34 @@ pub(super) fn pipeline_provenance(
     })
 }
 
+/// A library shader, named as in the library, with the text the run uses:
+/// the copy on the search path when there is one (`PLAIT_PATH`, the
+/// checkout), else the built-in text.
+fn as_used(name: &'static str, text: &'static str) -> (String, String) {
+    let used = plait_gpu::shader::library_source(name, text)
+        .map(|(_, used)| used.into_owned())
+        .unwrap_or_else(|_| text.to_owned());
+    (name.to_owned(), used)
+}
+
 fn builtin_shaders() -> Vec<FileHash> {
     let mut out: Vec<FileHash> = plait_gpu::shader::LIBRARY_MODULES
         .iter()
-        .map(|(name, text)| hash_text(name, text))
+        .map(|(name, text)| {
+            let (path, used) = as_used(name, text);
+            hash_text(&path, &used)
+        })
         .collect();
     // Several pass types share one WGSL file (hair_shade.wgsl serves six):
     // list each file once, with the pass types that use it.
     let library = plait_passes::library();
-    let mut files: Vec<(&str, &str, Vec<&str>)> = Vec::new();
+    let mut files: Vec<(String, String, Vec<&str>)> = Vec::new();
     for (type_name, t) in &library.types {
         if let Some((name, text)) = t.shader() {
-            match files.iter_mut().find(|(n, x, _)| *n == name && *x == text) {
+            let (path, used) = as_used(name, text);
+            match files.iter_mut().find(|(n, x, _)| *n == path && *x == used) {
                 Some((_, _, types)) => types.push(type_name),
-                None => files.push((name, text, vec![type_name])),
+                None => files.push((path, used, vec![type_name])),
             }
         }
     }
@@ -104,7 +124,7 @@ fn builtin_shaders() -> Vec<FileHash> {
         let what = if types.len() == 1 { "type" } else { "types" };
         out.push(hash_text(
             &format!("{name} (pass {what} {})", types.join(", ")),
-            text,
+            &text,
         ));
     }
     out

@@ -1,0 +1,55 @@
+//! Embeds every `pipelines/*.toml`, `techniques/**/*.toml` and
+//! `shaders/**/*.wgsl` of the checkout as
+//! the built-in copies (the fallback when no folder of the search path holds a
+//! file), so new gallery files need no list to be kept by hand.
+
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+fn collect(root: &Path, dir: &Path, ext: &str, recursive: bool, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            if recursive {
+                collect(root, &path, ext, recursive, out);
+            }
+        } else if path.extension().is_some_and(|e| e == ext) {
+            out.push(path.strip_prefix(root).unwrap_or(&path).to_path_buf());
+        }
+    }
+}
+
+fn main() {
+    let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("set by cargo"));
+    let root = manifest.join("../..");
+    let mut files = Vec::new();
+    collect(&root, &root.join("pipelines"), "toml", false, &mut files);
+    collect(&root, &root.join("techniques"), "toml", true, &mut files);
+    collect(&root, &root.join("shaders"), "wgsl", true, &mut files);
+    files.sort();
+    let mut code = String::from("pub(crate) const BUILTIN: &[(&str, &str)] = &[\n");
+    for rel in &files {
+        let key = rel
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect::<Vec<_>>()
+            .join("/");
+        let abs = root.join(rel).canonicalize().expect("listed file exists");
+        writeln!(
+            code,
+            "    ({key:?}, include_str!({:?})),",
+            abs.display().to_string()
+        )
+        .expect("writing to a String");
+    }
+    code.push_str("];\n");
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("set by cargo")).join("builtin.rs");
+    std::fs::write(&out, code).expect("writing builtin.rs");
+    // A directory makes cargo rescan it for any change (new files included).
+    println!("cargo:rerun-if-changed=../../pipelines");
+    println!("cargo:rerun-if-changed=../../techniques");
+    println!("cargo:rerun-if-changed=../../shaders");
+}

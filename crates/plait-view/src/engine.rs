@@ -1,0 +1,582 @@
+//! The render thread: builds the pipeline through `plait::session`, renders
+//! it continuously on its own device, reloads it when a file it reads is
+//! saved or a param is edited, and publishes each frame for the window.
+//!
+//! It runs apart from the window on purpose: a frame on a software
+//! rasterizer takes a second or more, and the window must stay responsive
+//! meanwhile (its own device paints the UI; frames cross as CPU images).
+//! A failed reload keeps the last good pipeline and frame.
+
+use std::collections::{HashMap, VecDeque};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, RecvTimeoutError};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use plait::session::{self, Prepared, SceneData};
+use plait_gpu::Gpu;
+use plait_graph::{ResourceDesc, Schedule};
+use plait_hair::scene::{Background, Camera, HairSource, LightKind};
+
+use crate::inspect::{self, Display, Inspected};
+use crate::published::{Shared, describe_schedule, texture_sizes};
+use crate::watch::FileWatcher;
+
+/// Frames a pass's median GPU time is taken over.
+const TIMING_WINDOW: usize = 15;
+/// At most ~30 frames a second: a fast pipeline need not keep every core busy.
+const MIN_FRAME_INTERVAL: Duration = Duration::from_millis(33);
+
+/// What the viewer was asked to show.
+#[derive(Clone, Debug)]
+pub struct EngineOptions {
+    pub pipeline: PathBuf,
+    pub scene: Option<PathBuf>,
+    pub size: (u32, u32),
+    /// `--set` flags from the command line, applied before the params edited live.
+    pub sets: Vec<String>,
+    /// The resource the inspector starts with.
+    pub inspect: Option<String>,
+    pub screenshot: Option<Screenshot>,
+}
+
+/// Write the pipeline's output to `path` once `after_reloads` reloads have
+/// succeeded and then `after_frames` frames were rendered, and quit.
+#[derive(Clone, Debug)]
+pub struct Screenshot {
+    pub path: PathBuf,
+    pub after_frames: u32,
+    pub after_reloads: u32,
+}
+
+/// Requests from the window.
+#[derive(Clone, Debug)]
+pub enum Command {
+    /// Switch to another pipeline file (live param edits are dropped).
+    OpenPipeline(PathBuf),
+    /// Set a `[params]` value (`name`, value as TOML text); recompiles.
+    SetParam(String, String),
+    /// Choose the technique of a choice point (`point`, technique name);
+    /// recompiles. Param edits are dropped: the new technique may not have them.
+    SetTechnique(String, String),
+    /// Drop every live edit (params and techniques).
+    ResetParams,
+    /// Look from here (`None`: the scene's own camera).
+    Camera(Option<Camera>),
+    /// The direction the light travels (`None`: the scene's own).
+    Light(Option<Vec3>),
+    /// Show this resource (`None`: the output) this way (`None`: its default).
+    Inspect(Option<String>, Option<Display>),
+    Pause(bool),
+    Quit,
+}
+
+/// A pipeline built and ready.
+struct Live<'g> {
+    prepared: Prepared<'g>,
+    /// Set when a frame failed; cleared by the next rebuild.
+    failed: bool,
+}
+
+struct Engine<'g> {
+    opts: EngineOptions,
+    gpu: &'g Gpu,
+    shared: Arc<Mutex<Shared>>,
+    wake: Box<dyn Fn() + Send>,
+    watcher: FileWatcher,
+    scene: Option<SceneData>,
+    /// The scene as its file says, before the controls moved camera and light.
+    base: Option<plait_hair::scene::Scene>,
+    /// The scene file and the files it names, absolute (as the watcher reports them).
+    scene_files: Vec<PathBuf>,
+    pipeline: PathBuf,
+    /// Live edits as (`--set` key, TOML value): `params.slices`, `techniques.self_shadow`.
+    edits: Vec<(String, String)>,
+    camera: Option<Camera>,
+    light: Option<Vec3>,
+    inspect: (Option<String>, Option<Display>),
+    paused: bool,
+    live: Option<Live<'g>>,
+    timings: HashMap<String, VecDeque<f64>>,
+    frame_times: VecDeque<f64>,
+    frames_since_build: u64,
+    builds: u32,
+}
+
+fn median(values: &VecDeque<f64>) -> Option<f64> {
+    let mut v: Vec<f64> = values.iter().copied().collect();
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    Some(v[v.len() / 2])
+}
+
+/// An error as printed: every line starting `error:`.
+fn error_text(e: &dyn std::fmt::Display) -> String {
+    let text = e.to_string();
+    if text.starts_with("error:") {
+        text
+    } else {
+        format!("error: {text}")
+    }
+}
+
+impl<'g> Engine<'g> {
+    fn update(&self, f: impl FnOnce(&mut Shared)) {
+        if let Ok(mut s) = self.shared.lock() {
+            f(&mut s);
+            s.version += 1;
+        }
+        (self.wake)();
+    }
+
+    fn sets(&self) -> Vec<String> {
+        let mut sets = self.opts.sets.clone();
+        sets.extend(self.edits.iter().map(|(k, v)| format!("{k}={v}")));
+        sets
+    }
+
+    /// Load (or reload) the scene; on failure the last good one stays and the
+    /// error is published.
+    fn load_scene(&mut self) -> bool {
+        match SceneData::load(self.opts.scene.as_deref()) {
+            Ok(data) => {
+                self.base = Some(data.scene.clone());
+                self.scene_files = self.opts.scene.iter().cloned().collect();
+                if let HairSource::File(hair) = &data.scene.hair.source {
+                    self.scene_files.push(hair.clone());
+                }
+                if let Background::Image(image) = &data.scene.background {
+                    self.scene_files.push(image.clone());
+                }
+                self.scene_files = self
+                    .scene_files
+                    .iter()
+                    .map(|f| crate::watch::absolute(f))
+                    .collect();
+                let light = data.scene.light.direction();
+                let camera = data.scene.camera.clone();
+                self.scene = Some(data);
+                self.apply_view();
+                self.update(|s| {
+                    s.scene_camera = Some(camera);
+                    s.scene_light = Some(light);
+                    s.scene_version += 1;
+                });
+                true
+            }
+            Err(e) => {
+                let text = error_text(&e);
+                eprintln!("{text}");
+                self.update(|s| s.error = Some(text));
+                false
+            }
+        }
+    }
+
+    /// Put the controls' camera and light into the scene the frames are made from.
+    fn apply_view(&mut self) {
+        let (Some(scene), Some(base)) = (&mut self.scene, &self.base) else {
+            return;
+        };
+        scene.scene.camera = self.camera.clone().unwrap_or_else(|| base.camera.clone());
+        scene.scene.light = base.light.clone();
+        if let Some(dir) = self.light {
+            let center = scene.strands.bounds().center();
+            match &mut scene.scene.light.kind {
+                LightKind::Directional { direction } => *direction = dir.into(),
+                // A spot light keeps its distance to the hair and aims at it.
+                LightKind::Spot {
+                    position,
+                    direction,
+                    ..
+                } => {
+                    let distance = (Vec3::from(*position) - center).length();
+                    *position = (center - dir.normalize_or(Vec3::NEG_Y) * distance).into();
+                    *direction = dir.into();
+                }
+            }
+        }
+        if let Some(live) = &self.live {
+            live.prepared
+                .renderer
+                .set_frame(&scene.frame(self.opts.size, 0));
+        }
+    }
+
+    fn watch(&mut self) {
+        let files =
+            session::watched_files(&self.pipeline, &self.sets(), self.opts.scene.as_deref());
+        if let Err(e) = self.watcher.set_files(&files) {
+            eprintln!("{}", error_text(&e));
+        }
+    }
+
+    fn rebuild(&mut self) {
+        let started = Instant::now();
+        let sets = self.sets();
+        self.watch();
+        let Some(scene) = &self.scene else {
+            return;
+        };
+        let opts = session::gpu_options(self.gpu, self.opts.size);
+        let result = session::compile_checked(&self.pipeline, &sets, &opts)
+            .map_err(session::SessionError::from)
+            .and_then(|schedule| {
+                let shown = schedule.clone();
+                session::build(self.gpu, schedule, &self.pipeline, scene, self.opts.size)
+                    .map(|p| (p, shown))
+            });
+        match result {
+            Ok((prepared, schedule)) => {
+                let first = self.builds == 0;
+                self.builds += 1;
+                let ms = started.elapsed().as_secs_f64() * 1e3;
+                let what = if first { "built" } else { "reloaded" };
+                eprintln!(
+                    "plait view: {what} {} in {ms:.0} ms",
+                    self.pipeline.display()
+                );
+                let notes = prepared.renderer.notes().to_vec();
+                let output_name = prepared.output.clone();
+                self.live = Some(Live {
+                    prepared,
+                    failed: false,
+                });
+                self.timings.clear();
+                self.frame_times.clear();
+                self.frames_since_build = 0;
+                self.apply_view();
+                let edits = sets[self.opts.sets.len()..].to_vec();
+                let pipeline = self.pipeline.clone();
+                self.update(|s| {
+                    describe_schedule(s, &schedule);
+                    s.pipeline = pipeline;
+                    s.edits = edits;
+                    s.output_name = output_name;
+                    s.notes = notes;
+                    s.error = None;
+                    s.frames = 0;
+                    if !first {
+                        s.reloads += 1;
+                    }
+                    s.status = format!("{what} in {ms:.0} ms");
+                });
+            }
+            Err(e) => {
+                let text = error_text(&e);
+                eprintln!("{text}");
+                self.update(|s| {
+                    s.error = Some(text);
+                    s.status = "the last good frame stays until the error is fixed".into();
+                });
+            }
+        }
+    }
+
+    fn render(&mut self) {
+        let Some(live) = &mut self.live else {
+            return;
+        };
+        let started = Instant::now();
+        let frame = live.prepared.renderer.render().and_then(|report| {
+            let output = live
+                .prepared
+                .renderer
+                .read_resource(&live.prepared.output)?;
+            Ok((report, output))
+        });
+        let (report, output) = match frame {
+            Ok(f) => f,
+            Err(e) => {
+                live.failed = true;
+                let text = error_text(&e);
+                eprintln!("{text}");
+                self.update(|s| s.error = Some(text));
+                return;
+            }
+        };
+        let schedule = live.prepared.schedule();
+        let output_view = Arc::new(inspect::texture(
+            &live.prepared.output,
+            &output,
+            Display::Color,
+        ));
+        let inspected = match &self.inspect {
+            (None, None) => Ok(None),
+            (name, display) => {
+                let name = name.clone().unwrap_or_else(|| live.prepared.output.clone());
+                inspect_resource(&live.prepared, schedule, &name, *display).map(Some)
+            }
+        };
+        for t in &report.passes {
+            if let Some(ms) = t.gpu_ms {
+                let q = self.timings.entry(t.name.clone()).or_default();
+                q.push_back(ms);
+                if q.len() > TIMING_WINDOW {
+                    q.pop_front();
+                }
+            }
+        }
+        let total = report
+            .total_gpu_ms
+            .unwrap_or_else(|| started.elapsed().as_secs_f64() * 1e3);
+        self.frame_times.push_back(total);
+        if self.frame_times.len() > TIMING_WINDOW {
+            self.frame_times.pop_front();
+        }
+        self.frames_since_build += 1;
+        let medians: Vec<Option<f64>> = schedule
+            .passes
+            .iter()
+            .map(|p| self.timings.get(&p.name).and_then(median))
+            .collect();
+        let frame_median = median(&self.frame_times);
+        let frames = self.frames_since_build;
+        let screenshot = self.screenshot_due().then(|| output_view.clone());
+        self.update(|s| {
+            for (row, m) in s.passes.iter_mut().zip(medians) {
+                row.median_ms = m;
+            }
+            s.frame_median_ms = frame_median;
+            s.output = Some(output_view);
+            match inspected {
+                Ok(i) => {
+                    s.inspected = i.map(Arc::new);
+                    s.inspect_error = None;
+                }
+                Err(e) => {
+                    s.inspected = None;
+                    s.inspect_error = Some(e);
+                }
+            }
+            s.frames = frames;
+            s.total_frames += 1;
+        });
+        if let Some(image) = screenshot {
+            self.write_screenshot(&image.image);
+        }
+    }
+
+    fn screenshot_due(&self) -> bool {
+        let Some(shot) = &self.opts.screenshot else {
+            return false;
+        };
+        let reloads = self.builds.saturating_sub(1);
+        reloads >= shot.after_reloads && self.frames_since_build >= shot.after_frames.max(1) as u64
+    }
+
+    fn write_screenshot(&mut self, image: &image::RgbaImage) {
+        let Some(shot) = &self.opts.screenshot else {
+            return;
+        };
+        let result = write_png(&shot.path, image);
+        match &result {
+            Ok(()) => eprintln!("plait view: wrote {}", shot.path.display()),
+            Err(e) => eprintln!("error: --screenshot {}: {e}", shot.path.display()),
+        }
+        self.update(|s| {
+            s.finished = true;
+            if let Err(e) = result {
+                s.fatal = Some(format!("--screenshot {}: {e}", shot.path.display()));
+            }
+        });
+    }
+
+    fn handle(&mut self, command: Command) -> bool {
+        match command {
+            Command::OpenPipeline(path) => {
+                self.pipeline = path;
+                self.edits.clear();
+                self.rebuild();
+            }
+            Command::SetParam(name, value) => {
+                let key = format!("params.{name}");
+                self.edits.retain(|(k, _)| *k != key);
+                self.edits.push((key, value));
+                self.rebuild();
+            }
+            Command::SetTechnique(point, name) => {
+                let key = format!("techniques.{point}");
+                self.edits
+                    .retain(|(k, _)| k.starts_with("techniques.") && *k != key);
+                self.edits.push((key, format!("{name:?}")));
+                self.rebuild();
+            }
+            Command::ResetParams => {
+                self.edits.clear();
+                self.rebuild();
+            }
+            Command::Camera(camera) => {
+                self.camera = camera;
+                self.apply_view();
+            }
+            Command::Light(light) => {
+                self.light = light;
+                self.apply_view();
+            }
+            Command::Inspect(name, display) => self.inspect = (name, display),
+            Command::Pause(p) => self.paused = p,
+            Command::Quit => return false,
+        }
+        true
+    }
+
+    fn run(&mut self, commands: &Receiver<Command>) {
+        self.load_scene();
+        self.rebuild();
+        let mut last_frame = Instant::now();
+        loop {
+            let idle = self.paused
+                || self.live.as_ref().is_none_or(|l| l.failed)
+                || self.shared.lock().map(|s| s.finished).unwrap_or(true);
+            // Wait for work when there is no frame to render.
+            let wait = if idle {
+                Duration::from_millis(50)
+            } else {
+                MIN_FRAME_INTERVAL.saturating_sub(last_frame.elapsed())
+            };
+            match commands.recv_timeout(wait) {
+                Ok(c) => {
+                    if !self.handle(c) {
+                        return;
+                    }
+                    while let Ok(c) = commands.try_recv() {
+                        if !self.handle(c) {
+                            return;
+                        }
+                    }
+                }
+                Err(RecvTimeoutError::Disconnected) => return,
+                Err(RecvTimeoutError::Timeout) => {}
+            }
+            let changed = self.watcher.changes(Duration::ZERO);
+            if !changed.is_empty() {
+                for f in &changed {
+                    eprintln!("plait view: {} changed", f.display());
+                }
+                let scene_changed = changed.iter().any(|c| self.scene_files.contains(c));
+                // A broken scene keeps its error on screen until it is fixed
+                // (a rebuild on the old scene would clear it).
+                let scene_ok = if scene_changed || self.scene.is_none() {
+                    self.load_scene()
+                } else {
+                    true
+                };
+                if scene_ok {
+                    self.rebuild();
+                }
+            }
+            if !idle && last_frame.elapsed() >= MIN_FRAME_INTERVAL {
+                last_frame = Instant::now();
+                self.render();
+            }
+        }
+    }
+}
+
+fn inspect_resource(
+    prepared: &Prepared<'_>,
+    schedule: &Schedule,
+    name: &str,
+    display: Option<Display>,
+) -> Result<Inspected, String> {
+    let id = schedule.resource(name).ok_or_else(|| {
+        let names: Vec<&str> = schedule.resources.iter().map(|r| r.name.as_str()).collect();
+        format!(
+            "error: --inspect: no resource `{name}` in this pipeline{} (it has {})",
+            plait_graph::suggest::did_you_mean(name, names.iter().copied()),
+            names.join(", ")
+        )
+    })?;
+    let desc = &schedule.resources[id].desc;
+    let display = display.unwrap_or_else(|| inspect::default_display(desc));
+    let r = &prepared.renderer;
+    match desc {
+        ResourceDesc::Texture { .. } => r
+            .read_resource(name)
+            .map(|t| inspect::texture(name, &t, display))
+            .map_err(|e| error_text(&e)),
+        ResourceDesc::Buffer { size } => {
+            let layout = inspect::buffer_layout(*size, &texture_sizes(schedule));
+            r.read_buffer(name)
+                .map(|b| inspect::buffer(name, &b, layout, display))
+                .map_err(|e| error_text(&e))
+        }
+    }
+}
+
+/// Write a PNG whole or not at all (a temporary file renamed into place).
+pub fn write_png(path: &Path, image: &image::RgbaImage) -> Result<(), String> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let mut png = Vec::new();
+    image
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| e.to_string())?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".plait-")
+        .tempfile_in(&dir)
+        .map_err(|e| format!("cannot write in {}: {e}", dir.display()))?;
+    std::io::Write::write_all(&mut tmp, &png).map_err(|e| e.to_string())?;
+    tmp.persist(path).map_err(|e| e.error.to_string())?;
+    Ok(())
+}
+
+/// Run the engine on this thread until `Quit`, the screenshot, or the
+/// window going away. `wake` asks the window to repaint.
+pub fn run(
+    opts: EngineOptions,
+    commands: Receiver<Command>,
+    shared: Arc<Mutex<Shared>>,
+    wake: Box<dyn Fn() + Send>,
+) {
+    let fail = |message: String| {
+        eprintln!("error: {message}");
+        if let Ok(mut s) = shared.lock() {
+            s.fatal = Some(message);
+            s.finished = true;
+            s.version += 1;
+        }
+        wake();
+    };
+    let gpu = match Gpu::new() {
+        Ok(g) => g,
+        Err(e) => return fail(e.to_string()),
+    };
+    let watcher = match FileWatcher::new() {
+        Ok(w) => w,
+        Err(e) => return fail(e.to_string()),
+    };
+    if let Ok(mut s) = shared.lock() {
+        s.adapter = format!("{} ({})", gpu.adapter_name(), gpu.backend_name());
+        s.pipeline = opts.pipeline.clone();
+    }
+    let inspect = opts.inspect.clone();
+    let mut engine = Engine {
+        pipeline: opts.pipeline.clone(),
+        opts,
+        gpu: &gpu,
+        shared: shared.clone(),
+        wake,
+        watcher,
+        scene: None,
+        base: None,
+        scene_files: Vec::new(),
+        edits: Vec::new(),
+        camera: None,
+        light: None,
+        inspect: (inspect, None),
+        paused: false,
+        live: None,
+        timings: HashMap::new(),
+        frame_times: VecDeque::new(),
+        frames_since_build: 0,
+        builds: 0,
+    };
+    engine.run(&commands);
+}

@@ -1,0 +1,49 @@
+//! `session::watched_files`: what the viewer and `render --watch` watch.
+
+use std::path::{Path, PathBuf};
+
+use plait::session::watched_files;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .expect("checkout")
+}
+
+fn has(files: &[PathBuf], tail: &str) -> bool {
+    files.iter().any(|f| f.ends_with(tail))
+}
+
+#[test]
+fn a_pipeline_watches_its_chain_techniques_shaders_and_scene() {
+    let root = root();
+    let scene = root.join("examples/scenes/small.toml");
+    let files = watched_files(
+        &root.join("pipelines/occupancy_no_slab.toml"),
+        &[],
+        Some(&scene),
+    );
+    for tail in [
+        "pipelines/occupancy_no_slab.toml",
+        "pipelines/occupancy.toml",                // extended
+        "techniques/self_shadow/occupancy.toml",   // chosen
+        "techniques/self_shadow/light_range.toml", // included by it
+        "shaders/passes/hair_shade.wgsl",          // a pass type's own
+        "shaders/lib/frame.wgsl",                  // the library
+        "examples/scenes/small.toml",
+    ] {
+        assert!(has(&files, tail), "{tail} is not watched: {files:#?}");
+    }
+    assert!(files.iter().all(|f| !plait_assets::is_builtin(f)));
+}
+
+#[test]
+fn a_pipeline_that_does_not_load_still_watches_itself_and_what_its_errors_name() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let broken = dir.path().join("broken.toml");
+    std::fs::write(&broken, "[pipeline\nname = 1\n").expect("write");
+    let files = watched_files(&broken, &[], None);
+    assert!(files.contains(&broken), "{files:?}");
+    assert!(has(&files, "shaders/lib/frame.wgsl"));
+}
