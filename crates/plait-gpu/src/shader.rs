@@ -67,10 +67,6 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/visibility/exact.wgsl"),
     ),
     (
-        "shaders/lib/visibility/tressfx.wgsl",
-        include_str!("../../../shaders/lib/visibility/tressfx.wgsl"),
-    ),
-    (
         "shaders/lib/self_shadow.wgsl",
         include_str!("../../../shaders/lib/self_shadow.wgsl"),
     ),
@@ -91,6 +87,25 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/transparency/coverage.wgsl"),
     ),
 ];
+
+/// The module that picks a visibility provider by define; providers are
+/// added to the composer before it.
+const SELF_SHADOW_MODULE: &str = "shaders/lib/self_shadow.wgsl";
+
+/// Visibility provider modules of the library that are not in
+/// [`LIBRARY_MODULES`]: files in `shaders/lib/visibility/` on the search path
+/// or among the built-in copies.
+pub fn extra_providers() -> Vec<PathBuf> {
+    plait_assets::list("shaders/lib/visibility", "wgsl")
+        .into_iter()
+        .filter(|p| {
+            let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            !LIBRARY_MODULES
+                .iter()
+                .any(|(known, _)| known.strip_prefix("shaders/lib/visibility/") == Some(name))
+        })
+        .collect()
+}
 
 /// The text of a library file compiled into plait (a library module, a pass
 /// type's shader): the copy on the search path when there is one, so edits
@@ -150,24 +165,40 @@ impl ShaderLibrary {
         // Library modules import each other; naga_oil needs them added in dependency
         // order, and LIBRARY_MODULES is kept in that order.
         let mut digest = std::hash::DefaultHasher::new();
-        for (name, builtin) in LIBRARY_MODULES {
-            let (path, source) = library_source(name, builtin)?;
-            std::hash::Hash::hash(&*source, &mut digest);
+        let mut add = |composer: &mut Composer, path: PathBuf, source: &str| {
+            std::hash::Hash::hash(source, &mut digest);
             let file_path = path.display().to_string();
-            let added = composer.add_composable_module(ComposableModuleDescriptor {
-                source: &source,
-                file_path: &file_path,
-                language: ShaderLanguage::Wgsl,
-                as_name: None,
-                additional_imports: &[],
-                shader_defs: HashMap::new(),
-            });
-            if let Err(e) = added {
-                return Err(ShaderError {
+            composer
+                .add_composable_module(ComposableModuleDescriptor {
+                    source,
+                    file_path: &file_path,
+                    language: ShaderLanguage::Wgsl,
+                    as_name: None,
+                    additional_imports: &[],
+                    shader_defs: HashMap::new(),
+                })
+                .map(|_| ())
+                .map_err(|e| ShaderError {
+                    message: e.emit_to_string(composer),
                     path,
-                    message: e.emit_to_string(&composer),
-                });
+                })
+        };
+        for (name, builtin) in LIBRARY_MODULES {
+            if *name == SELF_SHADOW_MODULE {
+                // Visibility providers beyond the built-in list: a new one is
+                // a WGSL file in shaders/lib/visibility/ plus its import line
+                // in self_shadow.wgsl, never a line of Rust. They go in before
+                // the module that imports them.
+                for path in extra_providers() {
+                    let source = plait_assets::read_to_string(&path).map_err(|e| ShaderError {
+                        message: format!("cannot read shader {}: {e}", path.display()),
+                        path: path.clone(),
+                    })?;
+                    add(&mut composer, path, &source)?;
+                }
             }
+            let (path, source) = library_source(name, builtin)?;
+            add(&mut composer, path, &source)?;
         }
         Ok(ShaderLibrary {
             composer,

@@ -15,14 +15,16 @@ use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 /// The providers, by param value: every module in `shaders/lib/visibility/`
 /// (`tressfx.wgsl` → `visibility = "tressfx"`), so a provider that needs no
 /// maps or params beyond those below is WGSL alone.
-pub fn providers() -> Vec<&'static str> {
-    LIBRARY_MODULES
-        .iter()
-        .filter_map(|(path, _)| {
-            path.strip_prefix("shaders/lib/visibility/")?
-                .strip_suffix(".wgsl")
-        })
-        .collect()
+pub fn providers() -> Vec<String> {
+    let built_in = LIBRARY_MODULES.iter().filter_map(|(path, _)| {
+        path.strip_prefix("shaders/lib/visibility/")?
+            .strip_suffix(".wgsl")
+            .map(str::to_owned)
+    });
+    let extra = plait_gpu::shader::extra_providers()
+        .into_iter()
+        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_owned));
+    built_in.chain(extra).collect()
 }
 
 /// The optional input slots any provider may need.
@@ -93,7 +95,7 @@ pub fn params() -> Vec<ParamSpec> {
         choice(
             "visibility",
             "none",
-            &providers(),
+            &providers().iter().map(String::as_str).collect::<Vec<_>>(),
             "self-shadowing technique (visibility provider) used for hair shadows",
         ),
         float(
