@@ -104,3 +104,18 @@ pub fn line_diff(expected: &str, actual: &str) -> String {
         first + 1
     )
 }
+
+/// The strands of `all` that `keep` accepts (by index), each with its first
+/// point's thickness, alpha and colour: a smaller groom of the same scene.
+pub fn strands_subset(
+    all: &plait_hair::Strands,
+    keep: impl Fn(usize) -> bool,
+) -> plait_hair::Strands {
+    let mut out = plait_hair::Strands::new();
+    for s in (0..all.strand_count()).filter(|&s| keep(s)) {
+        let r = all.offsets[s] as usize..all.offsets[s + 1] as usize;
+        let (t, a) = (all.thickness[r.start], all.alpha[r.start]);
+        out.push_strand(&all.points[r.clone()], |_| t, |_| a, all.color[r.start]);
+    }
+    out
+}

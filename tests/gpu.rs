@@ -12,7 +12,7 @@ use image::RgbaImage;
 use plait::session::{SceneData, compile_checked, prepare};
 use plait_gpu::Gpu;
 use plait_graph::CompileOptions;
-use plait_tests::{bless, open_gpu, pipeline_files, rel, repo_root};
+use plait_tests::{bless, open_gpu, pipeline_files, rel, repo_root, strands_subset};
 
 /// Golden-image size and scene: small enough for a software rasterizer.
 const SIZE: (u32, u32) = (256, 192);
@@ -298,12 +298,7 @@ fn golden_comparison_catches_a_single_missing_strand() {
     let mut report = Vec::new();
     for missing in count - 12..count {
         let mut one_less = load_scene("examples/scenes/stray.toml");
-        let mut strands = plait_hair::Strands::new();
-        for s in (0..count).filter(|&s| s != missing) {
-            let r = all.offsets[s] as usize..all.offsets[s + 1] as usize;
-            let (t, a) = (all.thickness[r.start], all.alpha[r.start]);
-            strands.push_strand(&all.points[r.clone()], |_| t, |_| a, all.color[r.start]);
-        }
+        let strands = strands_subset(all, |s| s != missing);
         // Same framing: the light frustum follows the hair's bounds.
         if strands.bounds() != all.bounds() {
             continue;

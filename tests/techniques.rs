@@ -5,7 +5,7 @@
 
 use plait::session::{SceneData, prepare};
 use plait_graph::techniques::{choices, points};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{open_gpu, repo_root, strands_subset};
 
 /// Every combination of one technique per point, as `--set` flags.
 fn combinations() -> Vec<Vec<String>> {
@@ -32,18 +32,8 @@ fn combinations() -> Vec<Vec<String>> {
 fn tiny_scene() -> SceneData {
     let path = repo_root().join("examples/scenes/small.toml");
     let mut data = SceneData::load(Some(&path)).expect("small scene");
-    let all = data.strands.clone();
-    let mut few = plait_hair::Strands::new();
-    for s in (0..all.strand_count()).step_by(all.strand_count() / 60) {
-        let r = all.offsets[s] as usize..all.offsets[s + 1] as usize;
-        few.push_strand(
-            &all.points[r.clone()],
-            |_| 0.01,
-            |_| 0.8,
-            all.color[r.start],
-        );
-    }
-    data.strands = few;
+    let step = data.strands.strand_count() / 60;
+    data.strands = strands_subset(&data.strands, |s| s % step == 0);
     data
 }
 

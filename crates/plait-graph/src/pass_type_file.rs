@@ -445,12 +445,13 @@ fn read_param(
     })
 }
 
-/// A size check of a `words_per_texel` slot, as `plait check` runs it.
+/// A size check of a `words_per_texel` slot, as `plait check` runs it;
+/// the words per texel when both slots are bound.
 pub fn check_words_per_texel(
     w: &WordsPerTexel,
     pass: &crate::ScheduledPass,
     resources: &[crate::ResolvedResource],
-) -> Result<(), String> {
+) -> Result<Option<u64>, String> {
     let desc = |slot: &str| {
         pass.reads
             .iter()
@@ -465,7 +466,7 @@ pub fn check_words_per_texel(
         Some((_, crate::ResourceDesc::Texture { width, height, .. })),
     ) = (desc(&w.slot), desc(&w.of))
     else {
-        return Ok(());
+        return Ok(None);
     };
     let per_texel = 4 * width as u64 * height as u64;
     let words = size / per_texel;
@@ -484,7 +485,7 @@ pub fn check_words_per_texel(
             per_texel * w.multiple
         ));
     }
-    Ok(())
+    Ok(Some(words))
 }
 
 #[cfg(test)]

@@ -78,7 +78,7 @@ impl PassType for DataPassType {
         self.file
             .words_per_texel
             .iter()
-            .try_for_each(|w| check_words_per_texel(w, pass, resources))
+            .try_for_each(|w| check_words_per_texel(w, pass, resources).map(|_| ()))
     }
 }
 

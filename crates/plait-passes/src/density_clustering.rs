@@ -35,8 +35,8 @@ use plait_graph::{
     Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, Value,
 };
 
-use crate::per_texel::check_words;
 use crate::spec_util::{DEPTH, buffer, int, texture};
+use plait_graph::pass_type_file::{WordsPerTexel, check_words_per_texel};
 
 pub struct DensityClustering;
 
@@ -122,14 +122,15 @@ impl PassType for DensityClustering {
             _ => 1,
         };
         let per_stage = CLUSTERS * WORDS_PER_CLUSTER;
-        if let Some(words) = check_words(
-            pass,
-            resources,
-            "clusters",
-            "range",
-            per_stage,
-            per_stage * 9,
-        )? && words != per_stage * (iterations + 1)
+        let clusters = WordsPerTexel {
+            slot: "clusters".into(),
+            of: "range".into(),
+            multiple: per_stage,
+            max: per_stage * 9,
+            hint: None,
+        };
+        if let Some(words) = check_words_per_texel(&clusters, pass, resources)?
+            && words != per_stage * (iterations + 1)
         {
             return Err(format!(
                 "`clusters` holds {words} words per texel; iterations = {iterations} needs (iterations + 1) × {per_stage} = {}",

@@ -15,7 +15,6 @@ pub mod linked_list;
 pub mod occupancy;
 pub mod opaque_hair;
 pub mod opaque_shade;
-pub mod per_texel;
 pub mod spec_util;
 pub mod transparency;
 pub mod visibility;
