@@ -117,15 +117,10 @@ fn resolve_resource(
                 errors.push(bad(
                     &size.location,
                     format!(
-                        "buffer `{}` is {} ({bytes} bytes); a pass can bind at most {} ({limit} bytes) as storage{}",
+                        "buffer `{}` is {} ({bytes} bytes); a pass can bind at most {} ({limit} bytes) as storage (WebGPU's default limit when checking without a GPU, the adapter's when rendering)",
                         r.name,
                         mib(bytes as u64),
                         mib(limit),
-                        if limit == crate::schedule::DEFAULT_MAX_BUFFER_BINDING_SIZE {
-                            " — WebGPU's default limit, which `plait check` assumes; `plait render` uses the adapter's"
-                        } else {
-                            " on this adapter"
-                        }
                     ),
                 ));
                 return None;
