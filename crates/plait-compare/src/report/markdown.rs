@@ -24,7 +24,13 @@ pub fn markdown(report: &Report) -> String {
         report.provenance.adapter.name
     );
     for scene in &report.scenes {
-        let probed = scene.runs.iter().any(|r| r.visibility.is_some());
+        // A provider probed against itself (every variant sharing the
+        // reference's self-shadowing) says nothing: no |ΔV| column then.
+        let probed = scene.runs.iter().any(|r| {
+            r.visibility
+                .as_ref()
+                .is_some_and(|v| v.provider != v.reference_provider)
+        });
         let reference_ms = scene
             .runs
             .iter()
@@ -53,7 +59,7 @@ pub fn markdown(report: &Report) -> String {
                 out,
                 "| {}{} | {:.0} | {} | {:.1} |",
                 variant.label,
-                if variant.is_reference {
+                if variant.is_reference && !variant.label.contains("reference") {
                     " (reference)"
                 } else {
                     ""
