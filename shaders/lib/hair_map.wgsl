@@ -4,7 +4,7 @@
 // fragment keeps its world position to compute its depth in the view.
 #define_import_path plait::hair_map
 
-#import plait::frame::view_proj
+#import plait::frame::{view_proj, view_linear_depth}
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
@@ -20,4 +20,38 @@ fn map_vertex(v: MapVertex) -> MapFragment {
     out.clip = view_proj() * vec4<f32>(v.position, 1.0);
     out.world = v.position;
     return out;
+}
+
+// Where a map fragment lands: its texel of a per-texel map as big as the
+// texel's hair depth-range texture `range` (near in red, far in green), its
+// index in per-texel buffers, and its depth in the pass's view relative to
+// that texel's hair — 0 at the nearest, 1 at the farthest.
+struct MapTexel {
+    size: vec2<u32>,
+    texel: vec2<u32>,
+    // texel.y * size.x + texel.x
+    index: u32,
+    near: f32,
+    far: f32,
+    // linear depth in the pass's view (`view_linear_depth`)
+    depth: f32,
+    rel: f32,
+}
+
+fn map_texel(in: MapFragment, range: texture_2d<f32>) -> MapTexel {
+    var m: MapTexel;
+    m.size = textureDimensions(range);
+    m.texel = min(vec2<u32>(in.clip.xy), m.size - 1u);
+    m.index = m.texel.y * m.size.x + m.texel.x;
+    let r = textureLoad(range, vec2<i32>(m.texel), 0);
+    m.near = r.x;
+    m.far = r.y;
+    m.depth = view_linear_depth(in.world);
+    m.rel = (m.depth - r.x) / max(r.y - r.x, 1e-9);
+    return m;
+}
+
+// u32 words per texel of a per-texel buffer of `words_total` words.
+fn words_per_texel(words_total: u32, m: MapTexel) -> u32 {
+    return words_total / (m.size.x * m.size.y);
 }

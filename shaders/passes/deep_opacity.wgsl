@@ -5,8 +5,8 @@
 // layer go to the last. Each fragment counts itself in its layer (atomicAdd:
 // exact counts, the paper's additive blending). K = the `layers` buffer's u32
 // words per texel.
-#import plait::frame::{frame, view_linear_depth}
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
+#import plait::frame::frame
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> layers: array<atomic<u32>>;
@@ -24,12 +24,11 @@ fn vs_main(v: MapVertex) -> MapFragment {
 
 @fragment
 fn fs_main(in: MapFragment) {
-    let size = textureDimensions(range);
-    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
-    let z0 = textureLoad(range, vec2<i32>(texel), 0).x;
-    let count = arrayLength(&layers) / (size.x * size.y);
-    // Distance behind z0 in world units (linear depth × the light's depth span).
-    let behind = max(view_linear_depth(in.world) - z0, 0.0) * (frame.near_far.w - frame.near_far.z);
+    let m = map_texel(in, range);
+    let count = words_per_texel(arrayLength(&layers), m);
+    // Distance behind z0 = the texel's nearest hair, in world units (linear
+    // depth × the light's depth span).
+    let behind = max(m.depth - m.near, 0.0) * (frame.near_far.w - frame.near_far.z);
     // Layer k (0-based) ends at d_{k+1} = layer_size · (k+1)(k+2)/2.
     var k = 0u;
     loop {
@@ -39,5 +38,5 @@ fn fs_main(in: MapFragment) {
         }
         k++;
     }
-    atomicAdd(&layers[(texel.y * size.x + texel.x) * count + k], 1u);
+    atomicAdd(&layers[m.index * count + k], 1u);
 }

@@ -5,8 +5,7 @@
 // assigns each to the nearest mean of stage s - 1. Each stage accumulates, per
 // cluster, (count, Σz, Σz²) of z = depth relative to the texel range, fixed
 // point × 2^18, with atomicAdd. Layout: [stage][texel][cluster][3] u32.
-#import plait::frame::{view_linear_depth}
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> clusters: array<atomic<u32>>;
@@ -21,12 +20,10 @@ fn vs_main(v: MapVertex) -> MapFragment {
 
 @fragment
 fn fs_main(in: MapFragment) {
-    let size = textureDimensions(range);
-    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
-    let texels = size.x * size.y;
-    let r = textureLoad(range, vec2<i32>(texel), 0);
-    let z = clamp((view_linear_depth(in.world) - r.x) / max(r.y - r.x, 1e-9), 0.0, 1.0);
-    let texel_index = texel.y * size.x + texel.x;
+    let m = map_texel(in, range);
+    let texels = m.size.x * m.size.y;
+    let z = clamp(m.rel, 0.0, 1.0);
+    let texel_index = m.index;
     var best = min(u32(z * f32(K)), K - 1u);
 #if STAGE > 0
     // Nearest mean of the previous stage (empty clusters never win).

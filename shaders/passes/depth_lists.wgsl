@@ -2,8 +2,7 @@
 // (the exact fragment count of Sintorn & Assarsson 2009 §3, Fig. 5). A slot
 // comes from atomicAdd on the texel's counter; past the capacity (the `lists`
 // buffer's words per texel) the fragment is dropped and counted in `overflow`.
-#import plait::frame::{view_linear_depth}
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> lists: array<u32>;
@@ -17,13 +16,11 @@ fn vs_main(v: MapVertex) -> MapFragment {
 
 @fragment
 fn fs_main(in: MapFragment) {
-    let size = textureDimensions(range);
-    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
-    let index = texel.y * size.x + texel.x;
-    let capacity = arrayLength(&lists) / (size.x * size.y);
-    let slot = atomicAdd(&counts[index], 1u);
+    let m = map_texel(in, range);
+    let capacity = words_per_texel(arrayLength(&lists), m);
+    let slot = atomicAdd(&counts[m.index], 1u);
     if (slot < capacity) {
-        lists[index * capacity + slot] = bitcast<u32>(view_linear_depth(in.world));
+        lists[m.index * capacity + slot] = bitcast<u32>(m.depth);
     } else {
         atomicAdd(&overflow[0], 1u);
         if (slot == capacity) {

@@ -2,8 +2,7 @@
 // bitwise-OR blending), Sintorn & Assarsson 2009 §3.1. Slice k of a texel
 // covers relative depth [k, k+1) / S within the texel's depth range; S = 32 ×
 // the words per texel of the `bits` buffer (128 for 16 bytes per texel).
-#import plait::frame::{view_linear_depth}
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> bits: array<atomic<u32>>;
@@ -17,13 +16,9 @@ fn vs_main(v: MapVertex) -> MapFragment {
 // hair behind opaque geometry (§3.5); the fragment only sets its bit.
 @fragment
 fn fs_main(in: MapFragment) {
-    let size = textureDimensions(range);
-    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
-    let r = textureLoad(range, vec2<i32>(texel), 0);
-    let rel = (view_linear_depth(in.world) - r.x) / max(r.y - r.x, 1e-9);
-    let words = arrayLength(&bits) / (size.x * size.y);
+    let m = map_texel(in, range);
+    let words = words_per_texel(arrayLength(&bits), m);
     let slices = words * 32u;
-    let slice = min(u32(max(rel, 0.0) * f32(slices)), slices - 1u);
-    let index = (texel.y * size.x + texel.x) * words + slice / 32u;
-    atomicOr(&bits[index], 1u << (slice % 32u));
+    let slice = min(u32(max(m.rel, 0.0) * f32(slices)), slices - 1u);
+    atomicOr(&bits[m.index * words + slice / 32u], 1u << (slice % 32u));
 }

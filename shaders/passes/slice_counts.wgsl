@@ -9,8 +9,7 @@
 // precision past 2048 fragments in 16-bit floats. Slices per texel = the
 // `counts` buffer's u32 words per texel (each pass type binds its own slot,
 // `slabs` or `slices`, to `counts`).
-#import plait::frame::{view_linear_depth}
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> counts: array<atomic<u32>>;
@@ -22,11 +21,8 @@ fn vs_main(v: MapVertex) -> MapFragment {
 
 @fragment
 fn fs_main(in: MapFragment) {
-    let size = textureDimensions(range);
-    let texel = min(vec2<u32>(in.clip.xy), size - 1u);
-    let r = textureLoad(range, vec2<i32>(texel), 0);
-    let rel = (view_linear_depth(in.world) - r.x) / max(r.y - r.x, 1e-9);
-    let n = arrayLength(&counts) / (size.x * size.y);
-    let slice = min(u32(clamp(rel, 0.0, 1.0) * f32(n)), n - 1u);
-    atomicAdd(&counts[(texel.y * size.x + texel.x) * n + slice], 1u);
+    let m = map_texel(in, range);
+    let n = words_per_texel(arrayLength(&counts), m);
+    let slice = min(u32(clamp(m.rel, 0.0, 1.0) * f32(n)), n - 1u);
+    atomicAdd(&counts[m.index * n + slice], 1u);
 }
