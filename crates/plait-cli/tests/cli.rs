@@ -686,3 +686,44 @@ fn every_gallery_pipeline_checks() {
         }
     }
 }
+
+/// A visibility provider is a WGSL file the library finds by itself; one that
+/// breaks the contract (`fn hair_visibility(world: vec3<f32>) -> f32`) is an
+/// error naming its file, before any GPU work.
+#[test]
+fn a_provider_that_breaks_the_contract_names_its_file() {
+    for (what, body) in [
+        (
+            "missing",
+            "fn visibility_of(world: vec3<f32>) -> f32 { return 1.0; }",
+        ),
+        (
+            "wrong signature",
+            "fn hair_visibility(world: vec3<f32>) -> vec2<f32> { return vec2<f32>(1.0); }",
+        ),
+    ] {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let folder = dir.path().join("shaders/lib/visibility");
+        std::fs::create_dir_all(&folder).expect("mkdir");
+        std::fs::write(
+            folder.join("broken.wgsl"),
+            format!("#define_import_path plait::visibility::broken\n\n{body}\n"),
+        )
+        .expect("write");
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_plait"))
+            .current_dir(root())
+            .env("PLAIT_PATH", dir.path())
+            .args(["check", "pipelines/occupancy.toml"])
+            .output()
+            .expect("run plait");
+        assert_fails(
+            &format!("a provider with the contract function {what}"),
+            &o,
+            &[
+                "broken.wgsl",
+                "must define `fn hair_visibility(world: vec3<f32>) -> f32`",
+            ],
+            None,
+        );
+    }
+}

@@ -58,6 +58,20 @@ pub fn compose(
     Ok(module)
 }
 
+/// Load the shader library (or reuse the loaded one): a broken library
+/// module fails here once, rather than in every pass that imports it.
+pub fn check_library() -> Result<(), ShaderError> {
+    let mut guard = MODULES.lock().unwrap_or_else(|p| p.into_inner());
+    let modules = guard.get_or_insert_with(Modules::default);
+    let stamp = library_stamp();
+    if modules.library.as_ref().is_some_and(|(s, _)| *s == stamp) {
+        return Ok(());
+    }
+    modules.library = Some((stamp, ShaderLibrary::new()?));
+    modules.composed.clear();
+    Ok(())
+}
+
 /// Where each library module is read from and when it last changed, hashed:
 /// cheap (no file is read) and different after an edit, or when a copy on
 /// the search path appears or goes.
@@ -73,6 +87,13 @@ pub fn library_stamp() -> u64 {
             }
             None => name.hash(&mut h),
         }
+    }
+    // Providers found on the search path: one added, edited or removed
+    // changes the library too.
+    for path in crate::shader::extra_providers() {
+        let meta = std::fs::metadata(&path).ok();
+        (&path, meta.as_ref().map(|m| m.len())).hash(&mut h);
+        meta.and_then(|m| m.modified().ok()).hash(&mut h);
     }
     h.finish()
 }

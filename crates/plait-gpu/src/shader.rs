@@ -107,6 +107,35 @@ pub fn extra_providers() -> Vec<PathBuf> {
         .collect()
 }
 
+/// The contract of a visibility provider (`shaders/lib/visibility/NAME.wgsl`,
+/// module `plait::visibility::NAME`): it defines
+/// `fn hair_visibility(world: vec3<f32>) -> f32`. Checked by composing a
+/// call to it, so a missing function or a wrong signature is an error that
+/// names the provider's file before any pass uses it.
+fn check_provider_contract(composer: &mut Composer, path: &Path) -> Result<(), ShaderError> {
+    let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+    let probe = format!(
+        "#import plait::visibility::{name}::hair_visibility\n\
+         fn plait_contract(world: vec3<f32>) -> f32 {{ return hair_visibility(world); }}\n"
+    );
+    composer
+        .make_naga_module(NagaModuleDescriptor {
+            source: &probe,
+            file_path: &format!("the contract of {}", path.display()),
+            shader_type: ShaderType::Wgsl,
+            shader_defs: HashMap::new(),
+            additional_imports: &[],
+        })
+        .map(|_| ())
+        .map_err(|e| ShaderError {
+            path: path.to_owned(),
+            message: format!(
+                "visibility provider `{name}` must define `fn hair_visibility(world: vec3<f32>) -> f32`:\n{}",
+                e.emit_to_string(composer)
+            ),
+        })
+}
+
 /// The text of a library file compiled into plait (a library module, a pass
 /// type's shader): the copy on the search path when there is one, so edits
 /// apply without a rebuild, else the built-in `text`. Returns the path
@@ -199,6 +228,14 @@ impl ShaderLibrary {
             }
             let (path, source) = library_source(name, builtin)?;
             add(&mut composer, path, &source)?;
+        }
+        let providers = LIBRARY_MODULES
+            .iter()
+            .filter(|(name, _)| name.starts_with("shaders/lib/visibility/"))
+            .map(|(name, _)| PathBuf::from(name))
+            .chain(extra_providers());
+        for path in providers {
+            check_provider_contract(&mut composer, &path)?;
         }
         Ok(ShaderLibrary {
             composer,

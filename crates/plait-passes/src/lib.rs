@@ -49,6 +49,19 @@ pub fn library() -> PassLibrary {
 /// Check every pass (live and culled) against its shader with naga, and
 /// settle how the slots of data-only passes are accessed.
 pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Errors> {
+    // A broken library module (a provider breaking its contract) is one
+    // error, not one per pass importing it.
+    if let Err(e) = plait_gpu::modules::check_library() {
+        return Err(Errors(vec![plait_graph::Error::new(
+            plait_graph::Location::Path {
+                path: e.path.clone(),
+            },
+            plait_graph::ErrorKind::Shader {
+                path: e.path,
+                message: e.message,
+            },
+        )]));
+    }
     let mut errors = Vec::new();
     let resources = schedule.resources.clone();
     let passes = schedule
