@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use plait::session::compile_checked;
+use plait::session::{compile_checked, resolve_pipeline};
 use plait_graph::{
     CompileOptions, Formats, ParamType, PassShape, PassTypeSpec, ResourceKind, SlotSpec,
 };
@@ -23,7 +23,10 @@ pub struct CheckArgs {
 
 pub fn check(args: CheckArgs) -> Result<()> {
     let mut failures = Vec::new();
-    for path in &args.pipelines {
+    for given in &args.pipelines {
+        // A gallery name (`forward.toml`) is found on the library search path,
+        // as `plait render` finds it.
+        let path = &resolve_pipeline(Some(given));
         match compile_checked(path, &args.set.sets, &CompileOptions::default()) {
             Ok(s) => {
                 let culled = if s.culled.is_empty() {
@@ -82,7 +85,8 @@ pub fn graph(args: GraphArgs) -> Result<()> {
         screen: args.size,
         ..CompileOptions::default()
     };
-    let schedule = compile_checked(&args.pipeline, &args.set.sets, &opts)?;
+    let pipeline = resolve_pipeline(Some(&args.pipeline));
+    let schedule = compile_checked(&pipeline, &args.set.sets, &opts)?;
     let text = match args.format {
         GraphFormat::Dot => plait_graph::to_dot(&schedule),
         GraphFormat::Svg => plait_graph::to_svg(&schedule),

@@ -727,3 +727,22 @@ fn a_provider_that_breaks_the_contract_names_its_file() {
         );
     }
 }
+
+/// `plait check` and `plait graph` find a gallery pipeline by name from any
+/// directory, as `plait render` does (the library search path).
+#[test]
+fn check_and_graph_find_gallery_names_from_anywhere() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_plait"))
+            .current_dir(dir.path())
+            .args(args)
+            .output()
+            .expect("run plait")
+    };
+    let o = run(&["check", "forward.toml", "deep_opacity.toml"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    let o = run(&["graph", "reference.toml", "--format", "text"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    assert!(text(&o.stdout).contains("technique self_shadow = exact"));
+}
