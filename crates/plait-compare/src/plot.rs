@@ -91,26 +91,7 @@ pub fn svg(chart: &Chart) -> String {
         .flat_map(|s| &s.points)
         .filter(|p| p.x.is_finite() && p.y.is_finite())
         .collect();
-    let mut out = String::new();
-    let _ = write!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w} {h}" width="{w}" height="{h}" font-family="sans-serif" font-size="11">"#
-    );
-    let _ = write!(out, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let _ = write!(
-        out,
-        r#"<text x="{}" y="18" font-size="14" text-anchor="middle">{}</text>"#,
-        w / 2.0,
-        escape(&chart.title)
-    );
-    if let Some(note) = &chart.note {
-        let _ = write!(
-            out,
-            r##"<text x="{}" y="33" fill="#555" text-anchor="middle">{}</text>"##,
-            w / 2.0,
-            escape(note)
-        );
-    }
+    let mut out = chart_header(w, h, &chart.title, chart.note.as_deref());
     if pts.is_empty() {
         let _ = write!(
             out,
@@ -297,26 +278,7 @@ pub fn grid_svg(grid: &Grid) -> String {
     let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let t_of = |v: f64| if hi > lo { (v - lo) / (hi - lo) } else { 0.5 };
-    let mut out = String::new();
-    let _ = write!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w} {h}" width="{w}" height="{h}" font-family="sans-serif" font-size="11">"#
-    );
-    let _ = write!(out, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let _ = write!(
-        out,
-        r#"<text x="{}" y="18" font-size="14" text-anchor="middle">{}</text>"#,
-        w / 2.0,
-        escape(&grid.title)
-    );
-    if let Some(note) = &grid.note {
-        let _ = write!(
-            out,
-            r##"<text x="{}" y="33" fill="#555" text-anchor="middle">{}</text>"##,
-            w / 2.0,
-            escape(note)
-        );
-    }
+    let mut out = chart_header(w, h, &grid.title, grid.note.as_deref());
     let _ = write!(
         out,
         r#"<text x="{}" y="52" text-anchor="middle">{} →</text>"#,
@@ -405,6 +367,32 @@ pub fn grid_svg(grid: &Grid) -> String {
         );
     }
     out.push_str("</svg>");
+    out
+}
+
+/// An SVG chart's opening: the canvas, a white background, the title and an
+/// optional note under it.
+fn chart_header(w: f64, h: f64, title: &str, note: Option<&str>) -> String {
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {w} {h}" width="{w}" height="{h}" font-family="sans-serif" font-size="11">"#
+    );
+    let _ = write!(out, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+    let _ = write!(
+        out,
+        r#"<text x="{}" y="18" font-size="14" text-anchor="middle">{}</text>"#,
+        w / 2.0,
+        escape(title)
+    );
+    if let Some(note) = note {
+        let _ = write!(
+            out,
+            r##"<text x="{}" y="33" fill="#555" text-anchor="middle">{}</text>"##,
+            w / 2.0,
+            escape(note)
+        );
+    }
     out
 }
 
