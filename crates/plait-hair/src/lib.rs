@@ -11,12 +11,16 @@
 //!   written; [`asset`] tells the two formats apart.
 //! - [`follow`]: follow strands around guide strands, as TressFX makes them.
 //! - [`transform`]: placing a groom (scale, rotation, translation).
+//! - [`environment`]: the light around the scene (an HDR/EXR/PNG image or
+//!   the procedural sky) and CPU references of the irradiance maps
+//!   (Xing et al. 2012 §3, §5).
 //! - [`scene`]: the TOML scene file every pipeline renders; [`camera`] (a
 //!   look-at camera or one fitted to the hair), [`light`] (light frustum
 //!   fitting, Halén & Wester 2007 §5.7), [`hair_source`] (the `[hair]` table).
 
 pub mod asset;
 pub mod camera;
+pub mod environment;
 pub mod follow;
 pub mod groom;
 pub mod hair_file;
@@ -30,6 +34,7 @@ pub mod tfx;
 pub mod transform;
 
 pub use asset::{Asset, AssetError, Format};
+pub use environment::{Environment, EnvironmentError, EnvironmentImage};
 pub use follow::FollowStrands;
 pub use groom::{GroomSpec, HeadShape, ScalpRegion, Style, generate};
 pub use hair_file::{HairError, HairFile, HairWarning};

@@ -15,6 +15,7 @@ use serde::Deserialize;
 use crate::asset::{Asset, AssetError};
 use crate::camera::CameraSetting;
 pub use crate::camera::{Camera, CameraFit};
+use crate::environment::{Environment, EnvironmentError, EnvironmentSetting};
 use crate::groom::{GroomSpec, HeadShape, ScalpRegion, Style};
 use crate::hair_file::HairError;
 pub use crate::hair_source::{Hair, HairSource};
@@ -64,6 +65,9 @@ pub enum SceneError {
     /// The hair file is of neither format (the error names it).
     #[error("{0}")]
     UnknownAsset(String),
+    /// The environment image could not be used (the error names it).
+    #[error(transparent)]
+    Environment(#[from] EnvironmentError),
 }
 
 impl From<AssetError> for SceneError {
@@ -190,6 +194,9 @@ pub struct Scene {
     pub material: HairMaterial,
     /// Constant ambient light intensity.
     pub ambient: f32,
+    /// The light around the scene (the procedural sky unless the file
+    /// names an image), for the `lighting` techniques.
+    pub environment: Environment,
 }
 
 /// What [`Scene::load_hair`] fits to the hair's bounds.
@@ -217,6 +224,8 @@ struct SceneToml {
     material: HairMaterial,
     #[serde(default = "default_ambient")]
     ambient: f32,
+    #[serde(default)]
+    environment: Option<toml::Spanned<EnvironmentSetting>>,
 }
 
 impl From<SceneToml> for Scene {
@@ -238,6 +247,8 @@ impl From<SceneToml> for Scene {
             background: t.background,
             material: t.material,
             ambient: t.ambient,
+            // Its place in the file is filled in by `from_toml_str`.
+            environment: t.environment.map(|e| e.into_inner().0).unwrap_or_default(),
         }
     }
 }
@@ -327,6 +338,7 @@ impl Scene {
             background: Background::Color([0.05, 0.06, 0.08]),
             material: HairMaterial::default(),
             ambient: 0.15,
+            environment: Environment::default(),
         }
     }
 
@@ -342,7 +354,12 @@ impl Scene {
                 message: e.message().trim().to_string(),
             }
         })?;
+        let environment_at = parsed.environment.as_ref().map(|e| {
+            let (line, column) = line_col(text, e.span().start);
+            format!("{}:{line}:{column}", path.display())
+        });
         let mut scene = Scene::from(parsed);
+        scene.environment.declared_at = environment_at;
         scene.validate().map_err(|message| SceneError::Invalid {
             path: path.to_path_buf(),
             message,
@@ -358,6 +375,7 @@ impl Scene {
         {
             *p = dir.join(&*p);
         }
+        scene.environment.resolve_paths(dir);
         Ok(scene)
     }
 
