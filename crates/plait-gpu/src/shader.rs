@@ -23,6 +23,14 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/frame.wgsl"),
     ),
     (
+        "shaders/lib/cube.wgsl",
+        include_str!("../../../shaders/lib/cube.wgsl"),
+    ),
+    (
+        "shaders/lib/sh.wgsl",
+        include_str!("../../../shaders/lib/sh.wgsl"),
+    ),
+    (
         "shaders/lib/kajiya_kay.wgsl",
         include_str!("../../../shaders/lib/kajiya_kay.wgsl"),
     ),
