@@ -10,31 +10,44 @@
 @group(1) @binding(1) var<storage, read> kernel: array<f32>;
 @group(1) @binding(2) var maps: texture_storage_2d<rgba16float, write>;
 
+const MAX_BANDS: u32 = 16u;
+
 struct MapParams {
     bands: u32,
     diffuse_bands: u32,
 }
 @group(1) @binding(3) var<uniform> map_params: MapParams;
 
+// One thread per texel of a face (the first n rows): the basis of its
+// tangent is evaluated once and serves all M + 2 maps.
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let dims = textureDimensions(maps);
-    if (id.x >= dims.x || id.y >= dims.y) {
+    let n = dims.x / 6u;
+    if (id.x >= dims.x || id.y >= n) {
         return;
     }
-    let n = dims.x / 6u;
-    let map = id.y / n;
-    let t = cube_texel_direction(vec2<u32>(id.x, id.y % n), n);
-    var bands = map_params.bands;
-    if (map == 0u) {
-        bands = min(map_params.diffuse_bands, bands);
-    }
-    var sum = vec3<f32>(0.0);
+    let maps_count = dims.y / n;
+    let bands = min(map_params.bands, MAX_BANDS);
+    let t = cube_texel_direction(id.xy, n);
+    // w_lm · Y_lm(t) summed over m, per band.
+    var band_sums: array<vec3<f32>, MAX_BANDS>;
     for (var l = 0u; l < bands; l++) {
-        let lambda = kernel[map * map_params.bands + l];
+        var sum = vec3<f32>(0.0);
         for (var i = l * l; i < (l + 1u) * (l + 1u); i++) {
-            sum += lambda * coefficients[i].rgb * sh_basis(i, t);
+            sum += coefficients[i].rgb * sh_basis(i, t);
         }
+        band_sums[l] = sum;
     }
-    textureStore(maps, id.xy, vec4<f32>(sum * KK_NORMALIZATION, 1.0));
+    for (var map = 0u; map < maps_count; map++) {
+        var map_bands = bands;
+        if (map == 0u) {
+            map_bands = min(map_params.diffuse_bands, bands);
+        }
+        var sum = vec3<f32>(0.0);
+        for (var l = 0u; l < map_bands; l++) {
+            sum += kernel[map * map_params.bands + l] * band_sums[l];
+        }
+        textureStore(maps, vec2<u32>(id.x, map * n + id.y), vec4<f32>(sum * KK_NORMALIZATION, 1.0));
+    }
 }

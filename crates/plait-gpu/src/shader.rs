@@ -91,6 +91,14 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/lighting/ambient.wgsl"),
     ),
     (
+        "shaders/lib/lighting/irradiance_maps.wgsl",
+        include_str!("../../../shaders/lib/lighting/irradiance_maps.wgsl"),
+    ),
+    (
+        "shaders/lib/lighting/environment_reference.wgsl",
+        include_str!("../../../shaders/lib/lighting/environment_reference.wgsl"),
+    ),
+    (
         "shaders/lib/hair_environment.wgsl",
         include_str!("../../../shaders/lib/hair_environment.wgsl"),
     ),
