@@ -97,33 +97,59 @@ impl IrradianceMaps {
     /// clamped at the face's edges (`irradiance_maps.wgsl` reads the same).
     pub fn sample(&self, map: u32, t: Vec3) -> Vec3 {
         let n = self.size;
-        let (face, s, tt) = cube::face_of(t);
-        let fx = (s + 1.0) * 0.5 * n as f32 - 0.5;
-        let fy = (tt + 1.0) * 0.5 * n as f32 - 0.5;
-        let (x0, y0) = (fx.floor(), fy.floor());
-        let (ax, ay) = (fx - x0, fy - y0);
-        let clamp = |v: f32| (v as i64).clamp(0, n as i64 - 1) as u32;
-        let at = |x: f32, y: f32| {
-            let (x, y) = (clamp(x), clamp(y));
-            self.texels[((map * n + y) * 6 * n + face as u32 * n + x) as usize]
-        };
-        at(x0, y0) * (1.0 - ax) * (1.0 - ay)
-            + at(x0 + 1.0, y0) * ax * (1.0 - ay)
-            + at(x0, y0 + 1.0) * (1.0 - ax) * ay
-            + at(x0 + 1.0, y0 + 1.0) * ax * ay
+        sample_with(n, map, t, |map, face, x, y| {
+            self.texels[((map * n + y) * 6 * n + face * n + x) as usize]
+        })
     }
 
     /// (D(t), S(t, θ′)): the diffuse map, and the two specular maps around
     /// θ′ interpolated linearly (§3).
     pub fn lookup(&self, t: Vec3, theta_eye: f32) -> (Vec3, Vec3) {
-        let m = self.intervals as f32;
-        let f = (theta_eye.clamp(0.0, PI) / PI * m).min(m);
-        let m0 = (f.floor() as u32).min(self.intervals);
-        let m1 = (m0 + 1).min(self.intervals);
-        let a = f - m0 as f32;
-        let s = self.sample(1 + m0, t) * (1.0 - a) + self.sample(1 + m1, t) * a;
-        (self.sample(0, t), s)
+        lookup_with(
+            self.size,
+            self.intervals,
+            t,
+            theta_eye,
+            |map, face, x, y| {
+                self.texels[((map * self.size + y) * 6 * self.size + face * self.size + x) as usize]
+            },
+        )
     }
+}
+
+/// Bilinear read of map `map` at unit direction t from texels given by
+/// `texel(map, face, x, y)`, clamped at the face's edges.
+pub fn sample_with(n: u32, map: u32, t: Vec3, texel: impl Fn(u32, u32, u32, u32) -> Vec3) -> Vec3 {
+    let (face, s, tt) = cube::face_of(t);
+    let fx = (s + 1.0) * 0.5 * n as f32 - 0.5;
+    let fy = (tt + 1.0) * 0.5 * n as f32 - 0.5;
+    let (x0, y0) = (fx.floor(), fy.floor());
+    let (ax, ay) = (fx - x0, fy - y0);
+    let clamp = |v: f32| (v as i64).clamp(0, n as i64 - 1) as u32;
+    let at = |x: f32, y: f32| texel(map, face as u32, clamp(x), clamp(y));
+    at(x0, y0) * (1.0 - ax) * (1.0 - ay)
+        + at(x0 + 1.0, y0) * ax * (1.0 - ay)
+        + at(x0, y0 + 1.0) * (1.0 - ax) * ay
+        + at(x0 + 1.0, y0 + 1.0) * ax * ay
+}
+
+/// The lookup of [`IrradianceMaps::lookup`] over texels given by a
+/// function, so a test can evaluate maps of any M at the few texels a lookup
+/// reads instead of building them whole.
+pub fn lookup_with(
+    n: u32,
+    intervals: u32,
+    t: Vec3,
+    theta_eye: f32,
+    texel: impl Fn(u32, u32, u32, u32) -> Vec3,
+) -> (Vec3, Vec3) {
+    let m = intervals as f32;
+    let f = (theta_eye.clamp(0.0, PI) / PI * m).min(m);
+    let m0 = (f.floor() as u32).min(intervals);
+    let m1 = (m0 + 1).min(intervals);
+    let a = f - m0 as f32;
+    let s = sample_with(n, 1 + m0, t, &texel) * (1.0 - a) + sample_with(n, 1 + m1, t, &texel) * a;
+    (sample_with(n, 0, t, &texel), s)
 }
 
 /// θ′ of map `map` (1 + m ↦ mπ/M; the diffuse map 0 has none).

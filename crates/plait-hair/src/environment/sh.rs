@@ -132,6 +132,67 @@ pub fn map_kernel(map: u32, intervals: u32, exponent: f32, bands: u32) -> Vec<f6
     }
 }
 
+/// An environment's SH projection with the transfer of every map: the
+/// texels of the irradiance maps rebuilt from SH (eq. 11), one at a time.
+#[derive(Debug, Clone)]
+pub struct ShMaps {
+    pub intervals: u32,
+    pub diffuse_bands: u32,
+    pub specular_bands: u32,
+    /// The environment's coefficients over `specular_bands` bands.
+    pub coefficients: Vec<Vec3>,
+    /// λ_l per map (0 diffuse, 1 + m specular).
+    pub kernels: Vec<Vec<f64>>,
+}
+
+impl ShMaps {
+    /// Project `cube` on `specular_bands` bands; the diffuse map uses the
+    /// first `diffuse_bands` of them (at most as many).
+    pub fn new(
+        cube: &EnvironmentCube,
+        intervals: u32,
+        exponent: f32,
+        diffuse_bands: u32,
+        specular_bands: u32,
+    ) -> ShMaps {
+        let diffuse_bands = diffuse_bands.min(specular_bands);
+        let kernels = (0..intervals + 2)
+            .map(|map| {
+                let b = if map == 0 {
+                    diffuse_bands
+                } else {
+                    specular_bands
+                };
+                map_kernel(map, intervals, exponent, b)
+            })
+            .collect();
+        ShMaps {
+            intervals,
+            diffuse_bands,
+            specular_bands,
+            coefficients: project(cube, specular_bands),
+            kernels,
+        }
+    }
+
+    /// Map `map` at unit direction t: 1/π² Σ_l λ_l Σ_m w_lm Y_lm(t).
+    pub fn value(&self, map: u32, t: Vec3) -> Vec3 {
+        let y = basis_all(self.specular_bands, t);
+        let mut sum = glam::DVec3::ZERO;
+        for (l, lambda) in self.kernels[map as usize].iter().enumerate() {
+            for i in l * l..(l + 1) * (l + 1) {
+                sum += self.coefficients[i].as_dvec3() * (lambda * y[i]);
+            }
+        }
+        (sum * NORMALIZATION as f64).as_vec3()
+    }
+
+    /// Every map at size × size × 6.
+    pub fn maps(&self, size: u32) -> IrradianceMaps {
+        IrradianceMaps::from_fn(size, self.intervals, |map, t| self.value(map, t))
+    }
+}
+
 /// Irradiance maps rebuilt from the environment's SH coefficients (eq. 11):
 /// `diffuse_bands` for the diffuse map, `specular_bands` for the others.
 pub fn maps(
@@ -142,28 +203,7 @@ pub fn maps(
     diffuse_bands: u32,
     specular_bands: u32,
 ) -> IrradianceMaps {
-    let bands = diffuse_bands.max(specular_bands);
-    let w = project(cube, bands);
-    let kernels: Vec<Vec<f64>> = (0..intervals + 2)
-        .map(|map| {
-            let b = if map == 0 {
-                diffuse_bands
-            } else {
-                specular_bands
-            };
-            map_kernel(map, intervals, exponent, b)
-        })
-        .collect();
-    IrradianceMaps::from_fn(size, intervals, |map, t| {
-        let y = basis_all(bands, t);
-        let mut sum = glam::DVec3::ZERO;
-        for (l, lambda) in kernels[map as usize].iter().enumerate() {
-            for i in l * l..(l + 1) * (l + 1) {
-                sum += w[i].as_dvec3() * (lambda * y[i]);
-            }
-        }
-        (sum * NORMALIZATION as f64).as_vec3()
-    })
+    ShMaps::new(cube, intervals, exponent, diffuse_bands, specular_bands).maps(size)
 }
 
 #[cfg(test)]
