@@ -32,11 +32,11 @@ fn face_image(face: usize, n: u32) -> image::Rgb32FImage {
 }
 
 fn assert_faces_land(env: &plait_hair::EnvironmentImage, what: &str) {
-    for face in 0..6 {
+    for (face, colour) in FACE_COLOURS.iter().enumerate() {
         let d = cube::direction(face, 0.0, 0.0).normalize();
         let got = env.radiance(d);
         assert!(
-            got.abs_diff_eq(Vec3::from(FACE_COLOURS[face]), 1e-3),
+            got.abs_diff_eq(Vec3::from(*colour), 1e-3),
             "{what}: face {face} reads {got}"
         );
     }

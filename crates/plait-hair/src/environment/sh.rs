@@ -180,8 +180,9 @@ impl ShMaps {
         let y = basis_all(self.specular_bands, t);
         let mut sum = glam::DVec3::ZERO;
         for (l, lambda) in self.kernels[map as usize].iter().enumerate() {
-            for i in l * l..(l + 1) * (l + 1) {
-                sum += self.coefficients[i].as_dvec3() * (lambda * y[i]);
+            let band = l * l..(l + 1) * (l + 1);
+            for (w, y) in self.coefficients[band.clone()].iter().zip(&y[band]) {
+                sum += w.as_dvec3() * (lambda * y);
             }
         }
         (sum * NORMALIZATION as f64).as_vec3()
