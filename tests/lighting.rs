@@ -68,6 +68,31 @@ fn gpu_kernels_match_the_cpu_references() {
         );
     }
 
+    // Turning the environment is a param of the cube pass.
+    let turned = prepare(
+        &gpu,
+        &pipeline,
+        &["passes.environment.params.rotate=75".to_string()],
+        &scene,
+        (64, 48),
+    )
+    .expect("prepare turned");
+    turned.renderer.render().expect("render turned");
+    let data = turned
+        .renderer
+        .read_resource("environment")
+        .expect("turned cube");
+    let turned_gpu: Vec<Vec3> = (0..(data.width * data.height) as usize)
+        .map(|i| Vec3::from_slice(&data.texel(i)[..3]))
+        .collect();
+    let turned_cpu = EnvironmentCube::new(&scene.environment, ENV_SIZE, 8, 75.0);
+    let e = relative_error(&turned_gpu, &turned_cpu.radiance);
+    assert!(e < 1e-3, "turned environment cube: relative error {e}");
+    assert!(
+        relative_error(&turned_gpu, &cube.radiance) > 0.05,
+        "rotate changed nothing"
+    );
+
     // The directly summed maps (rgba16float: 11-bit mantissa).
     let direct = IrradianceMaps::direct(&cube, MAP_SIZE, INTERVALS, exponent);
     let e = relative_error(&rgb(&texels("direct_maps")), &direct.texels);

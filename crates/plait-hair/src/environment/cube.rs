@@ -74,9 +74,8 @@ pub struct EnvironmentCube {
 impl EnvironmentCube {
     /// Average `env` over each texel with `samples` × `samples` evenly spaced
     /// samples (bilinear each), after turning it by `rotate_degrees` about +y
-    /// (as [`EnvironmentImage::rotated`]).
+    /// (as [`EnvironmentImage::radiance_turned`]).
     pub fn new(env: &EnvironmentImage, size: u32, samples: u32, rotate_degrees: f32) -> Self {
-        let env = env.clone().rotated(rotate_degrees);
         let width = 6 * size;
         let mut radiance = Vec::with_capacity((width * size) as usize);
         let mut solid_angle = Vec::with_capacity((width * size) as usize);
@@ -90,7 +89,8 @@ impl EnvironmentCube {
                             - 1.0;
                         let t = 2.0 * (y as f32 + (j as f32 + 0.5) / samples as f32) / size as f32
                             - 1.0;
-                        sum += env.radiance(direction(face, s, t).normalize());
+                        sum +=
+                            env.radiance_turned(direction(face, s, t).normalize(), rotate_degrees);
                     }
                 }
                 radiance.push(sum / (samples * samples) as f32);

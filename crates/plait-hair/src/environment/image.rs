@@ -223,8 +223,15 @@ impl EnvironmentImage {
 
     /// Radiance arriving from unit direction `d` (bilinear, wrapping in u).
     pub fn radiance(&self, d: Vec3) -> Vec3 {
+        self.radiance_turned(d, 0.0)
+    }
+
+    /// Radiance from `d` of the image turned by `degrees` about +y, read in
+    /// one bilinear lookup at u + degrees / 360 (as `environment_cube.wgsl`
+    /// applies its `rotate` param).
+    pub fn radiance_turned(&self, d: Vec3, degrees: f32) -> Vec3 {
         let (u, v) = equirect_uv(d);
-        let x = u * self.image.width as f32;
+        let x = (u + degrees / 360.0) * self.image.width as f32;
         let y = v * self.image.height as f32;
         Vec3::from(self.image.bilinear(x, y, true))
     }
