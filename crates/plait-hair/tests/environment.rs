@@ -113,6 +113,18 @@ fn every_layout_reads_the_same_directions() {
         .join(", ");
     let s = scene(&format!("[environment]\nfaces = [{list}]"), dir.path()).expect("faces");
     assert_faces_land(&s.environment.load().expect("faces load"), "cube_faces");
+    // A face of another size is named.
+    face_image(3, n / 2)
+        .save(dir.path().join("small.exr"))
+        .expect("write face");
+    let odd = list.replace("face3.exr", "small.exr");
+    let s = scene(&format!("[environment]\nfaces = [{odd}]"), dir.path()).expect("faces");
+    let e = s
+        .environment
+        .load()
+        .expect_err("a smaller face")
+        .to_string();
+    assert!(e.contains("small.exr") && e.contains("8×8"), "{e}");
 
     // A horizontal cross: +y above +z; -x, +z, +x, -z; -y below +z.
     let cells = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
