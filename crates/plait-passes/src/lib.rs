@@ -12,6 +12,7 @@ pub mod depth_peeling;
 pub mod depth_range;
 pub mod hair_shade;
 pub mod linked_list;
+pub mod occlusion_directions;
 pub mod occupancy;
 pub mod opaque_hair;
 pub mod opaque_shade;
@@ -33,6 +34,8 @@ pub fn library() -> PassLibrary {
     lib.add(depth_range::DepthRange);
     lib.add(density_clustering::DensityClustering);
     lib.add(opaque_shade::OpaqueShade);
+    // Ambient occlusion precomputes (issue 11).
+    lib.add(occlusion_directions::OcclusionDirections);
     lib.add(hair_shade::HairShade);
     // Transparency methods (issue 5): each shades with hair_shade.wgsl.
     lib.add(depth_peeling::HairDepthPeel);

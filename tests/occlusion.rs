@@ -1,0 +1,116 @@
+//! Per-vertex ambient occlusion (issue 11, item 4): the precomputes'
+//! per-vertex buffers read back and checked against what the papers say.
+//!
+//! - deep opacity maps from N directions (Xing et al. 2012 §4): visibility in
+//!   [0, 1]; hair deep inside the volume more occluded than hair on its
+//!   outside; the error against 100 directions falls as directions grow
+//!   (9 > 25 > 64, the paper's Fig. 7 experiment).
+
+use plait::session::{SceneData, prepare};
+use plait_gpu::Gpu;
+use plait_tests::{open_gpu, repo_root};
+
+const SIZE: (u32, u32) = (64, 48);
+
+fn small_scene() -> SceneData {
+    SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads")
+}
+
+/// Per-vertex ambient visibility of `fixture` with `sets`, one value per hair vertex.
+fn vertex_ao(gpu: &Gpu, scene: &SceneData, fixture: &str, sets: &[String]) -> Vec<f32> {
+    let pipeline = repo_root().join("tests/fixtures").join(fixture);
+    let prepared =
+        prepare(gpu, &pipeline, sets, scene, SIZE).unwrap_or_else(|e| panic!("{fixture}: {e}"));
+    prepared.renderer.render().expect("renders");
+    let bytes = prepared
+        .renderer
+        .read_buffer("vertex_ao")
+        .expect("vertex_ao");
+    let n = scene.strands.points.len();
+    bytes
+        .chunks_exact(4)
+        .take(n)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect()
+}
+
+fn directions(n: u32) -> Vec<String> {
+    vec![format!("params.directions={n}")]
+}
+
+fn mean_abs_diff(a: &[f32], b: &[f32]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs() as f64)
+        .sum::<f64>()
+        / a.len() as f64
+}
+
+/// Mean visibility of the vertices nearest to and farthest from the hair's
+/// centre (the innermost and outermost fifth).
+fn inner_outer(scene: &SceneData, ao: &[f32]) -> (f64, f64) {
+    let center = scene.strands.bounds().center();
+    let mut by_distance: Vec<(f32, f32)> = scene
+        .strands
+        .points
+        .iter()
+        .zip(ao)
+        .map(|(p, &a)| (p.distance(center), a))
+        .collect();
+    by_distance.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let fifth = by_distance.len() / 5;
+    let mean = |s: &[(f32, f32)]| s.iter().map(|x| x.1 as f64).sum::<f64>() / s.len() as f64;
+    (
+        mean(&by_distance[..fifth]),
+        mean(&by_distance[by_distance.len() - fifth..]),
+    )
+}
+
+#[test]
+fn deep_opacity_directions_visibility_is_in_unit_range_and_deeper_hair_is_darker() {
+    let (_lock, gpu) = open_gpu();
+    let scene = small_scene();
+    let ao = vertex_ao(&gpu, &scene, "occlusion_directions.toml", &directions(25));
+    assert_eq!(ao.len(), scene.strands.points.len());
+    for (i, &a) in ao.iter().enumerate() {
+        assert!(
+            (0.0..=1.0).contains(&a),
+            "vertex {i}: visibility {a} outside [0, 1]"
+        );
+    }
+    let (inner, outer) = inner_outer(&scene, &ao);
+    eprintln!("deep opacity directions (25): inner {inner:.3}, outer {outer:.3}");
+    assert!(
+        outer > inner + 0.05,
+        "outer hair should see more of the sphere than inner hair: outer {outer:.3}, inner {inner:.3}"
+    );
+    let min = ao.iter().copied().fold(f32::INFINITY, f32::min);
+    assert!(
+        min < 0.9,
+        "some hair must be occluded (smallest visibility {min})"
+    );
+}
+
+#[test]
+fn deep_opacity_directions_error_falls_as_directions_grow() {
+    let (_lock, gpu) = open_gpu();
+    let scene = small_scene();
+    let reference = vertex_ao(&gpu, &scene, "occlusion_directions.toml", &directions(100));
+    let errors: Vec<f64> = [9, 25, 64]
+        .iter()
+        .map(|&n| {
+            let ao = vertex_ao(&gpu, &scene, "occlusion_directions.toml", &directions(n));
+            mean_abs_diff(&ao, &reference)
+        })
+        .collect();
+    eprintln!(
+        "mean |AO - AO_100|: 9 → {:.4}, 25 → {:.4}, 64 → {:.4}",
+        errors[0], errors[1], errors[2]
+    );
+    assert!(
+        errors[0] > errors[1] && errors[1] > errors[2],
+        "the error against 100 directions should fall as directions grow: {errors:?}"
+    );
+    assert!(errors[2] > 0.0, "64 directions cannot equal 100 exactly");
+}
