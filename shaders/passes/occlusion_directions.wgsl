@@ -20,7 +20,9 @@
 // spherical Fibonacci lattice of N points (deterministic and evenly spread, so
 // the error against more directions falls steadily).
 #import plait::frame::{Frame, frame}
-#ifndef AO_FRAMES
+#ifdef AO_FRAMES
+#import plait::hair_bounds::{BOUNDS_GROUP, workgroup_bounds}
+#else
 #import plait::visibility::deep_opacity::hair_visibility
 #endif
 
@@ -60,9 +62,6 @@ fn lattice_direction(i: u32, n: u32) -> vec3<f32> {
 }
 
 #ifdef AO_FRAMES
-const GROUP: u32 = 256u;
-var<workgroup> lo: array<vec3<f32>, 256>;
-var<workgroup> hi: array<vec3<f32>, 256>;
 
 // The frame with its light replaced by an orthographic view towards `b`
 // (unit, from the scene towards the light) around the sphere (`center`,
@@ -116,27 +115,18 @@ fn main(@builtin(local_invocation_index) t: u32) {
     let n = arrayLength(&hair_vertices);
     var a = vec3<f32>(3.0e38);
     var z = vec3<f32>(-3.0e38);
-    for (var i = t; i < n; i += GROUP) {
+    for (var i = t; i < n; i += BOUNDS_GROUP) {
         let p = hair_vertices[i].position;
         a = min(a, p);
         z = max(z, p);
     }
-    lo[t] = a;
-    hi[t] = z;
-    workgroupBarrier();
-    for (var stride = GROUP / 2u; stride > 0u; stride /= 2u) {
-        if (t < stride) {
-            lo[t] = min(lo[t], lo[t + stride]);
-            hi[t] = max(hi[t], hi[t + stride]);
-        }
-        workgroupBarrier();
-    }
-    let center = (lo[0] + hi[0]) * 0.5;
+    let box = workgroup_bounds(t, a, z);
+    let center = (box.lo + box.hi) * 0.5;
     // A margin of 1% and a floor keep the outermost hair off the map's edge
     // and a single point from a zero-size view.
-    let radius = max(length(hi[0] - lo[0]) * 0.5 * 1.01, 1e-3);
+    let radius = max(length(box.hi - box.lo) * 0.5 * 1.01, 1e-3);
     let count = min(ao_params.directions, arrayLength(&direction_frames));
-    for (var d = t; d < count; d += GROUP) {
+    for (var d = t; d < count; d += BOUNDS_GROUP) {
         direction_frames[d].uniforms = direction_frame(lattice_direction(d, ao_params.directions), center, radius);
     }
 }

@@ -39,6 +39,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/occupancy.wgsl"),
     ),
     (
+        "shaders/lib/hair_bounds.wgsl",
+        include_str!("../../../shaders/lib/hair_bounds.wgsl"),
+    ),
+    (
         "shaders/lib/visibility/none.wgsl",
         include_str!("../../../shaders/lib/visibility/none.wgsl"),
     ),

@@ -12,6 +12,7 @@ pub mod depth_peeling;
 pub mod depth_range;
 pub mod hair_shade;
 pub mod linked_list;
+pub mod occlusion_cylinders;
 pub mod occlusion_directions;
 pub mod occupancy;
 pub mod opaque_hair;
@@ -36,6 +37,7 @@ pub fn library() -> PassLibrary {
     lib.add(opaque_shade::OpaqueShade);
     // Ambient occlusion precomputes (issue 11).
     lib.add(occlusion_directions::OcclusionDirections);
+    lib.add(occlusion_cylinders::OcclusionCylinders);
     lib.add(hair_shade::HairShade);
     // Transparency methods (issue 5): each shades with hair_shade.wgsl.
     lib.add(depth_peeling::HairDepthPeel);

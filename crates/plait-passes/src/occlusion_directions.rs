@@ -123,7 +123,7 @@ fn spec() -> PassTypeSpec {
 }
 
 /// The resource bound to `slot` of `pass`.
-fn bound<'p>(pass: &'p ScheduledPass, slot: &str) -> Result<&'p Binding, GpuError> {
+pub(crate) fn bound<'p>(pass: &'p ScheduledPass, slot: &str) -> Result<&'p Binding, GpuError> {
     pass.writes
         .iter()
         .chain(pass.reads.iter())
@@ -136,7 +136,7 @@ fn bound<'p>(pass: &'p ScheduledPass, slot: &str) -> Result<&'p Binding, GpuErro
 
 /// A pass like `pass` whose slots are the ones a kernel it records expects:
 /// `(kernel slot, this pass's slot, access)`.
-fn kernel_pass(
+pub(crate) fn kernel_pass(
     pass: &ScheduledPass,
     shape: PassShape,
     reads: &[(&str, &str, Access)],
@@ -167,8 +167,36 @@ fn kernel_pass(
     Ok(sub)
 }
 
-fn int_param(pass: &ScheduledPass, name: &str) -> i64 {
+pub(crate) fn int_param(pass: &ScheduledPass, name: &str) -> i64 {
     pass.params.get(name).and_then(|v| v.as_i64()).unwrap_or(0)
+}
+
+/// The hair's vertex count, checked against the `vertex_ao` buffer bound to `pass`.
+pub(crate) fn checked_vertex_count(
+    pass: &ScheduledPass,
+    ctx: &BuildContext<'_>,
+) -> Result<u32, GpuError> {
+    let error = |message: String| GpuError::Pass {
+        pass: pass.name.clone(),
+        message,
+    };
+    let hair = ctx
+        .geometry
+        .hair
+        .as_ref()
+        .ok_or_else(|| error("the scene has no hair".into()))?;
+    let vertices = hair.vertices.size() / std::mem::size_of::<plait_hair::StrandVertex>() as u64;
+    let ao = &ctx.schedule.resources[bound(pass, "vertex_ao")?.resource];
+    if let ResourceDesc::Buffer { size } = ao.desc
+        && size < vertices * 4
+    {
+        return Err(error(format!(
+            "`{}` holds {} vertices ({size} bytes) but the hair has {vertices}: raise its size (the technique's `ao_max_vertices` param)",
+            ao.name,
+            size / 4
+        )));
+    }
+    u32::try_from(vertices).map_err(|_| error(format!("{vertices} hair vertices are too many")))
 }
 
 impl PassType for OcclusionDirections {
@@ -206,27 +234,8 @@ impl PassType for OcclusionDirections {
         pass: &ScheduledPass,
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        let error = |message: String| GpuError::Pass {
-            pass: pass.name.clone(),
-            message,
-        };
-        let hair = ctx
-            .geometry
-            .hair
-            .as_ref()
-            .ok_or_else(|| error("the scene has no hair".into()))?;
-        let vertices =
-            hair.vertices.size() / std::mem::size_of::<plait_hair::StrandVertex>() as u64;
+        let vertices = checked_vertex_count(pass, ctx)?;
         let ao_id = bound(pass, "vertex_ao")?.resource;
-        if let ResourceDesc::Buffer { size } = ctx.schedule.resources[ao_id].desc
-            && size < vertices * 4
-        {
-            return Err(error(format!(
-                "`{}` holds {} vertices ({size} bytes) but the hair has {vertices}: raise its size (the technique's `ao_max_vertices` param)",
-                ctx.schedule.resources[ao_id].name,
-                size / 4
-            )));
-        }
         let directions = int_param(pass, "directions").clamp(1, MAX_DIRECTIONS) as u32;
 
         // The frames kernel (one workgroup) and the gather kernel (a thread per vertex).
@@ -264,7 +273,7 @@ impl PassType for OcclusionDirections {
             default_defines(pass),
             RasterState::default(),
         );
-        gather_draw.threads = [vertices as u32, 1, 1];
+        gather_draw.threads = [vertices, 1, 1];
         let gather = build_draw(&gather_draw, &gather_pass, ctx)?;
 
         // Self-shadowing's own kernels, from each direction's frame.
