@@ -6,6 +6,7 @@
 #import plait::kajiya_kay::kajiya_kay
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
+#import plait::transparency::coverage::strand_coverage
 #ifdef BLEND_OCCUPANCY_ORDER
 #import plait::frame::camera_linear_depth
 #import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, fragment_order}
@@ -76,7 +77,10 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.world = v.position;
     out.tangent = v.tangent;
     out.color = v.color;
-    out.alpha = v.alpha;
+    // A strand thinner than a pixel covers only part of it: its coverage
+    // weighs its alpha in every blending technique (and sets the sample mask
+    // of alpha to coverage).
+    out.alpha = v.alpha * strand_coverage(v.position, v.tangent, v.thickness);
     return out;
 }
 

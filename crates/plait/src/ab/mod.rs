@@ -17,6 +17,7 @@ mod measure;
 pub mod plan;
 mod provenance;
 mod run;
+mod supersample;
 
 use std::path::PathBuf;
 
