@@ -20,16 +20,22 @@ fn small_scene() -> SceneData {
         .expect("the small scene loads")
 }
 
-/// Per-vertex ambient visibility of `fixture` with `sets`, one value per hair vertex.
-fn vertex_ao(gpu: &Gpu, scene: &SceneData, fixture: &str, sets: &[String]) -> Vec<f32> {
-    let pipeline = repo_root().join("tests/fixtures").join(fixture);
-    let prepared =
-        prepare(gpu, &pipeline, sets, scene, SIZE).unwrap_or_else(|e| panic!("{fixture}: {e}"));
+const DIRECTIONS: &str = "deep_opacity_directions";
+const CYLINDERS: &str = "cylinders";
+
+/// Per-vertex ambient visibility by the `ambient_occlusion` technique
+/// `technique` with `sets`, one value per hair vertex.
+fn vertex_ao(gpu: &Gpu, scene: &SceneData, technique: &str, sets: &[String]) -> Vec<f32> {
+    let pipeline = repo_root().join("tests/fixtures/ambient_occlusion.toml");
+    let mut all = vec![format!("techniques.ambient_occlusion={technique}")];
+    all.extend(sets.iter().cloned());
+    let prepared = prepare(gpu, &pipeline, &all, scene, SIZE)
+        .unwrap_or_else(|e| panic!("{technique} {sets:?}: {e}"));
     prepared.renderer.render().expect("renders");
     let bytes = prepared
         .renderer
-        .read_buffer("vertex_ao")
-        .expect("vertex_ao");
+        .read_buffer("ao_vertex")
+        .expect("ao_vertex");
     let n = scene.strands.points.len();
     bytes
         .chunks_exact(4)
@@ -39,7 +45,7 @@ fn vertex_ao(gpu: &Gpu, scene: &SceneData, fixture: &str, sets: &[String]) -> Ve
 }
 
 fn directions(n: u32) -> Vec<String> {
-    vec![format!("params.directions={n}")]
+    vec![format!("params.ao_directions={n}")]
 }
 
 fn mean_abs_diff(a: &[f32], b: &[f32]) -> f64 {
@@ -74,7 +80,7 @@ fn inner_outer(scene: &SceneData, ao: &[f32]) -> (f64, f64) {
 fn deep_opacity_directions_visibility_is_in_unit_range_and_deeper_hair_is_darker() {
     let (_lock, gpu) = open_gpu();
     let scene = small_scene();
-    let ao = vertex_ao(&gpu, &scene, "occlusion_directions.toml", &directions(25));
+    let ao = vertex_ao(&gpu, &scene, DIRECTIONS, &directions(25));
     assert_eq!(ao.len(), scene.strands.points.len());
     for (i, &a) in ao.iter().enumerate() {
         assert!(
@@ -99,11 +105,11 @@ fn deep_opacity_directions_visibility_is_in_unit_range_and_deeper_hair_is_darker
 fn deep_opacity_directions_error_falls_as_directions_grow() {
     let (_lock, gpu) = open_gpu();
     let scene = small_scene();
-    let reference = vertex_ao(&gpu, &scene, "occlusion_directions.toml", &directions(100));
+    let reference = vertex_ao(&gpu, &scene, DIRECTIONS, &directions(100));
     let errors: Vec<f64> = [9, 25, 64]
         .iter()
         .map(|&n| {
-            let ao = vertex_ao(&gpu, &scene, "occlusion_directions.toml", &directions(n));
+            let ao = vertex_ao(&gpu, &scene, DIRECTIONS, &directions(n));
             mean_abs_diff(&ao, &reference)
         })
         .collect();
@@ -144,7 +150,7 @@ fn roots_tips(scene: &SceneData, ao: &[f32]) -> (f64, f64) {
 fn cylinders_visibility_is_in_unit_range_deeper_hair_and_roots_darker() {
     let (_lock, gpu) = open_gpu();
     let scene = small_scene();
-    let ao = vertex_ao(&gpu, &scene, "occlusion_cylinders.toml", &[]);
+    let ao = vertex_ao(&gpu, &scene, CYLINDERS, &[]);
     assert_unit_range(&ao);
     let (inner, outer) = inner_outer(&scene, &ao);
     let (roots, tips) = roots_tips(&scene, &ao);
@@ -156,8 +162,8 @@ fn cylinders_visibility_is_in_unit_range_deeper_hair_and_roots_darker() {
     let no_scalp = vertex_ao(
         &gpu,
         &scene,
-        "occlusion_cylinders.toml",
-        &["passes.ao.params.scalp_discs=false".into()],
+        CYLINDERS,
+        &["params.ao_scalp_discs=false".into()],
     );
     assert_unit_range(&no_scalp);
     let (roots_without, _) = roots_tips(&scene, &no_scalp);
@@ -172,15 +178,15 @@ fn cylinders_visibility_is_in_unit_range_deeper_hair_and_roots_darker() {
 fn cylinders_caster_stride_estimates_the_full_sum() {
     let (_lock, gpu) = open_gpu();
     let scene = small_scene();
-    let full = vertex_ao(&gpu, &scene, "occlusion_cylinders.toml", &[]);
+    let full = vertex_ao(&gpu, &scene, CYLINDERS, &[]);
     let errors: Vec<f64> = [8, 2]
         .iter()
         .map(|k| {
             let strided = vertex_ao(
                 &gpu,
                 &scene,
-                "occlusion_cylinders.toml",
-                &[format!("passes.ao.params.caster_stride={k}")],
+                CYLINDERS,
+                &[format!("params.ao_caster_stride={k}")],
             );
             mean_abs_diff(&strided, &full)
         })
