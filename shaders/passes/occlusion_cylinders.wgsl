@@ -7,8 +7,11 @@
 //   `hair_box`; the scalp is the opaque triangles whose centroid lies in it
 //   (the head under the hair, not the ground);
 // - otherwise: one thread per receiving hair vertex sums the shadow S of
-//   §3.3.1 over the casters and stores the ambient visibility 1 - S, clamped
-//   to [0, 1] (the thesis sums; plait clamps so the value stays a visibility).
+//   §3.3.1 over the casters and stores the ambient visibility: exp(-S) by
+//   default (`combine = "exp"`: the casters as independent occluders, equal
+//   to 1 - S while S is small), or the thesis's 1 - S clamped to [0, 1]
+//   (`combine = "sum"`), which counts overlapping casters twice and reaches 0
+//   wherever a dense groom's casters add up past one.
 //
 // A caster cylinder of radius r (half the strand thickness) and length l (the
 // strand segment at the vertex) at distance d along d̄ is seen as a disc of
@@ -185,6 +188,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         shadow += scalp_shadow(p, tr);
     }
 #endif
+#ifdef COMBINE_SUM
     vertex_ao[i] = clamp(1.0 - shadow, 0.0, 1.0);
+#else
+    vertex_ao[i] = exp(-shadow);
+#endif
 }
 #endif

@@ -13,7 +13,7 @@ use plait_gpu::shader::Define;
 use plait_graph::{Access, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, Value};
 
 use crate::occlusion_directions::{bound, kernel_pass};
-use crate::spec_util::{buffer, int};
+use crate::spec_util::{buffer, choice, int};
 
 pub struct OcclusionCylinders;
 
@@ -47,6 +47,12 @@ fn spec() -> PassTypeSpec {
                 default: Some(Value::Bool(true)),
                 doc: "opaque triangles inside the hair's bounds cast as oriented discs".into(),
             },
+            choice(
+                "combine",
+                "exp",
+                &["exp", "sum"],
+                "visibility from the summed shadow S: exp(-S) (independent casters) or the thesis's 1 - S, clamped",
+            ),
         ],
         ..PassTypeSpec::new(
             "occlusion_cylinders",
