@@ -214,3 +214,26 @@ fn cylinders_caster_stride_estimates_the_full_sum() {
         "stride 8 should stay within 0.05 of the full sum: {errors:?}"
     );
 }
+
+/// A groom with more vertices than the per-vertex buffer holds is an error
+/// naming the param that sizes it, before any frame.
+#[test]
+fn too_small_a_vertex_buffer_names_its_param() {
+    let (_lock, gpu) = open_gpu();
+    let scene = small_scene();
+    let pipeline = repo_root().join("tests/fixtures/ambient_occlusion.toml");
+    for technique in [DIRECTIONS, CYLINDERS] {
+        let sets = [
+            format!("techniques.ambient_occlusion={technique}"),
+            "params.ao_max_vertices=100".into(),
+        ];
+        let message = match prepare(&gpu, &pipeline, &sets, &scene, SIZE) {
+            Ok(_) => panic!("{technique}: 100 vertices cannot hold the small scene's hair"),
+            Err(e) => e.to_string(),
+        };
+        assert!(
+            message.contains("ao_max_vertices") && message.contains("6800"),
+            "{technique}: the error should name the param and the vertex count: {message}"
+        );
+    }
+}
