@@ -237,3 +237,56 @@ fn too_small_a_vertex_buffer_names_its_param() {
         );
     }
 }
+
+/// Computed once per groom: later frames skip the precompute (reported as
+/// cached) and the hair passes keep reading the same per-vertex values.
+#[test]
+fn occlusion_is_computed_once_and_kept_across_frames() {
+    let (_lock, gpu) = open_gpu();
+    let scene = small_scene();
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    for technique in [DIRECTIONS, CYLINDERS] {
+        let sets = [
+            format!("techniques.ambient_occlusion={technique}"),
+            "params.ao_directions=9".into(),
+        ];
+        let sets = if technique == DIRECTIONS {
+            &sets[..]
+        } else {
+            &sets[..1]
+        };
+        let prepared =
+            prepare(&gpu, &pipeline, sets, &scene, SIZE).unwrap_or_else(|e| panic!("{e}"));
+        let first = prepared.renderer.render().expect("renders");
+        let after_first = prepared
+            .renderer
+            .read_buffer("ao_vertex")
+            .expect("ao_vertex");
+        let image_first = prepared.image().expect("image");
+        let second = prepared.renderer.render().expect("renders");
+        let cached = |r: &plait_gpu::FrameReport| {
+            r.passes
+                .iter()
+                .find(|p| p.name == "ambient_occlusion")
+                .map(|p| p.cached)
+                .expect("the precompute pass is scheduled")
+        };
+        assert!(
+            !cached(&first) && cached(&second),
+            "{technique}: runs on the first frame only"
+        );
+        assert_eq!(
+            prepared
+                .renderer
+                .read_buffer("ao_vertex")
+                .expect("ao_vertex"),
+            after_first,
+            "{technique}: the per-vertex values are kept"
+        );
+        assert_eq!(
+            prepared.image().expect("image"),
+            image_first,
+            "{technique}: same image"
+        );
+    }
+}
