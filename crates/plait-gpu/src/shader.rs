@@ -27,6 +27,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/kajiya_kay.wgsl"),
     ),
     (
+        "shaders/lib/marschner.wgsl",
+        include_str!("../../../shaders/lib/marschner.wgsl"),
+    ),
+    (
         "shaders/lib/shadow.wgsl",
         include_str!("../../../shaders/lib/shadow.wgsl"),
     ),

@@ -22,6 +22,7 @@ pub const FILES: &[BuiltinShader] = &[
     plait_gpu::builtin_shader!("passes/compose_hair_over.toml"),
     plait_gpu::builtin_shader!("passes/weighted_average_resolve.toml"),
     plait_gpu::builtin_shader!("passes/fragment_list_resolve.toml"),
+    plait_gpu::builtin_shader!("passes/marschner_tables.toml"),
 ];
 
 const SHADERS: &[BuiltinShader] = &[
@@ -34,6 +35,7 @@ const SHADERS: &[BuiltinShader] = &[
     plait_gpu::builtin_shader!("passes/compose_hair_over.wgsl"),
     plait_gpu::builtin_shader!("passes/weighted_average_resolve.wgsl"),
     plait_gpu::builtin_shader!("passes/fragment_list_resolve.wgsl"),
+    plait_gpu::builtin_shader!("passes/marschner_tables.wgsl"),
 ];
 
 /// A pass type read from a pass-type file.
