@@ -40,7 +40,7 @@ struct Model {
     ior: f32,
     // σa, absorption per fibre radius, the same for all colours (§5.8).
     absorption: f32,
-    // N_p is clamped here (the thesis's treatment of caustics, §5.8).
+    // N_TRT is clamped here (the thesis's treatment of caustics, §5.8).
     caustic_limit: f32,
 }
 
@@ -179,7 +179,7 @@ fn transmitted(p: f32, phi: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, 
     return total;
 }
 
-// N_R, N_TT, N_TRT at (cos φ, cos θd), each clamped to the caustic limit.
+// N_R, N_TT, N_TRT at (cos φ, cos θd), N_TRT clamped to the caustic limit.
 fn azimuthal(m: Model, cos_phi: f32, cos_td: f32) -> vec3<f32> {
     let cos_d = clamp(cos_td, 1e-4, 1.0);
     let sin2_d = 1.0 - cos_d * cos_d;
@@ -196,7 +196,8 @@ fn azimuthal(m: Model, cos_phi: f32, cos_td: f32) -> vec3<f32> {
     let n_r = attenuation(0.0, h_r, eta_perp, eta_par, cos_theta_t, m.absorption) * cos(0.5 * phi) * 0.25;
     let n_tt = transmitted(1.0, phi, eta_perp, eta_par, cos_theta_t, m.absorption);
     let n_trt = transmitted(2.0, phi, eta_perp, eta_par, cos_theta_t, m.absorption);
-    return min(vec3<f32>(n_r, n_tt, n_trt), vec3<f32>(m.caustic_limit));
+    // Only TRT has caustics (dφ/dh = 0 at ±h*); R and TT stay finite.
+    return vec3<f32>(n_r, n_tt, min(n_trt, m.caustic_limit));
 }
 
 // Where a table of `size` texels per side samples the value x of an axis
