@@ -30,15 +30,6 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         "shaders/lib/marschner.wgsl",
         include_str!("../../../shaders/lib/marschner.wgsl"),
     ),
-    // TEMPORARY until the skeleton discovers shading providers.
-    (
-        "shaders/lib/shading/marschner.wgsl",
-        include_str!("../../../shaders/lib/shading/marschner.wgsl"),
-    ),
-    (
-        "shaders/lib/shading/marschner_reference.wgsl",
-        include_str!("../../../shaders/lib/shading/marschner_reference.wgsl"),
-    ),
     (
         "shaders/lib/shadow.wgsl",
         include_str!("../../../shaders/lib/shadow.wgsl"),
