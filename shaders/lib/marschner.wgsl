@@ -133,50 +133,67 @@ fn root_share(p: f32, h: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, abs
     return attenuation(p, h, eta_perp, eta_par, cos_theta_t, absorption) / max(slope, 1e-6);
 }
 
-// The share of path p over the monotonic interval [h0, h1] of φ(p, h): the
-// root of φ(p, h) = phi there, if any, found by bisection.
-fn interval_share(p: f32, h0: f32, h1: f32, phi: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, absorption: f32) -> f32 {
-    let f0 = exit_azimuth(p, h0, eta_perp) - phi;
-    let f1 = exit_azimuth(p, h1, eta_perp) - phi;
+// The root of φ(p, h) = goal in [h0, h1], where φ(p, h) is monotonic, found
+// by bisection; −2 when the interval holds none.
+fn root_in(p: f32, h0: f32, h1: f32, goal: f32, eta: f32) -> f32 {
+    let f0 = exit_azimuth(p, h0, eta) - goal;
+    let f1 = exit_azimuth(p, h1, eta) - goal;
     if (f0 * f1 > 0.0 || h1 <= h0) {
-        return 0.0;
+        return -2.0;
     }
     var lo = h0;
     var hi = h1;
     let rising = f1 > f0;
     for (var i = 0; i < ROOT_STEPS; i++) {
         let mid = 0.5 * (lo + hi);
-        let above = exit_azimuth(p, mid, eta_perp) > phi;
-        if (above == rising) {
+        if ((exit_azimuth(p, mid, eta) > goal) == rising) {
             hi = mid;
         } else {
             lo = mid;
         }
     }
-    return root_share(p, 0.5 * (lo + hi), eta_perp, eta_par, cos_theta_t, absorption);
+    return 0.5 * (lo + hi);
 }
 
-// N_p for p = 1 (TT) or 2 (TRT) at the relative azimuth phi ∈ [0, π]: φ(p, h)
-// is monotonic between its turning points ±h*, where dφ/dh = 0
-// (h*² = (p² − η'²) / (p² − 1)), so each piece holds at most one root.
-fn transmitted(p: f32, phi: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, absorption: f32) -> f32 {
-    // The exit azimuth is taken modulo 2π; φ(p, h) stays within (p − 1)π ± π.
-    let goal = phi + 2.0 * PI * round((p * PI - phi) / (2.0 * PI));
-    // TT (p = 1) has no turning point: φ(1, h) falls monotonically.
-    var turn2 = -1.0;
-    if (p > 1.5) {
-        turn2 = (p * p - eta_perp * eta_perp) / (p * p - 1.0);
+// N_TT and N_TRT at the relative azimuth phi ∈ [0, π]: the sum over the
+// roots h of φ(p, h) = φ (mod 2π). φ(1, h) falls monotonically over
+// [−1, 1]; φ(2, h) turns at ±h*, where dφ/dh = 0 (h*² = (4 − η'²) / 3 when
+// η' < 2), so [−1, −h*], [−h*, h*], [h*, 1] hold at most one root each.
+// One loop over the four pieces keeps a single bisection loop in the
+// shader: a software rasterizer's compiler unrolls every copy.
+fn transmitted(phi: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, absorption: f32) -> vec2<f32> {
+    let turn2 = (4.0 - eta_perp * eta_perp) / 3.0;
+    let turns = turn2 > 0.0 && turn2 < 1.0;
+    let turn = sqrt(clamp(turn2, 0.0, 1.0));
+    var n = vec2<f32>(0.0);
+    for (var piece = 0; piece < 4; piece++) {
+        var p = 2.0;
+        var h0 = -1.0;
+        var h1 = 1.0;
+        if (piece == 0) {
+            p = 1.0;
+        } else if (!turns) {
+            // TRT without turning points is one piece.
+            if (piece > 1) {
+                break;
+            }
+        } else if (piece == 1) {
+            h1 = -turn;
+        } else if (piece == 2) {
+            h0 = -turn;
+            h1 = turn;
+        } else {
+            h0 = turn;
+        }
+        // The exit azimuth is taken modulo 2π; φ(p, h) stays within pπ ± π.
+        let goal = phi + 2.0 * PI * round((p * PI - phi) / (2.0 * PI));
+        let h = root_in(p, h0, h1, goal, eta_perp);
+        if (h > -1.5) {
+            let share = root_share(p, h, eta_perp, eta_par, cos_theta_t, absorption);
+            n[u32(p) - 1u] += share;
+        }
     }
-    var total = 0.0;
-    if (turn2 > 0.0 && turn2 < 1.0) {
-        let turn = sqrt(turn2);
-        total += interval_share(p, -1.0, -turn, goal, eta_perp, eta_par, cos_theta_t, absorption);
-        total += interval_share(p, -turn, turn, goal, eta_perp, eta_par, cos_theta_t, absorption);
-        total += interval_share(p, turn, 1.0, goal, eta_perp, eta_par, cos_theta_t, absorption);
-    } else {
-        total += interval_share(p, -1.0, 1.0, goal, eta_perp, eta_par, cos_theta_t, absorption);
-    }
-    return total;
+    return n;
 }
 
 // N_R, N_TT, N_TRT at (cos φ, cos θd), N_TRT clamped to the caustic limit.
@@ -194,10 +211,9 @@ fn azimuthal(m: Model, cos_phi: f32, cos_td: f32) -> vec3<f32> {
     // |2 dφ/dh|⁻¹ = cos(φ/2) / 4.
     let h_r = -sin(0.5 * phi);
     let n_r = attenuation(0.0, h_r, eta_perp, eta_par, cos_theta_t, m.absorption) * cos(0.5 * phi) * 0.25;
-    let n_tt = transmitted(1.0, phi, eta_perp, eta_par, cos_theta_t, m.absorption);
-    let n_trt = transmitted(2.0, phi, eta_perp, eta_par, cos_theta_t, m.absorption);
+    let n_t = transmitted(phi, eta_perp, eta_par, cos_theta_t, m.absorption);
     // Only TRT has caustics (dφ/dh = 0 at ±h*); R and TT stay finite.
-    return vec3<f32>(n_r, n_tt, min(n_trt, m.caustic_limit));
+    return vec3<f32>(n_r, n_t.x, min(n_t.y, m.caustic_limit));
 }
 
 // Where a table of `size` texels per side samples the value x of an axis
