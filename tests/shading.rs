@@ -162,54 +162,108 @@ fn lookup_tables_match_the_model_where_it_has_a_closed_form() {
     );
 }
 
-/// RMSE and largest difference, in 1/255 of the 8-bit image, between the
-/// table image and the reference image of `tests/fixtures/marschner_probe.toml`
-/// at `table_size`, over the pixels hair covers (clamped to [0, 1] as the
-/// final image is).
-fn table_error(gpu: &Gpu, table_size: u32) -> (f64, f64, usize) {
-    let pipeline = repo_root().join("tests/fixtures/marschner_probe.toml");
+/// The final image of `pipelines/marschner.toml` on the small scene with `sets`.
+fn render(gpu: &Gpu, sets: &[String]) -> image::RgbaImage {
+    let pipeline = repo_root().join("pipelines/marschner.toml");
     let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
         .expect("the small scene loads");
-    let sets = [format!("params.table_size={table_size}")];
-    let prepared = prepare(gpu, &pipeline, &sets, &scene, (160, 120))
-        .unwrap_or_else(|e| panic!("marschner_probe.toml: {e}"));
+    let prepared = prepare(gpu, &pipeline, sets, &scene, (192, 144))
+        .unwrap_or_else(|e| panic!("marschner.toml {sets:?}: {e}"));
     prepared.renderer.render().expect("renders");
-    let image = |name: &str| -> Vec<f32> {
-        let data = prepared.renderer.read_resource(name).expect(name);
-        data.bytes
-            .chunks_exact(2)
-            .map(|h| half(u16::from_le_bytes([h[0], h[1]])))
-            .collect()
-    };
-    let (table, reference) = (image("table_image"), image("reference_image"));
-    let (mut sum, mut max, mut n) = (0.0f64, 0.0f64, 0usize);
-    let mut worst: Vec<(f64, usize, [f32; 4], [f32; 4])> = Vec::new();
-    for (i, (t, r)) in table.chunks_exact(4).zip(reference.chunks_exact(4)).enumerate() {
-        let d: f32 = (0..3).map(|c| (t[c].clamp(0.0, 1.0) - r[c].clamp(0.0, 1.0)).abs()).fold(0.0, f32::max);
-        worst.push((d as f64, i, [t[0], t[1], t[2], t[3]], [r[0], r[1], r[2], r[3]]));
-        // Alpha 1 where hair was drawn, 0 where the clear shows.
-        if r[3] == 0.0 {
-            continue;
-        }
-        n += 1;
-        for c in 0..3 {
-            let d = (t[c].clamp(0.0, 1.0) - r[c].clamp(0.0, 1.0)) as f64 * 255.0;
-            sum += d * d;
-            max = max.max(d.abs());
-        }
-    }
-    worst.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap());
-    for w in worst.iter().take(6) {
-        eprintln!("  px {} ({}, {}) table {:?} ref {:?}", w.1, w.1 % 160, w.1 / 160, w.2, w.3);
-    }
-    ((sum / (3 * n.max(1)) as f64).sqrt(), max, n)
+    prepared.image().expect("reads back")
 }
 
+/// RMSE over the image and the largest channel difference, both in 1/255.
+fn error_255(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, u8) {
+    let rmse = plait_compare::rmse(a, b).expect("same size") * 255.0;
+    let max = a
+        .pixels()
+        .zip(b.pixels())
+        .flat_map(|(p, q)| (0..3).map(move |c| p.0[c].abs_diff(q.0[c])))
+        .max()
+        .unwrap_or(0);
+    (rmse, max)
+}
+
+// Measured on lavapipe (Mesa 22.3.6, llvmpipe LLVM 15), 192×144, against
+// marschner_reference: RMSE 1.31 / 0.74 / 0.53 (1/255) at 16² / 64² / 256²,
+// max 49 / 60 / 59. The bounds leave room for another rasterizer's line ends
+// (about 1.5×); the max does not fall: a few pixels where the eye and the
+// light lie near opposite ends of the strand (sin θ near ±1, cos θd small)
+// see a feature thinner than a texel of the (sin θi, sin θr) axes even at
+// 256² (only far larger tables resolve it: 38/255 at 4096², measured on
+// the unshadowed direct term).
+const RMSE_BOUND: [(u32, f64); 3] = [(16, 2.0), (64, 1.1), (256, 0.8)];
+const MAX_BOUND: u8 = 90;
+
 #[test]
-fn table_error_against_the_reference_falls_as_the_table_grows() {
+fn table_image_is_within_a_measured_bound_of_the_reference_and_tightens_as_the_table_grows() {
     let (_lock, gpu) = open_gpu();
-    for size in [256, 1024, 4096] {
-        let (rmse, max, n) = table_error(&gpu, size);
-        eprintln!("table {size}: rmse {rmse:.3} max {max:.1} over {n} pixels");
+    let reference = render(&gpu, &["techniques.shading=marschner_reference".into()]);
+    let mut previous = f64::INFINITY;
+    let mut finest = 0.0;
+    for (size, bound) in RMSE_BOUND {
+        let table = render(&gpu, &[format!("params.marschner_table_size={size}")]);
+        let (rmse, max) = error_255(&table, &reference);
+        eprintln!("table {size}²: RMSE {rmse:.3}/255, max {max}/255 against the reference");
+        assert!(
+            rmse <= bound && max <= MAX_BOUND,
+            "table {size}²: RMSE {rmse:.3}/255 (bound {bound}), max {max}/255 (bound {MAX_BOUND})"
+        );
+        assert!(
+            rmse < previous * 0.85,
+            "table {size}²: RMSE {rmse:.3}/255 is not clearly below the smaller table's {previous:.3}"
+        );
+        previous = rmse;
+        finest = rmse;
+    }
+    // The comparison can tell models apart: Kajiya-Kay is far from the
+    // reference where the tables are close (measured 12.5/255).
+    let kajiya_kay = render(&gpu, &["techniques.shading=kajiya_kay".into()]);
+    let (kk, _) = error_255(&kajiya_kay, &reference);
+    assert!(
+        kk > 10.0 * finest,
+        "Kajiya-Kay is {kk:.3}/255 from the Marschner reference, the 256² tables {finest:.3}/255"
+    );
+}
+
+/// Each bad value is an error at the technique file that names the param.
+#[test]
+fn bad_params_are_errors_naming_the_param() {
+    let opts = plait_graph::CompileOptions::default();
+    let cases: &[(&[&str], &str)] = &[
+        (&["params.marschner_table_size=0"], "param `table_size`"),
+        (&["params.marschner_table_size=1"], "param `table_size`"),
+        (&["params.marschner_ior=1.0"], "param `ior`"),
+        (&["params.marschner_absorption=-1"], "param `absorption`"),
+        (&["params.marschner_width_tt=0"], "param `width_tt`"),
+        (
+            &["params.marschner_caustic_limit=0"],
+            "param `caustic_limit`",
+        ),
+        (
+            &["params.marschner_specular_gain=-2"],
+            "param `specular_gain`",
+        ),
+        (
+            &[
+                "techniques.shading=marschner_reference",
+                "params.marschner_ior=0.9",
+            ],
+            "param `ior` of pass `hair`",
+        ),
+    ];
+    let pipeline = repo_root().join("pipelines/marschner.toml");
+    for (sets, want) in cases {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let message = match plait::session::compile_checked(&pipeline, &sets, &opts) {
+            Ok(_) => panic!("{sets:?} compiled"),
+            Err(e) => e.to_string(),
+        };
+        assert!(message.contains(want), "{sets:?}: {message}");
+        assert!(
+            message.contains("techniques/shading/marschner"),
+            "{sets:?} does not name the technique file: {message}"
+        );
     }
 }
