@@ -190,9 +190,9 @@ fn error_255(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, u8) {
 // max 49 / 60 / 59. The bounds leave room for another rasterizer's line ends
 // (about 1.5×); the max does not fall: a few pixels where the eye and the
 // light lie near opposite ends of the strand (sin θ near ±1, cos θd small)
-// see a feature thinner than a texel of the (sin θi, sin θr) axes even at
-// 256² (only far larger tables resolve it: 38/255 at 4096², measured on
-// the unshadowed direct term).
+// see a feature thinner than a texel of the (sin θi, sin θr) axes, and
+// 1/cos²θd amplifies it; even 4096² tables leave a max of 81/255 there
+// (README, "Shading").
 const RMSE_BOUND: [(u32, f64); 3] = [(16, 2.0), (64, 1.1), (256, 0.8)];
 const MAX_BOUND: u8 = 90;
 
