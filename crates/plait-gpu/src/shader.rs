@@ -79,6 +79,14 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/shading/kajiya_kay.wgsl"),
     ),
     (
+        "shaders/lib/shading/marschner.wgsl",
+        include_str!("../../../shaders/lib/shading/marschner.wgsl"),
+    ),
+    (
+        "shaders/lib/shading/marschner_reference.wgsl",
+        include_str!("../../../shaders/lib/shading/marschner_reference.wgsl"),
+    ),
+    (
         "shaders/lib/hair_direct.wgsl",
         include_str!("../../../shaders/lib/hair_direct.wgsl"),
     ),
