@@ -267,3 +267,55 @@ fn bad_params_are_errors_naming_the_param() {
         );
     }
 }
+
+/// The tables are drawn on the first frame only (`run = "once"`) and keep
+/// their texels on later frames, while the hair pass reads them every frame.
+#[test]
+fn tables_are_drawn_once_and_kept_across_frames() {
+    let (_lock, gpu) = open_gpu();
+    let pipeline = repo_root().join("pipelines/marschner.toml");
+    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads");
+    let size = (96, 72);
+    let prepared = prepare(
+        &gpu,
+        &pipeline,
+        &["params.marschner_table_size=32".into()],
+        &scene,
+        size,
+    )
+    .unwrap_or_else(|e| panic!("marschner.toml: {e}"));
+    let tables = || {
+        ["marschner_m", "marschner_n"].map(|name| {
+            prepared
+                .renderer
+                .read_resource(name)
+                .unwrap_or_else(|e| panic!("{name}: {e}"))
+                .bytes
+        })
+    };
+    let mut first = None;
+    for frame in 0..3u32 {
+        prepared.renderer.set_frame(&scene.frame(size, frame));
+        let report = prepared.renderer.render().expect("renders");
+        let pass = report
+            .passes
+            .iter()
+            .find(|p| p.name == "marschner_tables")
+            .expect("the table pass is scheduled");
+        assert_eq!(
+            pass.cached,
+            frame > 0,
+            "frame {frame}: the table pass ran again or not at all"
+        );
+        let now = tables();
+        assert!(
+            now.iter().all(|t| t.iter().any(|&b| b != 0)),
+            "frame {frame}: a table is empty"
+        );
+        match &first {
+            None => first = Some(now),
+            Some(f) => assert!(*f == now, "frame {frame}: the tables changed after frame 0"),
+        }
+    }
+}
