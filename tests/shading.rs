@@ -243,14 +243,14 @@ fn bad_params_are_errors_naming_the_param() {
         ),
         (
             &["params.marschner_specular_gain=-2"],
-            "param `specular_gain`",
+            "param `marschner_specular_gain`",
         ),
         (
             &[
                 "techniques.shading=marschner_reference",
                 "params.marschner_ior=0.9",
             ],
-            "param `ior` of pass `hair`",
+            "param `marschner_ior` of pass `hair`",
         ),
     ];
     let pipeline = repo_root().join("pipelines/marschner.toml");

@@ -7,10 +7,12 @@
 //!
 //! Marschner (Halén & Wester 2007 §3.2.2, §5.8): `marschner` reads the M and N
 //! lookup tables the `marschner_tables` pass draws (slots `marschner_m`,
-//! `marschner_n`) and needs only `specular_gain`; `marschner_reference`
-//! evaluates the model per fragment and takes the model's params. Those are
-//! the `marschner_tables` pass type's own (`shaders/passes/marschner_tables.toml`),
-//! read from it, so their ranges and docs are written once.
+//! `marschner_n`) and needs only `marschner_specular_gain`;
+//! `marschner_reference` evaluates the model per fragment and takes the
+//! model's params. Those are the `marschner_tables` pass type's own
+//! (`shaders/passes/marschner_tables.toml`), read from it and prefixed
+//! `marschner_` (the names of the technique's params), so their ranges and
+//! docs are written once.
 
 use std::sync::OnceLock;
 
@@ -56,7 +58,7 @@ pub fn params() -> Vec<ParamSpec> {
             "key-light shading model (shading provider): the strand's reflection of the light",
         ),
         float(
-            "specular_gain",
+            "marschner_specular_gain",
             8.0,
             0.0,
             1e4,
@@ -82,6 +84,7 @@ fn marschner_model_params() -> &'static [ParamSpec] {
             .into_iter()
             .filter(|p| p.name != "table_size")
             .map(|mut p| {
+                p.name = format!("marschner_{}", p.name);
                 p.doc = format!("marschner_reference: {}", p.doc);
                 p
             })
@@ -97,18 +100,18 @@ mod tests {
     fn the_reference_takes_every_model_param_of_the_table_pass() {
         let names: Vec<String> = params().into_iter().map(|p| p.name).collect();
         for want in [
-            "shift_r",
-            "shift_tt",
-            "shift_trt",
-            "width_r",
-            "width_tt",
-            "width_trt",
-            "ior",
-            "absorption",
-            "caustic_limit",
+            "marschner_shift_r",
+            "marschner_shift_tt",
+            "marschner_shift_trt",
+            "marschner_width_r",
+            "marschner_width_tt",
+            "marschner_width_trt",
+            "marschner_ior",
+            "marschner_absorption",
+            "marschner_caustic_limit",
         ] {
             assert!(names.iter().any(|n| n == want), "{want} missing: {names:?}");
         }
-        assert!(!names.iter().any(|n| n == "table_size"));
+        assert!(!names.iter().any(|n| n.ends_with("table_size")));
     }
 }

@@ -13,7 +13,7 @@
 
 struct ShadingParams {
     // The lobes' gain against Kajiya-Kay's diffuse term (§5.8 adds it).
-    specular_gain: f32,
+    marschner_specular_gain: f32,
 }
 @group(1) @binding(20) var<uniform> shading_params: ShadingParams;
 // rgba16float: M_R, M_TT, M_TRT, cos θd at (sin θi, sin θr).
@@ -30,5 +30,5 @@ fn hair_direct(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base:
     let n_size = f32(textureDimensions(marschner_n).x);
     let n_uv = vec2<f32>(table_coordinate(a.z, -1.0, 1.0, n_size), table_coordinate(cos_td, 0.0, 1.0, n_size));
     let n = textureSampleLevel(marschner_n, linear_sampler, n_uv, 0.0);
-    return combine(m.rgb * n.rgb, cos_td, a.x, base, frame.hair_shading.x, shading_params.specular_gain);
+    return combine(m.rgb * n.rgb, cos_td, a.x, base, frame.hair_shading.x, shading_params.marschner_specular_gain);
 }

@@ -9,31 +9,33 @@
 #import plait::frame::frame
 #import plait::marschner::{model, hair_angles, longitudinal, azimuthal, cos_theta_d, combine}
 
+// The model's params by the technique's names (techniques/shading/
+// marschner_model.toml), the same values the table pass gets.
 struct ShadingParams {
-    specular_gain: f32,
-    shift_r: f32,
-    shift_tt: f32,
-    shift_trt: f32,
-    width_r: f32,
-    width_tt: f32,
-    width_trt: f32,
-    ior: f32,
-    absorption: f32,
-    caustic_limit: f32,
+    marschner_specular_gain: f32,
+    marschner_shift_r: f32,
+    marschner_shift_tt: f32,
+    marschner_shift_trt: f32,
+    marschner_width_r: f32,
+    marschner_width_tt: f32,
+    marschner_width_trt: f32,
+    marschner_ior: f32,
+    marschner_absorption: f32,
+    marschner_caustic_limit: f32,
 }
 @group(1) @binding(20) var<uniform> shading_params: ShadingParams;
 
 fn hair_direct(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
     let p = shading_params;
     let m = model(
-        vec3<f32>(p.shift_r, p.shift_tt, p.shift_trt),
-        vec3<f32>(p.width_r, p.width_tt, p.width_trt),
-        p.ior,
-        p.absorption,
-        p.caustic_limit,
+        vec3<f32>(p.marschner_shift_r, p.marschner_shift_tt, p.marschner_shift_trt),
+        vec3<f32>(p.marschner_width_r, p.marschner_width_tt, p.marschner_width_trt),
+        p.marschner_ior,
+        p.marschner_absorption,
+        p.marschner_caustic_limit,
     );
     let a = hair_angles(tangent, to_light, to_eye);
     let cos_td = cos_theta_d(a.x, a.y);
     let lobes = longitudinal(m, a.x, a.y) * azimuthal(m, a.z, cos_td);
-    return combine(lobes, cos_td, a.x, base, frame.hair_shading.x, p.specular_gain);
+    return combine(lobes, cos_td, a.x, base, frame.hair_shading.x, p.marschner_specular_gain);
 }
