@@ -35,6 +35,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/kajiya_kay.wgsl"),
     ),
     (
+        "shaders/lib/marschner.wgsl",
+        include_str!("../../../shaders/lib/marschner.wgsl"),
+    ),
+    (
         "shaders/lib/shadow.wgsl",
         include_str!("../../../shaders/lib/shadow.wgsl"),
     ),
@@ -85,6 +89,14 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
     (
         "shaders/lib/shading/kajiya_kay.wgsl",
         include_str!("../../../shaders/lib/shading/kajiya_kay.wgsl"),
+    ),
+    (
+        "shaders/lib/shading/marschner.wgsl",
+        include_str!("../../../shaders/lib/shading/marschner.wgsl"),
+    ),
+    (
+        "shaders/lib/shading/marschner_reference.wgsl",
+        include_str!("../../../shaders/lib/shading/marschner_reference.wgsl"),
     ),
     (
         "shaders/lib/hair_direct.wgsl",

@@ -28,6 +28,7 @@ pub const FILES: &[BuiltinShader] = &[
     plait_gpu::builtin_shader!("passes/sh_project.toml"),
     plait_gpu::builtin_shader!("passes/sh_kernel.toml"),
     plait_gpu::builtin_shader!("passes/sh_irradiance_maps.toml"),
+    plait_gpu::builtin_shader!("passes/marschner_tables.toml"),
 ];
 
 const SHADERS: &[BuiltinShader] = &[
@@ -45,6 +46,7 @@ const SHADERS: &[BuiltinShader] = &[
     plait_gpu::builtin_shader!("passes/sh_project.wgsl"),
     plait_gpu::builtin_shader!("passes/sh_kernel.wgsl"),
     plait_gpu::builtin_shader!("passes/sh_irradiance_maps.wgsl"),
+    plait_gpu::builtin_shader!("passes/marschner_tables.wgsl"),
 ];
 
 /// A pass type read from a pass-type file.
