@@ -102,6 +102,15 @@ fn light_maps() -> Vec<Bind> {
     ]
 }
 
+/// (texture, format, blend, write mask, cleared to)
+type ColorTarget = (
+    &'static str,
+    wgpu::TextureFormat,
+    Option<wgpu::BlendState>,
+    wgpu::ColorWrites,
+    Option<wgpu::Color>,
+);
+
 /// What one hand-written pass is.
 struct PassDesc {
     name: &'static str,
@@ -109,14 +118,7 @@ struct PassDesc {
     defines: &'static [&'static str],
     geometry: Geometry,
     binds: Vec<Bind>,
-    /// (texture, format, blend, write mask, cleared to)
-    colors: Vec<(
-        &'static str,
-        wgpu::TextureFormat,
-        Option<wgpu::BlendState>,
-        wgpu::ColorWrites,
-        Option<wgpu::Color>,
-    )>,
+    colors: Vec<ColorTarget>,
     /// (texture, compare, written, cleared to)
     depth: Option<(&'static str, wgpu::CompareFunction, bool, Option<f32>)>,
     /// Storage buffers zeroed before the pass.
@@ -287,7 +289,13 @@ fn passes() -> Vec<PassDesc> {
     passes.push(PassDesc {
         name: "hair",
         shader: "hair_shade.wgsl",
-        defines: &["VISIBILITY_OCCUPANCY", "BLEND_OCCUPANCY_ORDER"],
+        defines: &[
+            "VISIBILITY_OCCUPANCY",
+            "BLEND_OCCUPANCY_ORDER",
+            "SHADING_KAJIYA_KAY",
+            "LIGHTING_AMBIENT",
+            "OCCLUSION_NONE",
+        ],
         geometry: Geometry::Hair,
         binds: hair_binds,
         colors: vec![(
@@ -430,17 +438,9 @@ impl<'g> HandWritten<'g> {
         })
     }
 
-    /// Record one frame (no timestamps) and finish it, unsubmitted.
+    /// Record one frame with a timestamp after each draw (as plait times
+    /// each pass) and finish it, unsubmitted.
     pub fn encode(&self) -> wgpu::CommandBuffer {
-        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
-        for pass in &self.passes {
-            self.record(pass, &mut encoder);
-        }
-        encoder.finish()
-    }
-
-    /// Render one frame and wait: (frame GPU ms, per-draw GPU ms).
-    pub fn render(&self) -> Option<(f64, Vec<f64>)> {
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
         if let Some(ts) = &self.timestamps {
             ts.write(&mut encoder, 0);
@@ -454,7 +454,12 @@ impl<'g> HandWritten<'g> {
         if let Some(ts) = &self.timestamps {
             ts.resolve(&mut encoder);
         }
-        self.gpu.queue.submit([encoder.finish()]);
+        encoder.finish()
+    }
+
+    /// Render one frame and wait: (frame GPU ms, per-draw GPU ms).
+    pub fn render(&self) -> Option<(f64, Vec<f64>)> {
+        self.gpu.queue.submit([self.encode()]);
         let times = self.timestamps.as_ref().map(|ts| ts.read(self.gpu));
         if times.is_none() {
             let _ = self.gpu.wait();
