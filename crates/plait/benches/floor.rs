@@ -1,5 +1,5 @@
 //! Each gallery pipeline against its raster floor, side by side in one process:
-//! `cargo bench -p plait --bench floor [-- --size WxH --repeats N --scene FILE --only a,b]`.
+//! `cargo bench -p plait --bench floor [-- --size WxH --repeats N --scene FILE --only a,b --save DIR]`.
 //!
 //! For every `pipelines/*.toml` it renders, in interleaved repeats, (a) the
 //! pipeline through plait, (b) its floor — the same passes, targets, clears
@@ -99,6 +99,21 @@ fn main() {
             plait_passes: vec![Vec::new(); passes],
             floor_passes: vec![Vec::new(); passes],
         });
+    }
+    if let Some(dir) = arg("--save") {
+        // Each pipeline's image, to compare shader changes bit for bit.
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{dir}: {e}"));
+        for e in &entries {
+            e.prepared
+                .renderer
+                .render()
+                .unwrap_or_else(|err| panic!("{}: {err}", e.name));
+            let image = e.prepared.image().unwrap_or_else(|err| panic!("{err}"));
+            let path = Path::new(&dir).join(format!("{}.png", e.name));
+            image
+                .save(&path)
+                .unwrap_or_else(|err| panic!("{}: {err}", path.display()));
+        }
     }
     let default_index = entries.iter().position(|e| e.name == "occupancy");
     let handwritten = default_index.map(|i| {
