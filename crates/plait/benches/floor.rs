@@ -1,5 +1,5 @@
 //! Each gallery pipeline against its raster floor, side by side in one process:
-//! `cargo bench -p plait --bench floor [-- --size WxH --repeats N --scene FILE --only a,b --save DIR]`.
+//! `cargo bench -p plait --bench floor [-- --size WxH --repeats N --scene FILE --only a,b --save DIR --one-draw]`.
 //!
 //! For every `pipelines/*.toml` it renders, in interleaved repeats, (a) the
 //! pipeline through plait, (b) its floor — the same passes, targets, clears
@@ -8,7 +8,8 @@
 //! written by hand against wgpu without plait's executor
 //! (`support/handwritten.rs`, whose image must equal plait's). It prints the
 //! median frame GPU time of each, the ratios, and the default pipeline pass
-//! by pass. Depth peeling (`depth_peeling.toml`, `reference.toml`) is left
+//! by pass. `--one-draw` adds the default pipeline with occupancy bits and
+//! slab counts built in one draw per view (`occupancy_slabs`). Depth peeling (`depth_peeling.toml`, `reference.toml`) is left
 //! out: its work depends on the layers it finds, so it has no fixed floor.
 //! A benchmark, not a test: nothing here fails on a slow machine.
 
@@ -65,15 +66,36 @@ fn main() {
     }
     let library = plait::passes::library();
     let mut entries = Vec::new();
-    for path in gallery(&root) {
-        let name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
+    let mut variants: Vec<(String, PathBuf, Vec<String>)> = gallery(&root)
+        .into_iter()
+        .map(|path| {
+            let name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            (name, path, Vec::new())
+        })
+        .collect();
+    if std::env::args().any(|a| a == "--one-draw") {
+        // The default pipeline with occupancy bits and slab counts built in
+        // one draw per view (`occupancy_slabs`): its image must not change.
+        let mut sets = Vec::new();
+        for view in ["light", "camera"] {
+            sets.push(format!("passes.{view}_occupancy.type=occupancy_slabs"));
+            sets.push(format!("passes.{view}_occupancy.writes.slabs={view}_slabs"));
+            sets.push(format!("passes.{view}_slabs.enabled=false"));
+        }
+        variants.push((
+            "occupancy_one_draw".into(),
+            root.join("pipelines/occupancy.toml"),
+            sets,
+        ));
+    }
+    for (name, path, sets) in variants {
         if only.as_ref().is_some_and(|o| !o.contains(&name)) {
             continue;
         }
-        let prepared = match prepare(&gpu, &path, &[], &scene, size) {
+        let prepared = match prepare(&gpu, &path, &sets, &scene, size) {
             Ok(p) => p,
             Err(e) => {
                 eprintln!("{name}: not rendered: {e}");
@@ -116,6 +138,19 @@ fn main() {
         }
     }
     let default_index = entries.iter().position(|e| e.name == "occupancy");
+    let one_draw_index = entries.iter().position(|e| e.name == "occupancy_one_draw");
+    if let (Some(a), Some(b)) = (default_index, one_draw_index) {
+        let image = |e: &Entry| {
+            e.prepared
+                .renderer
+                .render()
+                .unwrap_or_else(|err| panic!("{}: {err}", e.name));
+            e.prepared.image().unwrap_or_else(|err| panic!("{err}"))
+        };
+        if image(&entries[a]) != image(&entries[b]) {
+            panic!("building the maps in one draw changed the default pipeline's image");
+        }
+    }
     let handwritten = default_index.map(|i| {
         let hw = HandWritten::new(&gpu, &scene, size).unwrap_or_else(|e| panic!("{e}"));
         // Same passes, same shaders: the same picture, or the comparison means nothing.
@@ -160,13 +195,18 @@ fn main() {
         gpu.backend_name()
     );
     for repeat in 0..=repeats {
-        for e in entries.iter_mut() {
+        for (k, e) in entries.iter_mut().enumerate() {
             let report = e
                 .prepared
                 .renderer
                 .render()
                 .unwrap_or_else(|err| panic!("{}: {err}", e.name));
             let (floor_total, floor_passes) = e.floor.render().unwrap_or_default();
+            // The hand-written program right after the pipeline it copies.
+            let hand = handwritten
+                .as_ref()
+                .filter(|_| Some(k) == default_index)
+                .and_then(|hw| hw.render());
             if repeat == 0 {
                 continue; // warm-up: pipelines compiled, caches filled
             }
@@ -178,15 +218,12 @@ fn main() {
             for (i, ms) in floor_passes.into_iter().enumerate() {
                 e.floor_passes[i].push(ms);
             }
-        }
-        if let Some(hw) = &handwritten
-            && let Some((total, draws)) = hw.render()
-            && repeat > 0
-        {
-            hw_ms.push(total);
-            hw_draws.resize(draws.len(), Vec::new());
-            for (i, ms) in draws.into_iter().enumerate() {
-                hw_draws[i].push(ms);
+            if let Some((total, draws)) = hand {
+                hw_ms.push(total);
+                hw_draws.resize(draws.len(), Vec::new());
+                for (i, ms) in draws.into_iter().enumerate() {
+                    hw_draws[i].push(ms);
+                }
             }
         }
     }
