@@ -50,7 +50,8 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(3)
         .max(1);
-    let size = size_arg((320, 240));
+    // Small by default (14 pipelines, each with its floor); the README's figures use 320x240.
+    let size = size_arg((160, 120));
     let only: Option<Vec<String>> =
         arg("--only").map(|s| s.split(',').map(|n| n.trim().to_owned()).collect());
     let root = repo_root();
