@@ -212,6 +212,26 @@ pub fn prepare<'g>(
     build(gpu, schedule, pipeline, scene, size)
 }
 
+/// Standard inputs for frame `index` of `scene` at `size` as `schedule`
+/// wants them: strand coverage unless its `[params]` say
+/// `strand_coverage = false`.
+pub fn frame_uniforms(
+    schedule: &Schedule,
+    scene: &SceneData,
+    size: (u32, u32),
+    index: u32,
+) -> FrameUniforms {
+    let coverage = schedule
+        .params
+        .get("strand_coverage")
+        .and_then(|v| match v {
+            plait_graph::Value::Bool(b) => Some(*b),
+            _ => None,
+        })
+        .unwrap_or(true);
+    scene.frame(size, index).with_strand_coverage(coverage)
+}
+
 /// Compile options for rendering at `size` on `gpu`.
 pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
     CompileOptions {
@@ -235,7 +255,7 @@ pub fn build<'g>(
         .first()
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
-    let frame = scene.frame(size, 0);
+    let frame = frame_uniforms(&schedule, scene, size, 0);
     let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(

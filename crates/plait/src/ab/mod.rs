@@ -17,12 +17,14 @@ mod measure;
 pub mod plan;
 mod provenance;
 mod run;
+mod supersample;
 
 use std::path::PathBuf;
 
 pub use plan::{AbOptions, Plan, ScenePlan, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
+pub use supersample::box_filter;
 
 use crate::session::SessionError;
 
