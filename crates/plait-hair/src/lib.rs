@@ -9,6 +9,8 @@
 //!   (Sintorn & Assarsson 2009 Fig. 4/5).
 //! - [`tfx`]: AMD TressFX's binary `.tfx` format (versions 3 and 4), read and
 //!   written; [`asset`] tells the two formats apart.
+//! - [`guides`]: guide strands and the binding of every rendered strand to
+//!   them, the CPU reference of GPU guide interpolation.
 //! - [`follow`]: follow strands around guide strands, as TressFX makes them.
 //! - [`transform`]: placing a groom (scale, rotation, translation).
 //! - [`scene`]: the TOML scene file every pipeline renders; [`camera`] (a
@@ -19,6 +21,7 @@ pub mod asset;
 pub mod camera;
 pub mod follow;
 pub mod groom;
+pub mod guides;
 pub mod hair_file;
 pub mod hair_source;
 pub mod light;
