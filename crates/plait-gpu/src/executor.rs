@@ -81,7 +81,7 @@ impl<'g> Renderer<'g> {
         let mut schedule = schedule;
         let notes = downgrade_float32_blending(&mut schedule, library, &gpu.capabilities);
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pool = ResourcePool::new(device, &schedule);
+        let pool = ResourcePool::new(device, &schedule, &geometry);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Resource {
                 resource: "memory plan".into(),
