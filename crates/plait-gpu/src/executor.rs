@@ -249,6 +249,12 @@ impl<'g> Renderer<'g> {
                 message,
             });
         }
+        for (i, pass) in self.passes.iter().enumerate() {
+            pass.finish(device).map_err(|message| GpuError::Pass {
+                pass: self.schedule.passes[i].name.clone(),
+                message,
+            })?;
+        }
         let mut times: Option<Vec<u64>> = None;
         if let Some(ts) = &self.timestamps {
             let bytes = map_buffer(device, &ts.readback).map_err(|message| GpuError::Readback {

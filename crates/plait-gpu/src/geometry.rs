@@ -151,7 +151,12 @@ impl GuideBuffers {
             .collect();
         let shapes: Vec<[[f32; 4]; 2]> = colliders
             .iter()
-            .map(|c| [c.center.extend(0.0).to_array(), c.radii.extend(0.0).to_array()])
+            .map(|c| {
+                [
+                    c.center.extend(0.0).to_array(),
+                    c.radii.extend(0.0).to_array(),
+                ]
+            })
             .collect();
         let rest_bytes: &[u8] = bytemuck::cast_slice(&rest);
         GuideBuffers {
@@ -214,6 +219,15 @@ impl SceneGeometry {
         guides: &Guides,
         colliders: &[Collider],
     ) -> Self {
+        // Guides made for other strands (a caller cut the strands after
+        // loading): every strand its own guide rather than wrong bindings.
+        let identity;
+        let guides = if guides.bindings.len() == strands.strand_count() {
+            guides
+        } else {
+            identity = Guides::identity(strands);
+            &identity
+        };
         let (hair_vertices, hair_indices) = strands.line_list();
         let hair = upload(device, "hair", &hair_vertices, &hair_indices);
         let mut vertices = Vec::new();

@@ -54,7 +54,11 @@ pub fn compile(
     }
     // Scene resources follow the declared ones; their size is the scene's,
     // unknown here (0: they take no memory of the pipeline's).
-    descs.extend(SCENE_RESOURCES.iter().map(|_| Some(ResourceDesc::Buffer { size: 0 })));
+    descs.extend(
+        SCENE_RESOURCES
+            .iter()
+            .map(|_| Some(ResourceDesc::Buffer { size: 0 })),
+    );
 
     let passes: Vec<ScheduledPass> = pipeline
         .passes
@@ -712,9 +716,7 @@ fn order_passes(
         let writers: Vec<usize> = (0..passes.len())
             .filter(|&p| writes_to(&passes[p], resource).is_some())
             .collect();
-        let readers: Vec<usize> = (0..passes.len())
-            .filter(|&p| reads(p, resource))
-            .collect();
+        let readers: Vec<usize> = (0..passes.len()).filter(|&p| reads(p, resource)).collect();
         // The scene writes its resources before any pass.
         if writers.is_empty() && resource < declared {
             for &r in &readers {
@@ -1050,7 +1052,9 @@ fn plan_memory(resources: &mut [ResolvedResource]) -> (Vec<PhysicalResource>, Me
         let reusable = physical.iter().position(|p| {
             !resources[r].scene
                 && p.desc == desc
-                && p.users.iter().all(|&u| !resources[u].scene && resources[u].last_use < first_use)
+                && p.users
+                    .iter()
+                    .all(|&u| !resources[u].scene && resources[u].last_use < first_use)
         });
         let id = match reusable {
             Some(id) => id,

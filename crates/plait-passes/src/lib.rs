@@ -11,10 +11,12 @@ pub mod density_clustering;
 pub mod depth_peeling;
 pub mod depth_range;
 pub mod hair_shade;
+pub mod interpolation;
 pub mod linked_list;
 pub mod occupancy;
 pub mod opaque_hair;
 pub mod opaque_shade;
+pub mod simulation;
 pub mod spec_util;
 pub mod transparency;
 pub mod visibility;
@@ -40,6 +42,9 @@ pub fn library() -> PassLibrary {
     lib.add(weighted_average::HairWeightedAverage);
     lib.add(alpha_to_coverage::HAIR_ALPHA_TO_COVERAGE);
     lib.add(opaque_hair::HAIR_OPAQUE);
+    // Simulation (issue 12): guides simulated, drawn strands interpolated.
+    lib.add(simulation::HairSimulation);
+    lib.add(interpolation::GuideInterpolation);
     lib.add(data_only::FULLSCREEN);
     lib.add(data_only::RASTER);
     lib.add(data_only::COMPUTE);

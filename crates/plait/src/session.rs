@@ -141,6 +141,10 @@ pub struct SceneData {
     pub meshes: Vec<plait_hair::mesh::Mesh>,
     /// The background image, when the scene names one.
     pub background: Option<image::RgbaImage>,
+    /// The guide strands simulation moves (every strand its own guide when
+    /// the groom has none) and the head's colliders.
+    pub guides: plait_hair::guides::Guides,
+    pub colliders: Vec<plait_gpu::geometry::Collider>,
 }
 
 impl SceneData {
@@ -159,11 +163,22 @@ impl SceneData {
             ),
             Background::Color(_) => None,
         };
+        let guides = plait_hair::guides::scene_guides(&scene, &strands)?;
+        let colliders = scene
+            .head
+            .iter()
+            .map(|h| plait_gpu::geometry::Collider {
+                center: h.center.into(),
+                radii: h.radii.into(),
+            })
+            .collect();
         Ok(SceneData {
             scene,
             strands,
             meshes,
             background,
+            guides,
+            colliders,
         })
     }
 
@@ -236,7 +251,13 @@ pub fn build<'g>(
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
     let frame = scene.frame(size, 0);
-    let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
+    let geometry = SceneGeometry::upload_with_guides(
+        &gpu.device,
+        &scene.strands,
+        &scene.meshes,
+        &scene.guides,
+        &scene.colliders,
+    );
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
         gpu,
