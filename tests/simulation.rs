@@ -111,6 +111,7 @@ fn a_strand_at_rest_stays_at_rest() {
         .zip(rest)
         .map(|(a, b)| (*a - *b).length())
         .fold(0.0f32, f32::max);
+    eprintln!("at rest: drift {drift:e}, energy {early:e} → {late:e}");
     // Gravity is balanced by the springs' displaced references (§4.4) and the
     // rest lengths are met: only rounding moves a node (1e-4 = 5e4 ulp of 2).
     assert!(drift < 1e-4, "a node drifted {drift} from rest");
@@ -118,6 +119,55 @@ fn a_strand_at_rest_stays_at_rest() {
         late <= early.max(1e-12),
         "energy grew at rest: {early:e} → {late:e}"
     );
+}
+
+/// Mechanical energy per unit mass: Σ ½|v|² + g·y, v = (x − x_prev) / Δt.
+fn energy(p: &Prepared<'_>, count: usize, dt: f64, g: f64) -> f64 {
+    guide_positions(p, count)
+        .iter()
+        .zip(guide_previous(p, count))
+        .map(|(a, b)| 0.5 * ((*a - b).length_squared() as f64) / (dt * dt) + g * a.y as f64)
+        .sum()
+}
+
+#[test]
+fn a_falling_strand_loses_energy() {
+    let (_lock, gpu) = open_gpu();
+    let scene = groom(12, None);
+    let n = scene.guides.strands.points.len();
+    // No spring: chains released from their groomed shape swing down under
+    // gravity. Damping (k = 0.97 of 4.1), the length projection and the
+    // collisions only take energy out; Verlet must not put any in.
+    let falling = sets(&["params.sim_spring=0.0"]);
+    let p = prepare(&gpu, &pipeline(), &falling, &scene, SIZE).expect("pipeline builds");
+    let (dt, g) = (0.008333, 9.8);
+    render(&p, 1);
+    let start = energy(&p, n, dt, g);
+    let mut last = start;
+    let mut moved = 0.0f32;
+    for frame in 2..=60 {
+        render(&p, 1);
+        let e = energy(&p, n, dt, g);
+        // 1e-3 of the start: per-frame rounding of f32 positions ~2 units.
+        assert!(
+            e <= last + 1e-3 * start.abs().max(1.0),
+            "energy grew in frame {frame}: {last} → {e}"
+        );
+        last = e;
+        if frame == 60 {
+            moved = guide_positions(&p, n)
+                .iter()
+                .zip(&scene.guides.strands.points)
+                .map(|(a, b)| (*a - *b).length())
+                .fold(0.0f32, f32::max);
+        }
+    }
+    eprintln!("falling: energy {start:.4} → {last:.4} over 60 frames, moved {moved}");
+    assert!(
+        moved > 0.05,
+        "without springs the strands should fall (moved {moved})"
+    );
+    assert!(last < start, "energy should drop: {start} → {last}");
 }
 
 /// Segment lengths of guide strands over their rest lengths, worst |ratio − 1|.
@@ -159,6 +209,10 @@ fn length_constraints_hold_in_wind() {
     // 4 sweeps of (4.2) per step keep every segment within 2% of its rest
     // length under this wind (measured: see the message on failure).
     let worst = worst_length_error(&scene, &now);
+    eprintln!(
+        "in wind: moved {moved}, worst segment length error {:.3}%",
+        worst * 100.0
+    );
     assert!(
         worst < 0.02,
         "a segment is {:.2}% off its rest length",
@@ -185,6 +239,7 @@ fn collisions_keep_the_hair_outside_the_head() {
         .iter()
         .map(|x| ((*x - c) / r).length())
         .fold(f32::INFINITY, f32::min);
+    eprintln!("collisions: deepest node at |q| = {deepest}");
     // 1 − 1e-5: the node is moved onto the ellipsoid, up to rounding.
     assert!(
         deepest >= 1.0 - 1e-5,
@@ -233,6 +288,9 @@ fn gpu_interpolation_matches_the_cpu() {
         .map(|(a, b)| (*a - *b).length())
         .fold(0.0f32, f32::max);
     assert!(moved > 0.02, "the guides should move (moved {moved})");
+    eprintln!(
+        "interpolation: guides moved {moved}, GPU − CPU position {worst_position:e}, tangent {worst_tangent:e}"
+    );
     // Same operations in f32, in a different order (FMA on the GPU): a few
     // ulp of coordinates ≈ 2, so 1e-5; tangents are unit vectors, 1e-4.
     assert!(
