@@ -67,6 +67,7 @@ pub fn compile(
         .collect();
 
     let outputs = check_outputs(pipeline, &passes, &mut errors);
+    crate::run_once::check_writers(pipeline, &passes, &mut errors);
     let order = order_passes(&passes, pipeline, &mut errors);
 
     let Some(order) = order.filter(|_| errors.is_empty()) else {
@@ -432,6 +433,7 @@ fn resolve_pass(
         shader: decl.shader.as_ref().map(|s| s.value.clone()),
         shader_location: decl.shader.as_ref().map(|s| s.location.clone()),
         raster: decl.raster.clone(),
+        run_once: decl.run_once.is_some(),
         location: decl.location.clone(),
         technique: match &decl.location {
             Location::File { path, .. } => pipeline
@@ -919,6 +921,7 @@ fn build_schedule(
                     last_use: 0,
                     physical: 0,
                     scene: false,
+                    kept: false,
                     location: decl.location.clone(),
                 });
             }
@@ -936,6 +939,7 @@ fn build_schedule(
                 last_use: 0,
                 physical: 0,
                 scene: true,
+                kept: false,
                 location: Location::Builtin,
             });
         }
@@ -996,6 +1000,7 @@ fn build_schedule(
     for &o in &output_ids {
         resources[o].last_use = end;
     }
+    crate::run_once::keep_across_frames(&scheduled, &mut resources);
 
     let (physical, memory) = plan_memory(&mut resources);
     Schedule {

@@ -27,6 +27,7 @@ mod overrides;
 pub mod pass_type_file;
 pub mod raster_decl;
 pub mod scene_resources;
+mod run_once;
 pub mod schedule;
 mod shader_path;
 pub mod snapshot;

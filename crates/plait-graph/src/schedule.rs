@@ -148,6 +148,10 @@ pub struct ScheduledPass {
     pub location: Location,
     /// The technique that declared the pass (`self_shadow/occupancy`), if any.
     pub technique: Option<String>,
+    /// `run = "once"`: a precompute recorded on an executor's first frame
+    /// only; what it writes is kept across frames ([`ResolvedResource::kept`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub run_once: bool,
 }
 
 /// Why a pass does not run.
@@ -170,6 +174,10 @@ pub struct ResolvedResource {
     /// not allocated by the pipeline (its `desc` is a 0-byte buffer).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub scene: bool,
+    /// Its contents outlive the frame (written by a `run = "once"` pass), so
+    /// it lives from the first pass to the last and shares no allocation.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub kept: bool,
     #[serde(skip)]
     pub location: Location,
 }
