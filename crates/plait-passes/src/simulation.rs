@@ -14,12 +14,19 @@
 //! pass reads back after every frame ([`PreparedPass::finish`]) and turns into
 //! an error naming the strand, so the frame is never returned.
 //!
-//! Stability, checked at load ([`PassType::check_sizes`]): the spring of
-//! §4.4 integrated by Verlet is a harmonic oscillator of ω = √k (unit mass);
-//! Størmer–Verlet is stable for it only while Δt·ω < 2 (Hairer, Lubich &
-//! Wanner 2003 §4.2). `time_step` · √`spring` ≥ 2 is rejected with the
-//! largest stable step. Damping above 1 would add energy every step: the
-//! param's range stops at 1.
+//! Stability, checked at load ([`PassType::check_sizes`]). A node on the
+//! §4.4 spring (stiffness at most k, at the root; unit mass) steps by (4.1)
+//! as x' = x + d·(x − x₋) − Δt²k·x, whose characteristic polynomial is
+//! λ² − (1 + d − Δt²k)λ + d. Both roots lie inside the unit circle (Jury's
+//! test, 0 ≤ d < 1) exactly when Δt²k < 2(1 + d): beyond that every step
+//! amplifies the motion and the hair explodes whatever else is set. So
+//! `time_step` · √`spring` ≥ √(2(1 + damping)) is rejected, naming the largest
+//! stable step (d = 0 gives the undamped Størmer–Verlet limit Δt·ω < 2).
+//! Damping above 1 would add energy every step: the param's range stops at
+//! 1. The length projection (4.2) cannot diverge — each sweep only moves
+//! nodes towards the rest lengths — so `iterations` sets accuracy, not
+//! stability: too few for the time step shows as stretch, which the
+//! `max_stretch` fault catches in the frame it happens.
 
 use std::cell::Cell;
 
@@ -188,12 +195,14 @@ fn number(pass: &ScheduledPass, name: &str) -> f64 {
 pub fn instability(pass: &ScheduledPass) -> Option<String> {
     let dt = number(pass, "time_step");
     let k = number(pass, "spring");
+    let d = number(pass, "damping");
+    let limit = (2.0 * (1.0 + d)).sqrt();
     let omega_dt = dt * k.sqrt();
-    (omega_dt >= 2.0).then(|| {
+    (omega_dt >= limit).then(|| {
         format!(
-            "time_step = {dt} with spring = {k} cannot be stable: Verlet integration of the spring needs time_step · √spring < 2 (here {omega_dt:.3}; Hairer, Lubich & Wanner 2003 §4.2). Use time_step < {:.6} or spring < {:.3}",
-            2.0 / k.sqrt(),
-            4.0 / (dt * dt)
+            "time_step = {dt} with spring = {k} and damping = {d} cannot be stable: Verlet steps (4.1) of the spring grow without bound unless time_step · √spring < √(2·(1 + damping)) = {limit:.3} (here {omega_dt:.3}). Use time_step < {:.6} or spring < {:.3}",
+            limit / k.sqrt(),
+            limit * limit / (dt * dt)
         )
     })
 }
