@@ -40,6 +40,7 @@ pub fn compile(
         .values()
         .map(|r| resolve_resource(r, opts, &mut errors))
         .collect();
+    check_histories(pipeline, &descs, &mut errors);
 
     let passes: Vec<ScheduledPass> = pipeline
         .passes
@@ -462,18 +463,22 @@ fn bind_slots(
             continue;
         }
         let Some(index) = pipeline.resources.get_index_of(&resource.value) else {
+            errors.push(undeclared(pipeline, resource));
+            continue;
+        };
+        if direction == Direction::Write
+            && let Some(of) = &pipeline.resources[index].previous_of
+        {
             errors.push(Error::new(
                 resource.location.clone(),
-                ErrorKind::UndeclaredResource {
-                    name: resource.value.clone(),
-                    hint: crate::suggest::did_you_mean(
-                        &resource.value,
-                        pipeline.resources.keys().map(String::as_str),
-                    ),
+                ErrorKind::WritesHistory {
+                    pass: decl.name.clone(),
+                    previous: resource.value.clone(),
+                    resource: of.resource.clone(),
                 },
             ));
             continue;
-        };
+        }
         let declared_kind = pipeline.resources[index].kind.value;
         let slot = slots.iter().find(|s| &s.name == slot_name);
         let (access, loads) = match (slot, spec) {
@@ -639,16 +644,31 @@ fn order_passes(
         let readers: Vec<usize> = (0..passes.len())
             .filter(|&p| reads_from(&passes[p], resource))
             .collect();
-        if writers.is_empty() {
+        // An earlier frame's version is written by the engine (a copy of the
+        // resource after each frame): it needs a writer of the resource.
+        let previous_of = pipeline.resources[resource].previous_of.as_ref();
+        let written_by_someone = match previous_of {
+            Some(of) => pipeline
+                .resources
+                .get_index_of(&of.resource)
+                .is_some_and(|base| passes.iter().any(|p| writes_to(p, base).is_some())),
+            None => !writers.is_empty(),
+        };
+        if !written_by_someone {
             for &r in &readers {
                 for b in passes[r].reads.iter().filter(|b| b.resource == resource) {
-                    errors.push(Error::new(
-                        b.location.clone(),
-                        ErrorKind::NeverWritten {
+                    let kind = match previous_of {
+                        Some(of) => ErrorKind::HistoryNeverWritten {
+                            previous: b.resource_name.clone(),
+                            resource: of.resource.clone(),
+                            reader: passes[r].name.clone(),
+                        },
+                        None => ErrorKind::NeverWritten {
                             resource: b.resource_name.clone(),
                             reader: passes[r].name.clone(),
                         },
-                    ));
+                    };
+                    errors.push(Error::new(b.location.clone(), kind));
                 }
             }
         }
@@ -794,24 +814,50 @@ fn build_schedule(
 ) -> Schedule {
     // Live passes: writers of outputs and everything they depend on. Walking
     // the execution order backwards sees every consumer before its producers.
+    // A history makes a read of `R.previous` need `R` (and the younger
+    // versions it is copied through), whose writers may come later in the
+    // order: walk again until nothing new is needed.
+    let history_chain = |r: usize| -> Vec<usize> {
+        let Some(of) = &pipeline.resources[r].previous_of else {
+            return Vec::new();
+        };
+        (0..of.frames_ago)
+            .filter_map(|k| {
+                let name = match k {
+                    0 => of.resource.clone(),
+                    k => crate::load::previous_name(&of.resource, k),
+                };
+                pipeline.resources.get_index_of(&name)
+            })
+            .collect()
+    };
     let mut needed: HashSet<usize> = outputs.iter().copied().collect();
     let mut live = vec![false; passes.len()];
-    for &p in order.iter().rev() {
-        if passes[p]
-            .writes
-            .iter()
-            .any(|b| needed.contains(&b.resource))
-        {
-            live[p] = true;
-            needed.extend(passes[p].reads.iter().map(|b| b.resource));
-            // A load-writer keeps earlier contents: their writers are needed too.
-            needed.extend(
-                passes[p]
+    loop {
+        let before = needed.len();
+        for &p in order.iter().rev() {
+            if !live[p]
+                && passes[p]
                     .writes
                     .iter()
-                    .filter(|b| b.loads)
-                    .map(|b| b.resource),
-            );
+                    .any(|b| needed.contains(&b.resource))
+            {
+                live[p] = true;
+                needed.extend(passes[p].reads.iter().map(|b| b.resource));
+                // A load-writer keeps earlier contents: their writers are needed too.
+                needed.extend(
+                    passes[p]
+                        .writes
+                        .iter()
+                        .filter(|b| b.loads)
+                        .map(|b| b.resource),
+                );
+            }
+        }
+        let chained: Vec<usize> = needed.iter().flat_map(|&r| history_chain(r)).collect();
+        needed.extend(chained);
+        if needed.len() == before {
+            break;
         }
     }
 
@@ -821,6 +867,9 @@ fn build_schedule(
         if live[p] {
             for b in pass.reads.iter().chain(&pass.writes) {
                 used[b.resource] = true;
+                for r in history_chain(b.resource) {
+                    used[r] = true;
+                }
             }
         }
     }
@@ -837,6 +886,9 @@ fn build_schedule(
                     first_use: usize::MAX,
                     last_use: 0,
                     physical: 0,
+                    // A history's versions come after it in declaration
+                    // order, so `of` is already renumbered.
+                    lifetime: declared_lifetime(decl, pipeline, &new_id),
                     location: decl.location.clone(),
                 });
             }
@@ -848,6 +900,28 @@ fn build_schedule(
             b.resource = new_id[b.resource];
         }
     }
+    let mut history = Vec::new();
+    for (r, resource) in resources.iter().enumerate() {
+        if let Lifetime::Previous { of, frames_ago } = resource.lifetime {
+            // Aged from the version one frame younger (the resource itself for 1).
+            let younger = match frames_ago {
+                1 => Some(of),
+                k => resources.iter().position(|y| {
+                    y.lifetime
+                        == Lifetime::Previous {
+                            of,
+                            frames_ago: k - 1,
+                        }
+                }),
+            };
+            if let Some(from) = younger {
+                history.push((frames_ago, HistoryCopy { from, to: r }));
+            }
+        }
+    }
+    // Oldest first: a version is copied on before it is overwritten.
+    history.sort_by_key(|(frames_ago, copy)| (Reverse(*frames_ago), copy.to));
+    let history: Vec<HistoryCopy> = history.into_iter().map(|(_, c)| c).collect();
 
     let mut slots: Vec<Option<ScheduledPass>> = passes.into_iter().map(Some).collect();
     let mut scheduled = Vec::new();
@@ -867,11 +941,14 @@ fn build_schedule(
     culled.sort_by_key(|(p, _)| *p);
     let culled = culled.into_iter().map(|(_, c)| c).collect();
 
-    // The first writer of a resource has nothing to load: it clears.
+    // The first writer of a resource has nothing to load: it clears. A
+    // persistent resource is never cleared by the engine: every writer loads.
     let mut written = vec![false; resources.len()];
     for pass in &mut scheduled {
         for b in &mut pass.writes {
-            if !written[b.resource] {
+            if resources[b.resource].lifetime == Lifetime::Persistent {
+                b.loads = true;
+            } else if !written[b.resource] {
                 let also_read = pass.reads.iter().any(|r| r.resource == b.resource);
                 if !also_read {
                     b.loads = false;
@@ -899,6 +976,12 @@ fn build_schedule(
     for &o in &output_ids {
         resources[o].last_use = end;
     }
+    // Contents that outlive the frame span all of it, so the memory plan
+    // never lends their allocation to another resource.
+    for r in resources.iter_mut().filter(|r| !r.lifetime.is_frame()) {
+        r.first_use = 0;
+        r.last_use = end;
+    }
 
     let (physical, memory) = plan_memory(&mut resources);
     Schedule {
@@ -917,7 +1000,85 @@ fn build_schedule(
         dropped_resources,
         physical,
         outputs: output_ids,
+        history,
         memory,
+    }
+}
+
+/// The lifetime a declaration asks for; `new_id` maps declaration indices to
+/// schedule ids.
+fn declared_lifetime(decl: &ResourceDecl, pipeline: &Pipeline, new_id: &[ResourceId]) -> Lifetime {
+    if let Some(of) = &decl.previous_of {
+        let base = pipeline
+            .resources
+            .get_index_of(&of.resource)
+            .map_or(DROPPED_RESOURCE, |i| new_id[i]);
+        return Lifetime::Previous {
+            of: base,
+            frames_ago: of.frames_ago,
+        };
+    }
+    match (&decl.history, &decl.persistent) {
+        (Some(h), _) => Lifetime::History { frames: h.value },
+        (None, Some(_)) => Lifetime::Persistent,
+        (None, None) => Lifetime::Frame,
+    }
+}
+
+/// A resource name that matches no declaration. `R.previous…` gets a message
+/// about `R`'s history; anything else the nearest declared name.
+fn undeclared(pipeline: &Pipeline, resource: &Spanned<String>) -> Error {
+    let name = &resource.value;
+    let kind = match crate::load::parse_previous_name(name) {
+        Some((base, frames_ago)) if pipeline.resources.contains_key(base) => {
+            let decl = &pipeline.resources[base];
+            let reason = match &decl.history {
+                None => format!(
+                    "`{base}` keeps no history; add `history = {frames_ago}` to [resources.{base}] ({}) to keep {}",
+                    decl.location,
+                    if frames_ago == 1 {
+                        "last frame's version".to_owned()
+                    } else {
+                        format!("the last {frames_ago} frames")
+                    }
+                ),
+                Some(h) => format!(
+                    "`{base}` keeps {} frame{} of history ({}); `{name}` needs `history = {frames_ago}`",
+                    h.value,
+                    if h.value == 1 { "" } else { "s" },
+                    h.location
+                ),
+            };
+            ErrorKind::NoHistory {
+                name: name.clone(),
+                reason,
+            }
+        }
+        _ => ErrorKind::UndeclaredResource {
+            name: name.clone(),
+            hint: crate::suggest::did_you_mean(name, pipeline.resources.keys().map(String::as_str)),
+        },
+    };
+    Error::new(resource.location.clone(), kind)
+}
+
+/// A history is kept by copying the resource after each frame; multisampled
+/// textures cannot be copied.
+fn check_histories(pipeline: &Pipeline, descs: &[Option<ResourceDesc>], errors: &mut Vec<Error>) {
+    for (decl, desc) in pipeline.resources.values().zip(descs) {
+        if let (Some(h), Some(ResourceDesc::Texture { samples, .. })) = (&decl.history, desc)
+            && *samples > 1
+        {
+            errors.push(Error::new(
+                h.location.clone(),
+                ErrorKind::BadResource {
+                    resource: decl.name.clone(),
+                    reason: format!(
+                        "a multisampled texture ({samples} samples) cannot be copied, so it cannot keep a history; resolve it into a single-sampled texture and give that one `history`"
+                    ),
+                },
+            ));
+        }
     }
 }
 
