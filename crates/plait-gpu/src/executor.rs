@@ -197,6 +197,23 @@ impl<'g> Renderer<'g> {
             .bind(&self.gpu.device, &self.frame_buffer, &view);
     }
 
+    /// Replace the hair's vertices with `strands` moved (the hair following
+    /// the head), before `render`. Fails when `strands` is not the uploaded
+    /// hair's shape.
+    pub fn set_hair(&self, strands: &plait_hair::Strands) -> Result<(), GpuError> {
+        if self.geometry.write_hair(&self.gpu.queue, strands) {
+            Ok(())
+        } else {
+            Err(GpuError::Resource {
+                resource: "hair vertices".into(),
+                message: format!(
+                    "{} points given, but the uploaded hair has a different count",
+                    strands.point_count()
+                ),
+            })
+        }
+    }
+
     /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
     pub fn set_frame(&self, frame: &FrameUniforms) {
         self.gpu
