@@ -71,7 +71,9 @@ fn upload<V: bytemuck::Pod>(
         label: Some(&format!("{label} vertices")),
         contents: bytemuck::cast_slice(vertices),
         // COPY_DST: the hair is rewritten when it follows the head.
-        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        usage: wgpu::BufferUsages::VERTEX
+            | wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST,
     });
     let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(&format!("{label} indices")),

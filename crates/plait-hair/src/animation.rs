@@ -77,7 +77,8 @@ impl Animation {
     /// Checks what serde cannot: finite numbers, at least one key, times
     /// strictly increasing. The error points at the offending value.
     pub fn validate(&self) -> Result<(), AnimationError> {
-        let error = |span: std::ops::Range<usize>, message: String| AnimationError { span, message };
+        let error =
+            |span: std::ops::Range<usize>, message: String| AnimationError { span, message };
         if self.keys.get_ref().is_empty() {
             return Err(error(
                 self.keys.span(),
@@ -93,13 +94,22 @@ impl Animation {
         for (i, key) in self.keys.get_ref().iter().enumerate() {
             let what = |field: &str| format!("animation.keys[{i}].{field}");
             if !key.time.get_ref().is_finite() {
-                return Err(error(key.time.span(), format!("{} must be finite", what("time"))));
+                return Err(error(
+                    key.time.span(),
+                    format!("{} must be finite", what("time")),
+                ));
             }
-            for (field, value) in [("rotate_degrees", &key.rotate_degrees), ("translate", &key.translate)] {
+            for (field, value) in [
+                ("rotate_degrees", &key.rotate_degrees),
+                ("translate", &key.translate),
+            ] {
                 if let Some(value) = value
                     && !value.get_ref().iter().all(|x| x.is_finite())
                 {
-                    return Err(error(value.span(), format!("{} must be finite", what(field))));
+                    return Err(error(
+                        value.span(),
+                        format!("{} must be finite", what(field)),
+                    ));
                 }
             }
             if let Some(before) = previous
@@ -136,7 +146,12 @@ impl Animation {
     /// Rotation and translation at `time`, between the keys around it.
     fn pose(&self, time: f32) -> (Quat, Vec3) {
         let keys = self.keys.get_ref();
-        let at = |k: &Key| (rotation(k), Vec3::from(k.translate.as_ref().map_or([0.0; 3], |t| *t.get_ref())));
+        let at = |k: &Key| {
+            (
+                rotation(k),
+                Vec3::from(k.translate.as_ref().map_or([0.0; 3], |t| *t.get_ref())),
+            )
+        };
         let (Some(first), Some(last)) = (keys.first(), keys.last()) else {
             return (Quat::IDENTITY, Vec3::ZERO);
         };
@@ -161,13 +176,19 @@ impl Animation {
 
     /// Time of the last key: how long the animation runs.
     pub fn duration(&self) -> f32 {
-        self.keys.get_ref().last().map_or(0.0, |k| *k.time.get_ref())
+        self.keys
+            .get_ref()
+            .last()
+            .map_or(0.0, |k| *k.time.get_ref())
     }
 }
 
 /// `[x, y, z]` degrees about X, then Y, then Z (as `[hair.transform]`).
 fn rotation(key: &Key) -> Quat {
-    let degrees = key.rotate_degrees.as_ref().map_or([0.0; 3], |r| *r.get_ref());
+    let degrees = key
+        .rotate_degrees
+        .as_ref()
+        .map_or([0.0; 3], |r| *r.get_ref());
     let [x, y, z] = degrees.map(f32::to_radians);
     Quat::from_rotation_z(z) * Quat::from_rotation_y(y) * Quat::from_rotation_x(x)
 }
@@ -194,7 +215,11 @@ mod tests {
         assert!((at(-1.0) - Vec3::X).length() < 1e-6);
         assert!((at(0.0) - Vec3::X).length() < 1e-6);
         // +X turned 90° about +Y is -Z, then lifted by 1.
-        assert!((at(1.0) - Vec3::new(0.0, 1.0, -1.0)).length() < 1e-5, "{}", at(1.0));
+        assert!(
+            (at(1.0) - Vec3::new(0.0, 1.0, -1.0)).length() < 1e-5,
+            "{}",
+            at(1.0)
+        );
         assert!((at(5.0) - at(1.0)).length() < 1e-6);
         // Halfway: 45° and half the lift, on the unit circle.
         let half = at(0.5);
@@ -208,7 +233,10 @@ mod tests {
         let a = parse(&TURN.replace("pivot", "interpolation = \"smooth\"\npivot"));
         let linear = parse(TURN);
         let x = |a: &Animation, t: f32| a.head_model(t, Vec3::ZERO).transform_point3(Vec3::X);
-        assert!((x(&a, 0.5) - x(&linear, 0.5)).length() < 1e-5, "symmetric at the middle");
+        assert!(
+            (x(&a, 0.5) - x(&linear, 0.5)).length() < 1e-5,
+            "symmetric at the middle"
+        );
         // Slower than linear near the keys.
         assert!(x(&a, 0.1).y < x(&linear, 0.1).y);
         assert!((x(&a, 1.0) - x(&linear, 1.0)).length() < 1e-6);
@@ -228,12 +256,22 @@ mod tests {
         let text = TURN.replace("time = 1.0", "time = 0.0");
         let e = parse(&text).validate().unwrap_err();
         assert_eq!(&text[e.span.clone()], "0.0");
-        assert!(e.span.start > text.find("time = 0.0\nrot").unwrap(), "the second key");
-        assert!(e.message.contains("key times must increase"), "{}", e.message);
+        assert!(
+            e.span.start > text.find("time = 0.0\nrot").unwrap(),
+            "the second key"
+        );
+        assert!(
+            e.message.contains("key times must increase"),
+            "{}",
+            e.message
+        );
         let text = TURN.replace("translate = [0, 1, 0]", "translate = [0, nan, 0]");
         let e = parse(&text).validate().unwrap_err();
         assert_eq!(&text[e.span.clone()], "[0, nan, 0]");
-        assert!(e.message.contains("animation.keys[1].translate must be finite"));
+        assert!(
+            e.message
+                .contains("animation.keys[1].translate must be finite")
+        );
         let text = TURN.replace("time = 1.0", "time = inf");
         let e = parse(&text).validate().unwrap_err();
         assert_eq!(&text[e.span], "inf");

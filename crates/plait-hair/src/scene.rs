@@ -535,7 +535,10 @@ impl Scene {
         match &self.animation {
             None => glam::Mat4::IDENTITY,
             Some(a) => {
-                let center = self.head.as_ref().map_or(Vec3::ZERO, |h| Vec3::from(h.center));
+                let center = self
+                    .head
+                    .as_ref()
+                    .map_or(Vec3::ZERO, |h| Vec3::from(h.center));
                 a.head_model(time, center)
             }
         }
@@ -696,7 +699,9 @@ mod tests {
             ),
             ("time = 1.0\nspin = 3", 1, "unknown field `spin`"),
         ] {
-            let e = Scene::from_toml_str(&keys(second), p).unwrap_err().to_string();
+            let e = Scene::from_toml_str(&keys(second), p)
+                .unwrap_err()
+                .to_string();
             let line = if second.contains('\n') { 13 } else { 12 };
             assert!(
                 e.starts_with(&format!("s.toml:{line}:{column}: ")) && e.contains(needle),

@@ -85,7 +85,8 @@ impl Prepared<'_> {
         let pose = FramePose::at(scene, index, fps);
         let hair = scene.hair_posed(pose.head);
         if self.hair_pose != pose.head {
-            self.renderer.set_hair(hair.as_ref().unwrap_or(&scene.strands))?;
+            self.renderer
+                .set_hair(hair.as_ref().unwrap_or(&scene.strands))?;
             self.hair_pose = pose.head;
         }
         self.renderer
