@@ -83,6 +83,7 @@ fn scheduled_pass(
         raster: Default::default(),
         location: Location::Builtin,
         technique: None,
+        run_once: false,
     }
 }
 

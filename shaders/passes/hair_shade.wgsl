@@ -1,9 +1,13 @@
-// hair_shade: Kajiya-Kay shading of hair fragments (Halén & Wester 2007 §3.2.1),
-// shadowed by opaque objects (Sintorn & Assarsson 2009 §3.5) and by the hair
-// itself through the visibility provider chosen by the `visibility` param,
+// hair_shade: shading of hair fragments, one provider per choice point —
+// the key light's reflection (`shading`: Kajiya-Kay by default, Halén &
+// Wester 2007 §3.2.1), shadowed by opaque objects (Sintorn & Assarsson 2009
+// §3.5) and by the hair itself (`visibility`); the rest of the environment's
+// light (`lighting`), darkened by per-vertex occlusion (`occlusion`) — then
 // blended into the colour target by the `blend` param.
 #import plait::frame::{frame, view_proj, to_light}
-#import plait::kajiya_kay::kajiya_kay
+#import plait::hair_direct::shade_direct
+#import plait::hair_environment::shade_environment
+#import plait::hair_occlusion::occlusion_at
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
 #ifdef BLEND_OCCUPANCY_ORDER
@@ -59,6 +63,9 @@ struct VertexIn {
     @location(2) tangent: vec3<f32>,
     @location(3) alpha: f32,
     @location(4) color: vec3<f32>,
+    // The vertex's index in the hair vertex buffer: per-vertex resources
+    // (ambient occlusion) are indexed by it.
+    @builtin(vertex_index) index: u32,
 }
 
 struct VertexOut {
@@ -67,6 +74,8 @@ struct VertexOut {
     @location(1) tangent: vec3<f32>,
     @location(2) color: vec3<f32>,
     @location(3) alpha: f32,
+    // Fraction of the environment's light reaching the strand here.
+    @location(4) occlusion: f32,
 }
 
 @vertex
@@ -77,6 +86,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.tangent = v.tangent;
     out.color = v.color;
     out.alpha = v.alpha;
+    out.occlusion = occlusion_at(v.index);
     return out;
 }
 
@@ -89,11 +99,11 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let tangent = normalize(in.tangent);
     let l = to_light(in.world);
     let e = normalize(frame.camera_position.xyz - in.world);
-    let s = frame.hair_shading;
-    let kk = kajiya_kay(tangent, l, e, s.x, s.y, s.z, s.w);
     let visibility = self_shadow(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
     let base = in.color * frame.hair_color.rgb;
-    let rgb = frame.light_color.rgb * (base * kk.x + vec3<f32>(kk.y)) * visibility + frame.ambient.rgb * base;
+    let direct = shade_direct(tangent, l, e, base);
+    let environment = shade_environment(in.world, tangent, e, base) * in.occlusion;
+    let rgb = frame.light_color.rgb * direct * visibility + environment;
 #ifdef TRANSPARENCY_MODULE
     return hair_fragment(in.clip, rgb, clamp(in.alpha * frame.hair_color.a, 0.0, 1.0));
 #else ifdef BLEND_OCCUPANCY_ORDER

@@ -145,6 +145,20 @@ fn resource_read_but_never_written() {
 }
 
 #[test]
+fn a_run_once_output_with_a_second_writer() {
+    bad_pipeline(
+        "run_once_second_writer.toml",
+        "only that pass may write it",
+        "run_once_second_writer.toml",
+    );
+}
+
+#[test]
+fn a_misspelt_run_suggests_once() {
+    bad_pipeline("run_every.toml", "did you mean `once`", "run_every.toml");
+}
+
+#[test]
 fn resource_written_by_two_unordered_passes() {
     bad_pipeline(
         "unordered_writers.toml",

@@ -23,6 +23,10 @@ pub struct PassTiming {
     /// What the pass found out while recording ([`PreparedPass::stats`]), e.g. `layers`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub stats: Vec<(String, f64)>,
+    /// A `run = "once"` pass not recorded this frame: its outputs are the
+    /// first frame's, and `gpu_ms` is that frame's time.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub cached: bool,
 }
 
 /// What one frame cost.
@@ -53,6 +57,11 @@ pub struct Renderer<'g> {
     passes: Vec<Box<dyn PreparedPass>>,
     timestamps: Option<Timestamps>,
     notes: Vec<String>,
+    /// Frames rendered so far: `run = "once"` passes record on the first.
+    frames_rendered: std::sync::atomic::AtomicU64,
+    /// GPU time of each pass on the frame it last ran (what a cached
+    /// `run = "once"` pass reports).
+    last_ms: std::sync::Mutex<Vec<Option<f64>>>,
 }
 
 impl<'g> Renderer<'g> {
@@ -172,6 +181,8 @@ impl<'g> Renderer<'g> {
             frame_buffer,
             frame_group,
             frame_bind_group,
+            last_ms: std::sync::Mutex::new(vec![None; passes.len()]),
+            frames_rendered: std::sync::atomic::AtomicU64::new(0),
             passes,
             timestamps,
             notes,
@@ -239,10 +250,17 @@ impl<'g> Renderer<'g> {
         if let Some(ts) = &self.timestamps {
             encoder.write_timestamp(&ts.queries, 0);
         }
+        let first_frame = self
+            .frames_rendered
+            .load(std::sync::atomic::Ordering::Relaxed)
+            == 0;
+        let skipped = |i: usize| self.schedule.passes[i].run_once && !first_frame;
         for (i, pass) in self.passes.iter().enumerate() {
-            encoder.push_debug_group(&self.schedule.passes[i].name);
-            pass.record(&ctx, &mut encoder);
-            encoder.pop_debug_group();
+            if !skipped(i) {
+                encoder.push_debug_group(&self.schedule.passes[i].name);
+                pass.record(&ctx, &mut encoder);
+                encoder.pop_debug_group();
+            }
             // The frame's last timestamp also covers aging the histories.
             if i + 1 == self.passes.len() {
                 self.record_history(&mut encoder);
@@ -285,18 +303,27 @@ impl<'g> Renderer<'g> {
         }
         let ms = |a: u64, b: u64, period: f32| b.saturating_sub(a) as f64 * period as f64 / 1e6;
         let period = self.timestamps.as_ref().map(|t| t.period_ns).unwrap_or(1.0);
+        let mut last_ms = self.last_ms.lock().unwrap_or_else(|e| e.into_inner());
         let passes = self
             .schedule
             .passes
             .iter()
             .enumerate()
-            .map(|(i, p)| PassTiming {
-                name: p.name.clone(),
-                type_name: p.type_name.clone(),
-                gpu_ms: times.as_ref().map(|t| ms(t[i], t[i + 1], period)),
-                stats: self.passes[i].stats(),
+            .map(|(i, p)| {
+                if !skipped(i) {
+                    last_ms[i] = times.as_ref().map(|t| ms(t[i], t[i + 1], period));
+                }
+                PassTiming {
+                    name: p.name.clone(),
+                    type_name: p.type_name.clone(),
+                    gpu_ms: last_ms[i],
+                    stats: self.passes[i].stats(),
+                    cached: skipped(i),
+                }
             })
             .collect();
+        self.frames_rendered
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let total_gpu_ms = times
             .as_ref()
             .map(|t| ms(t[0], t[self.passes.len()], period));

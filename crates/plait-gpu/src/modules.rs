@@ -90,7 +90,10 @@ pub fn library_stamp() -> u64 {
     }
     // Providers found on the search path: one added, edited or removed
     // changes the library too.
-    for path in crate::shader::extra_providers() {
+    for path in crate::shader::PROVIDER_POINTS
+        .iter()
+        .flat_map(crate::shader::extra_providers)
+    {
         let meta = std::fs::metadata(&path).ok();
         (&path, meta.as_ref().map(|m| m.len())).hash(&mut h);
         meta.and_then(|m| m.modified().ok()).hash(&mut h);

@@ -71,6 +71,30 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/self_shadow.wgsl"),
     ),
     (
+        "shaders/lib/shading/kajiya_kay.wgsl",
+        include_str!("../../../shaders/lib/shading/kajiya_kay.wgsl"),
+    ),
+    (
+        "shaders/lib/hair_direct.wgsl",
+        include_str!("../../../shaders/lib/hair_direct.wgsl"),
+    ),
+    (
+        "shaders/lib/lighting/ambient.wgsl",
+        include_str!("../../../shaders/lib/lighting/ambient.wgsl"),
+    ),
+    (
+        "shaders/lib/hair_environment.wgsl",
+        include_str!("../../../shaders/lib/hair_environment.wgsl"),
+    ),
+    (
+        "shaders/lib/occlusion/none.wgsl",
+        include_str!("../../../shaders/lib/occlusion/none.wgsl"),
+    ),
+    (
+        "shaders/lib/hair_occlusion.wgsl",
+        include_str!("../../../shaders/lib/hair_occlusion.wgsl"),
+    ),
+    (
         "shaders/lib/transparency/depth_peel.wgsl",
         include_str!("../../../shaders/lib/transparency/depth_peel.wgsl"),
     ),
@@ -88,52 +112,145 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
     ),
 ];
 
-/// The module that picks a visibility provider by define; providers are
-/// added to the composer before it.
-const SELF_SHADOW_MODULE: &str = "shaders/lib/self_shadow.wgsl";
+/// A choice point answered in WGSL: every technique of the point supplies a
+/// provider module `MODULE::NAME` (file `DIR/NAME.wgsl`) defining one
+/// function, and a selector module imports the one the pass's param names
+/// (`#ifdef PARAM_NAME`). A new provider is a WGSL file plus its import line
+/// in the selector, never a line of Rust: files on the search path beyond the
+/// built-in list are found by [`extra_providers`].
+pub struct ProviderPoint {
+    /// Folder of the provider files, e.g. `shaders/lib/visibility`.
+    pub dir: &'static str,
+    /// The module that picks a provider by define; providers are added to the
+    /// composer before it.
+    pub selector: &'static str,
+    /// Module path prefix: `plait::visibility` → `plait::visibility::NAME`.
+    pub module: &'static str,
+    /// The function every provider defines, and its WGSL signature.
+    pub function: &'static str,
+    pub params: &'static str,
+    pub returns: &'static str,
+}
 
-/// Visibility provider modules of the library that are not in
-/// [`LIBRARY_MODULES`]: files in `shaders/lib/visibility/` on the search path
-/// or among the built-in copies.
-pub fn extra_providers() -> Vec<PathBuf> {
-    plait_assets::list("shaders/lib/visibility", "wgsl")
+/// Self-shadowing (`visibility`), key-light shading (`shading`), light from
+/// the rest of the environment (`lighting`), per-vertex occlusion (`occlusion`).
+pub const PROVIDER_POINTS: &[ProviderPoint] = &[
+    ProviderPoint {
+        dir: "shaders/lib/visibility",
+        selector: "shaders/lib/self_shadow.wgsl",
+        module: "plait::visibility",
+        function: "hair_visibility",
+        params: "world: vec3<f32>",
+        returns: "f32",
+    },
+    ProviderPoint {
+        dir: "shaders/lib/shading",
+        selector: "shaders/lib/hair_direct.wgsl",
+        module: "plait::shading",
+        function: "hair_direct",
+        params: "tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>",
+        returns: "vec3<f32>",
+    },
+    ProviderPoint {
+        dir: "shaders/lib/lighting",
+        selector: "shaders/lib/hair_environment.wgsl",
+        module: "plait::lighting",
+        function: "hair_environment",
+        params: "world: vec3<f32>, tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>",
+        returns: "vec3<f32>",
+    },
+    ProviderPoint {
+        dir: "shaders/lib/occlusion",
+        selector: "shaders/lib/hair_occlusion.wgsl",
+        module: "plait::occlusion",
+        function: "vertex_occlusion",
+        params: "vertex_index: u32",
+        returns: "f32",
+    },
+];
+
+impl ProviderPoint {
+    /// The point by its folder's last component (`visibility`, `shading`, …).
+    pub fn named(name: &str) -> Option<&'static ProviderPoint> {
+        PROVIDER_POINTS
+            .iter()
+            .find(|p| p.dir.rsplit('/').next() == Some(name))
+    }
+
+    /// Provider names, by param value: the built-in modules, then files on
+    /// the search path (`tressfx.wgsl` → `visibility = "tressfx"`).
+    pub fn providers(&self) -> Vec<String> {
+        let prefix = format!("{}/", self.dir);
+        let built_in = LIBRARY_MODULES.iter().filter_map(|(path, _)| {
+            path.strip_prefix(prefix.as_str())?
+                .strip_suffix(".wgsl")
+                .map(str::to_owned)
+        });
+        let extra = extra_providers(self)
+            .into_iter()
+            .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_owned));
+        built_in.chain(extra).collect()
+    }
+
+    fn signature(&self) -> String {
+        format!("fn {}({}) -> {}", self.function, self.params, self.returns)
+    }
+
+    /// Checked by composing a call to the provider's function, so a missing
+    /// function or a wrong signature is an error that names the provider's
+    /// file before any pass uses it.
+    fn check_contract(&self, composer: &mut Composer, path: &Path) -> Result<(), ShaderError> {
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+        let args: Vec<&str> = self
+            .params
+            .split(',')
+            .filter_map(|p| p.split(':').next())
+            .map(str::trim)
+            .collect();
+        let probe = format!(
+            "#import {}::{name}::{}\n\
+             fn plait_contract({}) -> {} {{ return {}({}); }}\n",
+            self.module,
+            self.function,
+            self.params,
+            self.returns,
+            self.function,
+            args.join(", ")
+        );
+        composer
+            .make_naga_module(NagaModuleDescriptor {
+                source: &probe,
+                file_path: &format!("the contract of {}", path.display()),
+                shader_type: ShaderType::Wgsl,
+                shader_defs: HashMap::new(),
+                additional_imports: &[],
+            })
+            .map(|_| ())
+            .map_err(|e| ShaderError {
+                path: path.to_owned(),
+                message: format!(
+                    "{} provider `{name}` must define `{}`:\n{}",
+                    self.dir.rsplit('/').next().unwrap_or(""),
+                    self.signature(),
+                    e.emit_to_string(composer)
+                ),
+            })
+    }
+}
+
+/// Provider modules of `point` that are not in [`LIBRARY_MODULES`]: files in
+/// its folder on the search path or among the built-in copies.
+pub fn extra_providers(point: &ProviderPoint) -> Vec<PathBuf> {
+    let prefix = format!("{}/", point.dir);
+    plait_assets::list(point.dir, "wgsl")
         .into_iter()
         .filter(|p| {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
             !LIBRARY_MODULES
                 .iter()
-                .any(|(known, _)| known.strip_prefix("shaders/lib/visibility/") == Some(name))
+                .any(|(known, _)| known.strip_prefix(prefix.as_str()) == Some(name))
         })
         .collect()
-}
-
-/// The contract of a visibility provider (`shaders/lib/visibility/NAME.wgsl`,
-/// module `plait::visibility::NAME`): it defines
-/// `fn hair_visibility(world: vec3<f32>) -> f32`. Checked by composing a
-/// call to it, so a missing function or a wrong signature is an error that
-/// names the provider's file before any pass uses it.
-fn check_provider_contract(composer: &mut Composer, path: &Path) -> Result<(), ShaderError> {
-    let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-    let probe = format!(
-        "#import plait::visibility::{name}::hair_visibility\n\
-         fn plait_contract(world: vec3<f32>) -> f32 {{ return hair_visibility(world); }}\n"
-    );
-    composer
-        .make_naga_module(NagaModuleDescriptor {
-            source: &probe,
-            file_path: &format!("the contract of {}", path.display()),
-            shader_type: ShaderType::Wgsl,
-            shader_defs: HashMap::new(),
-            additional_imports: &[],
-        })
-        .map(|_| ())
-        .map_err(|e| ShaderError {
-            path: path.to_owned(),
-            message: format!(
-                "visibility provider `{name}` must define `fn hair_visibility(world: vec3<f32>) -> f32`:\n{}",
-                e.emit_to_string(composer)
-            ),
-        })
 }
 
 /// The text of a library file compiled into plait (a library module, a pass
@@ -213,12 +330,10 @@ impl ShaderLibrary {
                 })
         };
         for (name, builtin) in LIBRARY_MODULES {
-            if *name == SELF_SHADOW_MODULE {
-                // Visibility providers beyond the built-in list: a new one is
-                // a WGSL file in shaders/lib/visibility/ plus its import line
-                // in self_shadow.wgsl, never a line of Rust. They go in before
-                // the module that imports them.
-                for path in extra_providers() {
+            if let Some(point) = PROVIDER_POINTS.iter().find(|p| p.selector == *name) {
+                // Providers beyond the built-in list go in before the selector
+                // that imports them.
+                for path in extra_providers(point) {
                     let source = plait_assets::read_to_string(&path).map_err(|e| ShaderError {
                         message: format!("cannot read shader {}: {e}", path.display()),
                         path: path.clone(),
@@ -229,13 +344,16 @@ impl ShaderLibrary {
             let (path, source) = library_source(name, builtin)?;
             add(&mut composer, path, &source)?;
         }
-        let providers = LIBRARY_MODULES
-            .iter()
-            .filter(|(name, _)| name.starts_with("shaders/lib/visibility/"))
-            .map(|(name, _)| PathBuf::from(name))
-            .chain(extra_providers());
-        for path in providers {
-            check_provider_contract(&mut composer, &path)?;
+        for point in PROVIDER_POINTS {
+            let prefix = format!("{}/", point.dir);
+            let providers = LIBRARY_MODULES
+                .iter()
+                .filter(|(name, _)| name.starts_with(prefix.as_str()))
+                .map(|(name, _)| PathBuf::from(name))
+                .chain(extra_providers(point));
+            for path in providers {
+                point.check_contract(&mut composer, &path)?;
+            }
         }
         Ok(ShaderLibrary {
             composer,

@@ -49,6 +49,7 @@ pub fn compile(
         .collect();
 
     let outputs = check_outputs(pipeline, &passes, &mut errors);
+    crate::run_once::check_writers(pipeline, &passes, &mut errors);
     let order = order_passes(&passes, pipeline, &mut errors);
 
     let Some(order) = order.filter(|_| errors.is_empty()) else {
@@ -414,6 +415,7 @@ fn resolve_pass(
         shader: decl.shader.as_ref().map(|s| s.value.clone()),
         shader_location: decl.shader.as_ref().map(|s| s.location.clone()),
         raster: decl.raster.clone(),
+        run_once: decl.run_once.is_some(),
         location: decl.location.clone(),
         technique: match &decl.location {
             Location::File { path, .. } => pipeline
@@ -889,6 +891,7 @@ fn build_schedule(
                     // A history's versions come after it in declaration
                     // order, so `of` is already renumbered.
                     lifetime: declared_lifetime(decl, pipeline, &new_id),
+                    kept: false,
                     location: decl.location.clone(),
                 });
             }
@@ -982,6 +985,7 @@ fn build_schedule(
         r.first_use = 0;
         r.last_use = end;
     }
+    crate::run_once::keep_across_frames(&scheduled, &mut resources);
 
     let (physical, memory) = plan_memory(&mut resources);
     Schedule {

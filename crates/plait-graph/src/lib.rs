@@ -26,6 +26,7 @@ mod node_reader;
 mod overrides;
 pub mod pass_type_file;
 pub mod raster_decl;
+mod run_once;
 pub mod schedule;
 mod shader_path;
 pub mod snapshot;

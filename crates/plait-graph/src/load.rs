@@ -154,6 +154,9 @@ pub struct PassDecl {
     pub shader: Option<Spanned<PathBuf>>,
     /// `depth`, `blend`, `cull` ([`crate::raster_decl`]).
     pub raster: crate::raster_decl::RasterDecl,
+    /// Where `run = "once"` was written: the pass is a precompute that runs
+    /// on an executor's first frame only, its outputs kept across frames.
+    pub run_once: Option<Location>,
     pub location: Location,
 }
 

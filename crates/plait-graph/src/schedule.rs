@@ -148,6 +148,10 @@ pub struct ScheduledPass {
     pub location: Location,
     /// The technique that declared the pass (`self_shadow/occupancy`), if any.
     pub technique: Option<String>,
+    /// `run = "once"`: a precompute recorded on an executor's first frame
+    /// only; what it writes is kept across frames ([`ResolvedResource::kept`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub run_once: bool,
 }
 
 /// Why a pass does not run.
@@ -166,9 +170,13 @@ pub struct ResolvedResource {
     pub first_use: usize,
     pub last_use: usize,
     pub physical: PhysicalId,
-    /// Whether the contents outlive the frame.
+    /// Whether the contents outlive the frame (`persistent`, `history`).
     #[serde(skip_serializing_if = "Lifetime::is_frame")]
     pub lifetime: Lifetime,
+    /// Its contents outlive the frame (written by a `run = "once"` pass), so
+    /// it lives from the first pass to the last and shares no allocation.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub kept: bool,
     #[serde(skip)]
     pub location: Location,
 }

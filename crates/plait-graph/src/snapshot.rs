@@ -60,10 +60,10 @@ pub fn schedule_text(s: &Schedule) -> String {
         } else {
             format!(" (shared with {})", shared.join(", "))
         };
-        let output = if s.outputs.contains(&id) {
-            " [output]"
-        } else {
-            ""
+        let output = match (s.outputs.contains(&id), r.kept) {
+            (true, _) => " [output]",
+            (false, true) => " [kept across frames]",
+            (false, false) => "",
         };
         let lifetime = match r.lifetime {
             Lifetime::Frame => String::new(),
@@ -122,6 +122,9 @@ fn pass_text(out: &mut String, prefix: &str, p: &crate::schedule::ScheduledPass,
     }
     if let Some(draw) = &p.draw {
         head += &format!(" draw={draw}");
+    }
+    if p.run_once {
+        head += " run=once";
     }
     let _ = writeln!(out, "{head}");
     if let Some(shader) = &p.shader {

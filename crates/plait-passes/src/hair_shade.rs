@@ -1,4 +1,5 @@
-//! `hair_shade`: Kajiya-Kay hair (Halén & Wester 2007 §3.2.1), shadowed by
+//! `hair_shade`: hair lit by the shading, lighting and occlusion providers
+//! (Kajiya-Kay by default, Halén & Wester 2007 §3.2.1), shadowed by
 //! opaque objects (Sintorn & Assarsson 2009 §3.5) and by the hair itself through
 //! the visibility provider, blended "over" the colour target.
 //!
@@ -15,28 +16,23 @@ use plait_gpu::pass::{BlendPreset, BuiltinShader, DepthMode, PassType, RasterSta
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::spec_util::{DEPTH, HDR, SlotExt, buffer, choice, texture};
-use crate::visibility;
+use crate::transparency;
 
 pub struct HairShade;
 
 /// Premultiplied-alpha "over".
 impl PassType for HairShade {
     fn spec(&self) -> PassTypeSpec {
-        let mut inputs = vec![
-            texture(
-                "shadow_map",
-                Access::Sampled,
-                DEPTH,
-                "opaque shadow map from the light",
-            ),
+        let mut inputs = transparency::shading_inputs();
+        inputs.insert(
+            1,
             texture(
                 "depth",
                 Access::DepthTarget,
                 DEPTH,
                 "camera depth of opaque geometry (tested, not written)",
             ),
-        ];
-        inputs.extend(visibility::slots());
+        );
         inputs.extend([
             texture(
                 "order_range",
@@ -58,7 +54,7 @@ impl PassType for HairShade {
             )
             .optional(),
         ]);
-        let mut params = visibility::params();
+        let mut params = transparency::shading_params();
         params.push(choice(
             "blend",
             "over",
@@ -81,7 +77,7 @@ impl PassType for HairShade {
                 "hair_shade",
                 PassShape::Raster,
                 "Halén & Wester 2007 §3.2.1; Sintorn & Assarsson 2009 §3.2-3.5",
-                "Kajiya-Kay hair shading with opaque and self shadows, blended over the target.",
+                "Hair shading (shading, lighting, occlusion providers) with opaque and self shadows, blended over the target.",
             )
         }
     }

@@ -15,12 +15,13 @@ use plait_gpu::pass::{BuiltinShader, default_defines};
 use plait_graph::{Access, ParamSpec, ScheduledPass, SlotSpec};
 
 use crate::spec_util::{DEPTH, texture};
-use crate::visibility;
+use crate::{lighting, occlusion, shading, visibility};
 
 pub const HAIR_SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/hair_shade.wgsl");
 
-/// The shading inputs of every hair pass: the opaque shadow map and the
-/// visibility provider's light maps.
+/// The shading inputs of every hair pass: the opaque shadow map, the
+/// visibility provider's light maps, and what the shading, lighting and
+/// occlusion providers bind.
 pub fn shading_inputs() -> Vec<SlotSpec> {
     let mut v = vec![texture(
         "shadow_map",
@@ -29,11 +30,19 @@ pub fn shading_inputs() -> Vec<SlotSpec> {
         "opaque shadow map from the light",
     )];
     v.extend(visibility::slots());
+    v.extend(shading::slots());
+    v.extend(lighting::slots());
+    v.extend(occlusion::slots());
     v
 }
 
+/// The params of every provider a hair pass composes.
 pub fn shading_params() -> Vec<ParamSpec> {
-    visibility::params()
+    let mut p = visibility::params();
+    p.extend(shading::params());
+    p.extend(lighting::params());
+    p.extend(occlusion::params());
+    p
 }
 
 /// The shading defines plus the transparency module's (`TRANSPARENCY_<MODULE>`).

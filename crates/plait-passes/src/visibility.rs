@@ -7,7 +7,6 @@
 //! shading pass changes; `plait::visibility::tressfx` was added so); maps or
 //! params no provider has used yet are declared here.
 
-use plait_gpu::shader::LIBRARY_MODULES;
 use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
 use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
@@ -16,15 +15,9 @@ use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 /// (`tressfx.wgsl` → `visibility = "tressfx"`), so a provider that needs no
 /// maps or params beyond those below is WGSL alone.
 pub fn providers() -> Vec<String> {
-    let built_in = LIBRARY_MODULES.iter().filter_map(|(path, _)| {
-        path.strip_prefix("shaders/lib/visibility/")?
-            .strip_suffix(".wgsl")
-            .map(str::to_owned)
-    });
-    let extra = plait_gpu::shader::extra_providers()
-        .into_iter()
-        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_owned));
-    built_in.chain(extra).collect()
+    plait_gpu::shader::ProviderPoint::named("visibility")
+        .map(|p| p.providers())
+        .unwrap_or_default()
 }
 
 /// The optional input slots any provider may need.

@@ -28,9 +28,11 @@ pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size", "history", "persistent
 pub const MAX_HISTORY: i64 = 8;
 pub(crate) const PASS_KEYS: &[&str] = &[
     "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses", "depth",
-    "blend", "cull",
+    "blend", "cull", "run",
 ];
 const VIEWS: &[&str] = &["light", "camera"];
+/// `run = "once"`: a precompute whose outputs are kept across frames.
+const RUNS: &[&str] = &["every_frame", "once"];
 const DRAWS: &[&str] = &["hair", "opaque"];
 
 struct Builder<'e> {
@@ -490,6 +492,11 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
         .get("shader")
         .and_then(|e| b.string(e, &format!("passes.{name}.shader")))
         .map(|s| Spanned::new(resolve_shader(&s.value, &s.location), s.location));
+    let run_once = t
+        .get("run")
+        .and_then(|e| b.one_of(e, &format!("passes.{name}.run"), RUNS))
+        .filter(|r| r.value == "once")
+        .map(|r| r.location);
     Some(PassDecl {
         name: name.to_owned(),
         type_name,
@@ -500,6 +507,7 @@ fn build_pass(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<PassDecl
         params,
         shader,
         raster: crate::raster_decl::parse(t, &format!("passes.{name}"), b.errors),
+        run_once,
         location: entry.key.clone(),
     })
 }

@@ -1,0 +1,32 @@
+//! Occlusion providers: every `ambient_occlusion` technique answers
+//! `vertex_occlusion(vertex_index) -> f32` in the hair vertex shader: the
+//! fraction of the environment's light reaching the vertex
+//! (`shaders/lib/hair_occlusion.wgsl` picks the provider the `occlusion` param
+//! names). Its uniform is `occlusion_params` (binding 40), its per-vertex
+//! resources bind at 41–44 through the optional slots below.
+
+use plait_graph::{ParamSpec, SlotSpec};
+
+use crate::spec_util::choice;
+
+/// The providers, by param value: every module in `shaders/lib/occlusion/`.
+pub fn providers() -> Vec<String> {
+    plait_gpu::shader::ProviderPoint::named("occlusion")
+        .map(|p| p.providers())
+        .unwrap_or_default()
+}
+
+/// The optional input slots any provider may need.
+pub fn slots() -> Vec<SlotSpec> {
+    Vec::new()
+}
+
+/// Params of the providers (filled into `occlusion_params` by member name).
+pub fn params() -> Vec<ParamSpec> {
+    vec![choice(
+        "occlusion",
+        "none",
+        &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+        "per-vertex ambient occlusion of the environment's light (occlusion provider)",
+    )]
+}
