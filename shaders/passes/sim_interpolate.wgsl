@@ -10,6 +10,8 @@
 // inside the strand, one-sided at its ends. One thread per drawn point;
 // thickness, alpha, colour and strand id are left as they are.
 
+#import plait::frame::frame
+
 struct HairVertex {
     position: vec3<f32>,
     thickness: f32,
@@ -32,16 +34,6 @@ struct StrandGuide {
 @group(1) @binding(1) var<storage, read> guide_strands: array<vec2<u32>>;
 @group(1) @binding(2) var<storage, read> strand_guides: array<StrandGuide>;
 @group(1) @binding(3) var<storage, read_write> hair_vertices: array<HairVertex>;
-
-// The head's pose now: rigid. Static until the scene animates the head.
-fn head_model() -> mat4x4<f32> {
-    return mat4x4<f32>(
-        vec4<f32>(1.0, 0.0, 0.0, 0.0),
-        vec4<f32>(0.0, 1.0, 0.0, 0.0),
-        vec4<f32>(0.0, 0.0, 1.0, 0.0),
-        vec4<f32>(0.0, 0.0, 0.0, 1.0),
-    );
-}
 
 fn guide_point(g: u32, k: u32) -> vec3<f32> {
     let strand = guide_strands[g];
@@ -71,7 +63,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let b = strand_guides[strand];
     let count = u32(b.root.w);
     let k = i - b.ids.w;
-    let root = (head_model() * vec4<f32>(b.root.xyz, 1.0)).xyz;
+    let root = (frame.head_model * vec4<f32>(b.root.xyz, 1.0)).xyz;
     let start = blended(b, 0u);
     let here = point_of(b, root, start, k);
     let before = point_of(b, root, start, select(k - 1u, 0u, k == 0u));

@@ -50,14 +50,21 @@ struct Collider {
 
 const UP: vec3<f32> = vec3<f32>(0.0, 1.0, 0.0);
 
-// The head's pose at fraction `t` of this frame: rigid (rotation + translation).
-// Static until the scene animates the head.
+// The head's pose at fraction `t` of this frame, between last frame's and
+// this frame's `head_model` (the scene's [animation]): the columns are
+// interpolated and re-orthonormalised, so it stays rigid.
 fn head_model(t: f32) -> mat4x4<f32> {
+    let a = frame.head_model_previous;
+    let b = frame.head_model;
+    let x = normalize(mix(a[0].xyz, b[0].xyz, t));
+    let y0 = mix(a[1].xyz, b[1].xyz, t);
+    let y = normalize(y0 - dot(y0, x) * x);
+    let z = cross(x, y);
     return mat4x4<f32>(
-        vec4<f32>(1.0, 0.0, 0.0, 0.0),
-        vec4<f32>(0.0, 1.0, 0.0, 0.0),
-        vec4<f32>(0.0, 0.0, 1.0, 0.0),
-        vec4<f32>(0.0, 0.0, 0.0, 1.0),
+        vec4<f32>(x, 0.0),
+        vec4<f32>(y, 0.0),
+        vec4<f32>(z, 0.0),
+        vec4<f32>(mix(a[3].xyz, b[3].xyz, t), 1.0),
     );
 }
 

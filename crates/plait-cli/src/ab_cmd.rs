@@ -8,9 +8,9 @@
 //! a half-written report; an interrupt removes the temporary directory.
 
 use std::io::IsTerminal as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::Result;
 use clap::Args;
 use plait::ab::{AbError, AbOptions, Plan, Step, SweepSpec};
 use plait_compare::report::Report;
@@ -47,104 +47,6 @@ pub struct AbArgs {
     /// Report directory (replaced if it holds an earlier report).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-}
-
-/// Where the report goes: a temporary directory beside `out`, renamed at the end.
-struct PendingDir {
-    out: PathBuf,
-    parent: PathBuf,
-    temp: tempfile::TempDir,
-    _interrupt: crate::output::InterruptGuard,
-}
-
-impl PendingDir {
-    fn create(out: &Path) -> Result<Self> {
-        if out.exists() && !out.is_dir() {
-            bail!("--out {}: exists and is not a directory", out.display());
-        }
-        if out.is_dir() {
-            let empty = std::fs::read_dir(out)
-                .map(|mut d| d.next().is_none())
-                .unwrap_or(false);
-            if !empty && !out.join("report.json").exists() {
-                bail!(
-                    "--out {}: exists and is not an earlier `plait ab` report (no report.json); refusing to replace it",
-                    out.display()
-                );
-            }
-        }
-        let parent = match out.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        std::fs::create_dir_all(&parent).with_context(|| {
-            format!(
-                "--out {}: cannot create {}",
-                out.display(),
-                parent.display()
-            )
-        })?;
-        let temp = tempfile::Builder::new()
-            .prefix(".plait-ab-")
-            .tempdir_in(&parent)
-            .with_context(|| {
-                format!(
-                    "--out {}: cannot write in {}",
-                    out.display(),
-                    parent.display()
-                )
-            })?;
-        Ok(PendingDir {
-            out: out.to_path_buf(),
-            parent,
-            _interrupt: crate::output::remove_on_interrupt(temp.path()),
-            temp,
-        })
-    }
-
-    /// The temporary directory the report is written into.
-    fn dir(&self) -> &Path {
-        self.temp.path()
-    }
-
-    /// Move the finished report into place (replacing an earlier one),
-    /// with interrupts held off until it is.
-    fn commit(self) -> Result<()> {
-        crate::output::uninterrupted(|| self.move_into_place())
-    }
-
-    fn move_into_place(self) -> Result<()> {
-        let temp = self.temp.keep();
-        crate::output::readable_by_all(&temp, 0o755);
-        for entry in std::fs::read_dir(&temp).into_iter().flatten().flatten() {
-            crate::output::readable_by_all(&entry.path(), 0o644);
-        }
-        let mut old = None;
-        if self.out.exists() {
-            let aside = tempfile::Builder::new()
-                .prefix(".plait-ab-old-")
-                .tempdir_in(&self.parent)?
-                .keep();
-            std::fs::remove_dir(&aside).ok();
-            std::fs::rename(&self.out, &aside).with_context(|| {
-                format!(
-                    "--out {}: cannot move the earlier report aside",
-                    self.out.display()
-                )
-            })?;
-            old = Some(aside);
-        }
-        std::fs::rename(&temp, &self.out).with_context(|| {
-            format!(
-                "--out {}: cannot move the report into place",
-                self.out.display()
-            )
-        })?;
-        if let Some(old) = old {
-            std::fs::remove_dir_all(old).ok();
-        }
-        Ok(())
-    }
 }
 
 /// Progress: a bar on a terminal, plain lines otherwise.
@@ -186,7 +88,7 @@ impl Progress {
 
 pub fn run(args: AbArgs) -> Result<()> {
     // Everything a user can get wrong fails before the GPU is opened.
-    let pending = PendingDir::create(&args.out)?;
+    let pending = crate::output::PendingDir::create(&args.out, "report.json", "`plait ab` report")?;
     let plan = Plan::new(AbOptions {
         pipelines: args.pipelines,
         reference: args.reference,

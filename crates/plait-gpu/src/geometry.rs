@@ -16,6 +16,9 @@ pub struct OpaqueVertex {
     pub position: [f32; 3],
     pub normal: [f32; 3],
     pub albedo: [f32; 3],
+    /// 1 for the head's vertices, which move with `frame.head_model`; 0 for
+    /// everything else.
+    pub head: f32,
 }
 
 /// Vertex buffer layout of hair (`StrandVertex`): locations 0–5 =
@@ -23,9 +26,10 @@ pub struct OpaqueVertex {
 pub const HAIR_VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
     0 => Float32x3, 1 => Float32, 2 => Float32x3, 3 => Float32, 4 => Float32x3, 5 => Uint32
 ];
-/// Vertex buffer layout of opaque geometry: locations 0–2 = position, normal, albedo.
-pub const OPAQUE_VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
-    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x3];
+/// Vertex buffer layout of opaque geometry: locations 0–3 = position, normal,
+/// albedo, head weight.
+pub const OPAQUE_VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x3, 3 => Float32];
 
 pub fn hair_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     wgpu::VertexBufferLayout {
@@ -187,10 +191,12 @@ fn upload<V: bytemuck::Pod>(
     let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(&format!("{label} vertices")),
         contents: bytemuck::cast_slice(vertices),
-        // COPY_SRC: compute passes write the hair and tests read it back.
+        // COPY_SRC: compute passes write the hair and tests read it back;
+        // COPY_DST: the hair is rewritten when it follows the head.
         usage: wgpu::BufferUsages::VERTEX
             | wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC,
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
     });
     let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(&format!("{label} indices")),
@@ -205,6 +211,22 @@ fn upload<V: bytemuck::Pod>(
 }
 
 impl SceneGeometry {
+    /// Rewrites the hair's vertices with `strands` moved (same strands and
+    /// points as uploaded: only positions and tangents change). `false` when
+    /// the point count differs and nothing was written.
+    pub fn write_hair(&self, queue: &wgpu::Queue, strands: &Strands) -> bool {
+        let Some(hair) = &self.hair else {
+            return strands.points.is_empty();
+        };
+        let (vertices, _) = strands.line_list();
+        let bytes: &[u8] = bytemuck::cast_slice(&vertices);
+        if bytes.len() as u64 != hair.vertices.size() {
+            return false;
+        }
+        queue.write_buffer(&hair.vertices, 0, bytes);
+        true
+    }
+
     /// Hair and meshes; every strand its own guide, no colliders.
     pub fn upload(device: &wgpu::Device, strands: &Strands, meshes: &[Mesh]) -> Self {
         Self::upload_with_guides(device, strands, meshes, &Guides::identity(strands), &[])
@@ -238,6 +260,7 @@ impl SceneGeometry {
                 position: v.position,
                 normal: v.normal,
                 albedo: mesh.albedo,
+                head: if mesh.name == "head" { 1.0 } else { 0.0 },
             }));
             indices.extend(mesh.indices.iter().map(|i| i + base));
         }

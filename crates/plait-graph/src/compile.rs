@@ -41,6 +41,7 @@ pub fn compile(
         .values()
         .map(|r| resolve_resource(r, opts, &mut errors))
         .collect();
+    check_histories(pipeline, &descs, &mut errors);
     for r in pipeline.resources.values() {
         if scene_resource(&r.name).is_some() {
             errors.push(Error::new(
@@ -509,23 +510,24 @@ fn bind_slots(
                 pipeline.resources.len() + i
             }
             (None, None) => {
-                errors.push(Error::new(
-                    resource.location.clone(),
-                    ErrorKind::UndeclaredResource {
-                        name: resource.value.clone(),
-                        hint: crate::suggest::did_you_mean(
-                            &resource.value,
-                            pipeline
-                                .resources
-                                .keys()
-                                .map(String::as_str)
-                                .chain(SCENE_RESOURCES.iter().map(|r| r.name)),
-                        ),
-                    },
-                ));
+                errors.push(undeclared(pipeline, resource));
                 continue;
             }
         };
+        if direction == Direction::Write
+            && let Some((_, declared)) = pipeline.resources.get_index(index)
+            && let Some(of) = &declared.previous_of
+        {
+            errors.push(Error::new(
+                resource.location.clone(),
+                ErrorKind::WritesHistory {
+                    pass: decl.name.clone(),
+                    previous: resource.value.clone(),
+                    resource: of.resource.clone(),
+                },
+            ));
+            continue;
+        }
         let declared_kind = pipeline
             .resources
             .get_index(index)
@@ -719,17 +721,35 @@ fn order_passes(
             .filter(|&p| writes_to(&passes[p], resource).is_some())
             .collect();
         let readers: Vec<usize> = (0..passes.len()).filter(|&p| reads(p, resource)).collect();
-        // The scene writes its resources before any pass.
-        if writers.is_empty() && resource < declared {
+        // An earlier frame's version is written by the engine (a copy of the
+        // resource after each frame): it needs a writer of the resource. The
+        // scene writes its resources before any pass.
+        let previous_of = pipeline
+            .resources
+            .get_index(resource)
+            .and_then(|(_, r)| r.previous_of.as_ref());
+        let written_by_someone = match previous_of {
+            Some(of) => pipeline
+                .resources
+                .get_index_of(&of.resource)
+                .is_some_and(|base| passes.iter().any(|p| writes_to(p, base).is_some())),
+            None => !writers.is_empty() || resource >= declared,
+        };
+        if !written_by_someone {
             for &r in &readers {
                 for b in passes[r].reads.iter().filter(|b| b.resource == resource) {
-                    errors.push(Error::new(
-                        b.location.clone(),
-                        ErrorKind::NeverWritten {
+                    let kind = match previous_of {
+                        Some(of) => ErrorKind::HistoryNeverWritten {
+                            previous: b.resource_name.clone(),
+                            resource: of.resource.clone(),
+                            reader: passes[r].name.clone(),
+                        },
+                        None => ErrorKind::NeverWritten {
                             resource: b.resource_name.clone(),
                             reader: passes[r].name.clone(),
                         },
-                    ));
+                    };
+                    errors.push(Error::new(b.location.clone(), kind));
                 }
             }
         }
@@ -875,25 +895,55 @@ fn build_schedule(
     // Live passes: writers of outputs and everything they depend on. Walking
     // the execution order backwards sees every consumer before its producers.
     let declared = pipeline.resources.len();
+    // A history makes a read of `R.previous` need `R` (and the younger
+    // versions it is copied through), whose writers may come later in the
+    // order: walk again until nothing new is needed.
+    let history_chain = |r: usize| -> Vec<usize> {
+        let Some(of) = pipeline
+            .resources
+            .get_index(r)
+            .and_then(|(_, d)| d.previous_of.as_ref())
+        else {
+            return Vec::new();
+        };
+        (0..of.frames_ago)
+            .filter_map(|k| {
+                let name = match k {
+                    0 => of.resource.clone(),
+                    k => crate::load::previous_name(&of.resource, k),
+                };
+                pipeline.resources.get_index_of(&name)
+            })
+            .collect()
+    };
     let mut needed: HashSet<usize> = outputs.iter().copied().collect();
     let mut live = vec![false; passes.len()];
-    for &p in order.iter().rev() {
-        if passes[p]
-            .writes
-            .iter()
-            .any(|b| needed.contains(&b.resource))
-        {
-            live[p] = true;
-            needed.extend(passes[p].reads.iter().map(|b| b.resource));
-            needed.extend(implicit_reads(&passes[p], declared));
-            // A load-writer keeps earlier contents: their writers are needed too.
-            needed.extend(
-                passes[p]
+    loop {
+        let before = needed.len();
+        for &p in order.iter().rev() {
+            if !live[p]
+                && passes[p]
                     .writes
                     .iter()
-                    .filter(|b| b.loads)
-                    .map(|b| b.resource),
-            );
+                    .any(|b| needed.contains(&b.resource))
+            {
+                live[p] = true;
+                needed.extend(passes[p].reads.iter().map(|b| b.resource));
+                needed.extend(implicit_reads(&passes[p], declared));
+                // A load-writer keeps earlier contents: their writers are needed too.
+                needed.extend(
+                    passes[p]
+                        .writes
+                        .iter()
+                        .filter(|b| b.loads)
+                        .map(|b| b.resource),
+                );
+            }
+        }
+        let chained: Vec<usize> = needed.iter().flat_map(|&r| history_chain(r)).collect();
+        needed.extend(chained);
+        if needed.len() == before {
+            break;
         }
     }
 
@@ -904,6 +954,9 @@ fn build_schedule(
         if live[p] {
             for b in pass.reads.iter().chain(&pass.writes) {
                 used[b.resource] = true;
+                for r in history_chain(b.resource) {
+                    used[r] = true;
+                }
             }
         }
     }
@@ -921,6 +974,9 @@ fn build_schedule(
                     last_use: 0,
                     physical: 0,
                     scene: false,
+                    // A history's versions come after it in declaration
+                    // order, so `of` is already renumbered.
+                    lifetime: declared_lifetime(decl, pipeline, &new_id),
                     kept: false,
                     location: decl.location.clone(),
                 });
@@ -939,6 +995,8 @@ fn build_schedule(
                 last_use: 0,
                 physical: 0,
                 scene: true,
+                // The scene's buffers outlive every frame, like `persistent`.
+                lifetime: Lifetime::Persistent,
                 kept: false,
                 location: Location::Builtin,
             });
@@ -949,6 +1007,28 @@ fn build_schedule(
             b.resource = new_id[b.resource];
         }
     }
+    let mut history = Vec::new();
+    for (r, resource) in resources.iter().enumerate() {
+        if let Lifetime::Previous { of, frames_ago } = resource.lifetime {
+            // Aged from the version one frame younger (the resource itself for 1).
+            let younger = match frames_ago {
+                1 => Some(of),
+                k => resources.iter().position(|y| {
+                    y.lifetime
+                        == Lifetime::Previous {
+                            of,
+                            frames_ago: k - 1,
+                        }
+                }),
+            };
+            if let Some(from) = younger {
+                history.push((frames_ago, HistoryCopy { from, to: r }));
+            }
+        }
+    }
+    // Oldest first: a version is copied on before it is overwritten.
+    history.sort_by_key(|(frames_ago, copy)| (Reverse(*frames_ago), copy.to));
+    let history: Vec<HistoryCopy> = history.into_iter().map(|(_, c)| c).collect();
 
     let mut slots: Vec<Option<ScheduledPass>> = passes.into_iter().map(Some).collect();
     let mut scheduled = Vec::new();
@@ -968,11 +1048,14 @@ fn build_schedule(
     culled.sort_by_key(|(p, _)| *p);
     let culled = culled.into_iter().map(|(_, c)| c).collect();
 
-    // The first writer of a resource has nothing to load: it clears.
+    // The first writer of a resource has nothing to load: it clears. A
+    // persistent resource is never cleared by the engine: every writer loads.
     let mut written = vec![false; resources.len()];
     for pass in &mut scheduled {
         for b in &mut pass.writes {
-            if !written[b.resource] && !resources[b.resource].scene {
+            if resources[b.resource].lifetime == Lifetime::Persistent {
+                b.loads = true;
+            } else if !written[b.resource] {
                 let also_read = pass.reads.iter().any(|r| r.resource == b.resource);
                 if !also_read {
                     b.loads = false;
@@ -1000,6 +1083,12 @@ fn build_schedule(
     for &o in &output_ids {
         resources[o].last_use = end;
     }
+    // Contents that outlive the frame span all of it, so the memory plan
+    // never lends their allocation to another resource.
+    for r in resources.iter_mut().filter(|r| !r.lifetime.is_frame()) {
+        r.first_use = 0;
+        r.last_use = end;
+    }
     crate::run_once::keep_across_frames(&scheduled, &mut resources);
 
     let (physical, memory) = plan_memory(&mut resources);
@@ -1019,7 +1108,85 @@ fn build_schedule(
         dropped_resources,
         physical,
         outputs: output_ids,
+        history,
         memory,
+    }
+}
+
+/// The lifetime a declaration asks for; `new_id` maps declaration indices to
+/// schedule ids.
+fn declared_lifetime(decl: &ResourceDecl, pipeline: &Pipeline, new_id: &[ResourceId]) -> Lifetime {
+    if let Some(of) = &decl.previous_of {
+        let base = pipeline
+            .resources
+            .get_index_of(&of.resource)
+            .map_or(DROPPED_RESOURCE, |i| new_id[i]);
+        return Lifetime::Previous {
+            of: base,
+            frames_ago: of.frames_ago,
+        };
+    }
+    match (&decl.history, &decl.persistent) {
+        (Some(h), _) => Lifetime::History { frames: h.value },
+        (None, Some(_)) => Lifetime::Persistent,
+        (None, None) => Lifetime::Frame,
+    }
+}
+
+/// A resource name that matches no declaration. `R.previous…` gets a message
+/// about `R`'s history; anything else the nearest declared name.
+fn undeclared(pipeline: &Pipeline, resource: &Spanned<String>) -> Error {
+    let name = &resource.value;
+    let kind = match crate::load::parse_previous_name(name) {
+        Some((base, frames_ago)) if pipeline.resources.contains_key(base) => {
+            let decl = &pipeline.resources[base];
+            let reason = match &decl.history {
+                None => format!(
+                    "`{base}` keeps no history; add `history = {frames_ago}` to [resources.{base}] ({}) to keep {}",
+                    decl.location,
+                    if frames_ago == 1 {
+                        "last frame's version".to_owned()
+                    } else {
+                        format!("the last {frames_ago} frames")
+                    }
+                ),
+                Some(h) => format!(
+                    "`{base}` keeps {} frame{} of history ({}); `{name}` needs `history = {frames_ago}`",
+                    h.value,
+                    if h.value == 1 { "" } else { "s" },
+                    h.location
+                ),
+            };
+            ErrorKind::NoHistory {
+                name: name.clone(),
+                reason,
+            }
+        }
+        _ => ErrorKind::UndeclaredResource {
+            name: name.clone(),
+            hint: crate::suggest::did_you_mean(name, pipeline.resources.keys().map(String::as_str)),
+        },
+    };
+    Error::new(resource.location.clone(), kind)
+}
+
+/// A history is kept by copying the resource after each frame; multisampled
+/// textures cannot be copied.
+fn check_histories(pipeline: &Pipeline, descs: &[Option<ResourceDesc>], errors: &mut Vec<Error>) {
+    for (decl, desc) in pipeline.resources.values().zip(descs) {
+        if let (Some(h), Some(ResourceDesc::Texture { samples, .. })) = (&decl.history, desc)
+            && *samples > 1
+        {
+            errors.push(Error::new(
+                h.location.clone(),
+                ErrorKind::BadResource {
+                    resource: decl.name.clone(),
+                    reason: format!(
+                        "a multisampled texture ({samples} samples) cannot be copied, so it cannot keep a history; resolve it into a single-sampled texture and give that one `history`"
+                    ),
+                },
+            ));
+        }
     }
 }
 

@@ -45,6 +45,9 @@ pub use value::Value;
 
 pub use compile::compile;
 pub use dot::{to_dot, to_svg};
-pub use load::{PassDecl, Pipeline, ResourceDecl, SizeDecl, load, load_str};
+pub use load::{
+    PassDecl, Pipeline, PreviousOf, ResourceDecl, SizeDecl, load, load_str, parse_previous_name,
+    previous_name,
+};
 pub use raster_decl::RasterDecl;
 pub use snapshot::schedule_text;

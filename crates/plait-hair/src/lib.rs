@@ -13,10 +13,12 @@
 //!   them, the CPU reference of GPU guide interpolation.
 //! - [`follow`]: follow strands around guide strands, as TressFX makes them.
 //! - [`transform`]: placing a groom (scale, rotation, translation).
+//! - [`animation`]: keyframed motion of the head (the scene's `[animation]`).
 //! - [`scene`]: the TOML scene file every pipeline renders; [`camera`] (a
 //!   look-at camera or one fitted to the hair), [`light`] (light frustum
 //!   fitting, Halén & Wester 2007 §5.7), [`hair_source`] (the `[hair]` table).
 
+pub mod animation;
 pub mod asset;
 pub mod camera;
 pub mod follow;

@@ -202,6 +202,8 @@ pub struct Prepared<'g> {
     pub renderer: Renderer<'g>,
     /// Name of the resource images are read from (the first output).
     pub output: String,
+    /// The head pose the uploaded hair follows ([`Prepared::render_frame`]).
+    pub(crate) hair_pose: glam::Mat4,
 }
 
 impl Prepared<'_> {
@@ -270,5 +272,9 @@ pub fn build<'g>(
     if let Some(image) = &scene.background {
         renderer.set_background_image(image);
     }
-    Ok(Prepared { renderer, output })
+    Ok(Prepared {
+        renderer,
+        output,
+        hair_pose: glam::Mat4::IDENTITY,
+    })
 }
