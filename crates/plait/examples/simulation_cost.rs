@@ -55,8 +55,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// Median GPU ms of pass `name` over `frames` frames after a warm-up.
 fn pass_ms(gpu: &Gpu, pipeline: &Path, scene: &SceneData, name: &str, frames: usize) -> f64 {
-    let prepared =
-        prepare(gpu, pipeline, &[], scene, (16, 16)).unwrap_or_else(|e| panic!("{e}"));
+    let prepared = prepare(gpu, pipeline, &[], scene, (16, 16)).unwrap_or_else(|e| panic!("{e}"));
     prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
     let index = prepared
         .schedule()
@@ -84,7 +83,10 @@ fn main() {
         .max(1);
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
     if !gpu.capabilities.timestamps {
-        eprintln!("{} has no timestamp queries: no GPU times to report", gpu.adapter_name());
+        eprintln!(
+            "{} has no timestamp queries: no GPU times to report",
+            gpu.adapter_name()
+        );
         return;
     }
     let pipeline: PathBuf = std::env::temp_dir().join("plait_simulation_cost.toml");
@@ -108,14 +110,19 @@ fn main() {
         print!("| {nodes} |");
         for s in strands {
             let scene = groom(s, nodes - 1, None);
-            print!(" {:.3} |", pass_ms(&gpu, &pipeline, &scene, "simulate", frames));
+            print!(
+                " {:.3} |",
+                pass_ms(&gpu, &pipeline, &scene, "simulate", frames)
+            );
         }
         println!();
     }
 
     // Fig. 6.1.3 layout: drawn geometry across, the update pass's time.
     let drawn = [2000u32, 4000, 10000, 15000];
-    println!("\ninterpolate (ms per frame) from 64 guides, 16 segments a strand; Fig. 6.1.3 layout");
+    println!(
+        "\ninterpolate (ms per frame) from 64 guides, 16 segments a strand; Fig. 6.1.3 layout"
+    );
     print!("| drawn strands |");
     for d in drawn {
         print!(" {d} |");
@@ -130,7 +137,10 @@ fn main() {
     print!("| ms |");
     for d in drawn {
         let scene = groom(d, 16, Some(64));
-        print!(" {:.3} |", pass_ms(&gpu, &pipeline, &scene, "interpolate", frames));
+        print!(
+            " {:.3} |",
+            pass_ms(&gpu, &pipeline, &scene, "interpolate", frames)
+        );
     }
     println!();
     let _ = std::fs::remove_file(&pipeline);
