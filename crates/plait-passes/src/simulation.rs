@@ -22,8 +22,8 @@
 //! amplifies the motion and the hair explodes whatever else is set. So
 //! `time_step` · √`spring` ≥ √(2(1 + damping)) is rejected, naming the largest
 //! stable step (d = 0 gives the undamped Størmer–Verlet limit Δt·ω < 2).
-//! Damping above 1 would add energy every step: the param's range stops at
-//! 1. The length projection (4.2) cannot diverge — each sweep only moves
+//! Damping above 1 would add energy every step, so the param stops at one.
+//! The length projection (4.2) cannot diverge — each sweep only moves
 //! nodes towards the rest lengths — so `iterations` sets accuracy, not
 //! stability: too few for the time step shows as stretch, which the
 //! `max_stretch` fault catches in the frame it happens.
