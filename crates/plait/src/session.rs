@@ -175,10 +175,18 @@ impl SceneData {
         }
     }
 
-    /// Standard inputs for a frame of this scene at `size`.
+    /// Standard inputs for a frame of this scene at `size`, the scene as it
+    /// is at time 0 (its first pose, when it is animated: what a single
+    /// `plait render` shows, frame 0 of a sequence).
     pub fn frame(&self, size: (u32, u32), frame_index: u32) -> FrameUniforms {
-        let scene_bounds = self.scene.opaque_bounds().union(&self.strands.bounds());
-        FrameUniforms::new(&self.scene, &self.strands, scene_bounds, size, frame_index)
+        let head = self.scene.head_model(0.0);
+        let pose = crate::frames::FramePose {
+            index: frame_index,
+            time: 0.0,
+            head,
+            head_previous: head,
+        };
+        self.frame_posed(size, &pose, self.hair_posed(head).as_ref())
     }
 }
 
@@ -238,7 +246,11 @@ pub fn build<'g>(
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
     let frame = scene.frame(size, 0);
-    let geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
+    // The hair as it is at time 0 (the head's first pose).
+    let hair_pose = scene.scene.head_model(0.0);
+    let posed = scene.hair_posed(hair_pose);
+    let hair = posed.as_ref().unwrap_or(&scene.strands);
+    let geometry = SceneGeometry::upload(&gpu.device, hair, &scene.meshes);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
         gpu,
@@ -254,6 +266,6 @@ pub fn build<'g>(
     Ok(Prepared {
         renderer,
         output,
-        hair_pose: glam::Mat4::IDENTITY,
+        hair_pose,
     })
 }
