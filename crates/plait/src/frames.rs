@@ -99,7 +99,7 @@ impl Prepared<'_> {
     ) -> Result<FrameUniforms, SessionError> {
         let pose = FramePose::at(scene, index, fps);
         let hair = scene.hair_posed(pose.head);
-        if self.hair_pose != pose.head {
+        if self.hair_follows_head && self.hair_pose != pose.head {
             self.renderer
                 .set_hair(hair.as_ref().unwrap_or(&scene.strands))?;
             self.hair_pose = pose.head;

@@ -197,6 +197,10 @@ pub struct Prepared<'g> {
     pub output: String,
     /// The head pose the uploaded hair follows ([`Prepared::render_frame`]).
     pub(crate) hair_pose: glam::Mat4,
+    /// Whether the frame loop moves the hair with the head (rigidly, on the
+    /// CPU). A pipeline whose simulation writes the hair on the GPU turns it
+    /// off; the light is still fitted to where rigid hair would be.
+    pub hair_follows_head: bool,
 }
 
 impl Prepared<'_> {
@@ -267,5 +271,6 @@ pub fn build<'g>(
         renderer,
         output,
         hair_pose,
+        hair_follows_head: true,
     })
 }
