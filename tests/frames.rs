@@ -34,6 +34,17 @@ fn a_persistent_buffer_accumulates_and_previous_holds_last_frame() {
             .map(|i| if frame == 0 { 0 } else { (frame - 1) * 10 + i })
             .collect();
         assert_eq!(read("seen"), expected_seen, "seen in frame {frame}");
+        // The texture's history, one and two frames back (zero before).
+        let back = |k: u32| -> Vec<u32> {
+            (0..4)
+                .map(|i| if frame < k { 0 } else { (frame - k) * 100 + i })
+                .collect()
+        };
+        assert_eq!(
+            read("seen_texels"),
+            [back(1), back(2)].concat(),
+            "texels seen in frame {frame}"
+        );
         assert_eq!(
             read("frame_value.previous"),
             (0..4).map(|i| frame * 10 + i).collect::<Vec<_>>(),

@@ -44,6 +44,14 @@ pub struct AbArgs {
     /// Render size, `WIDTHxHEIGHT`.
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
+    /// Also render frames 0..N of each scene's animation per variant and
+    /// report their flicker against the reference's own frame-to-frame
+    /// change (image and visibility), with a plot over time.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(2..=10000))]
+    frames: Option<u32>,
+    /// Frames per second of --frames (frame i is at time i / fps).
+    #[arg(long, value_parser = crate::sequence::parse_fps, default_value = "30", requires = "frames")]
+    fps: f32,
     /// Report directory (replaced if it holds an earlier report).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
@@ -98,6 +106,10 @@ pub fn run(args: AbArgs) -> Result<()> {
         repeats: args.repeats,
         size: args.size,
         command: std::env::args().collect(),
+        sequence: args.frames.map(|frames| plait::ab::Sequence {
+            frames,
+            fps: args.fps,
+        }),
     })?;
     let gpu = Gpu::new()?;
     let progress = Progress::new(plan.step_count());

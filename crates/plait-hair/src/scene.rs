@@ -612,6 +612,7 @@ mod tests {
             "dense.toml",
             "stray.toml",
             "head_turn.toml",
+            "stray_shake.toml",
         ] {
             let s = Scene::load(examples().join(name)).unwrap_or_else(|e| panic!("{e}"));
             let HairSource::Procedural(g) = &s.hair.source else {
@@ -620,7 +621,7 @@ mod tests {
             match name {
                 "small.toml" => assert!(g.strands <= 1000 && g.segments <= 16),
                 "dense.toml" => assert!(g.strands >= 20_000),
-                "stray.toml" => assert!(g.stray_strands > 0),
+                "stray.toml" | "stray_shake.toml" => assert!(g.stray_strands > 0),
                 _ => {}
             }
         }

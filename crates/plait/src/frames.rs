@@ -82,22 +82,36 @@ impl Prepared<'_> {
         index: u32,
         fps: f32,
     ) -> Result<FrameReport, SessionError> {
+        let frame = self.pose_frame(scene, size, index, fps)?;
+        self.renderer.set_frame(&frame);
+        Ok(self.renderer.render()?)
+    }
+
+    /// Moves the hair to frame `index` (uploaded only when its pose
+    /// changed) and returns the frame's inputs, for a caller that adjusts
+    /// them before rendering (the visibility probe turns the jitter off).
+    pub fn pose_frame(
+        &mut self,
+        scene: &SceneData,
+        size: (u32, u32),
+        index: u32,
+        fps: f32,
+    ) -> Result<FrameUniforms, SessionError> {
         let pose = FramePose::at(scene, index, fps);
         let hair = scene.hair_posed(pose.head);
-        if self.hair_pose != pose.head {
+        if self.hair_follows_head && self.hair_pose != pose.head {
             self.renderer
                 .set_hair(hair.as_ref().unwrap_or(&scene.strands))?;
             self.hair_pose = pose.head;
         }
-        self.renderer
-            .set_frame(&scene.frame_posed(size, &pose, hair.as_ref()));
-        Ok(self.renderer.render()?)
+        Ok(scene.frame_posed(size, &pose, hair.as_ref()))
     }
 }
 
-/// Per-pass GPU times of a sequence, as medians over its frames (frames where
-/// a pass reported no time — no timestamps, or a pass that runs once — do
-/// not count for it).
+/// Per-pass GPU times of a sequence, as medians over the frames in which the
+/// pass ran: a `run = "once"` pass counts its first frame only (later frames
+/// repeat that time as `cached`), and frames without a time (no timestamp
+/// queries) do not count.
 pub fn median_report(frames: &[FrameReport]) -> Option<FrameReport> {
     let first = frames.first()?;
     let median = |mut xs: Vec<f64>| -> Option<f64> {
@@ -118,10 +132,11 @@ pub fn median_report(frames: &[FrameReport]) -> Option<FrameReport> {
         .enumerate()
         .map(|(i, p)| {
             let mut timing = p.clone();
+            timing.cached = false;
             timing.gpu_ms = median(
                 frames
                     .iter()
-                    .filter_map(|f| f.passes.get(i).and_then(|q| q.gpu_ms))
+                    .filter_map(|f| f.passes.get(i).filter(|q| !q.cached).and_then(|q| q.gpu_ms))
                     .collect(),
             );
             timing
@@ -159,16 +174,18 @@ mod tests {
     use super::*;
     use plait_gpu::PassTiming;
 
-    fn report(times: &[Option<f64>], total: f64) -> FrameReport {
+    /// Pass times of one frame: (ms, cached).
+    fn report(times: &[(Option<f64>, bool)], total: f64) -> FrameReport {
         FrameReport {
             passes: times
                 .iter()
                 .enumerate()
-                .map(|(i, &gpu_ms)| PassTiming {
+                .map(|(i, &(gpu_ms, cached))| PassTiming {
                     name: format!("p{i}"),
                     type_name: "t".into(),
                     gpu_ms,
                     stats: Vec::new(),
+                    cached,
                 })
                 .collect(),
             total_gpu_ms: Some(total),
@@ -176,16 +193,30 @@ mod tests {
     }
 
     #[test]
-    fn medians_per_pass_skip_frames_without_a_time() {
+    fn medians_per_pass_count_the_frames_it_ran() {
         let frames = [
-            report(&[Some(5.0), Some(1.0)], 10.0),
-            report(&[Some(1.0), None], 30.0),
-            report(&[Some(3.0), None], 20.0),
-            report(&[Some(100.0), None], 11.0),
+            report(
+                &[(Some(5.0), false), (Some(1.0), false), (None, false)],
+                10.0,
+            ),
+            report(
+                &[(Some(1.0), false), (Some(1.0), true), (None, false)],
+                30.0,
+            ),
+            report(
+                &[(Some(3.0), false), (Some(1.0), true), (None, false)],
+                20.0,
+            ),
+            report(
+                &[(Some(100.0), false), (Some(1.0), true), (None, false)],
+                11.0,
+            ),
         ];
         let m = median_report(&frames).expect("frames");
         assert_eq!(m.passes[0].gpu_ms, Some(4.0));
         assert_eq!(m.passes[1].gpu_ms, Some(1.0), "the pass that ran once");
+        assert!(!m.passes[1].cached);
+        assert_eq!(m.passes[2].gpu_ms, None, "no timestamps");
         assert_eq!(m.total_gpu_ms, Some(15.5));
         assert!(median_report(&[]).is_none());
     }

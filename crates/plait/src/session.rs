@@ -190,10 +190,18 @@ impl SceneData {
         }
     }
 
-    /// Standard inputs for a frame of this scene at `size`.
+    /// Standard inputs for a frame of this scene at `size`, the scene as it
+    /// is at time 0 (its first pose, when it is animated: what a single
+    /// `plait render` shows, frame 0 of a sequence).
     pub fn frame(&self, size: (u32, u32), frame_index: u32) -> FrameUniforms {
-        let scene_bounds = self.scene.opaque_bounds().union(&self.strands.bounds());
-        FrameUniforms::new(&self.scene, &self.strands, scene_bounds, size, frame_index)
+        let head = self.scene.head_model(0.0);
+        let pose = crate::frames::FramePose {
+            index: frame_index,
+            time: 0.0,
+            head,
+            head_previous: head,
+        };
+        self.frame_posed(size, &pose, self.hair_posed(head).as_ref())
     }
 }
 
@@ -204,6 +212,10 @@ pub struct Prepared<'g> {
     pub output: String,
     /// The head pose the uploaded hair follows ([`Prepared::render_frame`]).
     pub(crate) hair_pose: glam::Mat4,
+    /// Whether the frame loop moves the hair with the head (rigidly, on the
+    /// CPU). A pipeline whose simulation writes the hair on the GPU turns it
+    /// off; the light is still fitted to where rigid hair would be.
+    pub hair_follows_head: bool,
 }
 
 impl Prepared<'_> {
@@ -253,9 +265,22 @@ pub fn build<'g>(
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
     let frame = scene.frame(size, 0);
+    // A pass that writes the drawn hair (guide interpolation) moves it itself.
+    let hair_written = schedule.passes.iter().any(|p| {
+        p.writes.iter().any(|b| {
+            schedule
+                .resources
+                .get(b.resource)
+                .is_some_and(|r| r.scene && r.name == "hair_vertices")
+        })
+    });
+    // The hair as it is at time 0 (the head's first pose).
+    let hair_pose = scene.scene.head_model(0.0);
+    let posed = scene.hair_posed(hair_pose);
+    let hair = posed.as_ref().unwrap_or(&scene.strands);
     let geometry = SceneGeometry::upload_with_guides(
         &gpu.device,
-        &scene.strands,
+        hair,
         &scene.meshes,
         &scene.guides,
         &scene.colliders,
@@ -275,6 +300,7 @@ pub fn build<'g>(
     Ok(Prepared {
         renderer,
         output,
-        hair_pose: glam::Mat4::IDENTITY,
+        hair_pose,
+        hair_follows_head: !hair_written,
     })
 }

@@ -17,10 +17,11 @@ mod measure;
 pub mod plan;
 mod provenance;
 mod run;
+mod temporal;
 
 use std::path::PathBuf;
 
-pub use plan::{AbOptions, Plan, ScenePlan, SweepSpec, VariantPlan};
+pub use plan::{AbOptions, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
 
