@@ -122,11 +122,14 @@ fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
 }
 
 impl GuideBuffers {
+    /// `pose`: the head's pose the state starts in (the guides at rest, moved
+    /// with the head), so a sequence that starts turned does not jump.
     pub fn upload(
         device: &wgpu::Device,
         guides: &Guides,
         drawn: &Strands,
         colliders: &[Collider],
+        pose: glam::Mat4,
     ) -> Self {
         let g = &guides.strands;
         let mut rest = Vec::with_capacity(g.points.len());
@@ -163,11 +166,20 @@ impl GuideBuffers {
             })
             .collect();
         let rest_bytes: &[u8] = bytemuck::cast_slice(&rest);
+        let posed: Vec<[f32; 4]> = rest
+            .iter()
+            .map(|p| {
+                pose.transform_point3(Vec3::new(p[0], p[1], p[2]))
+                    .extend(0.0)
+                    .to_array()
+            })
+            .collect();
+        let posed_bytes: &[u8] = bytemuck::cast_slice(&posed);
         GuideBuffers {
             rest: storage(device, "guide_rest", rest_bytes),
             strands: storage(device, "guide_strands", bytemuck::cast_slice(&strands)),
-            positions: storage(device, "guide_positions", rest_bytes),
-            previous: storage(device, "guide_previous", rest_bytes),
+            positions: storage(device, "guide_positions", posed_bytes),
+            previous: storage(device, "guide_previous", posed_bytes),
             strand_guides: storage(device, "strand_guides", bytemuck::cast_slice(&bindings)),
             // No collider: one of radii 0, which nothing is inside.
             colliders: storage(device, "head_colliders", bytemuck::cast_slice(&shapes)),
@@ -229,17 +241,26 @@ impl SceneGeometry {
 
     /// Hair and meshes; every strand its own guide, no colliders.
     pub fn upload(device: &wgpu::Device, strands: &Strands, meshes: &[Mesh]) -> Self {
-        Self::upload_with_guides(device, strands, meshes, &Guides::identity(strands), &[])
+        Self::upload_with_guides(
+            device,
+            strands,
+            meshes,
+            &Guides::identity(strands),
+            &[],
+            glam::Mat4::IDENTITY,
+        )
     }
 
     /// Hair and meshes, with the groom's guides and the head's colliders for
-    /// simulation. `guides.bindings` has one entry per strand of `strands`.
+    /// simulation (at rest; its state starts at rest moved by `pose`, the
+    /// head's first pose). `guides.bindings` has one entry per strand of `strands`.
     pub fn upload_with_guides(
         device: &wgpu::Device,
         strands: &Strands,
         meshes: &[Mesh],
         guides: &Guides,
         colliders: &[Collider],
+        pose: glam::Mat4,
     ) -> Self {
         // Guides made for other strands (a caller cut the strands after
         // loading): every strand its own guide rather than wrong bindings.
@@ -271,7 +292,7 @@ impl SceneGeometry {
             strand_count: strands.strand_count() as u32,
             segment_count: strands.segment_count() as u32,
             point_count: strands.point_count() as u32,
-            guides: GuideBuffers::upload(device, guides, strands, colliders),
+            guides: GuideBuffers::upload(device, guides, strands, colliders, pose),
         }
     }
 

@@ -41,7 +41,7 @@ writes = { depth = "depth" }
 fn groom(strands: u32, segments: u32, guides: Option<u32>) -> SceneData {
     let guides = guides.map_or(String::new(), |g| format!("guides = {g}\n"));
     let text = format!(
-        "[hair.procedural]\nstrands = {strands}\nsegments = {segments}\nseed = 2\n{guides}\n[head]\ncenter = [0.0, 0.0, 0.0]\nradii = [0.9, 1.05, 1.0]\n[camera]\neye = [0.0, 0.0, 7.0]\ntarget = [0.0, -0.5, 0.0]\n[light]\ntype = \"directional\"\ndirection = [-0.5, -1.0, -0.6]\n"
+        "[hair.procedural]\nstrands = {strands}\nsegments = {segments}\nseed = 2\n{guides}\n[head]\ncenter = [0.0, 0.0, 0.0]\nradii = [0.9, 1.05, 1.0]\n[camera]\neye = [0.0, 0.0, 7.0]\ntarget = [0.0, -0.5, 0.0]\nfov_y_degrees = 40.0\n[light]\ntype = \"directional\"\ndirection = [-0.5, -1.0, -0.6]\n"
     );
     let scene = Scene::from_toml_str(&text, Path::new("simulation_cost.toml"))
         .unwrap_or_else(|e| panic!("{e}"));

@@ -284,6 +284,7 @@ pub fn build<'g>(
         &scene.meshes,
         &scene.guides,
         &scene.colliders,
+        hair_pose,
     );
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
