@@ -6,12 +6,14 @@
 //! `cargo run --release -p plait --example simulation_cost [-- --frames N]`
 //!
 //! Each cell is the median GPU time (timestamps) of the `simulate` or
-//! `interpolate` pass over N frames after one warm-up, with the `verlet`
+//! `interpolate` pass over N frames (default 20) after one warm-up, and the
+//! median wall-clock time a frame takes more than with `simulation = "none"`, with the `verlet`
 //! technique's defaults (4 substeps × 4 constraint sweeps a frame). The
 //! pipeline is only the simulation and one 16² hair draw that needs it. A
 //! measurement, not a test: nothing here fails on a slow machine.
 
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use plait::gpu::Gpu;
 use plait::session::{SceneData, prepare};
@@ -53,23 +55,34 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Median GPU ms of pass `name` over `frames` frames after a warm-up.
-fn pass_ms(gpu: &Gpu, pipeline: &Path, scene: &SceneData, name: &str, frames: usize) -> f64 {
-    let prepared = prepare(gpu, pipeline, &[], scene, (16, 16)).unwrap_or_else(|e| panic!("{e}"));
-    prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
-    let index = prepared
-        .schedule()
-        .passes
-        .iter()
-        .position(|p| p.name == name)
-        .unwrap_or_else(|| panic!("no pass `{name}`"));
-    let times = (0..frames)
-        .map(|_| {
+/// Median GPU ms of pass `name` over `frames` frames after a warm-up, and
+/// the median wall-clock ms a frame takes more than with `simulation =
+/// "none"` (submit to finish: a check on the timestamps, which lavapipe
+/// writes as it meets them).
+fn pass_ms(gpu: &Gpu, pipeline: &Path, scene: &SceneData, name: &str, frames: usize) -> (f64, f64) {
+    let wall = |sets: &[String]| {
+        let prepared =
+            prepare(gpu, pipeline, sets, scene, (16, 16)).unwrap_or_else(|e| panic!("{e}"));
+        prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+        let index = prepared
+            .schedule()
+            .passes
+            .iter()
+            .position(|p| p.name == name);
+        let (mut gpu_ms, mut wall_ms) = (Vec::new(), Vec::new());
+        for _ in 0..frames {
+            let started = Instant::now();
             let report = prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
-            report.passes[index].gpu_ms.unwrap_or(f64::NAN)
-        })
-        .collect();
-    median(times)
+            wall_ms.push(started.elapsed().as_secs_f64() * 1e3);
+            if let Some(i) = index {
+                gpu_ms.push(report.passes[i].gpu_ms.unwrap_or(f64::NAN));
+            }
+        }
+        (gpu_ms, median(wall_ms))
+    };
+    let (gpu_ms, with) = wall(&[]);
+    let (_, without) = wall(&["techniques.simulation=none".to_owned()]);
+    (median(gpu_ms), with - without)
 }
 
 fn main() {
@@ -79,7 +92,7 @@ fn main() {
         .position(|a| a == "--frames")
         .and_then(|i| args.get(i + 1))
         .and_then(|s| s.parse().ok())
-        .unwrap_or(10)
+        .unwrap_or(20)
         .max(1);
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
     if !gpu.capabilities.timestamps {
@@ -99,7 +112,9 @@ fn main() {
 
     // Fig. 6.1.1 layout: simulated strands across, nodes per strand down.
     let strands = [9u32, 25, 49, 121, 1000, 10000];
-    println!("\nsimulate (ms per frame), Halén & Wester 2007 §6.1.2 layout");
+    println!(
+        "\nsimulate: GPU ms per frame (wall ms over no simulation), Halén & Wester 2007 §6.1.2 layout"
+    );
     print!("| nodes per strand |");
     for s in strands {
         print!(" {s} strands |");
@@ -110,10 +125,8 @@ fn main() {
         print!("| {nodes} |");
         for s in strands {
             let scene = groom(s, nodes - 1, None);
-            print!(
-                " {:.3} |",
-                pass_ms(&gpu, &pipeline, &scene, "simulate", frames)
-            );
+            let (gpu_ms, wall_ms) = pass_ms(&gpu, &pipeline, &scene, "simulate", frames);
+            print!(" {gpu_ms:.3} ({wall_ms:.2}) |");
         }
         println!();
     }
@@ -134,13 +147,26 @@ fn main() {
         print!(" {} |", d * 17);
     }
     println!();
-    print!("| ms |");
-    for d in drawn {
-        let scene = groom(d, 16, Some(64));
-        print!(
-            " {:.3} |",
-            pass_ms(&gpu, &pipeline, &scene, "interpolate", frames)
-        );
+    let cells: Vec<(f64, f64)> = drawn
+        .iter()
+        .map(|&d| {
+            pass_ms(
+                &gpu,
+                &pipeline,
+                &groom(d, 16, Some(64)),
+                "interpolate",
+                frames,
+            )
+        })
+        .collect();
+    print!("| GPU ms (timestamps) |");
+    for c in &cells {
+        print!(" {:.3} |", c.0);
+    }
+    println!();
+    print!("| wall ms over no simulation (simulate + interpolate) |");
+    for c in &cells {
+        print!(" {:.2} |", c.1);
     }
     println!();
     let _ = std::fs::remove_file(&pipeline);
