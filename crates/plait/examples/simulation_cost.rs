@@ -7,8 +7,9 @@
 //!
 //! Each cell is the median GPU time (timestamps) of the `simulate` or
 //! `interpolate` pass over N frames (default 20) after one warm-up, and the
-//! median wall-clock time a frame takes more than with `simulation = "none"`, with the `verlet`
-//! technique's defaults (4 substeps × 4 constraint sweeps a frame). The
+//! median wall-clock time a frame takes more than with `simulation =
+//! "none"`, with the `verlet` technique's defaults (4 substeps × 4
+//! constraint sweeps a frame). The
 //! pipeline is only the simulation and one 16² hair draw that needs it. A
 //! measurement, not a test: nothing here fails on a slow machine.
 
