@@ -423,3 +423,32 @@ fn a_head_turn_renders_60_frames_with_the_hair_outside_the_turning_head() {
         "the hair should lag behind the head (lag {lag})"
     );
 }
+
+#[test]
+fn hair_without_colliders_falls_freely() {
+    // No head to collide with (the scene's colliders removed): the binding
+    // gets a placeholder collider of radii 0 and the hair falls through.
+    let (_lock, gpu) = open_gpu();
+    let mut scene = groom(8, None);
+    scene.colliders.clear();
+    let n = scene.guides.strands.points.len();
+    let p = prepare(
+        &gpu,
+        &pipeline(),
+        &sets(&["params.sim_spring=0.0"]),
+        &scene,
+        SIZE,
+    )
+    .expect("pipeline builds");
+    render(&p, 20);
+    let (c, r) = (Vec3::ZERO, Vec3::new(0.9, 1.05, 1.0));
+    let deepest = guide_positions(&p, n)
+        .iter()
+        .map(|x| ((*x - c) / r).length())
+        .fold(f32::INFINITY, f32::min);
+    eprintln!("no colliders: deepest |q| = {deepest}");
+    assert!(
+        deepest < 0.99,
+        "with nothing to stop it some hair enters the head's space"
+    );
+}

@@ -104,10 +104,11 @@ pub struct StrandGuide {
 }
 
 fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
-    // Never empty: wgpu cannot bind a 0-byte buffer.
+    // Never empty: wgpu cannot bind a 0-byte buffer, nor one smaller than an
+    // element of the shader's array (48 bytes at most: a strand's guides).
     let padded;
     let contents = if bytes.is_empty() {
-        padded = [0u8; 16];
+        padded = [0u8; 48];
         &padded[..]
     } else {
         bytes
