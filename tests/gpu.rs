@@ -469,3 +469,51 @@ fn timestamps_time_every_pass() {
         }
     }
 }
+
+/// The small scene lit mostly by its ambient light (the key light dimmed),
+/// so the environment term the `ambient_occlusion` techniques darken shows.
+fn ambient_scene() -> SceneData {
+    let mut scene = scene();
+    scene.scene.ambient = 1.2;
+    scene.scene.light.intensity = 0.6;
+    scene
+}
+
+/// Both per-vertex ambient occlusion techniques (Xing et al. 2012 §4; Halén &
+/// Wester 2007 §3.3.1) on the default pipeline: a golden image each, and each
+/// darker than the same render without occlusion.
+#[test]
+fn ambient_occlusion_techniques_match_their_golden_images() {
+    let (_lock, gpu) = gpu();
+    let scene = ambient_scene();
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    let render_with = |technique: &str| {
+        let sets = [format!("techniques.ambient_occlusion={technique}")];
+        let prepared = prepare(&gpu, &pipeline, &sets, &scene, SIZE)
+            .unwrap_or_else(|e| panic!("preparing {technique}: {e}"));
+        prepared.renderer.render().expect("renders");
+        prepared.image().expect("reads back")
+    };
+    let brightness = |image: &RgbaImage| -> u64 {
+        image
+            .pixels()
+            .map(|p| p.0[..3].iter().map(|&c| c as u64).sum::<u64>())
+            .sum()
+    };
+    let open = brightness(&render_with("none"));
+    let mut failures = Vec::new();
+    for technique in ["deep_opacity_directions", "cylinders"] {
+        let image = render_with(technique);
+        let darker = brightness(&image);
+        eprintln!("{technique}: brightness {darker} of {open} without occlusion");
+        if darker >= open {
+            failures.push(format!(
+                "{technique}: not darker than no occlusion ({darker} ≥ {open})"
+            ));
+        }
+        if let Err(e) = check_golden(&format!("ao_{technique}"), &image) {
+            failures.push(e);
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

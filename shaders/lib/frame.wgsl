@@ -34,13 +34,15 @@ struct Frame {
     jitter: vec4<f32>,
     // x, y: camera near and far; z, w: light near and far (world units).
     near_far: vec4<f32>,
-    // x: mean hair fragment alpha (material alpha × mean strand alpha), the
-    // constant α of order-based blending; y: strands; z: segments.
+    // x: mean hair fragment alpha (material alpha × mean strand alpha × strand
+    // coverage while it is on), the constant α of order-based blending;
+    // y: strands; z: segments; w: the mean alpha without coverage.
     hair_stats: vec4<f32>,
     // The conventions every visibility provider shares (docs/design.md, "In
     // front of"): x = self-shadow bias in light linear depth; y = 1 to jitter
     // light-map lookups by up to half a texel (Fig. 9), 0 to read the texel
-    // the point falls in.
+    // the point falls in; z = 1 when strands thinner than a pixel weigh by
+    // the part of it they cover (plait::transparency::coverage).
     conventions: vec4<f32>,
     // World-from-rest matrix of the head at this frame's time (the scene's
     // [animation]; identity for a still head), and one frame earlier.

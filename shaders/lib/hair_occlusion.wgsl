@@ -6,6 +6,8 @@
 
 #ifdef OCCLUSION_NONE
 #import plait::occlusion::none::vertex_occlusion
+#else ifdef OCCLUSION_PER_VERTEX
+#import plait::occlusion::per_vertex::vertex_occlusion
 #else
 #import plait::occlusion::none::vertex_occlusion
 #endif

@@ -10,6 +10,7 @@
 #import plait::hair_occlusion::occlusion_at
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
+#import plait::transparency::coverage::strand_coverage
 #ifdef BLEND_OCCUPANCY_ORDER
 #import plait::frame::camera_linear_depth
 #import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, fragment_order}
@@ -85,7 +86,10 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.world = v.position;
     out.tangent = v.tangent;
     out.color = v.color;
-    out.alpha = v.alpha;
+    // A strand thinner than a pixel covers only part of it: its coverage
+    // weighs its alpha in every blending technique (and sets the sample mask
+    // of alpha to coverage).
+    out.alpha = v.alpha * strand_coverage(v.position, v.tangent, v.thickness);
     out.occlusion = occlusion_at(v.index);
     return out;
 }

@@ -52,6 +52,11 @@ pub struct AbArgs {
     /// Frames per second of --frames (frame i is at time i / fps).
     #[arg(long, value_parser = crate::sequence::parse_fps, default_value = "30", requires = "frames")]
     fps: f32,
+    /// Render the reference N × N times larger and filter it down to
+    /// `--size` (a box filter in linear colour): the ground truth of
+    /// anti-aliasing, e.g. strand coverage against `--supersample 4`.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
+    supersample: u32,
     /// Report directory (replaced if it holds an earlier report).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
@@ -105,6 +110,7 @@ pub fn run(args: AbArgs) -> Result<()> {
         sweeps: args.sweep,
         repeats: args.repeats,
         size: args.size,
+        supersample: args.supersample,
         command: std::env::args().collect(),
         sequence: args.frames.map(|frames| plait::ab::Sequence {
             frames,

@@ -538,3 +538,83 @@ fn technique_sweeps_make_a_grid() {
     );
     assert!(rmse("deep_opacity", "weighted_average") > 0.0);
 }
+
+/// `--supersample N`: the reference rendered N × N times larger and filtered
+/// down to `--size`, so strand coverage can be measured against the truth of
+/// anti-aliasing; coverage is closer to it than one-pixel lines. Out of
+/// range: exit 2 naming the flag.
+#[test]
+fn supersampled_reference_measures_strand_coverage() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let out = tmp.path().join("coverage");
+    let o = plait(&[
+        "ab",
+        "pipelines/forward.toml",
+        "--reference",
+        "pipelines/forward.toml",
+        "--supersample",
+        "4",
+        "--sweep",
+        "params.strand_coverage=true,false",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--repeats",
+        "1",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "stderr: {}", text(&o.stderr));
+    let v = read_json(&out);
+    let reference = v["variants"]
+        .as_array()
+        .expect("variants")
+        .iter()
+        .find(|x| x["is_reference"] == true)
+        .expect("reference")
+        .clone();
+    assert!(
+        reference["label"]
+            .as_str()
+            .is_some_and(|l| l.contains("4× supersampled")),
+        "{reference}"
+    );
+    let image = image::open(out.join("small-reference.png")).expect("reference image");
+    assert_eq!(
+        (image.width(), image.height()),
+        (64, 48),
+        "filtered down to --size"
+    );
+    let runs = v["scenes"][0]["runs"].as_array().expect("runs");
+    let rmse = |id: &str| {
+        runs.iter()
+            .find(|r| r["variant"] == id)
+            .and_then(|r| r["metrics"]["rmse"].as_f64())
+            .unwrap_or_else(|| panic!("no rmse for {id}: {runs:?}"))
+    };
+    assert!(
+        rmse("forward@true") < rmse("forward@false"),
+        "coverage {} should be closer to the supersampled reference than none {}",
+        rmse("forward@true"),
+        rmse("forward@false")
+    );
+
+    let bad = plait(&[
+        "ab",
+        "pipelines/forward.toml",
+        "--reference",
+        "pipelines/forward.toml",
+        "--supersample",
+        "0",
+        "--out",
+        tmp.path().join("bad").to_str().expect("utf-8"),
+    ]);
+    assert_eq!(bad.status.code(), Some(2), "stderr: {}", text(&bad.stderr));
+    assert!(
+        text(&bad.stderr).contains("--supersample"),
+        "{}",
+        text(&bad.stderr)
+    );
+    assert!(!tmp.path().join("bad").exists(), "nothing written");
+}

@@ -143,3 +143,48 @@ fn flags_of_a_sequence_are_checked_before_any_work() {
     assert!(entries(dir.path()).is_empty(), "nothing written");
     assert!(!root().join("frames").exists(), "no default folder left");
 }
+
+#[test]
+fn ab_with_frames_reports_flicker() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("report");
+    let o = plait(&[
+        "ab",
+        "pipelines/deep_opacity.toml",
+        "--reference",
+        "pipelines/occupancy.toml",
+        "--scene",
+        "examples/scenes/head_turn.toml",
+        "--frames",
+        "2",
+        "--fps",
+        "4",
+        "--size",
+        "48x36",
+        "--repeats",
+        "1",
+        "--set",
+        "params.light_size=128",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let markdown = std::fs::read_to_string(out.join("report.md")).expect("report.md");
+    assert!(
+        markdown.contains("| image flicker | visibility flicker |"),
+        "{markdown}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).expect("json"))
+            .expect("JSON");
+    let temporal = &json["scenes"][0]["runs"][0]["temporal"];
+    assert_eq!(temporal["frames"], 2, "{temporal}");
+    assert_eq!(temporal["fps"], 4.0);
+    // The head turns between the two frames: the image changes.
+    assert!(
+        temporal["image_change_mean"]
+            .as_f64()
+            .is_some_and(|c| c > 0.0),
+        "{temporal}"
+    );
+}

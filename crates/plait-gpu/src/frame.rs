@@ -26,11 +26,15 @@ pub struct FrameUniforms {
     pub screen_size: [f32; 4],
     pub jitter: [f32; 4],
     pub near_far: [f32; 4],
+    /// x: mean fragment alpha (strand alpha × material alpha × strand
+    /// coverage while coverage is on); y: strands; z: segments; w: the mean
+    /// alpha without coverage.
     pub hair_stats: [f32; 4],
     /// The comparison conventions every visibility provider shares
     /// (docs/design.md, "In front of"): x = self-shadow bias in light linear
     /// depth, y = 1 to jitter light-map lookups by up to half a texel
-    /// (Sintorn & Assarsson 2009 Fig. 9), 0 for exact texel lookups.
+    /// (Sintorn & Assarsson 2009 Fig. 9), 0 for exact texel lookups;
+    /// z = 1 when strands weigh by their pixel coverage.
     pub conventions: [f32; 4],
     /// World-from-rest matrix of the head (and every opaque vertex whose
     /// `head` weight is 1) at this frame's time: the scene's `[animation]`,
@@ -75,6 +79,8 @@ impl FrameUniforms {
         let view = scene.camera.view();
         let proj = scene.camera.projection(aspect);
         let view_proj = proj * view;
+        let covered_alpha =
+            mean_covered_alpha(strands, view_proj, Vec3::from(scene.camera.eye), size);
         let light = LightFrustum::fit(scene, hair_bounds, scene_bounds);
         let to_light = scene.light.direction_to_light();
         let (light_dir_w, light_pos) = match &scene.light.kind {
@@ -114,14 +120,14 @@ impl FrameUniforms {
             conventions: [
                 SELF_SHADOW_BIAS / (light.far - light.near).max(1e-6),
                 1.0,
-                0.0,
+                1.0,
                 0.0,
             ],
             hair_stats: [
-                (mean_alpha * scene.material.alpha).clamp(0.0, 1.0),
+                (covered_alpha * scene.material.alpha).clamp(0.0, 1.0),
                 strands.strand_count() as f32,
                 strands.segment_count() as f32,
-                0.0,
+                (mean_alpha * scene.material.alpha).clamp(0.0, 1.0),
             ],
             head_model: Mat4::IDENTITY.to_cols_array_2d(),
             head_model_previous: Mat4::IDENTITY.to_cols_array_2d(),
@@ -142,6 +148,18 @@ impl FrameUniforms {
     /// the reference read the same texel).
     pub fn with_light_jitter(mut self, on: bool) -> Self {
         self.conventions[1] = if on { 1.0 } else { 0.0 };
+        self
+    }
+
+    /// Whether strands thinner than a pixel weigh by the part of it they
+    /// cover (`plait::transparency::coverage::strand_coverage`; on by
+    /// default). Off, every strand covers its pixels wholly, as before; the
+    /// mean fragment alpha follows.
+    pub fn with_strand_coverage(mut self, on: bool) -> Self {
+        if (self.conventions[2] > 0.5) != on {
+            self.conventions[2] = if on { 1.0 } else { 0.0 };
+            self.hair_stats.swap(0, 3);
+        }
         self
     }
 
@@ -231,6 +249,58 @@ impl LightFrustum {
             far,
         }
     }
+}
+
+/// The mean strand alpha weighted by strand coverage, the CPU mirror of
+/// `strand_coverage` in `shaders/lib/transparency/coverage.wgsl`: the part of
+/// a pixel each vertex's strand covers at `size` (at most 1), times its
+/// alpha, averaged over vertices (summed in f64). Order-based blending's ᾱ
+/// (Sintorn & Assarsson 2009 §3.4) is the alpha fragments actually carry.
+pub fn mean_covered_alpha(strands: &Strands, view_proj: Mat4, eye: Vec3, size: (u32, u32)) -> f32 {
+    if strands.points.is_empty() {
+        return 1.0;
+    }
+    let tangents = strands.tangents();
+    let half = glam::Vec2::new(size.0 as f32, size.1 as f32) * 0.5;
+    let sum: f64 = strands
+        .points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            let alpha = strands.alpha.get(i).copied().unwrap_or(1.0) as f64;
+            let thickness = strands.thickness.get(i).copied().unwrap_or(1.0);
+            alpha * strand_coverage(p, tangents[i], thickness, view_proj, eye, half) as f64
+        })
+        .sum();
+    (sum / strands.points.len() as f64) as f32
+}
+
+fn strand_coverage(
+    p: Vec3,
+    tangent: Vec3,
+    thickness: f32,
+    view_proj: Mat4,
+    eye: Vec3,
+    half: glam::Vec2,
+) -> f32 {
+    let to_eye = (eye - p).normalize_or_zero();
+    let mut side = tangent.cross(to_eye);
+    if side.length_squared() < 1e-12 {
+        let up = if to_eye.y.abs() > 0.9 {
+            Vec3::X
+        } else {
+            Vec3::Y
+        };
+        side = up.cross(to_eye);
+    }
+    let side = side.normalize_or_zero();
+    let a = view_proj * p.extend(1.0);
+    let b = view_proj * (p + side * thickness).extend(1.0);
+    if a.w <= 0.0 || b.w <= 0.0 {
+        return 1.0;
+    }
+    let pixels = (b.truncate().truncate() / b.w - a.truncate().truncate() / a.w) * half;
+    pixels.length().min(1.0)
 }
 
 #[cfg(test)]

@@ -10,6 +10,8 @@ use plait_hair::{StrandVertex, Strands};
 use wgpu::util::DeviceExt;
 
 /// An opaque vertex with its mesh's albedo baked in, so all opaque geometry is one draw.
+/// Shaders that read `opaque_vertices` as storage step by its 10 floats
+/// (`OPAQUE_STRIDE` in `shaders/passes/occlusion_cylinders.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct OpaqueVertex {

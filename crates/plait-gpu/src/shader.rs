@@ -39,6 +39,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/occupancy.wgsl"),
     ),
     (
+        "shaders/lib/hair_bounds.wgsl",
+        include_str!("../../../shaders/lib/hair_bounds.wgsl"),
+    ),
+    (
         "shaders/lib/visibility/none.wgsl",
         include_str!("../../../shaders/lib/visibility/none.wgsl"),
     ),
@@ -89,6 +93,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
     (
         "shaders/lib/occlusion/none.wgsl",
         include_str!("../../../shaders/lib/occlusion/none.wgsl"),
+    ),
+    (
+        "shaders/lib/occlusion/per_vertex.wgsl",
+        include_str!("../../../shaders/lib/occlusion/per_vertex.wgsl"),
     ),
     (
         "shaders/lib/hair_occlusion.wgsl",

@@ -41,7 +41,7 @@ pub fn compile(
         .values()
         .map(|r| resolve_resource(r, opts, &mut errors))
         .collect();
-    check_histories(pipeline, &descs, &mut errors);
+    crate::history::check(pipeline, &descs, &mut errors);
     for r in pipeline.resources.values() {
         if scene_resource(&r.name).is_some() {
             errors.push(Error::new(
@@ -510,7 +510,7 @@ fn bind_slots(
                 pipeline.resources.len() + i
             }
             (None, None) => {
-                errors.push(undeclared(pipeline, resource));
+                errors.push(crate::history::undeclared(pipeline, resource));
                 continue;
             }
         };
@@ -898,23 +898,13 @@ fn build_schedule(
     // A history makes a read of `R.previous` need `R` (and the younger
     // versions it is copied through), whose writers may come later in the
     // order: walk again until nothing new is needed.
-    let history_chain = |r: usize| -> Vec<usize> {
-        let Some(of) = pipeline
-            .resources
-            .get_index(r)
-            .and_then(|(_, d)| d.previous_of.as_ref())
-        else {
-            return Vec::new();
-        };
-        (0..of.frames_ago)
-            .filter_map(|k| {
-                let name = match k {
-                    0 => of.resource.clone(),
-                    k => crate::load::previous_name(&of.resource, k),
-                };
-                pipeline.resources.get_index_of(&name)
-            })
-            .collect()
+    // Scene resources have no history.
+    let history_chain = |r: usize| {
+        if r < declared {
+            crate::history::chain(pipeline, r)
+        } else {
+            Vec::new()
+        }
     };
     let mut needed: HashSet<usize> = outputs.iter().copied().collect();
     let mut live = vec![false; passes.len()];
@@ -976,7 +966,7 @@ fn build_schedule(
                     scene: false,
                     // A history's versions come after it in declaration
                     // order, so `of` is already renumbered.
-                    lifetime: declared_lifetime(decl, pipeline, &new_id),
+                    lifetime: crate::history::declared_lifetime(decl, pipeline, &new_id),
                     kept: false,
                     location: decl.location.clone(),
                 });
@@ -1007,28 +997,7 @@ fn build_schedule(
             b.resource = new_id[b.resource];
         }
     }
-    let mut history = Vec::new();
-    for (r, resource) in resources.iter().enumerate() {
-        if let Lifetime::Previous { of, frames_ago } = resource.lifetime {
-            // Aged from the version one frame younger (the resource itself for 1).
-            let younger = match frames_ago {
-                1 => Some(of),
-                k => resources.iter().position(|y| {
-                    y.lifetime
-                        == Lifetime::Previous {
-                            of,
-                            frames_ago: k - 1,
-                        }
-                }),
-            };
-            if let Some(from) = younger {
-                history.push((frames_ago, HistoryCopy { from, to: r }));
-            }
-        }
-    }
-    // Oldest first: a version is copied on before it is overwritten.
-    history.sort_by_key(|(frames_ago, copy)| (Reverse(*frames_ago), copy.to));
-    let history: Vec<HistoryCopy> = history.into_iter().map(|(_, c)| c).collect();
+    let history = crate::history::copies(&resources);
 
     let mut slots: Vec<Option<ScheduledPass>> = passes.into_iter().map(Some).collect();
     let mut scheduled = Vec::new();
@@ -1110,83 +1079,6 @@ fn build_schedule(
         outputs: output_ids,
         history,
         memory,
-    }
-}
-
-/// The lifetime a declaration asks for; `new_id` maps declaration indices to
-/// schedule ids.
-fn declared_lifetime(decl: &ResourceDecl, pipeline: &Pipeline, new_id: &[ResourceId]) -> Lifetime {
-    if let Some(of) = &decl.previous_of {
-        let base = pipeline
-            .resources
-            .get_index_of(&of.resource)
-            .map_or(DROPPED_RESOURCE, |i| new_id[i]);
-        return Lifetime::Previous {
-            of: base,
-            frames_ago: of.frames_ago,
-        };
-    }
-    match (&decl.history, &decl.persistent) {
-        (Some(h), _) => Lifetime::History { frames: h.value },
-        (None, Some(_)) => Lifetime::Persistent,
-        (None, None) => Lifetime::Frame,
-    }
-}
-
-/// A resource name that matches no declaration. `R.previous…` gets a message
-/// about `R`'s history; anything else the nearest declared name.
-fn undeclared(pipeline: &Pipeline, resource: &Spanned<String>) -> Error {
-    let name = &resource.value;
-    let kind = match crate::load::parse_previous_name(name) {
-        Some((base, frames_ago)) if pipeline.resources.contains_key(base) => {
-            let decl = &pipeline.resources[base];
-            let reason = match &decl.history {
-                None => format!(
-                    "`{base}` keeps no history; add `history = {frames_ago}` to [resources.{base}] ({}) to keep {}",
-                    decl.location,
-                    if frames_ago == 1 {
-                        "last frame's version".to_owned()
-                    } else {
-                        format!("the last {frames_ago} frames")
-                    }
-                ),
-                Some(h) => format!(
-                    "`{base}` keeps {} frame{} of history ({}); `{name}` needs `history = {frames_ago}`",
-                    h.value,
-                    if h.value == 1 { "" } else { "s" },
-                    h.location
-                ),
-            };
-            ErrorKind::NoHistory {
-                name: name.clone(),
-                reason,
-            }
-        }
-        _ => ErrorKind::UndeclaredResource {
-            name: name.clone(),
-            hint: crate::suggest::did_you_mean(name, pipeline.resources.keys().map(String::as_str)),
-        },
-    };
-    Error::new(resource.location.clone(), kind)
-}
-
-/// A history is kept by copying the resource after each frame; multisampled
-/// textures cannot be copied.
-fn check_histories(pipeline: &Pipeline, descs: &[Option<ResourceDesc>], errors: &mut Vec<Error>) {
-    for (decl, desc) in pipeline.resources.values().zip(descs) {
-        if let (Some(h), Some(ResourceDesc::Texture { samples, .. })) = (&decl.history, desc)
-            && *samples > 1
-        {
-            errors.push(Error::new(
-                h.location.clone(),
-                ErrorKind::BadResource {
-                    resource: decl.name.clone(),
-                    reason: format!(
-                        "a multisampled texture ({samples} samples) cannot be copied, so it cannot keep a history; resolve it into a single-sampled texture and give that one `history`"
-                    ),
-                },
-            ));
-        }
     }
 }
 

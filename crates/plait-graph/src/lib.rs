@@ -21,6 +21,7 @@ pub mod dot;
 pub mod error;
 pub mod expr;
 pub mod format;
+mod history;
 pub mod load;
 mod node_reader;
 mod overrides;

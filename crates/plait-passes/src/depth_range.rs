@@ -19,7 +19,7 @@ use crate::spec_util::{DEPTH, texture};
 
 pub struct DepthRange;
 
-const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/depth_range.wgsl");
+pub(crate) const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/depth_range.wgsl");
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
@@ -53,7 +53,7 @@ fn spec() -> PassTypeSpec {
 }
 
 /// The two draws: near (`Less` into red) then far (`Greater` into green).
-fn draw_states() -> [RasterState; 2] {
+pub(crate) fn draw_states() -> [RasterState; 2] {
     [
         RasterState {
             depth: DepthMode::TestWrite(wgpu::CompareFunction::Less),

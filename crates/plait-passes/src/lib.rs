@@ -15,6 +15,8 @@ pub mod interpolation;
 pub mod lighting;
 pub mod linked_list;
 pub mod occlusion;
+pub mod occlusion_cylinders;
+pub mod occlusion_directions;
 pub mod occupancy;
 pub mod opaque_hair;
 pub mod opaque_shade;
@@ -38,6 +40,9 @@ pub fn library() -> PassLibrary {
     lib.add(depth_range::DepthRange);
     lib.add(density_clustering::DensityClustering);
     lib.add(opaque_shade::OpaqueShade);
+    // Ambient occlusion precomputes (issue 11).
+    lib.add(occlusion_directions::OcclusionDirections);
+    lib.add(occlusion_cylinders::OcclusionCylinders);
     lib.add(hair_shade::HairShade);
     // Transparency methods (issue 5): each shades with hair_shade.wgsl.
     lib.add(depth_peeling::HairDepthPeel);

@@ -4,10 +4,15 @@
 //! (`shaders/lib/hair_occlusion.wgsl` picks the provider the `occlusion` param
 //! names). Its uniform is `occlusion_params` (binding 40), its per-vertex
 //! resources bind at 41–44 through the optional slots below.
+//!
+//! The precomputes that fill them are passes of their techniques
+//! (`run = "once"`): `occlusion_directions` (deep opacity maps from N
+//! directions, Xing et al. 2012 §4) and `occlusion_cylinders` (cylinders and
+//! scalp discs, Halén & Wester 2007 §3.3.1).
 
-use plait_graph::{ParamSpec, SlotSpec};
+use plait_graph::{Access, ParamSpec, SlotSpec};
 
-use crate::spec_util::choice;
+use crate::spec_util::{SlotExt, buffer, choice};
 
 /// The providers, by param value: every module in `shaders/lib/occlusion/`.
 pub fn providers() -> Vec<String> {
@@ -18,7 +23,14 @@ pub fn providers() -> Vec<String> {
 
 /// The optional input slots any provider may need.
 pub fn slots() -> Vec<SlotSpec> {
-    Vec::new()
+    vec![
+        buffer(
+            "occ_vertex_ao",
+            Access::StorageRead,
+            "per_vertex: ambient visibility per hair vertex (f32, 1 = open)",
+        )
+        .optional(),
+    ]
 }
 
 /// Params of the providers (filled into `occlusion_params` by member name).

@@ -50,7 +50,11 @@ fn render(gpu: &Gpu, pipeline: &str, sets: &[String], material_alpha: f32) -> Re
     plait_passes::check(&mut schedule, &library).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     let output = schedule.resources[schedule.outputs[0]].name.clone();
     let bounds = scene.opaque_bounds().union(&strands.bounds());
-    let frame = plait_gpu::frame::FrameUniforms::new(&scene, &strands, bounds, SIZE, 0);
+    // The papers' strands: one alpha per strand, no pixel coverage (with
+    // coverage the alpha varies along a strand, which order-based blending's
+    // single mean alpha does not model: tests/claims.rs measures both).
+    let frame = plait_gpu::frame::FrameUniforms::new(&scene, &strands, bounds, SIZE, 0)
+        .with_strand_coverage(false);
     let geometry = SceneGeometry::upload(&gpu.device, &strands, &meshes);
     let renderer = Renderer::new(
         gpu,

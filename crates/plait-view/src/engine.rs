@@ -202,9 +202,8 @@ impl<'g> Engine<'g> {
             }
         }
         if let Some(live) = &self.live {
-            live.prepared
-                .renderer
-                .set_frame(&scene.frame(self.opts.size, 0));
+            let frame = session::frame_uniforms(live.prepared.schedule(), scene, self.opts.size, 0);
+            live.prepared.renderer.set_frame(&frame);
         }
     }
 

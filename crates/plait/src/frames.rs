@@ -104,7 +104,9 @@ impl Prepared<'_> {
                 .set_hair(hair.as_ref().unwrap_or(&scene.strands))?;
             self.hair_pose = pose.head;
         }
-        Ok(scene.frame_posed(size, &pose, hair.as_ref()))
+        Ok(scene
+            .frame_posed(size, &pose, hair.as_ref())
+            .with_strand_coverage(crate::session::strand_coverage(self.schedule())))
     }
 }
 

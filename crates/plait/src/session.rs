@@ -241,6 +241,32 @@ pub fn prepare<'g>(
     build(gpu, schedule, pipeline, scene, size)
 }
 
+/// Standard inputs for frame `index` of `scene` at `size` as `schedule`
+/// wants them: strand coverage unless its `[params]` say
+/// `strand_coverage = false`.
+pub fn frame_uniforms(
+    schedule: &Schedule,
+    scene: &SceneData,
+    size: (u32, u32),
+    index: u32,
+) -> FrameUniforms {
+    scene
+        .frame(size, index)
+        .with_strand_coverage(strand_coverage(schedule))
+}
+
+/// The pipeline's `strand_coverage` param (on unless it says otherwise).
+pub fn strand_coverage(schedule: &Schedule) -> bool {
+    schedule
+        .params
+        .get("strand_coverage")
+        .and_then(|v| match v {
+            plait_graph::Value::Bool(b) => Some(*b),
+            _ => None,
+        })
+        .unwrap_or(true)
+}
+
 /// Compile options for rendering at `size` on `gpu`.
 pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
     CompileOptions {
@@ -264,7 +290,7 @@ pub fn build<'g>(
         .first()
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
-    let frame = scene.frame(size, 0);
+    let frame = frame_uniforms(&schedule, scene, size, 0);
     // A pass that writes the drawn hair (guide interpolation) moves it itself.
     let hair_written = schedule.passes.iter().any(|p| {
         p.writes.iter().any(|b| {

@@ -232,4 +232,5 @@ fn the_temporal_metric_is_zero_when_still_and_positive_for_flicker() {
     assert!(markdown.contains("image flicker"), "{markdown}");
     let html = std::fs::read_to_string(dir.path().join("report.html")).expect("report.html");
     assert!(html.contains("image flicker over time"));
+    assert!(html.contains("Temporal stability"));
 }

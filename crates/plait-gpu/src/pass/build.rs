@@ -432,15 +432,17 @@ fn bind_group<'a>(
             )),
             BindingSource::Slot { resource, .. } => resources.push((b.binding, *resource)),
             BindingSource::Scene(name) => {
-                let hair = ctx
-                    .geometry
-                    .hair
-                    .as_ref()
-                    .ok_or_else(|| pass_error(pass, "the scene has no hair to bind"))?;
-                let buf = if name == "hair_vertices" {
-                    &hair.vertices
+                let (geometry, what) = match name.strip_prefix("opaque_") {
+                    Some(_) => (ctx.geometry.opaque.as_ref(), "opaque geometry"),
+                    None => (ctx.geometry.hair.as_ref(), "hair"),
+                };
+                let buffers = geometry.ok_or_else(|| {
+                    pass_error(pass, format!("the scene has no {what} to bind as `{name}`"))
+                })?;
+                let buf = if name.ends_with("_vertices") {
+                    &buffers.vertices
                 } else {
-                    &hair.indices
+                    &buffers.indices
                 };
                 scene.push((b.binding, buf));
             }

@@ -16,7 +16,12 @@ use crate::shader::Define;
 use crate::{Capabilities, GpuError};
 
 /// Names of scene buffers a shader can bind in group 1 without a slot.
-pub const SCENE_BINDINGS: &[&str] = &["hair_vertices", "hair_indices"];
+pub const SCENE_BINDINGS: &[&str] = &[
+    "hair_vertices",
+    "hair_indices",
+    "opaque_vertices",
+    "opaque_indices",
+];
 
 /// A WGSL source compiled into the pass library: `(path for messages, text)`,
 /// written with [`crate::builtin_shader!`].

@@ -17,6 +17,7 @@ mod measure;
 pub mod plan;
 mod provenance;
 mod run;
+mod supersample;
 mod temporal;
 
 use std::path::PathBuf;
@@ -24,6 +25,7 @@ use std::path::PathBuf;
 pub use plan::{AbOptions, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
+pub use supersample::box_filter;
 
 use crate::session::SessionError;
 

@@ -70,6 +70,9 @@ pub struct AbOptions {
     /// Timed frames per variant after one warm-up frame.
     pub repeats: u32,
     pub size: (u32, u32),
+    /// The reference is rendered this many times larger in each dimension
+    /// and box-filtered down to `size` (1 = not supersampled).
+    pub supersample: u32,
     /// The command that asked for the run (`argv`), for the provenance.
     pub command: Vec<String>,
     /// An animated sequence per variant and scene for the temporal metric
@@ -85,6 +88,16 @@ pub struct Sequence {
 }
 
 impl AbOptions {
+    /// The size a variant renders at: `size`, times `supersample` for the reference.
+    pub fn render_size(&self, is_reference: bool) -> (u32, u32) {
+        let k = if is_reference {
+            self.supersample.max(1)
+        } else {
+            1
+        };
+        (self.size.0 * k, self.size.1 * k)
+    }
+
     /// `pipelines` against `reference` on the built-in scene at 960×720,
     /// five repeats, no `--set`, no sweep.
     pub fn new(pipelines: Vec<PathBuf>, reference: PathBuf) -> Self {
@@ -96,6 +109,7 @@ impl AbOptions {
             sweeps: Vec::new(),
             repeats: 5,
             size: (960, 720),
+            supersample: 1,
             command: Vec::new(),
             sequence: None,
         }
@@ -197,7 +211,15 @@ impl Plan {
         }
         variants.push(VariantPlan {
             id: unique("reference".into(), &mut taken),
-            label: format!("{} (reference)", stem(&reference)),
+            label: if options.supersample > 1 {
+                format!(
+                    "{} (reference, {}× supersampled)",
+                    stem(&reference),
+                    options.supersample
+                )
+            } else {
+                format!("{} (reference)", stem(&reference))
+            },
             pipeline: reference.clone(),
             sets: options.sets.clone(),
             sweep_values: IndexMap::new(),
@@ -209,6 +231,10 @@ impl Plan {
             ..CompileOptions::default()
         };
         for v in &variants {
+            let compile = CompileOptions {
+                screen: options.render_size(v.is_reference),
+                ..compile.clone()
+            };
             compile_checked(&v.pipeline, &v.sets, &compile).map_err(|source| {
                 AbError::Pipeline {
                     path: v.pipeline.clone(),

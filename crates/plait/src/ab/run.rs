@@ -127,10 +127,13 @@ pub fn run(
             .iter()
             .zip(&prepared)
             .map(|(v, p)| {
-                p.image().map_err(|e| AbError::Render {
-                    what: format!("reading the image of {} on scene {}", v.label, scene.name),
-                    source: e.into(),
-                })
+                let k = plan.options.render_size(v.is_reference).0 / plan.options.size.0.max(1);
+                p.image()
+                    .map(|image| super::supersample::box_filter(&image, k))
+                    .map_err(|e| AbError::Render {
+                        what: format!("reading the image of {} on scene {}", v.label, scene.name),
+                        source: e.into(),
+                    })
             })
             .collect::<Result<Vec<_>, _>>()?;
         let comparisons = compare_all(plan, scene, &images, &mut ticker)?;
@@ -215,13 +218,10 @@ fn build_all<'g>(
 ) -> Result<Vec<Prepared<'g>>, AbError> {
     let mut prepared = Vec::new();
     for v in &plan.variants {
-        let p = prepare(gpu, &v.pipeline, &v.sets, &scene.data, plan.options.size).map_err(
-            render_error(format!(
-                "pipeline {} on scene {}",
-                v.pipeline.display(),
-                scene.name
-            )),
-        )?;
+        let size = plan.options.render_size(v.is_reference);
+        let p = prepare(gpu, &v.pipeline, &v.sets, &scene.data, size).map_err(render_error(
+            format!("pipeline {} on scene {}", v.pipeline.display(), scene.name),
+        ))?;
         ticker.step(format!("{}: built {}", scene.name, v.label))?;
         prepared.push(p);
     }
