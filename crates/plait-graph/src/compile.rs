@@ -595,7 +595,7 @@ fn bind_slots(
             resource_name: resource.value.clone(),
             access,
             // The scene's contents are there before any pass: never cleared.
-            loads: loads || scene.is_some(),
+            loads: loads || (scene.is_some() && direction == Direction::Write),
             location: resource.location.clone(),
         });
     }
