@@ -30,7 +30,7 @@ struct Frame {
     ambient: vec4<f32>,
     // xy: render size in pixels; zw: 1 / size.
     screen_size: vec4<f32>,
-    // xy: unused; z: time in s; w: frame index.
+    // xy: unused; z: time in s (frame index / fps); w: frame index.
     jitter: vec4<f32>,
     // x, y: camera near and far; z, w: light near and far (world units).
     near_far: vec4<f32>,
@@ -44,6 +44,10 @@ struct Frame {
     // the point falls in; z = 1 when strands thinner than a pixel weigh by
     // the part of it they cover (plait::transparency::coverage).
     conventions: vec4<f32>,
+    // World-from-rest matrix of the head at this frame's time (the scene's
+    // [animation]; identity for a still head), and one frame earlier.
+    head_model: mat4x4<f32>,
+    head_model_previous: mat4x4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -60,6 +64,19 @@ fn background_at(pixel: vec2<f32>) -> vec3<f32> {
         return textureSampleLevel(background_image, linear_sampler, pixel * frame.screen_size.zw, 0.0).rgb;
     }
     return frame.background.rgb;
+}
+
+// An opaque vertex in the world: the head (weight 1) moves with
+// `head_model`, everything else (weight 0: the ground) stays.
+fn opaque_world(position: vec3<f32>, head_weight: f32) -> vec3<f32> {
+    let moved = (frame.head_model * vec4<f32>(position, 1.0)).xyz;
+    return mix(position, moved, head_weight);
+}
+
+// An opaque vertex's normal in the world (the head's turns rigidly).
+fn opaque_world_normal(normal: vec3<f32>, head_weight: f32) -> vec3<f32> {
+    let moved = (frame.head_model * vec4<f32>(normal, 0.0)).xyz;
+    return mix(normal, moved, head_weight);
 }
 
 // The view a raster pass draws from: the engine defines LIGHT_VIEW for `view = "light"`.

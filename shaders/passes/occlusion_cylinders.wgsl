@@ -50,8 +50,9 @@ struct CylinderParams {
 }
 
 const PI: f32 = 3.141592653589793;
-// Floats per opaque vertex: position, normal, albedo.
-const OPAQUE_STRIDE: u32 = 9u;
+// Floats per opaque vertex (`OpaqueVertex` in crates/plait-gpu/src/geometry.rs):
+// position, normal, albedo, head weight.
+const OPAQUE_STRIDE: u32 = 10u;
 
 @group(1) @binding(0) var<storage, read> hair_vertices: array<HairVertex>;
 @group(1) @binding(1) var<storage, read_write> vertex_ao: array<f32>;

@@ -2,7 +2,7 @@
 // shadow map and by the hair through the visibility provider
 // (Sintorn & Assarsson 2009 §3.5: hair shadows on opaque objects come from the
 // same light maps the hair uses for itself).
-#import plait::frame::{frame, view_proj, to_light}
+#import plait::frame::{frame, view_proj, to_light, opaque_world, opaque_world_normal}
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
 
@@ -12,6 +12,8 @@ struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) albedo: vec3<f32>,
+    // 1 for the head, which moves with the scene's animation.
+    @location(3) head: f32,
 }
 
 struct VertexOut {
@@ -24,9 +26,10 @@ struct VertexOut {
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {
     var out: VertexOut;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    out.normal = v.normal;
+    let world = opaque_world(v.position, v.head);
+    out.clip = view_proj() * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.normal = opaque_world_normal(v.normal, v.head);
     out.albedo = v.albedo;
     return out;
 }

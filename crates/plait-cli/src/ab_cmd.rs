@@ -8,9 +8,9 @@
 //! a half-written report; an interrupt removes the temporary directory.
 
 use std::io::IsTerminal as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::Result;
 use clap::Args;
 use plait::ab::{AbError, AbOptions, Plan, Step, SweepSpec};
 use plait_compare::report::Report;
@@ -44,6 +44,14 @@ pub struct AbArgs {
     /// Render size, `WIDTHxHEIGHT`.
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
+    /// Also render frames 0..N of each scene's animation per variant and
+    /// report their flicker against the reference's own frame-to-frame
+    /// change (image and visibility), with a plot over time.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(2..=10000))]
+    frames: Option<u32>,
+    /// Frames per second of --frames (frame i is at time i / fps).
+    #[arg(long, value_parser = crate::sequence::parse_fps, default_value = "30", requires = "frames")]
+    fps: f32,
     /// Render the reference N × N times larger and filter it down to
     /// `--size` (a box filter in linear colour): the ground truth of
     /// anti-aliasing, e.g. strand coverage against `--supersample 4`.
@@ -52,104 +60,6 @@ pub struct AbArgs {
     /// Report directory (replaced if it holds an earlier report).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-}
-
-/// Where the report goes: a temporary directory beside `out`, renamed at the end.
-struct PendingDir {
-    out: PathBuf,
-    parent: PathBuf,
-    temp: tempfile::TempDir,
-    _interrupt: crate::output::InterruptGuard,
-}
-
-impl PendingDir {
-    fn create(out: &Path) -> Result<Self> {
-        if out.exists() && !out.is_dir() {
-            bail!("--out {}: exists and is not a directory", out.display());
-        }
-        if out.is_dir() {
-            let empty = std::fs::read_dir(out)
-                .map(|mut d| d.next().is_none())
-                .unwrap_or(false);
-            if !empty && !out.join("report.json").exists() {
-                bail!(
-                    "--out {}: exists and is not an earlier `plait ab` report (no report.json); refusing to replace it",
-                    out.display()
-                );
-            }
-        }
-        let parent = match out.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        std::fs::create_dir_all(&parent).with_context(|| {
-            format!(
-                "--out {}: cannot create {}",
-                out.display(),
-                parent.display()
-            )
-        })?;
-        let temp = tempfile::Builder::new()
-            .prefix(".plait-ab-")
-            .tempdir_in(&parent)
-            .with_context(|| {
-                format!(
-                    "--out {}: cannot write in {}",
-                    out.display(),
-                    parent.display()
-                )
-            })?;
-        Ok(PendingDir {
-            out: out.to_path_buf(),
-            parent,
-            _interrupt: crate::output::remove_on_interrupt(temp.path()),
-            temp,
-        })
-    }
-
-    /// The temporary directory the report is written into.
-    fn dir(&self) -> &Path {
-        self.temp.path()
-    }
-
-    /// Move the finished report into place (replacing an earlier one),
-    /// with interrupts held off until it is.
-    fn commit(self) -> Result<()> {
-        crate::output::uninterrupted(|| self.move_into_place())
-    }
-
-    fn move_into_place(self) -> Result<()> {
-        let temp = self.temp.keep();
-        crate::output::readable_by_all(&temp, 0o755);
-        for entry in std::fs::read_dir(&temp).into_iter().flatten().flatten() {
-            crate::output::readable_by_all(&entry.path(), 0o644);
-        }
-        let mut old = None;
-        if self.out.exists() {
-            let aside = tempfile::Builder::new()
-                .prefix(".plait-ab-old-")
-                .tempdir_in(&self.parent)?
-                .keep();
-            std::fs::remove_dir(&aside).ok();
-            std::fs::rename(&self.out, &aside).with_context(|| {
-                format!(
-                    "--out {}: cannot move the earlier report aside",
-                    self.out.display()
-                )
-            })?;
-            old = Some(aside);
-        }
-        std::fs::rename(&temp, &self.out).with_context(|| {
-            format!(
-                "--out {}: cannot move the report into place",
-                self.out.display()
-            )
-        })?;
-        if let Some(old) = old {
-            std::fs::remove_dir_all(old).ok();
-        }
-        Ok(())
-    }
 }
 
 /// Progress: a bar on a terminal, plain lines otherwise.
@@ -191,7 +101,7 @@ impl Progress {
 
 pub fn run(args: AbArgs) -> Result<()> {
     // Everything a user can get wrong fails before the GPU is opened.
-    let pending = PendingDir::create(&args.out)?;
+    let pending = crate::output::PendingDir::create(&args.out, "report.json", "`plait ab` report")?;
     let plan = Plan::new(AbOptions {
         pipelines: args.pipelines,
         reference: args.reference,
@@ -202,6 +112,10 @@ pub fn run(args: AbArgs) -> Result<()> {
         size: args.size,
         supersample: args.supersample,
         command: std::env::args().collect(),
+        sequence: args.frames.map(|frames| plait::ab::Sequence {
+            frames,
+            fps: args.fps,
+        }),
     })?;
     let gpu = Gpu::new()?;
     let progress = Progress::new(plan.step_count());

@@ -14,6 +14,7 @@ mod args;
 mod hair_cmd;
 mod pipeline_cmd;
 mod render_cmd;
+mod sequence;
 mod show;
 mod techniques_cmd;
 mod view_cmd;

@@ -152,6 +152,112 @@ impl PendingFile {
     }
 }
 
+/// An output folder (a report, a frame sequence) written into a temporary
+/// directory beside `out` and renamed into place at the end. An existing
+/// `out` is replaced only if it holds an earlier output of the same kind
+/// (its `marker` file).
+pub struct PendingDir {
+    out: PathBuf,
+    parent: PathBuf,
+    what: &'static str,
+    temp: tempfile::TempDir,
+    _interrupt: InterruptGuard,
+}
+
+impl PendingDir {
+    /// Reserve `out`; `what` names the output in messages (`report`, `frame sequence`).
+    pub fn create(out: &Path, marker: &str, what: &'static str) -> Result<Self> {
+        if out.exists() && !out.is_dir() {
+            anyhow::bail!("--out {}: exists and is not a directory", out.display());
+        }
+        if out.is_dir() {
+            let empty = std::fs::read_dir(out)
+                .map(|mut d| d.next().is_none())
+                .unwrap_or(false);
+            if !empty && !out.join(marker).exists() {
+                anyhow::bail!(
+                    "--out {}: exists and is not an earlier {what} (no {marker}); refusing to replace it",
+                    out.display()
+                );
+            }
+        }
+        let parent = match out.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent).with_context(|| {
+            format!(
+                "--out {}: cannot create {}",
+                out.display(),
+                parent.display()
+            )
+        })?;
+        let temp = tempfile::Builder::new()
+            .prefix(".plait-out-")
+            .tempdir_in(&parent)
+            .with_context(|| {
+                format!(
+                    "--out {}: cannot write in {}",
+                    out.display(),
+                    parent.display()
+                )
+            })?;
+        Ok(PendingDir {
+            out: out.to_path_buf(),
+            parent,
+            what,
+            _interrupt: remove_on_interrupt(temp.path()),
+            temp,
+        })
+    }
+
+    /// The temporary directory the output is written into.
+    pub fn dir(&self) -> &Path {
+        self.temp.path()
+    }
+
+    /// Move the finished output into place (replacing an earlier one),
+    /// with interrupts held off until it is.
+    pub fn commit(self) -> Result<()> {
+        uninterrupted(|| self.move_into_place())
+    }
+
+    fn move_into_place(self) -> Result<()> {
+        let temp = self.temp.keep();
+        readable_by_all(&temp, 0o755);
+        for entry in std::fs::read_dir(&temp).into_iter().flatten().flatten() {
+            readable_by_all(&entry.path(), 0o644);
+        }
+        let mut old = None;
+        if self.out.exists() {
+            let aside = tempfile::Builder::new()
+                .prefix(".plait-old-")
+                .tempdir_in(&self.parent)?
+                .keep();
+            std::fs::remove_dir(&aside).ok();
+            std::fs::rename(&self.out, &aside).with_context(|| {
+                format!(
+                    "--out {}: cannot move the earlier {} aside",
+                    self.out.display(),
+                    self.what
+                )
+            })?;
+            old = Some(aside);
+        }
+        std::fs::rename(&temp, &self.out).with_context(|| {
+            format!(
+                "--out {}: cannot move the {} into place",
+                self.out.display(),
+                self.what
+            )
+        })?;
+        if let Some(old) = old {
+            std::fs::remove_dir_all(old).ok();
+        }
+        Ok(())
+    }
+}
+
 /// Give a finished output the permissions an ordinary file or directory has
 /// (temporary ones are created private).
 pub fn readable_by_all(path: &Path, mode: u32) {

@@ -1,4 +1,5 @@
-//! `plait render`: one pipeline, one scene, one PNG, a per-pass table.
+//! `plait render`: one pipeline, one scene, one PNG, a per-pass table; with
+//! `--frames`, a sequence ([`crate::sequence`]).
 
 use std::path::{Path, PathBuf};
 
@@ -19,9 +20,10 @@ pub struct RenderArgs {
     /// Scene file (default: the built-in scene).
     #[arg(long)]
     scene: Option<PathBuf>,
-    /// Where to write the image: a .png, or a .jpg/.jpeg file.
-    #[arg(long, default_value = "plait.png")]
-    out: PathBuf,
+    /// Where to write the image: a .png, or a .jpg/.jpeg file (default
+    /// plait.png). With --frames, a folder (default frames/).
+    #[arg(long)]
+    out: Option<PathBuf>,
     /// Render size, `WIDTHxHEIGHT` (a lowercase or capital x).
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
@@ -38,6 +40,15 @@ pub struct RenderArgs {
     /// shader it uses or the scene, until interrupted (Ctrl-C).
     #[arg(long)]
     watch: bool,
+    /// Render an animated sequence of this many frames into the folder
+    /// --out: 0000.png …, animation.png (an animated PNG preview) and
+    /// frames.json; the table shows per-pass medians over the frames.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100000), conflicts_with_all = ["show", "watch"])]
+    frames: Option<u32>,
+    /// Frames per second of the sequence: frame i is at time i / fps (the
+    /// scene's [animation]).
+    #[arg(long, value_parser = crate::sequence::parse_fps, default_value = "30", requires = "frames")]
+    fps: f32,
     #[command(flatten)]
     set: SetArgs,
 }
@@ -120,6 +131,25 @@ pub fn render(
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
+    if let Some(frames) = args.frames {
+        let pipeline = resolve_pipeline(args.pipeline.as_deref());
+        let scene = load_scene(args.scene.as_deref())?;
+        let out = args
+            .out
+            .clone()
+            .unwrap_or_else(crate::sequence::default_out);
+        return crate::sequence::run(&crate::sequence::SequenceArgs {
+            pipeline: &pipeline,
+            sets: &args.set.sets,
+            scene: &scene,
+            scene_path: args.scene.as_deref(),
+            size: args.size,
+            frames,
+            fps: args.fps,
+            out: &out,
+            json: args.json,
+        });
+    }
     if !args.watch {
         return render_once(&args);
     }
@@ -144,8 +174,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
 }
 
 fn render_once(args: &RenderArgs) -> Result<()> {
-    let format = crate::output::image_format(&args.out, "--out")?;
-    let out = PendingFile::create(&args.out, "--out")?;
+    let out_path = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("plait.png"));
+    let format = crate::output::image_format(&out_path, "--out")?;
+    let out = PendingFile::create(&out_path, "--out")?;
     let pipeline = resolve_pipeline(args.pipeline.as_deref());
     let scene = load_scene(args.scene.as_deref())?;
     let r = render(
@@ -162,10 +196,10 @@ fn render_once(args: &RenderArgs) -> Result<()> {
     if args.json {
         outln!(
             "{}",
-            serde_json::to_string_pretty(&report_json(&pipeline, &r, &args.out))?
+            serde_json::to_string_pretty(&report_json(&pipeline, &r, &out_path))?
         )?;
     } else {
-        print_table(&pipeline, &r, &args.out)?;
+        print_table(&pipeline, &r, &out_path, "frame")?;
     }
     Ok(())
 }
@@ -238,7 +272,8 @@ fn ms(v: Option<f64>) -> String {
     v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "n/a".into())
 }
 
-fn print_table(pipeline: &Path, r: &Rendered, out: &Path) -> std::io::Result<()> {
+/// The per-pass table; `total` names the last row (`frame`, `median frame`).
+pub fn print_table(pipeline: &Path, r: &Rendered, out: &Path, total: &str) -> std::io::Result<()> {
     let s = &r.schedule;
     outln!(
         "{} on {} ({}), {}x{}",
@@ -261,12 +296,7 @@ fn print_table(pipeline: &Path, r: &Rendered, out: &Path) -> std::io::Result<()>
             c.reason
         )?;
     }
-    outln!(
-        "{:<20} {:<16} {:>10}",
-        "frame",
-        "",
-        ms(r.report.total_gpu_ms)
-    )?;
+    outln!("{:<20} {:<16} {:>10}", total, "", ms(r.report.total_gpu_ms))?;
     if r.report.total_gpu_ms.is_none() {
         outln!("(this adapter has no timestamp queries: GPU times are not available)")?;
     }

@@ -21,11 +21,13 @@
 //!
 //! [`heatmap`] turns a per-pixel error into a PNG-ready image with the magma
 //! color scale of FLIP and a legend bar; [`plot`] draws SVG charts; [`report`]
-//! is the data model of `report.json` and its HTML rendering.
+//! is the data model of `report.json` and its HTML rendering; [`temporal`]
+//! measures flicker over animated sequences against the reference's own change.
 
 pub mod heatmap;
 pub mod plot;
 pub mod report;
+pub mod temporal;
 
 use image::RgbaImage;
 
@@ -41,9 +43,11 @@ pub enum CompareError {
     },
     #[error("empty image")]
     Empty,
+    #[error("a sequence of {variant} frames cannot be compared with one of {reference}")]
+    FrameCount { variant: usize, reference: usize },
 }
 
-fn check(a: &RgbaImage, b: &RgbaImage) -> Result<(), CompareError> {
+pub(crate) fn check(a: &RgbaImage, b: &RgbaImage) -> Result<(), CompareError> {
     if a.dimensions() != b.dimensions() {
         return Err(CompareError::SizeMismatch {
             a_w: a.width(),

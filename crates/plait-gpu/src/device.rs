@@ -94,7 +94,11 @@ impl Gpu {
             | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
             | wgpu::Features::FLOAT32_BLENDABLE
             | wgpu::Features::SHADER_EARLY_DEPTH_TEST
-            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
+            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
+            // The engine zeroes storage-texture outputs that do not load
+            // with `clear_texture`, which wgpu allows only with this feature
+            // (a compute pass writing a texture failed validation without it).
+            | wgpu::Features::CLEAR_TEXTURE;
         let mut features = available & wanted;
         // PLAIT_DISABLE_FEATURES=FLOAT32_BLENDABLE,TIMESTAMP_QUERY pretends the
         // adapter lacks them: how the fallbacks for weaker adapters are tested here.

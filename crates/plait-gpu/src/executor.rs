@@ -90,7 +90,7 @@ impl<'g> Renderer<'g> {
         let mut schedule = schedule;
         let notes = downgrade_float32_blending(&mut schedule, library, &gpu.capabilities);
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pool = ResourcePool::new(device, &schedule);
+        let pool = ResourcePool::new(device, &schedule, &geometry);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Resource {
                 resource: "memory plan".into(),
@@ -208,6 +208,23 @@ impl<'g> Renderer<'g> {
             .bind(&self.gpu.device, &self.frame_buffer, &view);
     }
 
+    /// Replace the hair's vertices with `strands` moved (the hair following
+    /// the head), before `render`. Fails when `strands` is not the uploaded
+    /// hair's shape.
+    pub fn set_hair(&self, strands: &plait_hair::Strands) -> Result<(), GpuError> {
+        if self.geometry.write_hair(&self.gpu.queue, strands) {
+            Ok(())
+        } else {
+            Err(GpuError::Resource {
+                resource: "hair vertices".into(),
+                message: format!(
+                    "{} points given, but the uploaded hair has a different count",
+                    strands.point_count()
+                ),
+            })
+        }
+    }
+
     /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
     pub fn set_frame(&self, frame: &FrameUniforms) {
         self.gpu
@@ -250,6 +267,10 @@ impl<'g> Renderer<'g> {
                 pass.record(&ctx, &mut encoder);
                 encoder.pop_debug_group();
             }
+            // The frame's last timestamp also covers aging the histories.
+            if i + 1 == self.passes.len() {
+                self.record_history(&mut encoder);
+            }
             if let Some(ts) = &self.timestamps {
                 encoder.write_timestamp(&ts.queries, i as u32 + 1);
             }
@@ -281,6 +302,12 @@ impl<'g> Renderer<'g> {
                 pass: self.schedule.name.clone(),
                 message,
             });
+        }
+        for (i, pass) in self.passes.iter().enumerate() {
+            pass.finish(device).map_err(|message| GpuError::Pass {
+                pass: self.schedule.passes[i].name.clone(),
+                message,
+            })?;
         }
         let mut times: Option<Vec<u64>> = None;
         if let Some(ts) = &self.timestamps {
@@ -325,6 +352,32 @@ impl<'g> Renderer<'g> {
             passes,
             total_gpu_ms,
         })
+    }
+
+    /// Ages every history after the frame's passes: each version is copied
+    /// into the one a frame older, oldest first (`Schedule::history`). Copies
+    /// rather than swaps: bind groups are built once per pass, so swapping
+    /// two allocations would need a second set of them for every pass.
+    fn record_history(&self, encoder: &mut wgpu::CommandEncoder) {
+        use crate::pool::GpuResource;
+        for copy in &self.schedule.history {
+            match (self.pool.get(copy.from), self.pool.get(copy.to)) {
+                (GpuResource::Buffer(from), GpuResource::Buffer(to)) => {
+                    encoder.copy_buffer_to_buffer(from, 0, to, 0, from.size().min(to.size()))
+                }
+                (
+                    GpuResource::Texture { texture: from, .. },
+                    GpuResource::Texture { texture: to, .. },
+                ) => encoder.copy_texture_to_texture(
+                    from.as_image_copy(),
+                    to.as_image_copy(),
+                    from.size(),
+                ),
+                // Cannot happen: compile gives a history's versions the
+                // resource's own descriptor.
+                _ => {}
+            }
+        }
     }
 
     /// Read a texture resource back (layer 0; multisampled textures cannot be read).
@@ -453,6 +506,16 @@ fn downgrade_float32_blending(
                     half(from)
                 ));
             }
+        }
+    }
+    // A history's versions follow it, or the copy that ages them would
+    // change format.
+    for copy in schedule.history.iter().rev().copied().collect::<Vec<_>>() {
+        let from = schedule.resources[copy.from].desc.clone();
+        if schedule.resources[copy.to].desc != from {
+            let to = schedule.resources[copy.to].physical;
+            schedule.physical[to].desc = from.clone();
+            schedule.resources[copy.to].desc = from;
         }
     }
     schedule.memory.peak_bytes = schedule.physical.iter().map(|p| p.desc.bytes()).sum();

@@ -36,6 +36,12 @@ pub struct FrameUniforms {
     /// (Sintorn & Assarsson 2009 Fig. 9), 0 for exact texel lookups;
     /// z = 1 when strands weigh by their pixel coverage.
     pub conventions: [f32; 4],
+    /// World-from-rest matrix of the head (and every opaque vertex whose
+    /// `head` weight is 1) at this frame's time: the scene's `[animation]`,
+    /// the identity for a still head.
+    pub head_model: [[f32; 4]; 4],
+    /// `head_model` one frame earlier (velocities, simulation collisions).
+    pub head_model_previous: [[f32; 4]; 4],
 }
 
 /// Hair nearer the light than a point by at most this much (world units) is
@@ -123,7 +129,18 @@ impl FrameUniforms {
                 strands.segment_count() as f32,
                 (mean_alpha * scene.material.alpha).clamp(0.0, 1.0),
             ],
+            head_model: Mat4::IDENTITY.to_cols_array_2d(),
+            head_model_previous: Mat4::IDENTITY.to_cols_array_2d(),
         }
+    }
+
+    /// The frame's time in seconds (`jitter.z`) and the head's pose now and
+    /// one frame earlier (`head_model`, `head_model_previous`).
+    pub fn with_motion(mut self, time: f32, head_model: Mat4, head_model_previous: Mat4) -> Self {
+        self.jitter[2] = time;
+        self.head_model = head_model.to_cols_array_2d();
+        self.head_model_previous = head_model_previous.to_cols_array_2d();
+        self
     }
 
     /// Whether light-map lookups are jittered (shading: yes, against
@@ -284,4 +301,63 @@ fn strand_coverage(
     }
     let pixels = (b.truncate().truncate() / b.w - a.truncate().truncate() / a.w) * half;
     pixels.length().min(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::mem::offset_of;
+
+    /// `FrameUniforms` and `struct Frame` of `shaders/lib/frame.wgsl` name the
+    /// same members at the same offsets, and have the same size (naga's
+    /// layout of the composed library module).
+    #[test]
+    fn the_wgsl_frame_struct_matches_frame_uniforms() {
+        let source = "#import plait::frame::frame\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return frame.ambient;\n}\n";
+        let module =
+            crate::modules::compose(std::path::Path::new("frame_layout.wgsl"), source, &[])
+                .unwrap_or_else(|e| panic!("{e}"));
+        let (_, var) = module
+            .global_variables
+            .iter()
+            .find(|(_, v)| v.space == naga::AddressSpace::Uniform)
+            .expect("the frame uniform");
+        let naga::TypeInner::Struct { members, span } = &module.types[var.ty].inner else {
+            panic!("frame is a struct");
+        };
+        let wgsl: Vec<(String, usize)> = members
+            .iter()
+            .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+            .collect();
+        macro_rules! rust_members {
+            ($($field:ident),* $(,)?) => {
+                vec![$((stringify!($field).to_owned(), offset_of!(FrameUniforms, $field))),*]
+            };
+        }
+        let rust: Vec<(String, usize)> = rust_members![
+            camera_view_proj,
+            camera_view,
+            camera_inv_view_proj,
+            light_view_proj,
+            light_view,
+            light_inv_view_proj,
+            camera_position,
+            light_direction,
+            light_position,
+            light_color,
+            hair_color,
+            hair_shading,
+            background,
+            ambient,
+            screen_size,
+            jitter,
+            near_far,
+            hair_stats,
+            conventions,
+            head_model,
+            head_model_previous,
+        ];
+        assert_eq!(wgsl, rust);
+        assert_eq!(*span as u64, FRAME_UNIFORMS_SIZE);
+    }
 }

@@ -196,6 +196,25 @@ pub enum ErrorKind {
     },
     #[error("resource `{resource}`: {reason}")]
     BadResource { resource: String, reason: String },
+    /// `NAME.previous…` of a resource that keeps no (or too short a) history.
+    #[error("`{name}` is not declared: {reason}")]
+    NoHistory { name: String, reason: String },
+    #[error(
+        "pass `{reader}` reads `{previous}`, an earlier frame's `{resource}`, but no pass writes `{resource}`"
+    )]
+    HistoryNeverWritten {
+        previous: String,
+        resource: String,
+        reader: String,
+    },
+    #[error(
+        "pass `{pass}` writes `{previous}`, an earlier frame's `{resource}`, which is read-only: write `{resource}` and the engine keeps its history"
+    )]
+    WritesHistory {
+        pass: String,
+        previous: String,
+        resource: String,
+    },
 }
 
 /// `; did you mean …?` for `name` among a `known` list joined by ", ".

@@ -21,12 +21,14 @@ pub mod dot;
 pub mod error;
 pub mod expr;
 pub mod format;
+mod history;
 pub mod load;
 mod node_reader;
 mod overrides;
 pub mod pass_type_file;
 pub mod raster_decl;
 mod run_once;
+pub mod scene_resources;
 pub mod schedule;
 mod shader_path;
 pub mod snapshot;
@@ -44,6 +46,9 @@ pub use value::Value;
 
 pub use compile::compile;
 pub use dot::{to_dot, to_svg};
-pub use load::{PassDecl, Pipeline, ResourceDecl, SizeDecl, load, load_str};
+pub use load::{
+    PassDecl, Pipeline, PreviousOf, ResourceDecl, SizeDecl, load, load_str, parse_previous_name,
+    previous_name,
+};
 pub use raster_decl::RasterDecl;
 pub use snapshot::schedule_text;

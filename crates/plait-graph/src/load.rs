@@ -75,6 +75,44 @@ pub struct ResourceDecl {
     pub samples: Option<Spanned<Value>>,
     /// The `[resources.NAME]` header (or first key) that declared it.
     pub location: Location,
+    /// `history = N`: the engine keeps the last N frames' versions, read as
+    /// `NAME.previous` (one frame ago) … `NAME.previous.N`.
+    pub history: Option<Spanned<u32>>,
+    /// `persistent = true`: contents kept between frames, never cleared by
+    /// the engine (its location, when set).
+    pub persistent: Option<Location>,
+    /// Set on the resources the loader adds for a history: `NAME.previous.K`
+    /// is `NAME` as it was K frames ago, read-only.
+    pub previous_of: Option<PreviousOf>,
+}
+
+/// What a `NAME.previous…` resource holds: `resource` as it was `frames_ago`
+/// frames before the current one.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PreviousOf {
+    pub resource: String,
+    pub frames_ago: u32,
+}
+
+/// `NAME.previous` for one frame ago, `NAME.previous.K` for K ≥ 2.
+pub fn previous_name(resource: &str, frames_ago: u32) -> String {
+    if frames_ago == 1 {
+        format!("{resource}.previous")
+    } else {
+        format!("{resource}.previous.{frames_ago}")
+    }
+}
+
+/// The inverse of [`previous_name`]: `("positions", 2)` for
+/// `positions.previous.2`; `None` for a name that is not a history's.
+pub fn parse_previous_name(name: &str) -> Option<(&str, u32)> {
+    if let Some(base) = name.strip_suffix(".previous") {
+        return Some((base, 1));
+    }
+    let (head, k) = name.rsplit_once('.')?;
+    let base = head.strip_suffix(".previous")?;
+    let k: u32 = k.parse().ok()?;
+    (k >= 1).then_some((base, k))
 }
 
 /// The `size` of a resource, before the screen size is known.

@@ -170,12 +170,51 @@ pub struct ResolvedResource {
     pub first_use: usize,
     pub last_use: usize,
     pub physical: PhysicalId,
+    /// A scene resource ([`crate::scene_resources`]): the scene's buffer,
+    /// not allocated by the pipeline (its `desc` is a 0-byte buffer).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub scene: bool,
+    /// Whether the contents outlive the frame (`persistent`, `history`).
+    #[serde(skip_serializing_if = "Lifetime::is_frame")]
+    pub lifetime: Lifetime,
     /// Its contents outlive the frame (written by a `run = "once"` pass), so
     /// it lives from the first pass to the last and shares no allocation.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub kept: bool,
     #[serde(skip)]
     pub location: Location,
+}
+
+/// How long a resource's contents live. Anything but [`Lifetime::Frame`]
+/// spans the whole schedule and has an allocation of its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Lifetime {
+    /// Written and read within one frame; its memory may be shared.
+    Frame,
+    /// `persistent = true`: kept between frames, never cleared by the engine.
+    Persistent,
+    /// `history = frames`: this frame's version; the engine copies it into
+    /// `NAME.previous` after every frame.
+    History { frames: u32 },
+    /// `NAME.previous…`: the version of `of` from `frames_ago` frames
+    /// before, read-only; zero on the first frame.
+    Previous { of: ResourceId, frames_ago: u32 },
+}
+
+impl Lifetime {
+    pub fn is_frame(&self) -> bool {
+        *self == Lifetime::Frame
+    }
+}
+
+/// One copy the engine records after a frame's passes to age a history:
+/// `from` (a version) into `to` (the version one frame older). The list runs
+/// oldest first, so each version is read before it is overwritten.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct HistoryCopy {
+    pub from: ResourceId,
+    pub to: ResourceId,
 }
 
 /// One GPU allocation; several resources with identical descriptors and
@@ -213,6 +252,9 @@ pub struct Schedule {
     pub dropped_resources: Vec<String>,
     pub physical: Vec<PhysicalResource>,
     pub outputs: Vec<ResourceId>,
+    /// Copies that age every history after the frame (oldest first).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub history: Vec<HistoryCopy>,
     pub memory: MemoryReport,
 }
 

@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, DROPPED_RESOURCE, Schedule};
+use crate::schedule::{Binding, DROPPED_RESOURCE, Lifetime, Schedule};
 
 /// The schedule as text: passes in order, culled passes with reasons,
 /// resources with descriptor, bytes, lifetime and physical slot, memory.
@@ -65,9 +65,21 @@ pub fn schedule_text(s: &Schedule) -> String {
             (false, true) => " [kept across frames]",
             (false, false) => "",
         };
+        let lifetime = match r.lifetime {
+            // Sized by the scene's hair: nothing of the pipeline's.
+            _ if r.scene => ", the scene's (persistent)".into(),
+            Lifetime::Frame => String::new(),
+            Lifetime::Persistent => ", persistent".into(),
+            Lifetime::History { frames } => format!(", history {frames}"),
+            Lifetime::Previous { of, frames_ago } => format!(
+                ", previous of {}, {frames_ago} frame{} ago",
+                s.resources.get(of).map_or("?", |r| r.name.as_str()),
+                if frames_ago == 1 { "" } else { "s" }
+            ),
+        };
         let _ = writeln!(
             out,
-            "  {}{output}: {}, {} B, passes {}..={}, physical #{}{shared}",
+            "  {}{output}: {}, {} B, passes {}..={}, physical #{}{shared}{lifetime}",
             r.name,
             r.desc.label(),
             r.desc.bytes(),
@@ -81,6 +93,18 @@ pub fn schedule_text(s: &Schedule) -> String {
             out,
             "  dropped (no live pass uses them): {}",
             s.dropped_resources.join(", ")
+        );
+    }
+    if !s.history.is_empty() {
+        let copies: Vec<String> = s
+            .history
+            .iter()
+            .map(|c| format!("{} -> {}", s.resources[c.from].name, s.resources[c.to].name))
+            .collect();
+        let _ = writeln!(
+            out,
+            "\nhistory: {} (copied after each frame)",
+            copies.join(", ")
         );
     }
     let _ = writeln!(

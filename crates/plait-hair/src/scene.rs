@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use serde::Deserialize;
 
+pub use crate::animation::Animation;
 use crate::asset::{Asset, AssetError};
 use crate::camera::CameraSetting;
 pub use crate::camera::{Camera, CameraFit};
@@ -197,6 +198,8 @@ pub struct Scene {
     /// The light around the scene (the procedural sky unless the file
     /// names an image), for the `lighting` techniques.
     pub environment: Environment,
+    /// Keyframes of the head, if it moves.
+    pub animation: Option<Animation>,
 }
 
 /// What [`Scene::load_hair`] fits to the hair's bounds.
@@ -226,6 +229,7 @@ struct SceneToml {
     ambient: f32,
     #[serde(default)]
     environment: Option<toml::Spanned<EnvironmentSetting>>,
+    animation: Option<Animation>,
 }
 
 impl From<SceneToml> for Scene {
@@ -249,6 +253,7 @@ impl From<SceneToml> for Scene {
             ambient: t.ambient,
             // Its place in the file is filled in by `from_toml_str`.
             environment: t.environment.map(|e| e.into_inner().0).unwrap_or_default(),
+            animation: t.animation,
         }
     }
 }
@@ -339,6 +344,7 @@ impl Scene {
             material: HairMaterial::default(),
             ambient: 0.15,
             environment: Environment::default(),
+            animation: None,
         }
     }
 
@@ -358,6 +364,15 @@ impl Scene {
             let (line, column) = line_col(text, e.span().start);
             format!("{}:{line}:{column}", path.display())
         });
+        if let Some(e) = parsed.animation.as_ref().and_then(|a| a.validate().err()) {
+            let (line, column) = line_col(text, e.span.start);
+            return Err(SceneError::Parse {
+                path: path.to_path_buf(),
+                line,
+                column,
+                message: e.message,
+            });
+        }
         let mut scene = Scene::from(parsed);
         scene.environment.declared_at = environment_at;
         scene.validate().map_err(|message| SceneError::Invalid {
@@ -530,6 +545,22 @@ impl Scene {
         }
     }
 
+    /// The head's world-from-rest matrix at `time` seconds: the identity
+    /// without `[animation]`; the animation turns about the head's centre
+    /// unless it names a pivot.
+    pub fn head_model(&self, time: f32) -> glam::Mat4 {
+        match &self.animation {
+            None => glam::Mat4::IDENTITY,
+            Some(a) => {
+                let center = self
+                    .head
+                    .as_ref()
+                    .map_or(Vec3::ZERO, |h| Vec3::from(h.center));
+                a.head_model(time, center)
+            }
+        }
+    }
+
     /// Opaque geometry: the head ellipsoid and the ground plane, if present.
     pub fn opaque_meshes(&self) -> Vec<Mesh> {
         let mut out = Vec::new();
@@ -548,6 +579,23 @@ impl Scene {
             );
         }
         out
+    }
+
+    /// Bounds of the opaque meshes with the head posed by `head_model`.
+    pub fn opaque_bounds_posed(&self, head_model: glam::Mat4) -> Aabb {
+        self.opaque_meshes()
+            .iter()
+            .flat_map(|m| {
+                let pose = if m.name == "head" {
+                    head_model
+                } else {
+                    glam::Mat4::IDENTITY
+                };
+                m.vertices
+                    .iter()
+                    .map(move |v| pose.transform_point3(Vec3::from(v.position)))
+            })
+            .fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(p, p)))
     }
 
     /// Bounds of the opaque meshes (empty if none).
@@ -575,7 +623,14 @@ mod tests {
 
     #[test]
     fn all_example_scenes_load_and_validate() {
-        for name in ["small.toml", "default.toml", "dense.toml", "stray.toml"] {
+        for name in [
+            "small.toml",
+            "default.toml",
+            "dense.toml",
+            "stray.toml",
+            "head_turn.toml",
+            "stray_shake.toml",
+        ] {
             let s = Scene::load(examples().join(name)).unwrap_or_else(|e| panic!("{e}"));
             let HairSource::Procedural(g) = &s.hair.source else {
                 panic!("{name}: procedural expected")
@@ -583,7 +638,7 @@ mod tests {
             match name {
                 "small.toml" => assert!(g.strands <= 1000 && g.segments <= 16),
                 "dense.toml" => assert!(g.strands >= 20_000),
-                "stray.toml" => assert!(g.stray_strands > 0),
+                "stray.toml" | "stray_shake.toml" => assert!(g.stray_strands > 0),
                 _ => {}
             }
         }
@@ -623,6 +678,61 @@ mod tests {
         let ground = s.ground.as_ref().expect("ground");
         assert!(ground.height < b.min.y);
         assert_eq!(s.opaque_meshes().len(), 2);
+    }
+
+    #[test]
+    fn the_head_turn_turns_the_head_and_comes_back() {
+        let s = Scene::load(examples().join("head_turn.toml")).expect("head_turn.toml");
+        assert_eq!(s.head_model(0.0), glam::Mat4::IDENTITY);
+        assert!(s.head_model(2.0).abs_diff_eq(glam::Mat4::IDENTITY, 1e-6));
+        // At 1 s the face (+Z) looks 45° towards +X.
+        let forward = s.head_model(1.0).transform_vector3(Vec3::Z);
+        let yaw = forward.x.atan2(forward.z).to_degrees();
+        assert!((yaw - 45.0).abs() < 0.5, "yaw {yaw}");
+        let still = Scene::load(examples().join("small.toml")).expect("small");
+        assert_eq!(still.head_model(1.0), glam::Mat4::IDENTITY);
+    }
+
+    #[test]
+    fn bad_keyframes_are_reported_at_their_line_and_column() {
+        let p = Path::new("s.toml");
+        let keys = |second: &str| {
+            format!(
+                "[hair.procedural]\n{MINIMAL}[[animation.keys]]\ntime = 0.5\n[[animation.keys]]\n{second}\n"
+            )
+        };
+        // MINIMAL is 7 lines; the second key's body is line 12.
+        for (second, column, needle) in [
+            ("time = 0.25", 8, "key times must increase"),
+            ("time = nan", 8, "animation.keys[1].time must be finite"),
+            (
+                "time = 1.0\nrotate_degrees = [0, 30]",
+                18,
+                "expected an array of length 3",
+            ),
+            (
+                "time = 1.0\ntranslate = [0, inf, 0]",
+                13,
+                "animation.keys[1].translate must be finite",
+            ),
+            ("time = 1.0\nspin = 3", 1, "unknown field `spin`"),
+        ] {
+            let e = Scene::from_toml_str(&keys(second), p)
+                .unwrap_err()
+                .to_string();
+            let line = if second.contains('\n') { 13 } else { 12 };
+            assert!(
+                e.starts_with(&format!("s.toml:{line}:{column}: ")) && e.contains(needle),
+                "{second}: {e}"
+            );
+        }
+        let e = Scene::from_toml_str(
+            &format!("[hair.procedural]\n{MINIMAL}[animation]\nkeys = []\n"),
+            p,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("s.toml:10:8: ") && e.contains("empty"), "{e}");
     }
 
     #[test]

@@ -98,6 +98,8 @@ struct Engine<'g> {
     inspect: (Option<String>, Option<Display>),
     paused: bool,
     live: Option<Live<'g>>,
+    /// The scene's animation plays in real time from here, looping.
+    clock: Instant,
     timings: HashMap<String, VecDeque<f64>>,
     frame_times: VecDeque<f64>,
     frames_since_build: u64,
@@ -280,6 +282,28 @@ impl<'g> Engine<'g> {
             return;
         };
         let started = Instant::now();
+        // An animated scene plays in real time at 30 frames a second, looping
+        // over its keys (`plait::frames`, as `plait render --frames` does).
+        if let Some(scene) = &self.scene
+            && let Some(animation) = &scene.scene.animation
+        {
+            const FPS: f32 = 30.0;
+            let frames = (animation.duration() * FPS) as u64 + 1;
+            let index = (self.clock.elapsed().as_secs_f32() * FPS) as u64 % frames;
+            match live
+                .prepared
+                .pose_frame(scene, self.opts.size, index as u32, FPS)
+            {
+                Ok(frame) => live.prepared.renderer.set_frame(&frame),
+                Err(e) => {
+                    live.failed = true;
+                    let text = error_text(&e);
+                    eprintln!("{text}");
+                    self.update(|s| s.error = Some(text));
+                    return;
+                }
+            }
+        }
         let frame = live.prepared.renderer.render().and_then(|report| {
             let output = live
                 .prepared
@@ -572,6 +596,7 @@ pub fn run(
         inspect: (inspect, None),
         paused: false,
         live: None,
+        clock: Instant::now(),
         timings: HashMap::new(),
         frame_times: VecDeque::new(),
         frames_since_build: 0,

@@ -8,6 +8,7 @@
 //! - [`hair`]: strands, `.hair` files, grooms, scenes;
 //! - [`gpu`]: the wgpu executor;
 //! - [`passes`]: the pass library;
+//! - [`frames`]: sequences of frames (time, head animation, medians);
 //! - [`ab`]: A/B runs, several pipelines against a reference, as one report.
 
 pub use plait_gpu as gpu;
@@ -16,5 +17,6 @@ pub use plait_hair as hair;
 pub use plait_passes as passes;
 
 pub mod ab;
+pub mod frames;
 pub mod probe;
 pub mod session;

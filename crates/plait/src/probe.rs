@@ -108,6 +108,78 @@ pub fn probe_visibility(
     size: (u32, u32),
     grid: &ProbeGrid,
 ) -> Result<Option<Probed>, SessionError> {
+    let Some((visibility, prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid)? else {
+        return Ok(None);
+    };
+    // Like with like: every provider and the reference read the texel the
+    // point falls in (no Fig. 9 jitter, which is for shading), with the one
+    // "in front of" convention of the frame (docs/design.md).
+    prepared
+        .renderer
+        .set_frame(&scene.frame(size, 0).with_light_jitter(false));
+    prepared.renderer.render()?;
+    let values = read_probe(&prepared)?;
+    Ok(Some(Probed { visibility, values }))
+}
+
+/// A pipeline's visibility along every probe ray, frame after frame of the
+/// scene's animation.
+#[derive(Clone, Debug)]
+pub struct ProbedSequence {
+    pub visibility: String,
+    /// `frames[t][ray * depths + d]`.
+    pub frames: Vec<Vec<f32>>,
+}
+
+/// Probe `pipeline`'s self-shadowing at frames `0..frames` of the scene's
+/// animation at `fps` (the hair and the light's frustum where they are in
+/// each frame); `None` without a visibility provider.
+#[allow(clippy::too_many_arguments)]
+pub fn probe_sequence(
+    gpu: &Gpu,
+    pipeline: &Path,
+    sets: &[String],
+    scene: &SceneData,
+    size: (u32, u32),
+    grid: &ProbeGrid,
+    frames: u32,
+    fps: f32,
+) -> Result<Option<ProbedSequence>, SessionError> {
+    let Some((visibility, mut prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid)?
+    else {
+        return Ok(None);
+    };
+    let mut values = Vec::with_capacity(frames as usize);
+    for index in 0..frames {
+        let frame = prepared.pose_frame(scene, size, index, fps)?;
+        prepared.renderer.set_frame(&frame.with_light_jitter(false));
+        prepared.renderer.render()?;
+        values.push(read_probe(&prepared)?);
+    }
+    Ok(Some(ProbedSequence {
+        visibility,
+        frames: values,
+    }))
+}
+
+fn read_probe(prepared: &crate::session::Prepared<'_>) -> Result<Vec<f32>, SessionError> {
+    let bytes = prepared.renderer.read_buffer("probe_out")?;
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect())
+}
+
+/// The variant extended by the probe pass, built: its provider's name and
+/// the prepared pipeline; `None` without a provider.
+fn build_probe<'g>(
+    gpu: &'g Gpu,
+    pipeline: &Path,
+    sets: &[String],
+    scene: &SceneData,
+    size: (u32, u32),
+    grid: &ProbeGrid,
+) -> Result<Option<(String, crate::session::Prepared<'g>)>, SessionError> {
     let opts = gpu_options(gpu, size);
     let variant = crate::session::compile_checked(pipeline, sets, &opts)?;
     let shading = variant
@@ -168,19 +240,7 @@ pub fn probe_visibility(
     let loaded = plait_graph::load_str(&probe_path, &text, sets)?;
     let schedule = check_pipeline(loaded, &opts)?;
     let prepared = build(gpu, schedule, &probe_path, scene, size)?;
-    // Like with like: every provider and the reference read the texel the
-    // point falls in (no Fig. 9 jitter, which is for shading), with the one
-    // "in front of" convention of the frame (docs/design.md).
-    prepared
-        .renderer
-        .set_frame(&scene.frame(size, 0).with_light_jitter(false));
-    prepared.renderer.render()?;
-    let bytes = prepared.renderer.read_buffer("probe_out")?;
-    let values = bytes
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    Ok(Some(Probed { visibility, values }))
+    Ok(Some((visibility, prepared)))
 }
 
 /// Visibility of a variant against the reference along the probe rays: the

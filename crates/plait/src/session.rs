@@ -145,6 +145,10 @@ pub struct SceneData {
     /// The scene's environment (the procedural sky unless it names an
     /// image), read once: the `environment_source` of every pass.
     pub environment: plait_hair::EnvironmentImage,
+    /// The guide strands simulation moves (every strand its own guide when
+    /// the groom has none) and the head's colliders.
+    pub guides: plait_hair::guides::Guides,
+    pub colliders: Vec<plait_gpu::geometry::Collider>,
 }
 
 impl SceneData {
@@ -164,12 +168,23 @@ impl SceneData {
             Background::Color(_) => None,
         };
         let environment = scene.environment.load()?;
+        let guides = plait_hair::guides::scene_guides(&scene, &strands)?;
+        let colliders = scene
+            .head
+            .iter()
+            .map(|h| plait_gpu::geometry::Collider {
+                center: h.center.into(),
+                radii: h.radii.into(),
+            })
+            .collect();
         Ok(SceneData {
             scene,
             strands,
             meshes,
             background,
             environment,
+            guides,
+            colliders,
         })
     }
 
@@ -181,10 +196,18 @@ impl SceneData {
         }
     }
 
-    /// Standard inputs for a frame of this scene at `size`.
+    /// Standard inputs for a frame of this scene at `size`, the scene as it
+    /// is at time 0 (its first pose, when it is animated: what a single
+    /// `plait render` shows, frame 0 of a sequence).
     pub fn frame(&self, size: (u32, u32), frame_index: u32) -> FrameUniforms {
-        let scene_bounds = self.scene.opaque_bounds().union(&self.strands.bounds());
-        FrameUniforms::new(&self.scene, &self.strands, scene_bounds, size, frame_index)
+        let head = self.scene.head_model(0.0);
+        let pose = crate::frames::FramePose {
+            index: frame_index,
+            time: 0.0,
+            head,
+            head_previous: head,
+        };
+        self.frame_posed(size, &pose, self.hair_posed(head).as_ref())
     }
 }
 
@@ -193,6 +216,12 @@ pub struct Prepared<'g> {
     pub renderer: Renderer<'g>,
     /// Name of the resource images are read from (the first output).
     pub output: String,
+    /// The head pose the uploaded hair follows ([`Prepared::render_frame`]).
+    pub(crate) hair_pose: glam::Mat4,
+    /// Whether the frame loop moves the hair with the head (rigidly, on the
+    /// CPU). A pipeline whose simulation writes the hair on the GPU turns it
+    /// off; the light is still fitted to where rigid hair would be.
+    pub hair_follows_head: bool,
 }
 
 impl Prepared<'_> {
@@ -227,15 +256,21 @@ pub fn frame_uniforms(
     size: (u32, u32),
     index: u32,
 ) -> FrameUniforms {
-    let coverage = schedule
+    scene
+        .frame(size, index)
+        .with_strand_coverage(strand_coverage(schedule))
+}
+
+/// The pipeline's `strand_coverage` param (on unless it says otherwise).
+pub fn strand_coverage(schedule: &Schedule) -> bool {
+    schedule
         .params
         .get("strand_coverage")
         .and_then(|v| match v {
             plait_graph::Value::Bool(b) => Some(*b),
             _ => None,
         })
-        .unwrap_or(true);
-    scene.frame(size, index).with_strand_coverage(coverage)
+        .unwrap_or(true)
 }
 
 /// Compile options for rendering at `size` on `gpu`.
@@ -262,7 +297,27 @@ pub fn build<'g>(
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
     let frame = frame_uniforms(&schedule, scene, size, 0);
-    let mut geometry = SceneGeometry::upload(&gpu.device, &scene.strands, &scene.meshes);
+    // A pass that writes the drawn hair (guide interpolation) moves it itself.
+    let hair_written = schedule.passes.iter().any(|p| {
+        p.writes.iter().any(|b| {
+            schedule
+                .resources
+                .get(b.resource)
+                .is_some_and(|r| r.scene && r.name == "hair_vertices")
+        })
+    });
+    // The hair as it is at time 0 (the head's first pose).
+    let hair_pose = scene.scene.head_model(0.0);
+    let posed = scene.hair_posed(hair_pose);
+    let hair = posed.as_ref().unwrap_or(&scene.strands);
+    let mut geometry = SceneGeometry::upload_with_guides(
+        &gpu.device,
+        hair,
+        &scene.meshes,
+        &scene.guides,
+        &scene.colliders,
+        hair_pose,
+    );
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
@@ -276,5 +331,10 @@ pub fn build<'g>(
     if let Some(image) = &scene.background {
         renderer.set_background_image(image);
     }
-    Ok(Prepared { renderer, output })
+    Ok(Prepared {
+        renderer,
+        output,
+        hair_pose,
+        hair_follows_head: !hair_written,
+    })
 }

@@ -188,3 +188,49 @@ fn a_failing_progress_callback_stops_the_run() {
     assert_eq!(calls, 1, "nothing runs after the callback fails");
     assert!(!dir.path().join("report.json").exists());
 }
+
+/// `--frames`: on a still scene, a variant that renders the same image every
+/// frame has no flicker whatever its error; one brightened on odd frames
+/// flickers by about that much; visibility is as stable as the reference's.
+#[test]
+fn the_temporal_metric_is_zero_when_still_and_positive_for_flicker() {
+    let (_lock, gpu) = open_gpu();
+    let mut o = tiny(
+        &[
+            "pipelines/deep_opacity.toml",
+            "tests/fixtures/flicker/flicker.toml",
+        ],
+        "pipelines/occupancy.toml",
+    );
+    o.sequence = Some(plait::ab::Sequence {
+        frames: 3,
+        fps: 30.0,
+    });
+    let plan = Plan::new(o).expect("plan");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let report = run(&plan, &gpu, dir.path(), &mut |_| Ok(())).expect("runs");
+    let temporal = |id: &str| {
+        run_of(&report, id)
+            .temporal
+            .clone()
+            .unwrap_or_else(|| panic!("{id}: no temporal measure"))
+    };
+    let still = temporal("deep_opacity");
+    assert_eq!(still.frames, 3);
+    assert_eq!(still.image_flicker, [0.0, 0.0]);
+    assert_eq!(still.image_change_mean, 0.0);
+    let flicker = temporal("flicker");
+    assert!(
+        flicker.image_flicker.iter().all(|&f| f > 0.02),
+        "{:?}",
+        flicker.image_flicker
+    );
+    // The same provider as the reference's, on a still scene.
+    assert_eq!(flicker.visibility_flicker.as_deref(), Some(&[0.0, 0.0][..]));
+    assert!(still.visibility_flicker.is_some(), "deep opacity is probed");
+    let markdown = std::fs::read_to_string(dir.path().join("report.md")).expect("report.md");
+    assert!(markdown.contains("image flicker"), "{markdown}");
+    let html = std::fs::read_to_string(dir.path().join("report.html")).expect("report.html");
+    assert!(html.contains("image flicker over time"));
+    assert!(html.contains("Temporal stability"));
+}

@@ -5,6 +5,7 @@
 use crate::plot::{Chart, Grid, Point, Series, grid_svg, svg};
 
 use super::{Report, Run, SceneResult, Variant, cost_ms};
+use crate::temporal::Temporal;
 
 pub(super) fn cost_label(report: &Report) -> &'static str {
     if report.provenance.timestamps {
@@ -186,6 +187,7 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
             }));
         }
     }
+    charts.extend(temporal_charts(report, scene));
     if let [rows, columns] = report.sweeps.as_slice() {
         for pipeline in grid_pipelines(report) {
             for (what, value) in [
@@ -205,6 +207,72 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
                     note: Some("darker = larger".into()),
                 }));
             }
+        }
+    }
+    charts
+}
+
+/// With `--frames`: image and visibility flicker against time, one line per
+/// variant (the reference's is zero by construction and left out).
+fn temporal_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
+    type Values = fn(&Temporal) -> Option<&Vec<f64>>;
+    fn image(t: &Temporal) -> Option<&Vec<f64>> {
+        Some(&t.image_flicker)
+    }
+    fn visibility(t: &Temporal) -> Option<&Vec<f64>> {
+        t.visibility_flicker.as_ref()
+    }
+    let over_time = |values: Values| {
+        scene
+            .runs
+            .iter()
+            .filter_map(|run| {
+                let v = report.variant(&run.variant)?;
+                let t = run.temporal.as_ref()?;
+                let values = values(t)?;
+                (!v.is_reference).then(|| Series {
+                    name: v.label.clone(),
+                    line: true,
+                    points: values
+                        .iter()
+                        .enumerate()
+                        .map(|(k, &y)| Point {
+                            // Transition k → k + 1 ends at frame k + 1.
+                            x: (k + 1) as f64 / t.fps,
+                            y,
+                            size: Some(2.5),
+                            label: None,
+                        })
+                        .collect(),
+                })
+            })
+            .collect::<Vec<_>>()
+    };
+    let mut charts = Vec::new();
+    for (what, y_label, values) in [
+        (
+            "image flicker",
+            "mean |ΔI − ΔR| (sRGB 0..1)",
+            image as Values,
+        ),
+        (
+            "visibility flicker",
+            "mean |ΔV − ΔV_exact| on the probe rays",
+            visibility as Values,
+        ),
+    ] {
+        let series = over_time(values);
+        if series.iter().any(|s| !s.points.is_empty()) {
+            charts.push(svg(&Chart {
+                title: format!("{}: {what} over time", scene.name),
+                x_label: "time (s)".into(),
+                y_label: y_label.into(),
+                note: Some(
+                    "frame-to-frame change beyond the reference's own change (0 = as stable as the reference)"
+                        .into(),
+                ),
+                series,
+            }));
         }
     }
     charts

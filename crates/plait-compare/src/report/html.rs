@@ -260,6 +260,7 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         if !any {
             h.push_str("<p class=note>Not computed: the reference pipeline has no visibility provider (use one with self-shadowing, e.g. <code>reference.toml</code>).</p>");
         }
+        temporal_table(&mut h, report, scene);
     }
 
     // Memory.
@@ -455,4 +456,32 @@ fn strip_xml_prolog(svg: &str) -> &str {
         Some(i) => &svg[i..],
         None => svg,
     }
+}
+
+/// `--frames`: each variant's flicker against the reference's own change
+/// (the plots over time are among the scene's charts).
+fn temporal_table(h: &mut String, report: &Report, scene: &super::SceneResult) {
+    if !scene.runs.iter().any(|r| r.temporal.is_some()) {
+        return;
+    }
+    h.push_str("<h3>Temporal stability</h3><p class=note>per frame transition, the change beyond the reference's own change: mean |(I<sub>t</sub> − I<sub>t−1</sub>) − (R<sub>t</sub> − R<sub>t−1</sub>)| over pixels and RGB (sRGB 0..1), and the same over the visibility probe samples; 0 = as stable as the reference</p>");
+    h.push_str("<table><tr><th class=l>variant</th><th>frames</th><th>image flicker mean</th><th>max</th><th>own change mean</th><th>visibility flicker mean</th><th>max</th></tr>");
+    for run in &scene.runs {
+        let (Some(t), Some(v)) = (&run.temporal, report.variant(&run.variant)) else {
+            continue;
+        };
+        let opt = |x: Option<f64>| x.map_or("–".to_string(), |x| format!("{x:.5}"));
+        let _ = write!(
+            h,
+            "<tr><td class=l>{}</td><td>{}</td><td>{:.5}</td><td>{:.5}</td><td>{:.5}</td><td>{}</td><td>{}</td></tr>",
+            escape(&v.label),
+            t.frames,
+            t.image_flicker_mean,
+            t.image_flicker_max,
+            t.image_change_mean,
+            opt(t.visibility_flicker_mean),
+            opt(t.visibility_flicker_max),
+        );
+    }
+    h.push_str("</table>");
 }

@@ -44,11 +44,20 @@ pub fn markdown(report: &Report) -> String {
         if probed {
             out.push_str(" mean / max \\|ΔV\\| |");
         }
-        out.push_str(" RMSE | SSIM | FLIP |\n|---|---:|---:|---:|");
+        out.push_str(" RMSE | SSIM | FLIP |");
+        let temporal = scene.runs.iter().any(|r| r.temporal.is_some());
+        if temporal {
+            out.push_str(" image flicker | visibility flicker |");
+        }
+        out.push_str("\n|---|---:|---:|---:|");
         if probed {
             out.push_str("---:|");
         }
-        out.push_str("---:|---:|---:|\n");
+        out.push_str("---:|---:|---:|");
+        if temporal {
+            out.push_str("---:|---:|");
+        }
+        out.push('\n');
         for run in &scene.runs {
             let Some(variant) = report.variant(&run.variant) else {
                 continue;
@@ -77,7 +86,19 @@ pub fn markdown(report: &Report) -> String {
                 }
             }
             let m = &run.metrics;
-            let _ = writeln!(out, " {:.4} | {:.3} | {:.3} |", m.rmse, m.ssim, m.flip_mean);
+            let _ = write!(out, " {:.4} | {:.3} | {:.3} |", m.rmse, m.ssim, m.flip_mean);
+            if temporal {
+                match &run.temporal {
+                    Some(t) => {
+                        let visibility = t
+                            .visibility_flicker_mean
+                            .map_or(String::new(), |v| format!("{v:.5}"));
+                        let _ = write!(out, " {:.5} | {visibility} |", t.image_flicker_mean);
+                    }
+                    None => out.push_str(" | |"),
+                }
+            }
+            out.push('\n');
         }
     }
     out

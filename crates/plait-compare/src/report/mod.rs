@@ -171,6 +171,9 @@ pub struct Run {
     pub timing: Timing,
     pub metrics: Metrics,
     pub visibility: Option<Visibility>,
+    /// Flicker over the animated sequence (`plait ab --frames`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub temporal: Option<crate::temporal::Temporal>,
 }
 
 #[derive(Clone, Debug, Serialize)]

@@ -44,6 +44,7 @@ fn sample() -> Report {
             ..Metrics::default()
         },
         visibility: None,
+        temporal: None,
     };
     Report {
         schema: SCHEMA.into(),

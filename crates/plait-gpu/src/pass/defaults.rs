@@ -10,7 +10,9 @@ fn upper(name: &str) -> String {
 }
 
 /// Int params → `#{NAME}`, bools → `#ifdef NAME`, strings → `#ifdef
-/// PARAM_VALUE`, and `LIGHT_VIEW` for passes drawn from the light.
+/// PARAM_VALUE`, `LIGHT_VIEW` for passes drawn from the light and
+/// `DRAW_OPAQUE` for passes that draw the opaque geometry (whose vertices
+/// carry a head weight at location 3, which hair vertices do not).
 pub fn default_defines(pass: &ScheduledPass) -> Vec<(String, Define)> {
     let mut out = Vec::new();
     for (k, v) in &pass.params {
@@ -27,6 +29,9 @@ pub fn default_defines(pass: &ScheduledPass) -> Vec<(String, Define)> {
     }
     if pass.view.as_deref() == Some("light") {
         out.push(("LIGHT_VIEW".into(), Define::Bool(true)));
+    }
+    if pass.draw.as_deref() == Some("opaque") {
+        out.push(("DRAW_OPAQUE".into(), Define::Bool(true)));
     }
     out
 }

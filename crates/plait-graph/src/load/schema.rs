@@ -5,7 +5,7 @@ use indexmap::IndexMap;
 use std::path::{Path, PathBuf};
 
 use super::tree::{Entry, Node, Table};
-use super::{PassDecl, Pipeline, ResourceDecl, SizeDecl, file_location};
+use super::{PassDecl, Pipeline, PreviousOf, ResourceDecl, SizeDecl, file_location, previous_name};
 use crate::error::{Error, ErrorKind, Location, Spanned};
 use crate::format::Format;
 use crate::shader_path::resolve_shader;
@@ -14,8 +14,18 @@ use crate::value::Value;
 
 pub(crate) const TOP_KEYS: &[&str] = &["pipeline", "techniques", "params", "resources", "passes"];
 pub(crate) const PIPELINE_KEYS: &[&str] = &["name", "description", "extends", "outputs"];
-pub(crate) const TEXTURE_KEYS: &[&str] = &["kind", "format", "size", "layers", "samples"];
-pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size"];
+pub(crate) const TEXTURE_KEYS: &[&str] = &[
+    "kind",
+    "format",
+    "size",
+    "layers",
+    "samples",
+    "history",
+    "persistent",
+];
+pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size", "history", "persistent"];
+/// The most frames of history a resource may keep (one copy per frame each).
+pub const MAX_HISTORY: i64 = 8;
 pub(crate) const PASS_KEYS: &[&str] = &[
     "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses", "depth",
     "blend", "cull", "run",
@@ -213,7 +223,11 @@ pub(super) fn build_pipeline(
     {
         for (name, e) in t {
             if let Some(r) = build_resource(&mut b, name, e) {
+                let previous = previous_versions(&r);
                 pipeline.resources.insert(name.clone(), r);
+                for p in previous {
+                    pipeline.resources.insert(p.name.clone(), p);
+                }
             }
         }
     }
@@ -233,6 +247,14 @@ pub(super) fn build_pipeline(
 fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<ResourceDecl> {
     let context = format!("[resources.{name}]");
     let t = b.table(entry, &context)?;
+    if name.contains('.') {
+        // `NAME.previous` names a history; a dotted name could collide with one.
+        b.schema(
+            &entry.key,
+            format!("resource name `{name}` contains `.`, which is kept for histories (`NAME.previous`); use `_`"),
+        );
+        return None;
+    }
     let Some(kind_entry) = t.get("kind") else {
         b.schema(
             &entry.key,
@@ -347,6 +369,31 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
                 _ => None,
             })
     };
+    let history = t.get("history").and_then(|e| match &e.value.value {
+        Node::Scalar(Value::Int(n)) if (1..=MAX_HISTORY).contains(n) => {
+            Some(Spanned::new(*n as u32, e.value.location.clone()))
+        }
+        _ => {
+            b.schema(
+                &e.value.location,
+                format!(
+                    "resources.{name}.history is the number of past frames kept, an integer 1 … {MAX_HISTORY} (`history = 1` gives `{name}.previous`)"
+                ),
+            );
+            None
+        }
+    });
+    let persistent = t.get("persistent").and_then(|e| match &e.value.value {
+        Node::Scalar(Value::Bool(true)) => Some(e.value.location.clone()),
+        Node::Scalar(Value::Bool(false)) => None,
+        _ => {
+            b.schema(
+                &e.value.location,
+                format!("resources.{name}.persistent must be true or false"),
+            );
+            None
+        }
+    });
     Some(ResourceDecl {
         name: name.to_owned(),
         kind: Spanned::new(kind, kind_name.location),
@@ -355,7 +402,31 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
         layers: int_field("layers"),
         samples: int_field("samples"),
         location: entry.key.clone(),
+        history,
+        persistent,
+        previous_of: None,
     })
+}
+
+/// The read-only resources a history adds: `NAME.previous` … `NAME.previous.N`,
+/// shaped like `NAME` and declared where `history` is written.
+fn previous_versions(r: &ResourceDecl) -> Vec<ResourceDecl> {
+    let Some(history) = &r.history else {
+        return Vec::new();
+    };
+    (1..=history.value)
+        .map(|frames_ago| ResourceDecl {
+            name: previous_name(&r.name, frames_ago),
+            location: history.location.clone(),
+            history: None,
+            persistent: None,
+            previous_of: Some(PreviousOf {
+                resource: r.name.clone(),
+                frames_ago,
+            }),
+            ..r.clone()
+        })
+        .collect()
 }
 
 /// `"screen"` → 1, `"screen/4"` → 4.

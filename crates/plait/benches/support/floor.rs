@@ -131,7 +131,7 @@ impl<'g> Floor<'g> {
             ));
         }
         let device = &gpu.device;
-        let pool = ResourcePool::new(device, schedule);
+        let pool = ResourcePool::new(device, schedule, &geometry);
         let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("floor view"),
             entries: &[wgpu::BindGroupLayoutEntry {

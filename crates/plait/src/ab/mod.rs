@@ -18,10 +18,11 @@ pub mod plan;
 mod provenance;
 mod run;
 mod supersample;
+mod temporal;
 
 use std::path::PathBuf;
 
-pub use plan::{AbOptions, Plan, ScenePlan, SweepSpec, VariantPlan};
+pub use plan::{AbOptions, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
 pub use supersample::box_filter;

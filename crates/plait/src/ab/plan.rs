@@ -75,6 +75,16 @@ pub struct AbOptions {
     pub supersample: u32,
     /// The command that asked for the run (`argv`), for the provenance.
     pub command: Vec<String>,
+    /// An animated sequence per variant and scene for the temporal metric
+    /// (`--frames N --fps F`), or none.
+    pub sequence: Option<Sequence>,
+}
+
+/// Frames 0..frames of each scene's animation at fps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sequence {
+    pub frames: u32,
+    pub fps: f32,
 }
 
 impl AbOptions {
@@ -101,6 +111,7 @@ impl AbOptions {
             size: (960, 720),
             supersample: 1,
             command: Vec::new(),
+            sequence: None,
         }
     }
 }
@@ -277,7 +288,7 @@ impl Plan {
     /// How many progress steps [`run`](super::run()) reports: per scene and
     /// variant, build, warm-up, each repeat, compare and probe.
     pub fn step_count(&self) -> u64 {
-        let per_variant = 4 + self.options.repeats as u64;
+        let per_variant = 4 + self.options.repeats as u64 + self.options.sequence.map_or(0, |_| 1);
         self.scenes.len() as u64 * self.variants.len() as u64 * per_variant
     }
 }

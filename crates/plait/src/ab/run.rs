@@ -97,7 +97,7 @@ pub fn run(
     let mut pipelines: Vec<PipelineProvenance> = Vec::new();
     let mut scenes = Vec::new();
     for (index, scene) in plan.scenes.iter().enumerate() {
-        let prepared = build_all(plan, gpu, scene, &mut ticker)?;
+        let mut prepared = build_all(plan, gpu, scene, &mut ticker)?;
         if index == 0 {
             // Schedules do not depend on the scene: describe them once.
             for (v, p) in plan.variants.iter().zip(&prepared) {
@@ -138,6 +138,17 @@ pub fn run(
             .collect::<Result<Vec<_>, _>>()?;
         let comparisons = compare_all(plan, scene, &images, &mut ticker)?;
         let visibilities = probe_all(plan, gpu, scene, &mut ticker)?;
+        let temporals = match plan.options.sequence {
+            Some(sequence) => super::temporal::measure(
+                plan,
+                gpu,
+                scene,
+                &mut prepared,
+                sequence,
+                &mut |message| ticker.step(message),
+            )?,
+            None => vec![None; plan.variants.len()],
+        };
         scenes.push(scene_result(
             plan,
             scene,
@@ -147,6 +158,7 @@ pub fn run(
             &images,
             comparisons,
             visibilities,
+            temporals,
         )?);
     }
     let report = Report {
@@ -326,6 +338,7 @@ fn scene_result(
     images: &[image::RgbaImage],
     comparisons: Vec<Comparison>,
     visibilities: Vec<Option<Visibility>>,
+    temporals: Vec<Option<plait_compare::temporal::Temporal>>,
 ) -> Result<SceneResult, AbError> {
     let reference_image = format!("{}-reference.png", scene.name);
     files.write_png(&reference_image, images[plan.reference_index()].clone())?;
@@ -336,7 +349,12 @@ fn scene_result(
         .fold(0.0, f64::max);
     let scale = heatmap::nice_scale(max_diff);
     let mut runs = Vec::new();
-    for (i, (c, visibility)) in comparisons.into_iter().zip(visibilities).enumerate() {
+    for (i, ((c, visibility), temporal)) in comparisons
+        .into_iter()
+        .zip(visibilities)
+        .zip(temporals)
+        .enumerate()
+    {
         let v = &plan.variants[i];
         let image = format!("{}-{}.png", scene.name, v.id);
         let diff_image = format!("{}-{}-diff.png", scene.name, v.id);
@@ -359,6 +377,7 @@ fn scene_result(
             timing: samples[i].timing(prepared[i].schedule()),
             metrics: c.metrics,
             visibility,
+            temporal,
         });
     }
     Ok(SceneResult {

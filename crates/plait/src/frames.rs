@@ -1,0 +1,225 @@
+//! Rendering a sequence of frames: time = frame index / fps drives the
+//! scene's `[animation]` and `FrameUniforms` (time, head pose now and one
+//! frame earlier, the light fitted to the hair where it is), and every frame
+//! is rendered, timed and handed to the caller. `plait render --frames`,
+//! `plait ab`'s temporal metric and tests share it.
+
+use glam::Mat4;
+use plait_gpu::FrameReport;
+use plait_gpu::frame::FrameUniforms;
+use plait_hair::Strands;
+
+use crate::session::{Prepared, SceneData, SessionError};
+
+/// Where the scene is at one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FramePose {
+    pub index: u32,
+    /// Seconds: index / fps.
+    pub time: f32,
+    /// The head's world-from-rest matrix now and one frame earlier.
+    pub head: Mat4,
+    pub head_previous: Mat4,
+}
+
+impl FramePose {
+    /// Frame `index` of an animation played at `fps` frames a second.
+    pub fn at(scene: &SceneData, index: u32, fps: f32) -> Self {
+        let time = index as f32 / fps;
+        let previous = index.saturating_sub(1) as f32 / fps;
+        FramePose {
+            index,
+            time,
+            head: scene.scene.head_model(time),
+            head_previous: scene.scene.head_model(previous),
+        }
+    }
+}
+
+impl SceneData {
+    /// The hair posed for `head`: without simulation the groom follows the
+    /// head rigidly (its roots sit on the head). `None` for the rest pose.
+    pub fn hair_posed(&self, head: Mat4) -> Option<Strands> {
+        if head == Mat4::IDENTITY {
+            return None;
+        }
+        let mut moved = self.strands.clone();
+        for p in &mut moved.points {
+            *p = head.transform_point3(*p);
+        }
+        Some(moved)
+    }
+
+    /// Standard inputs of the frame at `pose`, with `hair` where the hair is
+    /// (the light's frustum is fitted to it and to the posed head).
+    pub fn frame_posed(
+        &self,
+        size: (u32, u32),
+        pose: &FramePose,
+        hair: Option<&Strands>,
+    ) -> FrameUniforms {
+        let hair = hair.unwrap_or(&self.strands);
+        let bounds = self
+            .scene
+            .opaque_bounds_posed(pose.head)
+            .union(&hair.bounds());
+        FrameUniforms::new(&self.scene, hair, bounds, size, pose.index).with_motion(
+            pose.time,
+            pose.head,
+            pose.head_previous,
+        )
+    }
+}
+
+impl Prepared<'_> {
+    /// Render frame `index` of the scene's animation at `fps`: the hair
+    /// follows the head (uploaded only when its pose changed), then the
+    /// frame's inputs are set and the frame rendered.
+    pub fn render_frame(
+        &mut self,
+        scene: &SceneData,
+        size: (u32, u32),
+        index: u32,
+        fps: f32,
+    ) -> Result<FrameReport, SessionError> {
+        let frame = self.pose_frame(scene, size, index, fps)?;
+        self.renderer.set_frame(&frame);
+        Ok(self.renderer.render()?)
+    }
+
+    /// Moves the hair to frame `index` (uploaded only when its pose
+    /// changed) and returns the frame's inputs, for a caller that adjusts
+    /// them before rendering (the visibility probe turns the jitter off).
+    pub fn pose_frame(
+        &mut self,
+        scene: &SceneData,
+        size: (u32, u32),
+        index: u32,
+        fps: f32,
+    ) -> Result<FrameUniforms, SessionError> {
+        let pose = FramePose::at(scene, index, fps);
+        let hair = scene.hair_posed(pose.head);
+        if self.hair_follows_head && self.hair_pose != pose.head {
+            self.renderer
+                .set_hair(hair.as_ref().unwrap_or(&scene.strands))?;
+            self.hair_pose = pose.head;
+        }
+        Ok(scene
+            .frame_posed(size, &pose, hair.as_ref())
+            .with_strand_coverage(crate::session::strand_coverage(self.schedule())))
+    }
+}
+
+/// Per-pass GPU times of a sequence, as medians over the frames in which the
+/// pass ran: a `run = "once"` pass counts its first frame only (later frames
+/// repeat that time as `cached`), and frames without a time (no timestamp
+/// queries) do not count.
+pub fn median_report(frames: &[FrameReport]) -> Option<FrameReport> {
+    let first = frames.first()?;
+    let median = |mut xs: Vec<f64>| -> Option<f64> {
+        if xs.is_empty() {
+            return None;
+        }
+        xs.sort_by(f64::total_cmp);
+        let n = xs.len();
+        Some(if n % 2 == 1 {
+            xs[n / 2]
+        } else {
+            (xs[n / 2 - 1] + xs[n / 2]) / 2.0
+        })
+    };
+    let passes = first
+        .passes
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let mut timing = p.clone();
+            timing.cached = false;
+            timing.gpu_ms = median(
+                frames
+                    .iter()
+                    .filter_map(|f| f.passes.get(i).filter(|q| !q.cached).and_then(|q| q.gpu_ms))
+                    .collect(),
+            );
+            timing
+        })
+        .collect();
+    Some(FrameReport {
+        passes,
+        total_gpu_ms: median(frames.iter().filter_map(|f| f.total_gpu_ms).collect()),
+    })
+}
+
+/// Renders frames `0..frames` at `fps`, handing each frame's index, report
+/// and image to `each` (which may stop the run with an error), and returns
+/// every frame's report.
+pub fn render_sequence<E: From<SessionError>>(
+    prepared: &mut Prepared,
+    scene: &SceneData,
+    size: (u32, u32),
+    frames: u32,
+    fps: f32,
+    mut each: impl FnMut(u32, &FrameReport, image::RgbaImage) -> Result<(), E>,
+) -> Result<Vec<FrameReport>, E> {
+    let mut reports = Vec::with_capacity(frames as usize);
+    for index in 0..frames {
+        let report = prepared.render_frame(scene, size, index, fps)?;
+        let image = prepared.image().map_err(SessionError::from)?;
+        each(index, &report, image)?;
+        reports.push(report);
+    }
+    Ok(reports)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use plait_gpu::PassTiming;
+
+    /// Pass times of one frame: (ms, cached).
+    fn report(times: &[(Option<f64>, bool)], total: f64) -> FrameReport {
+        FrameReport {
+            passes: times
+                .iter()
+                .enumerate()
+                .map(|(i, &(gpu_ms, cached))| PassTiming {
+                    name: format!("p{i}"),
+                    type_name: "t".into(),
+                    gpu_ms,
+                    stats: Vec::new(),
+                    cached,
+                })
+                .collect(),
+            total_gpu_ms: Some(total),
+        }
+    }
+
+    #[test]
+    fn medians_per_pass_count_the_frames_it_ran() {
+        let frames = [
+            report(
+                &[(Some(5.0), false), (Some(1.0), false), (None, false)],
+                10.0,
+            ),
+            report(
+                &[(Some(1.0), false), (Some(1.0), true), (None, false)],
+                30.0,
+            ),
+            report(
+                &[(Some(3.0), false), (Some(1.0), true), (None, false)],
+                20.0,
+            ),
+            report(
+                &[(Some(100.0), false), (Some(1.0), true), (None, false)],
+                11.0,
+            ),
+        ];
+        let m = median_report(&frames).expect("frames");
+        assert_eq!(m.passes[0].gpu_ms, Some(4.0));
+        assert_eq!(m.passes[1].gpu_ms, Some(1.0), "the pass that ran once");
+        assert!(!m.passes[1].cached);
+        assert_eq!(m.passes[2].gpu_ms, None, "no timestamps");
+        assert_eq!(m.total_gpu_ms, Some(15.5));
+        assert!(median_report(&[]).is_none());
+    }
+}
