@@ -1,6 +1,6 @@
 //! Executor overhead: CPU time to encode one frame of the default pipeline
 //! (`pipelines/occupancy.toml`) with plait's executor against the same passes
-//! written by hand against wgpu (`support/handwritten.rs`):
+//! written by hand against wgpu (`support/handwritten/`):
 //! `cargo bench -p plait --bench encode`.
 //!
 //! Both record every pass with a timestamp after it and finish the command

@@ -6,7 +6,7 @@
 //! and draw calls over the same geometry with trivial shaders
 //! (`support/floor.rs`) — and, for the default pipeline, (c) the same passes
 //! written by hand against wgpu without plait's executor
-//! (`support/handwritten.rs`, whose image must equal plait's). It prints the
+//! (`support/handwritten/`, whose image must equal plait's). It prints the
 //! median frame GPU time of each, the ratios, and the default pipeline pass
 //! by pass. `--one-draw` adds the default pipeline with occupancy bits and
 //! slab counts built in one draw per view (`occupancy_slabs`). Depth peeling (`depth_peeling.toml`, `reference.toml`) is left
