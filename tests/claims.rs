@@ -114,7 +114,8 @@ struct ImageError {
     ssim: f64,
 }
 
-/// The papers' strands: lines of one alpha, no strand coverage (which weighs
+/// The papers' strands: lines of one alpha each (the groom varies it by ±0.1
+/// between strands), no strand coverage (which weighs
 /// a thin strand's alpha by the part of the pixel it covers, so alphas differ
 /// along and between strands). Occupancy-order blending measures ᾱ per pixel
 /// (Σα / n of its visible fragments), which is the paper's constant where all
