@@ -36,6 +36,22 @@
 @group(1) @binding(16) var order_range: texture_2d<f32>;
 @group(1) @binding(17) var<storage, read> order_bits: array<u32>;
 @group(1) @binding(18) var<storage, read> order_slabs: array<u32>;
+// Σα (red) and n (green) of the pixel's visible hair fragments (alpha_sum).
+@group(1) @binding(19) var order_alpha: texture_2d<f32>;
+
+// ᾱ, the alpha the fragments in front of this one count with (§3.4 assumes
+// one alpha for all): the pixel's mean Σα / n — with strand coverage the
+// alphas differ from strand to strand and pixel to pixel — or the frame's
+// CPU constant (mean_alpha = "frame").
+fn order_mean_alpha(pixel: vec2<u32>) -> f32 {
+#ifdef MEAN_ALPHA_PIXEL
+    let size = textureDimensions(order_alpha);
+    let sums = textureLoad(order_alpha, vec2<i32>(min(pixel, size - 1u)), 0);
+    return clamp(sums.x / max(sums.y, 1.0), 0.0, 0.999);
+#else
+    return clamp(frame.hair_stats.x, 0.0, 0.999);
+#endif
+}
 
 // The fragment's order among its pixel's fragments, its own count left out
 // (`plait::occupancy::fragment_order`), reading only the words it needs.
@@ -133,7 +149,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // unknown, so they count with the mean alpha ᾱ — the method's
     // "same alpha for every fragment" — while this fragment keeps its own.
     let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
-    let mean_alpha = clamp(frame.hair_stats.x, 0.0, 0.999);
+    let mean_alpha = order_mean_alpha(vec2<u32>(in.clip.xy));
     let order = camera_order(vec2<u32>(in.clip.xy), camera_linear_depth(in.world));
     let weight = pow(1.0 - mean_alpha, order) * alpha;
     return vec4<f32>(rgb * weight, weight);
