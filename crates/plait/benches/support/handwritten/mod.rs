@@ -66,6 +66,7 @@ impl<'g> HandWritten<'g> {
             ("depth", wgpu::TextureFormat::Depth32Float, (w, h)),
             ("camera_range", wgpu::TextureFormat::Rg32Float, (w, h)),
             ("camera_scratch", wgpu::TextureFormat::Depth32Float, (w, h)),
+            ("camera_alpha", wgpu::TextureFormat::Rg32Float, (w, h)),
             ("hair", wgpu::TextureFormat::Rgba32Float, (w, h)),
             ("final", wgpu::TextureFormat::Rgba8UnormSrgb, (w, h)),
         ] {

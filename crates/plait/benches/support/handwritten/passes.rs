@@ -253,12 +253,31 @@ pub fn passes() -> Vec<PassDesc> {
         &["camera_slabs"],
         &[],
     ));
+    // Σα and n per pixel: the pixel's mean alpha (occupancy_order.toml).
+    passes.push(PassDesc {
+        name: "camera_alpha",
+        shader: "alpha_sum.wgsl",
+        defines: &[],
+        geometry: Geometry::Hair,
+        binds: vec![],
+        colors: vec![(
+            "camera_alpha",
+            wgpu::TextureFormat::Rg32Float,
+            additive,
+            all,
+            Some(wgpu::Color::TRANSPARENT),
+        )],
+        depth: Some(("depth", Less, false, None)),
+        clears: &[],
+        early_depth_test: false,
+    });
     let mut hair_binds = vec![depth_texture(0, "opaque_shadow")];
     hair_binds.extend(light_maps());
     hair_binds.extend([
         float_texture(16, "camera_range"),
         storage(17, true, "camera_bits"),
         storage(18, true, "camera_slabs"),
+        float_texture(19, "camera_alpha"),
     ]);
     passes.push(PassDesc {
         name: "hair",
@@ -269,6 +288,7 @@ pub fn passes() -> Vec<PassDesc> {
             "SHADING_KAJIYA_KAY",
             "LIGHTING_AMBIENT",
             "OCCLUSION_NONE",
+            "MEAN_ALPHA_PIXEL",
         ],
         geometry: Geometry::Hair,
         binds: hair_binds,
@@ -286,12 +306,13 @@ pub fn passes() -> Vec<PassDesc> {
     passes.push(PassDesc {
         name: "compose",
         shader: "compose.wgsl",
-        defines: &[],
+        defines: &["MEAN_ALPHA_PIXEL"],
         geometry: Geometry::Fullscreen,
         binds: vec![
             float_texture(0, "hair"),
             float_texture(1, "scene"),
             storage(2, true, "camera_slabs"),
+            float_texture(3, "camera_alpha"),
         ],
         colors: vec![(
             "final",
