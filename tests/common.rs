@@ -3,6 +3,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
+pub mod golden_images;
+
 static GPU_LOCK: Mutex<()> = Mutex::new(());
 
 /// Open the GPU or fail with the device crate's message, which says how to

@@ -6,6 +6,10 @@
 
 #ifdef SHADING_KAJIYA_KAY
 #import plait::shading::kajiya_kay::hair_direct
+#else ifdef SHADING_MARSCHNER
+#import plait::shading::marschner::hair_direct
+#else ifdef SHADING_MARSCHNER_REFERENCE
+#import plait::shading::marschner_reference::hair_direct
 #else
 #import plait::shading::kajiya_kay::hair_direct
 #endif

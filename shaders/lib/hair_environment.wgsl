@@ -6,6 +6,10 @@
 
 #ifdef LIGHTING_AMBIENT
 #import plait::lighting::ambient::hair_environment
+#else ifdef LIGHTING_IRRADIANCE_MAPS
+#import plait::lighting::irradiance_maps::hair_environment
+#else ifdef LIGHTING_ENVIRONMENT_REFERENCE
+#import plait::lighting::environment_reference::hair_environment
 #else
 #import plait::lighting::ambient::hair_environment
 #endif

@@ -663,7 +663,9 @@ fn check_rejects_what_rendering_would() {
         (
             "pipelines/alpha_to_coverage.toml",
             "params.samples=3",
-            &["alpha_to_coverage.toml:", "samples is 3"],
+            // `samples = "${samples}"`: a whole value given by a flag is
+            // reported at the flag.
+            &["--set params.samples=3:", "samples is 3"],
         ),
         (
             "pipelines/occupancy.toml",

@@ -58,6 +58,9 @@ pub struct SceneGeometry {
     /// The hair's vertices as a storage buffer too, for compute passes.
     pub strand_count: u32,
     pub segment_count: u32,
+    /// The scene's environment image, the `environment_source` scene binding
+    /// ([`SceneGeometry::set_environment`]).
+    pub environment: Option<wgpu::TextureView>,
 }
 
 fn upload<V: bytemuck::Pod>(
@@ -127,6 +130,7 @@ impl SceneGeometry {
             opaque,
             strand_count: strands.strand_count() as u32,
             segment_count: strands.segment_count() as u32,
+            environment: None,
         }
     }
 }

@@ -5,6 +5,7 @@
 pub mod cache;
 pub mod depth_guard;
 pub mod device;
+pub mod environment;
 pub mod executor;
 pub mod frame;
 pub mod geometry;

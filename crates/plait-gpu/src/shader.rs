@@ -23,8 +23,20 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/frame.wgsl"),
     ),
     (
+        "shaders/lib/cube.wgsl",
+        include_str!("../../../shaders/lib/cube.wgsl"),
+    ),
+    (
+        "shaders/lib/sh.wgsl",
+        include_str!("../../../shaders/lib/sh.wgsl"),
+    ),
+    (
         "shaders/lib/kajiya_kay.wgsl",
         include_str!("../../../shaders/lib/kajiya_kay.wgsl"),
+    ),
+    (
+        "shaders/lib/marschner.wgsl",
+        include_str!("../../../shaders/lib/marschner.wgsl"),
     ),
     (
         "shaders/lib/shadow.wgsl",
@@ -79,12 +91,28 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/shading/kajiya_kay.wgsl"),
     ),
     (
+        "shaders/lib/shading/marschner.wgsl",
+        include_str!("../../../shaders/lib/shading/marschner.wgsl"),
+    ),
+    (
+        "shaders/lib/shading/marschner_reference.wgsl",
+        include_str!("../../../shaders/lib/shading/marschner_reference.wgsl"),
+    ),
+    (
         "shaders/lib/hair_direct.wgsl",
         include_str!("../../../shaders/lib/hair_direct.wgsl"),
     ),
     (
         "shaders/lib/lighting/ambient.wgsl",
         include_str!("../../../shaders/lib/lighting/ambient.wgsl"),
+    ),
+    (
+        "shaders/lib/lighting/irradiance_maps.wgsl",
+        include_str!("../../../shaders/lib/lighting/irradiance_maps.wgsl"),
+    ),
+    (
+        "shaders/lib/lighting/environment_reference.wgsl",
+        include_str!("../../../shaders/lib/lighting/environment_reference.wgsl"),
     ),
     (
         "shaders/lib/hair_environment.wgsl",

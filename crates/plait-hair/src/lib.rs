@@ -12,6 +12,9 @@
 //! - [`follow`]: follow strands around guide strands, as TressFX makes them.
 //! - [`transform`]: placing a groom (scale, rotation, translation).
 //! - [`animation`]: keyframed motion of the head (the scene's `[animation]`).
+//! - [`environment`]: the light around the scene (an HDR/EXR/PNG image or
+//!   the procedural sky) and CPU references of the irradiance maps
+//!   (Xing et al. 2012 §3, §5).
 //! - [`scene`]: the TOML scene file every pipeline renders; [`camera`] (a
 //!   look-at camera or one fitted to the hair), [`light`] (light frustum
 //!   fitting, Halén & Wester 2007 §5.7), [`hair_source`] (the `[hair]` table).
@@ -19,6 +22,7 @@
 pub mod animation;
 pub mod asset;
 pub mod camera;
+pub mod environment;
 pub mod follow;
 pub mod groom;
 pub mod hair_file;
@@ -32,6 +36,7 @@ pub mod tfx;
 pub mod transform;
 
 pub use asset::{Asset, AssetError, Format};
+pub use environment::{Environment, EnvironmentError, EnvironmentImage};
 pub use follow::FollowStrands;
 pub use groom::{GroomSpec, HeadShape, ScalpRegion, Style, generate};
 pub use hair_file::{HairError, HairFile, HairWarning};

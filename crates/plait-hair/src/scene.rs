@@ -16,6 +16,7 @@ pub use crate::animation::Animation;
 use crate::asset::{Asset, AssetError};
 use crate::camera::CameraSetting;
 pub use crate::camera::{Camera, CameraFit};
+use crate::environment::{Environment, EnvironmentError, EnvironmentSetting};
 use crate::groom::{GroomSpec, HeadShape, ScalpRegion, Style};
 use crate::hair_file::HairError;
 pub use crate::hair_source::{Hair, HairSource};
@@ -65,6 +66,9 @@ pub enum SceneError {
     /// The hair file is of neither format (the error names it).
     #[error("{0}")]
     UnknownAsset(String),
+    /// The environment image could not be used (the error names it).
+    #[error(transparent)]
+    Environment(#[from] EnvironmentError),
 }
 
 impl From<AssetError> for SceneError {
@@ -193,6 +197,9 @@ pub struct Scene {
     pub ambient: f32,
     /// Keyframes of the head, if it moves.
     pub animation: Option<Animation>,
+    /// The light around the scene (the procedural sky unless the file
+    /// names an image), for the `lighting` techniques.
+    pub environment: Environment,
 }
 
 /// What [`Scene::load_hair`] fits to the hair's bounds.
@@ -222,6 +229,7 @@ struct SceneToml {
     ambient: f32,
     #[serde(default)]
     animation: Option<Animation>,
+    environment: Option<toml::Spanned<EnvironmentSetting>>,
 }
 
 impl From<SceneToml> for Scene {
@@ -244,6 +252,8 @@ impl From<SceneToml> for Scene {
             material: t.material,
             ambient: t.ambient,
             animation: t.animation,
+            // Its place in the file is filled in by `from_toml_str`.
+            environment: t.environment.map(|e| e.into_inner().0).unwrap_or_default(),
         }
     }
 }
@@ -334,6 +344,7 @@ impl Scene {
             material: HairMaterial::default(),
             ambient: 0.15,
             animation: None,
+            environment: Environment::default(),
         }
     }
 
@@ -358,7 +369,12 @@ impl Scene {
                 message: e.message,
             });
         }
+        let environment_at = parsed.environment.as_ref().map(|e| {
+            let (line, column) = line_col(text, e.span().start);
+            format!("{}:{line}:{column}", path.display())
+        });
         let mut scene = Scene::from(parsed);
+        scene.environment.declared_at = environment_at;
         scene.validate().map_err(|message| SceneError::Invalid {
             path: path.to_path_buf(),
             message,
@@ -374,6 +390,7 @@ impl Scene {
         {
             *p = dir.join(&*p);
         }
+        scene.environment.resolve_paths(dir);
         Ok(scene)
     }
 

@@ -22,6 +22,13 @@ pub const FILES: &[BuiltinShader] = &[
     plait_gpu::builtin_shader!("passes/compose_hair_over.toml"),
     plait_gpu::builtin_shader!("passes/weighted_average_resolve.toml"),
     plait_gpu::builtin_shader!("passes/fragment_list_resolve.toml"),
+    // Environment lighting (Xing et al. 2012 §3, §5).
+    plait_gpu::builtin_shader!("passes/environment_cube.toml"),
+    plait_gpu::builtin_shader!("passes/irradiance_maps.toml"),
+    plait_gpu::builtin_shader!("passes/sh_project.toml"),
+    plait_gpu::builtin_shader!("passes/sh_kernel.toml"),
+    plait_gpu::builtin_shader!("passes/sh_irradiance_maps.toml"),
+    plait_gpu::builtin_shader!("passes/marschner_tables.toml"),
 ];
 
 const SHADERS: &[BuiltinShader] = &[
@@ -34,6 +41,12 @@ const SHADERS: &[BuiltinShader] = &[
     plait_gpu::builtin_shader!("passes/compose_hair_over.wgsl"),
     plait_gpu::builtin_shader!("passes/weighted_average_resolve.wgsl"),
     plait_gpu::builtin_shader!("passes/fragment_list_resolve.wgsl"),
+    plait_gpu::builtin_shader!("passes/environment_cube.wgsl"),
+    plait_gpu::builtin_shader!("passes/irradiance_maps.wgsl"),
+    plait_gpu::builtin_shader!("passes/sh_project.wgsl"),
+    plait_gpu::builtin_shader!("passes/sh_kernel.wgsl"),
+    plait_gpu::builtin_shader!("passes/sh_irradiance_maps.wgsl"),
+    plait_gpu::builtin_shader!("passes/marschner_tables.wgsl"),
 ];
 
 /// A pass type read from a pass-type file.

@@ -5,7 +5,7 @@
 //! `lighting_params` (binding 30), its resources bind at 31–39 through the
 //! optional slots below.
 
-use plait_graph::{ParamSpec, SlotSpec};
+use plait_graph::{Access, Format, Formats, ParamSpec, ResourceKind, SlotSpec};
 
 use crate::spec_util::choice;
 
@@ -18,7 +18,28 @@ pub fn providers() -> Vec<String> {
 
 /// The optional input slots any provider may need.
 pub fn slots() -> Vec<SlotSpec> {
-    Vec::new()
+    let texture = |name: &str, format: Format, doc: &str| SlotSpec {
+        name: name.into(),
+        kind: ResourceKind::Texture,
+        access: Access::Sampled,
+        formats: Formats::OneOf(vec![format]),
+        loads: false,
+        optional: true,
+        doc: doc.into(),
+        binding: None,
+    };
+    vec![
+        texture(
+            "light_maps",
+            Format::Rgba16Float,
+            "Kajiya-Kay irradiance maps, diffuse then M+1 specular (lighting = \"irradiance_maps\", Xing et al. 2012 §3)",
+        ),
+        texture(
+            "light_environment",
+            Format::Rgba32Float,
+            "environment cube atlas: radiance, solid angle (lighting = \"environment_reference\")",
+        ),
+    ]
 }
 
 /// Params of the providers (filled into `lighting_params` by member name).

@@ -4,10 +4,22 @@
 //! (`shaders/lib/hair_direct.wgsl` picks the provider the `shading` param
 //! names). Its uniform is `shading_params` (binding 20), its resources bind at
 //! 21–29 through the optional slots below.
+//!
+//! Marschner (Halén & Wester 2007 §3.2.2, §5.8): `marschner` reads the M and N
+//! lookup tables the `marschner_tables` pass draws (slots `marschner_m`,
+//! `marschner_n`) and needs only `marschner_specular_gain`;
+//! `marschner_reference` evaluates the model per fragment and takes the
+//! model's params. Those are the `marschner_tables` pass type's own
+//! (`shaders/passes/marschner_tables.toml`), read from it and prefixed
+//! `marschner_` (the names of the technique's params), so their ranges and
+//! docs are written once.
 
-use plait_graph::{ParamSpec, SlotSpec};
+use std::sync::OnceLock;
 
-use crate::spec_util::choice;
+use plait_gpu::pass::PassType;
+use plait_graph::{Access, Format, ParamSpec, SlotSpec};
+
+use crate::spec_util::{SlotExt, choice, float, texture};
 
 /// The providers, by param value: every module in `shaders/lib/shading/`.
 pub fn providers() -> Vec<String> {
@@ -18,15 +30,88 @@ pub fn providers() -> Vec<String> {
 
 /// The optional input slots any provider may need.
 pub fn slots() -> Vec<SlotSpec> {
-    Vec::new()
+    vec![
+        texture(
+            "marschner_m",
+            Access::Sampled,
+            &[Format::Rgba16Float],
+            "marschner: M_R, M_TT, M_TRT and cos θd at (sin θi, sin θr) (Halén & Wester 2007 §5.8)",
+        )
+        .optional(),
+        texture(
+            "marschner_n",
+            Access::Sampled,
+            &[Format::Rgba16Float],
+            "marschner: N_R, N_TT, N_TRT at (cos φ, cos θd) (Halén & Wester 2007 §5.8)",
+        )
+        .optional(),
+    ]
 }
 
 /// Params of the providers (filled into `shading_params` by member name).
 pub fn params() -> Vec<ParamSpec> {
-    vec![choice(
-        "shading",
-        "kajiya_kay",
-        &providers().iter().map(String::as_str).collect::<Vec<_>>(),
-        "key-light shading model (shading provider): the strand's reflection of the light",
-    )]
+    let mut p = vec![
+        choice(
+            "shading",
+            "kajiya_kay",
+            &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+            "key-light shading model (shading provider): the strand's reflection of the light",
+        ),
+        float(
+            "marschner_specular_gain",
+            8.0,
+            0.0,
+            1e4,
+            "marschner, marschner_reference: gain of the R, TT and TRT lobes against Kajiya-Kay's diffuse term",
+        ),
+    ];
+    p.extend(marschner_model_params().iter().cloned());
+    p
+}
+
+/// The Marschner model's params (lobe shifts and widths, index of
+/// refraction, absorption, caustic limit): those of the `marschner_tables`
+/// pass type but its table size.
+fn marschner_model_params() -> &'static [ParamSpec] {
+    static PARAMS: OnceLock<Vec<ParamSpec>> = OnceLock::new();
+    PARAMS.get_or_init(|| {
+        crate::data_pass::builtin_types()
+            .into_iter()
+            .map(|t| t.spec())
+            .find(|s| s.name == "marschner_tables")
+            .expect("shaders/passes/marschner_tables.toml is a built-in pass type")
+            .params
+            .into_iter()
+            .filter(|p| p.name != "table_size")
+            .map(|mut p| {
+                p.name = format!("marschner_{}", p.name);
+                p.doc = format!("marschner_reference: {}", p.doc);
+                p
+            })
+            .collect()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_reference_takes_every_model_param_of_the_table_pass() {
+        let names: Vec<String> = params().into_iter().map(|p| p.name).collect();
+        for want in [
+            "marschner_shift_r",
+            "marschner_shift_tt",
+            "marschner_shift_trt",
+            "marschner_width_r",
+            "marschner_width_tt",
+            "marschner_width_trt",
+            "marschner_ior",
+            "marschner_absorption",
+            "marschner_caustic_limit",
+        ] {
+            assert!(names.iter().any(|n| n == want), "{want} missing: {names:?}");
+        }
+        assert!(!names.iter().any(|n| n.ends_with("table_size")));
+    }
 }

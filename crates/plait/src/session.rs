@@ -105,6 +105,7 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
             if let Background::Image(image) = &loaded.background {
                 files.push(image.clone());
             }
+            files.extend(loaded.environment.files());
         }
     }
     files.retain(|f| !plait_assets::is_builtin(f));
@@ -141,6 +142,9 @@ pub struct SceneData {
     pub meshes: Vec<plait_hair::mesh::Mesh>,
     /// The background image, when the scene names one.
     pub background: Option<image::RgbaImage>,
+    /// The scene's environment (the procedural sky unless it names an
+    /// image), read once: the `environment_source` of every pass.
+    pub environment: plait_hair::EnvironmentImage,
 }
 
 impl SceneData {
@@ -159,11 +163,13 @@ impl SceneData {
             ),
             Background::Color(_) => None,
         };
+        let environment = scene.environment.load()?;
         Ok(SceneData {
             scene,
             strands,
             meshes,
             background,
+            environment,
         })
     }
 
@@ -280,7 +286,8 @@ pub fn build<'g>(
     let hair_pose = scene.scene.head_model(0.0);
     let posed = scene.hair_posed(hair_pose);
     let hair = posed.as_ref().unwrap_or(&scene.strands);
-    let geometry = SceneGeometry::upload(&gpu.device, hair, &scene.meshes);
+    let mut geometry = SceneGeometry::upload(&gpu.device, hair, &scene.meshes);
+    geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
         gpu,

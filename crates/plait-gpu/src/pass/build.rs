@@ -397,7 +397,7 @@ fn bind_group<'a>(
     let mut layout_entries = Vec::new();
     let mut owned: Vec<(u32, wgpu::Buffer)> = Vec::new();
     let mut resources: Vec<(u32, plait_graph::ResourceId)> = Vec::new();
-    let mut scene: Vec<(u32, &'a wgpu::Buffer)> = Vec::new();
+    let mut scene: Vec<(u32, wgpu::BindingResource<'a>)> = Vec::new();
     for b in &plan.bindings {
         let visibility = if is_compute {
             wgpu::ShaderStages::COMPUTE
@@ -431,6 +431,12 @@ fn bind_group<'a>(
                 ),
             )),
             BindingSource::Slot { resource, .. } => resources.push((b.binding, *resource)),
+            BindingSource::Scene(name) if name == "environment_source" => {
+                let view = ctx.geometry.environment.as_ref().ok_or_else(|| {
+                    pass_error(pass, "the scene's environment image was not uploaded")
+                })?;
+                scene.push((b.binding, wgpu::BindingResource::TextureView(view)));
+            }
             BindingSource::Scene(name) => {
                 let (geometry, what) = match name.strip_prefix("opaque_") {
                     Some(_) => (ctx.geometry.opaque.as_ref(), "opaque geometry"),
@@ -444,7 +450,7 @@ fn bind_group<'a>(
                 } else {
                     &buffers.indices
                 };
-                scene.push((b.binding, buf));
+                scene.push((b.binding, buf.as_entire_binding()));
             }
         }
     }
@@ -479,10 +485,10 @@ fn bind_group<'a>(
                 resource: ctx.pool.binding_resource(*id),
             });
         }
-        for (binding, buf) in &scene {
+        for (binding, resource) in &scene {
             entries.push(wgpu::BindGroupEntry {
                 binding: *binding,
-                resource: buf.as_entire_binding(),
+                resource: resource.clone(),
             });
         }
         Some(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -15,12 +15,16 @@ use crate::pool::ResourcePool;
 use crate::shader::Define;
 use crate::{Capabilities, GpuError};
 
-/// Names of scene buffers a shader can bind in group 1 without a slot.
+/// Names of scene inputs a shader can bind in group 1 without a slot: the
+/// hair's and the opaque geometry's storage buffers, and the scene's
+/// environment image (`texture_2d<f32>`, rgba32float, equirectangular, see
+/// `plait_hair::environment`).
 pub const SCENE_BINDINGS: &[&str] = &[
     "hair_vertices",
     "hair_indices",
     "opaque_vertices",
     "opaque_indices",
+    "environment_source",
 ];
 
 /// A WGSL source compiled into the pass library: `(path for messages, text)`,

@@ -84,7 +84,7 @@ pub struct BindingPlan {
     pub bindings: Vec<PlannedBinding>,
     pub colors: Vec<ColorTarget>,
     pub depth: Option<DepthTarget>,
-    /// Storage outputs that start the pass zeroed (written, not loaded).
+    /// Storage buffers that start the pass zeroed (written, not loaded).
     pub clears: Vec<ResourceId>,
     /// The shader writes storage (what the depth guard protects).
     pub writes_storage: bool,
@@ -285,7 +285,12 @@ impl BindingPlan {
                             .map(|(_, r)| r.resource),
                     });
                 }
-                Access::StorageWrite if !b.loads => plan.clears.push(b.resource),
+                // Storage textures are not zeroed: clearing one needs
+                // CLEAR_TEXTURE, which core WebGPU lacks; their kernels write
+                // every texel (the lighting maps, the environment cube).
+                Access::StorageWrite if !b.loads && texture(b.resource).is_none() => {
+                    plan.clears.push(b.resource)
+                }
                 _ => {}
             }
         }

@@ -77,8 +77,10 @@ impl Substituter {
             Node::Scalar(Value::Str(s)) => {
                 if let Some(name) = whole_reference(s) {
                     // `"${x}"` alone takes x's type; the use site keeps its location
-                    // so a bad value is reported where it is used.
+                    // so a bad value is reported where it is used — unless a
+                    // `--set` flag gave x: then the flag is what to fix.
                     match self.param(name, location) {
+                        Some(v) if matches!(v.location, Location::Flag { .. }) => return v,
                         Some(v) => v.value,
                         None => node.value.clone(),
                     }

@@ -1,0 +1,241 @@
+// plait::marschner — the Marschner hair scattering model (R, TT, TRT), written
+// once for the lookup-table kernel (shaders/passes/marschner_tables.wgsl) and
+// the per-fragment reference (shaders/lib/shading/marschner_reference.wgsl),
+// so the tables' error is the tables' alone: same constants, same angles.
+//
+// Halén & Wester 2007 §3.2.2, §3.2.2.1 (Marschner et al. 2003 as they present
+// it): S = M(θh) · N(θd, φ) / cos²θd per lobe p ∈ {R, TT, TRT}.
+// - M_p: a normalised Gaussian of the half angle θh = (θi + θr) / 2, shifted
+//   by the cuticle tilt α_p, width β_p.
+// - N_p: the sum over the entry heights h whose path leaves at the relative
+//   azimuth φ, φ(p, h) = 2p·γt − 2γi + pπ (sin γi = h, η'·sin γt = h), of
+//   A(p, h) · |2 dφ/dh|⁻¹, with A the Fresnel factors and the absorption of
+//   the internal path, in the slice's effective index η'(θd).
+// §5.8: the thesis's choices — one absorption for all colours (N is a single
+// channel per lobe; the hair colour multiplies TT and TRT, R stays white),
+// caustics clamped to a limit rather than Marschner's Gaussian smoothing, and
+// Kajiya-Kay's diffuse term added (`combine`). No eccentricity (the thesis's
+// model is a circular cross-section).
+//
+// Angles, as §5.8 computes them from vectors (no trigonometry in the lookup):
+// sin θi = L·T, sin θr = E·T, cos φ = L⊥·E⊥ / (|L⊥| |E⊥|), with L⊥, E⊥ the
+// light and eye directions projected on the plane normal to the tangent T.
+// cos φ = 1: eye on the light's side (backscatter, R and TRT);
+// cos φ = −1: eye opposite the light (forward scattering, TT).
+#define_import_path plait::marschner
+
+const PI: f32 = 3.14159265358979;
+const DEGREES: f32 = 0.0174532925199433;
+// Bisection steps per monotonic interval of φ(p, h): 2⁻²⁴ of the interval,
+// f32's precision.
+const ROOT_STEPS: i32 = 24;
+
+// The model's constants, in radians (see `model`).
+struct Model {
+    // α_R, α_TT, α_TRT: longitudinal shift of each lobe.
+    shift: vec3<f32>,
+    // β_R, β_TT, β_TRT: longitudinal width (standard deviation) of each lobe.
+    width: vec3<f32>,
+    // η, the hair's index of refraction (> 1).
+    ior: f32,
+    // σa, absorption per fibre radius, the same for all colours (§5.8).
+    absorption: f32,
+    // N_TRT is clamped here (the thesis's treatment of caustics, §5.8).
+    caustic_limit: f32,
+}
+
+// The model from user-facing params: angles in degrees.
+fn model(shift_degrees: vec3<f32>, width_degrees: vec3<f32>, ior: f32, absorption: f32, caustic_limit: f32) -> Model {
+    return Model(shift_degrees * DEGREES, width_degrees * DEGREES, ior, absorption, caustic_limit);
+}
+
+// The angles the model is a function of, from unit vectors: x = sin θi,
+// y = sin θr, z = cos φ (§5.8's formulas).
+fn hair_angles(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    let sin_i = clamp(dot(to_light, tangent), -1.0, 1.0);
+    let sin_r = clamp(dot(to_eye, tangent), -1.0, 1.0);
+    let light_perp = to_light - sin_i * tangent;
+    let eye_perp = to_eye - sin_r * tangent;
+    let norms = dot(light_perp, light_perp) * dot(eye_perp, eye_perp);
+    // Light or eye along the strand: the azimuth is undefined; every φ is
+    // as good, take the backscatter one.
+    var cos_phi = 1.0;
+    if (norms > 1e-12) {
+        cos_phi = clamp(dot(light_perp, eye_perp) * inverseSqrt(norms), -1.0, 1.0);
+    }
+    return vec3<f32>(sin_i, sin_r, cos_phi);
+}
+
+// cos θd, θd = (θr − θi) / 2: the table keeps it beside M (§5.8: "the alpha
+// channel of the first lookup table").
+fn cos_theta_d(sin_i: f32, sin_r: f32) -> f32 {
+    return cos(0.5 * (asin(sin_r) - asin(sin_i)));
+}
+
+// M_R, M_TT, M_TRT at (sin θi, sin θr): g(β_p, θh − α_p), in 1 / radian.
+fn longitudinal(m: Model, sin_i: f32, sin_r: f32) -> vec3<f32> {
+    let theta_h = 0.5 * (asin(sin_i) + asin(sin_r));
+    let d = vec3<f32>(theta_h) - m.shift;
+    return exp(-d * d / (2.0 * m.width * m.width)) / (m.width * sqrt(2.0 * PI));
+}
+
+// Unpolarised Fresnel reflectance at incidence cos_i from outside into a
+// medium with the effective indices η' (perpendicular polarisation) and η''
+// (parallel) — §3.2.2's F; indices below 1 are the inside looking out.
+fn fresnel(eta_perp: f32, eta_par: f32, cos_i: f32) -> f32 {
+    let sin2_i = max(0.0, 1.0 - cos_i * cos_i);
+    let sin2_perp = sin2_i / (eta_perp * eta_perp);
+    let sin2_par = sin2_i / (eta_par * eta_par);
+    if (sin2_perp >= 1.0 || sin2_par >= 1.0) {
+        return 1.0;
+    }
+    let cos_perp = sqrt(1.0 - sin2_perp);
+    let cos_par = sqrt(1.0 - sin2_par);
+    let r_perp = (cos_i - eta_perp * cos_perp) / (cos_i + eta_perp * cos_perp);
+    let r_par = (eta_par * cos_i - cos_par) / (eta_par * cos_i + cos_par);
+    return 0.5 * (r_perp * r_perp + r_par * r_par);
+}
+
+// φ(p, h) = 2p·asin(h / η') − 2·asin(h) + pπ.
+fn exit_azimuth(p: f32, h: f32, eta: f32) -> f32 {
+    return 2.0 * p * asin(h / eta) - 2.0 * asin(h) + p * PI;
+}
+
+// dφ/dh of `exit_azimuth`.
+fn exit_azimuth_slope(p: f32, h: f32, eta: f32) -> f32 {
+    return 2.0 * p / sqrt(max(eta * eta - h * h, 1e-12)) - 2.0 / sqrt(max(1.0 - h * h, 1e-12));
+}
+
+// The fraction of the light entering at height h that leaves by path p,
+// A(p, h) of §3.2.2 (Marschner et al. 2003): Fresnel at entry, internal
+// reflections and exit, and absorption along 2·cos γt per crossing,
+// lengthened by 1 / cos θt for the path's tilt along the fibre.
+fn attenuation(p: f32, h: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, absorption: f32) -> f32 {
+    let cos_gamma_i = sqrt(max(0.0, 1.0 - h * h));
+    let f = fresnel(eta_perp, eta_par, cos_gamma_i);
+    if (p < 0.5) {
+        return f;
+    }
+    let sin_gamma_t = h / eta_perp;
+    let cos_gamma_t = sqrt(max(0.0, 1.0 - sin_gamma_t * sin_gamma_t));
+    let f_inside = fresnel(1.0 / eta_perp, 1.0 / eta_par, cos_gamma_t);
+    let transmittance = exp(-2.0 * absorption * cos_gamma_t / cos_theta_t);
+    var internal = 1.0;
+    if (p > 1.5) {
+        internal = f_inside;
+    }
+    return (1.0 - f) * (1.0 - f_inside) * internal * pow(transmittance, p);
+}
+
+// One root's share A(p, h) · |2 dφ/dh|⁻¹.
+fn root_share(p: f32, h: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, absorption: f32) -> f32 {
+    let slope = abs(2.0 * exit_azimuth_slope(p, h, eta_perp));
+    return attenuation(p, h, eta_perp, eta_par, cos_theta_t, absorption) / max(slope, 1e-6);
+}
+
+// The root of φ(p, h) = goal in [h0, h1], where φ(p, h) is monotonic, found
+// by bisection; −2 when the interval holds none.
+fn root_in(p: f32, h0: f32, h1: f32, goal: f32, eta: f32) -> f32 {
+    let f0 = exit_azimuth(p, h0, eta) - goal;
+    let f1 = exit_azimuth(p, h1, eta) - goal;
+    if (f0 * f1 > 0.0 || h1 <= h0) {
+        return -2.0;
+    }
+    var lo = h0;
+    var hi = h1;
+    let rising = f1 > f0;
+    for (var i = 0; i < ROOT_STEPS; i++) {
+        let mid = 0.5 * (lo + hi);
+        if ((exit_azimuth(p, mid, eta) > goal) == rising) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    return 0.5 * (lo + hi);
+}
+
+// N_TT and N_TRT at the relative azimuth phi ∈ [0, π]: the sum over the
+// roots h of φ(p, h) = φ (mod 2π). φ(1, h) falls monotonically over
+// [−1, 1]; φ(2, h) turns at ±h*, where dφ/dh = 0 (h*² = (4 − η'²) / 3 when
+// η' < 2), so [−1, −h*], [−h*, h*], [h*, 1] hold at most one root each.
+// One loop over the four pieces keeps a single bisection loop in the
+// shader: a software rasterizer's compiler unrolls every copy.
+fn transmitted(phi: f32, eta_perp: f32, eta_par: f32, cos_theta_t: f32, absorption: f32) -> vec2<f32> {
+    let turn2 = (4.0 - eta_perp * eta_perp) / 3.0;
+    let turns = turn2 > 0.0 && turn2 < 1.0;
+    let turn = sqrt(clamp(turn2, 0.0, 1.0));
+    var n = vec2<f32>(0.0);
+    for (var piece = 0; piece < 4; piece++) {
+        var p = 2.0;
+        var h0 = -1.0;
+        var h1 = 1.0;
+        if (piece == 0) {
+            p = 1.0;
+        } else if (!turns) {
+            // TRT without turning points is one piece.
+            if (piece > 1) {
+                break;
+            }
+        } else if (piece == 1) {
+            h1 = -turn;
+        } else if (piece == 2) {
+            h0 = -turn;
+            h1 = turn;
+        } else {
+            h0 = turn;
+        }
+        // The exit azimuth is taken modulo 2π; φ(p, h) stays within pπ ± π.
+        let goal = phi + 2.0 * PI * round((p * PI - phi) / (2.0 * PI));
+        let h = root_in(p, h0, h1, goal, eta_perp);
+        if (h > -1.5) {
+            let share = root_share(p, h, eta_perp, eta_par, cos_theta_t, absorption);
+            n[u32(p) - 1u] += share;
+        }
+    }
+    return n;
+}
+
+// N_R, N_TT, N_TRT at (cos φ, cos θd), N_TRT clamped to the caustic limit.
+fn azimuthal(m: Model, cos_phi: f32, cos_td: f32) -> vec3<f32> {
+    let cos_d = clamp(cos_td, 1e-4, 1.0);
+    let sin2_d = 1.0 - cos_d * cos_d;
+    let root = sqrt(max(m.ior * m.ior - sin2_d, 1e-12));
+    // Effective indices of the 2D slice normal to the fibre (§3.2.2).
+    let eta_perp = root / cos_d;
+    let eta_par = m.ior * m.ior * cos_d / root;
+    // The path's tilt inside the fibre: sin θt = sin θd / η.
+    let cos_theta_t = sqrt(max(1.0 - sin2_d / (m.ior * m.ior), 1e-8));
+    let phi = acos(clamp(cos_phi, -1.0, 1.0));
+    // R: φ(0, h) = −2 asin(h) has the single root h = −sin(φ/2), and
+    // |2 dφ/dh|⁻¹ = cos(φ/2) / 4.
+    let h_r = -sin(0.5 * phi);
+    let n_r = attenuation(0.0, h_r, eta_perp, eta_par, cos_theta_t, m.absorption) * cos(0.5 * phi) * 0.25;
+    let n_t = transmitted(phi, eta_perp, eta_par, cos_theta_t, m.absorption);
+    // Only TRT has caustics (dφ/dh = 0 at ±h*); R and TT stay finite.
+    return vec3<f32>(n_r, n_t.x, min(n_t.y, m.caustic_limit));
+}
+
+// Where a table of `size` texels per side samples the value x of an axis
+// that spans [lo, hi] with texel centres on both ends, so the table is exact
+// at its texels and covers the whole range.
+fn table_coordinate(x: f32, lo: f32, hi: f32, size: f32) -> f32 {
+    let t = clamp((x - lo) / (hi - lo), 0.0, 1.0);
+    return (t * (size - 1.0) + 0.5) / size;
+}
+
+// The axis value of texel i (the inverse of `table_coordinate` at centres).
+fn table_value(i: u32, lo: f32, hi: f32, size: u32) -> f32 {
+    return lo + (hi - lo) * f32(i) / f32(max(size, 2u) - 1u);
+}
+
+// Radiance towards the eye per unit light colour from the lobes' M_p · N_p,
+// as the thesis assembles it (§5.8): Kajiya-Kay's diffuse kd · base, plus
+// the lobes over cos²θd — R white, TT and TRT in the hair colour — times a
+// specular gain; all times cos θi, the light's incidence on the fibre.
+fn combine(lobes: vec3<f32>, cos_td: f32, sin_i: f32, base: vec3<f32>, kd: f32, specular_gain: f32) -> vec3<f32> {
+    let cos_i = sqrt(max(0.0, 1.0 - sin_i * sin_i));
+    let s = lobes / max(cos_td * cos_td, 1e-4);
+    let specular = vec3<f32>(s.x) + base * (s.y + s.z);
+    return cos_i * (kd * base + specular_gain * specular);
+}
