@@ -35,7 +35,8 @@ struct Frame {
     // x, y: camera near and far; z, w: light near and far (world units).
     near_far: vec4<f32>,
     // x: mean hair fragment alpha (material alpha × mean strand alpha × strand
-    // coverage while it is on), the constant α of order-based blending;
+    // coverage while it is on) over every vertex: occupancy order's α only
+    // with mean_alpha = "frame" (by default Σα / n per pixel, alpha_sum);
     // y: strands; z: segments; w: the mean alpha without coverage.
     hair_stats: vec4<f32>,
     // The conventions every visibility provider shares (docs/design.md, "In

@@ -27,11 +27,16 @@ struct TexelMaps {
 // Relative depth of `depth` within the texel's range; < 0 in front of all
 // hair, > 1 behind it. Texels without hair have far < near.
 fn relative_depth(maps: ptr<function, TexelMaps>, depth: f32) -> f32 {
-    let range = (*maps).far - (*maps).near;
-    if (range <= 0.0) {
-        return select(-1.0, 2.0, depth > (*maps).far);
+    return relative_depth_in(vec2<f32>((*maps).near, (*maps).far), depth);
+}
+
+// `relative_depth` for a texel's range (near, far) as the range map holds it.
+fn relative_depth_in(range: vec2<f32>, depth: f32) -> f32 {
+    let extent = range.y - range.x;
+    if (extent <= 0.0) {
+        return select(-1.0, 2.0, depth > range.y);
     }
-    return (depth - (*maps).near) / range;
+    return (depth - range.x) / extent;
 }
 
 // Total fragments recorded in the texel: the sum of its slabs.
@@ -108,4 +113,68 @@ fn order_estimate_excluding(maps: ptr<function, TexelMaps>, rel: f32, own: f32) 
     let at_start = before + per_bit * f32(bits_before);
     let at_end = before + per_bit * f32(bits_through);
     return at_start + max(at_end - at_start - own, 0.0) * frac;
+}
+
+// ---------------------------------------------------------------------------
+// The same estimate for readers that fetch only the words it needs from their
+// own storage buffers (the visibility provider, hair_shade's camera order),
+// instead of copying the texel into a `TexelMaps`. WGSL cannot pass a storage
+// buffer to a function, so the reader loops over the words and these functions
+// do the arithmetic: `slab_position` says which words to read, `word_bits`
+// counts a word's set bits in a range of slices, `order_in_slab` combines them
+// exactly as `order_estimate_excluding` does (bit-identical results). On a
+// software rasterizer this avoids a 264-byte private array, zeroed and copied
+// per fragment and per lookup.
+
+// Where relative depth `rel` (0 < rel < 1) falls: its slab, the slab's first
+// slice and one past its last, the slice holding rel and how far into it.
+struct SlabPosition {
+    slab: u32,
+    first: u32,
+    end: u32,
+    slice: u32,
+    frac: f32,
+}
+
+fn slab_position(rel: f32, words: u32, slabs: u32) -> SlabPosition {
+    let slices = words * 32u;
+    let per_slab = max(slices / slabs, 1u);
+    let s = rel * f32(slices);
+    var p: SlabPosition;
+    p.slice = min(u32(floor(s)), slices - 1u);
+    p.frac = clamp(s - f32(p.slice), 0.0, 1.0);
+    p.slab = min(p.slice / per_slab, slabs - 1u);
+    p.first = p.slab * per_slab;
+    p.end = p.first + per_slab;
+    return p;
+}
+
+// Set bits of occupancy word `w` (slices 32w … 32w + 31) among slices [first, last).
+fn word_bits(word: u32, w: u32, first: u32, last: u32) -> u32 {
+    let base = w * 32u;
+    let lo = max(first, base);
+    let hi = min(last, base + 32u);
+    if (hi <= lo) {
+        return 0u;
+    }
+    var mask = 0xFFFFFFFFu;
+    if (hi - base < 32u) {
+        mask = (1u << (hi - base)) - 1u;
+    }
+    mask = mask & ~((1u << (lo - base)) - 1u);
+    return countOneBits(word & mask);
+}
+
+// The order at `p` from the counts before its slab (`before`, summed in
+// slab order as f32), its slab's count, and its slab's set bits: all of
+// them, those before its slice and those through its slice; `own` as in
+// `order_estimate_excluding`.
+fn order_in_slab(p: SlabPosition, before: f32, slab_count: u32, set_in_slab: u32, bits_before: u32, bits_through: u32, own: f32) -> f32 {
+    var per_bit = 0.0;
+    if (set_in_slab > 0u) {
+        per_bit = f32(slab_count) / f32(set_in_slab);
+    }
+    let at_start = before + per_bit * f32(bits_before);
+    let at_end = before + per_bit * f32(bits_through);
+    return at_start + max(at_end - at_start - own, 0.0) * p.frac;
 }

@@ -13,7 +13,7 @@
 #import plait::transparency::coverage::strand_coverage
 #ifdef BLEND_OCCUPANCY_ORDER
 #import plait::frame::camera_linear_depth
-#import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, fragment_order}
+#import plait::occupancy::{MAX_WORDS, relative_depth_in, slab_position, word_bits, order_in_slab}
 #endif
 // Transparency modes of their own pass types (depth_peeling.rs, linked_list.rs,
 // weighted_average.rs, alpha_to_coverage.rs, opaque_hair.rs): each module hands
@@ -36,25 +36,58 @@
 @group(1) @binding(16) var order_range: texture_2d<f32>;
 @group(1) @binding(17) var<storage, read> order_bits: array<u32>;
 @group(1) @binding(18) var<storage, read> order_slabs: array<u32>;
+// Σα (red) and n (green) of the pixel's visible hair fragments (alpha_sum).
+@group(1) @binding(19) var order_alpha: texture_2d<f32>;
 
+// ᾱ, the alpha the fragments in front of this one count with (§3.4 assumes
+// one alpha for all): the pixel's mean Σα / n — with strand coverage the
+// alphas differ from strand to strand and pixel to pixel — or the frame's
+// CPU constant (mean_alpha = "frame").
+fn order_mean_alpha(pixel: vec2<u32>) -> f32 {
+#ifdef MEAN_ALPHA_PIXEL
+    let size = textureDimensions(order_alpha);
+    let sums = textureLoad(order_alpha, vec2<i32>(min(pixel, size - 1u)), 0);
+    return clamp(sums.x / max(sums.y, 1.0), 0.0, 0.999);
+#else
+    return clamp(frame.hair_stats.x, 0.0, 0.999);
+#endif
+}
+
+// The fragment's order among its pixel's fragments, its own count left out
+// (`plait::occupancy::fragment_order`), reading only the words it needs.
 fn camera_order(pixel: vec2<u32>, depth: f32) -> f32 {
     let size = textureDimensions(order_range);
     let p = min(pixel, size - 1u);
-    var maps: TexelMaps;
     let texels = size.x * size.y;
-    maps.words = min(arrayLength(&order_bits) / texels, MAX_WORDS);
-    maps.slabs = min(arrayLength(&order_slabs) / texels, MAX_WORDS);
-    let range = textureLoad(order_range, vec2<i32>(p), 0);
-    maps.near = range.x;
-    maps.far = range.y;
+    let words = min(arrayLength(&order_bits) / texels, MAX_WORDS);
+    let slabs = min(arrayLength(&order_slabs) / texels, MAX_WORDS);
+    let rel = relative_depth_in(textureLoad(order_range, vec2<i32>(p), 0).xy, depth);
+    if (words == 0u || slabs == 0u || rel <= 0.0) {
+        return 0.0;
+    }
     let index = p.y * size.x + p.x;
-    for (var i = 0u; i < maps.words; i++) {
-        maps.bits[i] = order_bits[index * maps.words + i];
+    if (rel >= 1.0) {
+        var total = 0u;
+        for (var i = 0u; i < slabs; i++) {
+            total += order_slabs[index * slabs + i];
+        }
+        return max(f32(total) - 1.0, 0.0);
     }
-    for (var i = 0u; i < maps.slabs; i++) {
-        maps.counts[i] = order_slabs[index * maps.slabs + i];
+    let at = slab_position(rel, words, slabs);
+    var before = 0.0;
+    for (var i = 0u; i < at.slab; i++) {
+        before += f32(order_slabs[index * slabs + i]);
     }
-    return fragment_order(&maps, relative_depth(&maps, depth));
+    var set_in_slab = 0u;
+    var bits_before = 0u;
+    var bits_through = 0u;
+    for (var w = at.first / 32u; w * 32u < at.end; w++) {
+        let word = order_bits[index * words + w];
+        set_in_slab += word_bits(word, w, at.first, at.end);
+        bits_before += word_bits(word, w, at.first, at.slice);
+        bits_through += word_bits(word, w, at.first, at.slice + 1u);
+    }
+    return order_in_slab(at, before, order_slabs[index * slabs + at.slab], set_in_slab, bits_before, bits_through, 1.0);
 }
 #endif
 
@@ -116,7 +149,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // unknown, so they count with the mean alpha ᾱ — the method's
     // "same alpha for every fragment" — while this fragment keeps its own.
     let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
-    let mean_alpha = clamp(frame.hair_stats.x, 0.0, 0.999);
+    let mean_alpha = order_mean_alpha(vec2<u32>(in.clip.xy));
     let order = camera_order(vec2<u32>(in.clip.xy), camera_linear_depth(in.world));
     let weight = pow(1.0 - mean_alpha, order) * alpha;
     return vec4<f32>(rgb * weight, weight);

@@ -90,7 +90,7 @@ impl<'g> Renderer<'g> {
         let mut schedule = schedule;
         let notes = downgrade_float32_blending(&mut schedule, library, &gpu.capabilities);
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pool = ResourcePool::new(device, &schedule);
+        let pool = ResourcePool::new(device, &schedule, &geometry);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Resource {
                 resource: "memory plan".into(),
@@ -232,10 +232,19 @@ impl<'g> Renderer<'g> {
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
     }
 
-    /// Render one frame and wait for it; per-pass GPU times when the adapter has timestamps.
-    pub fn render(&self) -> Result<FrameReport, GpuError> {
+    /// Whether the next frame is the first (`run = "once"` passes record on it).
+    fn first_frame(&self) -> bool {
+        self.frames_rendered
+            .load(std::sync::atomic::Ordering::Relaxed)
+            == 0
+    }
+
+    /// Record the next frame's commands — every pass, its debug group and
+    /// timestamps — and finish them, without submitting: what `render`
+    /// submits, and what the encode benchmark (`crates/plait/benches/encode.rs`)
+    /// times against wgpu written by hand.
+    pub fn encode(&self) -> wgpu::CommandBuffer {
         let device = &self.gpu.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some(&self.schedule.name),
         });
@@ -250,10 +259,7 @@ impl<'g> Renderer<'g> {
         if let Some(ts) = &self.timestamps {
             encoder.write_timestamp(&ts.queries, 0);
         }
-        let first_frame = self
-            .frames_rendered
-            .load(std::sync::atomic::Ordering::Relaxed)
-            == 0;
+        let first_frame = self.first_frame();
         let skipped = |i: usize| self.schedule.passes[i].run_once && !first_frame;
         for (i, pass) in self.passes.iter().enumerate() {
             if !skipped(i) {
@@ -274,7 +280,16 @@ impl<'g> Renderer<'g> {
             encoder.resolve_query_set(&ts.queries, 0..n, &ts.resolve, 0);
             encoder.copy_buffer_to_buffer(&ts.resolve, 0, &ts.readback, 0, n as u64 * 8);
         }
-        self.gpu.queue.submit([encoder.finish()]);
+        encoder.finish()
+    }
+
+    /// Render one frame and wait for it; per-pass GPU times when the adapter has timestamps.
+    pub fn render(&self) -> Result<FrameReport, GpuError> {
+        let device = &self.gpu.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let first_frame = self.first_frame();
+        let skipped = |i: usize| self.schedule.passes[i].run_once && !first_frame;
+        self.gpu.queue.submit([self.encode()]);
         self.gpu.wait()?;
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Validation {
@@ -287,6 +302,12 @@ impl<'g> Renderer<'g> {
                 pass: self.schedule.name.clone(),
                 message,
             });
+        }
+        for (i, pass) in self.passes.iter().enumerate() {
+            pass.finish(device).map_err(|message| GpuError::Pass {
+                pass: self.schedule.passes[i].name.clone(),
+                message,
+            })?;
         }
         let mut times: Option<Vec<u64>> = None;
         if let Some(ts) = &self.timestamps {

@@ -26,9 +26,11 @@ pub struct FrameUniforms {
     pub screen_size: [f32; 4],
     pub jitter: [f32; 4],
     pub near_far: [f32; 4],
-    /// x: mean fragment alpha (strand alpha × material alpha × strand
-    /// coverage while coverage is on); y: strands; z: segments; w: the mean
-    /// alpha without coverage.
+    /// x: mean alpha over every vertex (strand alpha × material alpha ×
+    /// strand coverage while coverage is on) — occupancy order's ᾱ only with
+    /// `mean_alpha = "frame"`; by default it measures ᾱ per pixel on the GPU
+    /// (alpha_sum pass); y: strands; z: segments; w: the mean alpha without
+    /// coverage.
     pub hair_stats: [f32; 4],
     /// The comparison conventions every visibility provider shares
     /// (docs/design.md, "In front of"): x = self-shadow bias in light linear

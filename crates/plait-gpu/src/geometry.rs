@@ -1,5 +1,10 @@
-//! Scene geometry on the GPU: hair as a line list, opaque meshes as one triangle list.
+//! Scene geometry on the GPU: hair as a line list, opaque meshes as one
+//! triangle list, and the scene resources of simulation
+//! (`plait_graph::scene_resources`): guides at rest and now, every drawn
+//! strand's guide binding, the head's colliders.
 
+use glam::Vec3;
+use plait_hair::guides::Guides;
 use plait_hair::mesh::Mesh;
 use plait_hair::{StrandVertex, Strands};
 use wgpu::util::DeviceExt;
@@ -61,6 +66,135 @@ pub struct SceneGeometry {
     /// The scene's environment image, the `environment_source` scene binding
     /// ([`SceneGeometry::set_environment`]).
     pub environment: Option<wgpu::TextureView>,
+    /// Points of the drawn hair.
+    pub point_count: u32,
+    /// The scene resources of simulation and guide interpolation.
+    pub guides: GuideBuffers,
+}
+
+/// An ellipsoid the hair collides with, at rest (the head moves it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Collider {
+    pub center: Vec3,
+    pub radii: Vec3,
+}
+
+/// The guide strands on the GPU (layouts in `plait_graph::scene_resources`).
+/// Positions and previous positions start at rest and persist as long as
+/// the geometry: they are the simulation's state.
+pub struct GuideBuffers {
+    pub rest: wgpu::Buffer,
+    pub strands: wgpu::Buffer,
+    pub positions: wgpu::Buffer,
+    pub previous: wgpu::Buffer,
+    pub strand_guides: wgpu::Buffer,
+    pub colliders: wgpu::Buffer,
+    pub guide_count: u32,
+    pub point_count: u32,
+    pub collider_count: u32,
+    /// Every drawn strand is its own guide (no interpolation needed to see motion).
+    pub identity: bool,
+}
+
+/// One drawn strand's binding as `strand_guides` holds it (48 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct StrandGuide {
+    /// Guides 0, 1, 2 and the strand's first point.
+    pub ids: [u32; 4],
+    /// Weights and the length scale.
+    pub weights: [f32; 4],
+    /// Rest root and the point count (as f32: exact below 2^24).
+    pub root: [f32; 4],
+}
+
+fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    // Never empty: wgpu cannot bind a 0-byte buffer, nor one smaller than an
+    // element of the shader's array (48 bytes at most: a strand's guides).
+    let padded;
+    let contents = if bytes.is_empty() {
+        padded = [0u8; 48];
+        &padded[..]
+    } else {
+        bytes
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+impl GuideBuffers {
+    /// `pose`: the head's pose the state starts in (the guides at rest, moved
+    /// with the head), so a sequence that starts turned does not jump.
+    pub fn upload(
+        device: &wgpu::Device,
+        guides: &Guides,
+        drawn: &Strands,
+        colliders: &[Collider],
+        pose: glam::Mat4,
+    ) -> Self {
+        let g = &guides.strands;
+        let mut rest = Vec::with_capacity(g.points.len());
+        for r in g.ranges() {
+            for i in r.clone() {
+                let length = if i == r.start {
+                    0.0
+                } else {
+                    (g.points[i] - g.points[i - 1]).length()
+                };
+                rest.push(g.points[i].extend(length).to_array());
+            }
+        }
+        let strands: Vec<[u32; 2]> = g
+            .ranges()
+            .map(|r| [r.start as u32, r.len() as u32])
+            .collect();
+        let bindings: Vec<StrandGuide> = drawn
+            .ranges()
+            .zip(&guides.bindings)
+            .map(|(r, b)| StrandGuide {
+                ids: [b.guides[0], b.guides[1], b.guides[2], r.start as u32],
+                weights: [b.weights[0], b.weights[1], b.weights[2], b.scale],
+                root: b.root.extend(r.len() as f32).to_array(),
+            })
+            .collect();
+        let shapes: Vec<[[f32; 4]; 2]> = colliders
+            .iter()
+            .map(|c| {
+                [
+                    c.center.extend(0.0).to_array(),
+                    c.radii.extend(0.0).to_array(),
+                ]
+            })
+            .collect();
+        let rest_bytes: &[u8] = bytemuck::cast_slice(&rest);
+        let posed: Vec<[f32; 4]> = rest
+            .iter()
+            .map(|p| {
+                pose.transform_point3(Vec3::new(p[0], p[1], p[2]))
+                    .extend(0.0)
+                    .to_array()
+            })
+            .collect();
+        let posed_bytes: &[u8] = bytemuck::cast_slice(&posed);
+        GuideBuffers {
+            rest: storage(device, "guide_rest", rest_bytes),
+            strands: storage(device, "guide_strands", bytemuck::cast_slice(&strands)),
+            positions: storage(device, "guide_positions", posed_bytes),
+            previous: storage(device, "guide_previous", posed_bytes),
+            strand_guides: storage(device, "strand_guides", bytemuck::cast_slice(&bindings)),
+            // No collider: one of radii 0, which nothing is inside.
+            colliders: storage(device, "head_colliders", bytemuck::cast_slice(&shapes)),
+            guide_count: strands.len() as u32,
+            point_count: rest.len() as u32,
+            collider_count: colliders.len() as u32,
+            identity: guides.is_identity(),
+        }
+    }
 }
 
 fn upload<V: bytemuck::Pod>(
@@ -75,9 +209,11 @@ fn upload<V: bytemuck::Pod>(
     let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(&format!("{label} vertices")),
         contents: bytemuck::cast_slice(vertices),
+        // COPY_SRC: compute passes write the hair and tests read it back;
         // COPY_DST: the hair is rewritten when it follows the head.
         usage: wgpu::BufferUsages::VERTEX
             | wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
             | wgpu::BufferUsages::COPY_DST,
     });
     let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -109,7 +245,38 @@ impl SceneGeometry {
         true
     }
 
+    /// Hair and meshes; every strand its own guide, no colliders.
     pub fn upload(device: &wgpu::Device, strands: &Strands, meshes: &[Mesh]) -> Self {
+        Self::upload_with_guides(
+            device,
+            strands,
+            meshes,
+            &Guides::identity(strands),
+            &[],
+            glam::Mat4::IDENTITY,
+        )
+    }
+
+    /// Hair and meshes, with the groom's guides and the head's colliders for
+    /// simulation (at rest; its state starts at rest moved by `pose`, the
+    /// head's first pose). `guides.bindings` has one entry per strand of `strands`.
+    pub fn upload_with_guides(
+        device: &wgpu::Device,
+        strands: &Strands,
+        meshes: &[Mesh],
+        guides: &Guides,
+        colliders: &[Collider],
+        pose: glam::Mat4,
+    ) -> Self {
+        // Guides made for other strands (a caller cut the strands after
+        // loading): every strand its own guide rather than wrong bindings.
+        let identity;
+        let guides = if guides.bindings.len() == strands.strand_count() {
+            guides
+        } else {
+            identity = Guides::identity(strands);
+            &identity
+        };
         let (hair_vertices, hair_indices) = strands.line_list();
         let hair = upload(device, "hair", &hair_vertices, &hair_indices);
         let mut vertices = Vec::new();
@@ -131,6 +298,25 @@ impl SceneGeometry {
             strand_count: strands.strand_count() as u32,
             segment_count: strands.segment_count() as u32,
             environment: None,
+            point_count: strands.point_count() as u32,
+            guides: GuideBuffers::upload(device, guides, strands, colliders, pose),
+        }
+    }
+
+    /// The buffer of scene resource `name` (`plait_graph::scene_resources`);
+    /// `None` for the hair's vertices and indices when the scene has no hair.
+    pub fn scene_buffer(&self, name: &str) -> Option<&wgpu::Buffer> {
+        let g = &self.guides;
+        match name {
+            "hair_vertices" => self.hair.as_ref().map(|h| &h.vertices),
+            "hair_indices" => self.hair.as_ref().map(|h| &h.indices),
+            "guide_rest" => Some(&g.rest),
+            "guide_strands" => Some(&g.strands),
+            "guide_positions" => Some(&g.positions),
+            "guide_previous" => Some(&g.previous),
+            "strand_guides" => Some(&g.strand_guides),
+            "head_colliders" => Some(&g.colliders),
+            _ => None,
         }
     }
 }

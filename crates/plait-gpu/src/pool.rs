@@ -39,7 +39,12 @@ pub struct ResourcePool {
 }
 
 impl ResourcePool {
-    pub fn new(device: &wgpu::Device, schedule: &Schedule) -> Self {
+    /// Scene resources are the `geometry`'s buffers (shared, never allocated).
+    pub fn new(
+        device: &wgpu::Device,
+        schedule: &Schedule,
+        geometry: &crate::geometry::SceneGeometry,
+    ) -> Self {
         // Usage is the union over every pass that touches any user of the allocation.
         let mut tex_usage = vec![
             wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
@@ -74,6 +79,15 @@ impl ResourcePool {
             .iter()
             .enumerate()
             .map(|(i, phys)| {
+                let scene = phys
+                    .users
+                    .iter()
+                    .map(|&u| &schedule.resources[u])
+                    .find(|r| r.scene)
+                    .and_then(|r| geometry.scene_buffer(&r.name));
+                if let Some(buffer) = scene {
+                    return GpuResource::Buffer(buffer.clone());
+                }
                 let label = phys
                     .users
                     .iter()

@@ -20,6 +20,7 @@ use std::collections::{BinaryHeap, HashSet};
 use crate::error::{Error, ErrorKind, Errors, Location, Spanned};
 use crate::expr;
 use crate::load::{PassDecl, Pipeline, ResourceDecl, SizeDecl, location_order};
+use crate::scene_resources::{DRAWN_HAIR, SCENE_RESOURCES, scene_resource};
 use crate::schedule::*;
 use crate::spec::{
     Access, ParamSpec, ParamType, PassShape, PassTypeSpec, Registry, ResourceKind, SlotSpec,
@@ -35,12 +36,30 @@ pub fn compile(
     let mut errors = Vec::new();
 
     // Resource descriptors, indexed like `pipeline.resources`.
-    let descs: Vec<Option<ResourceDesc>> = pipeline
+    let mut descs: Vec<Option<ResourceDesc>> = pipeline
         .resources
         .values()
         .map(|r| resolve_resource(r, opts, &mut errors))
         .collect();
     crate::history::check(pipeline, &descs, &mut errors);
+    for r in pipeline.resources.values() {
+        if scene_resource(&r.name).is_some() {
+            errors.push(Error::new(
+                r.location.clone(),
+                ErrorKind::BadResource {
+                    resource: r.name.clone(),
+                    reason: "is a scene resource, provided by the scene (sized by its hair); name it in `reads` or `writes` without declaring it".into(),
+                },
+            ));
+        }
+    }
+    // Scene resources follow the declared ones; their size is the scene's,
+    // unknown here (0: they take no memory of the pipeline's).
+    descs.extend(
+        SCENE_RESOURCES
+            .iter()
+            .map(|_| Some(ResourceDesc::Buffer { size: 0 })),
+    );
 
     let passes: Vec<ScheduledPass> = pipeline
         .passes
@@ -464,12 +483,40 @@ fn bind_slots(
         if resource.value.is_empty() {
             continue;
         }
-        let Some(index) = pipeline.resources.get_index_of(&resource.value) else {
-            errors.push(crate::history::undeclared(pipeline, resource));
-            continue;
+        let scene = scene_resource(&resource.value);
+        let index = match (pipeline.resources.get_index_of(&resource.value), scene) {
+            (Some(index), _) => index,
+            (None, Some((i, scene))) => {
+                if direction == Direction::Write && !scene.writable {
+                    let writable: Vec<_> = SCENE_RESOURCES
+                        .iter()
+                        .filter(|r| r.writable)
+                        .map(|r| r.name)
+                        .collect();
+                    errors.push(Error::new(
+                        resource.location.clone(),
+                        ErrorKind::Pass {
+                            pass: decl.name.clone(),
+                            message: format!(
+                                "scene resource `{}` is read-only ({}); passes may write only {}",
+                                scene.name,
+                                scene.doc,
+                                writable.join(", ")
+                            ),
+                        },
+                    ));
+                    continue;
+                }
+                pipeline.resources.len() + i
+            }
+            (None, None) => {
+                errors.push(crate::history::undeclared(pipeline, resource));
+                continue;
+            }
         };
         if direction == Direction::Write
-            && let Some(of) = &pipeline.resources[index].previous_of
+            && let Some((_, declared)) = pipeline.resources.get_index(index)
+            && let Some(of) = &declared.previous_of
         {
             errors.push(Error::new(
                 resource.location.clone(),
@@ -481,7 +528,10 @@ fn bind_slots(
             ));
             continue;
         }
-        let declared_kind = pipeline.resources[index].kind.value;
+        let declared_kind = pipeline
+            .resources
+            .get_index(index)
+            .map_or(ResourceKind::Buffer, |(_, r)| r.kind.value);
         let slot = slots.iter().find(|s| &s.name == slot_name);
         let (access, loads) = match (slot, spec) {
             (Some(slot), _) => (slot.access, slot.loads),
@@ -524,8 +574,8 @@ fn bind_slots(
                         expected: slot.kind.to_string(),
                     },
                 ));
-            } else if let Some(ResourceDesc::Texture { format, .. }) = descs[index]
-                && !slot.formats.accepts(format)
+            } else if let Some(Some(ResourceDesc::Texture { format, .. })) = descs.get(index)
+                && !slot.formats.accepts(*format)
             {
                 errors.push(Error::new(
                     resource.location.clone(),
@@ -544,7 +594,8 @@ fn bind_slots(
             resource: index,
             resource_name: resource.value.clone(),
             access,
-            loads,
+            // The scene's contents are there before any pass: never cleared.
+            loads: loads || (scene.is_some() && direction == Direction::Write),
             location: resource.location.clone(),
         });
     }
@@ -582,6 +633,28 @@ fn writes_to(pass: &ScheduledPass, resource: usize) -> Option<&Binding> {
 
 fn reads_from(pass: &ScheduledPass, resource: usize) -> bool {
     pass.reads.iter().any(|b| b.resource == resource)
+}
+
+/// Scene resource ids (after the `declared` ones) a pass reads without naming
+/// them: a hair draw reads the hair's vertices and indices.
+fn implicit_reads(pass: &ScheduledPass, declared: usize) -> Vec<usize> {
+    if pass.draw.as_deref() != Some("hair") {
+        return Vec::new();
+    }
+    DRAWN_HAIR
+        .iter()
+        .filter_map(|name| scene_resource(name).map(|(i, _)| declared + i))
+        .collect()
+}
+
+/// The name of resource id `resource`: declared, or a scene resource.
+fn resource_name(pipeline: &Pipeline, resource: usize) -> String {
+    match pipeline.resources.get_index(resource) {
+        Some((name, _)) => name.clone(),
+        None => SCENE_RESOURCES[resource - pipeline.resources.len()]
+            .name
+            .to_owned(),
+    }
 }
 
 /// Output resource indices (into `pipeline.resources`); reports unknown or
@@ -639,22 +712,28 @@ fn order_passes(
         }
     };
 
-    for resource in 0..pipeline.resources.len() {
+    let declared = pipeline.resources.len();
+    let reads = |p: usize, resource: usize| {
+        reads_from(&passes[p], resource) || implicit_reads(&passes[p], declared).contains(&resource)
+    };
+    for resource in 0..declared + SCENE_RESOURCES.len() {
         let writers: Vec<usize> = (0..passes.len())
             .filter(|&p| writes_to(&passes[p], resource).is_some())
             .collect();
-        let readers: Vec<usize> = (0..passes.len())
-            .filter(|&p| reads_from(&passes[p], resource))
-            .collect();
+        let readers: Vec<usize> = (0..passes.len()).filter(|&p| reads(p, resource)).collect();
         // An earlier frame's version is written by the engine (a copy of the
-        // resource after each frame): it needs a writer of the resource.
-        let previous_of = pipeline.resources[resource].previous_of.as_ref();
+        // resource after each frame): it needs a writer of the resource. The
+        // scene writes its resources before any pass.
+        let previous_of = pipeline
+            .resources
+            .get_index(resource)
+            .and_then(|(_, r)| r.previous_of.as_ref());
         let written_by_someone = match previous_of {
             Some(of) => pipeline
                 .resources
                 .get_index_of(&of.resource)
                 .is_some_and(|base| passes.iter().any(|p| writes_to(p, base).is_some())),
-            None => !writers.is_empty(),
+            None => !writers.is_empty() || resource >= declared,
         };
         if !written_by_someone {
             for &r in &readers {
@@ -680,8 +759,7 @@ fn order_passes(
             }
         }
         let is_load_writer = |p: usize| {
-            writes_to(&passes[p], resource).is_some_and(|b| b.loads)
-                || reads_from(&passes[p], resource)
+            writes_to(&passes[p], resource).is_some_and(|b| b.loads) || reads(p, resource)
         };
         for &plain in writers.iter().filter(|&&w| !is_load_writer(w)) {
             for &load in writers.iter().filter(|&&w| is_load_writer(w)) {
@@ -724,7 +802,7 @@ fn order_passes(
             row
         })
         .collect();
-    for resource in 0..pipeline.resources.len() {
+    for resource in 0..declared + SCENE_RESOURCES.len() {
         let writers: Vec<usize> = (0..passes.len())
             .filter(|&p| writes_to(&passes[p], resource).is_some())
             .collect();
@@ -736,7 +814,7 @@ fn order_passes(
                     errors.push(Error::new(
                         location,
                         ErrorKind::UnorderedWriters {
-                            resource: pipeline.resources[resource].name.clone(),
+                            resource: resource_name(pipeline, resource),
                             first: passes[a].name.clone(),
                             second: passes[b].name.clone(),
                         },
@@ -816,10 +894,18 @@ fn build_schedule(
 ) -> Schedule {
     // Live passes: writers of outputs and everything they depend on. Walking
     // the execution order backwards sees every consumer before its producers.
+    let declared = pipeline.resources.len();
     // A history makes a read of `R.previous` need `R` (and the younger
     // versions it is copied through), whose writers may come later in the
     // order: walk again until nothing new is needed.
-    let history_chain = |r: usize| crate::history::chain(pipeline, r);
+    // Scene resources have no history.
+    let history_chain = |r: usize| {
+        if r < declared {
+            crate::history::chain(pipeline, r)
+        } else {
+            Vec::new()
+        }
+    };
     let mut needed: HashSet<usize> = outputs.iter().copied().collect();
     let mut live = vec![false; passes.len()];
     loop {
@@ -833,6 +919,7 @@ fn build_schedule(
             {
                 live[p] = true;
                 needed.extend(passes[p].reads.iter().map(|b| b.resource));
+                needed.extend(implicit_reads(&passes[p], declared));
                 // A load-writer keeps earlier contents: their writers are needed too.
                 needed.extend(
                     passes[p]
@@ -851,7 +938,8 @@ fn build_schedule(
     }
 
     // Renumber resources: keep those a live pass touches, in declaration order.
-    let mut used = vec![false; pipeline.resources.len()];
+    let total = declared + SCENE_RESOURCES.len();
+    let mut used = vec![false; total];
     for (p, pass) in passes.iter().enumerate() {
         if live[p] {
             for b in pass.reads.iter().chain(&pass.writes) {
@@ -862,7 +950,7 @@ fn build_schedule(
             }
         }
     }
-    let mut new_id = vec![DROPPED_RESOURCE; pipeline.resources.len()];
+    let mut new_id = vec![DROPPED_RESOURCE; total];
     let mut resources = Vec::new();
     let mut dropped_resources = Vec::new();
     for (i, decl) in pipeline.resources.values().enumerate() {
@@ -875,6 +963,7 @@ fn build_schedule(
                     first_use: usize::MAX,
                     last_use: 0,
                     physical: 0,
+                    scene: false,
                     // A history's versions come after it in declaration
                     // order, so `of` is already renumbered.
                     lifetime: crate::history::declared_lifetime(decl, pipeline, &new_id),
@@ -883,6 +972,24 @@ fn build_schedule(
                 });
             }
             _ => dropped_resources.push(decl.name.clone()),
+        }
+    }
+    // Scene resources a live pass names: after the declared ones, never dropped.
+    for (i, scene) in SCENE_RESOURCES.iter().enumerate() {
+        if used[declared + i] {
+            new_id[declared + i] = resources.len();
+            resources.push(ResolvedResource {
+                name: scene.name.to_owned(),
+                desc: ResourceDesc::Buffer { size: 0 },
+                first_use: usize::MAX,
+                last_use: 0,
+                physical: 0,
+                scene: true,
+                // The scene's buffers outlive every frame, like `persistent`.
+                lifetime: Lifetime::Persistent,
+                kept: false,
+                location: Location::Builtin,
+            });
         }
     }
     for pass in &mut passes {
@@ -1005,8 +1112,13 @@ fn plan_memory(resources: &mut [ResolvedResource]) -> (Vec<PhysicalResource>, Me
     let mut physical: Vec<PhysicalResource> = Vec::new();
     for r in by_start {
         let (desc, first_use) = (resources[r].desc.clone(), resources[r].first_use);
+        // The scene's buffers are its own: never shared.
         let reusable = physical.iter().position(|p| {
-            p.desc == desc && p.users.iter().all(|&u| resources[u].last_use < first_use)
+            !resources[r].scene
+                && p.desc == desc
+                && p.users
+                    .iter()
+                    .all(|&u| !resources[u].scene && resources[u].last_use < first_use)
         });
         let id = match reusable {
             Some(id) => id,

@@ -28,6 +28,7 @@ mod overrides;
 pub mod pass_type_file;
 pub mod raster_decl;
 mod run_once;
+pub mod scene_resources;
 pub mod schedule;
 mod shader_path;
 pub mod snapshot;

@@ -170,6 +170,10 @@ pub struct ResolvedResource {
     pub first_use: usize,
     pub last_use: usize,
     pub physical: PhysicalId,
+    /// A scene resource ([`crate::scene_resources`]): the scene's buffer,
+    /// not allocated by the pipeline (its `desc` is a 0-byte buffer).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub scene: bool,
     /// Whether the contents outlive the frame (`persistent`, `history`).
     #[serde(skip_serializing_if = "Lifetime::is_frame")]
     pub lifetime: Lifetime,

@@ -66,6 +66,8 @@ pub fn schedule_text(s: &Schedule) -> String {
             (false, false) => "",
         };
         let lifetime = match r.lifetime {
+            // Sized by the scene's hair: nothing of the pipeline's.
+            _ if r.scene => ", the scene's (persistent)".into(),
             Lifetime::Frame => String::new(),
             Lifetime::Persistent => ", persistent".into(),
             Lifetime::History { frames } => format!(", history {frames}"),

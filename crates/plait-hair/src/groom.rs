@@ -22,6 +22,7 @@
 use glam::Vec3;
 use serde::Deserialize;
 
+use crate::guides::{GuideBinding, Guides};
 use crate::rng::SplitMix64;
 use crate::strands::Strands;
 
@@ -415,7 +416,15 @@ fn push(strands: &mut Strands, spec: &GroomSpec, pts: &[Vec3], lk: &StrandLook) 
 /// strands. Out-of-range numbers are clamped (call [`GroomSpec::validate`]
 /// first to report them instead).
 pub fn generate(spec: &GroomSpec) -> Strands {
+    generate_guided(spec).0
+}
+
+/// [`generate`], and with `guides = Some(g)` the guide strands and every
+/// rendered strand's binding to them (stray strands are guides of their own),
+/// for simulating the guides and interpolating the rest on the GPU.
+pub fn generate_guided(spec: &GroomSpec) -> (Strands, Option<Guides>) {
     let mut strands = Strands::new();
+    let mut guided: Option<Guides> = None;
     let lift_of = |u: f32| 0.02 + 0.06 * (1.0 - u); // crown strands lie on top of lower ones
     match spec.guides {
         None | Some(0) => {
@@ -436,7 +445,7 @@ pub fn generate(spec: &GroomSpec) -> Strands {
                 push(&mut strands, spec, &pts, &lk);
             }
         }
-        Some(g) => interpolate_from_guides(spec, g, &mut strands, lift_of),
+        Some(g) => guided = Some(interpolate_from_guides(spec, g, &mut strands, lift_of)),
     }
     for i in 0..spec.stray_strands {
         let mut rng = SplitMix64::stream(spec.seed ^ 0x0057_12A7, u64::from(i));
@@ -450,8 +459,18 @@ pub fn generate(spec: &GroomSpec) -> Strands {
         let mut pts = grow(spec, root, dir, lk.length * 0.8, spec.gravity * 0.25, 0.35);
         add_waves(spec, &mut pts, lk.phase);
         push(&mut strands, spec, &pts, &lk);
+        if let Some(g) = &mut guided {
+            // A stray strand is a guide of its own: weight 1 on itself.
+            g.bindings.push(GuideBinding {
+                guides: [g.strands.strand_count() as u32; 3],
+                weights: [1.0, 0.0, 0.0],
+                root: pts[0],
+                scale: 1.0,
+            });
+            push(&mut g.strands, spec, &pts, &lk);
+        }
     }
-    strands
+    (strands, guided)
 }
 
 /// Guide grid layout for about `g` guides: `rows` polar rings (u = 0..=1)
@@ -502,7 +521,7 @@ fn interpolate_from_guides(
     g: u32,
     strands: &mut Strands,
     lift_of: impl Fn(f32) -> f32,
-) {
+) -> Guides {
     let (rows, cols) = guide_grid(g);
     // Guides: grown with the mean length, with their own wave phase.
     let mut guides: Vec<Vec<Vec3>> = Vec::with_capacity(rows * cols);
@@ -525,16 +544,40 @@ fn interpolate_from_guides(
             guides.push(pts);
         }
     }
-    let guide = |i: usize, j: usize| &guides[i.min(rows - 1) * cols + j % cols];
+    let index = |i: usize, j: usize| i.min(rows - 1) * cols + j % cols;
+    let mut bindings = Vec::with_capacity(spec.strands as usize);
     for s in 0..spec.strands {
         let mut rng = SplitMix64::stream(spec.seed, u64::from(s));
         let (u, v) = sample_root(spec, &mut rng);
         let lk = look(spec, &mut rng);
         let (corners, w) = locate(u, v, rows, cols);
-        let tri = corners.map(|(i, j)| guide(i, j));
+        let ids = corners.map(|(i, j)| index(i, j));
+        let tri = ids.map(|k| &guides[k]);
         let (root, _) = head_point(spec, scalp_dir(spec, u, v));
-        let pts = blend(tri, w, root, lk.length / spec.length.max(1e-6));
+        let scale = lk.length / spec.length.max(1e-6);
+        let pts = blend(tri, w, root, scale);
         push(strands, spec, &pts, &lk);
+        bindings.push(GuideBinding {
+            guides: ids.map(|k| k as u32),
+            weights: w,
+            root,
+            scale,
+        });
+    }
+    let mut guide_strands = Strands::new();
+    for pts in &guides {
+        let lk = StrandLook {
+            length: spec.length,
+            thickness: spec.thickness,
+            alpha: spec.alpha,
+            color: Vec3::from(spec.color),
+            phase: 0.0,
+        };
+        push(&mut guide_strands, spec, pts, &lk);
+    }
+    Guides {
+        strands: guide_strands,
+        bindings,
     }
 }
 

@@ -9,12 +9,14 @@
 //!   (Sintorn & Assarsson 2009 Fig. 4/5).
 //! - [`tfx`]: AMD TressFX's binary `.tfx` format (versions 3 and 4), read and
 //!   written; [`asset`] tells the two formats apart.
+//! - [`guides`]: guide strands and the binding of every rendered strand to
+//!   them, the CPU reference of GPU guide interpolation.
 //! - [`follow`]: follow strands around guide strands, as TressFX makes them.
 //! - [`transform`]: placing a groom (scale, rotation, translation).
-//! - [`animation`]: keyframed motion of the head (the scene's `[animation]`).
 //! - [`environment`]: the light around the scene (an HDR/EXR/PNG image or
 //!   the procedural sky) and CPU references of the irradiance maps
 //!   (Xing et al. 2012 §3, §5).
+//! - [`animation`]: keyframed motion of the head (the scene's `[animation]`).
 //! - [`scene`]: the TOML scene file every pipeline renders; [`camera`] (a
 //!   look-at camera or one fitted to the hair), [`light`] (light frustum
 //!   fitting, Halén & Wester 2007 §5.7), [`hair_source`] (the `[hair]` table).
@@ -25,6 +27,7 @@ pub mod camera;
 pub mod environment;
 pub mod follow;
 pub mod groom;
+pub mod guides;
 pub mod hair_file;
 pub mod hair_source;
 pub mod light;

@@ -195,11 +195,11 @@ pub struct Scene {
     pub material: HairMaterial,
     /// Constant ambient light intensity.
     pub ambient: f32,
-    /// Keyframes of the head, if it moves.
-    pub animation: Option<Animation>,
     /// The light around the scene (the procedural sky unless the file
     /// names an image), for the `lighting` techniques.
     pub environment: Environment,
+    /// Keyframes of the head, if it moves.
+    pub animation: Option<Animation>,
 }
 
 /// What [`Scene::load_hair`] fits to the hair's bounds.
@@ -228,8 +228,8 @@ struct SceneToml {
     #[serde(default = "default_ambient")]
     ambient: f32,
     #[serde(default)]
-    animation: Option<Animation>,
     environment: Option<toml::Spanned<EnvironmentSetting>>,
+    animation: Option<Animation>,
 }
 
 impl From<SceneToml> for Scene {
@@ -251,9 +251,9 @@ impl From<SceneToml> for Scene {
             background: t.background,
             material: t.material,
             ambient: t.ambient,
-            animation: t.animation,
             // Its place in the file is filled in by `from_toml_str`.
             environment: t.environment.map(|e| e.into_inner().0).unwrap_or_default(),
+            animation: t.animation,
         }
     }
 }
@@ -343,8 +343,8 @@ impl Scene {
             background: Background::Color([0.05, 0.06, 0.08]),
             material: HairMaterial::default(),
             ambient: 0.15,
-            animation: None,
             environment: Environment::default(),
+            animation: None,
         }
     }
 
@@ -360,6 +360,10 @@ impl Scene {
                 message: e.message().trim().to_string(),
             }
         })?;
+        let environment_at = parsed.environment.as_ref().map(|e| {
+            let (line, column) = line_col(text, e.span().start);
+            format!("{}:{line}:{column}", path.display())
+        });
         if let Some(e) = parsed.animation.as_ref().and_then(|a| a.validate().err()) {
             let (line, column) = line_col(text, e.span.start);
             return Err(SceneError::Parse {
@@ -369,10 +373,6 @@ impl Scene {
                 message: e.message,
             });
         }
-        let environment_at = parsed.environment.as_ref().map(|e| {
-            let (line, column) = line_col(text, e.span().start);
-            format!("{}:{line}:{column}", path.display())
-        });
         let mut scene = Scene::from(parsed);
         scene.environment.declared_at = environment_at;
         scene.validate().map_err(|message| SceneError::Invalid {

@@ -9,7 +9,9 @@
 //! - `occupancy_order`: each fragment weighted (1-α)^o · α with o its depth
 //!   order estimated from camera-view occupancy maps (the `order_*` slots),
 //!   added unsorted into a float target (Sintorn & Assarsson 2009 §3.4); the
-//!   `compose` pass applies the Λ correction.
+//!   `compose` pass applies the Λ correction. The fragments in front count
+//!   with the mean alpha ᾱ: per pixel (`mean_alpha = "pixel"`, Σα / n from
+//!   the `order_alpha` slot) or one constant for the frame (`"frame"`).
 
 use plait_gpu::Capabilities;
 use plait_gpu::pass::{BlendPreset, BuiltinShader, DepthMode, PassType, RasterState, blend_preset};
@@ -53,6 +55,18 @@ impl PassType for HairShade {
                 "occupancy_order: camera-view slab counts",
             )
             .optional(),
+            texture(
+                "order_alpha",
+                Access::Sampled,
+                &[
+                    plait_graph::Format::Rg32Float,
+                    plait_graph::Format::Rg16Float,
+                    plait_graph::Format::Rgba32Float,
+                    plait_graph::Format::Rgba16Float,
+                ],
+                "occupancy_order, mean_alpha = \"pixel\": Σα and n per pixel (alpha_sum)",
+            )
+            .optional(),
         ]);
         let mut params = transparency::shading_params();
         params.push(choice(
@@ -60,6 +74,12 @@ impl PassType for HairShade {
             "over",
             &["over", "occupancy_order"],
             "transparency: draw-order `over`, or occupancy-order weights (§3.4)",
+        ));
+        params.push(choice(
+            "mean_alpha",
+            "frame",
+            &["frame", "pixel"],
+            "occupancy_order: the alpha of the fragments in front — `frame`: the CPU mean over every vertex (hair_stats.x); `pixel`: Σα / n of the pixel's visible fragments (`order_alpha`)",
         ));
         PassTypeSpec {
             inputs,

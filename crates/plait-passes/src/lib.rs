@@ -11,6 +11,7 @@ pub mod density_clustering;
 pub mod depth_peeling;
 pub mod depth_range;
 pub mod hair_shade;
+pub mod interpolation;
 pub mod lighting;
 pub mod linked_list;
 pub mod occlusion;
@@ -20,6 +21,7 @@ pub mod occupancy;
 pub mod opaque_hair;
 pub mod opaque_shade;
 pub mod shading;
+pub mod simulation;
 pub mod spec_util;
 pub mod transparency;
 pub mod visibility;
@@ -48,6 +50,9 @@ pub fn library() -> PassLibrary {
     lib.add(weighted_average::HairWeightedAverage);
     lib.add(alpha_to_coverage::HAIR_ALPHA_TO_COVERAGE);
     lib.add(opaque_hair::HAIR_OPAQUE);
+    // Simulation (issue 12): guides simulated, drawn strands interpolated.
+    lib.add(simulation::HairSimulation);
+    lib.add(interpolation::GuideInterpolation);
     lib.add(data_only::FULLSCREEN);
     lib.add(data_only::RASTER);
     lib.add(data_only::COMPUTE);

@@ -9,7 +9,7 @@
 //! - occupancy-order blending (`occupancy.toml`) is closer to depth peeling
 //!   than weighted average and no transparency (`opaque.toml`) — Fig. 2's
 //!   ordering — for translucent strands (strand alpha 0.4; `tests/claims.rs`
-//!   checks the scene's own 0.8);
+//!   checks the scene's own 0.8), with strand coverage and without;
 //! - depth peeling stops on its occlusion query before the layer cap, and
 //!   reports the layers it used.
 
@@ -31,8 +31,19 @@ struct Render {
     report: FrameReport,
 }
 
-/// `material_alpha` multiplies every strand's alpha (the small scene's strands have 0.8).
-fn render(gpu: &Gpu, pipeline: &str, sets: &[String], material_alpha: f32) -> Render {
+/// `material_alpha` multiplies every strand's alpha (the small scene's strands
+/// have 0.8); `coverage`: strand coverage (the default) or the papers' strands.
+fn render(gpu: &Gpu, pipeline: &str, material_alpha: f32, coverage: bool) -> Render {
+    render_with(gpu, pipeline, &[], material_alpha, coverage)
+}
+
+fn render_with(
+    gpu: &Gpu,
+    pipeline: &str,
+    sets: &[String],
+    material_alpha: f32,
+    coverage: bool,
+) -> Render {
     let path = root().join("pipelines").join(pipeline);
     let mut scene = Scene::load(root().join("examples/scenes/small.toml")).expect("small scene");
     scene.material.alpha = material_alpha;
@@ -50,11 +61,11 @@ fn render(gpu: &Gpu, pipeline: &str, sets: &[String], material_alpha: f32) -> Re
     plait_passes::check(&mut schedule, &library).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     let output = schedule.resources[schedule.outputs[0]].name.clone();
     let bounds = scene.opaque_bounds().union(&strands.bounds());
-    // The papers' strands: one alpha per strand, no pixel coverage (with
-    // coverage the alpha varies along a strand, which order-based blending's
-    // single mean alpha does not model: tests/claims.rs measures both).
+    // Without coverage, the papers' strands: one alpha per strand. With it,
+    // alphas differ along and between strands; occupancy order measures its
+    // ᾱ per pixel (the alpha_sum pass), so the ordering holds for both.
     let frame = plait_gpu::frame::FrameUniforms::new(&scene, &strands, bounds, SIZE, 0)
-        .with_strand_coverage(false);
+        .with_strand_coverage(coverage);
     let geometry = SceneGeometry::upload(&gpu.device, &strands, &meshes);
     let renderer = Renderer::new(
         gpu,
@@ -118,9 +129,15 @@ fn transparency_methods_against_depth_peeling() {
     // in (§2.2: "a very low alpha value"); `tests/claims.rs` covers the small
     // scene's own alpha 0.8.
     let alpha = 0.5;
-    let peeled = render(&gpu, "depth_peeling.toml", &[], alpha);
+    for coverage in [false, true] {
+        methods_against_depth_peeling(&gpu, alpha, coverage);
+    }
+}
+
+fn methods_against_depth_peeling(gpu: &Gpu, alpha: f32, coverage: bool) {
+    let peeled = render(gpu, "depth_peeling.toml", alpha, coverage);
     let layers = stat(&peeled.report, "hair_peel", "layers");
-    eprintln!("depth peeling: {layers} layers");
+    eprintln!("coverage {coverage}: depth peeling: {layers} layers");
     assert!(
         layers >= 2.0,
         "the small scene has overlapping strands, got {layers} layers"
@@ -131,7 +148,7 @@ fn transparency_methods_against_depth_peeling() {
         "the occlusion query should stop peeling before the cap"
     );
 
-    let lists = render(&gpu, "linked_list.toml", &[], alpha);
+    let lists = render(gpu, "linked_list.toml", alpha, coverage);
     let d = differences(&lists, &peeled);
     let (m, p99, max) = (mean(&d), percentile(&d, 0.99), d[d.len() - 1]);
     eprintln!("linked_list vs depth_peeling: mean {m:.3}, p99 {p99}, max {max} (of 255)");
@@ -142,32 +159,41 @@ fn transparency_methods_against_depth_peeling() {
         "fragment lists must match depth peeling: mean {m:.3}, p99 {p99}"
     );
 
-    let occupancy = differences(&render(&gpu, "occupancy.toml", &[], alpha), &peeled);
-    let opaque = differences(&render(&gpu, "opaque.toml", &[], alpha), &peeled);
-    let weighted = differences(&render(&gpu, "weighted_average.toml", &[], alpha), &peeled);
-    let coverage = differences(&render(&gpu, "alpha_to_coverage.toml", &[], alpha), &peeled);
+    let occupancy = differences(&render(gpu, "occupancy.toml", alpha, coverage), &peeled);
+    let opaque = differences(&render(gpu, "opaque.toml", alpha, coverage), &peeled);
+    let weighted = differences(
+        &render(gpu, "weighted_average.toml", alpha, coverage),
+        &peeled,
+    );
+    let a2c = differences(
+        &render(gpu, "alpha_to_coverage.toml", alpha, coverage),
+        &peeled,
+    );
     eprintln!(
-        "mean abs error vs depth peeling (of 255): occupancy {:.3}, weighted_average {:.3}, alpha_to_coverage(4x) {:.3}, opaque {:.3}",
+        "coverage {coverage}: mean abs error vs depth peeling (of 255): occupancy {:.3}, weighted_average {:.3}, alpha_to_coverage(4x) {:.3}, opaque {:.3}",
         mean(&occupancy),
         mean(&weighted),
-        mean(&coverage),
+        mean(&a2c),
         mean(&opaque)
     );
-    // Measured: occupancy 0.220, weighted_average 0.542, opaque 6.765 (of 255).
+    // Measured (of 255), without coverage: occupancy 0.034 (0.220 with the
+    // frame's one ᾱ), weighted_average 0.542, opaque 6.765; with coverage:
+    // occupancy 0.007, weighted_average 0.060, opaque 11.602.
     assert!(
         mean(&occupancy) < mean(&weighted) && mean(&occupancy) < mean(&opaque),
-        "occupancy-order blending must beat weighted average and no transparency"
+        "occupancy-order blending must beat weighted average and no transparency (coverage {coverage})"
     );
 }
 
 #[test]
 fn depth_peeling_layer_cap() {
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("GPU tests need an adapter: {e}"));
-    let capped = render(
+    let capped = render_with(
         &gpu,
         "depth_peeling.toml",
         &["params.peel_layers=2".to_string()],
         1.0,
+        false,
     );
     assert_eq!(stat(&capped.report, "hair_peel", "layers"), 2.0);
     assert_eq!(stat(&capped.report, "hair_peel", "capped"), 1.0);

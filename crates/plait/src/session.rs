@@ -145,6 +145,10 @@ pub struct SceneData {
     /// The scene's environment (the procedural sky unless it names an
     /// image), read once: the `environment_source` of every pass.
     pub environment: plait_hair::EnvironmentImage,
+    /// The guide strands simulation moves (every strand its own guide when
+    /// the groom has none) and the head's colliders.
+    pub guides: plait_hair::guides::Guides,
+    pub colliders: Vec<plait_gpu::geometry::Collider>,
 }
 
 impl SceneData {
@@ -164,12 +168,23 @@ impl SceneData {
             Background::Color(_) => None,
         };
         let environment = scene.environment.load()?;
+        let guides = plait_hair::guides::scene_guides(&scene, &strands)?;
+        let colliders = scene
+            .head
+            .iter()
+            .map(|h| plait_gpu::geometry::Collider {
+                center: h.center.into(),
+                radii: h.radii.into(),
+            })
+            .collect();
         Ok(SceneData {
             scene,
             strands,
             meshes,
             background,
             environment,
+            guides,
+            colliders,
         })
     }
 
@@ -282,11 +297,27 @@ pub fn build<'g>(
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
     let frame = frame_uniforms(&schedule, scene, size, 0);
+    // A pass that writes the drawn hair (guide interpolation) moves it itself.
+    let hair_written = schedule.passes.iter().any(|p| {
+        p.writes.iter().any(|b| {
+            schedule
+                .resources
+                .get(b.resource)
+                .is_some_and(|r| r.scene && r.name == "hair_vertices")
+        })
+    });
     // The hair as it is at time 0 (the head's first pose).
     let hair_pose = scene.scene.head_model(0.0);
     let posed = scene.hair_posed(hair_pose);
     let hair = posed.as_ref().unwrap_or(&scene.strands);
-    let mut geometry = SceneGeometry::upload(&gpu.device, hair, &scene.meshes);
+    let mut geometry = SceneGeometry::upload_with_guides(
+        &gpu.device,
+        hair,
+        &scene.meshes,
+        &scene.guides,
+        &scene.colliders,
+        hair_pose,
+    );
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
@@ -304,6 +335,6 @@ pub fn build<'g>(
         renderer,
         output,
         hair_pose,
-        hair_follows_head: true,
+        hair_follows_head: !hair_written,
     })
 }

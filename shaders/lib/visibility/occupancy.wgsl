@@ -9,7 +9,7 @@
 #define_import_path plait::visibility::occupancy
 
 #import plait::frame::light_lookup
-#import plait::occupancy::{TexelMaps, MAX_WORDS, relative_depth, order_estimate}
+#import plait::occupancy::{MAX_WORDS, relative_depth_in, slab_position, word_bits, order_in_slab}
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
 @group(1) @binding(10) var<storage, read> vis_bits: array<u32>;
@@ -21,24 +21,40 @@ struct VisibilityParams {
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
 
-fn load_light_maps(texel: vec2<u32>, size: vec2<u32>) -> TexelMaps {
-    var maps: TexelMaps;
+// The order estimate of §3.2 (`plait::occupancy::order_estimate`), reading
+// only the words it needs: none in front of the texel's hair, the counts
+// before the point's slab and that slab's occupancy words otherwise.
+fn light_order(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
     let texels = size.x * size.y;
     let words = min(arrayLength(&vis_bits) / texels, MAX_WORDS);
     let slabs = min(arrayLength(&vis_slabs) / texels, MAX_WORDS);
-    maps.words = words;
-    maps.slabs = slabs;
-    let range = textureLoad(vis_range, vec2<i32>(texel), 0);
-    maps.near = range.x;
-    maps.far = range.y;
+    let rel = relative_depth_in(textureLoad(vis_range, vec2<i32>(texel), 0).xy, depth);
+    if (words == 0u || slabs == 0u || rel <= 0.0) {
+        return 0.0;
+    }
     let index = texel.y * size.x + texel.x;
-    for (var i = 0u; i < words; i++) {
-        maps.bits[i] = vis_bits[index * words + i];
+    if (rel >= 1.0) {
+        var total = 0u;
+        for (var i = 0u; i < slabs; i++) {
+            total += vis_slabs[index * slabs + i];
+        }
+        return f32(total);
     }
-    for (var i = 0u; i < slabs; i++) {
-        maps.counts[i] = vis_slabs[index * slabs + i];
+    let p = slab_position(rel, words, slabs);
+    var before = 0.0;
+    for (var i = 0u; i < p.slab; i++) {
+        before += f32(vis_slabs[index * slabs + i]);
     }
-    return maps;
+    var set_in_slab = 0u;
+    var bits_before = 0u;
+    var bits_through = 0u;
+    for (var w = p.first / 32u; w * 32u < p.end; w++) {
+        let word = vis_bits[index * words + w];
+        set_in_slab += word_bits(word, w, p.first, p.end);
+        bits_before += word_bits(word, w, p.first, p.slice);
+        bits_through += word_bits(word, w, p.first, p.slice + 1u);
+    }
+    return order_in_slab(p, before, vis_slabs[index * slabs + p.slab], set_in_slab, bits_before, bits_through, 0.0);
 }
 
 fn hair_visibility(world: vec3<f32>) -> f32 {
@@ -47,7 +63,6 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     if (!lookup.inside) {
         return 1.0;
     }
-    var maps = load_light_maps(lookup.texel, size);
-    let order = order_estimate(&maps, relative_depth(&maps, lookup.in_front_below));
+    let order = light_order(lookup.texel, size, lookup.in_front_below);
     return exp(-order * visibility_params.shadow_weight);
 }

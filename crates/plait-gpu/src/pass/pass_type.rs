@@ -100,6 +100,13 @@ pub trait PreparedPass {
     fn stats(&self) -> Vec<(String, f64)> {
         Vec::new()
     }
+
+    /// Called once the frame's commands have finished on the GPU: a pass
+    /// that reads back a status of its own (a simulation that went unstable)
+    /// fails the frame here, so its image is never returned.
+    fn finish(&self, _device: &wgpu::Device) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// What building a pass can use.

@@ -336,6 +336,18 @@ impl BindingPlan {
                     }
                 }
             } else if SCENE_BINDINGS.contains(&sb.name.as_str()) {
+                if sb.writes() {
+                    // Bound by name it is read-only: a writer must say so in
+                    // the file, so the graph orders it before the hair draws.
+                    errors.push(err(
+                        &pass.location,
+                        format!(
+                            "the shader writes scene resource `{}`; bind it under `writes` (`writes = {{ {0} = \"{0}\" }}`)",
+                            sb.name
+                        ),
+                    ));
+                    continue;
+                }
                 BindingSource::Scene(sb.name.clone())
             } else {
                 errors.push(GraphError::new(

@@ -1,0 +1,165 @@
+//! Frame time of the default pipeline against the hair's segment count:
+//! `cargo bench -p plait --bench scaling [-- --size WxH --repeats N --segments 75000,150000,… --largest]`.
+//!
+//! Generated grooms (the default scene's wavy groom, 32 segments per strand,
+//! the strand count scaled) from 75,000 to 2,000,000 segments — the paper's
+//! dog has 2M (Sintorn & Assarsson 2009 §4: 17 fps). Every groom is built
+//! first and rendered in interleaved repeats, so all see the same machine
+//! load. Prints the median frame GPU time per groom, a least-squares line
+//! ms = a + b · segments with its R², the memory per segment (vertex and
+//! index buffers; the schedule's maps do not grow with the hair) and the
+//! largest groom the adapter's buffer limit allows; `--largest` doubles the
+//! groom until a frame fails or takes longer than `--max-seconds` (120). A benchmark, not a test.
+
+mod support;
+
+use plait::gpu::Gpu;
+use plait::hair::{HairSource, Scene, StrandVertex};
+use plait::session::{Prepared, SceneData, prepare, repo_root};
+use support::timing::{arg, median, size_arg};
+
+const SEGMENTS_PER_STRAND: u32 = 32;
+
+fn scene_with(segments: u64) -> SceneData {
+    let mut scene = Scene::builtin_default();
+    let HairSource::Procedural(spec) = &mut scene.hair.source else {
+        panic!("the built-in scene's hair is procedural");
+    };
+    spec.segments = SEGMENTS_PER_STRAND;
+    spec.strands = segments.div_ceil(SEGMENTS_PER_STRAND as u64) as u32;
+    SceneData::new(scene).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Bytes of hair geometry per segment: one vertex per point (segments + 1
+/// per strand) and two u32 indices per segment (`plait_gpu::geometry`).
+fn bytes_per_segment() -> f64 {
+    let s = SEGMENTS_PER_STRAND as f64;
+    std::mem::size_of::<StrandVertex>() as f64 * (s + 1.0) / s + 8.0
+}
+
+/// Least squares y = a + b·x, and R².
+fn fit(points: &[(f64, f64)]) -> (f64, f64, f64) {
+    let n = points.len() as f64;
+    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let b = sxy / sxx;
+    let a = my - b * mx;
+    let ss_res: f64 = points.iter().map(|p| (p.1 - a - b * p.0).powi(2)).sum();
+    let ss_tot: f64 = points.iter().map(|p| (p.1 - my).powi(2)).sum();
+    (a, b, 1.0 - ss_res / ss_tot)
+}
+
+fn main() {
+    let repeats: usize = arg("--repeats")
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1)
+        .max(1);
+    let size = size_arg((320, 240));
+    let counts: Vec<u64> = arg("--segments")
+        .map(|s| s.split(',').filter_map(|n| n.trim().parse().ok()).collect())
+        .unwrap_or_else(|| vec![75_000, 150_000, 300_000, 600_000, 1_200_000, 2_000_000]);
+    let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
+    if !gpu.capabilities.timestamps {
+        eprintln!("{} has no timestamp queries", gpu.adapter_name());
+        return;
+    }
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    let scenes: Vec<SceneData> = counts.iter().map(|&n| scene_with(n)).collect();
+    let prepared: Vec<Prepared> = scenes
+        .iter()
+        .map(|s| prepare(&gpu, &pipeline, &[], s, size).unwrap_or_else(|e| panic!("{e}")))
+        .collect();
+    let mut times = vec![Vec::new(); prepared.len()];
+    for repeat in 0..=repeats {
+        for (i, p) in prepared.iter().enumerate() {
+            let report = p.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+            if repeat > 0 {
+                times[i].push(report.total_gpu_ms.unwrap_or(f64::NAN));
+            }
+        }
+    }
+    println!(
+        "occupancy.toml, default scene's groom scaled ({SEGMENTS_PER_STRAND} segments per strand), {}x{}, light maps 512², median of {repeats} interleaved repeats after one warm-up, on {} ({})",
+        size.0,
+        size.1,
+        gpu.adapter_name(),
+        gpu.backend_name()
+    );
+    println!();
+    println!("| segments | strands | frame GPU ms | ms per million segments |");
+    println!("|---:|---:|---:|---:|");
+    let mut points = Vec::new();
+    for (s, t) in scenes.iter().zip(&times) {
+        let segments = s.strands.segment_count() as f64;
+        let ms = median(t);
+        points.push((segments, ms));
+        println!(
+            "| {} | {} | {ms:.0} | {:.0} |",
+            s.strands.segment_count(),
+            s.strands.strand_count(),
+            ms / segments * 1e6
+        );
+    }
+    if points.len() >= 2 {
+        let (a, b, r2) = fit(&points);
+        println!();
+        println!(
+            "fit: frame ms = {a:.1} + {:.1} per million segments, R² = {r2:.4}",
+            b * 1e6
+        );
+    }
+    let per_segment = bytes_per_segment();
+    let fixed = prepared
+        .first()
+        .map(|p| p.schedule().memory.peak_bytes)
+        .unwrap_or(0);
+    println!(
+        "memory: {per_segment:.1} bytes per segment of hair geometry ({} B per vertex), plus {:.1} MiB of pipeline resources at this size, whatever the hair",
+        std::mem::size_of::<StrandVertex>(),
+        fixed as f64 / (1 << 20) as f64
+    );
+    // The vertex buffer is the largest allocation that grows with the hair.
+    let max_buffer = gpu.device.limits().max_buffer_size;
+    let vertex_bytes_per_segment = std::mem::size_of::<StrandVertex>() as f64
+        * (SEGMENTS_PER_STRAND as f64 + 1.0)
+        / SEGMENTS_PER_STRAND as f64;
+    let largest = (max_buffer as f64 / vertex_bytes_per_segment) as u64
+        / SEGMENTS_PER_STRAND as u64
+        * SEGMENTS_PER_STRAND as u64;
+    println!(
+        "the adapter's max_buffer_size ({} MiB) allows a vertex buffer of up to {largest} segments",
+        max_buffer >> 20
+    );
+    if std::env::args().any(|a| a == "--largest") {
+        // Doubling from the largest measured groom until a frame fails, the
+        // buffer limit is reached or a frame takes longer than --max-seconds.
+        let max_ms = arg("--max-seconds")
+            .and_then(|s| s.parse::<f64>().ok())
+            .unwrap_or(120.0)
+            * 1e3;
+        let mut segments = counts.iter().copied().max().unwrap_or(2_000_000) * 2;
+        while segments <= largest {
+            let scene = scene_with(segments);
+            let result = prepare(&gpu, &pipeline, &[], &scene, size)
+                .map_err(|e| e.to_string())
+                .and_then(|p| p.renderer.render().map_err(|e| e.to_string()));
+            match result {
+                Ok(r) => {
+                    let ms = r.total_gpu_ms.unwrap_or(f64::NAN);
+                    println!("rendered {segments} segments: {ms:.0} ms");
+                    if ms > max_ms {
+                        println!("stopping: a frame took more than {:.0} s", max_ms / 1e3);
+                        break;
+                    }
+                }
+                Err(e) => {
+                    println!("{segments} segments did not render: {e}");
+                    break;
+                }
+            }
+            segments *= 2;
+        }
+    }
+}

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# The README's performance figures, one benchmark after the other (see the
+# "Performance" section): the floor benchmark at the README's size and
+# repeats, the executor's encode time (criterion), the scaling run. About
+# 30 minutes on lavapipe (2 cores); run it on an otherwise idle machine —
+# the figures are GPU times. Each benchmark also runs alone, with its
+# defaults kept short: `cargo bench -p plait --bench floor|encode|scaling`.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+bash scripts/ensure-vulkan.sh
+# Without a display session, Mesa's device-select layer has nothing to select (as scripts/test.sh).
+if [ -z "${XDG_RUNTIME_DIR:-}" ]; then export NODEVICE_SELECT=1; fi
+cargo bench --locked -p plait --bench floor -- --size 320x240 --repeats 5
+cargo bench --locked -p plait --bench encode
+cargo bench --locked -p plait --bench scaling -- --repeats 3 --largest

@@ -1,0 +1,32 @@
+// alpha_sum: per pixel, the sum of the hair fragments' alphas (red) and their
+// number (green), added by blending. The alpha is hair_shade's exactly: the
+// vertex alpha weighed by strand coverage, interpolated, times the material
+// alpha, clamped — so Σα / n is the mean alpha of the fragments occupancy-order
+// blending weighs (Sintorn & Assarsson 2009 §3.4).
+#import plait::frame::{frame, view_proj}
+#import plait::transparency::coverage::strand_coverage
+
+struct SumVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) thickness: f32,
+    @location(2) tangent: vec3<f32>,
+    @location(3) alpha: f32,
+}
+
+struct SumFragment {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) alpha: f32,
+}
+
+@vertex
+fn vs_main(v: SumVertex) -> SumFragment {
+    var out: SumFragment;
+    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.alpha = v.alpha * strand_coverage(v.position, v.tangent, v.thickness);
+    return out;
+}
+
+@fragment
+fn fs_main(in: SumFragment) -> @location(0) vec4<f32> {
+    return vec4<f32>(clamp(in.alpha * frame.hair_color.a, 0.0, 1.0), 1.0, 0.0, 0.0);
+}
