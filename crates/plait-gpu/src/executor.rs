@@ -8,7 +8,9 @@ use wgpu::util::DeviceExt;
 
 use crate::frame::FrameUniforms;
 use crate::geometry::SceneGeometry;
-use crate::pass::{BuildContext, PassLibrary, PreparedPass, RecordContext, frame_layout};
+use crate::pass::{
+    BuildContext, FrameSamplers, PassLibrary, PreparedPass, RecordContext, frame_layout,
+};
 use crate::pool::ResourcePool;
 use crate::readback::{TexelData, map_buffer, read_texture};
 use crate::{Gpu, GpuError};
@@ -103,25 +105,9 @@ impl<'g> Renderer<'g> {
             contents: bytemuck::bytes_of(frame),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        let sampler = |filter, compare| {
-            device.create_sampler(&wgpu::SamplerDescriptor {
-                mag_filter: filter,
-                min_filter: filter,
-                compare,
-                ..Default::default()
-            })
-        };
-        let linear = sampler(wgpu::FilterMode::Linear, None);
-        let nearest = sampler(wgpu::FilterMode::Nearest, None);
-        let shadow = sampler(
-            wgpu::FilterMode::Linear,
-            Some(wgpu::CompareFunction::LessEqual),
-        );
         let frame_group = FrameGroup {
             layout: frame_layout,
-            linear,
-            nearest,
-            shadow,
+            samplers: FrameSamplers::new(device),
         };
         let frame_bind_group = frame_group.bind(device, &frame_buffer, &background_view(gpu, None));
         let mut passes = Vec::with_capacity(schedule.passes.len());
@@ -526,9 +512,7 @@ fn downgrade_float32_blending(
 /// Group 0's fixed parts, kept to rebind when the background image changes.
 struct FrameGroup {
     layout: wgpu::BindGroupLayout,
-    linear: wgpu::Sampler,
-    nearest: wgpu::Sampler,
-    shadow: wgpu::Sampler,
+    samplers: FrameSamplers,
 }
 
 impl FrameGroup {
@@ -538,32 +522,13 @@ impl FrameGroup {
         frame: &wgpu::Buffer,
         background: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("plait frame"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(&self.linear),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::Sampler(&self.nearest),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&self.shadow),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::TextureView(background),
-                },
-            ],
-        })
+        self.samplers.bind(
+            device,
+            &self.layout,
+            frame.as_entire_binding(),
+            background,
+            "plait frame",
+        )
     }
 }
 

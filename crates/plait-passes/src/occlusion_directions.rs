@@ -16,8 +16,8 @@
 use plait_gpu::GpuError;
 use plait_gpu::frame::FRAME_UNIFORMS_SIZE;
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext,
-    ShaderDraw, ShaderPass, build_draw, default_defines,
+    BuildContext, BuiltinShader, DepthMode, FrameSamplers, PassType, PreparedPass, RasterState,
+    RecordContext, ShaderDraw, ShaderPass, build_draw, default_defines,
 };
 use plait_gpu::shader::Define;
 use plait_graph::{
@@ -354,20 +354,7 @@ struct FrameGroups {
 impl FrameGroups {
     fn new(ctx: &BuildContext<'_>, uniforms: &wgpu::Buffer, directions: u32, label: &str) -> Self {
         let device = ctx.device;
-        let sampler = |filter, compare| {
-            device.create_sampler(&wgpu::SamplerDescriptor {
-                mag_filter: filter,
-                min_filter: filter,
-                compare,
-                ..Default::default()
-            })
-        };
-        let linear = sampler(wgpu::FilterMode::Linear, None);
-        let nearest = sampler(wgpu::FilterMode::Nearest, None);
-        let shadow = sampler(
-            wgpu::FilterMode::Linear,
-            Some(wgpu::CompareFunction::LessEqual),
-        );
+        let samplers = FrameSamplers::new(device);
         let background = device
             .create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
@@ -386,36 +373,12 @@ impl FrameGroups {
             .create_view(&Default::default());
         let groups = (0..directions as u64)
             .map(|d| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some(label),
-                    layout: ctx.frame_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                                buffer: uniforms,
-                                offset: d * DIRECTION_FRAME_BYTES,
-                                size: wgpu::BufferSize::new(FRAME_UNIFORMS_SIZE),
-                            }),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::Sampler(&linear),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: wgpu::BindingResource::Sampler(&nearest),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: wgpu::BindingResource::Sampler(&shadow),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 4,
-                            resource: wgpu::BindingResource::TextureView(&background),
-                        },
-                    ],
-                })
+                let frame = wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: uniforms,
+                    offset: d * DIRECTION_FRAME_BYTES,
+                    size: wgpu::BufferSize::new(FRAME_UNIFORMS_SIZE),
+                });
+                samplers.bind(device, ctx.frame_layout, frame, &background, label)
             })
             .collect();
         FrameGroups { groups }

@@ -118,3 +118,71 @@ pub fn frame_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         ],
     })
 }
+
+/// Group 0's samplers (`linear_sampler`, `nearest_sampler`, `shadow_sampler`
+/// of `plait::frame`), made once and bound with a frame's uniforms and
+/// background by [`FrameSamplers::bind`]: the executor's frame and a pass's
+/// own frames (one per light direction) bind group 0 the same way.
+pub struct FrameSamplers {
+    linear: wgpu::Sampler,
+    nearest: wgpu::Sampler,
+    shadow: wgpu::Sampler,
+}
+
+impl FrameSamplers {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let sampler = |filter, compare| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
+                mag_filter: filter,
+                min_filter: filter,
+                compare,
+                ..Default::default()
+            })
+        };
+        FrameSamplers {
+            linear: sampler(wgpu::FilterMode::Linear, None),
+            nearest: sampler(wgpu::FilterMode::Nearest, None),
+            shadow: sampler(
+                wgpu::FilterMode::Linear,
+                Some(wgpu::CompareFunction::LessEqual),
+            ),
+        }
+    }
+
+    /// Group 0 with `frame` (the uniforms) and `background` (the image).
+    pub fn bind(
+        &self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        frame: wgpu::BindingResource<'_>,
+        background: &wgpu::TextureView,
+        label: &str,
+    ) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: frame,
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.linear),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&self.nearest),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.shadow),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::TextureView(background),
+                },
+            ],
+        })
+    }
+}

@@ -31,7 +31,7 @@ pub mod state;
 
 pub use build::{ShaderDraw, build_draw, build_shader_pass, raster_state_of};
 pub use defaults::{default_defines, default_threads};
-pub use layout::frame_layout;
+pub use layout::{FrameSamplers, frame_layout};
 pub use pass_type::{
     BuildContext, BuiltinShader, PassLibrary, PassType, PreparedPass, RecordContext,
     SCENE_BINDINGS, shader_source,
