@@ -3,7 +3,6 @@
 // Drawn twice by the pass (near: depth test Less, writing red; far: depth
 // test Greater, writing green), the paper's faster choice over one min/max
 // blended pass — and one that needs no FLOAT32_BLENDABLE.
-#import plait::frame::{view_proj, view_linear_depth, shadow_sampler}
 #import plait::hair_map::{MapVertex, MapFragment, map_vertex}
 
 // Depth of opaque geometry from the same view (the opaque shadow map for the
@@ -15,20 +14,19 @@ fn vs_main(v: MapVertex) -> MapFragment {
     return map_vertex(v);
 }
 
-// True where the fragment at `world` lies behind opaque geometry of this view.
-fn behind_opaque(world: vec3<f32>) -> bool {
-    let clip = view_proj() * vec4<f32>(world, 1.0);
-    let ndc = clip.xyz / clip.w;
-    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
-    return textureSampleCompareLevel(opaque_depth, shadow_sampler, uv, ndc.z) < 0.5;
+// True where the fragment lies behind opaque geometry of this view: the
+// depth test (`less`) the occupancy and slab passes make with the same
+// texture as their depth attachment, at the same texel (the pass type checks
+// the two maps have one size), so all three drop the same fragments.
+fn behind_opaque(in: MapFragment) -> bool {
+    return !(in.clip.z < textureLoad(opaque_depth, vec2<i32>(in.clip.xy), 0));
 }
 
 @fragment
 fn fs_main(in: MapFragment) -> @location(0) vec4<f32> {
-    if (behind_opaque(in.world)) {
+    if (behind_opaque(in)) {
         discard;
     }
-    let d = view_linear_depth(in.world);
     // The pass's colour write mask keeps red (near) or green (far).
-    return vec4<f32>(d, d, 0.0, 0.0);
+    return vec4<f32>(in.depth, in.depth, 0.0, 0.0);
 }

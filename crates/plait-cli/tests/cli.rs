@@ -649,7 +649,7 @@ fn missing_background_image_names_the_file() {
 /// counts no format allows.
 #[test]
 fn check_rejects_what_rendering_would() {
-    let cases: [(&str, &str, &[&str]); 4] = [
+    let cases: [(&str, &str, &[&str]); 5] = [
         (
             "pipelines/occupancy.toml",
             "params.slices=48",
@@ -671,6 +671,12 @@ fn check_rejects_what_rendering_would() {
             "pipelines/occupancy.toml",
             "params.light_size=16384",
             &["occupancy.toml:", "16384", "8192"],
+        ),
+        (
+            // depth_range tests the opaque depth texel for texel.
+            "pipelines/occupancy.toml",
+            "resources.opaque_shadow.size=[256, 256]",
+            &["light_range.toml:17:9", "`opaque_shadow`", "256x256", "512x512"],
         ),
     ];
     for (pipeline, set, expected) in cases {

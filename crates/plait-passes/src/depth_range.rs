@@ -13,7 +13,9 @@ use plait_gpu::pass::{
     BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext,
     ShaderDraw, build_draw,
 };
-use plait_graph::{Access, Format, PassShape, PassTypeSpec, ScheduledPass};
+use plait_graph::{
+    Access, Format, PassShape, PassTypeSpec, ResolvedResource, ResourceDesc, ScheduledPass,
+};
 
 use crate::spec_util::{DEPTH, texture};
 
@@ -96,6 +98,16 @@ impl PassType for DepthRange {
     fn shader(&self) -> Option<BuiltinShader> {
         Some(SHADER)
     }
+    /// The shader drops hair behind opaque geometry with the depth test the
+    /// occupancy and slab passes make (`less`, at the fragment's own texel),
+    /// so the opaque depth must be a texel-for-texel match of the range map.
+    fn check_sizes(
+        &self,
+        pass: &ScheduledPass,
+        resources: &[ResolvedResource],
+    ) -> Result<(), String> {
+        check_same_size(pass, resources, "opaque_depth", "range")
+    }
     fn build(
         &self,
         pass: &ScheduledPass,
@@ -108,5 +120,35 @@ impl PassType for DepthRange {
         draw.state = far_state;
         let far = Box::new(build_draw(&draw, pass, ctx)?);
         Ok(Box::new(TwoDraws { near, far }))
+    }
+}
+
+/// Both texture slots bound and of one size (unbound or culled: nothing to check).
+pub(crate) fn check_same_size(
+    pass: &ScheduledPass,
+    resources: &[ResolvedResource],
+    slot: &str,
+    like: &str,
+) -> Result<(), String> {
+    let size = |slot: &str| {
+        let binding = pass
+            .reads
+            .iter()
+            .chain(pass.writes.iter())
+            .find(|b| b.slot == slot)?;
+        match resources.get(binding.resource)? {
+            ResolvedResource {
+                name,
+                desc: ResourceDesc::Texture { width, height, .. },
+                ..
+            } => Some((name.clone(), *width, *height)),
+            _ => None,
+        }
+    };
+    match (size(slot), size(like)) {
+        (Some((name, w, h)), Some((like_name, lw, lh))) if (w, h) != (lw, lh) => Err(format!(
+            "`{name}` (slot `{slot}`) is {w}x{h} but `{like_name}` (slot `{like}`) is {lw}x{lh}: the opaque depth is tested texel for texel, give both one size"
+        )),
+        _ => Ok(()),
     }
 }

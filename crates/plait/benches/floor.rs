@@ -1,5 +1,5 @@
 //! Each gallery pipeline against its raster floor, side by side in one process:
-//! `cargo bench -p plait --bench floor [-- --size WxH --repeats N --scene FILE --only a,b --save DIR --one-draw]`.
+//! `cargo bench -p plait --bench floor [-- --size WxH --repeats N --scene FILE --only a,b --save DIR --one-draw --side plait|floor]`.
 //!
 //! For every `pipelines/*.toml` it renders, in interleaved repeats, (a) the
 //! pipeline through plait, (b) its floor — the same passes, targets, clears
@@ -11,6 +11,9 @@
 //! by pass. `--one-draw` adds the default pipeline with occupancy bits and
 //! slab counts built in one draw per view (`occupancy_slabs`). Depth peeling (`depth_peeling.toml`, `reference.toml`) is left
 //! out: its work depends on the layers it finds, so it has no fixed floor.
+//! `--side plait` or `--side floor` renders only that side (no hand-written
+//! program): one process per side, to profile each under `perf record`
+//! (README, "where the time goes").
 //! A benchmark, not a test: nothing here fails on a slow machine.
 
 mod support;
@@ -54,6 +57,13 @@ fn main() {
     let size = size_arg((160, 120));
     let only: Option<Vec<String>> =
         arg("--only").map(|s| s.split(',').map(|n| n.trim().to_owned()).collect());
+    let side = arg("--side");
+    let (render_plait, render_floor) = match side.as_deref() {
+        None => (true, true),
+        Some("plait") => (true, false),
+        Some("floor") => (false, true),
+        Some(other) => panic!("--side {other}: expected `plait` or `floor`"),
+    };
     let root = repo_root();
     let scene_path = arg("--scene").map(PathBuf::from);
     let scene = SceneData::load(scene_path.as_deref()).unwrap_or_else(|e| panic!("{e}"));
@@ -152,7 +162,7 @@ fn main() {
             panic!("building the maps in one draw changed the default pipeline's image");
         }
     }
-    let handwritten = default_index.map(|i| {
+    let handwritten = default_index.filter(|_| side.is_none()).map(|i| {
         let hw = HandWritten::new(&gpu, &scene, size).unwrap_or_else(|e| panic!("{e}"));
         // Same passes, same shaders: the same picture, or the comparison means nothing.
         entries[i]
@@ -197,12 +207,17 @@ fn main() {
     );
     for repeat in 0..=repeats {
         for (k, e) in entries.iter_mut().enumerate() {
-            let report = e
-                .prepared
-                .renderer
-                .render()
-                .unwrap_or_else(|err| panic!("{}: {err}", e.name));
-            let (floor_total, floor_passes) = e.floor.render().unwrap_or_default();
+            let report = render_plait.then(|| {
+                e.prepared
+                    .renderer
+                    .render()
+                    .unwrap_or_else(|err| panic!("{}: {err}", e.name))
+            });
+            let (floor_total, floor_passes) = if render_floor {
+                e.floor.render().unwrap_or_default()
+            } else {
+                (f64::NAN, vec![f64::NAN; e.floor_passes.len()])
+            };
             // The hand-written program right after the pipeline it copies.
             let hand = handwritten
                 .as_ref()
@@ -211,10 +226,12 @@ fn main() {
             if repeat == 0 {
                 continue; // warm-up: pipelines compiled, caches filled
             }
-            e.plait_ms.push(report.total_gpu_ms.unwrap_or(f64::NAN));
+            let plait_ms = report.as_ref().and_then(|r| r.total_gpu_ms);
+            e.plait_ms.push(plait_ms.unwrap_or(f64::NAN));
             e.floor_ms.push(floor_total);
-            for (i, p) in report.passes.iter().enumerate() {
-                e.plait_passes[i].push(p.gpu_ms.unwrap_or(f64::NAN));
+            for (i, times) in e.plait_passes.iter_mut().enumerate() {
+                let pass = report.as_ref().and_then(|r| r.passes.get(i));
+                times.push(pass.and_then(|p| p.gpu_ms).unwrap_or(f64::NAN));
             }
             for (i, ms) in floor_passes.into_iter().enumerate() {
                 e.floor_passes[i].push(ms);

@@ -363,7 +363,11 @@ fn build_pass(
     buffers: &HashMap<&'static str, wgpu::Buffer>,
 ) -> Result<(wgpu::RenderPipeline, wgpu::BindGroup), String> {
     let device = &gpu.device;
-    let path = repo_root().join("shaders/passes").join(d.shader);
+    // The copy plait itself would read (the library search path, `PLAIT_PATH`
+    // first), so a shader variant there applies to both programs alike.
+    let relative = format!("shaders/passes/{}", d.shader);
+    let path = plait_assets::find_on_disk(&relative)
+        .unwrap_or_else(|| repo_root().join(&relative));
     let source = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let defines: Vec<(String, Define)> = d
         .defines
