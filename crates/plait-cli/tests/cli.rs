@@ -676,7 +676,12 @@ fn check_rejects_what_rendering_would() {
             // depth_range tests the opaque depth texel for texel.
             "pipelines/occupancy.toml",
             "resources.opaque_shadow.size=[256, 256]",
-            &["light_range.toml:17:9", "`opaque_shadow`", "256x256", "512x512"],
+            &[
+                "light_range.toml:17:9",
+                "`opaque_shadow`",
+                "256x256",
+                "512x512",
+            ],
         ),
     ];
     for (pipeline, set, expected) in cases {

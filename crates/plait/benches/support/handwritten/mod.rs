@@ -366,8 +366,7 @@ fn build_pass(
     // The copy plait itself would read (the library search path, `PLAIT_PATH`
     // first), so a shader variant there applies to both programs alike.
     let relative = format!("shaders/passes/{}", d.shader);
-    let path = plait_assets::find_on_disk(&relative)
-        .unwrap_or_else(|| repo_root().join(&relative));
+    let path = plait_assets::find_on_disk(&relative).unwrap_or_else(|| repo_root().join(&relative));
     let source = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let defines: Vec<(String, Define)> = d
         .defines
