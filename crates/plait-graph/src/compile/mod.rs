@@ -1,0 +1,83 @@
+//! Checking a loaded [`Pipeline`] against the pass [`Registry`] and compiling
+//! it into a [`Schedule`]: execution order, culling, lifetimes, memory plan.
+//!
+//! Compile reports as many problems as it can find in one go (sorted by
+//! location) rather than stopping at the first, so one edit-run cycle fixes
+//! several mistakes.
+//!
+//! The steps, one module each: `resources` sizes the declared resources,
+//! `passes` checks each pass's type, params and slot bindings, `outputs`
+//! checks what the pipeline promises to produce, `order` builds the
+//! dependency graph and the execution order, `schedule` culls, renumbers and
+//! sets lifetimes, and `memory` shares allocations between resources.
+
+mod memory;
+mod order;
+mod outputs;
+mod passes;
+mod resources;
+mod schedule;
+mod values;
+
+use crate::error::{Error, ErrorKind, Errors};
+use crate::load::{Pipeline, location_order};
+use crate::scene_resources::{SCENE_RESOURCES, scene_resource};
+use crate::schedule::*;
+use crate::spec::Registry;
+
+use order::order_passes;
+use outputs::check_outputs;
+use passes::resolve_pass;
+use resources::resolve_resource;
+use schedule::build_schedule;
+
+/// Checks `pipeline` and builds its schedule, or returns every problem found.
+pub fn compile(
+    pipeline: &Pipeline,
+    registry: &Registry,
+    opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
+    let mut errors = Vec::new();
+
+    // Resource descriptors, indexed like `pipeline.resources`.
+    let mut descs: Vec<Option<ResourceDesc>> = pipeline
+        .resources
+        .values()
+        .map(|r| resolve_resource(r, opts, &mut errors))
+        .collect();
+    crate::history::check(pipeline, &descs, &mut errors);
+    for r in pipeline.resources.values() {
+        if scene_resource(&r.name).is_some() {
+            errors.push(Error::new(
+                r.location.clone(),
+                ErrorKind::BadResource {
+                    resource: r.name.clone(),
+                    reason: "is a scene resource, provided by the scene (sized by its hair); name it in `reads` or `writes` without declaring it".into(),
+                },
+            ));
+        }
+    }
+    // Scene resources follow the declared ones; their size is the scene's,
+    // unknown here (0: they take no memory of the pipeline's).
+    descs.extend(
+        SCENE_RESOURCES
+            .iter()
+            .map(|_| Some(ResourceDesc::Buffer { size: 0 })),
+    );
+
+    let passes: Vec<ScheduledPass> = pipeline
+        .passes
+        .values()
+        .map(|p| resolve_pass(p, registry, pipeline, &descs, opts, &mut errors))
+        .collect();
+
+    let outputs = check_outputs(pipeline, &passes, &mut errors);
+    crate::run_once::check_writers(pipeline, &passes, &mut errors);
+    let order = order_passes(&passes, pipeline, &mut errors);
+
+    let Some(order) = order.filter(|_| errors.is_empty()) else {
+        errors.sort_by(|a, b| location_order(&a.location, &b.location));
+        return Err(Errors(errors));
+    };
+    Ok(build_schedule(pipeline, passes, order, &outputs, descs))
+}

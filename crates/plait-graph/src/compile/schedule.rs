@@ -1,0 +1,231 @@
+//! Turning checked, ordered passes into the [`Schedule`]: culling the passes
+//! no output depends on, renumbering the resources live passes touch, deciding
+//! which writes clear and which load, and each resource's span of use.
+
+use std::collections::HashSet;
+
+use crate::error::Location;
+use crate::load::Pipeline;
+use crate::scene_resources::SCENE_RESOURCES;
+use crate::schedule::*;
+
+use super::memory::plan_memory;
+use super::order::implicit_reads;
+
+pub(super) fn build_schedule(
+    pipeline: &Pipeline,
+    mut passes: Vec<ScheduledPass>,
+    order: Vec<usize>,
+    outputs: &[usize],
+    descs: Vec<Option<ResourceDesc>>,
+) -> Schedule {
+    // Live passes: writers of outputs and everything they depend on. Walking
+    // the execution order backwards sees every consumer before its producers.
+    let declared = pipeline.resources.len();
+    // A history makes a read of `R.previous` need `R` (and the younger
+    // versions it is copied through), whose writers may come later in the
+    // order: walk again until nothing new is needed.
+    // Scene resources have no history.
+    let history_chain = |r: usize| {
+        if r < declared {
+            crate::history::chain(pipeline, r)
+        } else {
+            Vec::new()
+        }
+    };
+    let mut needed: HashSet<usize> = outputs.iter().copied().collect();
+    let mut live = vec![false; passes.len()];
+    loop {
+        let before = needed.len();
+        for &p in order.iter().rev() {
+            if !live[p]
+                && passes[p]
+                    .writes
+                    .iter()
+                    .any(|b| needed.contains(&b.resource))
+            {
+                live[p] = true;
+                needed.extend(passes[p].reads.iter().map(|b| b.resource));
+                needed.extend(implicit_reads(&passes[p], declared));
+                // A load-writer keeps earlier contents: their writers are needed too.
+                needed.extend(
+                    passes[p]
+                        .writes
+                        .iter()
+                        .filter(|b| b.loads)
+                        .map(|b| b.resource),
+                );
+            }
+        }
+        let chained: Vec<usize> = needed.iter().flat_map(|&r| history_chain(r)).collect();
+        needed.extend(chained);
+        if needed.len() == before {
+            break;
+        }
+    }
+
+    // Renumber resources: keep those a live pass touches, in declaration order.
+    let total = declared + SCENE_RESOURCES.len();
+    let mut used = vec![false; total];
+    for (p, pass) in passes.iter().enumerate() {
+        if live[p] {
+            for b in pass.reads.iter().chain(&pass.writes) {
+                used[b.resource] = true;
+                for r in history_chain(b.resource) {
+                    used[r] = true;
+                }
+            }
+        }
+    }
+    let mut new_id = vec![DROPPED_RESOURCE; total];
+    let mut resources = Vec::new();
+    let mut dropped_resources = Vec::new();
+    for (i, decl) in pipeline.resources.values().enumerate() {
+        match (&descs[i], used[i]) {
+            (Some(desc), true) => {
+                new_id[i] = resources.len();
+                resources.push(ResolvedResource {
+                    name: decl.name.clone(),
+                    desc: desc.clone(),
+                    first_use: usize::MAX,
+                    last_use: 0,
+                    physical: 0,
+                    scene: false,
+                    // A history's versions come after it in declaration
+                    // order, so `of` is already renumbered.
+                    lifetime: crate::history::declared_lifetime(decl, pipeline, &new_id),
+                    kept: false,
+                    location: decl.location.clone(),
+                });
+            }
+            _ => dropped_resources.push(decl.name.clone()),
+        }
+    }
+    // Scene resources a live pass names: after the declared ones, never dropped.
+    for (i, scene) in SCENE_RESOURCES.iter().enumerate() {
+        if used[declared + i] {
+            new_id[declared + i] = resources.len();
+            resources.push(ResolvedResource {
+                name: scene.name.to_owned(),
+                desc: ResourceDesc::Buffer { size: 0 },
+                first_use: usize::MAX,
+                last_use: 0,
+                physical: 0,
+                scene: true,
+                // The scene's buffers outlive every frame, like `persistent`.
+                lifetime: Lifetime::Persistent,
+                kept: false,
+                location: Location::Builtin,
+            });
+        }
+    }
+    for pass in &mut passes {
+        for b in pass.reads.iter_mut().chain(pass.writes.iter_mut()) {
+            b.resource = new_id[b.resource];
+        }
+    }
+    let history = crate::history::copies(&resources);
+
+    let mut slots: Vec<Option<ScheduledPass>> = passes.into_iter().map(Some).collect();
+    let mut scheduled = Vec::new();
+    let mut culled = Vec::new();
+    for &p in &order {
+        let Some(pass) = slots[p].take() else {
+            continue;
+        };
+        if live[p] {
+            scheduled.push(pass);
+        } else {
+            let reason = cull_reason(&pass);
+            culled.push((p, CulledPass { pass, reason }));
+        }
+    }
+    // Culled passes in file order: they have no execution order to follow.
+    culled.sort_by_key(|(p, _)| *p);
+    let culled = culled.into_iter().map(|(_, c)| c).collect();
+
+    // The first writer of a resource has nothing to load: it clears. A
+    // persistent resource is never cleared by the engine: every writer loads.
+    let mut written = vec![false; resources.len()];
+    for pass in &mut scheduled {
+        for b in &mut pass.writes {
+            if resources[b.resource].lifetime == Lifetime::Persistent {
+                b.loads = true;
+            } else if !written[b.resource] {
+                let also_read = pass.reads.iter().any(|r| r.resource == b.resource);
+                if !also_read {
+                    b.loads = false;
+                }
+            }
+        }
+        for b in &pass.writes {
+            written[b.resource] = true;
+        }
+    }
+
+    for (index, pass) in scheduled.iter().enumerate() {
+        for b in pass.reads.iter().chain(&pass.writes) {
+            let r = &mut resources[b.resource];
+            r.first_use = r.first_use.min(index);
+            r.last_use = r.last_use.max(index);
+        }
+    }
+    let output_ids: Vec<ResourceId> = outputs
+        .iter()
+        .map(|&o| new_id[o])
+        .filter(|&id| id != DROPPED_RESOURCE)
+        .collect();
+    let end = scheduled.len().saturating_sub(1);
+    for &o in &output_ids {
+        resources[o].last_use = end;
+    }
+    // Contents that outlive the frame span all of it, so the memory plan
+    // never lends their allocation to another resource.
+    for r in resources.iter_mut().filter(|r| !r.lifetime.is_frame()) {
+        r.first_use = 0;
+        r.last_use = end;
+    }
+    crate::run_once::keep_across_frames(&scheduled, &mut resources);
+
+    let (physical, memory) = plan_memory(&mut resources);
+    Schedule {
+        name: pipeline.name.value.clone(),
+        description: pipeline.description.value.clone(),
+        files: pipeline.files.clone(),
+        techniques: pipeline.techniques.clone(),
+        params: pipeline
+            .params
+            .iter()
+            .map(|(k, v)| (k.clone(), v.value.clone()))
+            .collect(),
+        passes: scheduled,
+        culled,
+        resources,
+        dropped_resources,
+        physical,
+        outputs: output_ids,
+        history,
+        memory,
+    }
+}
+
+fn cull_reason(pass: &ScheduledPass) -> String {
+    if pass.writes.is_empty() {
+        return "writes nothing".to_owned();
+    }
+    let mut names: Vec<String> = pass
+        .writes
+        .iter()
+        .map(|b| format!("`{}`", b.resource_name))
+        .collect();
+    names.dedup();
+    let which = if names.len() == 1 {
+        "which"
+    } else {
+        "which none of"
+    };
+    format!(
+        "writes only {}, {which} no output depends on",
+        names.join(", ")
+    )
+}

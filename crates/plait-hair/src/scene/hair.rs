@@ -1,0 +1,71 @@
+//! The scene's hair: read from its file or generated, with follow strands
+//! and placement applied, and the camera and light given as `"fit"` fitted to
+//! its bounds.
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+
+use super::{HairSource, Light, Scene, SceneError};
+use crate::asset::Asset;
+use crate::strands::{Aabb, Strands};
+
+impl Scene {
+    /// The strands to render: the file's or the generated groom, with its
+    /// follow strands, placed by its transform.
+    pub fn strands(&self) -> Result<Strands, SceneError> {
+        let (mut strands, origin) = match &self.hair.source {
+            HairSource::File(path) => {
+                let (asset, _warnings) = Asset::read(path)?;
+                (asset.strands(), path.clone())
+            }
+            HairSource::Procedural(spec) => (
+                crate::groom::generate(spec),
+                PathBuf::from("<procedural groom>"),
+            ),
+        };
+        let invalid = |message: String| SceneError::Invalid {
+            path: origin.clone(),
+            message,
+        };
+        if let Some(follow) = &self.hair.follow {
+            follow
+                .check_size(&strands)
+                .map_err(|m| invalid(format!("hair.{m}")))?;
+            strands = follow.apply(&strands);
+        }
+        if let Some(transform) = &self.hair.transform {
+            transform.apply(&mut strands).map_err(invalid)?;
+        }
+        Ok(strands)
+    }
+
+    /// [`Scene::strands`], then the camera and light given as `"fit"` are
+    /// fitted to the hair (and head): what a renderer calls.
+    pub fn load_hair(&mut self) -> Result<Strands, SceneError> {
+        let strands = self.strands()?;
+        self.frame(strands.bounds());
+        Ok(strands)
+    }
+
+    /// Fits the camera and light given as `"fit"` to `hair` (the head is
+    /// added; the ground only widens the depth range).
+    pub fn frame(&mut self, hair: Aabb) {
+        let head = self
+            .head
+            .as_ref()
+            .map(|h| {
+                let (c, r) = (Vec3::from(h.center), Vec3::from(h.radii));
+                Aabb::new(c - r, c + r)
+            })
+            .unwrap_or(Aabb::EMPTY);
+        let subject = hair.union(&head);
+        if let Some(fit) = &self.framing.camera {
+            self.camera = fit.camera(subject, subject.union(&self.opaque_bounds()));
+        }
+        if self.framing.light {
+            let fitted = Light::fitted(&self.camera, self.light.intensity);
+            self.light.kind = fitted.kind;
+        }
+    }
+}

@@ -1,0 +1,183 @@
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+
+use super::*;
+use crate::strands::Strands;
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes")
+}
+
+#[test]
+fn default_toml_equals_builtin() {
+    let s = Scene::load(examples().join("default.toml")).expect("default.toml loads");
+    assert_eq!(s, Scene::builtin_default());
+}
+
+#[test]
+fn all_example_scenes_load_and_validate() {
+    for name in [
+        "small.toml",
+        "default.toml",
+        "dense.toml",
+        "stray.toml",
+        "head_turn.toml",
+        "stray_shake.toml",
+    ] {
+        let s = Scene::load(examples().join(name)).unwrap_or_else(|e| panic!("{e}"));
+        let HairSource::Procedural(g) = &s.hair.source else {
+            panic!("{name}: procedural expected")
+        };
+        match name {
+            "small.toml" => assert!(g.strands <= 1000 && g.segments <= 16),
+            "dense.toml" => assert!(g.strands >= 20_000),
+            "stray.toml" | "stray_shake.toml" => assert!(g.stray_strands > 0),
+            _ => {}
+        }
+    }
+    let small = Scene::load(examples().join("small.toml")).expect("small");
+    let strands = small.strands().expect("generate");
+    assert!(strands.strand_count() >= 100);
+}
+
+#[test]
+fn builtin_default_frames_the_hair() {
+    let s = Scene::builtin_default();
+    let hair = s.strands().expect("procedural");
+    assert!((9_000..=11_000).contains(&hair.strand_count()));
+    assert_eq!(hair.segment_count(), hair.strand_count() * 32);
+    let vp = s.camera.view_proj(16.0 / 9.0);
+    let b = hair.bounds();
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for c in b.corners() {
+        let p = vp.project_point3(c);
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    // the hair's bounds cover most of the view height and stay inside it
+    assert!(
+        hi.y - lo.y > 1.2,
+        "hair spans {} of NDC height 2",
+        hi.y - lo.y
+    );
+    assert!(
+        lo.y > -1.2 && hi.y < 1.2 && lo.x > -1.2 && hi.x < 1.2,
+        "{lo} {hi}"
+    );
+    assert!(lo.z > 0.0 && hi.z < 1.0);
+    // light from above (travels downward)
+    assert!(s.light.direction_to_light().y > 0.5);
+    // the ground is below the hair
+    let ground = s.ground.as_ref().expect("ground");
+    assert!(ground.height < b.min.y);
+    assert_eq!(s.opaque_meshes().len(), 2);
+}
+
+#[test]
+fn the_head_turn_turns_the_head_and_comes_back() {
+    let s = Scene::load(examples().join("head_turn.toml")).expect("head_turn.toml");
+    assert_eq!(s.head_model(0.0), glam::Mat4::IDENTITY);
+    assert!(s.head_model(2.0).abs_diff_eq(glam::Mat4::IDENTITY, 1e-6));
+    // At 1 s the face (+Z) looks 45° towards +X.
+    let forward = s.head_model(1.0).transform_vector3(Vec3::Z);
+    let yaw = forward.x.atan2(forward.z).to_degrees();
+    assert!((yaw - 45.0).abs() < 0.5, "yaw {yaw}");
+    let still = Scene::load(examples().join("small.toml")).expect("small");
+    assert_eq!(still.head_model(1.0), glam::Mat4::IDENTITY);
+}
+
+#[test]
+fn bad_keyframes_are_reported_at_their_line_and_column() {
+    let p = Path::new("s.toml");
+    let keys = |second: &str| {
+        format!(
+            "[hair.procedural]\n{MINIMAL}[[animation.keys]]\ntime = 0.5\n[[animation.keys]]\n{second}\n"
+        )
+    };
+    // MINIMAL is 7 lines; the second key's body is line 12.
+    for (second, column, needle) in [
+        ("time = 0.25", 8, "key times must increase"),
+        ("time = nan", 8, "animation.keys[1].time must be finite"),
+        (
+            "time = 1.0\nrotate_degrees = [0, 30]",
+            18,
+            "expected an array of length 3",
+        ),
+        (
+            "time = 1.0\ntranslate = [0, inf, 0]",
+            13,
+            "animation.keys[1].translate must be finite",
+        ),
+        ("time = 1.0\nspin = 3", 1, "unknown field `spin`"),
+    ] {
+        let e = Scene::from_toml_str(&keys(second), p)
+            .unwrap_err()
+            .to_string();
+        let line = if second.contains('\n') { 13 } else { 12 };
+        assert!(
+            e.starts_with(&format!("s.toml:{line}:{column}: ")) && e.contains(needle),
+            "{second}: {e}"
+        );
+    }
+    let e = Scene::from_toml_str(
+        &format!("[hair.procedural]\n{MINIMAL}[animation]\nkeys = []\n"),
+        p,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("s.toml:10:8: ") && e.contains("empty"), "{e}");
+}
+
+#[test]
+fn parse_errors_have_line_and_column() {
+    let p = Path::new("dir/scene.toml");
+    let text = "[hair.procedural]\nstrands = 10\n\n[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\nfov_y_degrees = 40\nfov = 3\n";
+    let e = Scene::from_toml_str(text, p).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.starts_with("dir/scene.toml:8:1:"), "{msg}");
+    assert!(msg.contains("fov"), "{msg}");
+    let e = Scene::from_toml_str("[hair.procedural]\nstyle = \"frizzy\"\n", p).unwrap_err();
+    assert!(e.to_string().starts_with("dir/scene.toml:2:"), "{e}");
+}
+
+const MINIMAL: &str = "[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\nfov_y_degrees = 40\n[light]\ntype = \"directional\"\ndirection = [0, -1, 0]\n";
+
+#[test]
+fn relative_paths_resolve_against_scene_dir_and_missing_hair_is_named() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = format!(
+        "hair = {{ file = \"models/x.hair\" }}\nbackground = {{ image = \"env.png\" }}\n{MINIMAL}"
+    );
+    let path = dir.path().join("s.toml");
+    std::fs::write(&path, text).expect("write");
+    let s = Scene::load(&path).expect("loads");
+    assert_eq!(
+        s.hair.source,
+        HairSource::File(dir.path().join("models/x.hair"))
+    );
+    assert_eq!(s.background, Background::Image(dir.path().join("env.png")));
+    let e = s.strands().unwrap_err();
+    assert!(e.to_string().contains("x.hair"), "{e}");
+    // and a real file loads
+    std::fs::create_dir(dir.path().join("models")).expect("mkdir");
+    let mut hs = Strands::new();
+    hs.push_strand(&[Vec3::ZERO, Vec3::Y], |_| 0.1, |_| 1.0, Vec3::ONE);
+    hs.to_hair_file()
+        .expect("file")
+        .write(dir.path().join("models/x.hair"))
+        .expect("write");
+    assert_eq!(s.strands().expect("reads").point_count(), 2);
+}
+
+#[test]
+fn invalid_values_name_the_field() {
+    let p = Path::new("s.toml");
+    let e = Scene::from_toml_str(&format!("[hair.procedural]\nsegments = 0\n{MINIMAL}"), p)
+        .unwrap_err();
+    assert!(e.to_string().contains("hair.procedural.segments"), "{e}");
+    let bad_light = MINIMAL.replace("directional", "spot");
+    let e = Scene::from_toml_str(&format!("hair = {{ file = \"a.hair\" }}\n{bad_light}"), p)
+        .unwrap_err();
+    assert!(e.to_string().contains("position"), "{e}");
+}
