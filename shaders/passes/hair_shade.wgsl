@@ -62,18 +62,10 @@ fn camera_order(pixel: vec2<u32>, depth: f32) -> f32 {
     let words = min(arrayLength(&order_bits) / texels, MAX_WORDS);
     let slabs = min(arrayLength(&order_slabs) / texels, MAX_WORDS);
     let rel = relative_depth_in(textureLoad(order_range, vec2<i32>(p), 0).xy, depth);
-    if (words == 0u || slabs == 0u || rel <= 0.0) {
-        return 0.0;
-    }
+    // One path for every case, as `light_order` (plait::visibility::occupancy).
+    let behind = rel >= 1.0;
+    let at = slab_position(select(max(rel, 0.0), 0.99999994, behind), max(words, 1u), max(slabs, 1u));
     let index = p.y * size.x + p.x;
-    if (rel >= 1.0) {
-        var total = 0u;
-        for (var i = 0u; i < slabs; i++) {
-            total += order_slabs[index * slabs + i];
-        }
-        return max(f32(total) - 1.0, 0.0);
-    }
-    let at = slab_position(rel, words, slabs);
     var before = 0.0;
     for (var i = 0u; i < at.slab; i++) {
         before += f32(order_slabs[index * slabs + i]);
@@ -87,7 +79,9 @@ fn camera_order(pixel: vec2<u32>, depth: f32) -> f32 {
         bits_before += word_bits(word, w, at.first, at.slice);
         bits_through += word_bits(word, w, at.first, at.slice + 1u);
     }
-    return order_in_slab(at, before, order_slabs[index * slabs + at.slab], set_in_slab, bits_before, bits_through, 1.0);
+    let slab_count = order_slabs[index * slabs + at.slab];
+    let order = select(order_in_slab(at, before, slab_count, set_in_slab, bits_before, bits_through, 1.0), max(before + f32(slab_count) - 1.0, 0.0), behind);
+    return select(order, 0.0, words == 0u || slabs == 0u || rel <= 0.0);
 }
 #endif
 
