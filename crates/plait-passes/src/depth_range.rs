@@ -124,7 +124,7 @@ impl PassType for DepthRange {
 }
 
 /// Both texture slots bound and of one size (unbound or culled: nothing to check).
-pub(crate) fn check_same_size(
+fn check_same_size(
     pass: &ScheduledPass,
     resources: &[ResolvedResource],
     slot: &str,
