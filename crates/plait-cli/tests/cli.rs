@@ -649,7 +649,7 @@ fn missing_background_image_names_the_file() {
 /// counts no format allows.
 #[test]
 fn check_rejects_what_rendering_would() {
-    let cases: [(&str, &str, &[&str]); 5] = [
+    let cases: [(&str, &str, &[&str]); 6] = [
         (
             "pipelines/occupancy.toml",
             "params.slices=48",
@@ -681,6 +681,17 @@ fn check_rejects_what_rendering_would() {
                 "`opaque_shadow`",
                 "256x256",
                 "512x512",
+            ],
+        ),
+        (
+            // One sample leaves nothing to resolve (wgpu refused it mid-frame).
+            "pipelines/alpha_to_coverage.toml",
+            "params.samples=1",
+            &[
+                "alpha_to_coverage.toml:40:45",
+                "`scene`",
+                "1 sample(s)",
+                "cannot be resolved into `scene_resolved`",
             ],
         ),
     ];

@@ -273,16 +273,39 @@ impl BindingPlan {
                         }
                         continue;
                     };
+                    let resolve = writes
+                        .iter()
+                        .find(|(_, r)| r.slot == format!("{}_resolve", b.slot))
+                        .map(|(_, r)| *r);
+                    // wgpu resolves only a multisampled target into a
+                    // single-sampled one of the same format: say so at load,
+                    // not as a validation error mid-frame.
+                    if let Some(r) = resolve
+                        && let Some((resolve_format, resolve_samples)) = texture(r.resource)
+                    {
+                        let name = |i: usize| resources.get(i).map_or("?", |r| r.name.as_str());
+                        if samples < 2 || resolve_samples != 1 || resolve_format != format {
+                            errors.push(err(
+                                &r.location,
+                                format!(
+                                    "`{}` (slot `{}`, {samples} sample(s), {}) cannot be resolved into `{}` (slot `{}`, {resolve_samples} sample(s), {}): a resolve needs a multisampled colour target (samples 4) and a single-sampled target of the same format",
+                                    name(b.resource),
+                                    b.slot,
+                                    format.name(),
+                                    name(r.resource),
+                                    r.slot,
+                                    resolve_format.name(),
+                                ),
+                            ));
+                        }
+                    }
                     new_colors.push(ColorTarget {
                         slot: b.slot.clone(),
                         resource: b.resource,
                         format,
                         samples,
                         loads: b.loads,
-                        resolve: writes
-                            .iter()
-                            .find(|(_, r)| r.slot == format!("{}_resolve", b.slot))
-                            .map(|(_, r)| r.resource),
+                        resolve: resolve.map(|r| r.resource),
                     });
                 }
                 // Storage textures are not zeroed: clearing one needs
