@@ -17,12 +17,17 @@ fn opaque_shadow(shadow_map: texture_depth_2d, world: vec3<f32>, bias: f32) -> f
     if (any(p.xy < vec2<f32>(0.0)) || any(p.xy > vec2<f32>(1.0)) || p.z > 1.0) {
         return 1.0;
     }
+    return pcf_3x3(shadow_map, p.xy, p.z - bias);
+}
+
+// The 3×3 PCF at `uv` of comparisons against `depth` (crates/plait-passes/
+// tests/shadow_filter.rs checks it against the nine filtered taps).
+fn pcf_3x3(shadow_map: texture_depth_2d, uv: vec2<f32>, depth: f32) -> f32 {
     let size = vec2<f32>(textureDimensions(shadow_map));
-    let t = p.xy * size - 0.5;
+    let t = uv * size - 0.5;
     let b = floor(t);
     let f = t - b;
     let rest = vec2<f32>(1.0) - f;
-    let depth = p.z - bias;
     // A gather at the texel corner c reads texels c-1 and c on each axis.
     let g00 = textureGatherCompare(shadow_map, shadow_sampler, b / size, depth);
     let g10 = textureGatherCompare(shadow_map, shadow_sampler, (b + vec2<f32>(2.0, 0.0)) / size, depth);
