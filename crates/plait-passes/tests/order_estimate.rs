@@ -4,11 +4,11 @@
 //! `plait_passes::occupancy::order_estimate` — whose accuracy against exact
 //! counts is tested in that module (exact at slab boundaries, within F_i inside).
 
-use std::path::Path;
+mod probe;
 
-use plait_gpu::{Gpu, ShaderLibrary};
+use plait_gpu::Gpu;
 use plait_passes::occupancy::{TexelMaps, maps_from_depths, order_estimate};
-use wgpu::util::DeviceExt;
+use probe::Probe;
 
 const PROBE: &str = r#"
 #import plait::occupancy::{TexelMaps, order_estimate}
@@ -75,10 +75,6 @@ fn cases() -> Vec<(TexelMaps, f32)> {
 #[test]
 fn gpu_order_estimate_matches_cpu_mirror() {
     let gpu = gpu();
-    let mut shaders = ShaderLibrary::new().expect("library modules compose");
-    let module = shaders
-        .compose(Path::new("order_estimate_probe.wgsl"), PROBE, &[])
-        .unwrap_or_else(|e| panic!("{e}"));
     let cases = cases();
     let mut bytes: Vec<u8> = Vec::new();
     for (maps, rel) in &cases {
@@ -90,61 +86,29 @@ fn gpu_order_estimate_matches_cpu_mirror() {
         words[36..36 + maps.counts.len()].copy_from_slice(&maps.counts);
         bytes.extend(words.iter().flat_map(|w| w.to_le_bytes()));
     }
-    let device = &gpu.device;
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("cases"),
-        contents: &bytes,
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let size = cases.len() as u64 * 4;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("results"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("order probe"),
-        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("order probe"),
-        layout: None,
-        module: &shader,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+    let probe = Probe::new(
+        &gpu,
+        "order_estimate_probe.wgsl",
+        PROBE,
+        &bytes,
+        cases.len() as u64 * 4,
+    );
+    let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
-        layout: &pipeline.get_bind_group_layout(0),
+        layout: &probe.pipeline.get_bind_group_layout(0),
         entries: &[
             wgpu::BindGroupEntry {
                 binding: 0,
-                resource: input.as_entire_binding(),
+                resource: probe.input.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
                 binding: 1,
-                resource: output.as_entire_binding(),
+                resource: probe.output.as_entire_binding(),
             },
         ],
     });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
-        pass.dispatch_workgroups((cases.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    let data = plait_gpu::readback::map_buffer(device, &readback).expect("readback");
+    let encoder = gpu.device.create_command_encoder(&Default::default());
+    let data = probe.run(&gpu, encoder, &[&bind_group], cases.len() as u32);
     let gpu_results: Vec<f32> = data
         .chunks_exact(4)
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))

@@ -4,10 +4,10 @@
 //! apart — the filter it replaced for speed (README, Performance) — on a
 //! noisy depth map, inside it, across its texels' edges and past its border.
 
-use std::path::Path;
+mod probe;
 
-use plait_gpu::{Gpu, ShaderLibrary};
-use wgpu::util::DeviceExt;
+use plait_gpu::Gpu;
+use probe::Probe;
 
 const SIZE: u32 = 64;
 
@@ -133,45 +133,18 @@ fn gathered_pcf_equals_the_nine_filtered_taps() {
         points.push([edge, centre, 0.5, 0.0]);
         points.push([centre, edge, 0.5, 0.0]);
     }
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("points"),
-        contents: &points
-            .iter()
-            .flatten()
-            .flat_map(|v| v.to_le_bytes())
-            .collect::<Vec<u8>>(),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let size = points.len() as u64 * 8;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("results"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-
-    let mut shaders = ShaderLibrary::new().expect("library modules compose");
-    let module = shaders
-        .compose(Path::new("shadow_filter_probe.wgsl"), PROBE, &[])
-        .unwrap_or_else(|e| panic!("{e}"));
-    let probe = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("pcf probe"),
-        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("pcf probe"),
-        layout: None,
-        module: &probe,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
+    let bytes: Vec<u8> = points
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let probe = Probe::new(
+        &gpu,
+        "shadow_filter_probe.wgsl",
+        PROBE,
+        &bytes,
+        points.len() as u64 * 8,
+    );
     // plait's shadow sampler (plait_gpu::pass::FrameSamplers): linear,
     // LessEqual, clamped to the edge.
     let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -182,7 +155,7 @@ fn gathered_pcf_equals_the_nine_filtered_taps() {
     });
     let samplers = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
-        layout: &pipeline.get_bind_group_layout(0),
+        layout: &probe.pipeline.get_bind_group_layout(0),
         entries: &[wgpu::BindGroupEntry {
             binding: 3,
             resource: wgpu::BindingResource::Sampler(&sampler),
@@ -190,7 +163,7 @@ fn gathered_pcf_equals_the_nine_filtered_taps() {
     });
     let resources = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
-        layout: &pipeline.get_bind_group_layout(1),
+        layout: &probe.pipeline.get_bind_group_layout(1),
         entries: &[
             wgpu::BindGroupEntry {
                 binding: 0,
@@ -198,11 +171,11 @@ fn gathered_pcf_equals_the_nine_filtered_taps() {
             },
             wgpu::BindGroupEntry {
                 binding: 1,
-                resource: input.as_entire_binding(),
+                resource: probe.input.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
                 binding: 2,
-                resource: output.as_entire_binding(),
+                resource: probe.output.as_entire_binding(),
             },
         ],
     });
@@ -227,16 +200,7 @@ fn gathered_pcf_equals_the_nine_filtered_taps() {
         pass.set_pipeline(&fill);
         pass.draw(0..3, 0..1);
     }
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &samplers, &[]);
-        pass.set_bind_group(1, &resources, &[]);
-        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    let data = plait_gpu::readback::map_buffer(device, &readback).expect("readback");
+    let data = probe.run(&gpu, encoder, &[&samplers, &resources], points.len() as u32);
     let results: Vec<[f32; 2]> = data
         .chunks_exact(8)
         .map(|c| {
