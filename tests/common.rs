@@ -121,3 +121,17 @@ pub fn strands_subset(
     }
     out
 }
+
+/// `all`'s hair taken away but for its bounds: two zero-length, transparent
+/// strands at the corners of its bounding box. The light's frustum is fitted
+/// to the hair's bounds, so the opaque scene is shadowed and framed as it is
+/// with the hair; taking every strand away would leave nothing to fit it to.
+/// What a golden's hair pixels are measured against (`golden_images`).
+pub fn hair_taken_away(all: &plait_hair::Strands) -> plait_hair::Strands {
+    let b = all.bounds();
+    let mut out = plait_hair::Strands::new();
+    for corner in [b.min, b.max] {
+        out.push_strand(&[corner, corner], |_| 0.0, |_| 0.0, glam::Vec3::ZERO);
+    }
+    out
+}
