@@ -400,3 +400,44 @@ fn transparency_with_strand_coverage_keeps_its_measured_error() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Sintorn & Assarsson 2009 §4: at 512² the occupancy method's light maps
+/// take 10 MB, against 130 MB for OSM-128 and 18 MB for DOM-16. plait's
+/// light maps (every `light_*` resource of the self-shadowing technique, by
+/// the memory plan; no GPU), each with the 2 MiB depth range and its 1 MiB
+/// scratch: occupancy's bits + slabs 8 MiB (11 in all), OSM-16's slices
+/// 16 MiB (19), DOM-3's 3 MiB (6), the exact reference's lists and counts
+/// 97 MiB (100).
+#[test]
+fn light_map_memory_matches_the_papers_sizes() {
+    const MIB: u64 = 1 << 20;
+    let mut report = Vec::new();
+    let mut failures = Vec::new();
+    for (name, want_mib) in [
+        ("occupancy", 11),
+        ("opacity_shadow_maps", 19),
+        ("deep_opacity", 6),
+        ("exact_shadow", 100),
+    ] {
+        let options = plait_graph::CompileOptions {
+            screen: (320, 240),
+            ..Default::default()
+        };
+        let schedule = plait::session::compile_checked(&pipeline(name), &[], &options)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let maps: Vec<(String, u64)> = schedule
+            .resources
+            .iter()
+            .filter(|r| r.name.starts_with("light_"))
+            .map(|r| (r.name.clone(), r.desc.bytes()))
+            .collect();
+        let total: u64 = maps.iter().map(|(_, b)| b).sum();
+        let line = format!("{name}: {:.2} MiB in {maps:?}", total as f64 / MIB as f64);
+        if (total + MIB / 2) / MIB != want_mib {
+            failures.push(format!("{line}: expected {want_mib} MiB"));
+        }
+        report.push(line);
+    }
+    println!("{}", report.join("\n"));
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
