@@ -179,11 +179,11 @@ impl<'de> Deserialize<'de> for LightSetting {
 
 impl Light {
     /// The intensity of a fitted light unless the scene gives one: the
-    /// built-in scene's key light (3), under which the default hair colour
-    /// (`GroomSpec::default().color`, brown, albedo ≈ 0.2–0.3) shades to
-    /// about 0.5–0.8 of full scale with Kajiya-Kay's default coefficients, so
-    /// only the specular highlight reaches 1. Both `light = "fit"` and
-    /// `[light] type = "fit"` use it.
+    /// built-in scene's key light (3). Under it the default hair look
+    /// (`GroomSpec::default()`, which a `.tfx` groom without colours gets
+    /// too) stays below full scale but for the highlights: a file groom's
+    /// hair pixels average 0.5–0.7 of full scale (docs/formats.md has the
+    /// figures). Both `light = "fit"` and `[light] type = "fit"` use it.
     pub const FITTED_INTENSITY: f32 = 3.0;
 
     /// A white directional key light placed from `camera`'s view: from
