@@ -55,7 +55,7 @@ impl Missing {
 /// divided by the mean projected area of their bounding box (a quarter of
 /// its surface area, Cauchy's formula for a convex body). Unchanged by a
 /// uniform scale, so it compares grooms in any units. 0 for no strands or
-/// flat bounds.
+/// bounds without area.
 pub fn optical_depth(strands: &Strands) -> f32 {
     let mut covered = 0.0f64;
     for r in strands.ranges() {
@@ -114,9 +114,10 @@ pub fn dress(strands: &mut Strands, missing: Missing) {
                 *t = root * (1.0 + (tip - 1.0) * k as f32 / n);
             }
         }
-        let depth = optical_depth(strands);
-        if depth > 0.0 {
-            let scale = REFERENCE_OPTICAL_DEPTH / depth;
+        // Bounds without area (a point, a line: a depth of 0) keep the
+        // relative widths: there is no silhouette to fill.
+        let scale = REFERENCE_OPTICAL_DEPTH / optical_depth(strands);
+        if scale.is_finite() && scale > 0.0 {
             strands.thickness.iter_mut().for_each(|t| *t *= scale);
         }
     }
