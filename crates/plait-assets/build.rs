@@ -1,5 +1,5 @@
-//! Embeds every `pipelines/*.toml`, `techniques/**/*.toml` and
-//! `shaders/**/*.wgsl` of the checkout as
+//! Embeds every `pipelines/*.toml`, `techniques/**/*.toml`,
+//! `shaders/**/*.wgsl` and `examples/scenes/*.toml` of the checkout as
 //! the built-in copies (the fallback when no folder of the search path holds a
 //! file), so new gallery files need no list to be kept by hand.
 
@@ -29,6 +29,15 @@ fn main() {
     collect(&root, &root.join("pipelines"), "toml", false, &mut files);
     collect(&root, &root.join("techniques"), "toml", true, &mut files);
     collect(&root, &root.join("shaders"), "wgsl", true, &mut files);
+    // The scenes' text only: files they name (studio.hdr) are not embedded,
+    // and plait-hair says so when a built-in scene names one.
+    collect(
+        &root,
+        &root.join("examples/scenes"),
+        "toml",
+        false,
+        &mut files,
+    );
     files.sort();
     let mut code = String::from("pub(crate) const BUILTIN: &[(&str, &str)] = &[\n");
     for rel in &files {
@@ -52,4 +61,5 @@ fn main() {
     println!("cargo:rerun-if-changed=../../pipelines");
     println!("cargo:rerun-if-changed=../../techniques");
     println!("cargo:rerun-if-changed=../../shaders");
+    println!("cargo:rerun-if-changed=../../examples/scenes");
 }

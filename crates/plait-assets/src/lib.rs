@@ -1,8 +1,8 @@
-//! The pipelines and shaders plait ships, found at run time.
+//! The pipelines, shaders and example scenes plait ships, found at run time.
 //!
 //! A *library file* is named by its path inside a plait checkout
 //! (`pipelines/occupancy.toml`, `techniques/self_shadow/occupancy.toml`,
-//! `shaders/passes/hair_shade.wgsl`). It is read
+//! `shaders/passes/hair_shade.wgsl`, `examples/scenes/small.toml`). It is read
 //! from the first folder of the search path that holds it — so editing a
 //! shader needs no rebuild, and the viewer reloads it — and, when no folder
 //! does, from the copy built into the binary, so an installed `plait` works
@@ -289,6 +289,8 @@ mod tests {
             "shaders/passes/hair_shade.wgsl",
             "shaders/compose_over.wgsl",
             "techniques/self_shadow/occupancy.toml",
+            "examples/scenes/small.toml",
+            "examples/scenes/default.toml",
         ] {
             let text = builtin(name).unwrap_or_else(|| panic!("{name} is not built in"));
             assert!(!text.is_empty(), "{name} is empty");

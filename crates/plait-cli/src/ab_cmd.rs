@@ -16,7 +16,7 @@ use plait::ab::{AbError, AbOptions, Plan, Step, SweepSpec};
 use plait_compare::report::Report;
 use plait_gpu::Gpu;
 
-use crate::args::{SetArgs, parse_size};
+use crate::args::{SetArgs, parse_scene, parse_size};
 
 #[derive(Args)]
 pub struct AbArgs {
@@ -28,7 +28,7 @@ pub struct AbArgs {
     #[arg(long, value_name = "PIPELINE")]
     reference: PathBuf,
     /// Scene file (repeatable; default: the built-in scene).
-    #[arg(long = "scene", value_name = "FILE")]
+    #[arg(long = "scene", value_name = "FILE", value_parser = parse_scene)]
     scenes: Vec<PathBuf>,
     #[command(flatten)]
     set: SetArgs,

@@ -12,6 +12,12 @@ pub struct SetArgs {
     pub sets: Vec<String>,
 }
 
+/// `--scene NAME`: a path, or a scene found by name like a pipeline
+/// (`plait::session::resolve_scene`: `--scene small.toml` from anywhere).
+pub fn parse_scene(text: &str) -> Result<std::path::PathBuf, std::convert::Infallible> {
+    Ok(plait::session::resolve_scene(std::path::Path::new(text)))
+}
+
 /// `--size 960x720` (`960X720` too: the README's `WxH` with either x).
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`{text}` is not WIDTHxHEIGHT (e.g. 960x720)");

@@ -10,7 +10,7 @@ use plait_gpu::{FrameReport, Gpu};
 use plait_graph::{CompileOptions, Schedule};
 use plait_hair::scene::Scene;
 
-use crate::args::{SetArgs, parse_size};
+use crate::args::{SetArgs, parse_scene, parse_size};
 use crate::output::PendingFile;
 
 #[derive(Args)]
@@ -18,7 +18,7 @@ pub struct RenderArgs {
     /// Pipeline file (default: pipelines/occupancy.toml, the occupancy-map method).
     pipeline: Option<PathBuf>,
     /// Scene file (default: the built-in scene).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_scene)]
     scene: Option<PathBuf>,
     /// Where to write the image: a .png, or a .jpg/.jpeg file (default
     /// plait.png). With --frames, a folder (default frames/).

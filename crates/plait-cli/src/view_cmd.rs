@@ -6,7 +6,7 @@ use anyhow::Result;
 use clap::Args;
 use plait::session::resolve_pipeline;
 
-use crate::args::{SetArgs, parse_size};
+use crate::args::{SetArgs, parse_scene, parse_size};
 
 #[derive(Args)]
 pub struct ViewArgs {
@@ -14,7 +14,7 @@ pub struct ViewArgs {
     /// scene or any shader it uses reloads it.
     pipeline: Option<PathBuf>,
     /// Scene file (default: the built-in scene).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_scene)]
     scene: Option<PathBuf>,
     /// Render size, `WIDTHxHEIGHT` (small: every frame is rendered).
     #[arg(long, value_parser = parse_size, default_value = "400x300")]

@@ -71,7 +71,7 @@ impl Camera {
 
 /// How to fit a camera to the hair: from which direction, with which field
 /// of view. In TOML, `camera = "fit"` or a `[camera]` table with
-/// `fit = true` and any of these fields.
+/// `fit = true` (or without `eye` and `target`) and any of these fields.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CameraFit {
     /// Direction from the hair's centre toward the eye.
@@ -173,18 +173,26 @@ impl CameraFit {
     }
 }
 
-/// `camera` in a scene file: a fixed camera or a fit.
+/// `camera` in a scene file: a fixed camera or a fit. A scene without
+/// `camera`, and a `[camera]` table with neither `eye` nor `target` (nor
+/// `fit = false`), is fitted: the only camera that frames any hair.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum CameraSetting {
     Fixed(Camera),
     Fit(CameraFit),
 }
 
+impl Default for CameraSetting {
+    fn default() -> Self {
+        CameraSetting::Fit(CameraFit::default())
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CameraTable {
-    #[serde(default)]
-    fit: bool,
+    /// Left out: fitted unless the table gives `eye` or `target`.
+    fit: Option<bool>,
     eye: Option<[f32; 3]>,
     target: Option<[f32; 3]>,
     up: Option<[f32; 3]>,
@@ -198,7 +206,7 @@ struct CameraTable {
 impl TryFrom<CameraTable> for CameraSetting {
     type Error = String;
     fn try_from(t: CameraTable) -> Result<Self, String> {
-        if t.fit {
+        if t.fit.unwrap_or(t.eye.is_none() && t.target.is_none()) {
             let computed = [
                 ("eye", t.eye.is_some()),
                 ("target", t.target.is_some()),
@@ -207,7 +215,7 @@ impl TryFrom<CameraTable> for CameraSetting {
             ];
             if let Some((name, _)) = computed.iter().find(|(_, given)| *given) {
                 return Err(format!(
-                    "camera.{name} is computed when fit = true (give direction, up, fov_y_degrees or margin instead)"
+                    "camera.{name} is computed when the camera is fitted (fit = true, or no eye and target): give direction, up, fov_y_degrees or margin instead"
                 ));
             }
             let d = CameraFit::default();

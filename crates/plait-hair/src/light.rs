@@ -49,22 +49,23 @@ pub struct Light {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LightToml {
-    #[serde(rename = "type")]
+    /// Left out: `"fit"`, so `[light]` with only `color`/`intensity` works.
+    #[serde(rename = "type", default = "fit")]
     kind: String,
     direction: Option<[f32; 3]>,
     position: Option<[f32; 3]>,
     cone_degrees: Option<f32>,
     #[serde(default = "white")]
     color: [f32; 3],
-    #[serde(default = "one")]
-    intensity: f32,
+    /// Left out: [`Light::FITTED_INTENSITY`] for a fitted light, 1 otherwise.
+    intensity: Option<f32>,
 }
 
 fn white() -> [f32; 3] {
     [1.0, 1.0, 1.0]
 }
-fn one() -> f32 {
-    1.0
+fn fit() -> String {
+    "fit".into()
 }
 
 /// `light` in a scene file: a given light, or one placed from the camera.
@@ -72,6 +73,16 @@ fn one() -> f32 {
 pub(crate) struct LightSetting {
     pub light: Light,
     pub fit: bool,
+}
+
+impl LightSetting {
+    /// `light = "fit"`, also what a scene without `light` gets.
+    pub(crate) fn fitted() -> LightSetting {
+        LightSetting {
+            light: Light::fitted(&Camera::looking_down_z(), Light::FITTED_INTENSITY),
+            fit: true,
+        }
+    }
 }
 
 impl TryFrom<LightToml> for LightSetting {
@@ -87,8 +98,10 @@ impl TryFrom<LightToml> for LightSetting {
             return Ok(LightSetting {
                 light: Light {
                     color: t.color,
-                    intensity: t.intensity,
-                    ..Light::fitted(&Camera::looking_down_z(), 1.0)
+                    ..Light::fitted(
+                        &Camera::looking_down_z(),
+                        t.intensity.unwrap_or(Light::FITTED_INTENSITY),
+                    )
                 },
                 fit: true,
             });
@@ -132,7 +145,7 @@ impl TryFrom<LightToml> for LightSetting {
             light: Light {
                 kind,
                 color: t.color,
-                intensity: t.intensity,
+                intensity: t.intensity.unwrap_or(1.0),
             },
             fit: false,
         })
@@ -149,10 +162,7 @@ impl<'de> Deserialize<'de> for LightSetting {
             }
             fn visit_str<E: de::Error>(self, s: &str) -> Result<LightSetting, E> {
                 match s {
-                    "fit" => Ok(LightSetting {
-                        light: Light::fitted(&Camera::looking_down_z(), 3.0),
-                        fit: true,
-                    }),
+                    "fit" => Ok(LightSetting::fitted()),
                     other => Err(E::custom(format!(
                         "light = {other:?}: expected \"fit\" or a [light] table"
                     ))),
@@ -168,6 +178,14 @@ impl<'de> Deserialize<'de> for LightSetting {
 }
 
 impl Light {
+    /// The intensity of a fitted light unless the scene gives one: the
+    /// built-in scene's key light (3). Under it the default hair look
+    /// (`GroomSpec::default()`, which a `.tfx` groom without colours gets
+    /// too) stays below full scale but for the highlights: a file groom's
+    /// hair pixels average 0.5–0.7 of full scale (docs/formats.md has the
+    /// figures). Both `light = "fit"` and `[light] type = "fit"` use it.
+    pub const FITTED_INTENSITY: f32 = 3.0;
+
     /// A white directional key light placed from `camera`'s view: from
     /// above, a little right of and in front of the hair, as in the built-in
     /// scene. Its shadow maps are fitted to the hair like any light's.

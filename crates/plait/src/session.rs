@@ -52,6 +52,25 @@ pub fn resolve_pipeline(given: Option<&Path>) -> PathBuf {
     found.unwrap_or(candidate)
 }
 
+/// A scene named on the command line, found like a pipeline: a path that
+/// exists (or is absolute, or built in) is taken as is; a plain relative
+/// name that does not exist is looked up on the library search path, as
+/// given and under `examples/scenes/` (`--scene small.toml` from any
+/// directory), with the built-in copies last. A built-in scene carries its
+/// text only; `Scene::load` refuses one that names a file.
+pub fn resolve_scene(given: &Path) -> PathBuf {
+    if given.exists() || given.is_absolute() || plait_assets::is_builtin(given) {
+        return given.to_path_buf();
+    }
+    let plain = given
+        .components()
+        .all(|c| matches!(c, std::path::Component::Normal(_)));
+    let found = given.to_str().filter(|_| plain).and_then(|name| {
+        plait_assets::find(name).or_else(|| plait_assets::find(&format!("examples/scenes/{name}")))
+    });
+    found.unwrap_or_else(|| given.to_path_buf())
+}
+
 /// The files on disk a render of `pipeline` reads, for watching them: the
 /// pipeline and every file it extends, the technique files, the shaders of
 /// its passes (files it names and the pass types' own), the shader library,

@@ -23,6 +23,7 @@
 //! one strand from a scalp point, `interpolate` grows guide strands and blends
 //! the rendered ones from them; `generate` here puts them together.
 
+mod dress;
 mod grow;
 mod interpolate;
 mod spec;
@@ -35,6 +36,7 @@ use crate::guides::{GuideBinding, Guides};
 use crate::rng::SplitMix64;
 use crate::strands::Strands;
 
+pub use dress::{Missing, REFERENCE_OPTICAL_DEPTH, dress, optical_depth};
 use grow::{add_waves, comb, grow, head_point, look, push, sample_root, scalp_dir};
 use interpolate::interpolate_from_guides;
 pub use spec::{GroomSpec, HeadShape, ScalpRegion, Style};

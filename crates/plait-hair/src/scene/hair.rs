@@ -8,20 +8,23 @@ use glam::Vec3;
 
 use super::{HairSource, Light, Scene, SceneError};
 use crate::asset::Asset;
+use crate::groom::Missing;
 use crate::strands::{Aabb, Strands};
 
 impl Scene {
     /// The strands to render: the file's or the generated groom, with its
-    /// follow strands, placed by its transform.
+    /// follow strands, the default look where a `.tfx` file has none
+    /// (`crate::groom::dress`), placed by its transform.
     pub fn strands(&self) -> Result<Strands, SceneError> {
-        let (mut strands, origin) = match &self.hair.source {
+        let (mut strands, origin, missing) = match &self.hair.source {
             HairSource::File(path) => {
                 let (asset, _warnings) = Asset::read(path)?;
-                (asset.strands(), path.clone())
+                (asset.strands(), path.clone(), missing_look(&asset))
             }
             HairSource::Procedural(spec) => (
                 crate::groom::generate(spec),
                 PathBuf::from("<procedural groom>"),
+                Missing::default(),
             ),
         };
         let invalid = |message: String| SceneError::Invalid {
@@ -34,6 +37,9 @@ impl Scene {
                 .map_err(|m| invalid(format!("hair.{m}")))?;
             strands = follow.apply(&strands);
         }
+        // After the follow strands, which count toward the density that sets
+        // the default width; before the transform, which scales it.
+        crate::groom::dress(&mut strands, missing);
         if let Some(transform) = &self.hair.transform {
             transform.apply(&mut strands).map_err(invalid)?;
         }
@@ -67,5 +73,18 @@ impl Scene {
             let fitted = Light::fitted(&self.camera, self.light.intensity);
             self.light.kind = fitted.kind;
         }
+    }
+}
+
+/// What a file leaves out of the look (`crate::groom::dress`): a `.tfx`
+/// file's absent thickness and colour arrays; nothing for a `.hair` file,
+/// whose header states defaults for both.
+fn missing_look(asset: &Asset) -> Missing {
+    match asset {
+        Asset::Tfx(file) => Missing {
+            thickness: file.strand_thickness.is_none(),
+            color: file.vertex_color.is_none(),
+        },
+        Asset::Hair(_) => Missing::default(),
     }
 }

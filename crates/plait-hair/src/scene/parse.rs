@@ -2,7 +2,7 @@
 //! syntax, schema and keyframe errors as `path:line:column: message`, and
 //! relative paths resolved against the scene file's directory.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
@@ -12,17 +12,24 @@ use super::{
 };
 use crate::camera::CameraSetting;
 use crate::environment::EnvironmentSetting;
+use crate::groom::GroomSpec;
 use crate::light::LightSetting;
 
+/// Every field may be left out (`docs/formats.md`, "Defaults"): the hair is
+/// the procedural groom with its defaults, camera and light are fitted to
+/// it, no head, no ground.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneToml {
+    #[serde(default = "default_hair")]
     hair: Hair,
     #[serde(default)]
     head: Option<Head>,
     #[serde(default)]
     ground: Option<Ground>,
+    #[serde(default)]
     camera: CameraSetting,
+    #[serde(default = "LightSetting::fitted")]
     light: LightSetting,
     #[serde(default = "default_background")]
     background: Background,
@@ -61,6 +68,9 @@ impl From<SceneToml> for Scene {
     }
 }
 
+fn default_hair() -> Hair {
+    Hair::from(HairSource::Procedural(GroomSpec::default()))
+}
 fn default_background() -> Background {
     Background::Color([0.05, 0.06, 0.08])
 }
@@ -81,6 +91,23 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, before[line_start..].chars().count() + 1)
 }
 
+/// serde's "unknown field `x`, expected one of `a`, `b`" (or "expected `a`
+/// or `b`"), with "; did you mean `a`?" when one is close.
+fn with_suggestion(message: &str) -> String {
+    let Some(rest) = message.strip_prefix("unknown field `") else {
+        return message.to_string();
+    };
+    let Some((name, expected)) = rest.split_once('`') else {
+        return message.to_string();
+    };
+    // The names between backticks after the unknown one.
+    let candidates = expected.split('`').skip(1).step_by(2);
+    format!(
+        "{message}{}",
+        plait_graph::suggest::did_you_mean(name, candidates)
+    )
+}
+
 impl Scene {
     /// Parses scene text; `path` is used in messages and to resolve relative
     /// paths (against its directory).
@@ -91,7 +118,7 @@ impl Scene {
                 path: path.to_path_buf(),
                 line,
                 column,
-                message: e.message().trim().to_string(),
+                message: with_suggestion(e.message().trim()),
             }
         })?;
         let environment_at = parsed.environment.as_ref().map(|e| {
@@ -125,13 +152,47 @@ impl Scene {
             *p = dir.join(&*p);
         }
         scene.environment.resolve_paths(dir);
+        if plait_assets::is_builtin(path) {
+            scene.check_builtin_files(path)?;
+        }
         Ok(scene)
     }
 
-    /// Loads a scene file.
+    /// A built-in copy of a scene (`<built-in>/examples/scenes/…`) carries
+    /// its text only: a file it names (hair, background or environment
+    /// image) is not built in, which is said here rather than as a missing
+    /// `<built-in>/…` file at render time.
+    fn check_builtin_files(&self, path: &Path) -> Result<(), SceneError> {
+        let mut named: Vec<&Path> = Vec::new();
+        if let HairSource::File(p) = &self.hair.source {
+            named.push(p);
+        }
+        if let Background::Image(p) = &self.background {
+            named.push(p);
+        }
+        let environment = self.environment.files();
+        named.extend(environment.iter().map(PathBuf::as_path));
+        match named.first() {
+            None => Ok(()),
+            Some(file) => Err(SceneError::Invalid {
+                path: path.to_path_buf(),
+                message: format!(
+                    "this built-in scene names {}, which plait does not carry built in; \
+                     set {} to a plait checkout (or copy the scene next to its files)",
+                    file.strip_prefix(path.parent().unwrap_or(Path::new("")))
+                        .unwrap_or(file)
+                        .display(),
+                    plait_assets::SEARCH_PATH_VAR
+                ),
+            }),
+        }
+    }
+
+    /// Loads a scene file, or a built-in copy (`<built-in>/…`, see
+    /// `plait_assets`).
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io {
+        let text = plait_assets::read_to_string(path).map_err(|error| SceneError::Io {
             path: path.to_path_buf(),
             error,
         })?;

@@ -181,3 +181,102 @@ fn invalid_values_name_the_field() {
         .unwrap_err();
     assert!(e.to_string().contains("position"), "{e}");
 }
+
+/// Every field may be left out: an empty scene is the default procedural
+/// groom, fitted camera and light, no head, no ground (docs/formats.md).
+#[test]
+fn an_empty_scene_loads_with_the_documented_defaults() {
+    let p = Path::new("empty.toml");
+    for text in ["", "# nothing but a comment\n"] {
+        let s = Scene::from_toml_str(text, p).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            s.hair.source,
+            HairSource::Procedural(crate::groom::GroomSpec::default())
+        );
+        assert_eq!((s.head.as_ref(), s.ground.as_ref()), (None, None));
+        assert_eq!(s.framing.camera, Some(CameraFit::default()));
+        assert!(s.framing.light);
+        assert_eq!(s.light.intensity, Light::FITTED_INTENSITY);
+        assert_eq!(s.material, HairMaterial::default());
+        assert_eq!(s.background, Background::Color([0.05, 0.06, 0.08]));
+    }
+    // A file groom alone, as docs/formats.md's "Grooms in a scene" starts.
+    let s = Scene::from_toml_str("[hair]\nfile = \"g.tfx\"\n", p).expect("minimal");
+    assert_eq!(s.hair.source, HairSource::File(PathBuf::from("g.tfx")));
+    assert!(s.framing.camera.is_some() && s.framing.light);
+}
+
+/// A `[camera]` or `[light]` table that leaves out what would place it is
+/// fitted; `light = "fit"` and `[light] type = "fit"` mean the same light.
+#[test]
+fn partial_camera_and_light_tables_are_fitted() {
+    let p = Path::new("s.toml");
+    let s = Scene::from_toml_str("[camera]\nfov_y_degrees = 50\n[light]\nintensity = 2\n", p)
+        .expect("loads");
+    assert_eq!(
+        s.framing.camera.as_ref().map(|f| f.fov_y_degrees),
+        Some(50.0)
+    );
+    assert!(s.framing.light);
+    assert_eq!(s.light.intensity, 2.0);
+    let short = Scene::from_toml_str("light = \"fit\"\n", p).expect("loads");
+    let long = Scene::from_toml_str("[light]\ntype = \"fit\"\n", p).expect("loads");
+    assert_eq!(short.light, long.light);
+    // Half a fixed camera is an error naming what is missing.
+    let e = Scene::from_toml_str("[camera]\neye = [0, 0, 5]\n", p).unwrap_err();
+    assert!(e.to_string().contains("camera.target is missing"), "{e}");
+    let e = Scene::from_toml_str("[camera]\nfit = false\n", p).unwrap_err();
+    assert!(e.to_string().contains("camera.eye is missing"), "{e}");
+    let e = Scene::from_toml_str("[camera]\nnear = 0.5\n", p).unwrap_err();
+    assert!(e.to_string().contains("camera.near is computed"), "{e}");
+}
+
+/// Wrong names still fail at their line and column, with the nearest valid
+/// name suggested, at the top level and inside tables.
+#[test]
+fn unknown_fields_name_their_place_and_the_nearest_field() {
+    let p = Path::new("dir/s.toml");
+    for (text, at, wrong, meant) in [
+        (
+            "ambient = 0.2\nambeint = 0.1\n",
+            "2:1",
+            "ambeint",
+            "ambient",
+        ),
+        (
+            "[hair]\nfile = \"g.tfx\"\nfollow_strand = 4\n",
+            "3:1",
+            "follow_strand",
+            "follow_strands",
+        ),
+        (
+            "[material]\nspecular_exponnet = 3\n",
+            "2:1",
+            "specular_exponnet",
+            "specular_exponent",
+        ),
+        (
+            "[camera]\nfov_y_degree = 40\n",
+            "2:1",
+            "fov_y_degree",
+            "fov_y_degrees",
+        ),
+        ("[light]\nintensty = 2\n", "2:1", "intensty", "intensity"),
+    ] {
+        let e = Scene::from_toml_str(text, p).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("dir/s.toml:{at}: ")), "{text}: {e}");
+        assert!(
+            e.contains(&format!("unknown field `{wrong}`"))
+                && e.contains(&format!("did you mean `{meant}`?")),
+            "{text}: {e}"
+        );
+    }
+    // Nothing close: no guess.
+    let e = Scene::from_toml_str("zzzzzz = 1\n", p)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("unknown field `zzzzzz`") && !e.contains("did you mean"),
+        "{e}"
+    );
+}
