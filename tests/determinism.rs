@@ -85,13 +85,13 @@ fn assert_nothing_dropped(name: &str, report: &FrameReport) {
 }
 
 /// One frame of `pipeline` on the built-in scene: its report and image.
-fn render(
-    gpu: &Gpu,
+fn render<'g>(
+    gpu: &'g Gpu,
     scene: &SceneData,
     pipeline: &str,
     sets: &[&str],
     size: (u32, u32),
-) -> (Prepared<'_>, FrameReport, image::RgbaImage) {
+) -> (Prepared<'g>, FrameReport, image::RgbaImage) {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let p = prepare(gpu, &repo_root().join(pipeline), &sets, scene, size)
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
@@ -157,5 +157,8 @@ fn fragment_lists_hold_every_fragment_by_default() {
         "linked_list vs depth_peeling at 160x160: RMSE {:.6}, SSIM {:.6}, max |d| {:.4} (pool {} nodes/pixel)",
         m.rmse, m.ssim, m.max_abs_diff, held.value
     );
-    assert!(m.rmse < MAX_RMSE && m.ssim > MIN_SSIM, "{m:?}");
+    // Measured on lavapipe: RMSE 0.0016, SSIM 0.99976 (the residue: colours
+    // through 16-bit floats in the nodes, fragments at equal depth, which
+    // peeling keeps one of). Dropping fragments gave RMSE 0.033, SSIM 0.946.
+    assert!(m.rmse < 0.004 && m.ssim > 0.999, "{m:?}");
 }

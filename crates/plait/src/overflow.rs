@@ -75,7 +75,7 @@ pub fn check_frame(report: &FrameReport) -> Result<(), SessionError> {
         return Ok(());
     }
     Err(SessionError::Dropped {
-        message: "this frame asked for more than the first, which sized the bounded buffers".into(),
+        message: "this frame asked for more than the first, which sized the buffer; set its size with the --set above".into(),
         overflow: short,
     })
 }
@@ -114,8 +114,14 @@ fn grow(
     let schedule = compile(HEADROOM).or_else(|_| compile(1.0));
     let mut schedule = schedule.map_err(|errors| SessionError::Dropped {
         message: format!(
-            "the adapter cannot hold what the first frame asked for (it binds at most {} bytes as storage): {errors}",
-            gpu.capabilities.max_storage_buffer_binding_size
+            "the adapter cannot hold that (it binds at most {} bytes as storage): {}",
+            gpu.capabilities.max_storage_buffer_binding_size,
+            errors
+                .0
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; ")
         ),
         overflow: short.to_vec(),
     })?;

@@ -25,7 +25,7 @@ pub enum SessionError {
     NoOutput,
     /// A bounded buffer the session sizes dropped data it cannot hold
     /// ([`crate::overflow`]); each counter says what `--set` would hold it.
-    #[error("{message}: {}", crate::overflow::list(.overflow))]
+    #[error("{}; {message}", crate::overflow::list(.overflow))]
     Dropped {
         message: String,
         overflow: Vec<plait_gpu::Overflow>,
