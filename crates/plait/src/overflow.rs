@@ -149,3 +149,59 @@ pub(crate) fn list(overflow: &[Overflow]) -> String {
         .collect::<Vec<_>>()
         .join("; ")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn counter(dropped: u64, grows: bool) -> Overflow {
+        Overflow {
+            pass: "hair_lists".into(),
+            counter: "list_counter".into(),
+            of: "list_nodes".into(),
+            dropped,
+            needed: 451_556,
+            capacity: 11 * 25_600,
+            param: "nodes_per_pixel".into(),
+            value: 11,
+            per: 25_600,
+            value_needed: 18,
+            grows,
+        }
+    }
+
+    fn frame(overflow: Vec<Overflow>) -> FrameReport {
+        FrameReport {
+            passes: Vec::new(),
+            total_gpu_ms: None,
+            overflow,
+        }
+    }
+
+    /// A frame that drops from a buffer the session sized fails, naming the
+    /// count and the flag; the user's cap only reports.
+    #[test]
+    fn only_drops_from_sizes_nobody_chose_fail_a_frame() {
+        assert!(check_frame(&frame(vec![counter(0, true)])).is_ok());
+        assert!(check_frame(&frame(vec![counter(5, false)])).is_ok());
+        let e = check_frame(&frame(vec![counter(5, true)]))
+            .expect_err("a grown buffer that drops")
+            .to_string();
+        assert!(e.contains("dropped 5"), "{e}");
+        assert!(e.contains("--set params.nodes_per_pixel=18"), "{e}");
+    }
+
+    #[test]
+    fn grown_sizes_hold_what_was_needed_with_headroom() {
+        let o = counter(1, true);
+        // 451556 × 1.25 = 564445 nodes over 25600 pixels: 22.05 → 23.
+        assert_eq!(grown_value(&o, HEADROOM), 23);
+        assert_eq!(grown_value(&o, 1.0), 18);
+        // Never below one more than it had.
+        let barely = Overflow {
+            needed: 11 * 25_600 + 1,
+            ..o
+        };
+        assert_eq!(grown_value(&barely, 1.0), 12);
+    }
+}
