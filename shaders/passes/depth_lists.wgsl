@@ -1,7 +1,8 @@
 // depth_lists: every hair fragment's linear light depth in its texel's list
 // (the exact fragment count of Sintorn & Assarsson 2009 §3, Fig. 5). A slot
 // comes from atomicAdd on the texel's counter; past the capacity (the `lists`
-// buffer's words per texel) the fragment is dropped and counted in `overflow`.
+// buffer's words per texel) the fragment is dropped and counted in `overflow`:
+// [0] dropped fragments, [1] overflowing texels, [2] the longest list asked for.
 #import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
@@ -26,5 +27,8 @@ fn fs_main(in: MapFragment) {
         if (slot == capacity) {
             atomicAdd(&overflow[1], 1u);
         }
+        // The capacity that would have held this texel's list (only written
+        // past the capacity, so a list that fits costs no extra atomic).
+        atomicMax(&overflow[2], slot + 1u);
     }
 }

@@ -110,6 +110,7 @@ pub fn render(
     // The first frame includes pipeline warm-up in the driver; time the second.
     prepared.renderer.render()?;
     let report = prepared.renderer.render()?;
+    plait::overflow::check_frame(&report)?;
     let mut notes = prepared.renderer.notes().to_vec();
     let image = match show {
         Some(name) => {
@@ -265,6 +266,8 @@ pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Val
         "memory": { "peak_bytes": s.memory.peak_bytes, "unpooled_bytes": s.memory.unpooled_bytes },
         "output": out.display().to_string(),
         "notes": r.notes,
+        // Every declared overflow counter, `dropped` 0 when its buffer held everything.
+        "overflow": r.report.overflow,
     })
 }
 
@@ -306,5 +309,17 @@ pub fn print_table(pipeline: &Path, r: &Rendered, out: &Path, total: &str) -> st
         s.physical.len(),
         s.memory.unpooled_bytes as f64 / 1048576.0
     )?;
+    print_dropped(&r.report)?;
     outln!("wrote {}", out.display())
+}
+
+/// One line per bounded buffer that dropped data (only a size the user set
+/// can: the session grows the defaults until they hold everything).
+fn print_dropped(report: &FrameReport) -> std::io::Result<()> {
+    for o in report.dropped() {
+        outln!(
+            "dropped: {o} (a size set by --set or the pipeline file is a cap; left unset, it grows to hold everything)"
+        )?;
+    }
+    Ok(())
 }

@@ -8,6 +8,7 @@ use wgpu::util::DeviceExt;
 
 use crate::frame::FrameUniforms;
 use crate::geometry::SceneGeometry;
+use crate::overflow::{Overflow, OverflowReadback};
 use crate::pass::{
     BuildContext, FrameSamplers, PassLibrary, PreparedPass, RecordContext, frame_layout,
 };
@@ -38,6 +39,17 @@ pub struct FrameReport {
     /// First timestamp to last: the frame on the GPU (not the sum of passes,
     /// which double-counts overlap on pipelined GPUs).
     pub total_gpu_ms: Option<f64>,
+    /// Every overflow counter the schedule declares, as this frame left it:
+    /// what each bounded buffer could not hold ([`Overflow::dropped`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub overflow: Vec<Overflow>,
+}
+
+impl FrameReport {
+    /// The counters that dropped something this frame.
+    pub fn dropped(&self) -> impl Iterator<Item = &Overflow> {
+        self.overflow.iter().filter(|o| o.dropped > 0)
+    }
 }
 
 struct Timestamps {
@@ -58,6 +70,7 @@ pub struct Renderer<'g> {
     frame_bind_group: wgpu::BindGroup,
     passes: Vec<Box<dyn PreparedPass>>,
     timestamps: Option<Timestamps>,
+    overflow: OverflowReadback,
     notes: Vec<String>,
     /// Frames rendered so far: `run = "once"` passes record on the first.
     frames_rendered: std::sync::atomic::AtomicU64,
@@ -159,8 +172,10 @@ impl<'g> Renderer<'g> {
                 period_ns: gpu.queue.get_timestamp_period(),
             }
         });
+        let overflow = OverflowReadback::new(device, &schedule, &pool);
         Ok(Renderer {
             gpu,
+            overflow,
             schedule,
             pool,
             geometry,
@@ -252,6 +267,7 @@ impl<'g> Renderer<'g> {
                 encoder.push_debug_group(&self.schedule.passes[i].name);
                 pass.record(&ctx, &mut encoder);
                 encoder.pop_debug_group();
+                self.overflow.record(i, &self.pool, &mut encoder);
             }
             // The frame's last timestamp also covers aging the histories.
             if i + 1 == self.passes.len() {
@@ -337,6 +353,7 @@ impl<'g> Renderer<'g> {
         Ok(FrameReport {
             passes,
             total_gpu_ms,
+            overflow: self.overflow.read(device, &self.schedule)?,
         })
     }
 

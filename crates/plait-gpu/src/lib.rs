@@ -10,6 +10,7 @@ pub mod executor;
 pub mod frame;
 pub mod geometry;
 pub mod modules;
+pub mod overflow;
 pub mod pass;
 pub mod pool;
 pub mod readback;
@@ -18,6 +19,7 @@ pub mod shader;
 
 pub use device::{Capabilities, Gpu, NO_ADAPTER_HELP};
 pub use executor::{FrameReport, PassTiming, Renderer};
+pub use overflow::Overflow;
 pub use pass::{PassLibrary, PassType};
 pub use shader::{Define, ShaderError, ShaderLibrary};
 

@@ -24,6 +24,7 @@ pub mod format;
 mod history;
 pub mod load;
 mod node_reader;
+pub mod overflow;
 mod overrides;
 pub mod pass_type_file;
 pub mod raster_decl;

@@ -84,6 +84,9 @@ pub struct ResourceDecl {
     /// Set on the resources the loader adds for a history: `NAME.previous.K`
     /// is `NAME` as it was K frames ago, read-only.
     pub previous_of: Option<PreviousOf>,
+    /// Buffers only: `overflow = {…}` makes this buffer the counter of what
+    /// another, bounded buffer could not hold ([`crate::overflow`]).
+    pub overflow: Option<crate::overflow::OverflowDecl>,
 }
 
 /// What a `NAME.previous…` resource holds: `resource` as it was `frames_ago`

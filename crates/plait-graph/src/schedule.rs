@@ -256,6 +256,47 @@ pub struct Schedule {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub history: Vec<HistoryCopy>,
     pub memory: MemoryReport,
+    /// Counters of what bounded buffers could not hold (`overflow = {…}` on a
+    /// resource), which the engine reads back after every frame.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub overflow: Vec<OverflowCounter>,
+}
+
+/// A counter buffer declared with `overflow = {…}` ([`crate::overflow`]):
+/// word `dropped_word` counts what the buffer `of` could not hold, word
+/// `needed_word` the capacity that would have held it all, in items of
+/// `of`; `of` holds `value × per` items, `value` being the param `param`.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct OverflowCounter {
+    pub counter: ResourceId,
+    pub counter_name: String,
+    /// The bounded buffer.
+    pub of: String,
+    pub dropped_word: u32,
+    pub needed_word: u32,
+    pub param: String,
+    /// The param's value in this schedule.
+    pub value: i64,
+    pub per: u64,
+    /// The param has its technique's default (nobody chose it): the session
+    /// may raise it until `of` holds everything. `false` when the user set
+    /// it (a `--set` flag or a pipeline file): then drops are reported.
+    pub grows: bool,
+    /// Where the param's value was set.
+    #[serde(skip)]
+    pub param_location: Location,
+}
+
+impl OverflowCounter {
+    /// Items `of` holds.
+    pub fn capacity(&self) -> u64 {
+        self.value.max(0) as u64 * self.per
+    }
+
+    /// The smallest value of `param` that holds `needed` items.
+    pub fn value_for(&self, needed: u64) -> u64 {
+        needed.div_ceil(self.per).max(1)
+    }
 }
 
 impl Schedule {

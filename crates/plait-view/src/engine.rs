@@ -227,8 +227,23 @@ impl<'g> Engine<'g> {
             .map_err(session::SessionError::from)
             .and_then(|schedule| {
                 let shown = schedule.clone();
-                session::build(self.gpu, schedule, &self.pipeline, scene, self.opts.size)
-                    .map(|p| (p, shown))
+                // Bounded buffers the user did not size hold every fragment.
+                let recompile = |extra: &[String]| {
+                    session::compile_checked(
+                        &self.pipeline,
+                        &[sets.as_slice(), extra].concat(),
+                        &opts,
+                    )
+                };
+                plait::overflow::prepare_holding(
+                    self.gpu,
+                    schedule,
+                    &recompile,
+                    &self.pipeline,
+                    scene,
+                    self.opts.size,
+                )
+                .map(|p| (p, shown))
             });
         match result {
             Ok((prepared, schedule)) => {

@@ -84,7 +84,9 @@ impl Prepared<'_> {
     ) -> Result<FrameReport, SessionError> {
         let frame = self.pose_frame(scene, size, index, fps)?;
         self.renderer.set_frame(&frame);
-        Ok(self.renderer.render()?)
+        let report = self.renderer.render()?;
+        crate::overflow::check_frame(&report)?;
+        Ok(report)
     }
 
     /// Moves the hair to frame `index` (uploaded only when its pose
@@ -144,9 +146,24 @@ pub fn median_report(frames: &[FrameReport]) -> Option<FrameReport> {
             timing
         })
         .collect();
+    // Drops: each counter's worst frame, so a sequence that dropped says so.
+    let overflow = first
+        .overflow
+        .iter()
+        .enumerate()
+        .map(|(i, o)| {
+            frames
+                .iter()
+                .filter_map(|f| f.overflow.get(i))
+                .max_by_key(|o| o.dropped)
+                .unwrap_or(o)
+                .clone()
+        })
+        .collect();
     Some(FrameReport {
         passes,
         total_gpu_ms: median(frames.iter().filter_map(|f| f.total_gpu_ms).collect()),
+        overflow,
     })
 }
 
@@ -191,6 +208,7 @@ mod tests {
                 })
                 .collect(),
             total_gpu_ms: Some(total),
+            overflow: Vec::new(),
         }
     }
 

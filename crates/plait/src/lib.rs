@@ -8,6 +8,7 @@
 //! - [`hair`]: strands, `.hair` files, grooms, scenes;
 //! - [`gpu`]: the wgpu executor;
 //! - [`passes`]: the pass library;
+//! - [`overflow`]: bounded buffers sized to hold every frame's data;
 //! - [`frames`]: sequences of frames (time, head animation, medians);
 //! - [`ab`]: A/B runs, several pipelines against a reference, as one report.
 
@@ -18,5 +19,6 @@ pub use plait_passes as passes;
 
 pub mod ab;
 pub mod frames;
+pub mod overflow;
 pub mod probe;
 pub mod session;

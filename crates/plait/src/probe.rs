@@ -17,7 +17,7 @@ use plait_compare::report::{Visibility, VisibilityCurve};
 use plait_gpu::Gpu;
 use plait_graph::Value;
 
-use crate::session::{SceneData, SessionError, build, check_pipeline, gpu_options};
+use crate::session::{SceneData, SessionError, check_pipeline, gpu_options};
 
 /// Rays on a uv grid of the light map, sampled at evenly spaced light depths.
 #[derive(Clone, Debug)]
@@ -117,7 +117,7 @@ pub fn probe_visibility(
     prepared
         .renderer
         .set_frame(&scene.frame(size, 0).with_light_jitter(false));
-    prepared.renderer.render()?;
+    crate::overflow::check_frame(&prepared.renderer.render()?)?;
     let values = read_probe(&prepared)?;
     Ok(Some(Probed { visibility, values }))
 }
@@ -153,7 +153,7 @@ pub fn probe_sequence(
     for index in 0..frames {
         let frame = prepared.pose_frame(scene, size, index, fps)?;
         prepared.renderer.set_frame(&frame.with_light_jitter(false));
-        prepared.renderer.render()?;
+        crate::overflow::check_frame(&prepared.renderer.render()?)?;
         values.push(read_probe(&prepared)?);
     }
     Ok(Some(ProbedSequence {
@@ -237,9 +237,14 @@ fn build_probe<'g>(
         "{}.probe.toml",
         file_name.trim_end_matches(".toml")
     ));
-    let loaded = plait_graph::load_str(&probe_path, &text, sets)?;
-    let schedule = check_pipeline(loaded, &opts)?;
-    let prepared = build(gpu, schedule, &probe_path, scene, size)?;
+    let compile = |extra: &[String]| {
+        let loaded = plait_graph::load_str(&probe_path, &text, &[sets, extra].concat())?;
+        check_pipeline(loaded, &opts)
+    };
+    let schedule = compile(&[])?;
+    // The reference's bounded buffers hold everything, as when it renders.
+    let prepared =
+        crate::overflow::prepare_holding(gpu, schedule, &compile, &probe_path, scene, size)?;
     Ok(Some((visibility, prepared)))
 }
 

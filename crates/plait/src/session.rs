@@ -23,6 +23,13 @@ pub enum SessionError {
     Gpu(#[from] GpuError),
     #[error("the pipeline declares no output")]
     NoOutput,
+    /// A bounded buffer the session sizes dropped data it cannot hold
+    /// ([`crate::overflow`]); each counter says what `--set` would hold it.
+    #[error("{}; {message}", crate::overflow::list(.overflow))]
+    Dropped {
+        message: String,
+        overflow: Vec<plait_gpu::Overflow>,
+    },
 }
 
 /// The checkout plait was built from (benchmarks and tests that need its
@@ -254,7 +261,9 @@ impl Prepared<'_> {
     }
 }
 
-/// Compile, check and build `pipeline` for `scene` at `size` on `gpu`.
+/// Compile, check and build `pipeline` for `scene` at `size` on `gpu`, its
+/// bounded buffers sized to hold the first frame unless the user sized
+/// them ([`crate::overflow`]).
 pub fn prepare<'g>(
     gpu: &'g Gpu,
     pipeline: &Path,
@@ -262,8 +271,10 @@ pub fn prepare<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
-    let schedule = compile_checked(pipeline, sets, &gpu_options(gpu, size))?;
-    build(gpu, schedule, pipeline, scene, size)
+    let opts = gpu_options(gpu, size);
+    let schedule = compile_checked(pipeline, sets, &opts)?;
+    let recompile = |extra: &[String]| compile_checked(pipeline, &[sets, extra].concat(), &opts);
+    crate::overflow::prepare_holding(gpu, schedule, &recompile, pipeline, scene, size)
 }
 
 /// Standard inputs for frame `index` of `scene` at `size` as `schedule`

@@ -196,6 +196,7 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
             }
         }
         h.push_str("</table>");
+        overflow_table(&mut h, report, scene);
 
         // Visibility (reserved).
         h.push_str("<h3>Self-shadowing visibility</h3>");
@@ -460,6 +461,43 @@ fn strip_xml_prolog(svg: &str) -> &str {
 
 /// `--frames`: each variant's flicker against the reference's own change
 /// (the plots over time are among the scene's charts).
+/// Bounded buffers that declare an overflow counter: what each variant's
+/// dropped at its worst frame (only a size the user capped drops).
+fn overflow_table(h: &mut String, report: &Report, scene: &super::SceneResult) {
+    if scene.runs.iter().all(|r| r.overflow.is_empty()) {
+        return;
+    }
+    h.push_str("<h3>Bounded buffers</h3><p class=note>items each buffer could not hold, at the worst frame; 0 = it held everything</p>");
+    h.push_str("<table><tr><th class=l>variant</th><th class=l>buffer</th><th class=l>pass</th><th>dropped</th><th>holds</th><th>needed</th><th class=l>size</th></tr>");
+    for run in &scene.runs {
+        let Some(v) = report.variant(&run.variant) else {
+            continue;
+        };
+        for o in &run.overflow {
+            let (style, needed, size) = if o.dropped > 0 {
+                (
+                    " style=\"color:#b00;font-weight:bold\"",
+                    o.needed.to_string(),
+                    format!("{}={} (needs {})", o.param, o.value, o.value_needed),
+                )
+            } else {
+                ("", "–".into(), format!("{}={}", o.param, o.value))
+            };
+            let _ = write!(
+                h,
+                "<tr{style}><td class=l>{}</td><td class=l>{}</td><td class=l>{}</td><td>{}</td><td>{}</td><td>{needed}</td><td class=l>{}</td></tr>",
+                escape(&v.label),
+                escape(&o.of),
+                escape(&o.pass),
+                o.dropped,
+                o.capacity,
+                escape(&size)
+            );
+        }
+    }
+    h.push_str("</table>");
+}
+
 fn temporal_table(h: &mut String, report: &Report, scene: &super::SceneResult) {
     if !scene.runs.iter().any(|r| r.temporal.is_some()) {
         return;

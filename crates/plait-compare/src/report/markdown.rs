@@ -49,6 +49,14 @@ pub fn markdown(report: &Report) -> String {
         if temporal {
             out.push_str(" image flicker | visibility flicker |");
         }
+        // Only a size the user capped drops: a column then, never silence.
+        let dropping = scene
+            .runs
+            .iter()
+            .any(|r| r.overflow.iter().any(|o| o.dropped > 0));
+        if dropping {
+            out.push_str(" dropped |");
+        }
         out.push_str("\n|---|---:|---:|---:|");
         if probed {
             out.push_str("---:|");
@@ -56,6 +64,9 @@ pub fn markdown(report: &Report) -> String {
         out.push_str("---:|---:|---:|");
         if temporal {
             out.push_str("---:|---:|");
+        }
+        if dropping {
+            out.push_str("---:|");
         }
         out.push('\n');
         for run in &scene.runs {
@@ -97,6 +108,10 @@ pub fn markdown(report: &Report) -> String {
                     }
                     None => out.push_str(" | |"),
                 }
+            }
+            if dropping {
+                let dropped: u64 = run.overflow.iter().map(|o| o.dropped).sum();
+                let _ = write!(out, " {dropped} |");
             }
             out.push('\n');
         }

@@ -12,8 +12,15 @@
 //!              runs: [ {variant, image, diff_image, flip_image, diff_scale,
 //!                       timing {total_gpu_ms: Stats|null, wall_ms: Stats, passes: [{name, type_name, gpu_ms: Stats|null}]},
 //!                       metrics {rmse, psnr_db, ssim, flip_mean, max_abs_diff},
-//!                       visibility: Visibility | null} ] } ] }
+//!                       visibility: Visibility | null,
+//!                       overflow: [ {pass, counter, of, dropped, needed, capacity, param, value, value_needed} ]} ] } ] }
 //! ```
+//!
+//! `overflow` lists the variant's bounded buffers that declare an overflow
+//! counter (fragment lists, exact depth lists), each at its worst frame of
+//! the run: `dropped` items `of` could not hold (0: it held everything).
+//! Only a size the user set can drop (the session grows the defaults), and
+//! a reference that drops fails the run instead of being reported.
 //! `Stats` is `{median, min, max, q1, q3, samples}` in milliseconds.
 //!
 //! `sweeps` holds the `--sweep`s in order: none, one (a variant per value)
@@ -171,9 +178,33 @@ pub struct Run {
     pub timing: Timing,
     pub metrics: Metrics,
     pub visibility: Option<Visibility>,
+    /// Every overflow counter of the variant at its worst frame.
+    pub overflow: Vec<Overflow>,
     /// Flicker over the animated sequence (`plait ab --frames`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub temporal: Option<crate::temporal::Temporal>,
+}
+
+/// What one bounded buffer of a variant could not hold, at the run's worst
+/// frame (`plait_gpu::Overflow` in the report's shape).
+#[derive(Clone, Debug, Serialize)]
+pub struct Overflow {
+    /// The pass appending to the buffer.
+    pub pass: String,
+    /// The counter buffer.
+    pub counter: String,
+    /// The bounded buffer.
+    pub of: String,
+    /// Items dropped (0: it held everything).
+    pub dropped: u64,
+    /// The capacity that would have held them all (when `dropped > 0`).
+    pub needed: u64,
+    /// Items the buffer holds.
+    pub capacity: u64,
+    /// The param sizing the buffer, its value, and the value that holds `needed`.
+    pub param: String,
+    pub value: i64,
+    pub value_needed: u64,
 }
 
 #[derive(Clone, Debug, Serialize)]

@@ -44,6 +44,7 @@ fn sample() -> Report {
             ..Metrics::default()
         },
         visibility: None,
+        overflow: vec![],
         temporal: None,
     };
     Report {
@@ -295,4 +296,48 @@ fn one_sweep_keeps_its_charts_and_no_grid() {
         charts[0].contains("<polyline"),
         "error vs cost joins one sweep too"
     );
+}
+
+fn overflow(dropped: u64) -> super::Overflow {
+    super::Overflow {
+        pass: "hair_lists".into(),
+        counter: "list_counter".into(),
+        of: "list_nodes".into(),
+        dropped,
+        needed: 40000,
+        capacity: 25600,
+        param: "nodes_per_pixel".into(),
+        value: 1,
+        value_needed: 2,
+    }
+}
+
+/// A run whose capped buffer dropped data says so in every form of the
+/// report; one that held everything shows its counter without a count.
+#[test]
+fn dropped_data_is_in_json_html_and_markdown() {
+    let mut report = sample();
+    report.scenes[0].runs[0].overflow = vec![overflow(0)];
+    let quiet = markdown(&report);
+    assert!(
+        !quiet.contains("dropped"),
+        "no column without drops:\n{quiet}"
+    );
+    report.scenes[0].runs[1].overflow = vec![overflow(14400)];
+    let json = serde_json::to_value(&report).expect("json");
+    assert_eq!(
+        json["scenes"][0]["runs"][1]["overflow"][0]["dropped"],
+        14400
+    );
+    assert_eq!(json["scenes"][0]["runs"][0]["overflow"][0]["dropped"], 0);
+    let page = html(&report, &[]);
+    assert!(page.contains("Bounded buffers"), "no overflow table");
+    assert!(
+        page.contains("<td>14400</td>"),
+        "count missing from the HTML"
+    );
+    assert!(page.contains("nodes_per_pixel=1 (needs 2)"));
+    let md = markdown(&report);
+    assert!(md.contains(" dropped |"), "no dropped column:\n{md}");
+    assert!(md.contains(" 14400 |"), "count missing:\n{md}");
 }

@@ -74,10 +74,19 @@ pub fn compile(
     let outputs = check_outputs(pipeline, &passes, &mut errors);
     crate::run_once::check_writers(pipeline, &passes, &mut errors);
     let order = order_passes(&passes, pipeline, &mut errors);
+    crate::overflow::check(pipeline, opts, &mut errors);
 
     let Some(order) = order.filter(|_| errors.is_empty()) else {
         errors.sort_by(|a, b| location_order(&a.location, &b.location));
         return Err(Errors(errors));
     };
-    Ok(build_schedule(pipeline, passes, order, &outputs, descs))
+    let mut schedule = build_schedule(pipeline, passes, order, &outputs, descs);
+    schedule.overflow = crate::overflow::counters(pipeline, &schedule.resources, opts);
+    Ok(schedule)
+}
+
+/// An integer value or expression over the render size, as resource sizes
+/// are evaluated.
+pub(crate) fn int_of(v: &crate::value::Value, opts: &CompileOptions) -> Result<i64, String> {
+    values::int_value(v, opts)
 }

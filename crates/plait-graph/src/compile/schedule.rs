@@ -206,6 +206,7 @@ pub(super) fn build_schedule(
         outputs: output_ids,
         history,
         memory,
+        overflow: Vec::new(),
     }
 }
 

@@ -23,7 +23,7 @@ pub(crate) const TEXTURE_KEYS: &[&str] = &[
     "history",
     "persistent",
 ];
-pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size", "history", "persistent"];
+pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size", "history", "persistent", "overflow"];
 /// The most frames of history a resource may keep (one copy per frame each).
 pub const MAX_HISTORY: i64 = 8;
 pub(crate) const PASS_KEYS: &[&str] = &[
@@ -405,6 +405,10 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
         history,
         persistent,
         previous_of: None,
+        overflow: match (kind, t.get("overflow")) {
+            (ResourceKind::Buffer, Some(e)) => crate::overflow::parse(&e.value, name, b.errors),
+            _ => None,
+        },
     })
 }
 
@@ -420,6 +424,7 @@ fn previous_versions(r: &ResourceDecl) -> Vec<ResourceDecl> {
             location: history.location.clone(),
             history: None,
             persistent: None,
+            overflow: None,
             previous_of: Some(PreviousOf {
                 resource: r.name.clone(),
                 frames_ago,

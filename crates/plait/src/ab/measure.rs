@@ -1,7 +1,7 @@
 //! Timings and memory of a variant, in the report's shapes.
 
 use plait_compare::Stats;
-use plait_compare::report::{Memory, PassStats, ResourceMemory, Timing};
+use plait_compare::report::{Memory, Overflow, PassStats, ResourceMemory, Timing};
 use plait_gpu::FrameReport;
 use plait_graph::Schedule;
 
@@ -37,6 +37,8 @@ pub(super) struct Samples {
     total_gpu: Vec<f64>,
     /// `per_pass[k]`: pass k's GPU times.
     per_pass: Vec<Vec<f64>>,
+    /// Each overflow counter at the frame it dropped the most.
+    overflow: Vec<plait_gpu::Overflow>,
 }
 
 impl Samples {
@@ -45,10 +47,53 @@ impl Samples {
             wall: Vec::new(),
             total_gpu: Vec::new(),
             per_pass: vec![Vec::new(); schedule.passes.len()],
+            overflow: Vec::new(),
         }
     }
 
+    /// Keeps each counter's worst frame (the warm-up's too: a frame that
+    /// dropped data counts whether or not it was timed).
+    pub(super) fn add_overflow(&mut self, frame: &FrameReport) {
+        if self.overflow.is_empty() {
+            self.overflow = frame.overflow.clone();
+            return;
+        }
+        for (worst, now) in self.overflow.iter_mut().zip(&frame.overflow) {
+            if now.dropped > worst.dropped {
+                *worst = now.clone();
+            }
+        }
+    }
+
+    /// The counters that dropped anything, at their worst frame.
+    pub(super) fn dropped(&self) -> Vec<plait_gpu::Overflow> {
+        self.overflow
+            .iter()
+            .filter(|o| o.dropped > 0)
+            .cloned()
+            .collect()
+    }
+
+    /// The counters in the report's shape.
+    pub(super) fn overflow(&self) -> Vec<Overflow> {
+        self.overflow
+            .iter()
+            .map(|o| Overflow {
+                pass: o.pass.clone(),
+                counter: o.counter.clone(),
+                of: o.of.clone(),
+                dropped: o.dropped,
+                needed: o.needed,
+                capacity: o.capacity,
+                param: o.param.clone(),
+                value: o.value,
+                value_needed: o.value_needed,
+            })
+            .collect()
+    }
+
     pub(super) fn add(&mut self, wall_ms: f64, frame: &FrameReport) {
+        self.add_overflow(frame);
         self.wall.push(wall_ms);
         if let Some(t) = frame.total_gpu_ms {
             self.total_gpu.push(t);

@@ -67,6 +67,16 @@ pub enum AbError {
         #[source]
         source: SessionError,
     },
+    /// The reference's bounded buffers dropped data (a size the user
+    /// capped): its image is not the truth the variants are measured by.
+    #[error(
+        "the reference {label} dropped data on scene {scene}, so it is no reference: {dropped}; remove the --set that caps it"
+    )]
+    ReferenceDropped {
+        label: String,
+        scene: String,
+        dropped: String,
+    },
     #[error("{what}")]
     Compare {
         what: String,

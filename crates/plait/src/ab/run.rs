@@ -235,17 +235,29 @@ fn time_interleaved(
     prepared: &[Prepared<'_>],
     ticker: &mut Ticker<'_>,
 ) -> Result<Vec<Samples>, AbError> {
-    for (v, p) in plan.variants.iter().zip(prepared) {
-        p.renderer.render().map_err(|e| AbError::Render {
-            what: format!("{} on scene {} (warm-up)", v.label, scene.name),
-            source: e.into(),
-        })?;
-        ticker.step(format!("{}: warm-up {}", scene.name, v.label))?;
-    }
     let mut samples: Vec<Samples> = prepared
         .iter()
         .map(|p| Samples::new(p.schedule()))
         .collect();
+    for ((v, p), s) in plan.variants.iter().zip(prepared).zip(&mut samples) {
+        let frame = p.renderer.render().map_err(|e| AbError::Render {
+            what: format!("{} on scene {} (warm-up)", v.label, scene.name),
+            source: e.into(),
+        })?;
+        s.add_overflow(&frame);
+        ticker.step(format!("{}: warm-up {}", scene.name, v.label))?;
+    }
+    // The reference is the truth the others are measured against: one
+    // that dropped data (a size capped with --set) measures nothing.
+    let reference = plan.reference_index();
+    let dropped = samples[reference].dropped();
+    if !dropped.is_empty() {
+        return Err(AbError::ReferenceDropped {
+            label: plan.variants[reference].label.clone(),
+            scene: scene.name.clone(),
+            dropped: crate::overflow::list(&dropped),
+        });
+    }
     let repeats = plan.options.repeats;
     for r in 0..repeats {
         for ((v, p), s) in plan.variants.iter().zip(prepared).zip(&mut samples) {
@@ -255,6 +267,12 @@ fn time_interleaved(
                 source: e.into(),
             })?;
             s.add(start.elapsed().as_secs_f64() * 1e3, &frame);
+            crate::overflow::check_frame(&frame).map_err(render_error(format!(
+                "{} on scene {} (repeat {})",
+                v.label,
+                scene.name,
+                r + 1
+            )))?;
             ticker.step(format!(
                 "{}: repeat {}/{repeats} {}",
                 scene.name,
@@ -377,6 +395,7 @@ fn scene_result(
             timing: samples[i].timing(prepared[i].schedule()),
             metrics: c.metrics,
             visibility,
+            overflow: samples[i].overflow(),
             temporal,
         });
     }

@@ -1,0 +1,198 @@
+//! Bounded buffers never drop data silently (issue 20): a size the user
+//! caps is respected and what it dropped is in the render table, `--json`
+//! and the A/B report; a reference that drops fails `plait ab` with the
+//! count; by default the buffers grow to hold everything.
+
+mod common;
+use common::{plait, text};
+
+/// `plait render … --json` on the small scene at 64x48: the report.
+fn render_json(pipeline: &str, sets: &[&str]) -> serde_json::Value {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("out.png");
+    let mut args = vec![
+        "render",
+        pipeline,
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--json",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ];
+    for s in sets {
+        args.extend(["--set", s]);
+    }
+    let o = plait(&args);
+    assert!(o.status.success(), "{pipeline}: {}", text(&o.stderr));
+    serde_json::from_slice(&o.stdout).expect("--json prints JSON")
+}
+
+/// The one overflow counter of a report.
+fn counter(json: &serde_json::Value) -> &serde_json::Value {
+    let list = json["overflow"].as_array().expect("an overflow list");
+    assert_eq!(list.len(), 1, "{list:?}");
+    &list[0]
+}
+
+fn count(v: &serde_json::Value, key: &str) -> u64 {
+    v[key]
+        .as_u64()
+        .unwrap_or_else(|| panic!("{key} missing: {v}"))
+}
+
+#[test]
+fn a_capped_fragment_pool_reports_its_drops_in_json_and_table() {
+    let json = render_json("pipelines/linked_list.toml", &["params.nodes_per_pixel=1"]);
+    let c = counter(&json);
+    assert_eq!(c["of"], "list_nodes");
+    assert_eq!(c["pass"], "hair_lists");
+    assert_eq!(c["grows"], false, "a --set is the user's cap");
+    let (dropped, needed, capacity) = (
+        count(c, "dropped"),
+        count(c, "needed"),
+        count(c, "capacity"),
+    );
+    assert_eq!(capacity, 64 * 48, "one node per pixel");
+    assert!(dropped > 0, "{c}");
+    // The pool holds its capacity; everything past it is dropped.
+    assert_eq!(dropped, needed - capacity, "{c}");
+    assert_eq!(count(c, "value_needed"), needed.div_ceil(capacity));
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("out.png");
+    let o = plait(&[
+        "render",
+        "pipelines/linked_list.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--set",
+        "params.nodes_per_pixel=1",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let table = text(&o.stdout);
+    let line = table
+        .lines()
+        .find(|l| l.starts_with("dropped:"))
+        .unwrap_or_else(|| panic!("no dropped line:\n{table}"));
+    assert!(
+        line.contains(&format!(
+            "`list_nodes` (pass `hair_lists`) dropped {dropped}:"
+        )),
+        "{line}"
+    );
+    assert!(line.contains("--set params.nodes_per_pixel="), "{line}");
+}
+
+#[test]
+fn by_default_the_pool_grows_and_drops_nothing() {
+    let json = render_json("pipelines/linked_list.toml", &[]);
+    let c = counter(&json);
+    assert_eq!(c["grows"], true, "the technique's default");
+    assert_eq!(count(c, "dropped"), 0, "{c}");
+    assert!(count(c, "capacity") >= count(c, "needed"), "{c}");
+}
+
+#[test]
+fn a_capped_exact_shadow_reports_its_drops() {
+    let json = render_json("pipelines/exact_shadow.toml", &["params.exact_capacity=4"]);
+    let c = counter(&json);
+    assert_eq!(c["of"], "light_lists");
+    assert_eq!(count(c, "capacity"), 4);
+    assert!(count(c, "dropped") > 0, "{c}");
+    // `needed` is the longest list asked for: past the cap, and what
+    // `value_needed` says to set.
+    assert!(count(c, "needed") > 4, "{c}");
+    assert_eq!(count(c, "value_needed"), count(c, "needed"));
+    let held = render_json("pipelines/exact_shadow.toml", &[]);
+    assert_eq!(count(counter(&held), "dropped"), 0, "{held}");
+}
+
+fn ab(args: &[&str], out: &std::path::Path) -> std::process::Output {
+    let mut all = vec![
+        "ab",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--repeats",
+        "1",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ];
+    all.extend(args);
+    plait(&all)
+}
+
+#[test]
+fn a_reference_that_drops_fails_ab_with_the_count() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("report");
+    let o = ab(
+        &[
+            "pipelines/linked_list.toml",
+            "--reference",
+            "pipelines/linked_list.toml",
+            "--set",
+            "params.nodes_per_pixel=1",
+        ],
+        &out,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
+    let err = text(&o.stderr);
+    assert!(err.contains("the reference"), "{err}");
+    let dropped = err
+        .split("`list_nodes` (pass `hair_lists`) dropped ")
+        .nth(1)
+        .and_then(|rest| rest.split(':').next())
+        .and_then(|n| n.parse::<u64>().ok())
+        .unwrap_or_else(|| panic!("no count in: {err}"));
+    assert!(dropped > 0, "{err}");
+    assert!(!out.exists(), "no report from a failed run");
+}
+
+#[test]
+fn ab_reports_every_variants_drops() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("report");
+    let o = ab(
+        &[
+            "pipelines/linked_list.toml",
+            "--reference",
+            "pipelines/depth_peeling.toml",
+            "--sweep",
+            "params.nodes_per_pixel=1,64",
+        ],
+        &out,
+    );
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).expect("report.json"))
+            .expect("JSON");
+    let runs = json["scenes"][0]["runs"].as_array().expect("runs");
+    let dropped: Vec<(String, u64)> = runs
+        .iter()
+        .filter_map(|r| {
+            let o = r["overflow"].as_array()?.first()?;
+            Some((r["variant"].as_str()?.to_owned(), o["dropped"].as_u64()?))
+        })
+        .collect();
+    assert_eq!(dropped.len(), 2, "{dropped:?}");
+    assert!(dropped[0].1 > 0, "1 node per pixel drops: {dropped:?}");
+    assert_eq!(
+        dropped[1].1, 0,
+        "64 nodes per pixel hold the small scene: {dropped:?}"
+    );
+    let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
+    assert!(
+        html.contains("Bounded buffers"),
+        "no overflow table in the HTML"
+    );
+    let md = std::fs::read_to_string(out.join("report.md")).expect("report.md");
+    assert!(md.contains(&format!(" {} |", dropped[0].1)), "{md}");
+}

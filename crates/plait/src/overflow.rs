@@ -1,0 +1,207 @@
+//! Bounded buffers that hold everything by default.
+//!
+//! A technique that appends to a bounded buffer (fragment lists, per-texel
+//! depth lists) declares the counter of what it dropped
+//! ([`plait_graph::overflow`]); the engine reads every counter after every
+//! frame ([`plait_gpu::Overflow`]). The rule the session applies:
+//!
+//! - a sizing param that still has its technique file's default is only a
+//!   starting size: [`prepare_holding`] renders one frame, and when it
+//!   dropped anything, raises the param to what the frame needed plus
+//!   [`HEADROOM`], rebuilds and renders again; if that still drops, or the
+//!   grown buffer does not fit the adapter, the render fails naming the
+//!   buffer, the count and the `--set` it would need;
+//! - a value the user set (a `--set` flag, or the pipeline file or a file it
+//!   extends) is a cap: the render goes on and every frame report says what
+//!   was dropped, for the caller to show (`plait render`, `plait ab`).
+//!
+//! The sizing frame is thrown away and the pipeline built anew, so the
+//! caller's first frame is the renderer's first (histories, `run = "once"`).
+
+use std::path::Path;
+
+use plait_gpu::{FrameReport, Gpu, Overflow};
+use plait_graph::{Errors, Schedule};
+
+use crate::session::{Prepared, SceneData, SessionError, build};
+
+/// How much more than a frame asked for a grown buffer holds: the next
+/// frame (a moved head, a jittered camera) may ask for a little more.
+pub const HEADROOM: f64 = 1.25;
+
+/// Compiles the pipeline again with more `--set` flags than it was
+/// compiled with (the grown params).
+pub type Recompile<'a> = dyn Fn(&[String]) -> Result<Schedule, Errors> + 'a;
+
+/// Build `schedule` so that every bounded buffer whose size is still its
+/// technique's default holds all the first frame appends (see the module
+/// docs). `pipeline` is the file it came from; `recompile` compiles it with
+/// extra flags.
+pub fn prepare_holding<'g>(
+    gpu: &'g Gpu,
+    schedule: Schedule,
+    recompile: &Recompile<'_>,
+    pipeline: &Path,
+    scene: &SceneData,
+    size: (u32, u32),
+) -> Result<Prepared<'g>, SessionError> {
+    if !schedule.overflow.iter().any(|c| c.grows) {
+        return build(gpu, schedule, pipeline, scene, size);
+    }
+    let first = sizing_frame(gpu, &schedule, pipeline, scene, size)?;
+    let short: Vec<Overflow> = growable_drops(&first).cloned().collect();
+    if short.is_empty() {
+        return build(gpu, schedule, pipeline, scene, size);
+    }
+    let grown = grow(gpu, recompile, &short)?;
+    let again = sizing_frame(gpu, &grown, pipeline, scene, size)?;
+    let still: Vec<Overflow> = growable_drops(&again).cloned().collect();
+    if !still.is_empty() {
+        return Err(SessionError::Dropped {
+            message: "grown to hold what the first frame asked for, the bounded buffers still drop"
+                .into(),
+            overflow: still,
+        });
+    }
+    build(gpu, grown, pipeline, scene, size)
+}
+
+/// A frame's drops from buffers the user did not size: an error (a later
+/// frame of a sequence asking for more than the first; the user's caps are
+/// reported, not failed).
+pub fn check_frame(report: &FrameReport) -> Result<(), SessionError> {
+    let short: Vec<Overflow> = growable_drops(report).cloned().collect();
+    if short.is_empty() {
+        return Ok(());
+    }
+    Err(SessionError::Dropped {
+        message: "this frame asked for more than the first, which sized the buffer; set its size with the --set above".into(),
+        overflow: short,
+    })
+}
+
+fn growable_drops(report: &FrameReport) -> impl Iterator<Item = &Overflow> {
+    report.dropped().filter(|o| o.grows)
+}
+
+/// One frame of `schedule` on a renderer of its own, for its counters.
+fn sizing_frame(
+    gpu: &Gpu,
+    schedule: &Schedule,
+    pipeline: &Path,
+    scene: &SceneData,
+    size: (u32, u32),
+) -> Result<FrameReport, SessionError> {
+    let probe = build(gpu, schedule.clone(), pipeline, scene, size)?;
+    Ok(probe.renderer.render()?)
+}
+
+/// The pipeline compiled again with every short buffer's param raised: to
+/// what the frame needed plus [`HEADROOM`], or, when that does not fit the
+/// adapter, to exactly what it needed.
+fn grow(
+    gpu: &Gpu,
+    recompile: &Recompile<'_>,
+    short: &[Overflow],
+) -> Result<Schedule, SessionError> {
+    let compile = |factor: f64| {
+        let extra: Vec<String> = short
+            .iter()
+            .map(|o| format!("params.{}={}", o.param, grown_value(o, factor)))
+            .collect();
+        recompile(&extra)
+    };
+    let schedule = compile(HEADROOM).or_else(|_| compile(1.0));
+    let mut schedule = schedule.map_err(|errors| SessionError::Dropped {
+        message: format!(
+            "the adapter cannot hold that (it binds at most {} bytes as storage): {}",
+            gpu.capabilities.max_storage_buffer_binding_size,
+            errors
+                .0
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; ")
+        ),
+        overflow: short.to_vec(),
+    })?;
+    // The session chose these values, not the user: they stay growable, so
+    // a later frame that needs more fails instead of dropping quietly.
+    for c in &mut schedule.overflow {
+        if short.iter().any(|o| o.param == c.param) {
+            c.grows = true;
+        }
+    }
+    Ok(schedule)
+}
+
+/// The param value that holds `factor` × what `o` needed, and more than it has.
+fn grown_value(o: &Overflow, factor: f64) -> u64 {
+    let needed = (o.needed as f64 * factor).ceil() as u64;
+    needed.div_ceil(o.per).max(o.value.max(0) as u64 + 1)
+}
+
+/// `a; b` of several counters' messages.
+pub(crate) fn list(overflow: &[Overflow]) -> String {
+    overflow
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn counter(dropped: u64, grows: bool) -> Overflow {
+        Overflow {
+            pass: "hair_lists".into(),
+            counter: "list_counter".into(),
+            of: "list_nodes".into(),
+            dropped,
+            needed: 451_556,
+            capacity: 11 * 25_600,
+            param: "nodes_per_pixel".into(),
+            value: 11,
+            per: 25_600,
+            value_needed: 18,
+            grows,
+        }
+    }
+
+    fn frame(overflow: Vec<Overflow>) -> FrameReport {
+        FrameReport {
+            passes: Vec::new(),
+            total_gpu_ms: None,
+            overflow,
+        }
+    }
+
+    /// A frame that drops from a buffer the session sized fails, naming the
+    /// count and the flag; the user's cap only reports.
+    #[test]
+    fn only_drops_from_sizes_nobody_chose_fail_a_frame() {
+        assert!(check_frame(&frame(vec![counter(0, true)])).is_ok());
+        assert!(check_frame(&frame(vec![counter(5, false)])).is_ok());
+        let e = check_frame(&frame(vec![counter(5, true)]))
+            .expect_err("a grown buffer that drops")
+            .to_string();
+        assert!(e.contains("dropped 5"), "{e}");
+        assert!(e.contains("--set params.nodes_per_pixel=18"), "{e}");
+    }
+
+    #[test]
+    fn grown_sizes_hold_what_was_needed_with_headroom() {
+        let o = counter(1, true);
+        // 451556 × 1.25 = 564445 nodes over 25600 pixels: 22.05 → 23.
+        assert_eq!(grown_value(&o, HEADROOM), 23);
+        assert_eq!(grown_value(&o, 1.0), 18);
+        // Never below one more than it had.
+        let barely = Overflow {
+            needed: 11 * 25_600 + 1,
+            ..o
+        };
+        assert_eq!(grown_value(&barely, 1.0), 12);
+    }
+}
