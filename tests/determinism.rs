@@ -149,16 +149,37 @@ fn fragment_lists_hold_every_fragment_by_default() {
         "a renderer built anew draws a different image"
     );
 
-    let (_, _, peeled) = render(&gpu, &scene, "pipelines/depth_peeling.toml", &[], SIZE);
-    let m = plait_compare::compare(&peeled, &image)
+    // Holding every fragment is the whole of the lists' exactness: a pool
+    // capped far above the need draws the same bytes, while the image that
+    // dropped fragments is far from it. (That exact lists equal depth
+    // peeling is crates/plait-passes/tests/transparency.rs, on `small`;
+    // peeling this scene takes minutes here. Measured once: RMSE 0.0016
+    // against peeling, against 0.033 with the fragments dropped.)
+    let (_, roomy, generous) = render(
+        &gpu,
+        &scene,
+        "pipelines/linked_list.toml",
+        &["params.nodes_per_pixel=64"],
+        SIZE,
+    );
+    assert_nothing_dropped("linked_list with 64 nodes per pixel", &roomy);
+    assert!(
+        generous == image,
+        "the grown pool's image differs from one with room to spare"
+    );
+    let (_, _, dropped) = render(
+        &gpu,
+        &scene,
+        "pipelines/linked_list.toml",
+        &["params.nodes_per_pixel=11"],
+        SIZE,
+    );
+    let m = plait_compare::compare(&dropped, &image)
         .expect("same size")
         .metrics;
     eprintln!(
-        "linked_list vs depth_peeling at 160x160: RMSE {:.6}, SSIM {:.6}, max |d| {:.4} (pool {} nodes/pixel)",
-        m.rmse, m.ssim, m.max_abs_diff, held.value
+        "linked_list capped at 11 nodes/pixel vs holding every fragment ({} nodes/pixel) at 160x160: RMSE {:.6}, SSIM {:.6}",
+        held.value, m.rmse, m.ssim
     );
-    // Measured on lavapipe: RMSE 0.0016, SSIM 0.99976 (the residue: colours
-    // through 16-bit floats in the nodes, fragments at equal depth, which
-    // peeling keeps one of). Dropping fragments gave RMSE 0.033, SSIM 0.946.
-    assert!(m.rmse < 0.004 && m.ssim > 0.999, "{m:?}");
+    assert!(m.rmse > 0.01, "dropping fragments must show: {m:?}");
 }
