@@ -152,10 +152,14 @@ fn render(
 ) -> image::RgbaImage {
     let prepared = prepare(gpu, &pipeline(name), sets, scene, size)
         .unwrap_or_else(|e| panic!("preparing {name}: {e}"));
-    prepared
+    let report = prepared
         .renderer
         .render()
         .unwrap_or_else(|e| panic!("rendering {name}: {e}"));
+    // A reference (the fragment lists on stray) that lost fragments would
+    // make every comparison against it wrong.
+    let dropped: Vec<String> = report.dropped().map(|o| o.to_string()).collect();
+    assert!(dropped.is_empty(), "{name} dropped data: {dropped:?}");
     prepared
         .image()
         .unwrap_or_else(|e| panic!("reading {name}: {e}"))

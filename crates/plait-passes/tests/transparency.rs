@@ -79,6 +79,10 @@ fn render_with(
     let report = renderer
         .render()
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+    // This renderer is built without the session, which would grow a
+    // bounded buffer that drops data: hold the lists to losing nothing.
+    let dropped: Vec<String> = report.dropped().map(|o| o.to_string()).collect();
+    assert!(dropped.is_empty(), "{pipeline} dropped data: {dropped:?}");
     let image = renderer
         .read_resource(&output)
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
