@@ -222,9 +222,7 @@ impl<'g> Engine<'g> {
         let Some(scene) = &self.scene else {
             return;
         };
-        let opts = session::gpu_options(self.gpu, self.opts.size);
-        let result = session::compile_checked(&self.pipeline, &sets, &opts)
-            .map_err(session::SessionError::from)
+        let result = plait::adapter::check_on_adapter(self.gpu, &self.pipeline, &sets, self.opts.size)
             .and_then(|schedule| {
                 let shown = schedule.clone();
                 session::build(self.gpu, schedule, &self.pipeline, scene, self.opts.size)

@@ -235,7 +235,8 @@ impl Prepared<'_> {
     }
 }
 
-/// Compile, check and build `pipeline` for `scene` at `size` on `gpu`.
+/// Compile, check (against the adapter too) and build `pipeline` for
+/// `scene` at `size` on `gpu`.
 pub fn prepare<'g>(
     gpu: &'g Gpu,
     pipeline: &Path,
@@ -243,7 +244,7 @@ pub fn prepare<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
-    let schedule = compile_checked(pipeline, sets, &gpu_options(gpu, size))?;
+    let schedule = crate::adapter::check_on_adapter(gpu, pipeline, sets, size)?;
     build(gpu, schedule, pipeline, scene, size)
 }
 
