@@ -222,12 +222,13 @@ impl<'g> Engine<'g> {
         let Some(scene) = &self.scene else {
             return;
         };
-        let result = plait::adapter::check_on_adapter(self.gpu, &self.pipeline, &sets, self.opts.size)
-            .and_then(|schedule| {
-                let shown = schedule.clone();
-                session::build(self.gpu, schedule, &self.pipeline, scene, self.opts.size)
-                    .map(|p| (p, shown))
-            });
+        let result =
+            plait::adapter::check_on_adapter(self.gpu, &self.pipeline, &sets, self.opts.size)
+                .and_then(|schedule| {
+                    let shown = schedule.clone();
+                    session::build(self.gpu, schedule, &self.pipeline, scene, self.opts.size)
+                        .map(|p| (p, shown))
+                });
         match result {
             Ok((prepared, schedule)) => {
                 let first = self.builds == 0;

@@ -34,8 +34,7 @@ pub fn check_schedule_on(
     size: (u32, u32),
 ) -> Result<(), SessionError> {
     let library = plait_passes::library();
-    let Err(mut unsupported) =
-        check_schedule(schedule, &library, &gpu.support, &gpu.capabilities)
+    let Err(mut unsupported) = check_schedule(schedule, &library, &gpu.support, &gpu.capabilities)
     else {
         return Ok(());
     };
@@ -128,10 +127,12 @@ fn point_of(p: &Problem, schedule: &Schedule) -> Option<String> {
             .passes
             .iter()
             .find(|pass| {
-                pass.reads
-                    .iter()
-                    .chain(&pass.writes)
-                    .any(|b| schedule.resources.get(b.resource).is_some_and(|r| r.name == *resource))
+                pass.reads.iter().chain(&pass.writes).any(|b| {
+                    schedule
+                        .resources
+                        .get(b.resource)
+                        .is_some_and(|r| r.name == *resource)
+                })
             })
             .and_then(|pass| pass.technique.clone()),
         _ => None,
@@ -144,6 +145,8 @@ fn multisampled(schedule: &Schedule) -> usize {
     schedule
         .resources
         .iter()
-        .filter(|r| matches!(r.desc, plait_graph::ResourceDesc::Texture { samples, .. } if samples > 1))
+        .filter(
+            |r| matches!(r.desc, plait_graph::ResourceDesc::Texture { samples, .. } if samples > 1),
+        )
         .count()
 }

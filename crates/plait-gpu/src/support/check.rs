@@ -6,12 +6,12 @@ use plait_graph::{Access, Format, Location, PassShape, ResourceDesc, Schedule, S
 use wgpu::{DownlevelFlags as D, TextureFormatFeatureFlags as F, TextureUsages as U};
 
 use super::{AdapterSupport, Problem, Unsupported};
+use crate::Capabilities;
 use crate::depth_guard::DepthGuard;
 use crate::pass::plan::{BindingPlan, BindingSource, PlannedBinding, binding_aliases, pass_module};
 use crate::pass::{PassLibrary, PassType, raster_state_of};
 use crate::pool::texture_format;
 use crate::reflect::{BindingKind, TextureSample};
-use crate::Capabilities;
 
 /// Whether `schedule` (as `plait check` leaves it) runs on the adapter
 /// described by `support` and `caps`; every problem when it does not.
@@ -111,7 +111,10 @@ fn resource_problems(schedule: &Schedule, support: &AdapterSupport, out: &mut Ve
             let missing = (U::COPY_SRC | U::COPY_DST) - features.allowed_usages;
             if !missing.is_empty() {
                 add(
-                    format!("texture `{}` ({format}), which the engine copies (readback, histories)", r.name),
+                    format!(
+                        "texture `{}` ({format}), which the engine copies (readback, histories)",
+                        r.name
+                    ),
                     usages_not_allowed(missing, tf),
                 );
             }
@@ -277,7 +280,14 @@ struct PassCtx<'a> {
 }
 
 impl PassCtx<'_> {
-    fn add(&self, out: &mut Vec<Problem>, location: &Location, resource: Option<&str>, what: String, missing: String) {
+    fn add(
+        &self,
+        out: &mut Vec<Problem>,
+        location: &Location,
+        resource: Option<&str>,
+        what: String,
+        missing: String,
+    ) {
         out.push(problem(Some(self.pass), location, resource, what, missing));
     }
 
@@ -297,7 +307,10 @@ impl PassCtx<'_> {
         match slot {
             Some(s) => (
                 s.location.clone(),
-                self.schedule.resources.get(s.resource).map(|r| r.name.clone()),
+                self.schedule
+                    .resources
+                    .get(s.resource)
+                    .map(|r| r.name.clone()),
             ),
             None => (self.pass.location.clone(), b.map(|b| b.name.clone())),
         }
@@ -360,7 +373,10 @@ impl PassCtx<'_> {
                 {
                     add(
                         format!("samples `{name}` ({format}) with filtering"),
-                        format!("Texture format {:?} is not filterable on this adapter", texture_format(format)),
+                        format!(
+                            "Texture format {:?} is not filterable on this adapter",
+                            texture_format(format)
+                        ),
                     );
                 }
             }
@@ -391,7 +407,11 @@ impl PassCtx<'_> {
             l.max_compute_workgroup_size_y,
             l.max_compute_workgroup_size_z,
         ];
-        for e in module.entry_points.iter().filter(|e| e.stage == naga::ShaderStage::Compute) {
+        for e in module
+            .entry_points
+            .iter()
+            .filter(|e| e.stage == naga::ShaderStage::Compute)
+        {
             let size = e.workgroup_size;
             let total: u32 = size.iter().product();
             let over = (0..3).any(|i| size[i] > max[i]);
@@ -411,7 +431,13 @@ impl PassCtx<'_> {
     }
 
     /// Bindings per stage, group 0's included, against the per-stage limits.
-    fn stage_limits(&self, plan: &BindingPlan, guard_texture: bool, compute: bool, out: &mut Vec<Problem>) {
+    fn stage_limits(
+        &self,
+        plan: &BindingPlan,
+        guard_texture: bool,
+        compute: bool,
+        out: &mut Vec<Problem>,
+    ) {
         let stages: &[(&str, bool)] = if compute {
             &[("compute", false)]
         } else {
@@ -438,11 +464,31 @@ impl PassCtx<'_> {
                 n[i] += 1;
             }
             let limits = [
-                ("uniform buffers", "max_uniform_buffers_per_shader_stage", l.max_uniform_buffers_per_shader_stage),
-                ("storage buffers", "max_storage_buffers_per_shader_stage", l.max_storage_buffers_per_shader_stage),
-                ("sampled textures", "max_sampled_textures_per_shader_stage", l.max_sampled_textures_per_shader_stage),
-                ("storage textures", "max_storage_textures_per_shader_stage", l.max_storage_textures_per_shader_stage),
-                ("samplers", "max_samplers_per_shader_stage", l.max_samplers_per_shader_stage),
+                (
+                    "uniform buffers",
+                    "max_uniform_buffers_per_shader_stage",
+                    l.max_uniform_buffers_per_shader_stage,
+                ),
+                (
+                    "storage buffers",
+                    "max_storage_buffers_per_shader_stage",
+                    l.max_storage_buffers_per_shader_stage,
+                ),
+                (
+                    "sampled textures",
+                    "max_sampled_textures_per_shader_stage",
+                    l.max_sampled_textures_per_shader_stage,
+                ),
+                (
+                    "storage textures",
+                    "max_storage_textures_per_shader_stage",
+                    l.max_storage_textures_per_shader_stage,
+                ),
+                (
+                    "samplers",
+                    "max_samplers_per_shader_stage",
+                    l.max_samplers_per_shader_stage,
+                ),
             ];
             for (count, (what, name, limit)) in n.iter().zip(limits) {
                 if *count > limit {
@@ -459,7 +505,13 @@ impl PassCtx<'_> {
     }
 
     /// Colour targets (blending, their count) and the depth target's reads.
-    fn targets(&self, plan: &BindingPlan, state: &crate::pass::RasterState, guard_texture: bool, out: &mut Vec<Problem>) {
+    fn targets(
+        &self,
+        plan: &BindingPlan,
+        state: &crate::pass::RasterState,
+        guard_texture: bool,
+        out: &mut Vec<Problem>,
+    ) {
         let flags = self.support.downlevel;
         let location_of = |id: usize| {
             self.pass
@@ -469,7 +521,12 @@ impl PassCtx<'_> {
                 .find(|b| b.resource == id)
                 .map_or(self.pass.location.clone(), |b| b.location.clone())
         };
-        let name_of = |id: usize| self.schedule.resources.get(id).map_or("?", |r| r.name.as_str());
+        let name_of = |id: usize| {
+            self.schedule
+                .resources
+                .get(id)
+                .map_or("?", |r| r.name.as_str())
+        };
         for (i, c) in plan.colors.iter().enumerate() {
             let blended = state.blend.get(i).copied().flatten().is_some();
             if blended && !self.support.format(c.format).flags.contains(F::BLENDABLE) {
@@ -478,7 +535,10 @@ impl PassCtx<'_> {
                     &location_of(c.resource),
                     Some(name_of(c.resource)),
                     format!("blends into `{}` ({})", name_of(c.resource), c.format),
-                    format!("Format {:?} is not blendable on this adapter", texture_format(c.format)),
+                    format!(
+                        "Format {:?} is not blendable on this adapter",
+                        texture_format(c.format)
+                    ),
                 );
             }
         }
@@ -492,9 +552,16 @@ impl PassCtx<'_> {
                 format!("the adapter's max_color_attachments is {limit}"),
             );
         }
-        let mask = |i: usize| state.write_mask.get(i).copied().unwrap_or(wgpu::ColorWrites::ALL);
+        let mask = |i: usize| {
+            state
+                .write_mask
+                .get(i)
+                .copied()
+                .unwrap_or(wgpu::ColorWrites::ALL)
+        };
         let blend = |i: usize| state.blend.get(i).copied().flatten();
-        let independent = (1..plan.colors.len()).any(|i| blend(i) != blend(0) || mask(i) != mask(0));
+        let independent =
+            (1..plan.colors.len()).any(|i| blend(i) != blend(0) || mask(i) != mask(0));
         if independent && !flags.contains(D::INDEPENDENT_BLEND) {
             self.add(
                 out,
@@ -510,16 +577,22 @@ impl PassCtx<'_> {
             && !d.written
             && !flags.contains(D::READ_ONLY_DEPTH_STENCIL)
         {
-            let sampled = plan
-                .bindings
-                .iter()
-                .any(|b| b.source == BindingSource::Slot { resource: d.resource, format: Some(d.format) });
+            let sampled = plan.bindings.iter().any(|b| {
+                b.source
+                    == BindingSource::Slot {
+                        resource: d.resource,
+                        format: Some(d.format),
+                    }
+            });
             if sampled || guard_texture {
                 self.add(
                     out,
                     &location_of(d.resource),
                     Some(name_of(d.resource)),
-                    format!("samples its depth target `{}` while testing against it", name_of(d.resource)),
+                    format!(
+                        "samples its depth target `{}` while testing against it",
+                        name_of(d.resource)
+                    ),
                     lacks(D::READ_ONLY_DEPTH_STENCIL),
                 );
             }
@@ -529,6 +602,8 @@ impl PassCtx<'_> {
 
 /// The layout's filterable flag (`pass::layout`): every float format but 32-bit ones.
 fn filterable_in_layout(format: Format) -> bool {
-    !matches!(format, Format::R32Float | Format::Rg32Float | Format::Rgba32Float)
-        && !format.is_depth()
+    !matches!(
+        format,
+        Format::R32Float | Format::Rg32Float | Format::Rgba32Float
+    ) && !format.is_depth()
 }

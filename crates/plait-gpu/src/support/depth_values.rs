@@ -24,7 +24,9 @@ pub fn depth_value_reads(module: &Module) -> Vec<Handle<naga::GlobalVariable>> {
                 _ => continue,
             };
             match function.expressions[image] {
-                Expression::GlobalVariable(g) if is_depth(module, module.global_variables[g].ty) => {
+                Expression::GlobalVariable(g)
+                    if is_depth(module, module.global_variables[g].ty) =>
+                {
                     globals.push(g)
                 }
                 Expression::FunctionArgument(i)
@@ -97,10 +99,7 @@ fn is_depth(module: &Module, ty: Handle<naga::Type>) -> bool {
 }
 
 /// Every call in a block, nested blocks included.
-fn collect_calls(
-    block: &naga::Block,
-    out: &mut Vec<(Handle<Function>, Vec<Handle<Expression>>)>,
-) {
+fn collect_calls(block: &naga::Block, out: &mut Vec<(Handle<Function>, Vec<Handle<Expression>>)>) {
     for statement in block.iter() {
         match statement {
             Statement::Call {
