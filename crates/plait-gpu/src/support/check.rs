@@ -2,8 +2,8 @@
 //! rules wgpu applies to what the pool and the passes create, each problem
 //! named at the pass slot (or resource declaration) that asks for it.
 
-use plait_graph::{Access, Format, Location, PassShape, ResourceDesc, Schedule, ScheduledPass};
-use wgpu::{DownlevelFlags as D, TextureFormatFeatureFlags as F, TextureUsages as U};
+use plait_graph::{Format, Location, PassShape, Schedule, ScheduledPass};
+use wgpu::{DownlevelFlags as D, TextureFormatFeatureFlags as F};
 
 use super::{AdapterSupport, Problem, Unsupported};
 use crate::Capabilities;
@@ -42,9 +42,9 @@ pub fn problems(
     caps: &Capabilities,
 ) -> Vec<Problem> {
     let mut out = Vec::new();
-    resource_problems(schedule, support, &mut out);
+    super::textures::resource_problems(schedule, support, &mut out);
     for pass in &schedule.passes {
-        usage_problems(pass, schedule, support, &mut out);
+        super::textures::usage_problems(pass, schedule, support, &mut out);
         if let Some(t) = library.get(&pass.type_name) {
             pass_problems(t, pass, schedule, support, caps, &mut out);
         }
@@ -58,7 +58,7 @@ pub fn problems(
     unique
 }
 
-fn problem(
+pub(super) fn problem(
     pass: Option<&ScheduledPass>,
     location: &Location,
     resource: Option<&str>,
@@ -77,117 +77,6 @@ fn problem(
 
 fn lacks(flag: D) -> String {
     format!("the adapter lacks {flag:?}")
-}
-
-/// What every texture needs whatever reads it: copies (readback, histories)
-/// for single-sampled ones, the sample count for multisampled ones.
-fn resource_problems(schedule: &Schedule, support: &AdapterSupport, out: &mut Vec<Problem>) {
-    for r in schedule.resources.iter().filter(|r| !r.scene) {
-        let ResourceDesc::Texture {
-            format,
-            samples,
-            layers,
-            ..
-        } = r.desc
-        else {
-            continue;
-        };
-        let tf = texture_format(format);
-        let features = support.format(format);
-        let mut add = |what: String, missing: String| {
-            out.push(problem(None, &r.location, Some(&r.name), what, missing))
-        };
-        if samples > 1 {
-            if !features.flags.sample_count_supported(samples) {
-                add(
-                    format!("texture `{}` ({format}, {samples} samples)", r.name),
-                    format!(
-                        "Sample count {samples} is not supported by format {tf:?} on this adapter (it supports {:?})",
-                        features.flags.supported_sample_counts()
-                    ),
-                );
-            }
-        } else {
-            let missing = (U::COPY_SRC | U::COPY_DST) - features.allowed_usages;
-            if !missing.is_empty() {
-                add(
-                    format!(
-                        "texture `{}` ({format}), which the engine copies (readback, histories)",
-                        r.name
-                    ),
-                    usages_not_allowed(missing, tf),
-                );
-            }
-        }
-        if layers > support.limits.max_texture_array_layers {
-            add(
-                format!("texture `{}` ({layers} layers)", r.name),
-                format!(
-                    "the adapter's max_texture_array_layers is {}",
-                    support.limits.max_texture_array_layers
-                ),
-            );
-        }
-    }
-}
-
-/// wgpu's words for a texture created with usages its format does not allow.
-fn usages_not_allowed(missing: U, tf: wgpu::TextureFormat) -> String {
-    let webgpu = tf
-        .guaranteed_format_features(wgpu::Features::empty())
-        .allowed_usages;
-    let downlevel = if webgpu.contains(missing) {
-        " due to downlevel restrictions"
-    } else {
-        ""
-    };
-    format!("Texture usages {missing:?} are not allowed on a texture of type {tf:?}{downlevel}")
-}
-
-/// The usages a pass's slots give their textures (as the pool creates them).
-fn usage_problems(
-    pass: &ScheduledPass,
-    schedule: &Schedule,
-    support: &AdapterSupport,
-    out: &mut Vec<Problem>,
-) {
-    for b in pass.reads.iter().chain(&pass.writes) {
-        let Some(r) = schedule.resources.get(b.resource).filter(|r| !r.scene) else {
-            continue;
-        };
-        let ResourceDesc::Texture {
-            format, samples, ..
-        } = r.desc
-        else {
-            continue;
-        };
-        let (mut usage, verb) = match b.access {
-            Access::Sampled => (U::TEXTURE_BINDING, "samples"),
-            Access::StorageRead | Access::StorageWrite => {
-                (U::STORAGE_BINDING, "binds as a storage texture")
-            }
-            // Targets are sampleable too (the pool's rule: a pass may read back what it drew).
-            Access::ColorTarget => (U::RENDER_ATTACHMENT | U::TEXTURE_BINDING, "renders into"),
-            Access::DepthTarget => (
-                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
-                "uses as its depth target",
-            ),
-            Access::Uniform => continue,
-        };
-        if samples > 1 {
-            usage &= U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;
-        }
-        let missing = usage - support.format(format).allowed_usages;
-        if !missing.is_empty() {
-            out.push(problem(
-                Some(pass),
-                &b.location,
-                Some(&r.name),
-                format!("{verb} `{}` ({format}, slot `{}`)", r.name, b.slot),
-                usages_not_allowed(missing, texture_format(format)),
-            ));
-        }
-    }
 }
 
 /// What the pass's shader, bindings and targets need.
@@ -392,7 +281,7 @@ impl PassCtx<'_> {
 
     fn aligned(&self, size: u64, name: &str, add: &mut impl FnMut(String, String)) {
         let flag = D::BUFFER_BINDINGS_NOT_16_BYTE_ALIGNED;
-        if size % 16 != 0 && !self.support.downlevel.contains(flag) {
+        if !size.is_multiple_of(16) && !self.support.downlevel.contains(flag) {
             add(
                 format!("binds buffer `{name}` whose type is {size} bytes, not a multiple of 16"),
                 lacks(flag),

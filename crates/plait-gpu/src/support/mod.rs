@@ -14,6 +14,7 @@
 mod check;
 mod depth_values;
 mod message;
+mod textures;
 
 pub use check::{check_schedule, problems};
 pub use message::{Problem, Unsupported};
