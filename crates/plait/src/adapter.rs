@@ -95,22 +95,16 @@ impl Trial<'_> {
             let fix = plait_graph::techniques::choices(&root, &point)
                 .into_iter()
                 .filter(|name| *name != current.name)
-                .filter_map(|name| {
-                    let set = format!("techniques.{point}={name}");
+                .map(|name| format!("techniques.{point}={name}"))
+                .find(|set| {
                     let mut extra = chosen.clone();
                     extra.push(set.clone());
-                    let (s, left) = self.problems(&extra)?;
-                    let clears = !left
-                        .iter()
-                        .any(|p| point_of(p, &s).is_none_or(|q| q == point));
-                    clears.then(|| (multisampled(&s), set))
-                })
-                // Fewest multisampled textures first: llvmpipe's GL accepts
-                // them but draws nothing into them (seen on Mesa 22.3.6;
-                // wgpu reports no missing capability), so a suggestion
-                // without them is the one most likely to show an image.
-                .min_by_key(|(msaa, _)| *msaa)?
-                .1;
+                    self.problems(&extra).is_some_and(|(s, left)| {
+                        !left
+                            .iter()
+                            .any(|p| point_of(p, &s).is_none_or(|q| q == point))
+                    })
+                })?;
             chosen.push(fix);
         }
         let (_, left) = self.problems(&chosen)?;
@@ -138,15 +132,4 @@ fn point_of(p: &Problem, schedule: &Schedule) -> Option<String> {
         _ => None,
     }?;
     technique.split('/').next().map(str::to_owned)
-}
-
-/// How many of a schedule's textures are multisampled.
-fn multisampled(schedule: &Schedule) -> usize {
-    schedule
-        .resources
-        .iter()
-        .filter(
-            |r| matches!(r.desc, plait_graph::ResourceDesc::Texture { samples, .. } if samples > 1),
-        )
-        .count()
 }

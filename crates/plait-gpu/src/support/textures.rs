@@ -107,8 +107,12 @@ pub(super) fn usage_problems(
             ),
             Access::Uniform => continue,
         };
+        // A multisampled target is only rendered into (the pool's rule).
         if samples > 1 {
-            usage &= U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;
+            usage &= match b.access {
+                Access::Sampled => U::TEXTURE_BINDING,
+                _ => U::RENDER_ATTACHMENT,
+            };
         }
         let missing = usage - support.format(format).allowed_usages;
         if !missing.is_empty() {
