@@ -2,7 +2,7 @@
 //! rules wgpu applies to what the pool and the passes create, each problem
 //! named at the pass slot (or resource declaration) that asks for it.
 
-use plait_graph::{Format, Location, PassShape, Schedule, ScheduledPass};
+use plait_graph::{Location, PassShape, Schedule, ScheduledPass};
 use wgpu::{DownlevelFlags as D, TextureFormatFeatureFlags as F};
 
 use super::{AdapterSupport, Problem, Unsupported};
@@ -11,7 +11,7 @@ use crate::depth_guard::DepthGuard;
 use crate::pass::plan::{BindingPlan, BindingSource, PlannedBinding, binding_aliases, pass_module};
 use crate::pass::{PassLibrary, PassType, raster_state_of};
 use crate::pool::texture_format;
-use crate::reflect::{BindingKind, TextureSample};
+use crate::reflect::BindingKind;
 
 /// Whether `schedule` (as `plait check` leaves it) runs on the adapter
 /// described by `support` and `caps`; every problem when it does not.
@@ -247,28 +247,8 @@ impl PassCtx<'_> {
                     );
                 }
             }
-            BindingKind::Texture {
-                sample: TextureSample::Float,
-                multisampled: false,
-                ..
-            } => {
-                // The layout asks for filtering where the format has it in WebGPU.
-                let format = match b.source {
-                    BindingSource::Slot { format, .. } => format,
-                    _ => None,
-                };
-                if let Some(format) = format.filter(|f| filterable_in_layout(*f))
-                    && !self.support.format(format).flags.contains(F::FILTERABLE)
-                {
-                    add(
-                        format!("samples `{name}` ({format}) with filtering"),
-                        format!(
-                            "Texture format {:?} is not filterable on this adapter",
-                            texture_format(format)
-                        ),
-                    );
-                }
-            }
+            // No filtering check: the layout asks for filtering only where
+            // the format is filterable in WebGPU, which wgpu always accepts.
             _ => {}
         }
         if b.writes() && in_fragment && !flags.contains(D::FRAGMENT_WRITABLE_STORAGE) {
@@ -487,12 +467,4 @@ impl PassCtx<'_> {
             }
         }
     }
-}
-
-/// The layout's filterable flag (`pass::layout`): every float format but 32-bit ones.
-fn filterable_in_layout(format: Format) -> bool {
-    !matches!(
-        format,
-        Format::R32Float | Format::Rg32Float | Format::Rgba32Float
-    ) && !format.is_depth()
 }
