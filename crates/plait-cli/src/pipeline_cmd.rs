@@ -19,29 +19,53 @@ pub struct CheckArgs {
     pipelines: Vec<PathBuf>,
     #[command(flatten)]
     set: SetArgs,
+    /// Also check them against the GPU adapter `plait render` opens (texture
+    /// formats, downlevel flags, limits) at render's default size, 960x720.
+    #[arg(long)]
+    adapter: bool,
 }
 
 pub fn check(args: CheckArgs) -> Result<()> {
+    // Plain `check` needs no GPU; `--adapter` opens the one render would.
+    let gpu = args.adapter.then(plait_gpu::Gpu::new).transpose()?;
     let mut failures = Vec::new();
     for given in &args.pipelines {
         // A gallery name (`forward.toml`) is found on the library search path,
         // as `plait render` finds it.
         let path = &resolve_pipeline(Some(given));
-        match compile_checked(path, &args.set.sets, &CompileOptions::default()) {
+        let checked = match &gpu {
+            Some(gpu) => plait::adapter::check_on_adapter(gpu, path, &args.set.sets, (960, 720))
+                .map_err(anyhow::Error::from),
+            None => compile_checked(path, &args.set.sets, &CompileOptions::default())
+                .map_err(anyhow::Error::from),
+        };
+        match checked {
             Ok(s) => {
                 let culled = if s.culled.is_empty() {
                     String::new()
                 } else {
                     format!(", {} culled", s.culled.len())
                 };
+                let on = gpu.as_ref().map_or(String::new(), |g| {
+                    format!(", runs on adapter {}", g.support.describe())
+                });
                 outln!(
-                    "ok  {}: {} passes{culled}, {} resources",
+                    "ok  {}: {} passes{culled}, {} resources{on}",
                     path.display(),
                     s.passes.len(),
                     s.resources.len()
                 )?;
             }
-            Err(e) => failures.push(format!("{e:#}")),
+            Err(e) => {
+                let text = format!("{e:#}");
+                // Pipeline errors start `error:` on every line; an adapter's
+                // refusal starts with the adapter.
+                failures.push(if text.starts_with("error:") {
+                    text
+                } else {
+                    format!("error: {text}")
+                });
+            }
         }
     }
     if failures.is_empty() {

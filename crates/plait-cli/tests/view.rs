@@ -451,3 +451,52 @@ fn an_edited_library_module_reaches_the_gpu_without_a_restart() {
         "the background should be the edited module's red"
     );
 }
+
+/// Issue 20 item 4: with Vulkan hidden the viewer runs on llvmpipe's GL and
+/// refuses the default pipeline before any GPU work, printing what the
+/// adapter lacks and what to do; the window stays open for a fix (a live
+/// technique edit), so no screenshot is written.
+#[test]
+fn without_vulkan_the_viewer_refuses_what_the_adapter_cannot_run() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let shot = dir.path().join("shot.png");
+    let (_server, display) = xvfb();
+    let mut viewer = Command::new(env!("CARGO_BIN_EXE_plait"));
+    viewer
+        .args(["view", "--size", "96x72", "--screenshot"])
+        .arg(&shot)
+        .env("DISPLAY", &display)
+        .env("VK_ICD_FILENAMES", "/nonexistent.json")
+        .env_remove("VK_DRIVER_FILES")
+        .env_remove("WGPU_BACKEND")
+        .current_dir(root())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    let mut child = Killed(viewer.spawn().expect("start plait view"));
+    let stderr = lines(child.0.stderr.take().expect("piped stderr"));
+    let mut log = Vec::new();
+    let first = wait_for(
+        &stderr,
+        "cannot run pipeline `occupancy`",
+        Duration::from_secs(120),
+        &mut log,
+    );
+    assert!(first.contains("(gl backend"), "{first}");
+    wait_for(
+        &stderr,
+        "Texture usages TextureUsages(RENDER_ATTACHMENT) are not allowed on a texture of type Rg32Float",
+        Duration::from_secs(10),
+        &mut log,
+    );
+    wait_for(
+        &stderr,
+        "help: install Mesa's Vulkan driver",
+        Duration::from_secs(10),
+        &mut log,
+    );
+    assert!(
+        !log.iter().any(|l| l.contains("plait view: built")),
+        "{log:#?}"
+    );
+    assert!(!shot.exists(), "nothing rendered, no screenshot");
+}

@@ -31,6 +31,9 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub capabilities: Capabilities,
+    /// Formats, downlevel flags and limits, probed once: what schedules are
+    /// checked against before anything is created ([`crate::support`]).
+    pub support: crate::AdapterSupport,
     /// Pipelines built on this device, shared by every schedule rendered on it
     /// (an A/B run builds the same passes for many variants).
     pub pipelines: crate::cache::PipelineCache,
@@ -152,12 +155,14 @@ impl Gpu {
                 .max_storage_buffer_binding_size
                 .min(limits.max_buffer_size),
         };
+        let support = crate::AdapterSupport::probe(&adapter, &device);
         Ok(Gpu {
             adapter,
             device,
             queue,
             info,
             capabilities,
+            support,
             pipelines: Default::default(),
             uncaptured,
         })

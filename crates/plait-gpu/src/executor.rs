@@ -104,6 +104,17 @@ impl<'g> Renderer<'g> {
         }
         let mut schedule = schedule;
         let notes = downgrade_float32_blending(&mut schedule, library, &gpu.capabilities);
+        // What the adapter cannot do is refused here, whole, before wgpu
+        // sees a single call (callers usually checked already: session).
+        let unsupported =
+            crate::support::problems(&schedule, library, &gpu.support, &gpu.capabilities);
+        if !unsupported.is_empty() {
+            return Err(GpuError::Unsupported(Box::new(crate::Unsupported::new(
+                &gpu.support,
+                &schedule.name,
+                unsupported,
+            ))));
+        }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pool = ResourcePool::new(device, &schedule, &geometry);
         if let Some(e) = pollster::block_on(scope.pop()) {
@@ -447,7 +458,7 @@ impl<'g> Renderer<'g> {
 /// Blending into 32-bit float targets needs `FLOAT32_BLENDABLE`. Without it,
 /// every such target (and every resource sharing its memory) becomes the
 /// 16-bit float format with the same channels, and a note says so.
-fn downgrade_float32_blending(
+pub(crate) fn downgrade_float32_blending(
     schedule: &mut Schedule,
     library: &PassLibrary,
     caps: &crate::Capabilities,

@@ -16,12 +16,14 @@ pub mod pool;
 pub mod readback;
 pub mod reflect;
 pub mod shader;
+pub mod support;
 
 pub use device::{Capabilities, Gpu, NO_ADAPTER_HELP};
 pub use executor::{FrameReport, PassTiming, Renderer};
 pub use overflow::Overflow;
 pub use pass::{PassLibrary, PassType};
 pub use shader::{Define, ShaderError, ShaderLibrary};
+pub use support::{AdapterSupport, Unsupported};
 
 /// Failures of the GPU side. Messages name the pass or shader at fault.
 #[derive(Debug, thiserror::Error)]
@@ -36,6 +38,10 @@ pub enum GpuError {
         feature: String,
         adapter: String,
     },
+    /// The adapter cannot run the schedule: every problem, found before
+    /// anything was created ([`support::check_schedule`]).
+    #[error("{0}")]
+    Unsupported(Box<Unsupported>),
     #[error("resource `{resource}`: {message}")]
     Resource { resource: String, message: String },
     #[error("pass `{pass}`: {message}")]

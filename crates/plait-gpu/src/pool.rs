@@ -56,11 +56,17 @@ impl ResourcePool {
                 | wgpu::BufferUsages::STORAGE;
             schedule.physical.len()
         ];
+        // Which allocations a shader samples (multisampled ones are
+        // sampleable only then; see below).
+        let mut sampled = vec![false; schedule.physical.len()];
         for pass in schedule.passes.iter() {
             for b in pass.reads.iter().chain(pass.writes.iter()) {
                 let p = schedule.resources[b.resource].physical;
                 match b.access {
-                    Access::Sampled => tex_usage[p] |= wgpu::TextureUsages::TEXTURE_BINDING,
+                    Access::Sampled => {
+                        tex_usage[p] |= wgpu::TextureUsages::TEXTURE_BINDING;
+                        sampled[p] = true;
+                    }
                     Access::StorageRead | Access::StorageWrite => {
                         tex_usage[p] |= wgpu::TextureUsages::STORAGE_BINDING
                     }
@@ -104,9 +110,16 @@ impl ResourcePool {
                     } => {
                         let mut usage = tex_usage[i];
                         if samples > 1 {
-                            // Multisampled textures can be neither storage nor copy targets.
-                            usage &= wgpu::TextureUsages::RENDER_ATTACHMENT
-                                | wgpu::TextureUsages::TEXTURE_BINDING;
+                            // Multisampled textures can be neither storage nor
+                            // copy targets, and are sampleable only when a
+                            // shader samples them: wgpu's GL backend makes a
+                            // sampleable one a multisample texture, into which
+                            // llvmpipe's GL draws nothing (Mesa 22.3.6), where
+                            // a render-only one is a renderbuffer that works.
+                            usage &= wgpu::TextureUsages::RENDER_ATTACHMENT;
+                            if sampled[i] {
+                                usage |= wgpu::TextureUsages::TEXTURE_BINDING;
+                            }
                         }
                         let texture = device.create_texture(&wgpu::TextureDescriptor {
                             label: Some(&label),

@@ -223,28 +223,28 @@ impl<'g> Engine<'g> {
             return;
         };
         let opts = session::gpu_options(self.gpu, self.opts.size);
-        let result = session::compile_checked(&self.pipeline, &sets, &opts)
-            .map_err(session::SessionError::from)
-            .and_then(|schedule| {
-                let shown = schedule.clone();
-                // Bounded buffers the user did not size hold every fragment.
-                let recompile = |extra: &[String]| {
-                    session::compile_checked(
+        let result =
+            plait::adapter::check_on_adapter(self.gpu, &self.pipeline, &sets, self.opts.size)
+                .and_then(|schedule| {
+                    let shown = schedule.clone();
+                    // Bounded buffers the user did not size hold every fragment.
+                    let recompile = |extra: &[String]| {
+                        session::compile_checked(
+                            &self.pipeline,
+                            &[sets.as_slice(), extra].concat(),
+                            &opts,
+                        )
+                    };
+                    plait::overflow::prepare_holding(
+                        self.gpu,
+                        schedule,
+                        &recompile,
                         &self.pipeline,
-                        &[sets.as_slice(), extra].concat(),
-                        &opts,
+                        scene,
+                        self.opts.size,
                     )
-                };
-                plait::overflow::prepare_holding(
-                    self.gpu,
-                    schedule,
-                    &recompile,
-                    &self.pipeline,
-                    scene,
-                    self.opts.size,
-                )
-                .map(|p| (p, shown))
-            });
+                    .map(|p| (p, shown))
+                });
         match result {
             Ok((prepared, schedule)) => {
                 let first = self.builds == 0;

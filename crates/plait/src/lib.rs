@@ -18,6 +18,7 @@ pub use plait_hair as hair;
 pub use plait_passes as passes;
 
 pub mod ab;
+pub mod adapter;
 pub mod frames;
 pub mod overflow;
 pub mod probe;

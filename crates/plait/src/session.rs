@@ -261,9 +261,9 @@ impl Prepared<'_> {
     }
 }
 
-/// Compile, check and build `pipeline` for `scene` at `size` on `gpu`, its
-/// bounded buffers sized to hold the first frame unless the user sized
-/// them ([`crate::overflow`]).
+/// Compile, check (against the adapter too) and build `pipeline` for
+/// `scene` at `size` on `gpu`, its bounded buffers sized to hold the first
+/// frame unless the user sized them ([`crate::overflow`]).
 pub fn prepare<'g>(
     gpu: &'g Gpu,
     pipeline: &Path,
@@ -272,7 +272,9 @@ pub fn prepare<'g>(
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
     let opts = gpu_options(gpu, size);
-    let schedule = compile_checked(pipeline, sets, &opts)?;
+    let schedule = crate::adapter::check_on_adapter(gpu, pipeline, sets, size)?;
+    // A grown buffer changes only sizes, which the executor checks again
+    // against the adapter before it allocates anything.
     let recompile = |extra: &[String]| compile_checked(pipeline, &[sets, extra].concat(), &opts);
     crate::overflow::prepare_holding(gpu, schedule, &recompile, pipeline, scene, size)
 }

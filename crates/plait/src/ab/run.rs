@@ -92,6 +92,12 @@ pub fn run(
         callback: progress,
     };
     let files = Files { dir };
+    // Every variant and the reference must run on this adapter before any is built.
+    for v in &plan.variants {
+        let size = plan.options.render_size(v.is_reference);
+        crate::adapter::check_on_adapter(gpu, &v.pipeline, &v.sets, size)
+            .map_err(render_error(format!("pipeline {}", v.label)))?;
+    }
     let mut variants = Vec::new();
     let mut graphs = Vec::new();
     let mut pipelines: Vec<PipelineProvenance> = Vec::new();

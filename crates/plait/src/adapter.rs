@@ -1,0 +1,135 @@
+//! Whether a pipeline runs on the opened adapter, decided before any GPU
+//! resource exists (`plait render`, `view`, `ab`, `check --adapter`), and,
+//! when it does not, the techniques that would: tried, never guessed.
+
+use std::path::Path;
+
+use plait_gpu::support::{Problem, check_schedule};
+use plait_gpu::{Gpu, GpuError, PassLibrary};
+use plait_graph::Schedule;
+
+use crate::session::{SessionError, compile_checked, gpu_options};
+
+/// Compile and check `pipeline` for `gpu` at `size`, then check the schedule
+/// against what the adapter supports (see [`check_schedule_on`]).
+pub fn check_on_adapter(
+    gpu: &Gpu,
+    pipeline: &Path,
+    sets: &[String],
+    size: (u32, u32),
+) -> Result<Schedule, SessionError> {
+    let schedule = compile_checked(pipeline, sets, &gpu_options(gpu, size))?;
+    check_schedule_on(gpu, &schedule, pipeline, sets, size)?;
+    Ok(schedule)
+}
+
+/// Every problem of `schedule` on `gpu`'s adapter, with `--set
+/// techniques.POINT=NAME` flags that make `pipeline` run there when choosing
+/// other techniques for the points at fault does.
+pub fn check_schedule_on(
+    gpu: &Gpu,
+    schedule: &Schedule,
+    pipeline: &Path,
+    sets: &[String],
+    size: (u32, u32),
+) -> Result<(), SessionError> {
+    let library = plait_passes::library();
+    let Err(mut unsupported) = check_schedule(schedule, &library, &gpu.support, &gpu.capabilities)
+    else {
+        return Ok(());
+    };
+    let trial = Trial {
+        gpu,
+        library: &library,
+        pipeline,
+        sets,
+        size,
+    };
+    unsupported.suggestion = trial.suggest(schedule, &unsupported.problems);
+    Err(GpuError::Unsupported(unsupported).into())
+}
+
+struct Trial<'a> {
+    gpu: &'a Gpu,
+    library: &'a PassLibrary,
+    pipeline: &'a Path,
+    sets: &'a [String],
+    size: (u32, u32),
+}
+
+impl Trial<'_> {
+    /// The problems of the pipeline with `extra` sets, `None` if it does not compile.
+    fn problems(&self, extra: &[String]) -> Option<(Schedule, Vec<Problem>)> {
+        let mut sets = self.sets.to_vec();
+        sets.extend(extra.iter().cloned());
+        let schedule =
+            compile_checked(self.pipeline, &sets, &gpu_options(self.gpu, self.size)).ok()?;
+        let problems = match check_schedule(
+            &schedule,
+            self.library,
+            &self.gpu.support,
+            &self.gpu.capabilities,
+        ) {
+            Ok(()) => Vec::new(),
+            Err(u) => u.problems,
+        };
+        Some((schedule, problems))
+    }
+
+    /// For each choice point at fault, in order, the first other technique
+    /// that clears its problems (on top of those already chosen); the whole
+    /// set only if the pipeline then has no problem left. A problem outside
+    /// every technique (a pass of the pipeline's own) has no such fix.
+    fn suggest(&self, schedule: &Schedule, problems: &[Problem]) -> Option<Vec<String>> {
+        let root = plait_graph::techniques::techniques_root(self.pipeline)?;
+        let mut points: Vec<String> = Vec::new();
+        for p in problems {
+            let point = point_of(p, schedule)?;
+            if !points.contains(&point) {
+                points.push(point);
+            }
+        }
+        let mut chosen: Vec<String> = Vec::new();
+        for point in points {
+            let current = schedule.techniques.iter().find(|t| t.point == point)?;
+            let fix = plait_graph::techniques::choices(&root, &point)
+                .into_iter()
+                .filter(|name| *name != current.name)
+                .map(|name| format!("techniques.{point}={name}"))
+                .find(|set| {
+                    let mut extra = chosen.clone();
+                    extra.push(set.clone());
+                    self.problems(&extra).is_some_and(|(s, left)| {
+                        !left
+                            .iter()
+                            .any(|p| point_of(p, &s).is_none_or(|q| q == point))
+                    })
+                })?;
+            chosen.push(fix);
+        }
+        let (_, left) = self.problems(&chosen)?;
+        left.is_empty().then_some(chosen)
+    }
+}
+
+/// The choice point whose technique a problem belongs to: its pass's, or for
+/// a resource's own problem, that of a pass binding the resource.
+fn point_of(p: &Problem, schedule: &Schedule) -> Option<String> {
+    let technique = match (&p.technique, &p.pass, &p.resource) {
+        (Some(t), _, _) => Some(t.clone()),
+        (None, None, Some(resource)) => schedule
+            .passes
+            .iter()
+            .find(|pass| {
+                pass.reads.iter().chain(&pass.writes).any(|b| {
+                    schedule
+                        .resources
+                        .get(b.resource)
+                        .is_some_and(|r| r.name == *resource)
+                })
+            })
+            .and_then(|pass| pass.technique.clone()),
+        _ => None,
+    }?;
+    technique.split('/').next().map(str::to_owned)
+}
