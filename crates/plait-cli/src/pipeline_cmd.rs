@@ -92,9 +92,13 @@ pub fn graph(args: GraphArgs) -> Result<()> {
         GraphFormat::Svg => plait_graph::to_svg(&schedule),
         GraphFormat::Text => plait_graph::schedule_text(&schedule),
     };
-    match out {
-        Some(file) => file.commit(text.as_bytes()),
-        None => {
+    match (out, &args.out) {
+        (Some(file), Some(path)) => {
+            file.commit(text.as_bytes())?;
+            outln!("wrote {}", path.display())?;
+            Ok(())
+        }
+        _ => {
             out!("{text}")?;
             Ok(())
         }

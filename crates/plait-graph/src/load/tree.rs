@@ -207,7 +207,10 @@ pub(super) fn load_chain(
     let base_text = plait_assets::read_to_string(&base_path).map_err(|e| {
         Error::new(
             extends.location.clone(),
-            ErrorKind::Io(format!("{}: {e}", base_path.display())),
+            ErrorKind::ReadFile {
+                path: base_path.clone(),
+                reason: e.to_string(),
+            },
         )
     })?;
     let mut base = load_chain(&base_path, &base_text, chain, files)?;
