@@ -104,6 +104,7 @@ pub fn render(
     }
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
+    crate::size_limit::check(pipeline, &sets, size, &gpu)?;
     let mut prepared = prepare(&gpu, pipeline, &sets, &data, size)?;
     if let Some(name) = show {
         prepared.output = name.to_owned();
