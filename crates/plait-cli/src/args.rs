@@ -8,7 +8,7 @@ pub struct SetArgs {
     /// Override a key of the pipeline file (repeatable; the key must exist),
     /// e.g. `--set params.slices=64` or `--set passes.hair.params.shadow_weight=0.3`.
     /// `techniques.POINT=NAME` swaps a technique, e.g.
-    /// `--set techniques.transparency=weighted_average`; `plait techniques`
+    /// `--set techniques.self_shadow=occupancy_no_slab`; `plait techniques`
     /// lists the points and their techniques.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
