@@ -86,6 +86,7 @@ pub fn graph(args: GraphArgs) -> Result<()> {
         ..CompileOptions::default()
     };
     let pipeline = resolve_pipeline(Some(&args.pipeline));
+    crate::size_limit::check_default_limits(&pipeline, &args.set.sets, args.size)?;
     let schedule = compile_checked(&pipeline, &args.set.sets, &opts)?;
     let text = match args.format {
         GraphFormat::Dot => plait_graph::to_dot(&schedule),

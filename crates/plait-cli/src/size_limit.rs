@@ -10,18 +10,47 @@ use std::path::Path;
 
 use anyhow::Result;
 use plait_gpu::Gpu;
-use plait_graph::Errors;
+use plait_graph::{CompileOptions, Errors};
 
 /// Fails naming `--size` when `size` is what keeps `pipeline` (with `sets`)
 /// from fitting `gpu`'s limits; any other problem is left to the render,
 /// which reports it with its file and line.
 pub fn check(pipeline: &Path, sets: &[String], size: (u32, u32), gpu: &Gpu) -> Result<()> {
+    let on = format!("on {}", gpu.adapter_name());
+    check_with(pipeline, sets, size, &on, &|s| {
+        plait::session::gpu_options(gpu, s)
+    })
+}
+
+/// [`check`] without a GPU, against WebGPU's default limits (`plait graph`).
+pub fn check_default_limits(pipeline: &Path, sets: &[String], size: (u32, u32)) -> Result<()> {
+    check_with(
+        pipeline,
+        sets,
+        size,
+        "within WebGPU's default limits",
+        &|s| CompileOptions {
+            screen: s,
+            ..CompileOptions::default()
+        },
+    )
+}
+
+/// `options(size)` gives the limits; `on` names them in the message
+/// (`on llvmpipe`, `within WebGPU's default limits`).
+fn check_with(
+    pipeline: &Path,
+    sets: &[String],
+    size: (u32, u32),
+    on: &str,
+    options: &dyn Fn((u32, u32)) -> CompileOptions,
+) -> Result<()> {
     let Ok(loaded) = plait_graph::load(pipeline, sets) else {
         return Ok(());
     };
     let registry = plait_passes::library().registry();
     let compile = |s: (u32, u32)| -> Result<(), Errors> {
-        plait_graph::compile(&loaded, &registry, &plait::session::gpu_options(gpu, s)).map(|_| ())
+        plait_graph::compile(&loaded, &registry, &options(s)).map(|_| ())
     };
     let Err(errors) = compile(size) else {
         return Ok(());
@@ -33,11 +62,10 @@ pub fn check(pipeline: &Path, sets: &[String], size: (u32, u32), gpu: &Gpu) -> R
     let (w, h) = largest_fitting(size, |s| compile(s).is_ok());
     let overflows: Vec<String> = errors.0.iter().map(|e| format!("  {e}")).collect();
     anyhow::bail!(
-        "--size {}x{} is too large for {} on {}: the largest size of this shape it fits is {w}x{h}; at {}x{}:\n{}",
+        "--size {}x{} is too large for {} {on}: the largest size of this shape it fits is {w}x{h}; at {}x{}:\n{}",
         size.0,
         size.1,
         pipeline.display(),
-        gpu.adapter_name(),
         size.0,
         size.1,
         overflows.join("\n")
