@@ -139,6 +139,20 @@ fn a_size_too_large_for_the_adapter_names_the_flag_and_the_largest_size() {
     assert!(!png.exists());
 }
 
+/// Without a GPU, `plait graph --size` checks against WebGPU's default
+/// limits, and names the flag the same way.
+#[test]
+fn graph_names_the_size_flag_too() {
+    let o = plait(&["graph", "pipelines/occupancy.toml", "--size", "4000x3000"]);
+    fails_with(
+        &o,
+        &[
+            "error: --size 4000x3000 is too large for pipelines/occupancy.toml within WebGPU's default limits",
+            "the largest size of this shape it fits is 3344x2508",
+        ],
+    );
+}
+
 /// The table: columns as wide as their content, the techniques in effect
 /// after a swap, and no "(29.41 MiB without sharing)" beside the same 29.41 MiB.
 #[test]
