@@ -7,4 +7,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/ensure-vulkan.sh"
+# Build first with cargo's progress on stderr (the first build takes minutes),
+# then run quietly, so the render's own output is not mixed with cargo's.
+cargo build --locked --manifest-path "$root/Cargo.toml" -p plait-cli
 exec cargo run --quiet --locked --manifest-path "$root/Cargo.toml" -p plait-cli -- render "$@"

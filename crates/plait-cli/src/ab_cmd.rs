@@ -17,6 +17,7 @@ use plait_compare::report::Report;
 use plait_gpu::Gpu;
 
 use crate::args::{SetArgs, parse_scene, parse_size};
+use crate::table::{Align, Table};
 
 #[derive(Args)]
 pub struct AbArgs {
@@ -134,42 +135,60 @@ pub fn run(args: AbArgs) -> Result<()> {
     Ok(())
 }
 
+/// One table per scene, the columns of the HTML report's summary that fit a
+/// terminal: time, memory, the self-shadowing error |ΔV| where the variants
+/// were probed against another provider, and the image metrics.
 fn print_summary(report: &Report) -> std::io::Result<()> {
-    // Grid labels name two sweeps: widen the column rather than break it.
-    let width = report
-        .variants
-        .iter()
-        .map(|v| v.label.chars().count())
-        .fold(36, usize::max);
     for scene in &report.scenes {
         outln!("scene {}:", scene.name)?;
-        outln!(
-            "{:<width$} {:>10} {:>10} {:>9} {:>9} {:>8} {:>8}",
-            "variant",
-            "frame ms",
-            "peak MiB",
-            "RMSE",
-            "PSNR",
-            "SSIM",
-            "FLIP"
-        )?;
+        // A provider probed against itself says nothing (as in report.md).
+        let probed = scene.runs.iter().any(|r| {
+            r.visibility
+                .as_ref()
+                .is_some_and(|v| v.provider != v.reference_provider)
+        });
+        let mut columns = vec![
+            ("variant", Align::Left),
+            ("frame ms", Align::Right),
+            ("peak MiB", Align::Right),
+        ];
+        if probed {
+            columns.push(("mean / max |ΔV|", Align::Right));
+        }
+        columns.extend([
+            ("RMSE", Align::Right),
+            ("PSNR", Align::Right),
+            ("SSIM", Align::Right),
+            ("FLIP", Align::Right),
+        ]);
+        let mut table = Table::new(&columns);
         for run in &scene.runs {
             let Some(v) = report.variant(&run.variant) else {
                 continue;
             };
-            outln!(
-                "{:<width$} {:>10} {:>10.2} {:>9.5} {:>9} {:>8.5} {:>8.5}",
-                v.label,
+            let m = &run.metrics;
+            let mut cells = vec![
+                v.label.clone(),
                 format!("{:.3}", plait_compare::report::cost_ms(&run.timing)),
-                v.memory.peak_bytes as f64 / 1048576.0,
-                run.metrics.rmse,
-                run.metrics
-                    .psnr_db
+                format!("{:.2}", v.memory.peak_bytes as f64 / 1048576.0),
+            ];
+            if probed {
+                cells.push(run.visibility.as_ref().map_or(String::new(), |d| {
+                    format!("{:.4} / {:.2}", d.mean_abs_error, d.max_abs_error)
+                }));
+            }
+            cells.extend([
+                format!("{:.5}", m.rmse),
+                m.psnr_db
                     .map(|p| format!("{p:.2}"))
                     .unwrap_or_else(|| "inf".into()),
-                run.metrics.ssim,
-                run.metrics.flip_mean
-            )?;
+                format!("{:.5}", m.ssim),
+                format!("{:.5}", m.flip_mean),
+            ]);
+            table.row(cells);
+        }
+        for line in table.lines() {
+            outln!("{line}")?;
         }
     }
     Ok(())

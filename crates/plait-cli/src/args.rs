@@ -7,7 +7,9 @@ use clap::Args;
 pub struct SetArgs {
     /// Override a key of the pipeline file (repeatable; the key must exist),
     /// e.g. `--set params.slices=64` or `--set passes.hair.params.shadow_weight=0.3`.
-    /// Other techniques are files: pipelines/deep_opacity.toml, … (README).
+    /// `techniques.POINT=NAME` swaps a technique, e.g.
+    /// `--set techniques.self_shadow=occupancy_no_slab`; `plait techniques`
+    /// lists the points and their techniques.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
 }

@@ -165,7 +165,12 @@ fn convert(input: &Path, output: &Path, vertices_per_strand: Option<u32>) -> any
             .with_context(|| format!("converting {} to .tfx", input.display()))?,
     };
     pending.commit(&bytes)?;
-    let (written, _) = Asset::from_bytes(output, &bytes)?;
+    // What `plait hair info` would warn about the written file (a vertex
+    // count TressFX does not load), said now rather than at its next use.
+    let (written, written_warnings) = Asset::from_bytes(output, &bytes)?;
+    for w in &written_warnings {
+        eprintln!("warning: {}: {w}", output.display());
+    }
     let out = written.strands();
     outln!(
         "wrote {}: {} strands, {} points",

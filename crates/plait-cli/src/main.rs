@@ -16,6 +16,8 @@ mod pipeline_cmd;
 mod render_cmd;
 mod sequence;
 mod show;
+mod size_limit;
+mod table;
 mod techniques_cmd;
 mod view_cmd;
 

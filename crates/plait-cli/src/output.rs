@@ -131,16 +131,12 @@ impl PendingFile {
         if path.is_dir() {
             anyhow::bail!("{flag} {}: is a directory", path.display());
         }
-        let temp = tempfile::Builder::new()
-            .prefix(".plait-")
+        if !dir.is_dir() {
+            anyhow::bail!("{flag} {}: no folder {}", path.display(), dir.display());
+        }
+        let temp = output_temp(".plait-", 0o666)
             .tempfile_in(&dir)
-            .with_context(|| {
-                format!(
-                    "{flag} {}: cannot write in {}",
-                    path.display(),
-                    dir.display()
-                )
-            })?;
+            .map_err(|e| cannot_write(flag, path, &e))?;
         Ok(PendingFile {
             path: path.to_path_buf(),
             _interrupt: remove_on_interrupt(temp.path()),
@@ -154,13 +150,53 @@ impl PendingFile {
             .write_all(bytes)
             .with_context(|| format!("writing {}", self.path.display()))?;
         self.temp.as_file().sync_all().ok();
-        // Temporary files are private (0600); the output is an ordinary file.
-        readable_by_all(self.temp.path(), 0o644);
         let PendingFile { path, temp, .. } = self;
         uninterrupted(|| temp.persist(&path))
             .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), e.error))?;
         Ok(())
     }
+}
+
+/// `--out /proc/x.png: cannot write the file: …`: the path the user gave and
+/// the system's reason, without the name of the temporary file (tempfile
+/// appends `at path "/proc/.plait-…"`, which the user never named).
+fn cannot_write(flag: &str, path: &Path, error: &std::io::Error) -> anyhow::Error {
+    anyhow::anyhow!(
+        "{flag} {}: cannot write the file: {}",
+        path.display(),
+        os_reason(error)
+    )
+}
+
+/// The system's reason alone (`No such file or directory (os error 2)`).
+/// tempfile's errors end in ` at path "/dir/.plait-…"`, the temporary name
+/// the user never gave, and keep the system's error only in that text.
+fn os_reason(error: &std::io::Error) -> String {
+    if let Some(code) = error.raw_os_error() {
+        return std::io::Error::from_raw_os_error(code).to_string();
+    }
+    let text = error.to_string();
+    match text.rsplit_once(" at path \"") {
+        Some((reason, _)) => reason.to_owned(),
+        None => text,
+    }
+}
+
+/// A temporary file or folder beside an output, created with the
+/// permissions an ordinary one gets (`mode`: `0o666` for a file, `0o777` for
+/// a folder, less the umask). tempfile's default for files is private
+/// (`0o600`), which the output would keep once renamed into place.
+pub fn output_temp(prefix: &str, mode: u32) -> tempfile::Builder<'_, 'static> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(prefix);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(mode));
+    }
+    #[cfg(not(unix))]
+    let _ = mode;
+    builder
 }
 
 /// An output folder (a report, a frame sequence) written into a temporary
@@ -203,14 +239,14 @@ impl PendingDir {
                 parent.display()
             )
         })?;
-        let temp = tempfile::Builder::new()
-            .prefix(".plait-out-")
+        let temp = output_temp(".plait-out-", 0o777)
             .tempdir_in(&parent)
-            .with_context(|| {
-                format!(
-                    "--out {}: cannot write in {}",
+            .map_err(|e| {
+                anyhow::anyhow!(
+                    "--out {}: cannot write in {}: {}",
                     out.display(),
-                    parent.display()
+                    parent.display(),
+                    os_reason(&e)
                 )
             })?;
         Ok(PendingDir {
@@ -234,11 +270,9 @@ impl PendingDir {
     }
 
     fn move_into_place(self) -> Result<()> {
+        // Created with ordinary permissions (`output_temp`); the files in
+        // it were written as ordinary files.
         let temp = self.temp.keep();
-        readable_by_all(&temp, 0o755);
-        for entry in std::fs::read_dir(&temp).into_iter().flatten().flatten() {
-            readable_by_all(&entry.path(), 0o644);
-        }
         let mut old = None;
         if self.out.exists() {
             let aside = tempfile::Builder::new()
@@ -267,18 +301,6 @@ impl PendingDir {
         }
         Ok(())
     }
-}
-
-/// Give a finished output the permissions an ordinary file or directory has
-/// (temporary ones are created private).
-pub fn readable_by_all(path: &Path, mode: u32) {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode)).ok();
-    }
-    #[cfg(not(unix))]
-    let _ = (path, mode);
 }
 
 /// The image format an output path asks for by its extension: `.png`, or

@@ -110,15 +110,20 @@ pub fn graph(args: GraphArgs) -> Result<()> {
         ..CompileOptions::default()
     };
     let pipeline = resolve_pipeline(Some(&args.pipeline));
+    crate::size_limit::check_default_limits(&pipeline, &args.set.sets, args.size)?;
     let schedule = compile_checked(&pipeline, &args.set.sets, &opts)?;
     let text = match args.format {
         GraphFormat::Dot => plait_graph::to_dot(&schedule),
         GraphFormat::Svg => plait_graph::to_svg(&schedule),
         GraphFormat::Text => plait_graph::schedule_text(&schedule),
     };
-    match out {
-        Some(file) => file.commit(text.as_bytes()),
-        None => {
+    match (out, &args.out) {
+        (Some(file), Some(path)) => {
+            file.commit(text.as_bytes())?;
+            outln!("wrote {}", path.display())?;
+            Ok(())
+        }
+        _ => {
             out!("{text}")?;
             Ok(())
         }

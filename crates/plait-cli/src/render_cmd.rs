@@ -12,6 +12,7 @@ use plait_hair::scene::Scene;
 
 use crate::args::{SetArgs, parse_scene, parse_size};
 use crate::output::PendingFile;
+use crate::table::{Align, Table};
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -103,6 +104,7 @@ pub fn render(
     }
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
+    crate::size_limit::check(pipeline, &sets, size, &gpu)?;
     let mut prepared = prepare(&gpu, pipeline, &sets, &data, size)?;
     if let Some(name) = show {
         prepared.output = name.to_owned();
@@ -276,6 +278,8 @@ fn ms(v: Option<f64>) -> String {
 }
 
 /// The per-pass table; `total` names the last row (`frame`, `median frame`).
+/// Its columns are as wide as their content ([`Table`]); a new section is a
+/// line before or after it.
 pub fn print_table(pipeline: &Path, r: &Rendered, out: &Path, total: &str) -> std::io::Result<()> {
     let s = &r.schedule;
     outln!(
@@ -286,29 +290,51 @@ pub fn print_table(pipeline: &Path, r: &Rendered, out: &Path, total: &str) -> st
         r.image.width(),
         r.image.height()
     )?;
-    outln!("{:<20} {:<16} {:>10}", "pass", "type", "GPU ms")?;
+    // The techniques in effect, `--set techniques.…` swaps included: the
+    // file named above says only what it chooses itself.
+    if !s.techniques.is_empty() {
+        let chosen: Vec<String> = s.techniques.iter().map(|t| t.label()).collect();
+        outln!("techniques: {}", chosen.join(", "))?;
+    }
+    let technique = |p: &plait_graph::ScheduledPass| p.technique.clone().unwrap_or_default();
+    let mut table = Table::new(&[
+        ("pass", Align::Left),
+        ("type", Align::Left),
+        ("technique", Align::Left),
+        ("GPU ms", Align::Right),
+    ]);
     for (p, t) in s.passes.iter().zip(&r.report.passes) {
-        outln!("{:<20} {:<16} {:>10}", p.name, p.type_name, ms(t.gpu_ms))?;
+        table.row(vec![
+            p.name.clone(),
+            p.type_name.clone(),
+            technique(p),
+            ms(t.gpu_ms),
+        ]);
     }
     for c in &s.culled {
-        outln!(
-            "{:<20} {:<16} {:>10}  ({})",
-            c.pass.name,
-            c.pass.type_name,
-            "culled",
-            c.reason
-        )?;
+        table.row_with_note(
+            vec![
+                c.pass.name.clone(),
+                c.pass.type_name.clone(),
+                technique(&c.pass),
+                "culled".into(),
+            ],
+            format!("({})", c.reason),
+        );
     }
-    outln!("{:<20} {:<16} {:>10}", total, "", ms(r.report.total_gpu_ms))?;
+    table.row(vec![
+        total.to_owned(),
+        String::new(),
+        String::new(),
+        ms(r.report.total_gpu_ms),
+    ]);
+    for line in table.lines() {
+        outln!("{line}")?;
+    }
     if r.report.total_gpu_ms.is_none() {
         outln!("(this adapter has no timestamp queries: GPU times are not available)")?;
     }
-    outln!(
-        "memory: {:.2} MiB in {} allocations ({:.2} MiB without sharing)",
-        s.memory.peak_bytes as f64 / 1048576.0,
-        s.physical.len(),
-        s.memory.unpooled_bytes as f64 / 1048576.0
-    )?;
+    outln!("{}", memory_line(&s.memory, s.physical.len()))?;
     print_dropped(&r.report)?;
     outln!("wrote {}", out.display())
 }
@@ -322,4 +348,25 @@ fn print_dropped(report: &FrameReport) -> std::io::Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// `memory: 20.00 MiB in 9 allocations (sharing saves 9.41 MiB of 29.41 MiB)`;
+/// when no two resources share an allocation there is no saving to state.
+fn memory_line(memory: &plait_graph::MemoryReport, allocations: usize) -> String {
+    let mib = |b: u64| b as f64 / 1048576.0;
+    let plural = if allocations == 1 { "" } else { "s" };
+    let mut line = format!(
+        "memory: {:.2} MiB in {allocations} allocation{plural}",
+        mib(memory.peak_bytes)
+    );
+    if memory.unpooled_bytes > memory.peak_bytes {
+        line.push_str(&format!(
+            " (sharing saves {:.2} MiB of {:.2} MiB)",
+            mib(memory.unpooled_bytes - memory.peak_bytes),
+            mib(memory.unpooled_bytes)
+        ));
+    } else {
+        line.push_str(" (no two resources share one)");
+    }
+    line
 }

@@ -144,6 +144,7 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
     )?;
     let data = SceneData::new(args.scene.clone())?;
     let gpu = Gpu::new()?;
+    crate::size_limit::check(args.pipeline, args.sets, args.size, &gpu)?;
     let mut prepared = prepare(&gpu, args.pipeline, args.sets, &data, args.size)?;
     let dir = pending.dir().to_path_buf();
     let mut preview =

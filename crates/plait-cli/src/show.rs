@@ -41,7 +41,7 @@ pub fn check_name(pipeline: &Pipeline, name: &str) -> Result<()> {
             listing()
         ),
         None => anyhow::bail!(
-            "--show {name}: no texture `{name}` in {}{}; its textures: {}",
+            "--show {name}: no texture `{name}` in {}{} (its textures: {})",
             pipeline
                 .files
                 .first()

@@ -49,6 +49,13 @@ pub fn run(args: TechniquesArgs) -> Result<()> {
         )?;
         return Ok(());
     }
+    // One column for the names, as wide as the longest (a fixed width ran
+    // `deep_opacity_directions` into its description).
+    let w = catalog
+        .iter()
+        .map(|t| t.name.chars().count())
+        .max()
+        .unwrap_or(0);
     let mut point = None;
     for t in &catalog {
         if point != Some(&t.point) {
@@ -60,16 +67,16 @@ pub fn run(args: TechniquesArgs) -> Result<()> {
                 root.join(&t.point).display()
             )?;
         }
-        outln!("  {:<22} {}", t.name, t.description)?;
+        outln!("  {:<w$} {}", t.name, t.description)?;
         if !t.source.is_empty() && t.source != "—" {
-            outln!("  {:<22} paper: {}", "", t.source)?;
+            outln!("  {:<w$} paper: {}", "", t.source)?;
         }
         if !t.params.is_empty() {
             let params: Vec<String> = t.params.iter().map(|(k, v)| format!("{k} = {v}")).collect();
-            outln!("  {:<22} params: {}", "", params.join(", "))?;
+            outln!("  {:<w$} params: {}", "", params.join(", "))?;
         }
         if !t.memory.is_empty() {
-            outln!("  {:<22} memory: {}", "", t.memory)?;
+            outln!("  {:<w$} memory: {}", "", t.memory)?;
         }
     }
     outln!("\nPapers: docs/bibliography.md")?;

@@ -513,6 +513,16 @@ fn technique_sweeps_make_a_grid() {
         out.to_str().expect("utf-8"),
     ]);
     assert!(o.status.success(), "stderr: {}", text(&o.stderr));
+    // The terminal table has the HTML report's |ΔV| column (the variants'
+    // self-shadowing differs from the reference's), and one repeat is one.
+    let stdout = text(&o.stdout);
+    let header = stdout
+        .lines()
+        .find(|l| l.starts_with("variant "))
+        .expect("a table");
+    assert!(header.contains("mean / max |ΔV|"), "{stdout}");
+    let md = std::fs::read_to_string(out.join("report.md")).expect("report.md");
+    assert!(md.contains("(1 repeat,"), "{md}");
     let v = read_json(&out);
     let runs = v["scenes"][0]["runs"].as_array().expect("runs");
     assert_eq!(runs.len(), 5, "2 × 2 grid + the reference");

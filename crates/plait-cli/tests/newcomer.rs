@@ -416,21 +416,23 @@ fn several_errors_are_printed_once_each() {
 }
 
 /// `scripts/render.sh --out mine.png` writes where the user is: the script
-/// runs cargo from the user's directory with the checkout's manifest. A
-/// stand-in `cargo` records how it was called.
+/// runs cargo from the user's directory with the checkout's manifest. It
+/// builds first with cargo's progress shown (a first build takes minutes;
+/// `cargo run --quiet` alone showed nothing), then runs quietly. A stand-in
+/// `cargo` records how it was called.
 #[test]
-fn render_script_keeps_the_users_directory() {
+fn render_script_keeps_the_users_directory_and_shows_the_build() {
     let dir = tempfile::tempdir().expect("tempdir");
     let bin = dir.path().join("bin");
     let work = dir.path().join("work");
     std::fs::create_dir_all(&bin).expect("bin");
     std::fs::create_dir_all(&work).expect("work");
-    let record = dir.path().join("cargo-call");
+    let record = dir.path().join("cargo-calls");
     let fake_cargo = bin.join("cargo");
     std::fs::write(
         &fake_cargo,
         format!(
-            "#!/bin/sh\npwd > '{0}'\nfor a in \"$@\"; do echo \"$a\" >> '{0}'; done\n",
+            "#!/bin/sh\necho '--- call' >> '{0}'\npwd >> '{0}'\nfor a in \"$@\"; do echo \"$a\" >> '{0}'; done\n",
             record.display()
         ),
     )
@@ -454,23 +456,40 @@ fn render_script_keeps_the_users_directory() {
         .output()
         .expect("run render.sh");
     assert!(o.status.success(), "{}", text(&o.stderr));
-    let call = std::fs::read_to_string(&record).expect("cargo was called");
-    let mut lines = call.lines();
-    assert_eq!(
-        Path::new(lines.next().expect("cwd"))
-            .canonicalize()
-            .expect("cwd"),
-        work.canonicalize().expect("work"),
-        "cargo ran elsewhere: {call}"
-    );
-    let args: Vec<&str> = lines.collect();
+    let calls = std::fs::read_to_string(&record).expect("cargo was called");
+    let calls: Vec<Vec<&str>> = calls
+        .split("--- call\n")
+        .filter(|c| !c.is_empty())
+        .map(|c| c.lines().collect())
+        .collect();
+    assert_eq!(calls.len(), 2, "a build, then a run: {calls:?}");
     let manifest = root().join("Cargo.toml");
+    for call in &calls {
+        assert_eq!(
+            Path::new(call[0]).canonicalize().expect("cwd"),
+            work.canonicalize().expect("work"),
+            "cargo ran elsewhere: {call:?}"
+        );
+        let args = &call[1..];
+        assert!(
+            args.windows(2)
+                .any(|w| w[0] == "--manifest-path" && Path::new(w[1]) == manifest),
+            "{args:?}"
+        );
+        assert!(args.contains(&"--locked"), "{args:?}");
+    }
+    let (build, run) = (&calls[0][1..], &calls[1][1..]);
+    assert_eq!(build[0], "build", "{build:?}");
     assert!(
-        args.windows(2)
-            .any(|w| w[0] == "--manifest-path" && Path::new(w[1]) == manifest),
-        "{args:?}"
+        !build.contains(&"--quiet") && !build.contains(&"-q"),
+        "the build hides cargo's progress: {build:?}"
     );
-    assert!(args.ends_with(&["render", "--out", "mine.png"]), "{args:?}");
+    assert_eq!(run[0], "run", "{run:?}");
+    assert!(
+        run.contains(&"--quiet"),
+        "the run mixes cargo's lines in: {run:?}"
+    );
+    assert!(run.ends_with(&["render", "--out", "mine.png"]), "{run:?}");
 }
 
 #[test]
@@ -479,11 +498,23 @@ fn the_default_output_is_ignored_by_git() {
     assert!(ignore.lines().any(|l| l.trim() == "plait.png"), "{ignore}");
 }
 
+/// `cargo install` without `--locked` resolves newer crates than
+/// Cargo.lock's (wgpu, naga 30.0.1 → 30.0.2 on a fresh clone): the binary
+/// installed would not be the one tested. Every install command the README
+/// gives is locked.
 #[test]
-fn the_readme_says_how_to_put_plait_on_path() {
+fn the_readme_says_how_to_put_plait_on_path_with_the_tested_crates() {
     let readme = std::fs::read_to_string(root().join("README.md")).expect("README");
     assert!(
-        readme.contains("cargo install --path crates/plait-cli"),
+        readme.contains("cargo install --locked --path crates/plait-cli"),
         "README lacks the install command"
+    );
+    let unlocked: Vec<&str> = readme
+        .lines()
+        .filter(|l| l.contains("cargo install --path"))
+        .collect();
+    assert!(
+        unlocked.is_empty(),
+        "unlocked installs in the README: {unlocked:?}"
     );
 }

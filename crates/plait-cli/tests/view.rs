@@ -233,6 +233,20 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
         "plait view failed: {status}\n{}",
         log.join("\n")
     );
+    // An ordinary file, as `plait render` writes (it was 0600, the
+    // temporary file's mode).
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let status = std::fs::read_to_string("/proc/self/status").expect("status");
+        let umask = status
+            .lines()
+            .find_map(|l| l.strip_prefix("Umask:"))
+            .and_then(|m| u32::from_str_radix(m.trim(), 8).ok())
+            .expect("the umask");
+        let mode = std::fs::metadata(&shot).expect("shot").permissions().mode() & 0o777;
+        assert_eq!(mode, 0o666 & !umask, "the screenshot's mode is {mode:o}");
+    }
 
     // The same state through `plait render`.
     let reference = dir.path().join("render.png");

@@ -301,7 +301,7 @@ pub fn library_source(
         Some(path) => match std::fs::read_to_string(&path) {
             Ok(text) => Ok((path, Cow::Owned(text))),
             Err(e) => Err(ShaderError {
-                message: format!("cannot read shader {}: {e}", path.display()),
+                message: format!("{}: cannot read file: {e}", path.display()),
                 path,
             }),
         },
@@ -371,7 +371,7 @@ impl ShaderLibrary {
                 // that imports them.
                 for path in extra_providers(point) {
                     let source = plait_assets::read_to_string(&path).map_err(|e| ShaderError {
-                        message: format!("cannot read shader {}: {e}", path.display()),
+                        message: format!("{}: cannot read file: {e}", path.display()),
                         path: path.clone(),
                     })?;
                     add(&mut composer, path, &source)?;

@@ -72,8 +72,13 @@ impl Error {
 /// exactly which pass, resource or param is at fault.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ErrorKind {
+    /// The file the location names cannot be read.
     #[error("cannot read file: {0}")]
     Io(String),
+    /// A file named at the location (`extends`, `includes`) cannot be read:
+    /// `PATH: cannot read file: …`, the form every missing input file has.
+    #[error("{}: cannot read file: {reason}", path.display())]
+    ReadFile { path: PathBuf, reason: String },
     #[error("TOML syntax error: {0}")]
     Syntax(String),
     #[error("{0}")]

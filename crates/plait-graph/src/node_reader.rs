@@ -123,7 +123,7 @@ impl Reader<'_> {
         self.schema(
             &node.location,
             format!(
-                "{context} is `{s}`{}; accepted: {}",
+                "{context} is `{s}`{} (accepted: {})",
                 crate::suggest::did_you_mean(s, accepted.iter().copied()),
                 accepted.join(", ")
             ),

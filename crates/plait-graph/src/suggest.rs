@@ -57,7 +57,9 @@ where
 }
 
 /// `; did you mean `x`?` when a candidate is close, else nothing: ready to
-/// append to an error message.
+/// append to an error message's clause. What follows it in the message
+/// starts a parenthesis (` (known: …)`), never a `;` or `,`, which would
+/// read `did you mean `x`?; …`.
 pub fn did_you_mean<'a, I>(name: &str, candidates: I) -> String
 where
     I: IntoIterator<Item = &'a str>,

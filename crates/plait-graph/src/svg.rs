@@ -30,6 +30,12 @@ const ROW_H: f64 = 30.0;
 const COL_W: f64 = 24.0;
 const MARGIN: f64 = 12.0;
 const TITLE_H: f64 = 28.0;
+/// Width of the legend's first line (writes, reads, adds, culled).
+const LEGEND_W: f64 = 560.0;
+/// Where the notes beside the legend's second line start.
+const NOTES_X: f64 = MARGIN + 220.0;
+/// Space between two technique entries on a legend line.
+const ENTRY_GAP: f64 = 18.0;
 
 const TEXTURE_COLOUR: &str = "#2f6db5";
 const BUFFER_COLOUR: &str = "#c0661a";
@@ -89,6 +95,25 @@ fn bytes(n: u64) -> String {
     }
 }
 
+/// Entries `(text, width)` laid out in lines no wider than `max_w`: per
+/// line, each entry's index and x offset. An entry wider than a line gets a
+/// line of its own.
+fn wrap_entries(entries: &[(String, f64)], max_w: f64) -> Vec<Vec<(usize, f64)>> {
+    let mut lines: Vec<Vec<(usize, f64)>> = Vec::new();
+    let mut x = 0.0;
+    for (k, (_, w)) in entries.iter().enumerate() {
+        match lines.last_mut() {
+            Some(line) if x + w <= max_w => line.push((k, x)),
+            _ => {
+                lines.push(vec![(k, 0.0)]);
+                x = 0.0;
+            }
+        }
+        x += w + ENTRY_GAP;
+    }
+    lines
+}
+
 /// How a pass touches a resource, for its mark.
 #[derive(Clone, Copy, PartialEq)]
 enum Mark {
@@ -146,7 +171,7 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
         .iter()
         .map(|(_, k)| kind_x - MARGIN + text_width(k))
         .fold(text_width("output"), f64::max)
-        + 8.0;
+        + 14.0;
     let headers: Vec<(String, String)> = columns
         .iter()
         .map(|&r| {
@@ -172,8 +197,6 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
         .enumerate()
         .map(|(c, h)| col_x(c) - 4.0 + header_len(h))
         .fold(grid_x + COL_W * columns.len() as f64, f64::max);
-    let legend_w = 560.0;
-    let width = (header_right + MARGIN).max(MARGIN * 2.0 + legend_w).ceil();
     let mut notes = Vec::new();
     for physical in &schedule.physical {
         if physical.users.len() > 1 {
@@ -186,19 +209,51 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
         }
     }
     // Each technique's passes share a tint, named in the legend: what a
-    // `--set techniques.…` swap changes.
-    let technique_labels: Vec<String> = schedule.techniques.iter().map(|t| t.label()).collect();
+    // `--set techniques.…` swap changes. A technique that adds no pass (it
+    // only sets params, or culled nothing into the rows) has no tint to name.
+    let technique_labels: Vec<String> = schedule
+        .techniques
+        .iter()
+        .map(|t| t.label())
+        .filter(|l| rows.iter().any(|(p, _)| p.technique.as_ref() == Some(l)))
+        .collect();
     let tint = |pass: &ScheduledPass| {
         pass.technique
             .as_ref()
             .and_then(|t| technique_labels.iter().position(|l| l == t))
             .map_or("white", |i| TECHNIQUE_TINTS[i % TECHNIQUE_TINTS.len()])
     };
-    let technique_rows = usize::from(!technique_labels.is_empty());
+    // Everything the legend writes fits the picture: its first line, the
+    // notes beside the second, and at least the widest technique entry.
+    let technique_entries: Vec<(String, f64)> = technique_labels
+        .iter()
+        .map(|l| {
+            let text = format!("technique {l}");
+            let w = 16.0 + text_width(&text);
+            (text, w)
+        })
+        .collect();
+    let width = [
+        header_right + MARGIN,
+        MARGIN * 2.0 + LEGEND_W,
+        notes
+            .iter()
+            .map(|n| NOTES_X + text_width(n) + MARGIN)
+            .fold(0.0, f64::max),
+        technique_entries
+            .iter()
+            .map(|(_, w)| MARGIN * 2.0 + w)
+            .fold(0.0, f64::max),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max)
+    .ceil();
+    let technique_lines = wrap_entries(&technique_entries, width - MARGIN * 2.0);
     // The legend's second line (texture / buffer) holds the first note.
     let technique_y = legend_y + 18.0 * (1 + notes.len().max(1)) as f64;
     let height =
-        (legend_y + 18.0 * (notes.len().max(1) + technique_rows) as f64 + 18.0 + MARGIN).ceil();
+        (legend_y + 18.0 * (notes.len().max(1) + technique_lines.len()) as f64 + 18.0 + MARGIN)
+            .ceil();
 
     let mut out = String::new();
     let _ = write!(
@@ -392,24 +447,23 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
         let _ = write!(
             out,
             r#"<text x="{}" y="{}" fill="{GREY}">{}</text>"#,
-            MARGIN + 220.0,
+            NOTES_X,
             legend_y + 18.0 + 18.0 * k as f64,
             escape(note)
         );
     }
-    if !technique_labels.is_empty() {
-        let y = technique_y;
-        let mut x = MARGIN;
-        for (k, label) in technique_labels.iter().enumerate() {
+    for (line, entries) in technique_lines.iter().enumerate() {
+        let y = technique_y + 18.0 * line as f64;
+        for &(k, x) in entries {
             let _ = write!(
                 out,
-                r#"<rect x="{x}" y="{}" width="11" height="11" fill="{}" stroke="{GREY}"/><text x="{}" y="{y}" fill="{GREY}">{}</text>"#,
+                r#"<rect x="{}" y="{}" width="11" height="11" fill="{}" stroke="{GREY}"/><text x="{}" y="{y}" fill="{GREY}">{}</text>"#,
+                MARGIN + x,
                 y - 9.0,
                 TECHNIQUE_TINTS[k % TECHNIQUE_TINTS.len()],
-                x + 16.0,
-                escape(&format!("technique {label}"))
+                MARGIN + x + 16.0,
+                escape(&technique_entries[k].0)
             );
-            x += 16.0 + text_width(&format!("technique {label}")) + 18.0;
         }
     }
     out.push_str("</svg>\n");

@@ -151,9 +151,16 @@ pub fn catalog(root: &Path) -> Result<Vec<TechniqueInfo>, Vec<Error>> {
                             })
                             .unwrap_or_default()
                     };
+                    // An included file's params come along with its data, but
+                    // the including file may replace what used them
+                    // (occupancy_no_slab's slab buffer has no `${slabs}`): a
+                    // param nothing refers to tunes nothing, so it is not listed.
+                    let mut used = Vec::new();
+                    references(&tree, &mut used);
                     let params = table(&tree, "params")
                         .map(|t| {
                             t.iter()
+                                .filter(|(k, _)| used.contains(k))
                                 .map(|(k, e)| (k.clone(), describe(&e.value.value)))
                                 .collect()
                         })
@@ -176,6 +183,25 @@ pub fn catalog(root: &Path) -> Result<Vec<TechniqueInfo>, Vec<Error>> {
         Ok(out)
     } else {
         Err(errors)
+    }
+}
+
+/// Every `${name}` a tree's strings refer to.
+fn references(node: &Spanned<Node>, out: &mut Vec<String>) {
+    match &node.value {
+        Node::Scalar(Value::Str(s)) => {
+            let mut rest = s.as_str();
+            while let Some(start) = rest.find("${") {
+                let Some(len) = rest[start + 2..].find('}') else {
+                    break;
+                };
+                out.push(rest[start + 2..start + 2 + len].to_owned());
+                rest = &rest[start + 3 + len..];
+            }
+        }
+        Node::Scalar(_) => {}
+        Node::List(items) => items.iter().for_each(|i| references(i, out)),
+        Node::Table(t) => t.values().for_each(|e| references(&e.value, out)),
     }
 }
 
@@ -288,10 +314,13 @@ fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<N
                 ));
                 continue;
             }
-            if !plait_assets::exists(&included) {
+            if let Err(e) = plait_assets::read_to_string(&included) {
                 errors.push(Error::new(
                     item.location.clone(),
-                    ErrorKind::Io(format!("{}: no such file", included.display())),
+                    ErrorKind::ReadFile {
+                        path: included,
+                        reason: e.to_string(),
+                    },
                 ));
                 continue;
             }

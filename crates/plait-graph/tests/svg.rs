@@ -106,3 +106,71 @@ fn the_picture_is_as_small_as_the_schedule() {
     assert!((300.0..800.0).contains(&width), "width {width}");
     assert!((150.0..500.0).contains(&height), "height {height}");
 }
+
+/// GOOD with five choice points whose techniques add a (culled) pass each,
+/// and one whose technique only sets a param.
+fn schedule_with_techniques() -> Schedule {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut choices = String::from("[techniques]\nquiet = \"only_params\"\n");
+    for n in 1..=5 {
+        let name = format!("a_rather_long_technique_name_number_{n}");
+        choices.push_str(&format!("p{n} = \"{name}\"\n"));
+        let file = dir.path().join(format!("techniques/p{n}/{name}.toml"));
+        std::fs::create_dir_all(file.parent().expect("folder")).expect("mkdir");
+        std::fs::write(
+            &file,
+            format!(
+                "[technique]\npoint = \"p{n}\"\ndescription = \"x\"\n\n[resources.t{n}]\nkind = \"texture\"\nformat = \"rgba8unorm\"\nsize = [4, 4]\n\n[passes.pass{n}]\ntype = \"blur\"\nreads = {{ src = \"depth\" }}\nwrites = {{ dst = \"t{n}\" }}\nparams = {{ radius = 1 }}\n"
+            ),
+        )
+        .expect("write");
+    }
+    let quiet = dir.path().join("techniques/quiet/only_params.toml");
+    std::fs::create_dir_all(quiet.parent().expect("folder")).expect("mkdir");
+    std::fs::write(
+        &quiet,
+        "[technique]\npoint = \"quiet\"\ndescription = \"x\"\n\n[params]\nq = 1\n",
+    )
+    .expect("write");
+    let pipeline = dir.path().join("pipelines/p.toml");
+    std::fs::create_dir_all(pipeline.parent().expect("folder")).expect("mkdir");
+    std::fs::write(&pipeline, format!("{GOOD}\n{choices}")).expect("write");
+    let loaded = load(&pipeline, &[]).expect("loads");
+    compile(&loaded, &registry(), &CompileOptions::default()).expect("compiles")
+}
+
+/// The legend ran past the picture's width (three technique entries of
+/// the default pipeline unseen) and named techniques that add no pass.
+#[test]
+fn the_legend_fits_the_picture_and_names_only_techniques_with_passes() {
+    let svg = to_svg(&schedule_with_techniques());
+    let all = elements(&svg);
+    let attribute = |attributes: &str, key: &str| -> f64 {
+        let start = attributes.find(&format!(" {key}=\"")).expect(key) + key.len() + 3;
+        let end = attributes[start..].find('"').expect("quote") + start;
+        attributes[start..end].parse().expect("a number")
+    };
+    let width = attribute(&all[0].1, "width");
+    let entries: Vec<&(String, String, String)> = all
+        .iter()
+        .filter(|(n, _, t)| n == "text" && t.starts_with("technique "))
+        .collect();
+    let names: Vec<&str> = entries.iter().map(|(_, _, t)| t.as_str()).collect();
+    for n in 1..=5 {
+        let want = format!("technique p{n}/a_rather_long_technique_name_number_{n}");
+        assert!(names.contains(&want.as_str()), "{want}: {names:?}");
+    }
+    assert!(
+        !names.iter().any(|t| t.contains("only_params")),
+        "a technique without passes in the legend: {names:?}"
+    );
+    // 7 px a character at 12 px is what the layout assumes for DejaVu Sans.
+    for (_, attributes, t) in &entries {
+        let right = attribute(attributes, "x") + 7.0 * t.chars().count() as f64;
+        assert!(right <= width, "`{t}` ends at {right}, past {width}");
+    }
+    // More entries than one line holds: they wrap onto several lines.
+    let mut lines: Vec<f64> = entries.iter().map(|(_, a, _)| attribute(a, "y")).collect();
+    lines.dedup();
+    assert!(lines.len() > 1, "{lines:?}");
+}

@@ -96,12 +96,12 @@ impl Asset {
     pub fn read(path: impl AsRef<Path>) -> Result<(Asset, Vec<String>), AssetError> {
         let path = path.as_ref();
         // A device or pipe (/dev/zero, a FIFO) would be read forever.
-        let meta = std::fs::metadata(path).map_err(|e| HairError::Io(e).in_file(path))?;
+        let meta = std::fs::metadata(path).map_err(|e| HairError::Read(e).in_file(path))?;
         if !meta.is_file() {
             let e = std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a regular file");
-            return Err(HairError::Io(e).in_file(path).into());
+            return Err(HairError::Read(e).in_file(path).into());
         }
-        let bytes = std::fs::read(path).map_err(|e| HairError::Io(e).in_file(path))?;
+        let bytes = std::fs::read(path).map_err(|e| HairError::Read(e).in_file(path))?;
         Asset::from_bytes(path, &bytes)
     }
 

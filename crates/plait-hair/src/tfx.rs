@@ -42,6 +42,10 @@ pub enum TfxError {
     /// Reading or writing failed (the message says it; not a `source()`).
     #[error("{0}")]
     Io(std::io::Error),
+    /// The file could not be read at all: `cannot read file: …`, as for
+    /// every input file.
+    #[error("cannot read file: {0}")]
+    Read(std::io::Error),
     /// The file is shorter than the header its version needs.
     #[error("file is {len} bytes, shorter than the {need}-byte TressFX {major} header")]
     ShortHeader {
@@ -540,7 +544,7 @@ impl TfxFile {
     /// Reads and parses a file; errors name it.
     pub fn read(path: impl AsRef<Path>) -> Result<(TfxFile, Vec<TfxWarning>), TfxError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|e| TfxError::Io(e).in_file(path))?;
+        let bytes = std::fs::read(path).map_err(|e| TfxError::Read(e).in_file(path))?;
         TfxFile::from_bytes(&bytes).map_err(|e| e.in_file(path))
     }
 }

@@ -556,8 +556,16 @@ pub fn write_png(path: &Path, image: &image::RgbaImage) -> Result<(), String> {
     image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .map_err(|e| e.to_string())?;
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".plait-")
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".plait-");
+    // An ordinary file's permissions (0666 less the umask, as `plait render`
+    // writes): tempfile's default, 0600, would stay on the renamed screenshot.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder
         .tempfile_in(&dir)
         .map_err(|e| format!("cannot write in {}: {e}", dir.display()))?;
     std::io::Write::write_all(&mut tmp, &png).map_err(|e| e.to_string())?;

@@ -17,8 +17,13 @@ pub fn markdown(report: &Report) -> String {
     };
     let _ = writeln!(
         out,
-        "<!-- made by plait ab ({} repeats, {}×{}, {}) -->",
+        "<!-- made by plait ab ({} repeat{}, {}×{}, {}) -->",
         report.provenance.repeats,
+        if report.provenance.repeats == 1 {
+            ""
+        } else {
+            "s"
+        },
         report.provenance.size[0],
         report.provenance.size[1],
         report.provenance.adapter.name

@@ -183,6 +183,6 @@ pub fn shader_source<T: PassType + ?Sized>(
     };
     match crate::shader::read_shader_file(path) {
         Ok(text) => Ok((path.clone(), text)),
-        Err(e) => Err((loc, format!("cannot read shader {}: {e}", path.display()))),
+        Err(e) => Err((loc, format!("{}: cannot read file: {e}", path.display()))),
     }
 }

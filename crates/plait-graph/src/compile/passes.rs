@@ -112,7 +112,7 @@ pub(super) fn resolve_pass(
                         pass_type: spec.name.clone(),
                         param: name.clone(),
                         known: if known.is_empty() {
-                            "no params".into()
+                            "none".into()
                         } else {
                             known.join(", ")
                         },

@@ -95,7 +95,7 @@ impl Builder<'_> {
             self.schema(
                 &s.location,
                 format!(
-                    "{context} is `{}`{}; accepted: {}",
+                    "{context} is `{}`{} (accepted: {})",
                     s.value,
                     crate::suggest::did_you_mean(&s.value, accepted.iter().copied()),
                     accepted.join(", ")

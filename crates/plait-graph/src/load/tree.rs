@@ -62,8 +62,16 @@ impl<'a> SourceMap<'a> {
 pub(crate) fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Errors> {
     let map = SourceMap::new(path, text);
     let table = toml::de::DeTable::parse(text).map_err(|e| {
-        let location = map.location(e.span().map_or(0, |s| s.start));
-        Error::new(location, ErrorKind::Syntax(e.message().trim().to_owned()))
+        let offset = e.span().map_or(0, |s| s.start);
+        // `light_size = 1024 +` is a broken expression, not a string that
+        // wants quotes: say what is wrong with the expression.
+        if let Some((at, message)) = unquoted_expression(text, offset) {
+            return Error::new(map.location(at), ErrorKind::Schema(message));
+        }
+        Error::new(
+            map.location(offset),
+            ErrorKind::Syntax(e.message().trim().to_owned()),
+        )
     })?;
     let mut errors = Vec::new();
     let span = table.span();
@@ -73,6 +81,62 @@ pub(crate) fn parse_file(path: &Path, text: &str) -> Result<Spanned<Node>, Error
     } else {
         Err(Errors(errors))
     }
+}
+
+/// When the line of a syntax error at `offset` is `key = VALUE` with VALUE
+/// an unquoted arithmetic expression (`1024 + 2`, `${light_size} * 2`): the
+/// value's offset and what is wrong — the expression itself when it is
+/// incomplete, else only the missing quotes.
+fn unquoted_expression(text: &str, offset: usize) -> Option<(usize, String)> {
+    let start = text[..offset.min(text.len())]
+        .rfind('\n')
+        .map_or(0, |i| i + 1);
+    let end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+    let line = &text[start..end];
+    let (key_part, rest) = line.split_once('=')?;
+    let key = key_part.trim();
+    // Values TOML could parse start with a quote, bracket, brace, digit
+    // or sign; an expression also holds an operator or a `${…}` after that.
+    let value = rest.split('#').next()?.trim();
+    let looks_like_expression = !value.is_empty()
+        && !value.starts_with(['"', '\'', '[', '{'])
+        && (value.contains("${") || value.chars().skip(1).any(|c| "+-*/()".contains(c)));
+    if key.is_empty() || !looks_like_expression {
+        return None;
+    }
+    let at = start + key_part.len() + 1 + rest.find(value).unwrap_or(0);
+    // Any name stands for a number here: only the shape is checked.
+    let shape = substitute_references(value);
+    let quoted = format!("`{key} = \"{value}\"`");
+    let message = match crate::expr::eval(&shape, &|_| Some(1.0)) {
+        Ok(_) => format!("`{value}` is an expression: write it as a string, {quoted}"),
+        Err(why) => format!(
+            "`{value}` is not a complete expression ({}); an expression is written as a string, e.g. \"${{light_size}} * 2\"",
+            why.replace(&format!(" in expression `{shape}`"), "")
+        ),
+    };
+    Some((at, message))
+}
+
+/// `${name}` replaced by `name`, so the expression parser sees its shape.
+fn substitute_references(value: &str) -> String {
+    let mut out = String::new();
+    let mut rest = value;
+    while let Some(i) = rest.find("${") {
+        out.push_str(&rest[..i]);
+        match rest[i + 2..].find('}') {
+            Some(len) => {
+                out.push_str(&rest[i + 2..i + 2 + len]);
+                rest = &rest[i + 3 + len..];
+            }
+            None => {
+                out.push_str(&rest[i..]);
+                rest = "";
+            }
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 fn convert_table(
@@ -207,7 +271,10 @@ pub(super) fn load_chain(
     let base_text = plait_assets::read_to_string(&base_path).map_err(|e| {
         Error::new(
             extends.location.clone(),
-            ErrorKind::Io(format!("{}: {e}", base_path.display())),
+            ErrorKind::ReadFile {
+                path: base_path.clone(),
+                reason: e.to_string(),
+            },
         )
     })?;
     let mut base = load_chain(&base_path, &base_text, chain, files)?;

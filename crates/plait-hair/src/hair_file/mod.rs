@@ -60,6 +60,10 @@ pub enum HairError {
     /// already says it, so `{:#}` chains do not repeat it.)
     #[error("{0}")]
     Io(std::io::Error),
+    /// The file could not be read at all (missing, unreadable, not a
+    /// regular file): `cannot read file: …`, as for every input file.
+    #[error("cannot read file: {0}")]
+    Read(std::io::Error),
     /// The file is shorter than the 128-byte header.
     #[error("file is {len} bytes, shorter than the 128-byte .hair header")]
     ShortHeader {

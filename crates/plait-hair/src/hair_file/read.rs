@@ -186,7 +186,7 @@ impl HairFile {
     /// Reads and parses a file; errors name the file.
     pub fn read(path: impl AsRef<Path>) -> Result<(HairFile, Vec<HairWarning>), HairError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|e| HairError::Io(e).in_file(path))?;
+        let bytes = std::fs::read(path).map_err(|e| HairError::Read(e).in_file(path))?;
         HairFile::from_bytes(&bytes).map_err(|e| e.in_file(path))
     }
 }

@@ -37,7 +37,7 @@ use crate::tfx::TfxError;
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     /// The scene file could not be read.
-    #[error("{}: {error}", path.display())]
+    #[error("{}: cannot read file: {error}", path.display())]
     Io {
         /// The scene file.
         path: PathBuf,

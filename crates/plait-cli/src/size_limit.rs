@@ -1,0 +1,109 @@
+//! `--size` too large for the adapter. Resources sized from the screen
+//! (`size = "screen"`, `"${screen_width} * …"`) grow with `--size`, and
+//! past the adapter's texture or storage-binding limit the pipeline no
+//! longer compiles. The errors then name a technique file's resource, which
+//! is not what the user changed: when the same pipeline fits at a tiny size,
+//! the flag is what to change, so the message names `--size`, the largest
+//! size of the same shape that fits, and what overflows.
+
+use std::path::Path;
+
+use anyhow::Result;
+use plait_gpu::Gpu;
+use plait_graph::{CompileOptions, Errors};
+
+/// Fails naming `--size` when `size` is what keeps `pipeline` (with `sets`)
+/// from fitting `gpu`'s limits; any other problem is left to the render,
+/// which reports it with its file and line.
+pub fn check(pipeline: &Path, sets: &[String], size: (u32, u32), gpu: &Gpu) -> Result<()> {
+    let on = format!("on {}", gpu.adapter_name());
+    check_with(pipeline, sets, size, &on, &|s| {
+        plait::session::gpu_options(gpu, s)
+    })
+}
+
+/// [`check`] without a GPU, against WebGPU's default limits (`plait graph`).
+pub fn check_default_limits(pipeline: &Path, sets: &[String], size: (u32, u32)) -> Result<()> {
+    check_with(
+        pipeline,
+        sets,
+        size,
+        "within WebGPU's default limits",
+        &|s| CompileOptions {
+            screen: s,
+            ..CompileOptions::default()
+        },
+    )
+}
+
+/// `options(size)` gives the limits; `on` names them in the message
+/// (`on llvmpipe`, `within WebGPU's default limits`).
+fn check_with(
+    pipeline: &Path,
+    sets: &[String],
+    size: (u32, u32),
+    on: &str,
+    options: &dyn Fn((u32, u32)) -> CompileOptions,
+) -> Result<()> {
+    let Ok(loaded) = plait_graph::load(pipeline, sets) else {
+        return Ok(());
+    };
+    let registry = plait_passes::library().registry();
+    let compile = |s: (u32, u32)| -> Result<(), Errors> {
+        plait_graph::compile(&loaded, &registry, &options(s)).map(|_| ())
+    };
+    let Err(errors) = compile(size) else {
+        return Ok(());
+    };
+    if compile((1, 1)).is_err() {
+        // Too large at any size, or wrong in another way: not the flag's fault.
+        return Ok(());
+    }
+    let (w, h) = largest_fitting(size, |s| compile(s).is_ok());
+    let overflows: Vec<String> = errors.0.iter().map(|e| format!("  {e}")).collect();
+    anyhow::bail!(
+        "--size {}x{} is too large for {} {on}: the largest size of this shape it fits is {w}x{h}; at {}x{}:\n{}",
+        size.0,
+        size.1,
+        pipeline.display(),
+        size.0,
+        size.1,
+        overflows.join("\n")
+    )
+}
+
+/// The largest size with `size`'s aspect ratio (width from 1 to `size.0`,
+/// height in proportion, at least 1) that `fits`, by bisection: memory
+/// grows with the size, so what fits at one width fits at every smaller one.
+/// `fits` must hold at width 1.
+fn largest_fitting(size: (u32, u32), fits: impl Fn((u32, u32)) -> bool) -> (u32, u32) {
+    let shape = |w: u32| {
+        let h = (u64::from(w) * u64::from(size.1) / u64::from(size.0)).max(1);
+        (w, h as u32)
+    };
+    let (mut lo, mut hi) = (1, size.0);
+    while lo < hi {
+        let mid = lo + (hi - lo).div_ceil(2);
+        if fits(shape(mid)) {
+            lo = mid;
+        } else {
+            hi = mid - 1;
+        }
+    }
+    shape(lo)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bisection_finds_the_largest_size_of_the_shape() {
+        // A pretend limit of 1,000,000 texels.
+        let fits = |(w, h): (u32, u32)| u64::from(w) * u64::from(h) <= 1_000_000;
+        assert_eq!(largest_fitting((8192, 8192), fits), (1000, 1000));
+        assert_eq!(largest_fitting((4000, 2000), fits), (1414, 707));
+        assert_eq!(largest_fitting((3, 2), |_| true), (3, 2));
+        assert_eq!(largest_fitting((500, 1), |(w, _)| w <= 7), (7, 1));
+    }
+}
