@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's performance figures, one benchmark after the other (see the
 # "Performance" section): the floor benchmark at the README's size and
-# repeats, the executor's encode time (criterion), the scaling run. About
+# repeats, the executor's encode time (criterion), the scaling run, the
+# papers' speed claims. About
 # 30 minutes on lavapipe (2 cores); run it on an otherwise idle machine —
 # the figures are GPU times. Each benchmark also runs alone, with its
 # defaults kept short: `cargo bench -p plait --bench floor|encode|scaling`.
@@ -13,3 +14,5 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then export NODEVICE_SELECT=1; fi
 cargo bench --locked -p plait --bench floor -- --size 320x240 --repeats 5
 cargo bench --locked -p plait --bench encode
 cargo bench --locked -p plait --bench scaling -- --repeats 3 --largest
+# The papers' speed claims, interleaved, into the README's claims table.
+cargo bench --locked -p plait --bench claims -- --repeats 3 --readme
