@@ -103,6 +103,21 @@ impl Progress {
 pub fn run(args: AbArgs) -> Result<()> {
     // Everything a user can get wrong fails before the GPU is opened.
     let pending = crate::output::PendingDir::create(&args.out, "report.json", "`plait ab` report")?;
+    // A --size past WebGPU's limits (what the plan checks against) names the
+    // flag, not a resource of some technique file.
+    let reference_size = (
+        args.size.0 * args.supersample.max(1),
+        args.size.1 * args.supersample.max(1),
+    );
+    for (pipeline, size) in args
+        .pipelines
+        .iter()
+        .map(|p| (p, args.size))
+        .chain([(&args.reference, reference_size)])
+    {
+        let path = plait::session::resolve_pipeline(Some(pipeline));
+        crate::size_limit::check_default_limits(&path, &args.set.sets, size)?;
+    }
     let plan = Plan::new(AbOptions {
         pipelines: args.pipelines,
         reference: args.reference,
@@ -119,6 +134,21 @@ pub fn run(args: AbArgs) -> Result<()> {
         }),
     })?;
     let gpu = Gpu::new()?;
+    // A --size past the adapter's limits names the flag, not a resource of
+    // some technique file (as `plait render` does).
+    for v in &plan.variants {
+        let size = plan.options.render_size(v.is_reference);
+        crate::size_limit::check(&v.pipeline, &v.sets, size, &gpu).map_err(|e| {
+            if v.is_reference && plan.options.supersample > 1 {
+                e.context(format!(
+                    "the reference renders at --size × --supersample {}",
+                    plan.options.supersample
+                ))
+            } else {
+                e
+            }
+        })?;
+    }
     let progress = Progress::new(plan.step_count());
     let report = plait::ab::run(&plan, &gpu, pending.dir(), &mut |step| progress.show(step))
         .map_err(|e| match e {

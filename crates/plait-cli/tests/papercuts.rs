@@ -109,6 +109,23 @@ fn a_size_too_large_for_the_adapter_names_the_flag_and_the_largest_size() {
             "camera_bits",
         ],
     );
+    // `plait ab` names the flag the same way, before it renders anything.
+    let out = dir.path().join("ab");
+    let ab = plait(&[
+        "ab",
+        "pipelines/occupancy.toml",
+        "--reference",
+        "pipelines/forward.toml",
+        "--size",
+        "8192x8192",
+        "--out",
+        utf8(&out),
+    ]);
+    fails_with(
+        &ab,
+        &["error: --size 8192x8192 is too large for pipelines/occupancy.toml"],
+    );
+    assert!(!out.join("report.html").exists());
     // The size it names fits: rendering at it is not refused for its size.
     let largest = stderr
         .split("it fits is ")
