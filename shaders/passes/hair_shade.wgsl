@@ -4,13 +4,8 @@
 // §3.5) and by the hair itself (`visibility`); the rest of the environment's
 // light (`lighting`), darkened by per-vertex occlusion (`occlusion`) — then
 // blended into the colour target by the `blend` param.
-#import plait::frame::{frame, view_proj, to_light}
-#import plait::hair_direct::shade_direct
-#import plait::hair_environment::shade_environment
-#import plait::hair_occlusion::occlusion_at
-#import plait::shadow::opaque_shadow
-#import plait::self_shadow::self_shadow
-#import plait::transparency::coverage::strand_coverage
+#import plait::frame::frame
+#import plait::hair_fragment::{HairVertex, HairVaryings, hair_vertex, shade_hair}
 #ifdef BLEND_OCCUPANCY_ORDER
 #import plait::frame::camera_linear_depth
 #import plait::occupancy::{MAX_WORDS, relative_depth_in, slab_position, word_bits, order_in_slab}
@@ -27,8 +22,6 @@
 #else ifdef TRANSPARENCY_COVERAGE
 #import plait::transparency::coverage::{FragmentOut, hair_fragment}
 #endif
-
-@group(1) @binding(0) var shadow_map: texture_depth_2d;
 
 #ifdef BLEND_OCCUPANCY_ORDER
 // Camera-view depth-range, occupancy and slab maps: the depth order of each
@@ -85,70 +78,32 @@ fn camera_order(pixel: vec2<u32>, depth: f32) -> f32 {
 }
 #endif
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-    @location(1) thickness: f32,
-    @location(2) tangent: vec3<f32>,
-    @location(3) alpha: f32,
-    @location(4) color: vec3<f32>,
-    // The vertex's index in the hair vertex buffer: per-vertex resources
-    // (ambient occlusion) are indexed by it.
-    @builtin(vertex_index) index: u32,
-}
-
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-    @location(1) tangent: vec3<f32>,
-    @location(2) color: vec3<f32>,
-    @location(3) alpha: f32,
-    // Fraction of the environment's light reaching the strand here.
-    @location(4) occlusion: f32,
-}
-
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.world = v.position;
-    out.tangent = v.tangent;
-    out.color = v.color;
-    // A strand thinner than a pixel covers only part of it: its coverage
-    // weighs its alpha in every blending technique (and sets the sample mask
-    // of alpha to coverage).
-    out.alpha = v.alpha * strand_coverage(v.position, v.tangent, v.thickness);
-    out.occlusion = occlusion_at(v.index);
-    return out;
+fn vs_main(v: HairVertex) -> HairVaryings {
+    return hair_vertex(v);
 }
 
 @fragment
 #ifdef TRANSPARENCY_MODULE
-fn fs_main(in: VertexOut) -> FragmentOut {
+fn fs_main(in: HairVaryings) -> FragmentOut {
 #else
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(in: HairVaryings) -> @location(0) vec4<f32> {
 #endif
-    let tangent = normalize(in.tangent);
-    let l = to_light(in.world);
-    let e = normalize(frame.camera_position.xyz - in.world);
-    let visibility = self_shadow(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
-    let base = in.color * frame.hair_color.rgb;
-    let direct = shade_direct(tangent, l, e, base);
-    let environment = shade_environment(in.world, tangent, e, base) * in.occlusion;
-    let rgb = frame.light_color.rgb * direct * visibility + environment;
+    let shaded = shade_hair(in);
+    let rgb = shaded.rgb;
+    let alpha = shaded.alpha;
 #ifdef TRANSPARENCY_MODULE
-    return hair_fragment(in.clip, rgb, clamp(in.alpha * frame.hair_color.a, 0.0, 1.0));
+    return hair_fragment(in.clip, rgb, alpha);
 #else ifdef BLEND_OCCUPANCY_ORDER
     // Front-to-back weights from the estimated order o: (1-ᾱ)^o · α, added
     // unsorted into a float target (§3.4). The fragments in front are
     // unknown, so they count with the mean alpha ᾱ — the method's
     // "same alpha for every fragment" — while this fragment keeps its own.
-    let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
     let mean_alpha = order_mean_alpha(vec2<u32>(in.clip.xy));
     let order = camera_order(vec2<u32>(in.clip.xy), camera_linear_depth(in.world));
     let weight = pow(1.0 - mean_alpha, order) * alpha;
     return vec4<f32>(rgb * weight, weight);
 #else
-    let alpha = clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
     // Premultiplied: the blend state composites "over" what is already there.
     return vec4<f32>(rgb * alpha, alpha);
 #endif

@@ -146,6 +146,10 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         "shaders/lib/transparency/coverage.wgsl",
         include_str!("../../../shaders/lib/transparency/coverage.wgsl"),
     ),
+    (
+        "shaders/lib/hair_fragment.wgsl",
+        include_str!("../../../shaders/lib/hair_fragment.wgsl"),
+    ),
 ];
 
 /// A choice point answered in WGSL: every technique of the point supplies a

@@ -1,0 +1,85 @@
+// plait::hair_fragment — the shared hair-fragment stage: what every pass that
+// shades hair computes before it decides what to do with the fragment. A
+// transparency technique's raster passes import it and differ only in how they
+// write the result (blend it over, sum it, append it to a list, keep it if it
+// is among the nearest k, let its alpha pick MSAA samples).
+//
+//   @vertex   fn vs_main(v: HairVertex) -> HairVaryings { return hair_vertex(v); }
+//   @fragment fn fs_main(in: HairVaryings) -> … { let f = shade_hair(in); … }
+//
+// The fragment's colour is the key light's reflection (`shading`: Kajiya-Kay
+// by default, Halén & Wester 2007 §3.2.1), shadowed by opaque objects
+// (Sintorn & Assarsson 2009 §3.5) and by the hair itself (`self_shadow`),
+// plus the rest of the environment's light (`lighting`) darkened by per-vertex
+// occlusion (`ambient_occlusion`): one provider per choice point, chosen by the
+// pass's `uses`. Its alpha is the strand's alpha × the part of the pixel the
+// strand covers (`strand_coverage`).
+//
+// Group 1 binding 0 is the opaque shadow map (slot `shadow_map`); bindings
+// 10–49 belong to the providers; a technique's own slots start at 60.
+#define_import_path plait::hair_fragment
+
+#import plait::frame::{frame, view_proj, to_light}
+#import plait::hair_direct::shade_direct
+#import plait::hair_environment::shade_environment
+#import plait::hair_occlusion::occlusion_at
+#import plait::shadow::opaque_shadow
+#import plait::self_shadow::self_shadow
+#import plait::transparency::coverage::strand_coverage
+
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
+
+// A hair vertex as the scene's hair vertex buffer holds it.
+struct HairVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) thickness: f32,
+    @location(2) tangent: vec3<f32>,
+    @location(3) alpha: f32,
+    @location(4) color: vec3<f32>,
+    // The vertex's index in the hair vertex buffer: per-vertex resources
+    // (ambient occlusion) are indexed by it.
+    @builtin(vertex_index) index: u32,
+}
+
+struct HairVaryings {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) tangent: vec3<f32>,
+    @location(2) color: vec3<f32>,
+    // The strand's alpha × its pixel coverage (before the hair colour's alpha).
+    @location(3) alpha: f32,
+    // Fraction of the environment's light reaching the strand here.
+    @location(4) occlusion: f32,
+}
+
+// A shaded hair fragment: straight (not premultiplied) colour and alpha.
+struct HairFragment {
+    rgb: vec3<f32>,
+    alpha: f32,
+}
+
+fn hair_vertex(v: HairVertex) -> HairVaryings {
+    var out: HairVaryings;
+    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.world = v.position;
+    out.tangent = v.tangent;
+    out.color = v.color;
+    // A strand thinner than a pixel covers only part of it: its coverage
+    // weighs its alpha in every blending technique (and sets the sample mask
+    // of alpha to coverage).
+    out.alpha = v.alpha * strand_coverage(v.position, v.tangent, v.thickness);
+    out.occlusion = occlusion_at(v.index);
+    return out;
+}
+
+fn shade_hair(in: HairVaryings) -> HairFragment {
+    let tangent = normalize(in.tangent);
+    let l = to_light(in.world);
+    let e = normalize(frame.camera_position.xyz - in.world);
+    let visibility = self_shadow(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
+    let base = in.color * frame.hair_color.rgb;
+    let direct = shade_direct(tangent, l, e, base);
+    let environment = shade_environment(in.world, tangent, e, base) * in.occlusion;
+    let rgb = frame.light_color.rgb * direct * visibility + environment;
+    return HairFragment(rgb, clamp(in.alpha * frame.hair_color.a, 0.0, 1.0));
+}
