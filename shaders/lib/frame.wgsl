@@ -43,7 +43,7 @@ struct Frame {
     // front of"): x = self-shadow bias in light linear depth; y = 1 to jitter
     // light-map lookups by up to half a texel (Fig. 9), 0 to read the texel
     // the point falls in; z = 1 when strands thinner than a pixel weigh by
-    // the part of it they cover (plait::transparency::coverage).
+    // the part of it they cover (plait::strand_coverage).
     conventions: vec4<f32>,
     // World-from-rest matrix of the head at this frame's time (the scene's
     // [animation]; identity for a still head), and one frame earlier.

@@ -25,7 +25,7 @@
 #import plait::hair_occlusion::occlusion_at
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
-#import plait::transparency::coverage::strand_coverage
+#import plait::strand_coverage::strand_coverage
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 

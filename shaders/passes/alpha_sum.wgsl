@@ -4,7 +4,7 @@
 // alpha, clamped — so Σα / n is the mean alpha of the fragments occupancy-order
 // blending weighs (Sintorn & Assarsson 2009 §3.4).
 #import plait::frame::{frame, view_proj}
-#import plait::transparency::coverage::strand_coverage
+#import plait::strand_coverage::strand_coverage
 
 struct SumVertex {
     @location(0) position: vec3<f32>,

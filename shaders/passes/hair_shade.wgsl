@@ -17,10 +17,6 @@
 #import plait::transparency::depth_peel::{FragmentOut, hair_fragment}
 #else ifdef TRANSPARENCY_FRAGMENT_LIST
 #import plait::transparency::fragment_list::{FragmentOut, hair_fragment}
-#else ifdef TRANSPARENCY_WEIGHTED_AVERAGE
-#import plait::transparency::weighted_average::{FragmentOut, hair_fragment}
-#else ifdef TRANSPARENCY_COVERAGE
-#import plait::transparency::coverage::{FragmentOut, hair_fragment}
 #endif
 
 #ifdef BLEND_OCCUPANCY_ORDER

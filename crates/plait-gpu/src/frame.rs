@@ -154,7 +154,7 @@ impl FrameUniforms {
     }
 
     /// Whether strands thinner than a pixel weigh by the part of it they
-    /// cover (`plait::transparency::coverage::strand_coverage`; on by
+    /// cover (`plait::strand_coverage::strand_coverage`; on by
     /// default). Off, every strand covers its pixels wholly, as before; the
     /// mean fragment alpha follows.
     pub fn with_strand_coverage(mut self, on: bool) -> Self {
@@ -254,7 +254,7 @@ impl LightFrustum {
 }
 
 /// The mean strand alpha weighted by strand coverage, the CPU mirror of
-/// `strand_coverage` in `shaders/lib/transparency/coverage.wgsl`: the part of
+/// `strand_coverage` in `shaders/lib/strand_coverage.wgsl`: the part of
 /// a pixel each vertex's strand covers at `size` (at most 1), times its
 /// alpha, averaged over vertices (summed in f64). Order-based blending's ᾱ
 /// (Sintorn & Assarsson 2009 §3.4) is the alpha fragments actually carry.

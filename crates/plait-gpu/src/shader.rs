@@ -139,12 +139,8 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/transparency/fragment_list.wgsl"),
     ),
     (
-        "shaders/lib/transparency/weighted_average.wgsl",
-        include_str!("../../../shaders/lib/transparency/weighted_average.wgsl"),
-    ),
-    (
-        "shaders/lib/transparency/coverage.wgsl",
-        include_str!("../../../shaders/lib/transparency/coverage.wgsl"),
+        "shaders/lib/strand_coverage.wgsl",
+        include_str!("../../../shaders/lib/strand_coverage.wgsl"),
     ),
     (
         "shaders/lib/hair_fragment.wgsl",

@@ -6,6 +6,8 @@
 //! blend = { color = { color = { src = "one", dst = "one_minus_src_alpha", op = "add" },
 //!                     alpha = { src = "one", dst = "one", op = "add" } } }   # …or factors
 //! cull = "back"                                  # none | front | back
+//! alpha_to_coverage = true                        # alpha picks the MSAA samples covered
+//! loads = ["color", "depth"]                      # attachments drawn over, not cleared
 //! ```
 //!
 //! The same keys are read from a `[passes.NAME]` table of a pipeline and from
@@ -19,7 +21,7 @@ use crate::load::{Entry, Node, Table};
 use crate::node_reader::Reader;
 
 /// The keys of a pass table that hold raster state.
-pub const RASTER_KEYS: &[&str] = &["depth", "blend", "cull"];
+pub const RASTER_KEYS: &[&str] = &["depth", "blend", "cull", "alpha_to_coverage", "loads"];
 
 /// `name = "text"` enums with their TOML spelling, listed for messages.
 macro_rules! named_enum {
@@ -172,11 +174,26 @@ pub struct RasterDecl {
     /// Per colour-target slot, in file order.
     pub blend: IndexMap<String, Spanned<Blend>>,
     pub cull: Option<Spanned<Cull>>,
+    /// The fragment's alpha sets its MSAA sample mask (needs a multisampled
+    /// colour target).
+    pub alpha_to_coverage: Option<Spanned<bool>>,
+    /// Written attachment slots whose contents the pass keeps (it draws over
+    /// them) instead of clearing them first.
+    pub loads: Vec<Spanned<String>>,
 }
 
 impl RasterDecl {
     pub fn is_empty(&self) -> bool {
-        self.depth.is_none() && self.blend.is_empty() && self.cull.is_none()
+        self.depth.is_none()
+            && self.blend.is_empty()
+            && self.cull.is_none()
+            && self.alpha_to_coverage.is_none()
+            && self.loads.is_empty()
+    }
+
+    /// Whether the pass keeps the contents of the written slot `slot`.
+    pub fn keeps(&self, slot: &str) -> bool {
+        self.loads.iter().any(|l| l.value == slot)
     }
 
     /// `self` with every key `over` sets replaced (a pass over its type's defaults).
@@ -190,6 +207,12 @@ impl RasterDecl {
         }
         for (slot, blend) in &over.blend {
             out.blend.insert(slot.clone(), blend.clone());
+        }
+        if over.alpha_to_coverage.is_some() {
+            out.alpha_to_coverage = over.alpha_to_coverage.clone();
+        }
+        if !over.loads.is_empty() {
+            out.loads = over.loads.clone();
         }
         out
     }
@@ -205,6 +228,12 @@ impl RasterDecl {
         }
         if let Some(c) = &self.cull {
             out.push(("cull", &c.location));
+        }
+        if let Some(a) = &self.alpha_to_coverage {
+            out.push(("alpha_to_coverage", &a.location));
+        }
+        if let Some(l) = self.loads.first() {
+            out.push(("loads", &l.location));
         }
         out
     }
@@ -242,6 +271,13 @@ impl RasterDecl {
         if let Some(c) = &self.cull {
             parts.push(format!("cull {}", c.name()));
         }
+        if self.alpha_to_coverage.as_ref().is_some_and(|a| a.value) {
+            parts.push("alpha to coverage".into());
+        }
+        if !self.loads.is_empty() {
+            let slots: Vec<&str> = self.loads.iter().map(|l| l.value.as_str()).collect();
+            parts.push(format!("loads {}", slots.join(" ")));
+        }
         parts.join(", ")
     }
 }
@@ -269,6 +305,20 @@ pub(crate) fn parse(table: &Table, context: &str, errors: &mut Vec<Error>) -> Ra
         out.cull = p
             .named(&e.value, &format!("{context}.cull"), Cull::NAMES)
             .and_then(|s| Cull::from_name(&s).map(|c| Spanned::new(c, e.value.location.clone())));
+    }
+    if let Some(e) = table.get("alpha_to_coverage") {
+        out.alpha_to_coverage = p
+            .bool(&e.value, &format!("{context}.alpha_to_coverage"))
+            .map(|b| Spanned::new(b, e.value.location.clone()));
+    }
+    if let Some(e) = table.get("loads")
+        && let Some(slots) = p.strings(&e.value, &format!("{context}.loads"))
+    {
+        // One location for the list: its items are not spanned one by one.
+        out.loads = slots
+            .into_iter()
+            .map(|s| Spanned::new(s, e.value.location.clone()))
+            .collect();
     }
     out
 }

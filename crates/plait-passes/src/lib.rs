@@ -4,7 +4,6 @@
 //! schedule against its shaders with naga (no GPU), which `plait check` and
 //! `plait render` both run before any GPU work.
 
-pub mod alpha_to_coverage;
 pub mod data_only;
 pub mod data_pass;
 pub mod density_clustering;
@@ -18,14 +17,12 @@ pub mod occlusion;
 pub mod occlusion_cylinders;
 pub mod occlusion_directions;
 pub mod occupancy;
-pub mod opaque_hair;
 pub mod opaque_shade;
 pub mod shading;
 pub mod simulation;
 pub mod spec_util;
 pub mod transparency;
 pub mod visibility;
-pub mod weighted_average;
 
 use plait_gpu::pass::{PassLibrary, check_pass};
 use plait_graph::{Errors, Schedule};
@@ -47,9 +44,6 @@ pub fn library() -> PassLibrary {
     // Transparency methods (issue 5): each shades with hair_shade.wgsl.
     lib.add(depth_peeling::HairDepthPeel);
     lib.add(linked_list::HairFragmentList);
-    lib.add(weighted_average::HairWeightedAverage);
-    lib.add(alpha_to_coverage::HAIR_ALPHA_TO_COVERAGE);
-    lib.add(opaque_hair::HAIR_OPAQUE);
     // Simulation (issue 12): guides simulated, drawn strands interpolated.
     lib.add(simulation::HairSimulation);
     lib.add(interpolation::GuideInterpolation);

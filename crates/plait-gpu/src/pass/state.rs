@@ -240,6 +240,26 @@ pub fn from_decl(
             Cull::Back => Some(wgpu::Face::Back),
         };
     }
+    if let Some(a2c) = &decl.alpha_to_coverage
+        && a2c.value
+    {
+        // wgpu accepts alpha to coverage only with more than one sample.
+        let samples = targets
+            .first()
+            .and_then(|b| resources.get(b.resource))
+            .map(|r| match r.desc {
+                ResourceDesc::Texture { samples, .. } => samples,
+                ResourceDesc::Buffer { .. } => 1,
+            });
+        match samples {
+            Some(n) if n > 1 => state.alpha_to_coverage = true,
+            None if any_dropped => {}
+            _ => errors.push((
+                a2c.location.clone(),
+                "`alpha_to_coverage = true` needs a multisampled colour target: give the resource written under the pass's first colour slot `samples = 4`".into(),
+            )),
+        }
+    }
     if errors.is_empty() {
         Ok(state)
     } else {

@@ -188,8 +188,8 @@ pub(super) fn resolve_pass(
             }
         }
         for (key, location) in decl.raster.keys() {
-            let applies =
-                spec.state_from_data && (key == "blend" || spec.shape == PassShape::Raster);
+            let applies = spec.state_from_data
+                && (key == "blend" || key == "loads" || spec.shape == PassShape::Raster);
             if !applies {
                 let why = if spec.state_from_data {
                     "draws no scene geometry".to_owned()
@@ -218,6 +218,24 @@ pub(super) fn resolve_pass(
                 ),
             )),
             _ => {}
+        }
+        for slot in &decl.raster.loads {
+            if !decl.writes.contains_key(&slot.value) {
+                let written: Vec<&str> = decl.writes.keys().map(String::as_str).collect();
+                errors.push(pass_error(
+                    &slot.location,
+                    format!(
+                        "`loads` names `{}`, which this pass does not write{} (written: {})",
+                        slot.value,
+                        crate::suggest::did_you_mean(&slot.value, written.iter().copied()),
+                        if written.is_empty() {
+                            "none".into()
+                        } else {
+                            written.join(", ")
+                        }
+                    ),
+                ));
+            }
         }
     }
 
@@ -396,7 +414,10 @@ fn bind_slots(
             resource_name: resource.value.clone(),
             access,
             // The scene's contents are there before any pass: never cleared.
-            loads: loads || (scene.is_some() && direction == Direction::Write),
+            // `loads = [...]`: the pass draws over what the attachment holds.
+            loads: loads
+                || (direction == Direction::Write
+                    && (scene.is_some() || decl.raster.keeps(slot_name))),
             location: resource.location.clone(),
         });
     }

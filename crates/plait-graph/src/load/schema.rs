@@ -27,8 +27,21 @@ pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size", "history", "persistent
 /// The most frames of history a resource may keep (one copy per frame each).
 pub const MAX_HISTORY: i64 = 8;
 pub(crate) const PASS_KEYS: &[&str] = &[
-    "type", "view", "draw", "reads", "writes", "params", "shader", "enabled", "uses", "depth",
-    "blend", "cull", "run",
+    "type",
+    "view",
+    "draw",
+    "reads",
+    "writes",
+    "params",
+    "shader",
+    "enabled",
+    "uses",
+    "depth",
+    "blend",
+    "cull",
+    "alpha_to_coverage",
+    "loads",
+    "run",
 ];
 const VIEWS: &[&str] = &["light", "camera"];
 /// `run = "once"`: a precompute whose outputs are kept across frames.

@@ -1,29 +1,11 @@
-// plait::transparency::coverage — strands written like opaque geometry, with
-// depth test and write. With `alpha_to_coverage` the fragment's alpha picks how
-// many of the pixel's MSAA samples it covers (Halén & Wester 2007 §3.1.2,
-// §5.6) and the resolve averages them; without it (OPAQUE_HAIR) alpha is 1:
-// no transparency at all (Sintorn & Assarsson 2009 Fig. 2, right).
-//
-// `strand_coverage` is the other coverage: the fraction of a pixel a strand
-// thinner than a pixel covers, used by every blending technique (hair_shade's
-// vertex stage folds it into the strand's alpha, so alpha to coverage turns it
-// into the sample mask too).
-#define_import_path plait::transparency::coverage
+// plait::strand_coverage — the part of a pixel a strand thinner than a pixel
+// covers. Every blending technique weighs the strand's alpha by it (the shared
+// hair-fragment stage, plait::hair_fragment, folds it into the fragment's
+// alpha, so alpha to coverage turns it into the sample mask too), and so does
+// the per-pixel mean alpha of occupancy-order blending (alpha_sum).
+#define_import_path plait::strand_coverage
 
 #import plait::frame::frame
-
-struct FragmentOut {
-    @location(0) color: vec4<f32>,
-}
-
-fn hair_fragment(clip: vec4<f32>, rgb: vec3<f32>, alpha: f32) -> FragmentOut {
-#ifdef OPAQUE_HAIR
-    return FragmentOut(vec4<f32>(rgb, 1.0));
-#else
-    // Not premultiplied: coverage does the weighting, the resolve averages.
-    return FragmentOut(vec4<f32>(rgb, alpha));
-#endif
-}
 
 // The fraction of a pixel's width a strand of `thickness` (world units, its
 // diameter) at `world` along `tangent` covers: its width across the view,
