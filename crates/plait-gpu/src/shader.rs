@@ -131,14 +131,6 @@ pub const LIBRARY_MODULES: &[(&str, &str)] = &[
         include_str!("../../../shaders/lib/hair_occlusion.wgsl"),
     ),
     (
-        "shaders/lib/transparency/depth_peel.wgsl",
-        include_str!("../../../shaders/lib/transparency/depth_peel.wgsl"),
-    ),
-    (
-        "shaders/lib/transparency/fragment_list.wgsl",
-        include_str!("../../../shaders/lib/transparency/fragment_list.wgsl"),
-    ),
-    (
         "shaders/lib/strand_coverage.wgsl",
         include_str!("../../../shaders/lib/strand_coverage.wgsl"),
     ),

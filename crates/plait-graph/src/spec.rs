@@ -143,7 +143,7 @@ pub enum ParamType {
 }
 
 /// The accepted values in words, for listings and messages:
-/// `integer 0 … 8`, `number 1e-6 … 1e6`, `one of over | occupancy_order`.
+/// `integer 0 … 8`, `number 1e-6 … 1e6`, `one of frame | pixel`.
 impl std::fmt::Display for ParamType {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {

@@ -33,7 +33,7 @@ pub const FULLSCREEN: DataOnly = DataOnly {
 pub const RASTER: DataOnly = DataOnly {
     name: "raster",
     shape: PassShape::Raster,
-    description: "A WGSL vertex + fragment shader drawing `draw` from `view`; slots are the shader's bindings, other textures its targets; `depth`, `blend`, `cull` set its state.",
+    description: "A WGSL vertex + fragment shader drawing `draw` from `view`; slots are the shader's bindings, other textures its targets; `depth`, `blend`, `cull`, `alpha_to_coverage` and `loads` set its state.",
 };
 
 pub const COMPUTE: DataOnly = DataOnly {

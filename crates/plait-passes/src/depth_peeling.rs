@@ -26,27 +26,27 @@
 
 use std::cell::Cell;
 
+use plait_gpu::GpuError;
 use plait_gpu::pass::{
     BlendPreset, BuildContext, BuiltinShader, PassType, PreparedPass, RasterState, RecordContext,
     ShaderDraw, ShaderPass, blend_preset, build_draw, default_defines,
 };
-use plait_gpu::{Define, GpuError};
 use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
 
+use crate::hair_fragment;
 use crate::spec_util::{DEPTH, HDR, int, texture};
-use crate::transparency::{self, HAIR_SHADER};
 
 pub struct HairDepthPeel;
 
 fn spec() -> PassTypeSpec {
-    let mut inputs = transparency::shading_inputs();
+    let mut inputs = hair_fragment::shading_inputs();
     inputs.push(texture(
         "opaque_depth",
         Access::Sampled,
         DEPTH,
         "camera depth of opaque geometry: hair behind it is not peeled",
     ));
-    let mut params = transparency::shading_params();
+    let mut params = hair_fragment::shading_params();
     params.push(int(
         "max_layers",
         256,
@@ -104,10 +104,10 @@ impl PassType for HairDepthPeel {
         spec()
     }
     fn shader(&self) -> Option<BuiltinShader> {
-        Some(HAIR_SHADER)
-    }
-    fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {
-        transparency::defines(pass, "depth_peel")
+        Some((
+            "techniques/transparency/depth_peeling/peel.wgsl",
+            include_str!("../../../techniques/transparency/depth_peeling/peel.wgsl"),
+        ))
     }
     fn build(
         &self,

@@ -9,10 +9,10 @@ pub mod data_pass;
 pub mod density_clustering;
 pub mod depth_peeling;
 pub mod depth_range;
+pub mod hair_fragment;
 pub mod hair_shade;
 pub mod interpolation;
 pub mod lighting;
-pub mod linked_list;
 pub mod occlusion;
 pub mod occlusion_cylinders;
 pub mod occlusion_directions;
@@ -21,7 +21,6 @@ pub mod opaque_shade;
 pub mod shading;
 pub mod simulation;
 pub mod spec_util;
-pub mod transparency;
 pub mod visibility;
 
 use plait_gpu::pass::{PassLibrary, check_pass};
@@ -43,7 +42,6 @@ pub fn library() -> PassLibrary {
     lib.add(hair_shade::HairShade);
     // Transparency methods (issue 5): each shades with hair_shade.wgsl.
     lib.add(depth_peeling::HairDepthPeel);
-    lib.add(linked_list::HairFragmentList);
     // Simulation (issue 12): guides simulated, drawn strands interpolated.
     lib.add(simulation::HairSimulation);
     lib.add(interpolation::GuideInterpolation);

@@ -203,7 +203,6 @@ fn build_probe<'g>(
     let mut params: Vec<String> = shading
         .params
         .iter()
-        .filter(|(k, _)| k.as_str() != "blend")
         .map(|(k, v)| format!("{k} = {}", literal(v)))
         .collect();
     params.extend([
