@@ -1,4 +1,4 @@
-//! Embeds every `pipelines/*.toml`, `techniques/**/*.toml`,
+//! Embeds every `pipelines/*.toml`, `techniques/**/*.{toml,wgsl}`,
 //! `shaders/**/*.wgsl` and `examples/scenes/*.toml` of the checkout as
 //! the built-in copies (the fallback when no folder of the search path holds a
 //! file), so new gallery files need no list to be kept by hand.
@@ -28,6 +28,8 @@ fn main() {
     let mut files = Vec::new();
     collect(&root, &root.join("pipelines"), "toml", false, &mut files);
     collect(&root, &root.join("techniques"), "toml", true, &mut files);
+    // A technique's own WGSL lives in its folder, next to its TOML.
+    collect(&root, &root.join("techniques"), "wgsl", true, &mut files);
     collect(&root, &root.join("shaders"), "wgsl", true, &mut files);
     // The scenes' text only: files they name (studio.hdr) are not embedded,
     // and plait-hair says so when a built-in scene names one.

@@ -688,7 +688,7 @@ fn check_rejects_what_rendering_would() {
             "pipelines/alpha_to_coverage.toml",
             "params.samples=1",
             &[
-                "alpha_to_coverage.toml:40:45",
+                "alpha_to_coverage.toml:42:45",
                 "`scene`",
                 "1 sample(s)",
                 "cannot be resolved into `scene_resolved`",

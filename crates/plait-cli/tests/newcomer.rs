@@ -215,7 +215,7 @@ fn passes_prints_words_not_rust_debug_forms() {
     }
     for words in [
         "number 1e-6 … 1e6",
-        "one of over | occupancy_order",
+        "one of frame | pixel",
         "rg32float texture, sampled",
         "buffer, storage, written",
         "depth32float texture, depth target",
@@ -236,14 +236,14 @@ fn passes_prints_words_not_rust_debug_forms() {
         .iter()
         .find(|p| p["name"] == "hair_shade")
         .expect("hair_shade");
-    let blend = hair["params"]
+    let shading = hair["params"]
         .as_array()
         .expect("params")
         .iter()
-        .find(|p| p["name"] == "blend")
-        .expect("blend");
-    assert_eq!(blend["type"]["kind"], "one_of");
-    assert_eq!(blend["type"]["choices"][0], "over");
+        .find(|p| p["name"] == "shading")
+        .expect("shading");
+    assert_eq!(shading["type"]["kind"], "one_of");
+    assert_eq!(shading["type"]["choices"][0], "kajiya_kay");
 }
 
 #[test]

@@ -248,6 +248,11 @@ impl PassTypeSpec {
 #[derive(Clone, Debug, Default)]
 pub struct Registry {
     pub types: IndexMap<String, PassTypeSpec>,
+    /// Params with one meaning in every pass that takes them: those of the
+    /// shader providers (`shadow_weight`, `marschner_specular_gain`, …). A
+    /// data-only pass takes any param its shader reads, but one of these
+    /// names is held to its spec (range, choices) as a typed pass would be.
+    pub shared_params: Vec<ParamSpec>,
 }
 
 impl Registry {

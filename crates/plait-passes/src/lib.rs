@@ -28,7 +28,12 @@ use plait_graph::{Errors, Schedule};
 
 /// Every pass type plait ships.
 pub fn library() -> PassLibrary {
-    let mut lib = PassLibrary::default();
+    let mut lib = PassLibrary {
+        // The providers' params mean the same in a data-only pass that
+        // imports plait::hair_fragment as in the Rust pass types.
+        shared_params: hair_fragment::shading_params(),
+        ..PassLibrary::default()
+    };
     // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml).
     for t in data_pass::builtin_types() {
         lib.add(t);

@@ -24,6 +24,7 @@
 pub mod build;
 pub mod defaults;
 pub mod layout;
+pub mod param_use;
 pub mod pass_type;
 pub mod plan;
 pub mod record;

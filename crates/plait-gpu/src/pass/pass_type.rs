@@ -141,6 +141,8 @@ pub struct RecordContext<'a> {
 #[derive(Default)]
 pub struct PassLibrary {
     pub types: IndexMap<String, Box<dyn PassType>>,
+    /// See [`plait_graph::Registry::shared_params`].
+    pub shared_params: Vec<plait_graph::ParamSpec>,
 }
 
 impl PassLibrary {
@@ -158,6 +160,7 @@ impl PassLibrary {
         for t in self.types.values() {
             r.register(t.spec());
         }
+        r.shared_params = self.shared_params.clone();
         r
     }
 }

@@ -558,6 +558,13 @@ pub fn check_pass(
     if let Err(message) = t.check_sizes(pass, resources) {
         errors.push(err(&pass.location, message));
     }
+    if spec.dynamic_slots {
+        errors.extend(
+            unread_params(t, pass, &module)
+                .into_iter()
+                .map(|m| err(&pass.location, m)),
+        );
+    }
     let (plan, plan_errors) = BindingPlan::new(
         &module,
         pass,
@@ -588,6 +595,24 @@ pub fn check_pass(
         }
     }
     errors
+}
+
+/// The params of a data-only pass its shader does not read
+/// ([`super::param_use`]).
+fn unread_params(t: &dyn PassType, pass: &ScheduledPass, module: &naga::Module) -> Vec<String> {
+    let members: std::collections::BTreeSet<String> = module
+        .global_variables
+        .iter()
+        .filter_map(|(_, v)| v.name.as_deref())
+        .filter(|n| reflect::plain_name(n).ends_with("params"))
+        .filter_map(|n| reflect::params_layout(module, reflect::plain_name(n)))
+        .flat_map(|(_, members)| members.into_iter().map(|m| m.name))
+        .collect();
+    let mut defines = super::param_use::library_define_names();
+    if let Ok((_, source)) = shader_source(t, pass) {
+        defines.extend(super::param_use::define_names(&source));
+    }
+    super::param_use::unread_params(pass, &members, &defines)
 }
 
 /// Why the engine cannot keep this pass's storage writes to fragments that

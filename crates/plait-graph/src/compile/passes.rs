@@ -97,13 +97,16 @@ pub(super) fn resolve_pass(
     let mut params = IndexMap::new();
     if let Some(spec) = spec {
         for (name, value) in &decl.params {
-            if spec.dynamic_slots {
-                // Data-only passes: params are whatever the shader's `params`
-                // uniform declares, checked against naga's reflection later.
+            let shared = registry.shared_params.iter().find(|p| &p.name == name);
+            if spec.dynamic_slots && shared.is_none() {
+                // Data-only passes: params are whatever the shader reads (a
+                // `params` uniform member or a define), checked against
+                // naga's reflection and the shader's text later.
                 params.insert(name.clone(), value.value.clone());
                 continue;
             }
-            let Some(param) = spec.params.iter().find(|p| &p.name == name) else {
+            let own = spec.params.iter().find(|p| &p.name == name);
+            let Some(param) = own.or(shared.filter(|_| spec.dynamic_slots)) else {
                 let known: Vec<_> = spec.params.iter().map(|p| p.name.as_str()).collect();
                 errors.push(Error::new(
                     value.location.clone(),

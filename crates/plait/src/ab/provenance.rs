@@ -107,8 +107,9 @@ fn builtin_shaders() -> Vec<FileHash> {
             hash_text(&path, &used)
         })
         .collect();
-    // Several pass types share one WGSL file (hair_shade.wgsl serves six):
-    // list each file once, with the pass types that use it.
+    // Pass types may share one WGSL file (the pass-type files of
+    // shaders/passes name theirs): list each file once, with the pass types
+    // that use it.
     let library = plait_passes::library();
     let mut files: Vec<(String, String, Vec<&str>)> = Vec::new();
     for (type_name, t) in &library.types {
@@ -199,7 +200,14 @@ mod tests {
             .filter(|f| f.path.starts_with("shaders/passes/hair_shade.wgsl"))
             .collect();
         assert_eq!(hair.len(), 1, "{hair:?}");
-        assert!(hair[0].path.contains("(pass types "), "{}", hair[0].path);
+        assert!(
+            hair[0].path.ends_with("(pass type hair_shade)"),
+            "{}",
+            hair[0].path
+        );
+        let mut paths: Vec<&str> = shaders.iter().map(|f| f.path.as_str()).collect();
+        paths.sort();
+        assert!(paths.windows(2).all(|w| w[0] != w[1]), "{paths:?}");
         assert!(shaders.iter().all(|f| f.sha256.len() == 64));
     }
 }
