@@ -97,6 +97,7 @@ pub fn render(
             screen: size,
             max_texture_dimension: u32::MAX,
             max_buffer_binding_size: u64::MAX,
+            ..Default::default()
         },
     )?;
     if let Some(name) = show {

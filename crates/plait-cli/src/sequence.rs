@@ -140,6 +140,7 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
             screen: args.size,
             max_texture_dimension: u32::MAX,
             max_buffer_binding_size: u64::MAX,
+            ..Default::default()
         },
     )?;
     let data = SceneData::new(args.scene.clone())?;

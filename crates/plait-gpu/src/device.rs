@@ -24,6 +24,28 @@ pub struct Capabilities {
     pub max_storage_buffer_binding_size: u64,
 }
 
+impl Capabilities {
+    /// The adapter `opts` describes: its limits, and FLOAT32_BLENDABLE as
+    /// compile fits formats to it; no timestamps, and no early depth test
+    /// (so storage writes are checked as guardable everywhere).
+    pub fn of_compile(opts: &plait_graph::CompileOptions) -> Self {
+        Capabilities {
+            timestamps: false,
+            float32_blendable: opts.capabilities.float32_blendable,
+            early_depth_test: false,
+            max_texture_dimension: opts.max_texture_dimension,
+            max_storage_buffer_binding_size: opts.max_buffer_binding_size,
+        }
+    }
+
+    /// What compile needs to know of this adapter.
+    pub fn compile_capabilities(&self) -> plait_graph::CompileCapabilities {
+        plait_graph::CompileCapabilities {
+            float32_blendable: self.float32_blendable,
+        }
+    }
+}
+
 /// The device plait renders with.
 pub struct Gpu {
     pub adapter: wgpu::Adapter,

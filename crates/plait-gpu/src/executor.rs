@@ -80,8 +80,9 @@ pub struct Renderer<'g> {
 }
 
 impl<'g> Renderer<'g> {
-    /// Allocate and build everything. `schedule` must have passed
-    /// [`crate::pass::check_pass`] for every pass (which settles dynamic slots).
+    /// Allocate and build everything. `schedule` must come from
+    /// `plait_graph::compile_with` and [`crate::pass::ShaderChecker`] for
+    /// this adapter (accesses settled, formats fitted): it is used as is.
     pub fn new(
         gpu: &'g Gpu,
         schedule: Schedule,
@@ -102,8 +103,8 @@ impl<'g> Renderer<'g> {
                 }
             }
         }
-        let mut schedule = schedule;
-        let notes = downgrade_float32_blending(&mut schedule, library, &gpu.capabilities);
+        // Compile fitted the formats to the adapter; what it changed is said once.
+        let notes = schedule.notes.clone();
         // What the adapter cannot do is refused here, whole, before wgpu
         // sees a single call (callers usually checked already: session).
         let unsupported =
@@ -453,88 +454,6 @@ impl<'g> Renderer<'g> {
             message,
         })
     }
-}
-
-/// Blending into 32-bit float targets needs `FLOAT32_BLENDABLE`. Without it,
-/// every such target (and every resource sharing its memory) becomes the
-/// 16-bit float format with the same channels, and a note says so.
-pub(crate) fn downgrade_float32_blending(
-    schedule: &mut Schedule,
-    library: &PassLibrary,
-    caps: &crate::Capabilities,
-) -> Vec<String> {
-    use plait_graph::{Access, Format};
-    if caps.float32_blendable {
-        return Vec::new();
-    }
-    let mut physical_to_downgrade = Vec::new();
-    for pass in &schedule.passes {
-        let Some(t) = library.get(&pass.type_name) else {
-            continue;
-        };
-        let Ok(state) = crate::pass::raster_state_of(t, pass, &schedule.resources, caps) else {
-            continue;
-        };
-        for (i, b) in pass
-            .writes
-            .iter()
-            .filter(|b| b.access == Access::ColorTarget)
-            .enumerate()
-        {
-            let blended = state.blend.get(i).copied().flatten().is_some();
-            let res = &schedule.resources[b.resource];
-            if let ResourceDesc::Texture {
-                format: Format::R32Float | Format::Rg32Float | Format::Rgba32Float,
-                ..
-            } = res.desc
-                && blended
-            {
-                physical_to_downgrade.push((res.physical, pass.name.clone()));
-            }
-        }
-    }
-    let half = |f: Format| match f {
-        Format::R32Float => Format::R16Float,
-        Format::Rg32Float => Format::Rg16Float,
-        _ => Format::Rgba16Float,
-    };
-    let mut notes = Vec::new();
-    for (physical, pass) in physical_to_downgrade {
-        let phys = &mut schedule.physical[physical];
-        if let ResourceDesc::Texture { format, .. } = &mut phys.desc {
-            if !matches!(
-                format,
-                Format::R32Float | Format::Rg32Float | Format::Rgba32Float
-            ) {
-                continue;
-            }
-            let from = *format;
-            *format = half(from);
-            for &user in &phys.users {
-                if let ResourceDesc::Texture { format, .. } = &mut schedule.resources[user].desc {
-                    *format = half(from);
-                }
-                notes.push(format!(
-                    "`{}`: pass `{pass}` blends into it but the adapter lacks FLOAT32_BLENDABLE; using {} instead of {from}",
-                    schedule.resources[user].name,
-                    half(from)
-                ));
-            }
-        }
-    }
-    // A history's versions follow it, or the copy that ages them would
-    // change format.
-    for copy in schedule.history.iter().rev().copied().collect::<Vec<_>>() {
-        let from = schedule.resources[copy.from].desc.clone();
-        if schedule.resources[copy.to].desc != from {
-            let to = schedule.resources[copy.to].physical;
-            schedule.physical[to].desc = from.clone();
-            schedule.resources[copy.to].desc = from;
-        }
-    }
-    schedule.memory.peak_bytes = schedule.physical.iter().map(|p| p.desc.bytes()).sum();
-    schedule.memory.unpooled_bytes = schedule.resources.iter().map(|r| r.desc.bytes()).sum();
-    notes
 }
 
 /// Group 0's fixed parts, kept to rebind when the background image changes.

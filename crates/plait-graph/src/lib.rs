@@ -45,7 +45,10 @@ pub use schedule::*;
 pub use spec::*;
 pub use value::Value;
 
-pub use compile::compile;
+pub use compile::fit::{
+    Capabilities as CompileCapabilities, NoShaders, PassCheck, PassChecker, SlotRef,
+};
+pub use compile::{compile, compile_with};
 pub use dot::{to_dot, to_svg};
 pub use load::{
     PassDecl, Pipeline, PreviousOf, ResourceDecl, SizeDecl, load, load_str, parse_previous_name,

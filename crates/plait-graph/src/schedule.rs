@@ -260,6 +260,9 @@ pub struct Schedule {
     /// resource), which the engine reads back after every frame.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub overflow: Vec<OverflowCounter>,
+    /// What compile changed to fit the adapter (a format it cannot blend).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 /// A counter buffer declared with `overflow = {…}` ([`crate::overflow`]):
@@ -326,6 +329,8 @@ pub struct CompileOptions {
     /// `max_storage_buffer_binding_size`, or WebGPU's default (128 MiB) when
     /// checking without a GPU — a pipeline that passes runs on any adapter.
     pub max_buffer_binding_size: u64,
+    /// What the adapter can do that changes the schedule (formats).
+    pub capabilities: crate::compile::fit::Capabilities,
 }
 
 /// WebGPU's default `max_storage_buffer_binding_size`.
@@ -340,6 +345,7 @@ impl Default for CompileOptions {
             screen: (960, 720),
             max_texture_dimension: 8192,
             max_buffer_binding_size: DEFAULT_MAX_BUFFER_BINDING_SIZE,
+            capabilities: Default::default(),
         }
     }
 }

@@ -1,8 +1,8 @@
 //! plait's pass library: one Rust module and one WGSL file per pass type.
 //!
-//! [`library`] registers every pass type; [`check`] validates a compiled
-//! schedule against its shaders with naga (no GPU), which `plait check` and
-//! `plait render` both run before any GPU work.
+//! [`library`] registers every pass type; [`compile`] compiles a pipeline
+//! with every pass checked against its shader with naga (no GPU), which
+//! `plait check` and `plait render` both run before any GPU work.
 
 pub mod data_only;
 pub mod data_pass;
@@ -23,8 +23,10 @@ pub mod simulation;
 pub mod spec_util;
 pub mod visibility;
 
-use plait_gpu::pass::{PassLibrary, check_pass};
-use plait_graph::{Errors, Schedule};
+use plait_gpu::Capabilities;
+use plait_gpu::pass::PassLibrary;
+use plait_gpu::pass::check::ShaderChecker;
+use plait_graph::{CompileOptions, Errors, Pipeline, Schedule};
 
 /// Every pass type plait ships.
 pub fn library() -> PassLibrary {
@@ -56,36 +58,20 @@ pub fn library() -> PassLibrary {
     lib
 }
 
-/// Check every pass (live and culled) against its shader with naga, and
-/// settle how the slots of data-only passes are accessed.
-pub fn check(schedule: &mut Schedule, library: &PassLibrary) -> Result<(), Errors> {
-    // A broken library module (a provider breaking its contract) is one
-    // error, not one per pass importing it.
-    if let Err(e) = plait_gpu::modules::check_library() {
-        return Err(Errors(vec![plait_graph::Error::new(
-            plait_graph::Location::Path {
-                path: e.path.clone(),
-            },
-            plait_graph::ErrorKind::Shader {
-                path: e.path,
-                message: e.message,
-            },
-        )]));
-    }
-    let mut errors = Vec::new();
-    let resources = schedule.resources.clone();
-    let passes = schedule
-        .passes
-        .iter_mut()
-        .chain(schedule.culled.iter_mut().map(|c| &mut c.pass));
-    for pass in passes {
-        if let Some(t) = library.get(&pass.type_name) {
-            errors.extend(check_pass(t, pass, &resources));
-        }
-    }
-    if errors.is_empty() {
-        Ok(())
-    } else {
-        Err(Errors(errors))
-    }
+/// Compile `pipeline` with every pass (live and culled) checked against its
+/// shader with naga and its formats fitted to the adapter `opts` describes:
+/// the final schedule (`plait check` and every render run this, before any
+/// GPU work).
+pub fn compile(pipeline: &Pipeline, opts: &CompileOptions) -> Result<Schedule, Errors> {
+    compile_in(&library(), pipeline, opts)
+}
+
+/// [`compile`] with the pass types of `library`.
+pub fn compile_in(
+    library: &PassLibrary,
+    pipeline: &Pipeline,
+    opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
+    let checker = ShaderChecker::new(library, Capabilities::of_compile(opts));
+    plait_graph::compile_with(pipeline, &library.registry(), opts, &checker)
 }

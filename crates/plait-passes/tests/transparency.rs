@@ -56,9 +56,8 @@ fn render_with(
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
         ..Default::default()
     };
-    let mut schedule = plait_graph::compile(&loaded, &library.registry(), &opts)
+    let schedule = plait_passes::compile_in(&library, &loaded, &opts)
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
-    plait_passes::check(&mut schedule, &library).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     let output = schedule.resources[schedule.outputs[0]].name.clone();
     let bounds = scene.opaque_bounds().union(&strands.bounds());
     // Without coverage, the papers' strands: one alpha per strand. With it,

@@ -220,9 +220,7 @@ params = {{ {params} }}
         .join(format!("probe_{variant}.toml"));
     let pipeline = plait_graph::load_str(&path, &text, &sets)
         .unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
-    let mut schedule = plait_graph::compile(&pipeline, &library.registry(), &opts)
-        .unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
-    plait_passes::check(&mut schedule, &library)
+    let schedule = plait_passes::compile_in(&library, &pipeline, &opts)
         .unwrap_or_else(|e| panic!("probe_{variant}: {e}\n{text}"));
     let has_overflow = schedule.resource("light_overflow").is_some();
     let geometry = SceneGeometry::upload(&gpu.device, strands, &scene.opaque_meshes());

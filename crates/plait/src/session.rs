@@ -155,10 +155,7 @@ pub fn check_pipeline(
     pipeline: plait_graph::Pipeline,
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
-    let library = plait_passes::library();
-    let mut schedule = plait_graph::compile(&pipeline, &library.registry(), opts)?;
-    plait_passes::check(&mut schedule, &library)?;
-    Ok(schedule)
+    plait_passes::compile(&pipeline, opts)
 }
 
 /// A scene's geometry on the CPU, built once and shared by every pipeline rendering it.
@@ -311,6 +308,7 @@ pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
         screen: size,
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
         max_buffer_binding_size: gpu.capabilities.max_storage_buffer_binding_size,
+        capabilities: gpu.capabilities.compile_capabilities(),
     }
 }
 

@@ -22,6 +22,7 @@
 //! record), [`build`] (bind groups and pipelines) and [`record`] (commands).
 
 pub mod build;
+pub mod check;
 pub mod defaults;
 pub mod layout;
 pub mod param_use;
@@ -31,6 +32,7 @@ pub mod record;
 pub mod state;
 
 pub use build::{ShaderDraw, build_draw, build_shader_pass, raster_state_of};
+pub use check::ShaderChecker;
 pub use defaults::{default_defines, default_threads};
 pub use layout::{FrameSamplers, frame_layout};
 pub use pass_type::{
@@ -38,7 +40,7 @@ pub use pass_type::{
     SCENE_BINDINGS, shader_source,
 };
 pub use plait_graph::raster_decl::BlendPreset;
-pub use plan::{BindingPlan, check_pass};
+pub use plan::BindingPlan;
 pub use record::{DrawWhat, ShaderPass, ShaderPassKind};
 pub use state::{DepthMode, RasterState, blend_preset};
 

@@ -1,7 +1,7 @@
 //! The binding plan of a pass: which shader binding each slot feeds, which
 //! slots are colour and depth attachments, what the params uniform holds —
 //! computed from the schedule and naga's reflection by ONE function,
-//! [`BindingPlan::new`], which `plait check` ([`check_pass`]) reports on and
+//! [`BindingPlan::new`], which `plait check` ([`super::check`]) reports on and
 //! build ([`super::build`]) lays out and records from. Slots cannot be matched
 //! to bindings one way when checking and another when building.
 
@@ -13,7 +13,6 @@ use plait_graph::{
 };
 
 use super::pass_type::{PassType, SCENE_BINDINGS, shader_source};
-use super::state::from_decl;
 use crate::depth_guard::DepthGuard;
 use crate::reflect::{self, BindingKind, ShaderBinding};
 
@@ -531,88 +530,6 @@ pub(crate) fn pass_module<T: PassType + ?Sized>(
             },
         ))
     })
-}
-
-/// Check a pass against its shader with naga, and settle how the slots of a
-/// data-only pass are accessed. No GPU involved: `plait check` runs this.
-pub fn check_pass(
-    t: &dyn PassType,
-    pass: &mut ScheduledPass,
-    resources: &[ResolvedResource],
-) -> Vec<GraphError> {
-    let module = match pass_module(t, pass) {
-        Ok(m) => m,
-        Err(e) => return vec![*e],
-    };
-    let spec = t.spec();
-    let mut errors = Vec::new();
-    let err = |loc: &Location, message: String| {
-        GraphError::new(
-            loc.clone(),
-            ErrorKind::Pass {
-                pass: pass.name.clone(),
-                message,
-            },
-        )
-    };
-    if let Err(message) = t.check_sizes(pass, resources) {
-        errors.push(err(&pass.location, message));
-    }
-    if spec.dynamic_slots {
-        errors.extend(
-            unread_params(t, pass, &module)
-                .into_iter()
-                .map(|m| err(&pass.location, m)),
-        );
-    }
-    let (plan, plan_errors) = BindingPlan::new(
-        &module,
-        pass,
-        resources,
-        spec.shape,
-        spec.dynamic_slots,
-        &binding_aliases(&spec),
-    );
-    errors.extend(plan_errors);
-    for &(is_write, i, access) in &plan.settled {
-        let list = if is_write {
-            &mut pass.writes
-        } else {
-            &mut pass.reads
-        };
-        list[i].access = access;
-    }
-    if spec.state_from_data && spec.shape != PassShape::Compute {
-        let decl = t.raster_decl(pass);
-        match from_decl(&decl, pass, resources) {
-            Err(list) => errors.extend(list.into_iter().map(|(loc, m)| err(&loc, m))),
-            Ok(state) => {
-                if let Some(message) = unguardable(&plan, state.depth, false) {
-                    let loc = decl.depth.as_ref().map_or(&pass.location, |d| &d.location);
-                    errors.push(err(loc, message));
-                }
-            }
-        }
-    }
-    errors
-}
-
-/// The params of a data-only pass its shader does not read
-/// ([`super::param_use`]).
-fn unread_params(t: &dyn PassType, pass: &ScheduledPass, module: &naga::Module) -> Vec<String> {
-    let members: std::collections::BTreeSet<String> = module
-        .global_variables
-        .iter()
-        .filter_map(|(_, v)| v.name.as_deref())
-        .filter(|n| reflect::plain_name(n).ends_with("params"))
-        .filter_map(|n| reflect::params_layout(module, reflect::plain_name(n)))
-        .flat_map(|(_, members)| members.into_iter().map(|m| m.name))
-        .collect();
-    let mut defines = super::param_use::library_define_names();
-    if let Ok((_, source)) = shader_source(t, pass) {
-        defines.extend(super::param_use::define_names(&source));
-    }
-    super::param_use::unread_params(pass, &members, &defines)
 }
 
 /// Why the engine cannot keep this pass's storage writes to fragments that

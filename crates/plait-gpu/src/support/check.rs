@@ -13,19 +13,18 @@ use crate::pass::{PassLibrary, PassType, raster_state_of};
 use crate::pool::texture_format;
 use crate::reflect::BindingKind;
 
-/// Whether `schedule` (as `plait check` leaves it) runs on the adapter
-/// described by `support` and `caps`; every problem when it does not.
-/// Formats are first fitted as the executor fits them (32-bit float targets
-/// blended in 16 bits without FLOAT32_BLENDABLE), so what it accepts builds.
+/// Whether `schedule` runs on the adapter described by `support` and
+/// `caps`; every problem when it does not. Compile fits the formats to the
+/// adapter it is given (32-bit float targets blended in 16 bits without
+/// FLOAT32_BLENDABLE): a schedule compiled for another adapter is refused
+/// here rather than fitted.
 pub fn check_schedule(
     schedule: &Schedule,
     library: &PassLibrary,
     support: &AdapterSupport,
     caps: &Capabilities,
 ) -> Result<(), Box<Unsupported>> {
-    let mut fitted = schedule.clone();
-    crate::executor::downgrade_float32_blending(&mut fitted, library, caps);
-    let found = problems(&fitted, library, support, caps);
+    let found = problems(schedule, library, support, caps);
     if found.is_empty() {
         Ok(())
     } else {

@@ -11,6 +11,7 @@
 //! dependency graph and the execution order, `schedule` culls, renumbers and
 //! sets lifetimes, and `memory` shares allocations between resources.
 
+pub mod fit;
 mod memory;
 mod order;
 mod outputs;
@@ -31,11 +32,25 @@ use passes::resolve_pass;
 use resources::resolve_resource;
 use schedule::build_schedule;
 
-/// Checks `pipeline` and builds its schedule, or returns every problem found.
+/// Checks `pipeline` and builds its schedule, or returns every problem
+/// found: what the pipeline files say, not what its shaders do (for that,
+/// [`compile_with`] and a shader checker).
 pub fn compile(
     pipeline: &Pipeline,
     registry: &Registry,
     opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
+    compile_with(pipeline, registry, opts, &fit::NoShaders)
+}
+
+/// [`compile`], every pass also checked by `checker` against its shader
+/// (accesses settled from it) and the formats fitted to
+/// `opts.capabilities`: the schedule returned is final.
+pub fn compile_with(
+    pipeline: &Pipeline,
+    registry: &Registry,
+    opts: &CompileOptions,
+    checker: &dyn fit::PassChecker,
 ) -> Result<Schedule, Errors> {
     let mut errors = Vec::new();
 
@@ -80,7 +95,19 @@ pub fn compile(
         errors.sort_by(|a, b| location_order(&a.location, &b.location));
         return Err(Errors(errors));
     };
-    let mut schedule = build_schedule(pipeline, passes, order, &outputs, descs);
+    let mut schedule = build_schedule(
+        pipeline,
+        passes,
+        order,
+        &outputs,
+        descs,
+        checker,
+        &opts.capabilities,
+    )
+    .map_err(|mut errors| {
+        errors.sort_by(|a, b| location_order(&a.location, &b.location));
+        Errors(errors)
+    })?;
     schedule.overflow = crate::overflow::counters(pipeline, &schedule.resources, opts);
     Ok(schedule)
 }

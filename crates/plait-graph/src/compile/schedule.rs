@@ -4,11 +4,12 @@
 
 use std::collections::HashSet;
 
-use crate::error::Location;
+use crate::error::{Error, Location};
 use crate::load::Pipeline;
 use crate::scene_resources::SCENE_RESOURCES;
 use crate::schedule::*;
 
+use super::fit::{Capabilities, PassChecker, check_passes, fit_formats};
 use super::memory::plan_memory;
 use super::order::implicit_reads;
 
@@ -18,7 +19,9 @@ pub(super) fn build_schedule(
     order: Vec<usize>,
     outputs: &[usize],
     descs: Vec<Option<ResourceDesc>>,
-) -> Schedule {
+    checker: &dyn PassChecker,
+    caps: &Capabilities,
+) -> Result<Schedule, Vec<Error>> {
     // Live passes: writers of outputs and everything they depend on. Walking
     // the execution order backwards sees every consumer before its producers.
     let declared = pipeline.resources.len();
@@ -142,7 +145,7 @@ pub(super) fn build_schedule(
     }
     // Culled passes in file order: they have no execution order to follow.
     culled.sort_by_key(|(p, _)| *p);
-    let culled = culled.into_iter().map(|(_, c)| c).collect();
+    let mut culled: Vec<CulledPass> = culled.into_iter().map(|(_, c)| c).collect();
 
     // The first writer of a resource has nothing to load: it clears. A
     // persistent resource is never cleared by the engine: every writer loads.
@@ -187,8 +190,22 @@ pub(super) fn build_schedule(
     }
     crate::run_once::keep_across_frames(&scheduled, &mut resources);
 
+    // The shaders and the adapter, before the memory plan: what they settle
+    // is final (see `fit`).
+    let (errors, blended) = check_passes(
+        checker,
+        scheduled
+            .iter_mut()
+            .chain(culled.iter_mut().map(|c: &mut CulledPass| &mut c.pass)),
+        &resources,
+    );
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let notes = fit_formats(&mut resources, &blended, &history, caps);
+
     let (physical, memory) = plan_memory(&mut resources);
-    Schedule {
+    Ok(Schedule {
         name: pipeline.name.value.clone(),
         description: pipeline.description.value.clone(),
         files: pipeline.files.clone(),
@@ -207,7 +224,8 @@ pub(super) fn build_schedule(
         history,
         memory,
         overflow: Vec::new(),
-    }
+        notes,
+    })
 }
 
 fn cull_reason(pass: &ScheduledPass) -> String {

@@ -1,0 +1,193 @@
+//! The shader checker compile runs ([`plait_graph::PassChecker`]): every pass
+//! against its WGSL with naga — sizes, bindings, params, fixed-function
+//! state, the depth guard — and, from the shader, how a data-only pass
+//! accesses its slots and which colour targets it blends. No GPU involved:
+//! `plait check` runs it with WebGPU's defaults, a device with its own
+//! capabilities.
+
+use plait_graph::{
+    Access, Error as GraphError, ErrorKind, Location, PassCheck, PassChecker, PassShape,
+    ResolvedResource, ScheduledPass, SlotRef,
+};
+
+use super::pass_type::{PassLibrary, PassType, shader_source};
+use super::plan::{BindingPlan, binding_aliases, pass_module, unguardable};
+use super::state::from_decl;
+use crate::Capabilities;
+use crate::reflect;
+
+/// Checks passes of `library`'s types for an adapter with `caps`.
+pub struct ShaderChecker<'a> {
+    pub library: &'a PassLibrary,
+    pub caps: Capabilities,
+}
+
+impl<'a> ShaderChecker<'a> {
+    pub fn new(library: &'a PassLibrary, caps: Capabilities) -> Self {
+        ShaderChecker { library, caps }
+    }
+}
+
+impl PassChecker for ShaderChecker<'_> {
+    fn check_library(&self) -> Vec<GraphError> {
+        match crate::modules::check_library() {
+            Ok(()) => Vec::new(),
+            Err(e) => vec![GraphError::new(
+                Location::Path {
+                    path: e.path.clone(),
+                },
+                ErrorKind::Shader {
+                    path: e.path,
+                    message: e.message,
+                },
+            )],
+        }
+    }
+
+    fn check_pass(&self, pass: &ScheduledPass, resources: &[ResolvedResource]) -> PassCheck {
+        // An unknown type was reported by compile already.
+        let Some(t) = self.library.get(&pass.type_name) else {
+            return PassCheck::default();
+        };
+        let shared: Vec<&str> = self
+            .library
+            .shared_params
+            .iter()
+            .map(|p| p.name.as_str())
+            .collect();
+        check_pass(t, pass, resources, &shared, &self.caps)
+    }
+}
+
+/// Check one pass against its shader (see the module).
+pub fn check_pass(
+    t: &dyn PassType,
+    pass: &ScheduledPass,
+    resources: &[ResolvedResource],
+    shared_params: &[&str],
+    caps: &Capabilities,
+) -> PassCheck {
+    let module = match pass_module(t, pass) {
+        Ok(m) => m,
+        Err(e) => {
+            return PassCheck {
+                errors: vec![*e],
+                ..PassCheck::default()
+            };
+        }
+    };
+    let spec = t.spec();
+    let mut errors = Vec::new();
+    let err = |loc: &Location, message: String| {
+        GraphError::new(
+            loc.clone(),
+            ErrorKind::Pass {
+                pass: pass.name.clone(),
+                message,
+            },
+        )
+    };
+    if let Err(message) = t.check_sizes(pass, resources) {
+        errors.push(err(&pass.location, message));
+    }
+    if spec.dynamic_slots {
+        errors.extend(
+            unread_params(t, pass, &module, shared_params)
+                .into_iter()
+                .map(|m| err(&pass.location, m)),
+        );
+    }
+    let (plan, plan_errors) = BindingPlan::new(
+        &module,
+        pass,
+        resources,
+        spec.shape,
+        spec.dynamic_slots,
+        &binding_aliases(&spec),
+    );
+    errors.extend(plan_errors);
+    let settled: Vec<(SlotRef, Access)> = plan
+        .settled
+        .iter()
+        .map(|&(is_write, i, access)| {
+            let slot = if is_write {
+                SlotRef::Write(i)
+            } else {
+                SlotRef::Read(i)
+            };
+            (slot, access)
+        })
+        .collect();
+    // The state is read from the pass as it will be: accesses settled.
+    let mut settled_pass = pass.clone();
+    for &(is_write, i, access) in &plan.settled {
+        let list = if is_write {
+            &mut settled_pass.writes
+        } else {
+            &mut settled_pass.reads
+        };
+        list[i].access = access;
+    }
+    let mut blended = Vec::new();
+    if spec.state_from_data && spec.shape != PassShape::Compute {
+        let decl = t.raster_decl(&settled_pass);
+        match from_decl(&decl, &settled_pass, resources) {
+            Err(list) => errors.extend(list.into_iter().map(|(loc, m)| err(&loc, m))),
+            Ok(state) => {
+                if let Some(message) = unguardable(&plan, state.depth, false) {
+                    let loc = decl.depth.as_ref().map_or(&pass.location, |d| &d.location);
+                    errors.push(err(loc, message));
+                }
+                blended = blended_targets(&plan, &state.blend);
+            }
+        }
+    } else if spec.shape != PassShape::Compute
+        && let Ok(state) = t.raster_state(&settled_pass, caps)
+    {
+        blended = blended_targets(&plan, &state.blend);
+    }
+    PassCheck {
+        errors,
+        settled,
+        blended,
+    }
+}
+
+/// The colour targets of `plan` that `blend` (one entry per target) blends.
+fn blended_targets(
+    plan: &BindingPlan,
+    blend: &[Option<wgpu::BlendState>],
+) -> Vec<plait_graph::ResourceId> {
+    plan.colors
+        .iter()
+        .zip(blend)
+        .filter(|(_, b)| b.is_some())
+        .map(|(c, _)| c.resource)
+        .collect()
+}
+
+/// The params of a data-only pass its shader does not read
+/// ([`super::param_use`]). The providers' params (`shared_params`) are held
+/// to their specs at compile and, as in a pass type written in Rust, may be
+/// given to a pass whose chosen provider does not read them.
+fn unread_params(
+    t: &dyn PassType,
+    pass: &ScheduledPass,
+    module: &naga::Module,
+    shared_params: &[&str],
+) -> Vec<String> {
+    let mut members: std::collections::BTreeSet<String> = module
+        .global_variables
+        .iter()
+        .filter_map(|(_, v)| v.name.as_deref())
+        .filter(|n| reflect::plain_name(n).ends_with("params"))
+        .filter_map(|n| reflect::params_layout(module, reflect::plain_name(n)))
+        .flat_map(|(_, members)| members.into_iter().map(|m| m.name))
+        .collect();
+    members.extend(shared_params.iter().map(|s| s.to_string()));
+    let mut defines = super::param_use::library_define_names();
+    if let Ok((_, source)) = shader_source(t, pass) {
+        defines.extend(super::param_use::define_names(&source));
+    }
+    super::param_use::unread_params(pass, &members, &defines)
+}
