@@ -200,9 +200,17 @@ fn build_probe<'g>(
         .filter(|b| b.slot.starts_with("vis_"))
         .map(|b| format!("{} = {:?}", b.slot, b.resource_name))
         .collect();
+    // Only the providers' params: the probe samples self-shadowing as the
+    // shading pass sees it, not the pass's own (transparency) params, which
+    // its shader would not read.
+    let provider_params: Vec<String> = plait_passes::hair_fragment::shading_params()
+        .into_iter()
+        .map(|p| p.name)
+        .collect();
     let mut params: Vec<String> = shading
         .params
         .iter()
+        .filter(|(k, _)| provider_params.iter().any(|n| n == *k))
         .map(|(k, v)| format!("{k} = {}", literal(v)))
         .collect();
     params.extend([

@@ -44,9 +44,15 @@ fn caps() -> Capabilities {
 }
 
 fn schedule(pipeline: &str, sets: &[&str]) -> Schedule {
+    schedule_for(pipeline, sets, &caps())
+}
+
+/// The schedule compiled for an adapter with `caps`: compile fits it.
+fn schedule_for(pipeline: &str, sets: &[&str], caps: &Capabilities) -> Schedule {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let opts = CompileOptions {
         screen: (320, 240),
+        capabilities: caps.compile_capabilities(),
         ..CompileOptions::default()
     };
     compile_checked(&repo_root().join(pipeline), &sets, &opts).expect("the pipeline checks")
@@ -223,8 +229,8 @@ fn multisampling_the_format_lacks_is_refused_at_the_resource() {
 
 #[test]
 fn float32_targets_without_blending_are_fitted_not_refused() {
-    // Without FLOAT32_BLENDABLE the executor blends 32-bit float targets in
-    // 16 bits; the check judges the schedule as it will be built.
+    // Without FLOAT32_BLENDABLE compile blends 32-bit float targets in 16
+    // bits; the check judges the schedule as compiled for the adapter.
     let mut no_blend = complete();
     for (f, features) in &mut no_blend.formats {
         if matches!(
@@ -234,13 +240,15 @@ fn float32_targets_without_blending_are_fitted_not_refused() {
             features.flags.remove(F::BLENDABLE);
         }
     }
-    let s = schedule("pipelines/occupancy.toml", &[]);
     let fitted = Capabilities {
         float32_blendable: false,
         ..caps()
     };
+    let s = schedule_for("pipelines/occupancy.toml", &[], &fitted);
     assert_eq!(problems(&s, &no_blend, &fitted), []);
-    // Claiming FLOAT32_BLENDABLE while the format is not blendable is refused.
+    // A schedule compiled claiming FLOAT32_BLENDABLE, run where the format
+    // is not blendable, is refused.
+    let s = schedule("pipelines/occupancy.toml", &[]);
     let found = problems(&s, &no_blend, &caps());
     assert!(
         found
