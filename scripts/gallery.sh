@@ -20,7 +20,7 @@ trap 'rm -rf "$out"' EXIT
     --size 320x240 --repeats 1 --out "$out/shadows"
 # Transparency against depth peeling (the default scene needs ~200 peeled
 # layers, about 15 minutes a frame here, so it is not in this run).
-"$plait" ab pipelines/{occupancy,weighted_average,alpha_to_coverage,opaque,linked_list}.toml \
+"$plait" ab pipelines/{occupancy,weighted_average,alpha_to_coverage,opaque,linked_list,shortcut}.toml \
     --reference pipelines/depth_peeling.toml \
     --scene examples/scenes/small.toml --scene examples/scenes/stray.toml \
     --size 256x192 --repeats 2 --out "$out/transparency"
@@ -31,7 +31,7 @@ for v in occupancy occupancy_no_slab deep_opacity opacity_shadow_maps density_cl
     cp "$out/shadows/default-$v.png" "docs/variants/$v.png"
 done
 cp "$out/shadows/default-reference.png" docs/variants/exact_shadow.png
-for v in weighted_average alpha_to_coverage opaque linked_list; do
+for v in weighted_average alpha_to_coverage opaque linked_list shortcut; do
     cp "$out/transparency/stray-$v.png" "docs/variants/$v.png"
 done
 cp "$out/transparency/stray-reference.png" docs/variants/depth_peeling.png

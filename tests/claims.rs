@@ -326,7 +326,7 @@ fn every_transparency_technique_keeps_its_measured_error() {
     // (pipeline, measured RMSE on small at 160×120, allowed band)
     // The fragment lists' band is 3× their measured error: they differ from
     // peeling only in 16-bit list colours and fragments at equal depth.
-    let expected: [(&str, f64, (f64, f64)); 5] = [
+    let expected: [(&str, f64, (f64, f64)); 6] = [
         // 0.00948 with the frame's one ᾱ (mean_alpha = "frame"): the
         // groom's per-strand alphas vary by ±0.1.
         ("occupancy", 0.00170, (0.0008, 0.0035)),
@@ -334,6 +334,8 @@ fn every_transparency_technique_keeps_its_measured_error() {
         ("alpha_to_coverage", 0.04979, (0.04, 0.06)),
         ("opaque", 0.04463, (0.035, 0.055)),
         ("linked_list", 0.00074, (0.0, 0.0022)),
+        // The 3 nearest fragments' colour, unordered (see the ShortCut test).
+        ("shortcut", 0.01649, (0.012, 0.021)),
     ];
     let names: Vec<&str> = expected.iter().map(|e| e.0).collect();
     let errors = image_errors(
@@ -372,13 +374,16 @@ fn every_transparency_technique_keeps_its_measured_error() {
 #[test]
 fn transparency_with_strand_coverage_keeps_its_measured_error() {
     let (_lock, gpu) = open_gpu();
-    let expected: [(&str, f64, (f64, f64)); 5] = [
+    let expected: [(&str, f64, (f64, f64)); 6] = [
         // 0.00943 with the frame's one ᾱ (mean_alpha = "frame").
         ("occupancy", 0.00068, (0.0003, 0.0015)),
         ("weighted_average", 0.00340, (0.002, 0.005)),
         ("alpha_to_coverage", 0.05327, (0.043, 0.064)),
         ("opaque", 0.12371, (0.10, 0.15)),
         ("linked_list", 0.00050, (0.0, 0.0015)),
+        // Behind weighted average here: with alphas ~0.1 the fragments behind
+        // the 3rd carry most of the colour, and ShortCut drops it.
+        ("shortcut", 0.00841, (0.006, 0.011)),
     ];
     let names: Vec<&str> = expected.iter().map(|e| e.0).collect();
     let errors = image_errors(
@@ -401,6 +406,67 @@ fn transparency_with_strand_coverage_keeps_its_measured_error() {
                 got.rmse
             ));
         }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// AMD TressFX 4.1 ShortCut (techniques/transparency/shortcut.toml): the
+/// colour of the k nearest fragments, weighted by alpha but not by order, at
+/// the coverage of every fragment. Two consequences, held on `small` at
+/// 160×120 with the papers' strands of one alpha (0.6):
+/// - with k at least every pixel's depth complexity it keeps every fragment,
+///   so its colour is weighted average's Σα·rgb / Σα and, with one alpha,
+///   its coverage 1 - Π(1-α) is weighted average's 1 - (1-ᾱ)ⁿ: the two
+///   images agree to the 16-bit sums (RMSE ≤ 0.001 between them);
+/// - as k shrinks towards 1 the colour comes from fewer fragments in front,
+///   which the sorted blend weighs most (α, α(1-α), α(1-α)², …): with α = 0.6
+///   k = 1 is closer to depth peeling than k = 3, and k = 3 closer than
+///   weighted average (each by at least the measured factor / 1.25).
+/// With strand coverage the alphas are ~0.1, the fragments behind the third
+/// still carry most of the colour, and k = 3 is behind weighted average
+/// (`transparency_with_strand_coverage_keeps_its_measured_error`).
+#[test]
+fn shortcut_is_weighted_average_in_the_limit_and_gains_from_the_nearest() {
+    let (_lock, gpu) = open_gpu();
+    let small = scene("small");
+    let size = (160, 120);
+    let sets = |extra: &[&str]| -> Vec<String> {
+        std::iter::once(PAPER_STRANDS)
+            .chain(extra.iter().copied())
+            .map(str::to_owned)
+            .collect()
+    };
+    let all = render(&gpu, "shortcut", &small, size, &sets(&["params.nearest=256"]));
+    let wa = render(&gpu, "weighted_average", &small, size, &sets(&[]));
+    let limit = plait_compare::rmse(&all, &wa).expect("same size");
+    let truth = render(&gpu, "depth_peeling", &small, size, &sets(&[]));
+    let error = |img: &image::RgbaImage| plait_compare::rmse(&truth, img).expect("same size");
+    let k1 = error(&render(&gpu, "shortcut", &small, size, &sets(&["params.nearest=1"])));
+    let k3 = error(&render(&gpu, "shortcut", &small, size, &sets(&[])));
+    let wa_error = error(&wa);
+    println!(
+        "shortcut k=256 vs weighted_average: RMSE {limit:.5}; against depth peeling: \
+         k=1 {k1:.5}, k=3 {k3:.5}, weighted average {wa_error:.5}"
+    );
+    // Measured on lavapipe: k=1 0.00746, k=3 0.01649, weighted average
+    // 0.02063 (k=256 against weighted average: 0.00055).
+    const K1_OVER_K3: f64 = 2.21;
+    const K3_OVER_WA: f64 = 1.25;
+    let mut failures = Vec::new();
+    if limit > 0.001 {
+        failures.push(format!("k=256 differs from weighted average: RMSE {limit:.5} > 0.001"));
+    }
+    if k3 / k1 < K1_OVER_K3 / 1.25 {
+        failures.push(format!(
+            "k=1 ({k1:.5}) not {:.2}× closer than k=3 ({k3:.5})",
+            K1_OVER_K3 / 1.25
+        ));
+    }
+    if wa_error / k3 < K3_OVER_WA / 1.25 {
+        failures.push(format!(
+            "k=3 ({k3:.5}) not {:.2}× closer than weighted average ({wa_error:.5})",
+            K3_OVER_WA / 1.25
+        ));
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -47,6 +47,7 @@ fn coverage_is_closer_to_a_supersampled_render_in_every_blending_technique() {
         "weighted_average",
         "linked_list",
         "alpha_to_coverage",
+        "shortcut",
     ] {
         let (with, without) = errors(&gpu, &scene, transparency);
         eprintln!(

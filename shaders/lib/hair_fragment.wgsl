@@ -81,5 +81,11 @@ fn shade_hair(in: HairVaryings) -> HairFragment {
     let direct = shade_direct(tangent, l, e, base);
     let environment = shade_environment(in.world, tangent, e, base) * in.occlusion;
     let rgb = frame.light_color.rgb * direct * visibility + environment;
-    return HairFragment(rgb, clamp(in.alpha * frame.hair_color.a, 0.0, 1.0));
+    return HairFragment(rgb, fragment_alpha(in));
+}
+
+// The fragment's alpha alone (coverage × strand alpha × hair colour alpha),
+// for passes that need how much the fragment hides but not its colour.
+fn fragment_alpha(in: HairVaryings) -> f32 {
+    return clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
 }

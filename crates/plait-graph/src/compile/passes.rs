@@ -191,8 +191,11 @@ pub(super) fn resolve_pass(
             }
         }
         for (key, location) in decl.raster.keys() {
+            // A fullscreen pass has colour targets (blend, loads) and may
+            // write a depth target through `@builtin(frag_depth)` (depth);
+            // culling and alpha to coverage need geometry.
             let applies = spec.state_from_data
-                && (key == "blend" || key == "loads" || spec.shape == PassShape::Raster);
+                && (matches!(key, "blend" | "loads" | "depth") || spec.shape == PassShape::Raster);
             if !applies {
                 let why = if spec.state_from_data {
                     "draws no scene geometry".to_owned()
