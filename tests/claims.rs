@@ -410,7 +410,7 @@ fn transparency_with_strand_coverage_keeps_its_measured_error() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// AMD TressFX 4.1 ShortCut (techniques/transparency/shortcut.toml): the
+/// AMD TressFX 4.1 ShortCut (techniques/transparency/shortcut/technique.toml): the
 /// colour of the k nearest fragments, weighted by alpha but not by order, at
 /// the coverage of every fragment. Two consequences, held on `small` at
 /// 160×120 with the papers' strands of one alpha (0.6):

@@ -314,7 +314,7 @@ fn unstable_params_are_rejected_at_load() {
     let text = err.to_string();
     assert!(text.contains("cannot be stable"), "{text}");
     assert!(
-        text.contains("techniques/simulation/verlet.toml:"),
+        text.contains("techniques/simulation/verlet/technique.toml:"),
         "names the pass's file: {text}"
     );
 }

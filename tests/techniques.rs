@@ -10,7 +10,7 @@
 use std::collections::BTreeSet;
 
 use plait::session::{SceneData, prepare};
-use plait_graph::techniques::{choices, points};
+use plait_graph::techniques::TechniqueRoots;
 use plait_tests::{open_gpu, repo_root, strands_subset};
 
 /// Combinations (one choice index per point) covering every pair of choices
@@ -103,11 +103,12 @@ fn covers_all_pairs(rows: &[Vec<usize>], sizes: &[usize]) -> bool {
 
 /// The all-pairs cover of the techniques, as `--set` flags.
 fn combinations() -> Vec<Vec<String>> {
-    let root = repo_root().join("techniques");
-    let points: Vec<(String, Vec<String>)> = points(&root)
+    let roots = TechniqueRoots::at(repo_root().join("techniques"));
+    let points: Vec<(String, Vec<String>)> = roots
+        .points()
         .into_iter()
         .map(|p| {
-            let names = choices(&root, &p);
+            let names = roots.choices(&p);
             assert!(!names.is_empty(), "choice point {p} has no technique");
             (p, names)
         })

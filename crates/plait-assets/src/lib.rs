@@ -1,7 +1,7 @@
 //! The pipelines, shaders and example scenes plait ships, found at run time.
 //!
 //! A *library file* is named by its path inside a plait checkout
-//! (`pipelines/occupancy.toml`, `techniques/self_shadow/occupancy.toml`,
+//! (`pipelines/occupancy.toml`, `techniques/self_shadow/occupancy/technique.toml`,
 //! `shaders/passes/hair_shade.wgsl`, `examples/scenes/small.toml`). It is read
 //! from the first folder of the search path that holds it — so editing a
 //! shader needs no rebuild, and the viewer reloads it — and, when no folder
@@ -288,7 +288,7 @@ mod tests {
             "shaders/lib/frame.wgsl",
             "shaders/passes/hair_shade.wgsl",
             "shaders/compose_over.wgsl",
-            "techniques/self_shadow/occupancy.toml",
+            "techniques/self_shadow/occupancy/technique.toml",
             "examples/scenes/small.toml",
             "examples/scenes/default.toml",
         ] {
@@ -305,15 +305,17 @@ mod tests {
         assert!(is_dir(root));
         assert!(is_dir(Path::new("<built-in>/techniques/self_shadow")));
         assert!(!is_dir(Path::new(
-            "<built-in>/techniques/self_shadow/occupancy.toml"
+            "<built-in>/techniques/self_shadow/occupancy/technique.toml"
         )));
         assert!(!is_dir(Path::new("<built-in>/nothing")));
         let points = read_dir(root);
         assert!(points.contains(&root.join("self_shadow")), "{points:?}");
         assert!(points.contains(&root.join("transparency")), "{points:?}");
         let files = read_dir(&root.join("self_shadow"));
+        // Techniques are folders; fragments they include are files.
+        assert!(files.contains(&root.join("self_shadow/occupancy")), "{files:?}");
         assert!(
-            files.contains(&root.join("self_shadow/occupancy.toml")),
+            files.contains(&root.join("self_shadow/light_range.toml")),
             "{files:?}"
         );
         assert!(read_dir(Path::new("<built-in>/nothing")).is_empty());

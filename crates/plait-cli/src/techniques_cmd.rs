@@ -18,26 +18,28 @@ pub struct TechniquesArgs {
 }
 
 pub fn run(args: TechniquesArgs) -> Result<()> {
-    let root = match args.dir {
-        Some(d) => d,
+    let roots = match args.dir {
+        Some(d) => plait_graph::techniques::TechniqueRoots::at(d),
         None => {
             let pipeline = plait::session::resolve_pipeline(None);
-            plait_graph::techniques::techniques_root(&pipeline).ok_or_else(|| {
-                anyhow!(
+            let roots = plait_graph::techniques::TechniqueRoots::for_pipeline(&pipeline);
+            if roots.is_empty() {
+                return Err(anyhow!(
                     "no `techniques/` folder beside {} or above it",
                     pipeline.display()
-                )
-            })?
+                ));
+            }
+            roots
         }
     };
-    let catalog = plait_graph::techniques::catalog(&root)
+    let catalog = plait_graph::techniques::catalog(&roots)
         .map_err(|errors| anyhow!("{}", plait_graph::Errors(errors)))?;
     if args.json {
         let all: Vec<_> = catalog
             .iter()
             .map(|t| {
                 serde_json::json!({
-                    "point": t.point, "name": t.name, "file": t.path.display().to_string(),
+                    "point": t.point, "name": t.name, "file": t.path.display().to_string(), "files": t.files,
                     "description": t.description, "source": t.source, "memory": t.memory,
                     "params": t.params.iter().map(|(k, v)| serde_json::json!({"name": k, "default": v})).collect::<Vec<_>>(),
                 })
@@ -60,12 +62,7 @@ pub fn run(args: TechniquesArgs) -> Result<()> {
     for t in &catalog {
         if point != Some(&t.point) {
             point = Some(&t.point);
-            outln!(
-                "\n{} — `--set techniques.{}=NAME` ({})",
-                t.point,
-                t.point,
-                root.join(&t.point).display()
-            )?;
+            outln!("\n{} — `--set techniques.{}=NAME`", t.point, t.point)?;
         }
         outln!("  {:<w$} {}", t.name, t.description)?;
         if !t.source.is_empty() && t.source != "—" {
@@ -78,6 +75,8 @@ pub fn run(args: TechniquesArgs) -> Result<()> {
         if !t.memory.is_empty() {
             outln!("  {:<w$} memory: {}", "", t.memory)?;
         }
+        let folder = t.path.parent().unwrap_or(&t.path);
+        outln!("  {:<w$} files: {}/ {}", "", folder.display(), t.files.join(", "))?;
     }
     outln!("\nPapers: docs/bibliography.md")?;
     Ok(())

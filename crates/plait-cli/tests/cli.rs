@@ -653,12 +653,12 @@ fn check_rejects_what_rendering_would() {
         (
             "pipelines/occupancy.toml",
             "params.slices=48",
-            &["occupancy.toml:", "light_bits", "multiple of 32"],
+            &["occupancy/technique.toml:", "light_bits", "multiple of 32"],
         ),
         (
             "pipelines/occupancy.toml",
             "params.light_size=8192",
-            &["occupancy.toml:", "light_bits", "1 GiB", "128.0 MiB"],
+            &["occupancy/technique.toml:", "light_bits", "1 GiB", "128.0 MiB"],
         ),
         (
             "pipelines/alpha_to_coverage.toml",
@@ -688,7 +688,7 @@ fn check_rejects_what_rendering_would() {
             "pipelines/alpha_to_coverage.toml",
             "params.samples=1",
             &[
-                "alpha_to_coverage.toml:42:45",
+                "alpha_to_coverage/technique.toml:42:45",
                 "`scene`",
                 "1 sample(s)",
                 "cannot be resolved into `scene_resolved`",

@@ -214,3 +214,50 @@ fn every_built_in_gallery_pipeline_checks_without_any_folder_on_the_search_path(
         gallery.len()
     );
 }
+
+/// A technique is a folder the engine finds by itself: ShortCut's folder,
+/// copied under a new name into a `PLAIT_PATH` folder, is a choice for an
+/// installed binary (no rebuild, no registry) and renders exactly the image
+/// of the original, which comes from the copies built in.
+#[test]
+fn a_technique_folder_dropped_on_the_search_path_is_a_choice_without_a_rebuild() {
+    let bin = tempfile::tempdir().expect("temp dir");
+    let cwd = tempfile::tempdir_in("/tmp").expect("temp dir in /tmp");
+    let library = tempfile::tempdir().expect("temp dir");
+    let original = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../techniques/transparency/shortcut");
+    let copy = library.path().join("techniques/transparency/my_shortcut");
+    std::fs::create_dir_all(&copy).expect("mkdir");
+    let mut copied = Vec::new();
+    for entry in std::fs::read_dir(&original).expect("the shortcut folder") {
+        let path = entry.expect("entry").path();
+        let name = path.file_name().expect("name").to_owned();
+        std::fs::copy(&path, copy.join(&name)).expect("copy");
+        copied.push(name.to_string_lossy().into_owned());
+    }
+    assert!(copied.iter().any(|f| f == "technique.toml"), "{copied:?}");
+    let plait_path = library.path().to_str().expect("utf-8 path");
+    let render = |technique: &str, out: &str| {
+        let set = format!("techniques.transparency={technique}");
+        let o = installed(
+            bin.path(),
+            cwd.path(),
+            Some(plait_path),
+            &["render", "--size", "48x36", "--set", "params.light_size=128", "--set", &set, "--out", out],
+        );
+        assert_ok(&format!("render {technique}"), &o);
+        let stdout = text(&o.stdout);
+        assert!(stdout.contains(&format!("transparency/{technique}")), "{stdout}");
+        image::open(cwd.path().join(out)).expect("a PNG").to_rgba8()
+    };
+    let mine = render("my_shortcut", "mine.png");
+    let theirs = render("shortcut", "theirs.png");
+    assert!(mine == theirs, "the copied technique renders another image");
+    // `plait techniques` lists it with its files.
+    let o = installed(bin.path(), cwd.path(), Some(plait_path), &["techniques"]);
+    assert_ok("techniques", &o);
+    let listing = text(&o.stdout);
+    assert!(
+        listing.contains("my_shortcut") && listing.contains("technique.toml, depths.wgsl"),
+        "{listing}"
+    );
+}

@@ -116,10 +116,13 @@ impl ChosenTechnique {
         format!("{}/{}", self.point, self.name)
     }
 
-    /// Whether `file` belongs to this technique: the technique file itself or
-    /// a fragment it includes from its point's folder.
+    /// Whether `file` belongs to this technique: a file of its folder
+    /// (`techniques/<point>/<name>/`), or one it includes from its point's
+    /// folder — a fragment, or another technique's file — since a pipeline
+    /// chooses one technique per point.
     pub fn owns(&self, file: &Path) -> bool {
-        file.parent() == self.path.parent()
+        let point_folder = self.path.parent().and_then(Path::parent);
+        point_folder.is_some_and(|p| file.starts_with(p))
     }
 }
 

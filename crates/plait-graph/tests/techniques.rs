@@ -79,8 +79,8 @@ params = { look = "toon" }
 fn tree() -> Tree {
     Tree::new(&[
         ("pipelines/p.toml", PIPELINE),
-        ("techniques/shading/flat.toml", FLAT),
-        ("techniques/shading/toon.toml", TOON),
+        ("techniques/shading/flat/technique.toml", FLAT),
+        ("techniques/shading/toon/technique.toml", TOON),
     ])
 }
 
@@ -122,7 +122,7 @@ fn a_choice_brings_its_data_and_exports_to_the_passes_that_use_it() {
     assert!(
         p.files
             .iter()
-            .any(|f| f.ends_with("techniques/shading/flat.toml"))
+            .any(|f| f.ends_with("techniques/shading/flat/technique.toml"))
     );
 }
 
@@ -165,7 +165,7 @@ fn an_unknown_choice_lists_the_choices() {
     let bad = PIPELINE.replace("shading = \"flat\"", "shading = \"flta\"");
     let t = Tree::new(&[
         ("pipelines/p.toml", &bad),
-        ("techniques/shading/flat.toml", FLAT),
+        ("techniques/shading/flat/technique.toml", FLAT),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
     assert_eq!(at(&e[0]), ("p.toml".into(), 6, 11), "{}", e[0]);
@@ -177,7 +177,7 @@ fn an_unknown_choice_point_lists_the_points() {
     let bad = PIPELINE.replace("shading = \"flat\"", "shadnig = \"flat\"");
     let t = Tree::new(&[
         ("pipelines/p.toml", &bad),
-        ("techniques/shading/flat.toml", FLAT),
+        ("techniques/shading/flat/technique.toml", FLAT),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
     assert_eq!(at(&e[0]), ("p.toml".into(), 6, 1), "{}", e[0]);
@@ -193,7 +193,7 @@ fn using_a_point_nobody_chose_is_an_error() {
     let bad = PIPELINE.replace("uses = [\"shading\"]", "uses = [\"shadow\"]");
     let t = Tree::new(&[
         ("pipelines/p.toml", &bad),
-        ("techniques/shading/flat.toml", FLAT),
+        ("techniques/shading/flat/technique.toml", FLAT),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
     assert_eq!(at(&e[0]), ("p.toml".into(), 16, 9), "{}", e[0]);
@@ -217,8 +217,8 @@ size = [2, 2]
 "#;
     let t = Tree::new(&[
         ("pipelines/p.toml", &pipeline),
-        ("techniques/shading/flat.toml", FLAT),
-        ("techniques/lighting/sky.toml", sky),
+        ("techniques/shading/flat/technique.toml", FLAT),
+        ("techniques/lighting/sky/technique.toml", sky),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
     let text = e
@@ -231,7 +231,7 @@ size = [2, 2]
         "{text}"
     );
     assert!(
-        e.iter().any(|e| at(e) == ("sky.toml".into(), 5, 12)),
+        e.iter().any(|e| at(e) == ("technique.toml".into(), 5, 12)),
         "{text}"
     );
 }
@@ -241,18 +241,18 @@ fn a_technique_in_the_wrong_folder_or_with_unknown_keys_is_an_error() {
     let wrong_point = FLAT.replace("point = \"shading\"", "point = \"lighting\"");
     let t = Tree::new(&[
         ("pipelines/p.toml", PIPELINE),
-        ("techniques/shading/flat.toml", &wrong_point),
+        ("techniques/shading/flat/technique.toml", &wrong_point),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
-    assert_eq!(at(&e[0]), ("flat.toml".into(), 2, 9), "{}", e[0]);
+    assert_eq!(at(&e[0]), ("technique.toml".into(), 2, 9), "{}", e[0]);
 
     let typo = FLAT.replace("description =", "descripton =");
     let t = Tree::new(&[
         ("pipelines/p.toml", PIPELINE),
-        ("techniques/shading/flat.toml", &typo),
+        ("techniques/shading/flat/technique.toml", &typo),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
-    assert_eq!(at(&e[0]), ("flat.toml".into(), 3, 1), "{}", e[0]);
+    assert_eq!(at(&e[0]), ("technique.toml".into(), 3, 1), "{}", e[0]);
     assert!(
         e[0].to_string().contains("did you mean `description`"),
         "{}",
@@ -264,25 +264,74 @@ fn a_technique_in_the_wrong_folder_or_with_unknown_keys_is_an_error() {
 fn includes_share_a_fragment_and_a_missing_one_names_itself() {
     let with_include = FLAT.replace(
         "description = \"flat colour\"",
-        "description = \"flat colour\"\nincludes = [\"common.toml\"]",
+        "description = \"flat colour\"\nincludes = [\"../common.toml\"]",
     );
     let common = "[resources.shared]\nkind = \"buffer\"\nsize = 16\n";
     let t = Tree::new(&[
         ("pipelines/p.toml", PIPELINE),
-        ("techniques/shading/flat.toml", &with_include),
+        ("techniques/shading/flat/technique.toml", &with_include),
         ("techniques/shading/common.toml", common),
     ]);
     let p = load(&t.path("pipelines/p.toml"), &[]).expect("loads");
     assert!(p.resources.contains_key("shared"));
     // A fragment is not a choice.
-    let choices = plait_graph::techniques::choices(&t.path("techniques"), "shading");
+    let choices = plait_graph::techniques::TechniqueRoots::at(t.path("techniques")).choices("shading");
     assert_eq!(choices, vec!["flat".to_string()]);
 
     let t = Tree::new(&[
         ("pipelines/p.toml", PIPELINE),
-        ("techniques/shading/flat.toml", &with_include),
+        ("techniques/shading/flat/technique.toml", &with_include),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
-    assert_eq!(at(&e[0]), ("flat.toml".into(), 4, 13), "{}", e[0]);
+    assert_eq!(at(&e[0]), ("technique.toml".into(), 4, 13), "{}", e[0]);
     assert!(e[0].to_string().contains("common.toml"), "{}", e[0]);
+}
+
+/// A technique is a folder holding `technique.toml`: a folder without one is
+/// an error at the choice that names it, naming the folder; `plait
+/// techniques` (the catalog) reports it too.
+#[test]
+fn a_technique_folder_without_its_file_is_an_error() {
+    let t = Tree::new(&[
+        ("pipelines/p.toml", PIPELINE),
+        ("techniques/shading/flat/flat.toml", FLAT),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    let text = e.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n");
+    assert!(
+        text.contains("techniques/shading/flat has no technique.toml") && at(&e[0]).0 == "p.toml",
+        "{text}"
+    );
+    let roots = plait_graph::techniques::TechniqueRoots::at(t.path("techniques"));
+    let listed = plait_graph::techniques::catalog(&roots).expect_err("refused");
+    assert!(listed[0].to_string().contains("has no technique.toml"), "{}", listed[0]);
+}
+
+/// Two folders of the search path claiming one `<point>/<name>` is an error
+/// naming both; the pipeline's own folder shadows the search path instead.
+#[test]
+fn two_search_path_folders_claiming_one_technique_is_an_error() {
+    use plait_graph::techniques::{Located, TechniqueRoots};
+    let a = Tree::new(&[("techniques/shading/flat/technique.toml", FLAT)]);
+    let b = Tree::new(&[
+        ("techniques/shading/flat/technique.toml", FLAT),
+        ("techniques/shading/toon/technique.toml", TOON),
+    ]);
+    let roots = TechniqueRoots::new(None, vec![a.path("techniques"), b.path("techniques")]);
+    match roots.locate("shading", "flat") {
+        Located::Twice(x, y) => {
+            assert!(x.starts_with(a.path("techniques")) && y.starts_with(b.path("techniques")))
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(
+        roots.locate("shading", "toon"),
+        Located::Found(b.path("techniques/shading/toon/technique.toml"))
+    );
+    assert_eq!(roots.choices("shading"), ["flat", "toon"]);
+    let own = TechniqueRoots::new(Some(a.path("techniques")), vec![b.path("techniques")]);
+    assert_eq!(
+        own.locate("shading", "flat"),
+        Located::Found(a.path("techniques/shading/flat/technique.toml"))
+    );
 }

@@ -83,18 +83,20 @@ pub struct TechniqueChoice {
 }
 
 pub(crate) fn describe_schedule(s: &mut Shared, schedule: &Schedule) {
+    // The first of `files` is the pipeline file itself.
+    let roots = schedule
+        .files
+        .first()
+        .map(|p| plait_graph::techniques::TechniqueRoots::for_pipeline(p))
+        .unwrap_or_default();
     s.techniques = schedule
         .techniques
         .iter()
         .map(|t| {
-            // The technique file is `<techniques root>/<point>/<name>.toml`.
-            let root = t.path.parent().and_then(|p| p.parent());
             TechniqueChoice {
                 point: t.point.clone(),
                 chosen: t.name.clone(),
-                choices: root
-                    .map(|r| plait_graph::techniques::choices(r, &t.point))
-                    .unwrap_or_else(|| vec![t.name.clone()]),
+                choices: roots.choices(&t.point),
             }
         })
         .collect();

@@ -81,7 +81,7 @@ impl Trial<'_> {
     /// set only if the pipeline then has no problem left. A problem outside
     /// every technique (a pass of the pipeline's own) has no such fix.
     fn suggest(&self, schedule: &Schedule, problems: &[Problem]) -> Option<Vec<String>> {
-        let root = plait_graph::techniques::techniques_root(self.pipeline)?;
+        let roots = plait_graph::techniques::TechniqueRoots::for_pipeline(self.pipeline);
         let mut points: Vec<String> = Vec::new();
         for p in problems {
             let point = point_of(p, schedule)?;
@@ -92,7 +92,7 @@ impl Trial<'_> {
         let mut chosen: Vec<String> = Vec::new();
         for point in points {
             let current = schedule.techniques.iter().find(|t| t.point == point)?;
-            let fix = plait_graph::techniques::choices(&root, &point)
+            let fix = roots.choices(&point)
                 .into_iter()
                 .filter(|name| *name != current.name)
                 .map(|name| format!("techniques.{point}={name}"))

@@ -106,8 +106,9 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
         })),
     }
     // Technique files and the fragments they include: the whole folder.
-    if let Some(root) = plait_graph::techniques::techniques_root(pipeline) {
-        let mut folders = vec![root];
+    let roots = plait_graph::techniques::TechniqueRoots::for_pipeline(pipeline);
+    for root in roots.layers().filter(|r| !plait_assets::is_builtin(r)) {
+        let mut folders = vec![root.clone()];
         while let Some(folder) = folders.pop() {
             for entry in std::fs::read_dir(&folder).into_iter().flatten().flatten() {
                 let path = entry.path();

@@ -117,11 +117,11 @@ fn rg32float_not_renderable_refuses_the_range_passes_at_their_slots() {
         ("light_range", "techniques/self_shadow/light_range.toml"),
         (
             "camera_range",
-            "techniques/transparency/occupancy_order.toml",
+            "techniques/transparency/occupancy_order/technique.toml",
         ),
         (
             "camera_alpha",
-            "techniques/transparency/occupancy_order.toml",
+            "techniques/transparency/occupancy_order/technique.toml",
         ),
     ]) {
         assert_eq!(p.resource.as_deref(), Some(resource));

@@ -3,7 +3,7 @@
 // specular maps around θ′ (the angle between the tangent and the eye,
 // shifted by the scene's specular shift as the key light's highlight is)
 // looked up by the tangent and interpolated linearly. The maps come from
-// `techniques/lighting/irradiance_maps.toml` (summed directly) or
+// `techniques/lighting/irradiance_maps/technique.toml` (summed directly) or
 // `sh_irradiance_maps.toml` (rebuilt from SH, §5): one atlas, diffuse map
 // then M + 1 specular maps, M read from its height.
 #define_import_path plait::lighting::irradiance_maps

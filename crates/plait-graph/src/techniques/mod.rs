@@ -7,8 +7,9 @@
 //! transparency = "weighted_average"
 //! ```
 //!
-//! A technique is one file of data, `techniques/<point>/<name>.toml`: its
-//! params, resources and passes (merged into the pipeline, which may tune them:
+//! A technique is a folder of data, `techniques/<point>/<name>/`: its
+//! `technique.toml` (found in layers: [`roots`]) holds its params, resources
+//! and passes (merged into the pipeline, which may tune them:
 //! the pipeline's own keys win), and the contract it fulfils:
 //!
 //! ```toml
@@ -17,7 +18,7 @@
 //! description = "…"
 //! source = "Yuksel & Keyser 2008 §3"
 //! memory = "…"                     # a formula, for `plait techniques`
-//! includes = ["light_range.toml"]  # shared fragments, relative to this file
+//! includes = ["../light_range.toml"]  # shared fragments, relative to this file
 //!
 //! [technique.exports]              # what every pass that `uses` the point receives
 //! reads = { vis_range = "light_range", vis_layers = "light_dom" }
@@ -55,18 +56,13 @@ const FILE_KEYS: &[&str] = &["technique", "params", "resources", "passes"];
 /// What exports may carry.
 const EXPORT_KEYS: &[&str] = &["reads", "params"];
 
-/// The techniques folder nearest `pipeline`: its own folder's, or an
-/// ancestor's — relative to the working directory when it is below it, so
-/// messages name `techniques/…` as a user would. A pipeline outside any
-/// checkout (copied elsewhere, or a built-in copy) uses the library's
-/// (`plait_assets::find_dir`: the search path, then the built-in copies).
-pub fn techniques_root(pipeline: &Path) -> Option<PathBuf> {
-    if plait_assets::is_builtin(pipeline) {
-        return plait_assets::find_dir(TECHNIQUES_DIR);
-    }
-    techniques_beside(pipeline).or_else(|| plait_assets::find_dir(TECHNIQUES_DIR))
-}
+mod roots;
 
+pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
+
+/// The techniques folder beside `pipeline`: its own folder's, or an
+/// ancestor's — relative to the working directory when it is below it, so
+/// messages name `techniques/…` as a user would.
 fn techniques_beside(pipeline: &Path) -> Option<PathBuf> {
     let dir = pipeline.parent().unwrap_or(Path::new(""));
     let absolute = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
@@ -85,40 +81,6 @@ fn techniques_beside(pipeline: &Path) -> Option<PathBuf> {
     )
 }
 
-/// The choice points under `root` (its sub-folders), sorted.
-pub fn points(root: &Path) -> Vec<String> {
-    list(root, plait_assets::is_dir)
-}
-
-/// The techniques of `point` under `root` (its `.toml` files, by stem), sorted.
-pub fn choices(root: &Path, point: &str) -> Vec<String> {
-    list(&root.join(point), |p| {
-        p.extension().is_some_and(|e| e == "toml")
-    })
-    .into_iter()
-    .filter(|name| !is_fragment(&root.join(point), name))
-    .collect()
-}
-
-/// Fragments shared between techniques (`includes`) are files without a
-/// `[technique]` table; they are not choices.
-fn is_fragment(dir: &Path, stem: &str) -> bool {
-    plait_assets::read_to_string(&dir.join(format!("{stem}.toml")))
-        .map(|text| !text.lines().any(|l| l.trim() == "[technique]"))
-        .unwrap_or(true)
-}
-
-fn list(dir: &Path, keep: impl Fn(&Path) -> bool) -> Vec<String> {
-    // Built-in copies (`<built-in>/techniques`) list like folders on disk.
-    let mut names: Vec<String> = plait_assets::read_dir(dir)
-        .into_iter()
-        .filter(|p| keep(p))
-        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_owned))
-        .collect();
-    names.sort();
-    names
-}
-
 /// What one technique file says about itself, for `plait techniques`.
 #[derive(Clone, Debug)]
 pub struct TechniqueInfo {
@@ -130,16 +92,21 @@ pub struct TechniqueInfo {
     pub memory: String,
     /// Its `[params]`, as written (`${…}` not substituted).
     pub params: Vec<(String, String)>,
+    /// What it consists of: the files of its folder (`technique.toml` and
+    /// its WGSL), then the fragments it `includes`, relative to the folder.
+    pub files: Vec<String>,
 }
 
-/// Every technique under `root`, by point then name; files that do not parse
+/// Every technique in `roots`, by point then name; files that do not parse
 /// are reported as errors.
-pub fn catalog(root: &Path) -> Result<Vec<TechniqueInfo>, Vec<Error>> {
+pub fn catalog(roots: &TechniqueRoots) -> Result<Vec<TechniqueInfo>, Vec<Error>> {
     let mut out = Vec::new();
-    let mut errors = Vec::new();
-    for point in points(root) {
-        for name in choices(root, &point) {
-            let path = root.join(&point).join(format!("{name}.toml"));
+    let mut errors = roots.problems();
+    for point in roots.points() {
+        for name in roots.choices(&point) {
+            let Located::Found(path) = roots.locate(&point, &name) else {
+                continue; // in `problems` above
+            };
             match read_technique(&path) {
                 Ok(tree) => {
                     let text = |key: &str| {
@@ -165,7 +132,16 @@ pub fn catalog(root: &Path) -> Result<Vec<TechniqueInfo>, Vec<Error>> {
                                 .collect()
                         })
                         .unwrap_or_default();
+                    let mut files: Vec<String> = plait_assets::read_dir(
+                        path.parent().unwrap_or(Path::new("")),
+                    )
+                    .iter()
+                    .filter_map(|p| p.file_name()?.to_str().map(str::to_owned))
+                    .collect();
+                    files.sort_by_key(|f| (f != TECHNIQUE_FILE, f.clone()));
+                    files.extend(includes_of(&path));
                     out.push(TechniqueInfo {
+                        files,
                         point: point.clone(),
                         name: name.clone(),
                         description: text("description"),
@@ -183,6 +159,43 @@ pub fn catalog(root: &Path) -> Result<Vec<TechniqueInfo>, Vec<Error>> {
         Ok(out)
     } else {
         Err(errors)
+    }
+}
+
+/// `dir/name` with `..` taken off lexically (`occupancy/../light_range.toml`
+/// is `light_range.toml`), so messages and watched files name the file once.
+fn lexical_join(dir: &Path, name: &str) -> PathBuf {
+    use std::path::Component;
+    let mut out = PathBuf::new();
+    for c in dir.join(name).components() {
+        match c {
+            Component::ParentDir if matches!(out.components().next_back(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// The `includes` a technique file names, as written.
+fn includes_of(path: &Path) -> Vec<String> {
+    let Ok(text) = plait_assets::read_to_string(path) else {
+        return Vec::new();
+    };
+    let Ok(tree) = parse_file(path, &text) else {
+        return Vec::new();
+    };
+    match technique_table(&tree).and_then(|t| t.get("includes")).map(|e| &e.value.value) {
+        Some(Node::List(items)) => items
+            .iter()
+            .filter_map(|i| match &i.value {
+                Node::Scalar(Value::Str(s)) => Some(s.clone()),
+                _ => None,
+            })
+            .collect(),
+        _ => Vec::new(),
     }
 }
 
@@ -306,7 +319,7 @@ fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<N
                 ));
                 continue;
             };
-            let included = path.parent().unwrap_or(Path::new("")).join(name);
+            let included = lexical_join(path.parent().unwrap_or(Path::new("")), name);
             if chain.contains(&included) {
                 errors.push(schema(
                     &item.location,
@@ -373,7 +386,8 @@ pub(crate) fn apply_techniques(
             ));
             return chosen_list;
         };
-        let Some(root_dir) = techniques_root(pipeline_path) else {
+        let roots = TechniqueRoots::for_pipeline(pipeline_path);
+        if roots.is_empty() {
             errors.push(schema(
                 &entry.key,
                 format!(
@@ -382,8 +396,8 @@ pub(crate) fn apply_techniques(
                 ),
             ));
             return chosen_list;
-        };
-        let known_points = points(&root_dir);
+        }
+        let known_points = roots.points();
         for (point, choice) in points_table {
             if !known_points.contains(point) {
                 errors.push(schema(
@@ -403,20 +417,29 @@ pub(crate) fn apply_techniques(
                 ));
                 continue;
             };
-            let valid = choices(&root_dir, point);
-            if !valid.contains(name) {
-                let ranked = nearest_first(name, valid.iter().map(String::as_str));
-                errors.push(schema(
-                    &choice.value.location,
-                    format!(
-                        "no {point} technique `{name}`{} (choices: {})",
-                        did_you_mean(name, valid.iter().map(String::as_str)),
-                        ranked.join(" | ")
-                    ),
-                ));
-                continue;
-            }
-            let path = root_dir.join(point).join(format!("{name}.toml"));
+            let path = match roots.locate(point, name) {
+                Located::Found(path) => path,
+                Located::Missing => {
+                    let valid = roots.choices(point);
+                    let ranked = nearest_first(name, valid.iter().map(String::as_str));
+                    errors.push(schema(
+                        &choice.value.location,
+                        format!(
+                            "no {point} technique `{name}`{} (choices: {})",
+                            did_you_mean(name, valid.iter().map(String::as_str)),
+                            ranked.join(" | ")
+                        ),
+                    ));
+                    continue;
+                }
+                other => {
+                    let mut e = located_error(&other, point, name).expect("not found");
+                    // Reported at the choice, naming the folder.
+                    e.location = choice.value.location.clone();
+                    errors.push(e);
+                    continue;
+                }
+            };
             let tree = match read_technique(&path) {
                 Ok(t) => t,
                 Err(mut e) => {
