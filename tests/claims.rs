@@ -436,12 +436,24 @@ fn shortcut_is_weighted_average_in_the_limit_and_gains_from_the_nearest() {
             .map(str::to_owned)
             .collect()
     };
-    let all = render(&gpu, "shortcut", &small, size, &sets(&["params.nearest=256"]));
+    let all = render(
+        &gpu,
+        "shortcut",
+        &small,
+        size,
+        &sets(&["params.nearest=256"]),
+    );
     let wa = render(&gpu, "weighted_average", &small, size, &sets(&[]));
     let limit = plait_compare::rmse(&all, &wa).expect("same size");
     let truth = render(&gpu, "depth_peeling", &small, size, &sets(&[]));
     let error = |img: &image::RgbaImage| plait_compare::rmse(&truth, img).expect("same size");
-    let k1 = error(&render(&gpu, "shortcut", &small, size, &sets(&["params.nearest=1"])));
+    let k1 = error(&render(
+        &gpu,
+        "shortcut",
+        &small,
+        size,
+        &sets(&["params.nearest=1"]),
+    ));
     let k3 = error(&render(&gpu, "shortcut", &small, size, &sets(&[])));
     let wa_error = error(&wa);
     println!(
@@ -454,7 +466,9 @@ fn shortcut_is_weighted_average_in_the_limit_and_gains_from_the_nearest() {
     const K3_OVER_WA: f64 = 1.25;
     let mut failures = Vec::new();
     if limit > 0.001 {
-        failures.push(format!("k=256 differs from weighted average: RMSE {limit:.5} > 0.001"));
+        failures.push(format!(
+            "k=256 differs from weighted average: RMSE {limit:.5} > 0.001"
+        ));
     }
     if k3 / k1 < K1_OVER_K3 / 1.25 {
         failures.push(format!(

@@ -313,7 +313,10 @@ mod tests {
         assert!(points.contains(&root.join("transparency")), "{points:?}");
         let files = read_dir(&root.join("self_shadow"));
         // Techniques are folders; fragments they include are files.
-        assert!(files.contains(&root.join("self_shadow/occupancy")), "{files:?}");
+        assert!(
+            files.contains(&root.join("self_shadow/occupancy")),
+            "{files:?}"
+        );
         assert!(
             files.contains(&root.join("self_shadow/light_range.toml")),
             "{files:?}"

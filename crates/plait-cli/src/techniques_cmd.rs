@@ -76,7 +76,12 @@ pub fn run(args: TechniquesArgs) -> Result<()> {
             outln!("  {:<w$} memory: {}", "", t.memory)?;
         }
         let folder = t.path.parent().unwrap_or(&t.path);
-        outln!("  {:<w$} files: {}/ {}", "", folder.display(), t.files.join(", "))?;
+        outln!(
+            "  {:<w$} files: {}/ {}",
+            "",
+            folder.display(),
+            t.files.join(", ")
+        )?;
     }
     outln!("\nPapers: docs/bibliography.md")?;
     Ok(())

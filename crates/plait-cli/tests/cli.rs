@@ -658,7 +658,12 @@ fn check_rejects_what_rendering_would() {
         (
             "pipelines/occupancy.toml",
             "params.light_size=8192",
-            &["occupancy/technique.toml:", "light_bits", "1 GiB", "128.0 MiB"],
+            &[
+                "occupancy/technique.toml:",
+                "light_bits",
+                "1 GiB",
+                "128.0 MiB",
+            ],
         ),
         (
             "pipelines/alpha_to_coverage.toml",

@@ -224,7 +224,8 @@ fn a_technique_folder_dropped_on_the_search_path_is_a_choice_without_a_rebuild()
     let bin = tempfile::tempdir().expect("temp dir");
     let cwd = tempfile::tempdir_in("/tmp").expect("temp dir in /tmp");
     let library = tempfile::tempdir().expect("temp dir");
-    let original = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../techniques/transparency/shortcut");
+    let original =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../techniques/transparency/shortcut");
     let copy = library.path().join("techniques/transparency/my_shortcut");
     std::fs::create_dir_all(&copy).expect("mkdir");
     let mut copied = Vec::new();
@@ -242,11 +243,24 @@ fn a_technique_folder_dropped_on_the_search_path_is_a_choice_without_a_rebuild()
             bin.path(),
             cwd.path(),
             Some(plait_path),
-            &["render", "--size", "48x36", "--set", "params.light_size=128", "--set", &set, "--out", out],
+            &[
+                "render",
+                "--size",
+                "48x36",
+                "--set",
+                "params.light_size=128",
+                "--set",
+                &set,
+                "--out",
+                out,
+            ],
         );
         assert_ok(&format!("render {technique}"), &o);
         let stdout = text(&o.stdout);
-        assert!(stdout.contains(&format!("transparency/{technique}")), "{stdout}");
+        assert!(
+            stdout.contains(&format!("transparency/{technique}")),
+            "{stdout}"
+        );
         image::open(cwd.path().join(out)).expect("a PNG").to_rgba8()
     };
     let mine = render("my_shortcut", "mine.png");

@@ -93,7 +93,8 @@ fn a_suggestion_ends_its_clause_before_the_list() {
 #[test]
 fn the_catalog_lists_only_params_a_technique_uses() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../techniques");
-    let catalog = techniques::catalog(&techniques::TechniqueRoots::at(root)).expect("the techniques parse");
+    let catalog =
+        techniques::catalog(&techniques::TechniqueRoots::at(root)).expect("the techniques parse");
     let params = |name: &str| -> Vec<String> {
         catalog
             .iter()

@@ -115,7 +115,9 @@ fn schedule_with_techniques() -> Schedule {
     for n in 1..=5 {
         let name = format!("a_rather_long_technique_name_number_{n}");
         choices.push_str(&format!("p{n} = \"{name}\"\n"));
-        let file = dir.path().join(format!("techniques/p{n}/{name}/technique.toml"));
+        let file = dir
+            .path()
+            .join(format!("techniques/p{n}/{name}/technique.toml"));
         std::fs::create_dir_all(file.parent().expect("folder")).expect("mkdir");
         std::fs::write(
             &file,
@@ -125,7 +127,9 @@ fn schedule_with_techniques() -> Schedule {
         )
         .expect("write");
     }
-    let quiet = dir.path().join("techniques/quiet/only_params/technique.toml");
+    let quiet = dir
+        .path()
+        .join("techniques/quiet/only_params/technique.toml");
     std::fs::create_dir_all(quiet.parent().expect("folder")).expect("mkdir");
     std::fs::write(
         &quiet,

@@ -275,7 +275,8 @@ fn includes_share_a_fragment_and_a_missing_one_names_itself() {
     let p = load(&t.path("pipelines/p.toml"), &[]).expect("loads");
     assert!(p.resources.contains_key("shared"));
     // A fragment is not a choice.
-    let choices = plait_graph::techniques::TechniqueRoots::at(t.path("techniques")).choices("shading");
+    let choices =
+        plait_graph::techniques::TechniqueRoots::at(t.path("techniques")).choices("shading");
     assert_eq!(choices, vec!["flat".to_string()]);
 
     let t = Tree::new(&[
@@ -297,14 +298,22 @@ fn a_technique_folder_without_its_file_is_an_error() {
         ("techniques/shading/flat/flat.toml", FLAT),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
-    let text = e.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n");
+    let text = e
+        .iter()
+        .map(|e| e.to_string())
+        .collect::<Vec<_>>()
+        .join("\n");
     assert!(
         text.contains("techniques/shading/flat has no technique.toml") && at(&e[0]).0 == "p.toml",
         "{text}"
     );
     let roots = plait_graph::techniques::TechniqueRoots::at(t.path("techniques"));
     let listed = plait_graph::techniques::catalog(&roots).expect_err("refused");
-    assert!(listed[0].to_string().contains("has no technique.toml"), "{}", listed[0]);
+    assert!(
+        listed[0].to_string().contains("has no technique.toml"),
+        "{}",
+        listed[0]
+    );
 }
 
 /// Two folders of the search path claiming one `<point>/<name>` is an error

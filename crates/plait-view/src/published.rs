@@ -92,12 +92,10 @@ pub(crate) fn describe_schedule(s: &mut Shared, schedule: &Schedule) {
     s.techniques = schedule
         .techniques
         .iter()
-        .map(|t| {
-            TechniqueChoice {
-                point: t.point.clone(),
-                chosen: t.name.clone(),
-                choices: roots.choices(&t.point),
-            }
+        .map(|t| TechniqueChoice {
+            point: t.point.clone(),
+            chosen: t.name.clone(),
+            choices: roots.choices(&t.point),
         })
         .collect();
     s.params = schedule

@@ -92,7 +92,8 @@ impl Trial<'_> {
         let mut chosen: Vec<String> = Vec::new();
         for point in points {
             let current = schedule.techniques.iter().find(|t| t.point == point)?;
-            let fix = roots.choices(&point)
+            let fix = roots
+                .choices(&point)
                 .into_iter()
                 .filter(|name| *name != current.name)
                 .map(|name| format!("techniques.{point}={name}"))

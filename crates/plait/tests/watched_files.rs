@@ -27,7 +27,7 @@ fn a_pipeline_watches_its_chain_techniques_shaders_and_scene() {
     for tail in [
         "pipelines/occupancy_no_slab.toml",
         "pipelines/occupancy.toml",                          // extended
-        "techniques/self_shadow/occupancy/technique.toml",             // chosen
+        "techniques/self_shadow/occupancy/technique.toml",   // chosen
         "techniques/self_shadow/light_range.toml",           // included by it
         "shaders/passes/depth_range.wgsl",                   // a pass type's own
         "techniques/transparency/occupancy_order/hair.wgsl", // a technique's own

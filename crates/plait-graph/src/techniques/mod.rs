@@ -132,12 +132,11 @@ pub fn catalog(roots: &TechniqueRoots) -> Result<Vec<TechniqueInfo>, Vec<Error>>
                                 .collect()
                         })
                         .unwrap_or_default();
-                    let mut files: Vec<String> = plait_assets::read_dir(
-                        path.parent().unwrap_or(Path::new("")),
-                    )
-                    .iter()
-                    .filter_map(|p| p.file_name()?.to_str().map(str::to_owned))
-                    .collect();
+                    let mut files: Vec<String> =
+                        plait_assets::read_dir(path.parent().unwrap_or(Path::new("")))
+                            .iter()
+                            .filter_map(|p| p.file_name()?.to_str().map(str::to_owned))
+                            .collect();
                     files.sort_by_key(|f| (f != TECHNIQUE_FILE, f.clone()));
                     files.extend(includes_of(&path));
                     out.push(TechniqueInfo {
@@ -169,7 +168,9 @@ fn lexical_join(dir: &Path, name: &str) -> PathBuf {
     let mut out = PathBuf::new();
     for c in dir.join(name).components() {
         match c {
-            Component::ParentDir if matches!(out.components().next_back(), Some(Component::Normal(_))) => {
+            Component::ParentDir
+                if matches!(out.components().next_back(), Some(Component::Normal(_))) =>
+            {
                 out.pop();
             }
             Component::CurDir => {}
@@ -187,7 +188,10 @@ fn includes_of(path: &Path) -> Vec<String> {
     let Ok(tree) = parse_file(path, &text) else {
         return Vec::new();
     };
-    match technique_table(&tree).and_then(|t| t.get("includes")).map(|e| &e.value.value) {
+    match technique_table(&tree)
+        .and_then(|t| t.get("includes"))
+        .map(|e| &e.value.value)
+    {
         Some(Node::List(items)) => items
             .iter()
             .filter_map(|i| match &i.value {

@@ -57,13 +57,20 @@ impl TechniqueRoots {
         let mut search: Vec<PathBuf> = Vec::new();
         for dir in plait_assets::search_path() {
             let t = dir.join(TECHNIQUES_DIR);
-            if t.is_dir() && !same_folder(own.as_deref(), &t) && !search.iter().any(|s| same_folder(Some(s), &t)) {
+            if t.is_dir()
+                && !same_folder(own.as_deref(), &t)
+                && !search.iter().any(|s| same_folder(Some(s), &t))
+            {
                 search.push(t);
             }
         }
         let builtin = Path::new(plait_assets::BUILTIN_ROOT).join(TECHNIQUES_DIR);
         let builtin = plait_assets::is_dir(&builtin).then_some(builtin);
-        TechniqueRoots { own, search, builtin }
+        TechniqueRoots {
+            own,
+            search,
+            builtin,
+        }
     }
 
     /// The pipeline's own folder (if any) over the search path's folders,
