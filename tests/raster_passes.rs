@@ -191,6 +191,24 @@ fn a_storage_write_behind_a_multisampled_depth_target_is_an_error() {
     );
 }
 
+/// A depth texture a data-only raster pass does not bind is its depth
+/// test's target; a second such slot would be dropped without a word, so it
+/// is refused at its slot (found when a pass kept a shadow map its shader no
+/// longer used).
+#[test]
+fn a_second_unbound_depth_texture_is_an_error_at_its_slot() {
+    let (from, to) = (
+        "reads = { depth = \"depth\" }\nwrites = { counts = \"atomic_counts\" }",
+        "reads = { depth = \"depth\", unused = \"scratch\" }\nwrites = { counts = \"atomic_counts\" }",
+    );
+    let err = check_with(from, to);
+    assert!(
+        err.contains("slot `unused` is a depth texture the shader does not bind")
+            && err.contains("(`depth` is the first)"),
+        "{err}"
+    );
+}
+
 #[test]
 fn state_keys_on_a_type_that_sets_its_state_in_rust_are_an_error() {
     let err = check_with(

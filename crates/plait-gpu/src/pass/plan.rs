@@ -197,6 +197,30 @@ impl BindingPlan {
                 }
             }
         }
+        // A depth texture the shader does not bind is the depth test's
+        // target; a second one (a shadow map the shader stopped using) would
+        // be silently dropped, so it is refused at its slot.
+        let depth_slots: Vec<&plait_graph::Binding> = plan
+            .settled
+            .iter()
+            .filter(|s| s.2 == Access::DepthTarget)
+            .map(|s| {
+                if s.0 {
+                    &pass.writes[s.1]
+                } else {
+                    &pass.reads[s.1]
+                }
+            })
+            .collect();
+        if let [first, extra, ..] = depth_slots.as_slice() {
+            errors.push(err(
+                &extra.location,
+                format!(
+                    "slot `{}` is a depth texture the shader does not bind, so it would be a second depth target (`{}` is the first): bind it in the shader or drop it",
+                    extra.slot, first.slot
+                ),
+            ));
+        }
         // (A culled pass's writes may name resources the schedule dropped.)
         let all_writes_live = pass
             .writes
