@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Spanned};
-use crate::load::{Node, parse_file};
+use crate::load::Node;
 use crate::value::Value;
 
 use super::{Located, TECHNIQUE_FILE, TechniqueRoots, read_technique, table, technique_table};
@@ -65,7 +65,7 @@ pub fn catalog(roots: &TechniqueRoots) -> Result<Vec<TechniqueInfo>, Vec<Error>>
                             .filter_map(|p| p.file_name()?.to_str().map(str::to_owned))
                             .collect();
                     files.sort_by_key(|f| (f != TECHNIQUE_FILE, f.clone()));
-                    files.extend(includes_of(&path));
+                    files.extend(includes_of(&tree));
                     out.push(TechniqueInfo {
                         files,
                         point: point.clone(),
@@ -88,15 +88,10 @@ pub fn catalog(roots: &TechniqueRoots) -> Result<Vec<TechniqueInfo>, Vec<Error>>
     }
 }
 
-/// The `includes` a technique file names, as written.
-fn includes_of(path: &Path) -> Vec<String> {
-    let Ok(text) = plait_assets::read_to_string(path) else {
-        return Vec::new();
-    };
-    let Ok(tree) = parse_file(path, &text) else {
-        return Vec::new();
-    };
-    match technique_table(&tree)
+/// The `includes` a technique names, as written (from the tree already
+/// read, its includes merged under it).
+fn includes_of(tree: &Spanned<Node>) -> Vec<String> {
+    match technique_table(tree)
         .and_then(|t| t.get("includes"))
         .map(|e| &e.value.value)
     {
