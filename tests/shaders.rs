@@ -8,7 +8,6 @@ use std::path::Path;
 
 use indexmap::IndexMap;
 use plait_gpu::pass::PassType;
-use plait_gpu::shader::LIBRARY_MODULES;
 use plait_gpu::{Define, ShaderLibrary};
 use plait_graph::{Location, ParamSpec, ParamType, PassShape, ScheduledPass, Value};
 use plait_tests::{files_with_ext, rel, repo_root};
@@ -122,28 +121,52 @@ fn every_shader_composes_and_validates() {
     let mut failures: Vec<String> = Vec::new();
     let mut compositions = 0;
 
-    // Library modules: ShaderLibrary::new() composed each one above (a parse or
-    // import error would have panicked there); every file in shaders/lib must be
-    // listed, or be a visibility provider, which the library finds by itself.
-    let listed: BTreeSet<&str> = LIBRARY_MODULES.iter().map(|(p, _)| *p).collect();
-    for f in files.iter().filter(|f| f.starts_with("shaders/lib/")) {
-        if !listed.contains(f.as_str()) && !f.starts_with("shaders/lib/visibility/") {
+    // Library modules: ShaderLibrary::new() composed each one above (a parse,
+    // import or contract error would have panicked there). No list names
+    // them, so the test is that discovery finds every module of the checkout:
+    // each file under shaders/lib/, and each file of shaders/ or techniques/
+    // declaring `#define_import_path`, is a module of the library, read from
+    // the checkout.
+    let found = plait_gpu::library::discover().expect("the library is found");
+    let keys: BTreeSet<&str> = found.modules.iter().map(|m| m.key.as_str()).collect();
+    let mut module_files: Vec<String> = files_with_ext(&root.join("techniques"), "wgsl")
+        .iter()
+        .map(|p| rel(p))
+        .chain(files.iter().cloned())
+        .collect();
+    module_files.sort();
+    for f in &module_files {
+        let text = std::fs::read_to_string(root.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
+        let declares = text
+            .lines()
+            .any(|l| l.trim_start().starts_with("#define_import_path"));
+        if f.starts_with("shaders/lib/") && !declares {
             failures.push(format!(
-                "{f}: a library module missing from plait_gpu::shader::LIBRARY_MODULES (crates/plait-gpu/src/shader.rs), \
-                 so no shader can import it"
+                "{f}: a file in shaders/lib/ without `#define_import_path`, so no shader can import it"
+            ));
+        }
+        if declares && !keys.contains(f.as_str()) {
+            failures.push(format!(
+                "{f}: declares a module, but the shader library did not find it"
             ));
         }
     }
-    for (p, source) in LIBRARY_MODULES {
-        match std::fs::read_to_string(root.join(p)) {
-            Ok(on_disk) if on_disk == *source => {}
-            Ok(_) => failures.push(format!(
-                "{p}: differs from the copy compiled into plait-gpu (rebuild?)"
-            )),
-            Err(e) => failures.push(format!(
-                "{p}: listed in LIBRARY_MODULES but not readable: {e}"
-            )),
+    for m in &found.modules {
+        if m.key.ends_with(".wgsl") && !module_files.contains(&m.key) {
+            failures.push(format!(
+                "{}: a library module that is not in this checkout (read from {})",
+                m.key,
+                m.path.display()
+            ));
         }
+    }
+    // Every point file found providers (one declared twice fails discovery).
+    for point in &found.points {
+        assert!(
+            !point.providers.is_empty(),
+            "{}: no provider found",
+            point.contract.point
+        );
     }
 
     for f in files.iter().filter(|f| !f.starts_with("shaders/lib/")) {

@@ -276,6 +276,54 @@ pub fn list_in(roots: &[PathBuf], folder: &str, ext: &str) -> Vec<PathBuf> {
     found.into_values().collect()
 }
 
+/// Every file `folder/**/*.EXT` of the library, at any depth, as
+/// `(library-relative path, where it is read from)`: one per relative path,
+/// the first in search order (disk before built-in), sorted by path. This is
+/// how the engine finds shader modules and point contracts without a list.
+pub fn list_tree(folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
+    list_tree_in(&search_path(), folder, ext)
+}
+
+/// [`list_tree`] over the given roots.
+pub fn list_tree_in(roots: &[PathBuf], folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
+    fn walk(dir: &Path, key: &str, ext: &str, out: &mut Vec<(String, PathBuf)>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let key = format!("{key}/{name}");
+            if path.is_dir() {
+                walk(&path, &key, ext, out);
+            } else if path.extension().is_some_and(|e| e == ext) {
+                out.push((key, path));
+            }
+        }
+    }
+    let Some(folder) = normalize(Path::new(folder)) else {
+        return Vec::new();
+    };
+    let mut found: std::collections::BTreeMap<String, PathBuf> = Default::default();
+    for root in roots {
+        let mut here = Vec::new();
+        walk(&root.join(&folder), &folder, ext, &mut here);
+        for (key, path) in here {
+            found.entry(key).or_insert_with(|| shorten(path));
+        }
+    }
+    let prefix = format!("{folder}/");
+    let suffix = format!(".{ext}");
+    for (key, _) in BUILTIN {
+        if key.starts_with(&prefix) && key.ends_with(&suffix) {
+            found
+                .entry((*key).to_owned())
+                .or_insert_with(|| Path::new(BUILTIN_ROOT).join(key));
+        }
+    }
+    found.into_iter().collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -376,6 +424,46 @@ mod tests {
             1,
             "one entry per file name: {listed:?}"
         );
+    }
+
+    #[test]
+    fn a_tree_lists_files_at_any_depth_nearest_root_first() {
+        let first = tempfile::tempdir().expect("temp dir");
+        let second = tempfile::tempdir().expect("temp dir");
+        let deep = "shaders/lib/visibility";
+        std::fs::create_dir_all(first.path().join(deep)).expect("mkdir");
+        std::fs::create_dir_all(second.path().join(deep)).expect("mkdir");
+        std::fs::write(first.path().join(deep).join("mine.wgsl"), "a").expect("write");
+        std::fs::write(second.path().join(deep).join("mine.wgsl"), "b").expect("write");
+        std::fs::write(second.path().join("shaders/lib/frame.wgsl"), "c").expect("write");
+        let roots = vec![first.path().to_path_buf(), second.path().to_path_buf()];
+        let listed = list_tree_in(&roots, "shaders/lib", "wgsl");
+        let at = |key: &str| {
+            listed
+                .iter()
+                .find(|(k, _)| k == key)
+                .map(|(_, p)| p.clone())
+        };
+        assert_eq!(
+            at("shaders/lib/visibility/mine.wgsl"),
+            Some(first.path().join(deep).join("mine.wgsl"))
+        );
+        assert_eq!(
+            at("shaders/lib/frame.wgsl"),
+            Some(second.path().join("shaders/lib/frame.wgsl"))
+        );
+        // Built-in copies fill in what no root holds, at any depth.
+        assert!(
+            listed
+                .iter()
+                .any(|(k, p)| k == "shaders/lib/cube.wgsl" && is_builtin(p)),
+            "{listed:?}"
+        );
+        let keys: Vec<&String> = listed.iter().map(|(k, _)| k).collect();
+        let mut sorted = keys.clone();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(keys, sorted, "one entry per path, sorted");
     }
 
     #[test]

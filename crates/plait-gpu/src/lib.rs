@@ -9,6 +9,7 @@ pub mod environment;
 pub mod executor;
 pub mod frame;
 pub mod geometry;
+pub mod library;
 pub mod modules;
 pub mod overflow;
 pub mod pass;

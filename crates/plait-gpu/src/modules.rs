@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use crate::shader::{Define, LIBRARY_MODULES, ShaderError, ShaderLibrary};
+use crate::shader::{Define, ShaderError, ShaderLibrary};
 
 type Key = (PathBuf, String, Vec<(String, Define)>);
 
@@ -78,22 +78,11 @@ pub fn check_library() -> Result<(), ShaderError> {
 pub fn library_stamp() -> u64 {
     use std::hash::{Hash, Hasher};
     let mut h = std::hash::DefaultHasher::new();
-    for (name, _) in LIBRARY_MODULES {
-        match plait_assets::find_on_disk(name) {
-            Some(path) => {
-                let meta = std::fs::metadata(&path).ok();
-                (path, meta.as_ref().map(|m| m.len())).hash(&mut h);
-                meta.and_then(|m| m.modified().ok()).hash(&mut h);
-            }
-            None => name.hash(&mut h),
+    for (key, path) in crate::library::library_files() {
+        key.hash(&mut h);
+        if plait_assets::is_builtin(&path) {
+            continue;
         }
-    }
-    // Providers found on the search path: one added, edited or removed
-    // changes the library too.
-    for path in crate::shader::PROVIDER_POINTS
-        .iter()
-        .flat_map(crate::shader::extra_providers)
-    {
         let meta = std::fs::metadata(&path).ok();
         (&path, meta.as_ref().map(|m| m.len())).hash(&mut h);
         meta.and_then(|m| m.modified().ok()).hash(&mut h);

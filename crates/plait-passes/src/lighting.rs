@@ -11,9 +11,7 @@ use crate::spec_util::choice;
 
 /// The providers, by param value: every module in `shaders/lib/lighting/`.
 pub fn providers() -> Vec<String> {
-    plait_gpu::shader::ProviderPoint::named("lighting")
-        .map(|p| p.providers())
-        .unwrap_or_default()
+    plait_gpu::library::providers("lighting")
 }
 
 /// The optional input slots any provider may need.

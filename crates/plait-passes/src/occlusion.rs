@@ -16,9 +16,7 @@ use crate::spec_util::{SlotExt, buffer, choice};
 
 /// The providers, by param value: every module in `shaders/lib/occlusion/`.
 pub fn providers() -> Vec<String> {
-    plait_gpu::shader::ProviderPoint::named("occlusion")
-        .map(|p| p.providers())
-        .unwrap_or_default()
+    plait_gpu::library::providers("occlusion")
 }
 
 /// The optional input slots any provider may need.

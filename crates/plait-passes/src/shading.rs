@@ -23,9 +23,7 @@ use crate::spec_util::{SlotExt, choice, float, texture};
 
 /// The providers, by param value: every module in `shaders/lib/shading/`.
 pub fn providers() -> Vec<String> {
-    plait_gpu::shader::ProviderPoint::named("shading")
-        .map(|p| p.providers())
-        .unwrap_or_default()
+    plait_gpu::library::providers("shading")
 }
 
 /// The optional input slots any provider may need.

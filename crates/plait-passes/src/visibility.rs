@@ -15,9 +15,7 @@ use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 /// (`tressfx.wgsl` → `visibility = "tressfx"`), so a provider that needs no
 /// maps or params beyond those below is WGSL alone.
 pub fn providers() -> Vec<String> {
-    plait_gpu::shader::ProviderPoint::named("visibility")
-        .map(|p| p.providers())
-        .unwrap_or_default()
+    plait_gpu::library::providers("visibility")
 }
 
 /// The optional input slots any provider may need.

@@ -120,9 +120,12 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
             }
         }
     }
-    for (name, _) in plait_gpu::shader::LIBRARY_MODULES {
-        files.extend(plait_assets::find_on_disk(name));
-    }
+    // The shader library as found now: its modules and point files.
+    files.extend(
+        plait_gpu::library::library_files()
+            .into_iter()
+            .map(|(_, path)| path),
+    );
     if let Some(scene_path) = scene {
         files.push(scene_path.to_path_buf());
         if let Ok(loaded) = Scene::load(scene_path) {

@@ -105,11 +105,12 @@ mod tests {
 }
 
 /// Every define a library module tests: a param may reach the shader through
-/// a module it imports (`VISIBILITY_DEEP_OPACITY` is the selector's).
+/// a module it imports (`VISIBILITY_DEEP_OPACITY` is the generated selector's).
 pub fn library_define_names() -> BTreeSet<String> {
-    crate::shader::LIBRARY_MODULES
+    crate::library::discover()
+        .map(|l| l.modules)
+        .unwrap_or_default()
         .iter()
-        .filter_map(|(name, text)| crate::shader::library_source(name, text).ok())
-        .flat_map(|(_, source)| define_names(&source))
+        .flat_map(|m| define_names(&m.source))
         .collect()
 }

@@ -58,9 +58,11 @@ const EXPORT_KEYS: &[&str] = &["reads", "params"];
 
 mod catalog;
 mod roots;
+pub mod wgsl_point;
 
 pub use catalog::{TechniqueInfo, catalog};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
+pub use wgsl_point::{POINT_FILE, WgslPoint, wgsl_points};
 
 /// The techniques folder beside `pipeline`: its own folder's, or an
 /// ancestor's — relative to the working directory when it is below it, so

@@ -100,12 +100,13 @@ fn as_used(name: &'static str, text: &'static str) -> (String, String) {
 }
 
 fn builtin_shaders() -> Vec<FileHash> {
-    let mut out: Vec<FileHash> = plait_gpu::shader::LIBRARY_MODULES
+    // The library as this run composes with it: every module found on the
+    // search path, generated selectors included.
+    let mut out: Vec<FileHash> = plait_gpu::library::discover()
+        .map(|l| l.modules)
+        .unwrap_or_default()
         .iter()
-        .map(|(name, text)| {
-            let (path, used) = as_used(name, text);
-            hash_text(&path, &used)
-        })
+        .map(|m| hash_text(&m.key, &m.source))
         .collect();
     // Pass types may share one WGSL file (the pass-type files of
     // shaders/passes name theirs): list each file once, with the pass types

@@ -1,0 +1,432 @@
+//! The shader library, found rather than listed.
+//!
+//! A *library module* is any WGSL file under `shaders/` or `techniques/`
+//! (search path first, then the built-in copies) that declares
+//! `#define_import_path`. naga_oil needs modules added after the modules they
+//! import, so the order comes from their `#import` lines; an `#import` that
+//! no module provides is an error at its line and column. A choice point
+//! answered in WGSL is declared by `techniques/<point>/point.toml`
+//! ([`plait_graph::techniques::wgsl_point`]); its providers are the modules
+//! named `<providers>::<name>`, and its selector module is generated from the
+//! providers found. Nothing here lists a file: a module dropped into a
+//! technique folder on `PLAIT_PATH` is part of the library on the next load.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::PathBuf;
+
+use plait_graph::techniques::{POINT_FILE, WgslPoint, wgsl_points};
+
+use crate::shader::ShaderError;
+
+/// The folders whose WGSL files may be library modules.
+const MODULE_FOLDERS: &[&str] = &["shaders", "techniques"];
+
+/// One module of the library.
+#[derive(Clone, Debug)]
+pub struct LibraryModule {
+    /// Its library path (`shaders/lib/frame.wgsl`), the same wherever it is
+    /// read from; for a generated selector, its point file's and the module.
+    pub key: String,
+    /// Where it was read from (the point file, for a generated selector).
+    pub path: PathBuf,
+    /// Its import path (`plait::frame`).
+    pub name: String,
+    pub source: String,
+    imports: Vec<Import>,
+}
+
+/// An `#import` line: the path as written and where.
+#[derive(Clone, Debug)]
+struct Import {
+    path: String,
+    line: usize,
+    column: usize,
+}
+
+/// A point answered in WGSL with the providers found for it.
+#[derive(Clone, Debug)]
+pub struct ProviderPoint {
+    pub contract: WgslPoint,
+    /// Provider name (the param value) and its module's file, sorted by name.
+    pub providers: Vec<(String, PathBuf)>,
+}
+
+/// The whole library, modules in the order naga_oil must receive them.
+#[derive(Clone, Debug)]
+pub struct Library {
+    pub modules: Vec<LibraryModule>,
+    pub points: Vec<ProviderPoint>,
+}
+
+/// Every file the library is made of, as `(library path, where it is read
+/// from)`: what [`crate::modules::library_stamp`] watches.
+pub fn library_files() -> Vec<(String, PathBuf)> {
+    let mut files: Vec<(String, PathBuf)> = MODULE_FOLDERS
+        .iter()
+        .flat_map(|f| plait_assets::list_tree(f, "wgsl"))
+        .collect();
+    files.extend(
+        plait_assets::list_tree(plait_graph::techniques::TECHNIQUES_DIR, "toml")
+            .into_iter()
+            .filter(|(key, _)| key.ends_with(&format!("/{POINT_FILE}"))),
+    );
+    files
+}
+
+/// Find, read and order the library (see the module docs).
+pub fn discover() -> Result<Library, ShaderError> {
+    let mut found: BTreeMap<String, LibraryModule> = BTreeMap::new();
+    for folder in MODULE_FOLDERS {
+        for (key, path) in plait_assets::list_tree(folder, "wgsl") {
+            let source = plait_assets::read_to_string(&path)
+                .map_err(|e| ShaderError {
+                    message: format!("{}: cannot read file: {e}", path.display()),
+                    path: path.clone(),
+                })?
+                .into_owned();
+            let Some(name) = import_path(&source) else {
+                continue;
+            };
+            if let Some(first) = found.get(&name) {
+                return Err(ShaderError {
+                    message: format!(
+                        "{}: declares `#define_import_path {name}`, which {} declares too: \
+                         one module per import path",
+                        path.display(),
+                        first.path.display()
+                    ),
+                    path,
+                });
+            }
+            let imports = imports(&source);
+            found.insert(
+                name.clone(),
+                LibraryModule {
+                    key,
+                    path,
+                    name,
+                    source,
+                    imports,
+                },
+            );
+        }
+    }
+    let points = provider_points(&found)?;
+    for point in &points {
+        let names: Vec<String> = point.providers.iter().map(|(n, _)| n.clone()).collect();
+        let source = point.contract.selector_source(&names);
+        let path = point_path(&point.contract);
+        if let Some(clash) = found.get(&point.contract.module) {
+            return Err(ShaderError {
+                message: format!(
+                    "{}: the selector `{}` is generated from this file, but {} declares it too; \
+                     delete that file",
+                    path.display(),
+                    point.contract.module,
+                    clash.path.display()
+                ),
+                path,
+            });
+        }
+        found.insert(
+            point.contract.module.clone(),
+            LibraryModule {
+                key: format!(
+                    "{}/{}/{POINT_FILE} (generates {})",
+                    plait_graph::techniques::TECHNIQUES_DIR,
+                    point.contract.point,
+                    point.contract.module
+                ),
+                imports: imports(&source),
+                path,
+                name: point.contract.module.clone(),
+                source,
+            },
+        );
+    }
+    Ok(Library {
+        modules: dependency_order(found)?,
+        points,
+    })
+}
+
+/// The value names of the point whose param is `param` (`visibility`): the
+/// providers found. Empty when the library cannot be read; loading it then
+/// reports why.
+pub fn providers(param: &str) -> Vec<String> {
+    discover()
+        .ok()
+        .and_then(|l| l.points.into_iter().find(|p| p.contract.param == param))
+        .map(|p| p.providers.into_iter().map(|(n, _)| n).collect())
+        .unwrap_or_default()
+}
+
+fn point_path(point: &WgslPoint) -> PathBuf {
+    match &point.file {
+        plait_graph::Location::Path { path } | plait_graph::Location::File { path, .. } => {
+            path.clone()
+        }
+        other => PathBuf::from(other.to_string()),
+    }
+}
+
+/// Each point file with the modules `<providers>::<name>` found for it; its
+/// default must be one of them.
+fn provider_points(
+    found: &BTreeMap<String, LibraryModule>,
+) -> Result<Vec<ProviderPoint>, ShaderError> {
+    let contracts = wgsl_points().map_err(|e| ShaderError {
+        path: e
+            .0
+            .first()
+            .map(|e| PathBuf::from(e.location.to_string()))
+            .unwrap_or_default(),
+        message: e.to_string(),
+    })?;
+    let mut points = Vec::new();
+    for contract in contracts {
+        let prefix = format!("{}::", contract.providers);
+        let providers: Vec<(String, PathBuf)> = found
+            .values()
+            .filter_map(|m| {
+                let name = m.name.strip_prefix(&prefix)?;
+                (!name.contains("::")).then(|| (name.to_owned(), m.path.clone()))
+            })
+            .collect();
+        let default = &contract.default;
+        if !providers.iter().any(|(n, _)| *n == default.value) {
+            let names: Vec<&str> = providers.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(ShaderError {
+                path: point_path(&contract),
+                message: format!(
+                    "{}: default provider `{}` has no module `{}{}` on the search path{} \
+                     (providers found: {})",
+                    default.location,
+                    default.value,
+                    prefix,
+                    default.value,
+                    plait_graph::suggest::did_you_mean(&default.value, names.iter().copied()),
+                    if names.is_empty() {
+                        "none".into()
+                    } else {
+                        names.join(", ")
+                    }
+                ),
+            });
+        }
+        points.push(ProviderPoint {
+            contract,
+            providers,
+        });
+    }
+    Ok(points)
+}
+
+/// The module's `#define_import_path`, if it declares one.
+fn import_path(source: &str) -> Option<String> {
+    source.lines().find_map(|l| {
+        let rest = l.trim_start().strip_prefix("#define_import_path")?;
+        let name = rest.split_whitespace().next()?;
+        Some(name.to_owned())
+    })
+}
+
+/// Every `#import` line: the module path (`plait::frame::{a, b}` →
+/// `plait::frame`; `x as y` → `x`), with its 1-based line and column.
+fn imports(source: &str) -> Vec<Import> {
+    source
+        .lines()
+        .enumerate()
+        .filter_map(|(i, line)| {
+            let start = line.len() - line.trim_start().len();
+            let rest = line[start..].strip_prefix("#import")?;
+            let lead = rest.len() - rest.trim_start().len();
+            let rest = rest.trim_start();
+            let end = rest
+                .find(|c: char| c.is_whitespace() || c == '{' || c == ',')
+                .unwrap_or(rest.len());
+            let path = rest[..end].trim_end_matches("::");
+            (!path.is_empty()).then(|| Import {
+                path: path.to_owned(),
+                line: i + 1,
+                column: start + "#import".len() + lead + 1,
+            })
+        })
+        .collect()
+}
+
+/// The module an import path refers to: the longest module name it starts
+/// with (`plait::frame::frame` → `plait::frame`).
+fn resolve<'m>(path: &str, names: &'m [String]) -> Option<&'m str> {
+    names
+        .iter()
+        .filter(|n| path == n.as_str() || path.starts_with(&format!("{n}::")))
+        .max_by_key(|n| n.len())
+        .map(String::as_str)
+}
+
+/// Modules after the modules they import; an unknown import or a cycle is
+/// an error naming the file, line and column.
+fn dependency_order(
+    mut found: BTreeMap<String, LibraryModule>,
+) -> Result<Vec<LibraryModule>, ShaderError> {
+    let names: Vec<String> = found.keys().cloned().collect();
+    let mut deps: HashMap<String, Vec<String>> = HashMap::new();
+    for m in found.values() {
+        let mut d = Vec::new();
+        for import in &m.imports {
+            match resolve(&import.path, &names) {
+                Some(n) => d.push(n.to_owned()),
+                None => {
+                    let prefix = import.path.rsplit_once("::").map_or("", |(p, _)| p);
+                    return Err(ShaderError {
+                        message: format!(
+                            "{}:{}:{}: `#import {}`: no module on the search path provides it{} \
+                             (a module declares `#define_import_path`)",
+                            m.path.display(),
+                            import.line,
+                            import.column,
+                            import.path,
+                            plait_graph::suggest::did_you_mean(
+                                prefix,
+                                names.iter().map(String::as_str)
+                            ),
+                        ),
+                        path: m.path.clone(),
+                    });
+                }
+            }
+        }
+        deps.insert(m.name.clone(), d);
+    }
+    // Depth-first, in name order so the order (and the library digest) is
+    // the same on every run.
+    let mut order = Vec::new();
+    let mut state: HashMap<String, bool> = HashMap::new(); // false: on the stack
+    fn visit(
+        name: &str,
+        deps: &HashMap<String, Vec<String>>,
+        state: &mut HashMap<String, bool>,
+        order: &mut Vec<String>,
+        stack: &mut Vec<String>,
+    ) -> Result<(), Vec<String>> {
+        match state.get(name) {
+            Some(true) => return Ok(()),
+            Some(false) => {
+                let from = stack.iter().position(|s| s == name).unwrap_or(0);
+                let mut cycle = stack[from..].to_vec();
+                cycle.push(name.to_owned());
+                return Err(cycle);
+            }
+            None => {}
+        }
+        state.insert(name.to_owned(), false);
+        stack.push(name.to_owned());
+        for d in &deps[name] {
+            visit(d, deps, state, order, stack)?;
+        }
+        stack.pop();
+        state.insert(name.to_owned(), true);
+        order.push(name.to_owned());
+        Ok(())
+    }
+    for name in &names {
+        visit(name, &deps, &mut state, &mut order, &mut Vec::new()).map_err(|cycle| {
+            let path = found[&cycle[0]].path.clone();
+            ShaderError {
+                message: format!(
+                    "{}: modules import each other in a cycle: {}",
+                    path.display(),
+                    cycle.join(" → ")
+                ),
+                path,
+            }
+        })?;
+    }
+    Ok(order.into_iter().filter_map(|n| found.remove(&n)).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn module(name: &str, source: &str) -> (String, LibraryModule) {
+        (
+            name.to_owned(),
+            LibraryModule {
+                key: format!("{name}.wgsl"),
+                path: PathBuf::from(format!("{name}.wgsl")),
+                name: name.to_owned(),
+                source: source.to_owned(),
+                imports: imports(source),
+            },
+        )
+    }
+
+    #[test]
+    fn imports_are_read_with_their_place() {
+        let found = imports(
+            "#define_import_path a\n  #import plait::frame::{frame, light_lookup}\n#import b::c as d\n#import e\n",
+        );
+        let got: Vec<(&str, usize, usize)> = found
+            .iter()
+            .map(|i| (i.path.as_str(), i.line, i.column))
+            .collect();
+        assert_eq!(
+            got,
+            vec![("plait::frame", 2, 11), ("b::c", 3, 9), ("e", 4, 9)]
+        );
+        assert_eq!(
+            import_path("// x\n#define_import_path plait::x\n").as_deref(),
+            Some("plait::x")
+        );
+    }
+
+    #[test]
+    fn modules_come_after_what_they_import() {
+        let found: BTreeMap<_, _> = [
+            module("a", "#import c::f\n#import b::{g}\n"),
+            module("b", "#import c::f\n"),
+            module("c", ""),
+        ]
+        .into_iter()
+        .collect();
+        let order: Vec<String> = dependency_order(found)
+            .expect("orders")
+            .into_iter()
+            .map(|m| m.name)
+            .collect();
+        assert_eq!(order, ["c", "b", "a"]);
+    }
+
+    #[test]
+    fn an_import_no_module_provides_is_an_error_at_its_line() {
+        let found: BTreeMap<_, _> = [
+            module("plait::frame", ""),
+            module("a", "\n#import plait::fram::frame\n"),
+        ]
+        .into_iter()
+        .collect();
+        let e = dependency_order(found).unwrap_err();
+        assert!(
+            e.message
+                .starts_with("a.wgsl:2:9: `#import plait::fram::frame`"),
+            "{}",
+            e.message
+        );
+        assert!(
+            e.message.contains("did you mean `plait::frame`"),
+            "{}",
+            e.message
+        );
+    }
+
+    #[test]
+    fn a_cycle_is_an_error() {
+        let found: BTreeMap<_, _> = [module("a", "#import b::x\n"), module("b", "#import a::y\n")]
+            .into_iter()
+            .collect();
+        let e = dependency_order(found).unwrap_err();
+        assert!(e.message.contains("a → b → a"), "{}", e.message);
+    }
+}
