@@ -422,6 +422,7 @@ fn transparency_with_strand_coverage_keeps_its_measured_error() {
 ///   which the sorted blend weighs most (α, α(1-α), α(1-α)², …): with α = 0.6
 ///   k = 1 is closer to depth peeling than k = 3, and k = 3 closer than
 ///   weighted average (each by at least the measured factor / 1.25).
+///
 /// With strand coverage the alphas are ~0.1, the fragments behind the third
 /// still carry most of the colour, and k = 3 is behind weighted average
 /// (`transparency_with_strand_coverage_keeps_its_measured_error`).

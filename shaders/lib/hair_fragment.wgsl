@@ -20,9 +20,9 @@
 #define_import_path plait::hair_fragment
 
 #import plait::frame::{frame, view_proj, to_light}
-#import plait::hair_direct::shade_direct
-#import plait::hair_environment::shade_environment
-#import plait::hair_occlusion::occlusion_at
+#import plait::shading::shade_direct
+#import plait::lighting::shade_environment
+#import plait::ambient_occlusion::occlusion_at
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
 #import plait::strand_coverage::strand_coverage

@@ -1,6 +1,6 @@
 // plait::marschner — the Marschner hair scattering model (R, TT, TRT), written
 // once for the lookup-table kernel (shaders/passes/marschner_tables.wgsl) and
-// the per-fragment reference (shaders/lib/shading/marschner_reference.wgsl),
+// the per-fragment reference (techniques/shading/marschner_reference/shading.wgsl),
 // so the tables' error is the tables' alone: same constants, same angles.
 //
 // Halén & Wester 2007 §3.2.2, §3.2.2.1 (Marschner et al. 2003 as they present

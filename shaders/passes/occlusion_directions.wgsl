@@ -12,7 +12,7 @@
 //   shaders/passes/deep_opacity.wgsl) and the deep-opacity provider run
 //   unchanged from it;
 // - otherwise (gather): after the maps of one direction, each vertex adds its
-//   transmittance from the provider `plait::visibility::deep_opacity`
+//   transmittance from the provider `plait::self_shadow::deep_opacity`
 //   (exp(-w · hair in front), "in front of" as in docs/design.md) divided by N.
 //   One thread per vertex, dispatches in order: the sum is deterministic.
 //
@@ -23,7 +23,7 @@
 #ifdef AO_FRAMES
 #import plait::hair_bounds::{BOUNDS_GROUP, workgroup_bounds}
 #else
-#import plait::visibility::deep_opacity::hair_visibility
+#import plait::self_shadow::deep_opacity::hair_visibility
 #endif
 
 struct HairVertex {

@@ -750,7 +750,7 @@ fn a_provider_that_breaks_the_contract_names_its_file() {
         std::fs::create_dir_all(&folder).expect("mkdir");
         std::fs::write(
             folder.join("broken.wgsl"),
-            format!("#define_import_path plait::visibility::broken\n\n{body}\n"),
+            format!("#define_import_path plait::self_shadow::broken\n\n{body}\n"),
         )
         .expect("write");
         let o = std::process::Command::new(env!("CARGO_BIN_EXE_plait"))

@@ -427,7 +427,7 @@ fn choice_lists_are_the_same_on_every_run() {
             "check",
             "pipelines/occupancy.toml",
             "--set",
-            "passes.hair.params.visibility=\"zzz\"",
+            "passes.hair.params.self_shadow=\"zzz\"",
         ],
     ];
     for args in runs {

@@ -15,7 +15,7 @@
 //! Sums are fixed point (z relative to the texel range × 2^18) with
 //! `atomicAdd`, one stage of 4 × 3 u32 per texel per draw, so a draw reads the
 //! previous stage while writing its own (no read-write hazard inside a draw).
-//! The provider `plait::visibility::density_clustering` reads the last stage:
+//! The provider `plait::self_shadow::density_clustering` reads the last stage:
 //! each cluster becomes a histogram bin centred on its mean, 2√3·σ wide (the
 //! width of a uniform distribution of standard deviation σ: "bin widths
 //! proportional to the standard deviation of each cluster"), holding its

@@ -16,7 +16,7 @@ use crate::spec_util::{SlotExt, buffer, choice};
 
 /// The providers, by param value: every module in `shaders/lib/occlusion/`.
 pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("occlusion")
+    plait_gpu::library::providers("ambient_occlusion")
 }
 
 /// The optional input slots any provider may need.
@@ -34,7 +34,7 @@ pub fn slots() -> Vec<SlotSpec> {
 /// Params of the providers (filled into `occlusion_params` by member name).
 pub fn params() -> Vec<ParamSpec> {
     vec![choice(
-        "occlusion",
+        "ambient_occlusion",
         "none",
         &providers().iter().map(String::as_str).collect::<Vec<_>>(),
         "per-vertex ambient occlusion of the environment's light (occlusion provider)",

@@ -4,7 +4,7 @@
 //! which picks the provider its `visibility` param names, and binds the
 //! provider's maps under the `vis_*` slots. Adding a provider is a WGSL module
 //! in `shaders/lib/visibility/` and one import line in `self_shadow.wgsl` (no
-//! shading pass changes; `plait::visibility::tressfx` was added so); maps or
+//! shading pass changes; `plait::self_shadow::tressfx` was added so); maps or
 //! params no provider has used yet are declared here.
 
 use plait_graph::{Access, Format, ParamSpec, SlotSpec};
@@ -15,7 +15,7 @@ use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 /// (`tressfx.wgsl` → `visibility = "tressfx"`), so a provider that needs no
 /// maps or params beyond those below is WGSL alone.
 pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("visibility")
+    plait_gpu::library::providers("self_shadow")
 }
 
 /// The optional input slots any provider may need.
@@ -84,7 +84,7 @@ pub fn slots() -> Vec<SlotSpec> {
 pub fn params() -> Vec<ParamSpec> {
     vec![
         choice(
-            "visibility",
+            "self_shadow",
             "none",
             &providers().iter().map(String::as_str).collect::<Vec<_>>(),
             "self-shadowing technique (visibility provider) used for hair shadows",

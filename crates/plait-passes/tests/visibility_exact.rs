@@ -168,7 +168,7 @@ fn probe(
         .expect("variant has a hair pass");
     let visibility = hair
         .params
-        .get("visibility")
+        .get("self_shadow")
         .and_then(|v| v.as_str())
         .unwrap_or("none")
         .to_string();
@@ -178,7 +178,7 @@ fn probe(
         .filter(|b| b.slot.starts_with("vis_"))
         .map(|b| format!("{} = {:?}", b.slot, b.resource_name))
         .collect();
-    let mut params = vec![format!("visibility = {visibility:?}")];
+    let mut params = vec![format!("self_shadow = {visibility:?}")];
     for name in provider_params(&visibility) {
         params.push(format!("{name} = {}", literal(&hair.params[*name])));
     }

@@ -185,12 +185,12 @@ fn build_probe<'g>(
     let shading = variant
         .passes
         .iter()
-        .filter(|p| p.params.contains_key("visibility"))
+        .filter(|p| p.params.contains_key("self_shadow"))
         .max_by_key(|p| p.name == "hair");
     let Some(shading) = shading else {
         return Ok(None);
     };
-    let visibility = shading.params["visibility"]
+    let visibility = shading.params["self_shadow"]
         .as_str()
         .unwrap_or("none")
         .to_owned();

@@ -45,7 +45,7 @@ fn camera_order(pixel: vec2<u32>, depth: f32) -> f32 {
     let words = min(arrayLength(&order_bits) / texels, MAX_WORDS);
     let slabs = min(arrayLength(&order_slabs) / texels, MAX_WORDS);
     let rel = relative_depth_in(textureLoad(order_range, vec2<i32>(p), 0).xy, depth);
-    // One path for every case, as `light_order` (plait::visibility::occupancy).
+    // One path for every case, as `light_order` (plait::self_shadow::occupancy).
     let behind = rel >= 1.0;
     let at = slab_position(select(max(rel, 0.0), 0.99999994, behind), max(words, 1u), max(slabs, 1u));
     let index = p.y * size.x + p.x;

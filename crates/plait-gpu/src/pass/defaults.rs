@@ -22,7 +22,7 @@ pub fn default_defines(pass: &ScheduledPass) -> Vec<(String, Define)> {
             }
             Value::Int(i) => out.push((upper(k), Define::Int(*i as i32))),
             Value::Bool(b) => out.push((upper(k), Define::Bool(*b))),
-            // `visibility = "modified_shadow_map"` → `#ifdef VISIBILITY_MODIFIED_SHADOW_MAP`.
+            // `self_shadow = "modified_shadow_map"` → `#ifdef SELF_SHADOW_MODIFIED_SHADOW_MAP`.
             Value::Str(v) => out.push((format!("{}_{}", upper(k), upper(v)), Define::Bool(true))),
             _ => {}
         }

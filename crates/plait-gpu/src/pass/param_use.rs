@@ -87,6 +87,17 @@ pub fn unread_params(
     out
 }
 
+/// Every define a library module tests: a param may reach the shader through
+/// a module it imports (`SELF_SHADOW_DEEP_OPACITY` is the generated selector's).
+pub fn library_define_names() -> BTreeSet<String> {
+    crate::library::discover()
+        .map(|l| l.modules)
+        .unwrap_or_default()
+        .iter()
+        .flat_map(|m| define_names(&m.source))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -102,15 +113,4 @@ mod tests {
             .collect();
         assert_eq!(names, want);
     }
-}
-
-/// Every define a library module tests: a param may reach the shader through
-/// a module it imports (`VISIBILITY_DEEP_OPACITY` is the generated selector's).
-pub fn library_define_names() -> BTreeSet<String> {
-    crate::library::discover()
-        .map(|l| l.modules)
-        .unwrap_or_default()
-        .iter()
-        .flat_map(|m| define_names(&m.source))
-        .collect()
 }

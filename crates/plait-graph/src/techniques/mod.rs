@@ -22,7 +22,7 @@
 //!
 //! [technique.exports]              # what every pass that `uses` the point receives
 //! reads = { vis_range = "light_range", vis_layers = "light_dom" }
-//! params = { visibility = "deep_opacity" }
+//! params = { self_shadow = "deep_opacity" }
 //! ```
 //!
 //! A pass consumes a choice point with `uses = ["self_shadow"]`: the chosen

@@ -2,8 +2,8 @@
 //!
 //! ```toml
 //! [wgsl]
-//! param = "visibility"                  # the pass param naming the provider
-//! providers = "plait::visibility"       # provider NAME is module plait::visibility::NAME
+//! param = "self_shadow"                  # the pass param naming the provider
+//! providers = "plait::self_shadow"       # provider NAME is module plait::self_shadow::NAME
 //! function = "fn hair_visibility(world: vec3<f32>) -> f32"   # what each provider defines
 //! module = "plait::self_shadow"         # the selector plait generates
 //! call = "self_shadow"                  # its function, same signature
@@ -67,7 +67,7 @@ impl WgslPoint {
         )
     }
 
-    /// The define a pass's param value turns into (`VISIBILITY_DEEP_OPACITY`).
+    /// The define a pass's param value turns into (`SELF_SHADOW_DEEP_OPACITY`).
     pub fn define(&self, provider: &str) -> String {
         format!("{}_{}", self.param, provider).to_ascii_uppercase()
     }
@@ -251,8 +251,8 @@ mod tests {
 
     const GOOD: &str = r#"
 [wgsl]
-param = "visibility"
-providers = "plait::visibility"
+param = "self_shadow"
+providers = "plait::self_shadow"
 function = "fn hair_visibility(world: vec3<f32>) -> f32"
 module = "plait::self_shadow"
 call = "self_shadow"
@@ -264,7 +264,7 @@ doc = "Fraction of the light reaching `world`."
     fn a_point_file_generates_its_selector() {
         let p = parse("self_shadow", Path::new("point.toml"), GOOD).expect("parses");
         assert_eq!(p.signature(), "fn hair_visibility(world: vec3<f32>) -> f32");
-        assert_eq!(p.define("deep_opacity"), "VISIBILITY_DEEP_OPACITY");
+        assert_eq!(p.define("deep_opacity"), "SELF_SHADOW_DEEP_OPACITY");
         let s = p.selector_source(&["deep_opacity".into(), "none".into()]);
         assert!(
             s.contains("#define_import_path plait::self_shadow\n"),
@@ -272,13 +272,13 @@ doc = "Fraction of the light reaching `world`."
         );
         assert!(
             s.contains(
-                "#ifdef VISIBILITY_DEEP_OPACITY\n#import plait::visibility::deep_opacity::hair_visibility\n"
+                "#ifdef SELF_SHADOW_DEEP_OPACITY\n#import plait::self_shadow::deep_opacity::hair_visibility\n"
             ),
             "{s}"
         );
-        assert!(s.contains("#else ifdef VISIBILITY_NONE\n"), "{s}");
+        assert!(s.contains("#else ifdef SELF_SHADOW_NONE\n"), "{s}");
         assert!(
-            s.contains("#else\n#import plait::visibility::none::hair_visibility\n#endif\n"),
+            s.contains("#else\n#import plait::self_shadow::none::hair_visibility\n#endif\n"),
             "{s}"
         );
         assert!(

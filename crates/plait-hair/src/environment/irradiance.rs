@@ -1,7 +1,7 @@
 //! Kajiya-Kay irradiance maps (Xing et al. 2012 §3) on the CPU: the
 //! reference the GPU kernels (`shaders/passes/irradiance_maps.wgsl`,
 //! `sh_irradiance_maps.wgsl`) and the brute-force lighting
-//! (`shaders/lib/lighting/environment_reference.wgsl`) are checked against.
+//! (`techniques/lighting/environment_reference/lighting.wgsl`) are checked against.
 //!
 //! Each texel i of the environment cube is a directional light of radiance
 //! Lᵢ over solid angle dωᵢ. For a strand of unit tangent t seen at angle θ′

@@ -214,7 +214,7 @@ pub fn passes() -> Vec<PassDesc> {
     passes.push(PassDesc {
         name: "opaque",
         shader: "opaque_shade.wgsl",
-        defines: &["VISIBILITY_OCCUPANCY"],
+        defines: &["SELF_SHADOW_OCCUPANCY"],
         geometry: Geometry::Opaque,
         binds: opaque_binds,
         colors: vec![(
@@ -283,11 +283,11 @@ pub fn passes() -> Vec<PassDesc> {
         name: "hair",
         shader: "hair_shade.wgsl",
         defines: &[
-            "VISIBILITY_OCCUPANCY",
+            "SELF_SHADOW_OCCUPANCY",
             "BLEND_OCCUPANCY_ORDER",
             "SHADING_KAJIYA_KAY",
             "LIGHTING_AMBIENT",
-            "OCCLUSION_NONE",
+            "AMBIENT_OCCLUSION_NONE",
             "MEAN_ALPHA_PIXEL",
         ],
         geometry: Geometry::Hair,

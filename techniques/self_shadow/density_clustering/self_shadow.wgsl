@@ -1,4 +1,4 @@
-// plait::visibility::density_clustering — density clustering (Mertens et al.
+// plait::self_shadow::density_clustering — density clustering (Mertens et al.
 // 2004; Halén & Wester 2007 §3.3.2). Per light
 // texel: 4 k-means clusters of fragment depth (count n, Σz, Σz², z relative to
 // the texel's hair range, fixed point × 2^18; the last stage of the
@@ -7,7 +7,7 @@
 // cluster's standard deviation σ); the density integrated up to a depth is
 // the (piecewise linear) fragment count in front; visibility
 // V = exp(-w · ∫d), w = shadow_weight as in occupancy.
-#define_import_path plait::visibility::density_clustering
+#define_import_path plait::self_shadow::density_clustering
 
 #import plait::frame::light_lookup
 

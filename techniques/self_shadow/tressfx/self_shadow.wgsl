@@ -1,4 +1,4 @@
-// plait::visibility::tressfx — the "depth approximation" self-shadow of AMD
+// plait::self_shadow::tressfx — the "depth approximation" self-shadow of AMD
 // TressFX 4.1 (GPUOpen-Effects/TressFX, src/Shaders/TressFXLighting.hlsl:
 // `ComputeLightShadow` and `ComputeShadowAttenuation`). One depth map of the
 // nearest hair from the light; a point Δz behind the nearest hair of a texel
@@ -15,7 +15,7 @@
 // atlas with a linear sampler at 25 offsets; plait reads the 25 texels
 // themselves. "In front of" is the one convention (docs/design.md):
 // `light_lookup`'s depth `in_front_below` = d - ε.
-#define_import_path plait::visibility::tressfx
+#define_import_path plait::self_shadow::tressfx
 
 #import plait::frame::{frame, light_lookup, light_depth_to_linear, nearest_sampler}
 

@@ -1,4 +1,4 @@
-// plait::visibility::deep_opacity — deep opacity maps (Yuksel & Keyser 2008,
+// plait::self_shadow::deep_opacity — deep opacity maps (Yuksel & Keyser 2008,
 // Yuksel & Keyser 2008 §3, step three). Per light texel: z0 (the near
 // depth of the light depth-range map) and K fragment counts, one per layer
 // [z0 + d_{k-1}, z0 + d_k), d_k = layer_size · k(k+1)/2 (linearly increasing
@@ -6,7 +6,7 @@
 // layer's end is the prefix sum of the counts (a fragment counts in its
 // layer and every layer behind it); between the ends it is interpolated
 // linearly. Visibility = exp(-w · count), w = shadow_weight as in occupancy.
-#define_import_path plait::visibility::deep_opacity
+#define_import_path plait::self_shadow::deep_opacity
 
 #import plait::frame::{frame, light_lookup}
 

@@ -1,8 +1,8 @@
-// plait::visibility::modified_shadow_map — one depth map of the nearest hair from
+// plait::self_shadow::modified_shadow_map — one depth map of the nearest hair from
 // the light; transmittance exp(-k Δz) with Δz the distance behind that hair.
 // Halén & Wester 2007 §3.3.2 ("modified shadow map").
 // Cheap (one depth texture), but it cannot tell sparse hair from dense hair.
-#define_import_path plait::visibility::modified_shadow_map
+#define_import_path plait::self_shadow::modified_shadow_map
 
 #import plait::frame::{frame, light_lookup, light_depth_to_linear, nearest_sampler}
 

@@ -1,4 +1,4 @@
-// plait::visibility::opacity_shadow_maps — opacity shadow maps (Kim & Neumann
+// plait::self_shadow::opacity_shadow_maps — opacity shadow maps (Kim & Neumann
 // 2001; Halén & Wester 2007 §3.3.2 formulas 3.1-3.2, §5.7 formula 5.1).
 // Per light texel: N fragment counts, one per uniform slice of the texel's
 // hair range [near, far] (per-texel range, from the light depth-range map).
@@ -6,7 +6,7 @@
 // interpolated linearly between the two closest boundaries (formula 5.1);
 // transmittance T = exp(-w · σ) (formula 3.1 with k = w = shadow_weight,
 // the opacity of one fragment, as in occupancy).
-#define_import_path plait::visibility::opacity_shadow_maps
+#define_import_path plait::self_shadow::opacity_shadow_maps
 
 #import plait::frame::light_lookup
 

@@ -1,4 +1,4 @@
-// plait::visibility::occupancy — self-shadowing from the light-view occupancy
+// plait::self_shadow::occupancy — self-shadowing from the light-view occupancy
 // + slab + depth-range maps (Sintorn & Assarsson 2009 §3.3): opacity = o · w,
 // visibility = exp(-opacity), o the order estimate of §3.2 at the point's
 // "in front of" depth (`plait::frame::light_lookup`, which also applies the
@@ -6,7 +6,7 @@
 // The number of slabs is read from the slab buffer's size: one counter per
 // texel (occupancy_no_slab.toml) makes every set bit stand for F/S fragments,
 // F the texel's total — occupancy bits alone.
-#define_import_path plait::visibility::occupancy
+#define_import_path plait::self_shadow::occupancy
 
 #import plait::frame::light_lookup
 #import plait::occupancy::{MAX_WORDS, relative_depth_in, slab_position, word_bits, order_in_slab}

@@ -1,4 +1,4 @@
-// plait::visibility::exact — exact self-shadowing, the ground truth: the
+// plait::self_shadow::exact — exact self-shadowing, the ground truth: the
 // number n of hair fragments in front of a point from the light
 // (Sintorn & Assarsson 2009 §3, Fig. 5; the occupancy order o estimates it),
 // counted in the point's light texel over the depth lists of the depth_lists
@@ -7,7 +7,7 @@
 // light by more than the self-shadow bias, so a point never counts itself. Where a list
 // overflowed, the dropped fragments are assumed distributed like the stored
 // ones (the pass's `overflow` buffer says whether that happened).
-#define_import_path plait::visibility::exact
+#define_import_path plait::self_shadow::exact
 
 #import plait::frame::light_lookup
 

@@ -1,6 +1,0 @@
-// plait::occlusion::none — no ambient occlusion: every vertex fully open.
-#define_import_path plait::occlusion::none
-
-fn vertex_occlusion(vertex_index: u32) -> f32 {
-    return 1.0;
-}

@@ -1,6 +1,0 @@
-// plait::visibility::none — no hair self-shadowing: every point sees the light.
-#define_import_path plait::visibility::none
-
-fn hair_visibility(world: vec3<f32>) -> f32 {
-    return 1.0;
-}
