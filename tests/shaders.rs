@@ -180,7 +180,7 @@ fn every_shader_composes_and_validates() {
                 .types
                 .values()
                 .map(|t| t.as_ref())
-                .filter(|t| t.shader().is_some_and(|(p, _)| p == f))
+                .filter(|t| t.shader().is_some_and(|p| p == f))
                 .collect();
             if users.is_empty() {
                 // Still validated, but a pass shader no type uses is probably a mistake.
@@ -221,7 +221,7 @@ fn every_shader_composes_and_validates() {
 
     // Pass types whose built-in shader path does not exist on disk.
     for t in passes.types.values() {
-        if let Some((p, _)) = t.shader()
+        if let Some(p) = t.shader()
             && !root.join(p).is_file()
         {
             failures.push(format!(

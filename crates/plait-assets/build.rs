@@ -1,5 +1,5 @@
 //! Embeds every `pipelines/*.toml`, `techniques/**/*.{toml,wgsl}`,
-//! `shaders/**/*.wgsl` and `examples/scenes/*.toml` of the checkout as
+//! `shaders/**/*.{wgsl,toml}` and `examples/scenes/*.toml` of the checkout as
 //! the built-in copies (the fallback when no folder of the search path holds a
 //! file), so new gallery files need no list to be kept by hand.
 
@@ -31,6 +31,8 @@ fn main() {
     // A technique's own WGSL lives in its folder, next to its TOML.
     collect(&root, &root.join("techniques"), "wgsl", true, &mut files);
     collect(&root, &root.join("shaders"), "wgsl", true, &mut files);
+    // Pass-type files (`shaders/passes/*.toml`), found by the pass library.
+    collect(&root, &root.join("shaders"), "toml", true, &mut files);
     // The scenes' text only: files they name (studio.hdr) are not embedded,
     // and plait-hair says so when a built-in scene names one.
     collect(

@@ -27,6 +27,7 @@ fn check_contract(
     point: &WgslPoint,
     name: &str,
     path: &Path,
+    source: &str,
 ) -> Result<(), ShaderError> {
     let probe = format!(
         "#import {}::{name}::{}\n\
@@ -38,6 +39,16 @@ fn check_contract(
         point.function,
         point.argument_names().join(", ")
     );
+    // The error points at the provider's function, or at the top of the file
+    // when it has none.
+    let (line, column) = source
+        .lines()
+        .enumerate()
+        .find_map(|(i, l)| {
+            let at = l.find(&format!("fn {}(", point.function))?;
+            Some((i + 1, at + 1))
+        })
+        .unwrap_or((1, 1));
     composer
         .make_naga_module(NagaModuleDescriptor {
             source: &probe,
@@ -50,7 +61,7 @@ fn check_contract(
         .map_err(|e| ShaderError {
             path: path.to_owned(),
             message: format!(
-                "{}: {} provider `{name}` must define `{}` (the contract in {}):\n{}",
+                "{}:{line}:{column}: {} provider `{name}` must define `{}` (the contract in {}):\n{}",
                 path.display(),
                 point.point,
                 point.signature(),
@@ -60,23 +71,26 @@ fn check_contract(
         })
 }
 
-/// The text of a library file compiled into plait (a library module, a pass
-/// type's shader): the copy on the search path when there is one, so edits
-/// apply without a rebuild, else the built-in `text`. Returns the path
-/// messages should name.
-pub fn library_source(
-    name: &'static str,
-    text: &'static str,
-) -> Result<(PathBuf, Cow<'static, str>), ShaderError> {
-    match plait_assets::find_on_disk(name) {
-        Some(path) => match std::fs::read_to_string(&path) {
-            Ok(text) => Ok((path, Cow::Owned(text))),
-            Err(e) => Err(ShaderError {
-                message: format!("{}: cannot read file: {e}", path.display()),
-                path,
-            }),
-        },
-        None => Ok((PathBuf::from(name), Cow::Borrowed(text))),
+/// The text of a library file (a pass type's shader,
+/// `shaders/passes/occupancy.wgsl`): the copy on the search path when there
+/// is one, so edits apply without a rebuild, else the built-in copy. Returns
+/// the path messages should name.
+pub fn library_file(name: &str) -> Result<(PathBuf, Cow<'static, str>), ShaderError> {
+    let Some(path) = plait_assets::find(name) else {
+        return Err(ShaderError {
+            message: format!(
+                "{name}: no such file on the library search path ({}) nor among the built-in copies",
+                plait_assets::SEARCH_PATH_VAR
+            ),
+            path: PathBuf::from(name),
+        });
+    };
+    match plait_assets::read_to_string(&path) {
+        Ok(text) => Ok((path, text)),
+        Err(e) => Err(ShaderError {
+            message: format!("{}: cannot read file: {e}", path.display()),
+            path,
+        }),
     }
 }
 
@@ -137,7 +151,12 @@ impl ShaderLibrary {
         }
         for point in &library.points {
             for (name, path) in &point.providers {
-                check_contract(&mut composer, &point.contract, name, path)?;
+                let source = library
+                    .modules
+                    .iter()
+                    .find(|m| &m.path == path)
+                    .map_or("", |m| m.source.as_str());
+                check_contract(&mut composer, &point.contract, name, path, source)?;
             }
         }
         Ok(ShaderLibrary {

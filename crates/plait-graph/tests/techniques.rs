@@ -344,3 +344,31 @@ fn two_search_path_folders_claiming_one_technique_is_an_error() {
         Located::Found(a.path("techniques/shading/flat/technique.toml"))
     );
 }
+
+/// A point file's promise (`[point] writes`) is held against every technique
+/// chosen for the point: one that writes none of it is refused at its
+/// `[technique]` table, naming the promise.
+#[test]
+fn a_technique_that_does_not_write_what_its_point_promises_is_an_error() {
+    let promise = "[point]\nwrites = [\"flat_lut\"]\n";
+    let t = Tree::new(&[
+        ("pipelines/p.toml", PIPELINE),
+        ("techniques/shading/point.toml", promise),
+        ("techniques/shading/flat/technique.toml", FLAT),
+        ("techniques/shading/toon/technique.toml", TOON),
+    ]);
+    // flat writes flat_lut: accepted.
+    load(&t.path("pipelines/p.toml"), &[]).expect("flat keeps the promise");
+    // toon writes nothing.
+    let e = errors_of(
+        &t.path("pipelines/p.toml"),
+        &["techniques.shading=\"toon\""],
+    );
+    assert_eq!(at(&e[0]), ("technique.toml".into(), 1, 2), "{}", e[0]);
+    let text = e[0].to_string();
+    assert!(
+        text.contains("shading technique `toon`: no pass writes `flat_lut`")
+            && text.contains("point.toml:2:11"),
+        "{text}"
+    );
+}

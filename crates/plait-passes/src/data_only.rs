@@ -14,7 +14,7 @@
 //! does (the engine's `depth_guard`); `plait check` refuses a data-only pass
 //! whose depth target would make that impossible on some adapter.
 
-use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_gpu::pass::PassType;
 use plait_graph::{PassShape, PassTypeSpec};
 
 /// One data-only pass type of `shape`.
@@ -46,7 +46,7 @@ impl PassType for DataOnly {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec::data_only(self.name, self.shape, self.description)
     }
-    fn shader(&self) -> Option<BuiltinShader> {
+    fn shader(&self) -> Option<&str> {
         None
     }
 }

@@ -6,73 +6,49 @@
 //! loops (depth range's two draws, depth peeling, k-means) and state chosen
 //! by a param (hair shading's blend).
 
-use plait_gpu::pass::{BuiltinShader, PassType};
+use std::path::{Path, PathBuf};
+
+use plait_gpu::pass::PassType;
 use plait_graph::pass_type_file::{self, PassTypeFile, check_words_per_texel};
-use plait_graph::{Errors, PassTypeSpec, RasterDecl, ResolvedResource, ScheduledPass};
+use plait_graph::{
+    Error, ErrorKind, Errors, Location, PassTypeSpec, RasterDecl, ResolvedResource, ScheduledPass,
+};
 
-/// The pass-type files compiled into plait, and the shaders they name.
-pub const FILES: &[BuiltinShader] = &[
-    plait_gpu::builtin_shader!("passes/shadow_map.toml"),
-    plait_gpu::builtin_shader!("passes/occupancy.toml"),
-    plait_gpu::builtin_shader!("passes/slab.toml"),
-    plait_gpu::builtin_shader!("passes/occupancy_slabs.toml"),
-    plait_gpu::builtin_shader!("passes/deep_opacity.toml"),
-    plait_gpu::builtin_shader!("passes/opacity_shadow_maps.toml"),
-    plait_gpu::builtin_shader!("passes/depth_lists.toml"),
-    plait_gpu::builtin_shader!("passes/compose.toml"),
-    plait_gpu::builtin_shader!("passes/alpha_sum.toml"),
-    plait_gpu::builtin_shader!("passes/compose_hair_over.toml"),
-    plait_gpu::builtin_shader!("passes/weighted_average_resolve.toml"),
-    plait_gpu::builtin_shader!("passes/fragment_list_resolve.toml"),
-    // Environment lighting (Xing et al. 2012 §3, §5).
-    plait_gpu::builtin_shader!("passes/environment_cube.toml"),
-    plait_gpu::builtin_shader!("passes/irradiance_maps.toml"),
-    plait_gpu::builtin_shader!("passes/sh_project.toml"),
-    plait_gpu::builtin_shader!("passes/sh_kernel.toml"),
-    plait_gpu::builtin_shader!("passes/sh_irradiance_maps.toml"),
-    plait_gpu::builtin_shader!("passes/marschner_tables.toml"),
-];
-
-const SHADERS: &[BuiltinShader] = &[
-    plait_gpu::builtin_shader!("passes/shadow_map.wgsl"),
-    plait_gpu::builtin_shader!("passes/occupancy.wgsl"),
-    plait_gpu::builtin_shader!("passes/slice_counts.wgsl"),
-    plait_gpu::builtin_shader!("passes/occupancy_slabs.wgsl"),
-    plait_gpu::builtin_shader!("passes/deep_opacity.wgsl"),
-    plait_gpu::builtin_shader!("passes/depth_lists.wgsl"),
-    plait_gpu::builtin_shader!("passes/compose.wgsl"),
-    plait_gpu::builtin_shader!("passes/alpha_sum.wgsl"),
-    plait_gpu::builtin_shader!("passes/compose_hair_over.wgsl"),
-    plait_gpu::builtin_shader!("passes/weighted_average_resolve.wgsl"),
-    plait_gpu::builtin_shader!("passes/fragment_list_resolve.wgsl"),
-    plait_gpu::builtin_shader!("passes/environment_cube.wgsl"),
-    plait_gpu::builtin_shader!("passes/irradiance_maps.wgsl"),
-    plait_gpu::builtin_shader!("passes/sh_project.wgsl"),
-    plait_gpu::builtin_shader!("passes/sh_kernel.wgsl"),
-    plait_gpu::builtin_shader!("passes/sh_irradiance_maps.wgsl"),
-    plait_gpu::builtin_shader!("passes/marschner_tables.wgsl"),
-];
+/// The library folder of the pass-type files: every `*.toml` in it is a pass
+/// type (search path first, then the built-in copies). No list names them.
+pub const PASS_TYPE_DIR: &str = "shaders/passes";
 
 /// A pass type read from a pass-type file.
 pub struct DataPassType {
     file: PassTypeFile,
-    shader: BuiltinShader,
+    /// Library path of its shader (`shaders/passes/occupancy.wgsl`).
+    shader: String,
 }
 
 impl DataPassType {
-    /// Parse a built-in pass-type file; its shader must be built in too.
-    pub fn builtin((path, text): BuiltinShader) -> Result<DataPassType, Errors> {
-        let file = pass_type_file::parse(path.as_ref(), text)?;
-        let dir = path.rsplit_once('/').map_or("", |(d, _)| d);
-        let shader_path = format!("{dir}/{}", file.shader.value);
-        let Some(&shader) = SHADERS.iter().find(|(p, _)| *p == shader_path) else {
-            return Err(Errors(vec![plait_graph::Error::new(
+    /// Parse the pass-type file at `path` (on disk or built in); its shader is
+    /// the file it names beside it, which must exist there.
+    pub fn load(path: &Path) -> Result<DataPassType, Errors> {
+        let text = plait_assets::read_to_string(path).map_err(|e| {
+            Errors(vec![Error::new(
+                Location::Path {
+                    path: path.to_owned(),
+                },
+                ErrorKind::Schema(format!("cannot read file: {e}")),
+            )])
+        })?;
+        let file = pass_type_file::parse(path, &text)?;
+        let shader = format!("{PASS_TYPE_DIR}/{}", file.shader.value);
+        let beside: PathBuf = path.with_file_name(&file.shader.value);
+        if !plait_assets::exists(&beside) && plait_assets::find(&shader).is_none() {
+            return Err(Errors(vec![Error::new(
                 file.shader.location.clone(),
-                plait_graph::ErrorKind::Schema(format!(
-                    "shader {shader_path} is not among the built-in pass shaders (plait_passes::data_pass::SHADERS)"
+                ErrorKind::Schema(format!(
+                    "shader `{}` is neither beside this file nor in {PASS_TYPE_DIR}/ on the library search path",
+                    file.shader.value
                 )),
             )]));
-        };
+        }
         Ok(DataPassType { file, shader })
     }
 }
@@ -81,8 +57,8 @@ impl PassType for DataPassType {
     fn spec(&self) -> PassTypeSpec {
         self.file.spec.clone()
     }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(self.shader)
+    fn shader(&self) -> Option<&str> {
+        Some(&self.shader)
     }
     fn raster_decl(&self, pass: &ScheduledPass) -> RasterDecl {
         self.file.raster.overridden_by(&pass.raster)
@@ -99,17 +75,19 @@ impl PassType for DataPassType {
     }
 }
 
-/// Every built-in pass-type file, parsed. A broken built-in file is a bug in
-/// plait, not in a user's pipeline: the test below keeps them parseable, and
-/// the message names the file, line and column.
-pub fn builtin_types() -> Vec<DataPassType> {
-    FILES
-        .iter()
-        .map(|&f| {
-            DataPassType::builtin(f)
-                .unwrap_or_else(|e| panic!("built-in pass-type file {}:\n{e}", f.0))
-        })
-        .collect()
+/// Every pass-type file of the library, parsed, with the errors of the
+/// broken ones (named by file, line and column; compile reports them, so a
+/// broken file on `PLAIT_PATH` fails `plait check` rather than plait).
+pub fn discover() -> (Vec<DataPassType>, Vec<Error>) {
+    let mut types = Vec::new();
+    let mut errors = Vec::new();
+    for path in plait_assets::list(PASS_TYPE_DIR, "toml") {
+        match DataPassType::load(&path) {
+            Ok(t) => types.push(t),
+            Err(e) => errors.extend(e.0),
+        }
+    }
+    (types, errors)
 }
 
 #[cfg(test)]
@@ -117,9 +95,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_builtin_pass_type_file_parses_and_is_listed() {
-        let types = builtin_types();
-        assert_eq!(types.len(), FILES.len());
+    fn every_pass_type_file_of_the_checkout_is_found_and_parses() {
+        let (types, errors) = discover();
+        assert!(errors.is_empty(), "{}", Errors(errors));
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders/passes");
         let on_disk: Vec<String> = std::fs::read_dir(&dir)
             .expect("shaders/passes exists")
@@ -127,13 +105,26 @@ mod tests {
             .filter(|n| n.ends_with(".toml"))
             .collect();
         assert!(!on_disk.is_empty());
-        for name in on_disk {
-            assert!(
-                FILES
-                    .iter()
-                    .any(|(p, _)| *p == format!("shaders/passes/{name}")),
-                "shaders/passes/{name} is not listed in plait_passes::data_pass::FILES"
-            );
-        }
+        assert_eq!(types.len(), on_disk.len(), "one pass type per file");
+    }
+
+    #[test]
+    fn a_pass_type_whose_shader_is_missing_is_an_error_at_its_key() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = dir.path().join("lost.toml");
+        std::fs::write(
+            &path,
+            "[pass_type]\nname = \"lost\"\nshape = \"compute\"\nsource = \"-\"\ndescription = \"-\"\nshader = \"nowhere.wgsl\"\n",
+        )
+        .expect("write");
+        let e = DataPassType::load(&path)
+            .err()
+            .expect("refused")
+            .to_string();
+        assert!(e.contains("lost.toml:6:10"), "{e}");
+        assert!(
+            e.contains("`nowhere.wgsl` is neither beside this file"),
+            "{e}"
+        );
     }
 }

@@ -28,7 +28,7 @@
 //! one refinement, plus the 2 MiB depth range.
 
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, ShaderDraw, build_draw,
+    BuildContext, PassType, PreparedPass, RecordContext, ShaderDraw, build_draw,
 };
 use plait_gpu::{Define, GpuError};
 use plait_graph::{
@@ -45,7 +45,7 @@ pub const CLUSTERS: u64 = 4;
 /// u32 words per cluster per stage: count, Σz, Σz² (fixed point).
 pub const WORDS_PER_CLUSTER: u64 = 3;
 
-const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/density_clustering.wgsl");
+const SHADER: &str = "shaders/passes/density_clustering.wgsl";
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
@@ -104,7 +104,7 @@ impl PassType for DensityClustering {
     fn spec(&self) -> PassTypeSpec {
         spec()
     }
-    fn shader(&self) -> Option<BuiltinShader> {
+    fn shader(&self) -> Option<&str> {
         Some(SHADER)
     }
     fn defines(&self, pass: &ScheduledPass) -> Vec<(String, Define)> {

@@ -28,8 +28,8 @@ use std::cell::Cell;
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{
-    BlendPreset, BuildContext, BuiltinShader, PassType, PreparedPass, RasterState, RecordContext,
-    ShaderDraw, ShaderPass, blend_preset, build_draw, default_defines,
+    BlendPreset, BuildContext, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw,
+    ShaderPass, blend_preset, build_draw, default_defines,
 };
 use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
 
@@ -103,11 +103,9 @@ impl PassType for HairDepthPeel {
     fn spec(&self) -> PassTypeSpec {
         spec()
     }
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some((
-            "techniques/transparency/depth_peeling/peel.wgsl",
-            include_str!("../../../techniques/transparency/depth_peeling/peel.wgsl"),
-        ))
+    fn shader(&self) -> Option<&str> {
+        // The technique folder's own shader (library path, search path first).
+        Some("techniques/transparency/depth_peeling/peel.wgsl")
     }
     fn build(
         &self,
@@ -177,8 +175,9 @@ impl PassType for HairDepthPeel {
         }];
         blend_pass.params.clear();
         // The blend of one layer under the accumulated colour.
-        let blend_draw = ShaderDraw::builtin(
-            plait_gpu::builtin_shader!("passes/peel_blend.wgsl"),
+        let blend_draw = ShaderDraw::library(
+            "shaders/passes/peel_blend.wgsl",
+            pass,
             PassShape::Fullscreen,
             default_defines(&blend_pass),
             RasterState {
@@ -186,7 +185,7 @@ impl PassType for HairDepthPeel {
                 load_colors: true,
                 ..RasterState::default()
             },
-        );
+        )?;
         let blend = build_draw(&blend_draw, &blend_pass, ctx)?;
 
         let device = ctx.device;

@@ -10,8 +10,8 @@
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, DepthMode, PassType, PreparedPass, RasterState, RecordContext,
-    ShaderDraw, build_draw,
+    BuildContext, DepthMode, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw,
+    build_draw,
 };
 use plait_graph::{
     Access, Format, PassShape, PassTypeSpec, ResolvedResource, ResourceDesc, ScheduledPass,
@@ -21,7 +21,7 @@ use crate::spec_util::{DEPTH, texture};
 
 pub struct DepthRange;
 
-pub(crate) const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/depth_range.wgsl");
+pub(crate) const SHADER: &str = "shaders/passes/depth_range.wgsl";
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
@@ -95,7 +95,7 @@ impl PassType for DepthRange {
     fn spec(&self) -> PassTypeSpec {
         spec()
     }
-    fn shader(&self) -> Option<BuiltinShader> {
+    fn shader(&self) -> Option<&str> {
         Some(SHADER)
     }
     /// The shader drops hair behind opaque geometry with the depth test the

@@ -7,7 +7,7 @@
 //! removes its own way. `pipelines/forward.toml` draws its hair with it.
 
 use plait_gpu::Capabilities;
-use plait_gpu::pass::{BlendPreset, BuiltinShader, DepthMode, PassType, RasterState, blend_preset};
+use plait_gpu::pass::{BlendPreset, DepthMode, PassType, RasterState, blend_preset};
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 
 use crate::hair_fragment;
@@ -48,8 +48,8 @@ impl PassType for HairShade {
         }
     }
 
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(plait_gpu::builtin_shader!("passes/hair_shade.wgsl"))
+    fn shader(&self) -> Option<&str> {
+        Some("shaders/passes/hair_shade.wgsl")
     }
 
     fn raster_state(

@@ -7,9 +7,7 @@
 //! strand is its own guide (hair without guides), it copies the simulated
 //! strands into the drawn ones. CPU reference: `plait_hair::guides::Guides`.
 
-use plait_gpu::pass::{
-    BuildContext, BuiltinShader, PassType, PreparedPass, ShaderDraw, build_draw,
-};
+use plait_gpu::pass::{BuildContext, PassType, PreparedPass, ShaderDraw, build_draw};
 use plait_gpu::{Define, GpuError};
 use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass, SlotSpec};
 
@@ -17,7 +15,7 @@ use crate::spec_util::{SlotExt, buffer};
 
 pub struct GuideInterpolation;
 
-const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/sim_interpolate.wgsl");
+const SHADER: &str = "shaders/passes/sim_interpolate.wgsl";
 
 fn aliased(mut slot: SlotSpec, binding: &str) -> SlotSpec {
     slot.binding = Some(binding.into());
@@ -74,7 +72,7 @@ impl PassType for GuideInterpolation {
     fn spec(&self) -> PassTypeSpec {
         spec()
     }
-    fn shader(&self) -> Option<BuiltinShader> {
+    fn shader(&self) -> Option<&str> {
         Some(SHADER)
     }
     fn defines(&self, _pass: &ScheduledPass) -> Vec<(String, Define)> {

@@ -36,10 +36,13 @@ pub fn library() -> PassLibrary {
         shared_params: hair_fragment::shading_params(),
         ..PassLibrary::default()
     };
-    // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml).
-    for t in data_pass::builtin_types() {
+    // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml),
+    // found on the search path; a broken file is reported by compile.
+    let (types, problems) = data_pass::discover();
+    for t in types {
         lib.add(t);
     }
+    lib.problems = problems;
     lib.add(depth_range::DepthRange);
     lib.add(density_clustering::DensityClustering);
     lib.add(opaque_shade::OpaqueShade);
@@ -73,5 +76,15 @@ pub fn compile_in(
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
     let checker = ShaderChecker::new(library, Capabilities::of_compile(opts));
+    // A broken pass-type file or shader library first: the params' choices
+    // (the providers found) and the pass types come from them, so what
+    // follows from a broken one would only be noise.
+    let mut broken = library.problems.clone();
+    broken.extend(plait_graph::compile::fit::PassChecker::check_library(
+        &checker,
+    ));
+    if !broken.is_empty() {
+        return Err(Errors(broken));
+    }
     plait_graph::compile_with(pipeline, &library.registry(), opts, &checker)
 }

@@ -6,8 +6,8 @@
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw,
-    ShaderPass, build_draw, default_defines,
+    BuildContext, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw, ShaderPass,
+    build_draw, default_defines,
 };
 use plait_gpu::shader::Define;
 use plait_graph::{Access, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, Value};
@@ -17,7 +17,7 @@ use crate::spec_util::{buffer, choice, int};
 
 pub struct OcclusionCylinders;
 
-const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/occlusion_cylinders.wgsl");
+const SHADER: &str = "shaders/passes/occlusion_cylinders.wgsl";
 
 fn spec() -> PassTypeSpec {
     PassTypeSpec {
@@ -68,7 +68,7 @@ impl PassType for OcclusionCylinders {
         spec()
     }
 
-    fn shader(&self) -> Option<BuiltinShader> {
+    fn shader(&self) -> Option<&str> {
         Some(SHADER)
     }
 
@@ -89,15 +89,21 @@ impl PassType for OcclusionCylinders {
         let kernels = kernel_pass(pass, PassShape::Compute, &[], &slots)?;
         let mut bounds_defines = defines.clone();
         bounds_defines.push(("CYLINDER_BOUNDS".into(), Define::Bool(true)));
-        let bounds_draw = ShaderDraw::builtin(
+        let bounds_draw = ShaderDraw::library(
             SHADER,
+            pass,
             PassShape::Compute,
             bounds_defines,
             RasterState::default(),
-        );
+        )?;
         let bounds = build_draw(&bounds_draw, &kernels, ctx)?;
-        let mut shadow_draw =
-            ShaderDraw::builtin(SHADER, PassShape::Compute, defines, RasterState::default());
+        let mut shadow_draw = ShaderDraw::library(
+            SHADER,
+            pass,
+            PassShape::Compute,
+            defines,
+            RasterState::default(),
+        )?;
         shadow_draw.threads = [vertices, 1, 1];
         let shadow = build_draw(&shadow_draw, &kernels, ctx)?;
         // Bound, so checked to exist; its size is the shader's concern.

@@ -16,8 +16,8 @@
 use plait_gpu::GpuError;
 use plait_gpu::frame::FRAME_UNIFORMS_SIZE;
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, DepthMode, FrameSamplers, PassType, PreparedPass, RasterState,
-    RecordContext, ShaderDraw, ShaderPass, build_draw, default_defines,
+    BuildContext, DepthMode, FrameSamplers, PassType, PreparedPass, RasterState, RecordContext,
+    ShaderDraw, ShaderPass, build_draw, default_defines,
 };
 use plait_gpu::shader::Define;
 use plait_graph::{
@@ -29,8 +29,8 @@ use crate::spec_util::{DEPTH, float, int, texture};
 
 pub struct OcclusionDirections;
 
-const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/occlusion_directions.wgsl");
-const DEEP_OPACITY: BuiltinShader = plait_gpu::builtin_shader!("passes/deep_opacity.wgsl");
+const SHADER: &str = "shaders/passes/occlusion_directions.wgsl";
+const DEEP_OPACITY: &str = "shaders/passes/deep_opacity.wgsl";
 
 /// Bytes of one direction's frame in `direction_frames` (the WGSL
 /// `DirectionFrame`): the frame padded to a multiple of 256, the uniform
@@ -204,7 +204,7 @@ impl PassType for OcclusionDirections {
         spec()
     }
 
-    fn shader(&self) -> Option<BuiltinShader> {
+    fn shader(&self) -> Option<&str> {
         Some(SHADER)
     }
 
@@ -250,8 +250,13 @@ impl PassType for OcclusionDirections {
         )?;
         let mut defines = default_defines(pass);
         defines.push(("AO_FRAMES".into(), Define::Bool(true)));
-        let mut frames_draw =
-            ShaderDraw::builtin(SHADER, PassShape::Compute, defines, RasterState::default());
+        let mut frames_draw = ShaderDraw::library(
+            SHADER,
+            pass,
+            PassShape::Compute,
+            defines,
+            RasterState::default(),
+        )?;
         frames_draw.threads = [1, 1, 1];
         let frames = build_draw(&frames_draw, &frames_pass, ctx)?;
 
@@ -267,12 +272,13 @@ impl PassType for OcclusionDirections {
                 ("vertex_ao", "vertex_ao", Access::StorageWrite),
             ],
         )?;
-        let mut gather_draw = ShaderDraw::builtin(
+        let mut gather_draw = ShaderDraw::library(
             SHADER,
+            pass,
             PassShape::Compute,
             default_defines(pass),
             RasterState::default(),
-        );
+        )?;
         gather_draw.threads = [vertices, 1, 1];
         let gather = build_draw(&gather_draw, &gather_pass, ctx)?;
 
@@ -286,12 +292,13 @@ impl PassType for OcclusionDirections {
                 ("scratch", "scratch", Access::DepthTarget),
             ],
         )?;
-        let mut range_draw = ShaderDraw::builtin(
+        let mut range_draw = ShaderDraw::library(
             depth_range::SHADER,
+            pass,
             PassShape::Raster,
             default_defines(&range_pass),
             RasterState::default(),
-        );
+        )?;
         let [near_state, far_state] = depth_range::draw_states();
         range_draw.state = near_state;
         let near = build_draw(&range_draw, &range_pass, ctx)?;
@@ -310,15 +317,16 @@ impl PassType for OcclusionDirections {
         let mut layers_pass = layers_pass;
         // Zeroed before every direction's draw.
         layers_pass.writes[0].loads = false;
-        let layers_draw = ShaderDraw::builtin(
+        let layers_draw = ShaderDraw::library(
             DEEP_OPACITY,
+            pass,
             PassShape::Raster,
             default_defines(&layers_pass),
             RasterState {
                 depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
                 ..RasterState::default()
             },
-        );
+        )?;
         let layers = build_draw(&layers_draw, &layers_pass, ctx)?;
 
         // Each direction's frame, bound at group 0 like the executor's.

@@ -2,7 +2,7 @@
 //! shadow map and by hair through the visibility provider
 //! (Sintorn & Assarsson 2009 §3.5).
 
-use plait_gpu::pass::{BuiltinShader, PassType};
+use plait_gpu::pass::PassType;
 use plait_graph::{Access, PassShape, PassTypeSpec};
 
 use crate::spec_util::{DEPTH, HDR, texture};
@@ -45,7 +45,7 @@ impl PassType for OpaqueShade {
         }
     }
 
-    fn shader(&self) -> Option<BuiltinShader> {
-        Some(plait_gpu::builtin_shader!("passes/opaque_shade.wgsl"))
+    fn shader(&self) -> Option<&str> {
+        Some("shaders/passes/opaque_shade.wgsl")
     }
 }

@@ -73,7 +73,8 @@ pub fn params() -> Vec<ParamSpec> {
 fn marschner_model_params() -> &'static [ParamSpec] {
     static PARAMS: OnceLock<Vec<ParamSpec>> = OnceLock::new();
     PARAMS.get_or_init(|| {
-        crate::data_pass::builtin_types()
+        crate::data_pass::discover()
+            .0
             .into_iter()
             .map(|t| t.spec())
             .find(|s| s.name == "marschner_tables")

@@ -31,7 +31,7 @@
 use std::cell::Cell;
 
 use plait_gpu::pass::{
-    BuildContext, BuiltinShader, PassType, PreparedPass, RecordContext, ShaderDraw, build_draw,
+    BuildContext, PassType, PreparedPass, RecordContext, ShaderDraw, build_draw,
 };
 use plait_gpu::readback::map_buffer;
 use plait_gpu::{Define, GpuError};
@@ -43,7 +43,7 @@ use crate::spec_util::{SlotExt, buffer, float, int};
 
 pub struct HairSimulation;
 
-const SHADER: BuiltinShader = plait_gpu::builtin_shader!("passes/sim_verlet.wgsl");
+const SHADER: &str = "shaders/passes/sim_verlet.wgsl";
 
 /// Bytes of the status buffer the kernel writes: flags, strand, stretch, spare.
 pub const STATUS_BYTES: u64 = 16;
@@ -211,7 +211,7 @@ impl PassType for HairSimulation {
     fn spec(&self) -> PassTypeSpec {
         spec()
     }
-    fn shader(&self) -> Option<BuiltinShader> {
+    fn shader(&self) -> Option<&str> {
         Some(SHADER)
     }
     fn defines(&self, _pass: &ScheduledPass) -> Vec<(String, Define)> {

@@ -95,7 +95,7 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
                     files.push(shader.value.clone());
                 }
                 let own = library.get(&pass.type_name.value).and_then(|t| t.shader());
-                if let Some(path) = own.and_then(|(name, _)| plait_assets::find_on_disk(name)) {
+                if let Some(path) = own.and_then(plait_assets::find_on_disk) {
                     files.push(path);
                 }
             }

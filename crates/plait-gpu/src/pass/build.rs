@@ -5,7 +5,7 @@
 //! [`ShaderDraw`] is everything that defines such a draw. A pass type gets
 //! one from [`ShaderDraw::of`]; a pass that records several draws (depth
 //! range, depth peeling, k-means) adjusts copies of it or builds its own with
-//! [`ShaderDraw::builtin`] — no need to pose as a pass type.
+//! [`ShaderDraw::library`] — no need to pose as a pass type.
 
 use std::borrow::Cow;
 use std::path::PathBuf;
@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use plait_graph::{PassShape, ScheduledPass};
 
 use super::layout::binding_type;
-use super::pass_type::{BuildContext, BuiltinShader, PassType, shader_source};
+use super::pass_type::{BuildContext, PassType, shader_source};
 use super::plan::{BindingPlan, BindingSource, binding_aliases, unguardable};
 use super::record::{DrawWhat, ShaderPass, ShaderPassKind};
 use super::state::{DepthMode, RasterState, from_decl};
@@ -68,16 +68,20 @@ impl ShaderDraw {
         })
     }
 
-    /// A draw of a built-in shader with fixed slots (`pass`'s bindings as given).
-    pub fn builtin(
-        shader: BuiltinShader,
+    /// A draw of a library shader (`shaders/passes/x.wgsl`, search path
+    /// first) with fixed slots (`pass`'s bindings as given).
+    pub fn library(
+        shader: &str,
+        pass: &ScheduledPass,
         shape: PassShape,
         defines: Vec<(String, Define)>,
         state: RasterState,
-    ) -> ShaderDraw {
-        ShaderDraw {
-            path: PathBuf::from(shader.0),
-            source: Cow::Borrowed(shader.1),
+    ) -> Result<ShaderDraw, GpuError> {
+        let (path, source) =
+            crate::shader::library_file(shader).map_err(|e| pass_error(pass, e.message))?;
+        Ok(ShaderDraw {
+            path,
+            source,
             defines,
             shape,
             dynamic_slots: false,
@@ -85,7 +89,7 @@ impl ShaderDraw {
             state,
             threads: [1, 1, 1],
             required_features: Vec::new(),
-        }
+        })
     }
 }
 

@@ -15,6 +15,7 @@ use super::plan::{BindingPlan, binding_aliases, pass_module, unguardable};
 use super::state::from_decl;
 use crate::Capabilities;
 use crate::reflect;
+use crate::shader::ShaderError;
 
 /// Checks passes of `library`'s types for an adapter with `caps`.
 pub struct ShaderChecker<'a> {
@@ -28,19 +29,53 @@ impl<'a> ShaderChecker<'a> {
     }
 }
 
+/// A library error at its place: the library's own messages start with
+/// `PATH:LINE:COLUMN: ` or `PATH: ` (an import, a duplicate module, a
+/// contract), which becomes the error's location; naga's diagnostics carry
+/// their own and are kept whole.
+fn library_error(e: ShaderError) -> GraphError {
+    let prefix = format!("{}:", e.path.display());
+    let Some(rest) = e.message.strip_prefix(&prefix) else {
+        return GraphError::new(
+            Location::Path {
+                path: e.path.clone(),
+            },
+            ErrorKind::Shader {
+                path: e.path,
+                message: e.message,
+            },
+        );
+    };
+    let mut parts = rest.splitn(3, ':');
+    let place = (parts.next(), parts.next(), parts.next());
+    let (location, message) = match place {
+        (Some(line), Some(column), Some(message))
+            if line.parse::<u32>().is_ok() && column.parse::<u32>().is_ok() =>
+        {
+            (
+                Location::File {
+                    path: e.path.clone(),
+                    line: line.parse().unwrap_or(1),
+                    column: column.parse().unwrap_or(1),
+                },
+                message,
+            )
+        }
+        _ => (
+            Location::Path {
+                path: e.path.clone(),
+            },
+            rest,
+        ),
+    };
+    GraphError::new(location, ErrorKind::Schema(message.trim_start().to_owned()))
+}
+
 impl PassChecker for ShaderChecker<'_> {
     fn check_library(&self) -> Vec<GraphError> {
         match crate::modules::check_library() {
             Ok(()) => Vec::new(),
-            Err(e) => vec![GraphError::new(
-                Location::Path {
-                    path: e.path.clone(),
-                },
-                ErrorKind::Shader {
-                    path: e.path,
-                    message: e.message,
-                },
-            )],
+            Err(e) => vec![library_error(e)],
         }
     }
 

@@ -36,26 +36,9 @@ pub use check::ShaderChecker;
 pub use defaults::{default_defines, default_threads};
 pub use layout::{FrameSamplers, frame_layout};
 pub use pass_type::{
-    BuildContext, BuiltinShader, PassLibrary, PassType, PreparedPass, RecordContext,
-    SCENE_BINDINGS, shader_source,
+    BuildContext, PassLibrary, PassType, PreparedPass, RecordContext, SCENE_BINDINGS, shader_source,
 };
 pub use plait_graph::raster_decl::BlendPreset;
 pub use plan::BindingPlan;
 pub use record::{DrawWhat, ShaderPass, ShaderPassKind};
 pub use state::{DepthMode, RasterState, blend_preset};
-
-/// `(path, text)` of a WGSL file under `shaders/`, compiled into the calling
-/// crate: `builtin_shader!("passes/occupancy.wgsl")`. The path is written once.
-#[macro_export]
-macro_rules! builtin_shader {
-    ($file:literal) => {
-        (
-            concat!("shaders/", $file),
-            include_str!(concat!(
-                env!("CARGO_MANIFEST_DIR"),
-                "/../../shaders/",
-                $file
-            )),
-        )
-    };
-}

@@ -27,16 +27,14 @@ pub const SCENE_BINDINGS: &[&str] = &[
     "environment_source",
 ];
 
-/// A WGSL source compiled into the pass library: `(path for messages, text)`,
-/// written with [`crate::builtin_shader!`].
-pub type BuiltinShader = (&'static str, &'static str);
-
 /// One pass type of the library.
 pub trait PassType: Send + Sync {
     fn spec(&self) -> PassTypeSpec;
 
-    /// The pass's own WGSL; `None` means the pipeline file's `shader = "…"`.
-    fn shader(&self) -> Option<BuiltinShader>;
+    /// The pass's own WGSL, by library path (`shaders/passes/occupancy.wgsl`,
+    /// read from the search path or the built-in copies); `None` means the
+    /// pipeline file's `shader = "…"`.
+    fn shader(&self) -> Option<&str>;
 
     /// Shader defines. The default: every int and bool param as its
     /// upper-case name (`slices = 128` → `#if SLICES == 128`).
@@ -143,6 +141,9 @@ pub struct PassLibrary {
     pub types: IndexMap<String, Box<dyn PassType>>,
     /// See [`plait_graph::Registry::shared_params`].
     pub shared_params: Vec<plait_graph::ParamSpec>,
+    /// Pass-type files found but not loadable (file:line:col each): every
+    /// compile with this library reports them.
+    pub problems: Vec<plait_graph::Error>,
 }
 
 impl PassLibrary {
@@ -171,11 +172,10 @@ pub fn shader_source<T: PassType + ?Sized>(
     t: &T,
     pass: &ScheduledPass,
 ) -> Result<(PathBuf, Cow<'static, str>), (Location, String)> {
-    if let Some((name, text)) = t.shader() {
+    if let Some(name) = t.shader() {
         // The copy on the search path when there is one (edits apply without
         // a rebuild), else the built-in text.
-        return crate::shader::library_source(name, text)
-            .map_err(|e| (pass.location.clone(), e.message));
+        return crate::shader::library_file(name).map_err(|e| (pass.location.clone(), e.message));
     }
     let loc = pass
         .shader_location

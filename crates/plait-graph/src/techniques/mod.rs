@@ -57,12 +57,12 @@ const FILE_KEYS: &[&str] = &["technique", "params", "resources", "passes"];
 const EXPORT_KEYS: &[&str] = &["reads", "params"];
 
 mod catalog;
+pub mod point_file;
 mod roots;
-pub mod wgsl_point;
 
 pub use catalog::{TechniqueInfo, catalog};
+pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
-pub use wgsl_point::{POINT_FILE, WgslPoint, wgsl_points};
 
 /// The techniques folder beside `pipeline`: its own folder's, or an
 /// ancestor's — relative to the working directory when it is below it, so
@@ -340,6 +340,13 @@ pub(crate) fn apply_techniques(
                     &tree.location,
                     format!("[technique] needs `point = \"{point}\"`"),
                 )),
+            }
+            match roots.point_file(point) {
+                Some(Ok(promise)) => {
+                    errors.extend(point_file::check_writes(&promise, point, name, &tree))
+                }
+                Some(Err(mut e)) => errors.append(&mut e),
+                None => {}
             }
             let (mut reads, mut params) = (None, None);
             if let Some(e) = technique.get("exports") {

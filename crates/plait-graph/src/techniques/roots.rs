@@ -126,6 +126,22 @@ impl TechniqueRoots {
         all
     }
 
+    /// The nearest layer's point file of `point` (`<point>/point.toml`),
+    /// parsed, if any layer has one.
+    pub fn point_file(&self, point: &str) -> Option<Result<super::PointFile, Vec<Error>>> {
+        let path = self
+            .layers()
+            .map(|root| root.join(point).join(super::POINT_FILE))
+            .find(|p| plait_assets::exists(p))?;
+        Some(match plait_assets::read_to_string(&path) {
+            Ok(text) => super::point_file::parse(point, &path, &text).map_err(|e| e.0),
+            Err(e) => Err(vec![Error::new(
+                Location::Path { path },
+                ErrorKind::Io(e.to_string()),
+            )]),
+        })
+    }
+
     /// Where the technique `name` of `point` is.
     pub fn locate(&self, point: &str, name: &str) -> Located {
         let folder = |root: &Path| root.join(point).join(name);

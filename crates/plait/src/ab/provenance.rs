@@ -92,10 +92,10 @@ pub(super) fn pipeline_provenance(
 /// A library shader, named as in the library, with the text the run uses:
 /// the copy on the search path when there is one (`PLAIT_PATH`, the
 /// checkout), else the built-in text.
-fn as_used(name: &'static str, text: &'static str) -> (String, String) {
-    let used = plait_gpu::shader::library_source(name, text)
+fn as_used(name: &str) -> (String, String) {
+    let used = plait_gpu::shader::library_file(name)
         .map(|(_, used)| used.into_owned())
-        .unwrap_or_else(|_| text.to_owned());
+        .unwrap_or_default();
     (name.to_owned(), used)
 }
 
@@ -114,8 +114,8 @@ fn builtin_shaders() -> Vec<FileHash> {
     let library = plait_passes::library();
     let mut files: Vec<(String, String, Vec<&str>)> = Vec::new();
     for (type_name, t) in &library.types {
-        if let Some((name, text)) = t.shader() {
-            let (path, used) = as_used(name, text);
+        if let Some(name) = t.shader() {
+            let (path, used) = as_used(name);
             match files.iter_mut().find(|(n, x, _)| *n == path && *x == used) {
                 Some((_, _, types)) => types.push(type_name),
                 None => files.push((path, used, vec![type_name])),

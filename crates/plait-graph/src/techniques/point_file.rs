@@ -1,7 +1,11 @@
-//! A choice point answered in WGSL, declared as data: `techniques/<point>/point.toml`.
+//! What a choice point promises, declared as data: `techniques/<point>/point.toml`.
 //!
 //! ```toml
-//! [wgsl]
+//! [point]
+//! writes = ["final"]                    # every technique of the point writes these
+//!
+//! [wgsl]                                # a point answered in WGSL
+//! param = "self_shadow"
 //! param = "self_shadow"                  # the pass param naming the provider
 //! providers = "plait::self_shadow"       # provider NAME is module plait::self_shadow::NAME
 //! function = "fn hair_visibility(world: vec3<f32>) -> f32"   # what each provider defines
@@ -11,7 +15,10 @@
 //! doc = "Fraction of the light reaching `world` through the hair."
 //! ```
 //!
-//! Every technique of the point ships a WGSL module declaring
+//! `writes` is checked when a technique is chosen: one of its passes must
+//! write each resource named (a transparency technique composes `final`).
+//!
+//! Every technique of a WGSL point ships a WGSL module declaring
 //! `#define_import_path <providers>::<name>` wherever it lives on the search
 //! path (usually its own technique folder). The shader library finds those
 //! modules, checks each defines `function` with this signature, and
@@ -122,8 +129,16 @@ impl WgslPoint {
     }
 }
 
+/// A point file: what the point's techniques write, and its WGSL contract.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct PointFile {
+    /// Resources one of each technique's passes must write.
+    pub writes: Vec<Spanned<String>>,
+    pub wgsl: Option<WgslPoint>,
+}
+
 /// Parse a point file (`point` is its folder's name; `path` names it in messages).
-pub fn parse(point: &str, path: &Path, text: &str) -> Result<WgslPoint, Errors> {
+pub fn parse(point: &str, path: &Path, text: &str) -> Result<PointFile, Errors> {
     let root = parse_file(path, text)?;
     let mut errors = Vec::new();
     let parsed = read(
@@ -139,13 +154,39 @@ pub fn parse(point: &str, path: &Path, text: &str) -> Result<WgslPoint, Errors> 
     }
 }
 
-fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<WgslPoint> {
+fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<PointFile> {
     let top = r.table(root, "a point file")?;
-    r.keys(top, &["wgsl"], "a point file");
-    let Some(wgsl) = top.get("wgsl") else {
-        r.schema(&root.location, "a point file needs a [wgsl] table".into());
-        return None;
-    };
+    r.keys(top, &["point", "wgsl"], "a point file");
+    let mut file = PointFile::default();
+    if let Some(p) = top.get("point") {
+        let t = r.table(&p.value, "[point]")?;
+        r.keys(t, &["writes"], "[point]");
+        if let Some(w) = t.get("writes") {
+            let Node::List(items) = &w.value.value else {
+                r.schema(
+                    &w.value.location,
+                    "point.writes must be a list of resource names".into(),
+                );
+                return None;
+            };
+            for item in items {
+                let name = r.string(item, "point.writes")?;
+                file.writes.push(Spanned::new(name, item.location.clone()));
+            }
+        }
+    }
+    if let Some(wgsl) = top.get("wgsl") {
+        file.wgsl = Some(read_wgsl(r, point, root, wgsl)?);
+    }
+    Some(file)
+}
+
+fn read_wgsl(
+    r: &mut Reader<'_>,
+    point: &str,
+    root: &Spanned<Node>,
+    wgsl: &crate::load::Entry,
+) -> Option<WgslPoint> {
     let t = r.table(&wgsl.value, "[wgsl]")?;
     r.keys(t, KEYS, "[wgsl]");
     let mut field = |key: &str| -> Option<Spanned<String>> {
@@ -194,6 +235,62 @@ fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<WgslPoi
     })
 }
 
+/// The resources a technique's passes (its includes' too) write.
+fn written(technique: &Spanned<Node>) -> Vec<String> {
+    let Node::Table(top) = &technique.value else {
+        return Vec::new();
+    };
+    let Some(Node::Table(passes)) = top.get("passes").map(|e| &e.value.value) else {
+        return Vec::new();
+    };
+    passes
+        .values()
+        .filter_map(|pass| match &pass.value.value {
+            Node::Table(t) => match t.get("writes").map(|e| &e.value.value) {
+                Some(Node::Table(w)) => Some(w.values()),
+                _ => None,
+            },
+            _ => None,
+        })
+        .flatten()
+        .filter_map(|e| match &e.value.value {
+            Node::Scalar(crate::value::Value::Str(r)) => Some(r.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// One error per resource the point promises that no pass of the technique
+/// `point/name` writes, at the technique's `[technique]` table.
+pub(crate) fn check_writes(
+    promise: &PointFile,
+    point: &str,
+    name: &str,
+    technique: &Spanned<Node>,
+) -> Vec<crate::Error> {
+    let written = written(technique);
+    let at = match &technique.value {
+        Node::Table(top) => top
+            .get("technique")
+            .map_or(technique.location.clone(), |e| e.key.clone()),
+        _ => technique.location.clone(),
+    };
+    promise
+        .writes
+        .iter()
+        .filter(|w| !written.contains(&w.value))
+        .map(|w| {
+            crate::Error::new(
+                at.clone(),
+                crate::ErrorKind::Schema(format!(
+                    "{point} technique `{name}`: no pass writes `{}`, which every {point} technique must write (promised at {})",
+                    w.value, w.location
+                )),
+            )
+        })
+        .collect()
+}
+
 /// `fn NAME(ARGS) -> RET` → (NAME, ARGS, RET).
 fn split_signature(text: &str) -> Option<(String, String, String)> {
     let rest = text.trim().strip_prefix("fn ")?;
@@ -210,8 +307,9 @@ fn split_signature(text: &str) -> Option<(String, String, String)> {
         .then(|| (name.to_owned(), args.trim().to_owned(), ret.to_owned()))
 }
 
-/// Every point file of the library (`techniques/*/point.toml` on the search
-/// path, then the built-in copies), parsed; the errors of every broken one.
+/// The WGSL contract of every point file of the library
+/// (`techniques/*/point.toml` on the search path, then the built-in copies)
+/// that has one; the errors of every broken file.
 pub fn wgsl_points() -> Result<Vec<WgslPoint>, Errors> {
     let mut points = Vec::new();
     let mut errors = Vec::new();
@@ -234,7 +332,7 @@ pub fn wgsl_points() -> Result<Vec<WgslPoint>, Errors> {
             }
         };
         match parse(point, &path, &text) {
-            Ok(p) => points.push(p),
+            Ok(p) => points.extend(p.wgsl),
             Err(e) => errors.extend(e.0),
         }
     }
@@ -262,7 +360,10 @@ doc = "Fraction of the light reaching `world`."
 
     #[test]
     fn a_point_file_generates_its_selector() {
-        let p = parse("self_shadow", Path::new("point.toml"), GOOD).expect("parses");
+        let p = parse("self_shadow", Path::new("point.toml"), GOOD)
+            .expect("parses")
+            .wgsl
+            .expect("a [wgsl] table");
         assert_eq!(p.signature(), "fn hair_visibility(world: vec3<f32>) -> f32");
         assert_eq!(p.define("deep_opacity"), "SELF_SHADOW_DEEP_OPACITY");
         let s = p.selector_source(&["deep_opacity".into(), "none".into()]);
@@ -287,6 +388,20 @@ doc = "Fraction of the light reaching `world`."
             ),
             "{s}"
         );
+    }
+
+    #[test]
+    fn a_point_file_may_promise_writes_alone() {
+        let p = parse(
+            "transparency",
+            Path::new("point.toml"),
+            "[point]\nwrites = [\"final\"]\n",
+        )
+        .expect("parses");
+        assert_eq!(p.wgsl, None);
+        assert_eq!(p.writes.len(), 1);
+        assert_eq!(p.writes[0].value, "final");
+        assert_eq!(p.writes[0].location.to_string(), "point.toml:2:11");
     }
 
     #[test]
