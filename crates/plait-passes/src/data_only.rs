@@ -42,6 +42,11 @@ pub const COMPUTE: DataOnly = DataOnly {
     description: "A WGSL compute shader; slots are the shader's bindings.",
 };
 
+// The three data-only types are found by the library like every Rust pass type.
+inventory::submit! { crate::RustPassType(|| Box::new(FULLSCREEN)) }
+inventory::submit! { crate::RustPassType(|| Box::new(RASTER)) }
+inventory::submit! { crate::RustPassType(|| Box::new(COMPUTE)) }
+
 impl PassType for DataOnly {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec::data_only(self.name, self.shape, self.description)

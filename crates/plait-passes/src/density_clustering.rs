@@ -40,6 +40,8 @@ use plait_graph::pass_type_file::{WordsPerTexel, check_words_per_texel};
 
 pub struct DensityClustering;
 
+inventory::submit! { crate::RustPassType(|| Box::new(DensityClustering)) }
+
 /// Clusters per texel (the paper's K = 4: one RGBA texel).
 pub const CLUSTERS: u64 = 4;
 /// u32 words per cluster per stage: count, Σz, Σz² (fixed point).

@@ -38,6 +38,8 @@ use crate::spec_util::{DEPTH, HDR, int, texture};
 
 pub struct HairDepthPeel;
 
+inventory::submit! { crate::RustPassType(|| Box::new(HairDepthPeel)) }
+
 fn spec() -> PassTypeSpec {
     let mut inputs = hair_fragment::shading_inputs();
     inputs.push(texture(

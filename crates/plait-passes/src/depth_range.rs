@@ -21,6 +21,8 @@ use crate::spec_util::{DEPTH, texture};
 
 pub struct DepthRange;
 
+inventory::submit! { crate::RustPassType(|| Box::new(DepthRange)) }
+
 pub(crate) const SHADER: &str = "shaders/passes/depth_range.wgsl";
 
 fn spec() -> PassTypeSpec {

@@ -15,6 +15,8 @@ use crate::spec_util::{DEPTH, HDR, SlotExt, texture};
 
 pub struct HairShade;
 
+inventory::submit! { crate::RustPassType(|| Box::new(HairShade)) }
+
 impl PassType for HairShade {
     fn spec(&self) -> PassTypeSpec {
         let mut inputs = hair_fragment::shading_inputs();

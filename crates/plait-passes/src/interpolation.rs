@@ -15,6 +15,8 @@ use crate::spec_util::{SlotExt, buffer};
 
 pub struct GuideInterpolation;
 
+inventory::submit! { crate::RustPassType(|| Box::new(GuideInterpolation)) }
+
 const SHADER: &str = "shaders/passes/sim_interpolate.wgsl";
 
 fn aliased(mut slot: SlotSpec, binding: &str) -> SlotSpec {

@@ -1,6 +1,8 @@
-//! plait's pass library: one Rust module and one WGSL file per pass type.
+//! plait's pass library: pass types declared in TOML (`shaders/passes/`,
+//! found on the search path) and the few written in Rust, each one module
+//! that registers itself.
 //!
-//! [`library`] registers every pass type; [`compile`] compiles a pipeline
+//! [`library`] collects every pass type; [`compile`] compiles a pipeline
 //! with every pass checked against its shader with naga (no GPU), which
 //! `plait check` and `plait render` both run before any GPU work.
 
@@ -24,9 +26,15 @@ pub mod spec_util;
 pub mod visibility;
 
 use plait_gpu::Capabilities;
-use plait_gpu::pass::PassLibrary;
 use plait_gpu::pass::check::ShaderChecker;
+use plait_gpu::pass::{PassLibrary, PassType};
 use plait_graph::{CompileOptions, Errors, Pipeline, Schedule};
+
+/// A pass type written in Rust, registered by its own module:
+/// `inventory::submit! { crate::RustPassType(|| Box::new(MyPass)) }`.
+pub struct RustPassType(pub fn() -> Box<dyn PassType>);
+
+inventory::collect!(RustPassType);
 
 /// Every pass type plait ships.
 pub fn library() -> PassLibrary {
@@ -43,21 +51,18 @@ pub fn library() -> PassLibrary {
         lib.add(t);
     }
     lib.problems = problems;
-    lib.add(depth_range::DepthRange);
-    lib.add(density_clustering::DensityClustering);
-    lib.add(opaque_shade::OpaqueShade);
-    // Ambient occlusion precomputes (issue 11).
-    lib.add(occlusion_directions::OcclusionDirections);
-    lib.add(occlusion_cylinders::OcclusionCylinders);
-    lib.add(hair_shade::HairShade);
-    // Transparency methods (issue 5): each shades with hair_shade.wgsl.
-    lib.add(depth_peeling::HairDepthPeel);
-    // Simulation (issue 12): guides simulated, drawn strands interpolated.
-    lib.add(simulation::HairSimulation);
-    lib.add(interpolation::GuideInterpolation);
-    lib.add(data_only::FULLSCREEN);
-    lib.add(data_only::RASTER);
-    lib.add(data_only::COMPUTE);
+    // Pass types written in Rust (loops, readback, state chosen by a param):
+    // each module registers its own with `inventory::submit!`, so a new one
+    // is its module and no line here. Sorted by name: the registration order
+    // is the linker's.
+    let mut rust: Vec<Box<dyn PassType>> = inventory::iter::<RustPassType>
+        .into_iter()
+        .map(|r| (r.0)())
+        .collect();
+    rust.sort_by_key(|t| t.spec().name);
+    for t in rust {
+        lib.insert(t);
+    }
     lib
 }
 
@@ -87,4 +92,55 @@ pub fn compile_in(
         return Err(Errors(broken));
     }
     plait_graph::compile_with(pipeline, &library.registry(), opts, &checker)
+}
+
+#[cfg(test)]
+mod tests {
+    /// No list names the Rust pass types, so the test is that each one a
+    /// module registers is in the library: a registration the linker dropped
+    /// (or a module that implements `PassType` and forgot to register) fails
+    /// here.
+    #[test]
+    fn every_rust_pass_type_registers_itself() {
+        let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+        let mut implemented = 0;
+        let mut registered = 0;
+        for entry in std::fs::read_dir(&src).expect("src/") {
+            let path = entry.expect("entry").path();
+            let text = std::fs::read_to_string(&path).expect("read");
+            let impls = text
+                .lines()
+                .filter(|l| l.starts_with("impl PassType for "))
+                .count();
+            let submits = text
+                .lines()
+                .filter(|l| l.starts_with("inventory::submit!"))
+                .count();
+            // The TOML pass types are found by data_pass::discover instead.
+            if path.file_name().is_some_and(|n| n == "data_pass.rs") {
+                continue;
+            }
+            assert!(
+                impls == 0 || submits > 0,
+                "{} implements PassType but registers nothing with inventory::submit!",
+                path.display()
+            );
+            implemented += impls;
+            registered += submits;
+        }
+        assert!(implemented > 0 && registered >= implemented);
+        let found = inventory::iter::<super::RustPassType>.into_iter().count();
+        assert_eq!(
+            found, registered,
+            "registrations in src/ vs found at run time"
+        );
+        let library = super::library();
+        for r in inventory::iter::<super::RustPassType> {
+            let name = (r.0)().spec().name;
+            assert!(
+                library.get(&name).is_some(),
+                "`{name}` is not in the library"
+            );
+        }
+    }
 }

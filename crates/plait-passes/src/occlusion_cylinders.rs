@@ -17,6 +17,8 @@ use crate::spec_util::{buffer, choice, int};
 
 pub struct OcclusionCylinders;
 
+inventory::submit! { crate::RustPassType(|| Box::new(OcclusionCylinders)) }
+
 const SHADER: &str = "shaders/passes/occlusion_cylinders.wgsl";
 
 fn spec() -> PassTypeSpec {

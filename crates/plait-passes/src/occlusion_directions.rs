@@ -29,6 +29,8 @@ use crate::spec_util::{DEPTH, float, int, texture};
 
 pub struct OcclusionDirections;
 
+inventory::submit! { crate::RustPassType(|| Box::new(OcclusionDirections)) }
+
 const SHADER: &str = "shaders/passes/occlusion_directions.wgsl";
 const DEEP_OPACITY: &str = "shaders/passes/deep_opacity.wgsl";
 

@@ -10,6 +10,8 @@ use crate::visibility;
 
 pub struct OpaqueShade;
 
+inventory::submit! { crate::RustPassType(|| Box::new(OpaqueShade)) }
+
 impl PassType for OpaqueShade {
     fn spec(&self) -> PassTypeSpec {
         let mut inputs = vec![texture(

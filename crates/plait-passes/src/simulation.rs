@@ -43,6 +43,8 @@ use crate::spec_util::{SlotExt, buffer, float, int};
 
 pub struct HairSimulation;
 
+inventory::submit! { crate::RustPassType(|| Box::new(HairSimulation)) }
+
 const SHADER: &str = "shaders/passes/sim_verlet.wgsl";
 
 /// Bytes of the status buffer the kernel writes: flags, strand, stretch, spare.

@@ -148,7 +148,11 @@ pub struct PassLibrary {
 
 impl PassLibrary {
     pub fn add(&mut self, t: impl PassType + 'static) {
-        self.types.insert(t.spec().name.clone(), Box::new(t));
+        self.insert(Box::new(t));
+    }
+
+    pub fn insert(&mut self, t: Box<dyn PassType>) {
+        self.types.insert(t.spec().name.clone(), t);
     }
 
     pub fn get(&self, name: &str) -> Option<&dyn PassType> {
