@@ -13,6 +13,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 
 use plait_graph::techniques::{POINT_FILE, WgslPoint, wgsl_points};
 
@@ -73,8 +74,25 @@ pub fn library_files() -> Vec<(String, PathBuf)> {
     files
 }
 
+/// The library as found now: read again only when a file of it changed
+/// ([`crate::modules::library_stamp`]), since the params' choices, the
+/// define check of every pass and the composer all ask for it.
+pub fn discover() -> Result<Arc<Library>, ShaderError> {
+    static FOUND: Mutex<Option<(u64, Arc<Library>)>> = Mutex::new(None);
+    let stamp = crate::modules::library_stamp();
+    let mut guard = FOUND.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some((s, library)) = guard.as_ref()
+        && *s == stamp
+    {
+        return Ok(library.clone());
+    }
+    let library = Arc::new(read_library()?);
+    *guard = Some((stamp, library.clone()));
+    Ok(library)
+}
+
 /// Find, read and order the library (see the module docs).
-pub fn discover() -> Result<Library, ShaderError> {
+fn read_library() -> Result<Library, ShaderError> {
     let mut found: BTreeMap<String, LibraryModule> = BTreeMap::new();
     for folder in MODULE_FOLDERS {
         for (key, path) in plait_assets::list_tree(folder, "wgsl") {
@@ -156,8 +174,10 @@ pub fn discover() -> Result<Library, ShaderError> {
 pub fn providers(param: &str) -> Vec<String> {
     discover()
         .ok()
-        .and_then(|l| l.points.into_iter().find(|p| p.contract.param == param))
-        .map(|p| p.providers.into_iter().map(|(n, _)| n).collect())
+        .and_then(|l| {
+            let point = l.points.iter().find(|p| p.contract.param == param)?;
+            Some(point.providers.iter().map(|(n, _)| n.clone()).collect())
+        })
         .unwrap_or_default()
 }
 

@@ -91,11 +91,13 @@ pub fn unread_params(
 /// a module it imports (`SELF_SHADOW_DEEP_OPACITY` is the generated selector's).
 pub fn library_define_names() -> BTreeSet<String> {
     crate::library::discover()
-        .map(|l| l.modules)
+        .map(|l| {
+            l.modules
+                .iter()
+                .flat_map(|m| define_names(&m.source))
+                .collect()
+        })
         .unwrap_or_default()
-        .iter()
-        .flat_map(|m| define_names(&m.source))
-        .collect()
 }
 
 #[cfg(test)]

@@ -103,11 +103,13 @@ fn builtin_shaders() -> Vec<FileHash> {
     // The library as this run composes with it: every module found on the
     // search path, generated selectors included.
     let mut out: Vec<FileHash> = plait_gpu::library::discover()
-        .map(|l| l.modules)
-        .unwrap_or_default()
-        .iter()
-        .map(|m| hash_text(&m.key, &m.source))
-        .collect();
+        .map(|l| {
+            l.modules
+                .iter()
+                .map(|m| hash_text(&m.key, &m.source))
+                .collect()
+        })
+        .unwrap_or_default();
     // Pass types may share one WGSL file (the pass-type files of
     // shaders/passes name theirs): list each file once, with the pass types
     // that use it.
