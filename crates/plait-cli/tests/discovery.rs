@@ -59,22 +59,30 @@ params = { self_shadow = "half" }
 const HALF_PROVIDER: &str = "#define_import_path plait::self_shadow::half\n\n\
 fn hair_visibility(world: vec3<f32>) -> f32 {\n    return 0.5;\n}\n";
 
+/// A library folder holding the two-file technique `self_shadow/half`, its
+/// provider's WGSL as given.
+fn half_technique(provider: &str) -> tempfile::TempDir {
+    let library = tempfile::tempdir().expect("temp dir");
+    let folder = "techniques/self_shadow/half";
+    write(
+        library.path(),
+        &format!("{folder}/technique.toml"),
+        HALF_TECHNIQUE,
+    );
+    write(
+        library.path(),
+        &format!("{folder}/self_shadow.wgsl"),
+        provider,
+    );
+    library
+}
+
 /// A self-shadowing technique that is one folder of two files on
 /// `PLAIT_PATH` is listed, checks and renders; its provider is found from
 /// its `#define_import_path` alone (the selector is generated).
 #[test]
 fn a_provider_in_a_technique_folder_on_plait_path_is_a_choice_without_a_rebuild() {
-    let library = tempfile::tempdir().expect("temp dir");
-    write(
-        library.path(),
-        "techniques/self_shadow/half/technique.toml",
-        HALF_TECHNIQUE,
-    );
-    write(
-        library.path(),
-        "techniques/self_shadow/half/self_shadow.wgsl",
-        HALF_PROVIDER,
-    );
+    let library = half_technique(HALF_PROVIDER);
     let o = with_library(library.path(), &["techniques"]);
     assert_ok("plait techniques", &o);
     let listed = text(&o.stdout);
@@ -107,17 +115,8 @@ fn a_provider_in_a_technique_folder_on_plait_path_is_a_choice_without_a_rebuild(
 #[test]
 fn a_broken_provider_or_pass_type_on_plait_path_is_an_error_at_its_line() {
     // An #import no module provides.
-    let library = tempfile::tempdir().expect("temp dir");
-    write(
-        library.path(),
-        "techniques/self_shadow/half/technique.toml",
-        HALF_TECHNIQUE,
-    );
-    write(
-        library.path(),
-        "techniques/self_shadow/half/self_shadow.wgsl",
-        &HALF_PROVIDER.replace("\n\nfn", "\n#import plait::fram::frame\n\nfn"),
-    );
+    let library =
+        half_technique(&HALF_PROVIDER.replace("\n\nfn", "\n#import plait::fram::frame\n\nfn"));
     let o = with_library(library.path(), &["check", "pipelines/forward.toml"]);
     assert_refused(
         "an unknown import",
