@@ -1,7 +1,7 @@
 //! Lighting providers: every `lighting` technique answers
 //! `hair_environment(world, tangent, to_eye, base) -> vec3`: the light a strand
-//! reflects from everything but the key light (`shaders/lib/hair_environment.wgsl`
-//! picks the provider the `lighting` param names). Its uniform is
+//! reflects from everything but the key light (the generated
+//! `plait::lighting` picks the provider the `lighting` param names). Its uniform is
 //! `lighting_params` (binding 30), its resources bind at 31–39 through the
 //! optional slots below.
 
@@ -9,7 +9,7 @@ use plait_graph::{Access, Format, Formats, ParamSpec, ResourceKind, SlotSpec};
 
 use crate::spec_util::choice;
 
-/// The providers, by param value: every module in `shaders/lib/lighting/`.
+/// The providers, by param value: every module `plait::lighting::NAME` found.
 pub fn providers() -> Vec<String> {
     plait_gpu::library::providers("lighting")
 }

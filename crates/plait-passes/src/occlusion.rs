@@ -1,8 +1,8 @@
 //! Occlusion providers: every `ambient_occlusion` technique answers
 //! `vertex_occlusion(vertex_index) -> f32` in the hair vertex shader: the
 //! fraction of the environment's light reaching the vertex
-//! (`shaders/lib/hair_occlusion.wgsl` picks the provider the `occlusion` param
-//! names). Its uniform is `occlusion_params` (binding 40), its per-vertex
+//! (the generated `plait::ambient_occlusion` picks the provider the
+//! `ambient_occlusion` param names). Its uniform is `occlusion_params` (binding 40), its per-vertex
 //! resources bind at 41–44 through the optional slots below.
 //!
 //! The precomputes that fill them are passes of their techniques
@@ -14,7 +14,8 @@ use plait_graph::{Access, ParamSpec, SlotSpec};
 
 use crate::spec_util::{SlotExt, buffer, choice};
 
-/// The providers, by param value: every module in `shaders/lib/occlusion/`.
+/// The providers, by param value: every module `plait::ambient_occlusion::NAME`
+/// found.
 pub fn providers() -> Vec<String> {
     plait_gpu::library::providers("ambient_occlusion")
 }

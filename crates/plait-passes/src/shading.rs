@@ -1,7 +1,7 @@
 //! Shading providers: every `shading` technique answers one WGSL question,
 //! `hair_direct(tangent, to_light, to_eye, base) -> vec3`: the radiance a strand
 //! reflects towards the eye per unit key-light colour, before shadowing
-//! (`shaders/lib/hair_direct.wgsl` picks the provider the `shading` param
+//! (the generated `plait::shading` picks the provider the `shading` param
 //! names). Its uniform is `shading_params` (binding 20), its resources bind at
 //! 21–29 through the optional slots below.
 //!
@@ -21,7 +21,7 @@ use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
 use crate::spec_util::{SlotExt, choice, float, texture};
 
-/// The providers, by param value: every module in `shaders/lib/shading/`.
+/// The providers, by param value: every module `plait::shading::NAME` found.
 pub fn providers() -> Vec<String> {
     plait_gpu::library::providers("shading")
 }

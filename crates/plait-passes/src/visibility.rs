@@ -1,19 +1,20 @@
 //! Visibility providers: every self-shadowing technique answers one WGSL
 //! question, `hair_visibility(world) -> f32`, from its own light maps. A
-//! shading pass imports `plait::self_shadow` (`shaders/lib/self_shadow.wgsl`),
-//! which picks the provider its `visibility` param names, and binds the
-//! provider's maps under the `vis_*` slots. Adding a provider is a WGSL module
-//! in `shaders/lib/visibility/` and one import line in `self_shadow.wgsl` (no
-//! shading pass changes; `plait::self_shadow::tressfx` was added so); maps or
-//! params no provider has used yet are declared here.
+//! shading pass imports `plait::self_shadow` (generated from
+//! `techniques/self_shadow/point.toml`), which picks the provider its
+//! `self_shadow` param names, and binds the provider's maps under the `vis_*`
+//! slots. Adding a provider is a WGSL module in its technique's folder (no
+//! shading pass changes, no import line; `plait::self_shadow::tressfx` was
+//! added so); maps or params no provider has used yet are declared here.
 
 use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
 use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 
-/// The providers, by param value: every module in `shaders/lib/visibility/`
-/// (`tressfx.wgsl` → `visibility = "tressfx"`), so a provider that needs no
-/// maps or params beyond those below is WGSL alone.
+/// The providers, by param value: every module `plait::self_shadow::NAME`
+/// found (`techniques/self_shadow/tressfx/self_shadow.wgsl` →
+/// `self_shadow = "tressfx"`), so a provider that needs no maps or params
+/// beyond those below is WGSL alone.
 pub fn providers() -> Vec<String> {
     plait_gpu::library::providers("self_shadow")
 }
