@@ -6,7 +6,7 @@
 //! loops (depth range's two draws, depth peeling, k-means) and state chosen
 //! by a param (hair shading's blend).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use plait_gpu::pass::PassType;
 use plait_graph::pass_type_file::{self, PassTypeFile, check_words_per_texel};
@@ -39,8 +39,10 @@ impl DataPassType {
         })?;
         let file = pass_type_file::parse(path, &text)?;
         let shader = format!("{PASS_TYPE_DIR}/{}", file.shader.value);
-        let beside: PathBuf = path.with_file_name(&file.shader.value);
-        if !plait_assets::exists(&beside) && plait_assets::find(&shader).is_none() {
+        // The file beside this one is on the search path too, so looking the
+        // library path up finds it (or an earlier folder's copy, as for any
+        // library file).
+        if plait_assets::find(&shader).is_none() {
             return Err(Errors(vec![Error::new(
                 file.shader.location.clone(),
                 ErrorKind::Schema(format!(
