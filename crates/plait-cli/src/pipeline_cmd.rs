@@ -110,8 +110,14 @@ pub fn graph(args: GraphArgs) -> Result<()> {
         ..CompileOptions::default()
     };
     let pipeline = resolve_pipeline(Some(&args.pipeline));
-    crate::size_limit::check_default_limits(&pipeline, &args.set.sets, args.size)?;
-    let schedule = compile_checked(&pipeline, &args.set.sets, &opts)?;
+    let loaded = plait_graph::load(&pipeline, &args.set.sets)?;
+    let schedule = match plait::session::check_pipeline(&loaded, &opts) {
+        Ok(schedule) => schedule,
+        Err(errors) => {
+            crate::size_limit::explain_default_limits(&loaded, &pipeline, args.size)?;
+            return Err(errors.into());
+        }
+    };
     let text = match args.format {
         GraphFormat::Dot => plait_graph::to_dot(&schedule),
         GraphFormat::Svg => plait_graph::to_svg(&schedule),

@@ -5,9 +5,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
-use plait::session::{SceneData, compile_checked, prepare, resolve_pipeline};
+use plait::session::{SceneData, prepare_compiled, resolve_pipeline};
+use plait::source::PipelineSource;
 use plait_gpu::{FrameReport, Gpu};
-use plait_graph::{CompileOptions, Schedule};
+use plait_graph::Schedule;
 use plait_hair::scene::Scene;
 
 use crate::args::{SetArgs, parse_scene, parse_size};
@@ -72,9 +73,10 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
     }
 }
 
-/// Render `pipeline` on `scene` at `size`: compile and check without the GPU
-/// first, then open the device, build, render, read the first output (or the
-/// texture `show` names, checked before any GPU work).
+/// Render `pipeline` on `scene` at `size`: load it (the texture `show`
+/// names checked there), read the scene, open the device, compile once with
+/// the adapter's capabilities and limits, build, render, read the first
+/// output (or `show`'s texture).
 pub fn render(
     pipeline: &Path,
     sets: &[String],
@@ -82,31 +84,21 @@ pub fn render(
     size: (u32, u32),
     show: Option<&str>,
 ) -> Result<Rendered> {
-    let mut sets = sets.to_vec();
+    let mut source = PipelineSource::new(pipeline, sets);
     if let Some(name) = show {
-        let loaded = plait_graph::load(pipeline, &sets)?;
-        crate::show::check_name(&loaded, name)?;
-        sets.push(crate::show::extra_output_set(&loaded, name));
+        source = source.with_output(name, &format!("--show {name}"));
     }
-    // Everything that can fail without a GPU fails before one is opened.
-    // The adapter's texture limit is checked once the device is open.
-    let checked = compile_checked(
-        pipeline,
-        &sets,
-        &CompileOptions {
-            screen: size,
-            max_texture_dimension: u32::MAX,
-            max_buffer_binding_size: u64::MAX,
-            ..Default::default()
-        },
-    )?;
+    let loaded = source.load(&[])?;
     if let Some(name) = show {
-        crate::show::check_readable(&checked, name)?;
+        crate::show::check_name(&loaded, name)?;
     }
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
-    crate::size_limit::check(pipeline, &sets, size, &gpu)?;
-    let mut prepared = prepare(&gpu, pipeline, &sets, &data, size)?;
+    let schedule = crate::size_limit::compile_on(&gpu, &loaded, &source, size)?;
+    if let Some(name) = show {
+        crate::show::check_readable(&schedule, name)?;
+    }
+    let mut prepared = prepare_compiled(&gpu, schedule, &source, &data, size)?;
     if let Some(name) = show {
         prepared.output = name.to_owned();
     }

@@ -18,9 +18,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use plait::frames::{median_report, render_sequence};
-use plait::session::{SceneData, compile_checked, prepare};
+use plait::session::{SceneData, prepare_compiled};
+use plait::source::PipelineSource;
 use plait_gpu::{FrameReport, Gpu};
-use plait_graph::CompileOptions;
 use plait_hair::scene::Scene;
 
 use crate::output::PendingDir;
@@ -132,21 +132,13 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
         );
     }
     let pending = PendingDir::create(args.out, "frames.json", "frame sequence")?;
-    // Everything that can fail without a GPU fails before one is opened.
-    compile_checked(
-        args.pipeline,
-        args.sets,
-        &CompileOptions {
-            screen: args.size,
-            max_texture_dimension: u32::MAX,
-            max_buffer_binding_size: u64::MAX,
-            ..Default::default()
-        },
-    )?;
+    // The files read before the device is opened; one compile, for it.
+    let source = PipelineSource::new(args.pipeline, args.sets);
+    let loaded = source.load(&[])?;
     let data = SceneData::new(args.scene.clone())?;
     let gpu = Gpu::new()?;
-    crate::size_limit::check(args.pipeline, args.sets, args.size, &gpu)?;
-    let mut prepared = prepare(&gpu, args.pipeline, args.sets, &data, args.size)?;
+    let schedule = crate::size_limit::compile_on(&gpu, &loaded, &source, args.size)?;
+    let mut prepared = prepare_compiled(&gpu, schedule, &source, &data, args.size)?;
     let dir = pending.dir().to_path_buf();
     let mut preview =
         Preview::create(&dir.join("animation.png"), args.size, args.frames, args.fps)?;

@@ -1,9 +1,10 @@
 //! `plait render --show NAME`: any texture of the pipeline as a picture.
 //!
 //! The name is checked against the pipeline before any GPU work. The
-//! resource is made an extra output of the pipeline (through the same
-//! `--set` path a user has), so the passes that write it are not culled and
-//! its memory is not shared with a resource written after it.
+//! resource is made an extra output of the pipeline
+//! ([`plait::source::PipelineSource::with_output`]), so the passes that
+//! write it are not culled and its memory is not shared with a resource
+//! written after it.
 //!
 //! Data textures (depth ranges, depth buffers, counts) hold values far
 //! outside 0…1; encoding them as colour saturates them, so such textures are
@@ -13,16 +14,6 @@
 use anyhow::Result;
 use plait_gpu::readback::TexelData;
 use plait_graph::{Format, Pipeline, ResourceKind};
-
-/// The `--set` that makes `name` an output next to the pipeline's own.
-pub fn extra_output_set(pipeline: &Pipeline, name: &str) -> String {
-    let mut outputs: Vec<String> = pipeline.outputs.iter().map(|o| o.value.clone()).collect();
-    if !outputs.iter().any(|o| o == name) {
-        outputs.push(name.to_owned());
-    }
-    let quoted: Vec<String> = outputs.iter().map(|o| format!("{o:?}")).collect();
-    format!("pipeline.outputs=[{}]", quoted.join(", "))
-}
 
 /// `name` must be a texture the pipeline declares; otherwise the error lists
 /// the textures, nearest to the name first.

@@ -9,24 +9,62 @@
 use std::path::Path;
 
 use anyhow::Result;
+use plait::session::SessionError;
+use plait::source::PipelineSource;
 use plait_gpu::Gpu;
-use plait_graph::{CompileOptions, Errors};
+use plait_graph::{CompileOptions, Errors, Pipeline, Schedule};
 
 /// Fails naming `--size` when `size` is what keeps `pipeline` (with `sets`)
 /// from fitting `gpu`'s limits; any other problem is left to the render,
-/// which reports it with its file and line.
+/// which reports it with its file and line. For a pipeline loaded already
+/// whose compile failed, [`explain_on`].
 pub fn check(pipeline: &Path, sets: &[String], size: (u32, u32), gpu: &Gpu) -> Result<()> {
+    let Ok(loaded) = plait_graph::load(pipeline, sets) else {
+        return Ok(());
+    };
+    explain_on(&loaded, pipeline, size, gpu)
+}
+
+/// [`plait::adapter::compile_on`], the compile of a render; when it fails
+/// because of `--size` alone, the error names the flag.
+pub fn compile_on(
+    gpu: &Gpu,
+    loaded: &Pipeline,
+    source: &PipelineSource,
+    size: (u32, u32),
+) -> Result<Schedule> {
+    match plait::adapter::compile_on(gpu, loaded, source, size) {
+        Ok(schedule) => Ok(schedule),
+        Err(e @ SessionError::Pipeline(_)) => {
+            explain_on(loaded, &source.path, size, gpu)?;
+            Err(e.into())
+        }
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// After `loaded` failed to compile for `gpu` at `size`: the `--size` error
+/// when the size is at fault, `Ok` (the compile's own errors stand) when not.
+pub fn explain_on(loaded: &Pipeline, pipeline: &Path, size: (u32, u32), gpu: &Gpu) -> Result<()> {
     let on = format!("on {}", gpu.adapter_name());
-    check_with(pipeline, sets, size, &on, &|s| {
+    explain(loaded, pipeline, size, &on, &|s| {
         plait::session::gpu_options(gpu, s)
     })
 }
 
-/// [`check`] without a GPU, against WebGPU's default limits (`plait graph`).
+/// [`check`] without a GPU, against WebGPU's default limits (`plait ab`).
 pub fn check_default_limits(pipeline: &Path, sets: &[String], size: (u32, u32)) -> Result<()> {
-    check_with(
+    let Ok(loaded) = plait_graph::load(pipeline, sets) else {
+        return Ok(());
+    };
+    explain_default_limits(&loaded, pipeline, size)
+}
+
+/// [`explain_on`] against WebGPU's default limits (`plait graph`).
+pub fn explain_default_limits(loaded: &Pipeline, pipeline: &Path, size: (u32, u32)) -> Result<()> {
+    explain(
+        loaded,
         pipeline,
-        sets,
         size,
         "within WebGPU's default limits",
         &|s| CompileOptions {
@@ -37,20 +75,18 @@ pub fn check_default_limits(pipeline: &Path, sets: &[String], size: (u32, u32)) 
 }
 
 /// `options(size)` gives the limits; `on` names them in the message
-/// (`on llvmpipe`, `within WebGPU's default limits`).
-fn check_with(
+/// (`on llvmpipe`, `within WebGPU's default limits`). Only the pipeline
+/// files are compiled here (no shaders): limits are theirs.
+fn explain(
+    loaded: &Pipeline,
     pipeline: &Path,
-    sets: &[String],
     size: (u32, u32),
     on: &str,
     options: &dyn Fn((u32, u32)) -> CompileOptions,
 ) -> Result<()> {
-    let Ok(loaded) = plait_graph::load(pipeline, sets) else {
-        return Ok(());
-    };
     let registry = plait_passes::library().registry();
     let compile = |s: (u32, u32)| -> Result<(), Errors> {
-        plait_graph::compile(&loaded, &registry, &options(s)).map(|_| ())
+        plait_graph::compile(loaded, &registry, &options(s)).map(|_| ())
     };
     let Err(errors) = compile(size) else {
         return Ok(());

@@ -61,6 +61,20 @@ pub struct Pipeline {
     pub outputs_location: Location,
 }
 
+impl Pipeline {
+    /// Make resource `name` an output besides the pipeline's own (`plait
+    /// render --show`), set at `location`: the passes writing it are not
+    /// culled and its memory is not shared with one written after it.
+    pub fn add_output(&mut self, name: &str, location: Location) {
+        if !self.outputs.iter().any(|o| o.value == name) {
+            self.outputs.push(Spanned {
+                value: name.to_owned(),
+                location,
+            });
+        }
+    }
+}
+
 /// A `[resources.NAME]` table.
 #[derive(Clone, Debug)]
 pub struct ResourceDecl {

@@ -222,29 +222,20 @@ impl<'g> Engine<'g> {
         let Some(scene) = &self.scene else {
             return;
         };
-        let opts = session::gpu_options(self.gpu, self.opts.size);
-        let result =
-            plait::adapter::check_on_adapter(self.gpu, &self.pipeline, &sets, self.opts.size)
-                .and_then(|schedule| {
-                    let shown = schedule.clone();
-                    // Bounded buffers the user did not size hold every fragment.
-                    let recompile = |extra: &[String]| {
-                        session::compile_checked(
-                            &self.pipeline,
-                            &[sets.as_slice(), extra].concat(),
-                            &opts,
-                        )
-                    };
-                    plait::overflow::prepare_holding(
-                        self.gpu,
-                        schedule,
-                        &recompile,
-                        &self.pipeline,
-                        scene,
-                        self.opts.size,
-                    )
+        // One load and one compile per change, with the adapter's capabilities.
+        let source = plait::source::PipelineSource::new(&self.pipeline, &sets);
+        let result = source
+            .load(&[])
+            .map_err(session::SessionError::from)
+            .and_then(|loaded| {
+                plait::adapter::compile_on(self.gpu, &loaded, &source, self.opts.size)
+            })
+            .and_then(|schedule| {
+                let shown = schedule.clone();
+                // Bounded buffers the user did not size hold every fragment.
+                session::prepare_compiled(self.gpu, schedule, &source, scene, self.opts.size)
                     .map(|p| (p, shown))
-                });
+            });
         match result {
             Ok((prepared, schedule)) => {
                 let first = self.builds == 0;

@@ -6,31 +6,43 @@ use std::path::Path;
 
 use plait_gpu::support::{Problem, check_schedule};
 use plait_gpu::{Gpu, GpuError, PassLibrary};
-use plait_graph::Schedule;
+use plait_graph::{Pipeline, Schedule};
 
-use crate::session::{SessionError, compile_checked, gpu_options};
+use crate::session::{SessionError, check_pipeline, gpu_options};
+use crate::source::PipelineSource;
 
-/// Compile and check `pipeline` for `gpu` at `size`, then check the schedule
-/// against what the adapter supports (see [`check_schedule_on`]).
+/// Load `pipeline` with `sets` and [`compile_on`] `gpu`.
 pub fn check_on_adapter(
     gpu: &Gpu,
     pipeline: &Path,
     sets: &[String],
     size: (u32, u32),
 ) -> Result<Schedule, SessionError> {
-    let schedule = compile_checked(pipeline, sets, &gpu_options(gpu, size))?;
-    check_schedule_on(gpu, &schedule, pipeline, sets, size)?;
+    let source = PipelineSource::new(pipeline, sets);
+    compile_on(gpu, &source.load(&[])?, &source, size)
+}
+
+/// The one compile of a render: `loaded` (read from `source`) compiled with
+/// `gpu`'s capabilities and limits as inputs, so the schedule is final, then
+/// checked against what the adapter supports (see [`check_schedule_on`]).
+pub fn compile_on(
+    gpu: &Gpu,
+    loaded: &Pipeline,
+    source: &PipelineSource,
+    size: (u32, u32),
+) -> Result<Schedule, SessionError> {
+    let schedule = check_pipeline(loaded, &gpu_options(gpu, size))?;
+    check_schedule_on(gpu, &schedule, source, size)?;
     Ok(schedule)
 }
 
 /// Every problem of `schedule` on `gpu`'s adapter, with `--set
-/// techniques.POINT=NAME` flags that make `pipeline` run there when choosing
+/// techniques.POINT=NAME` flags that make `source` run there when choosing
 /// other techniques for the points at fault does.
 pub fn check_schedule_on(
     gpu: &Gpu,
     schedule: &Schedule,
-    pipeline: &Path,
-    sets: &[String],
+    source: &PipelineSource,
     size: (u32, u32),
 ) -> Result<(), SessionError> {
     let library = plait_passes::library();
@@ -41,8 +53,7 @@ pub fn check_schedule_on(
     let trial = Trial {
         gpu,
         library: &library,
-        pipeline,
-        sets,
+        source,
         size,
     };
     unsupported.suggestion = trial.suggest(schedule, &unsupported.problems);
@@ -52,18 +63,17 @@ pub fn check_schedule_on(
 struct Trial<'a> {
     gpu: &'a Gpu,
     library: &'a PassLibrary,
-    pipeline: &'a Path,
-    sets: &'a [String],
+    source: &'a PipelineSource,
     size: (u32, u32),
 }
 
 impl Trial<'_> {
     /// The problems of the pipeline with `extra` sets, `None` if it does not compile.
     fn problems(&self, extra: &[String]) -> Option<(Schedule, Vec<Problem>)> {
-        let mut sets = self.sets.to_vec();
-        sets.extend(extra.iter().cloned());
-        let schedule =
-            compile_checked(self.pipeline, &sets, &gpu_options(self.gpu, self.size)).ok()?;
+        let schedule = self
+            .source
+            .compile(extra, &gpu_options(self.gpu, self.size))
+            .ok()?;
         let problems = match check_schedule(
             &schedule,
             self.library,
@@ -81,7 +91,7 @@ impl Trial<'_> {
     /// set only if the pipeline then has no problem left. A problem outside
     /// every technique (a pass of the pipeline's own) has no such fix.
     fn suggest(&self, schedule: &Schedule, problems: &[Problem]) -> Option<Vec<String>> {
-        let roots = plait_graph::techniques::TechniqueRoots::for_pipeline(self.pipeline);
+        let roots = plait_graph::techniques::TechniqueRoots::for_pipeline(&self.source.path);
         let mut points: Vec<String> = Vec::new();
         for p in problems {
             let point = point_of(p, schedule)?;

@@ -23,3 +23,4 @@ pub mod frames;
 pub mod overflow;
 pub mod probe;
 pub mod session;
+pub mod source;

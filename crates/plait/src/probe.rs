@@ -246,7 +246,7 @@ fn build_probe<'g>(
     ));
     let compile = |extra: &[String]| {
         let loaded = plait_graph::load_str(&probe_path, &text, &[sets, extra].concat())?;
-        check_pipeline(loaded, &opts)
+        check_pipeline(&loaded, &opts)
     };
     let schedule = compile(&[])?;
     // The reference's bounded buffers hold everything, as when it renders.

@@ -151,15 +151,15 @@ pub fn compile_checked(
     sets: &[String],
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
-    check_pipeline(plait_graph::load(path, sets)?, opts)
+    check_pipeline(&plait_graph::load(path, sets)?, opts)
 }
 
 /// Compile and check a loaded pipeline (see [`compile_checked`]).
 pub fn check_pipeline(
-    pipeline: plait_graph::Pipeline,
+    pipeline: &plait_graph::Pipeline,
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
-    plait_passes::compile(&pipeline, opts)
+    plait_passes::compile(pipeline, opts)
 }
 
 /// A scene's geometry on the CPU, built once and shared by every pipeline rendering it.
@@ -272,12 +272,26 @@ pub fn prepare<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
+    let source = crate::source::PipelineSource::new(pipeline, sets);
+    let schedule = crate::adapter::compile_on(gpu, &source.load(&[])?, &source, size)?;
+    prepare_compiled(gpu, schedule, &source, scene, size)
+}
+
+/// [`prepare`] for a schedule already compiled for `gpu` at `size`
+/// ([`crate::adapter::compile_on`]): nothing is compiled again unless a
+/// bounded buffer the user did not size must grow to hold the first frame.
+pub fn prepare_compiled<'g>(
+    gpu: &'g Gpu,
+    schedule: Schedule,
+    source: &crate::source::PipelineSource,
+    scene: &SceneData,
+    size: (u32, u32),
+) -> Result<Prepared<'g>, SessionError> {
     let opts = gpu_options(gpu, size);
-    let schedule = crate::adapter::check_on_adapter(gpu, pipeline, sets, size)?;
     // A grown buffer changes only sizes, which the executor checks again
     // against the adapter before it allocates anything.
-    let recompile = |extra: &[String]| compile_checked(pipeline, &[sets, extra].concat(), &opts);
-    crate::overflow::prepare_holding(gpu, schedule, &recompile, pipeline, scene, size)
+    let recompile = |extra: &[String]| source.compile(extra, &opts);
+    crate::overflow::prepare_holding(gpu, schedule, &recompile, &source.path, scene, size)
 }
 
 /// Standard inputs for frame `index` of `scene` at `size` as `schedule`

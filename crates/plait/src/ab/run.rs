@@ -16,7 +16,9 @@ use super::measure::{Samples, memory};
 use super::provenance::{pipeline_provenance, provenance};
 use super::{AbError, Plan, ScenePlan, VariantPlan};
 use crate::probe::{ProbeGrid, probe_visibility, visibility_error};
-use crate::session::{Prepared, SessionError, prepare};
+use crate::session::{Prepared, SessionError, prepare_compiled};
+use crate::source::PipelineSource;
+use plait_graph::Schedule;
 
 /// One finished step of a run, for a progress display.
 #[derive(Clone, Copy, Debug)]
@@ -92,18 +94,21 @@ pub fn run(
         callback: progress,
     };
     let files = Files { dir };
-    // Every variant and the reference must run on this adapter before any is built.
+    // Every variant and the reference must run on this adapter before any
+    // is built; the schedules compiled for it serve every scene.
+    let mut schedules = Vec::new();
     for v in &plan.variants {
         let size = plan.options.render_size(v.is_reference);
-        crate::adapter::check_on_adapter(gpu, &v.pipeline, &v.sets, size)
+        let schedule = crate::adapter::check_on_adapter(gpu, &v.pipeline, &v.sets, size)
             .map_err(render_error(format!("pipeline {}", v.label)))?;
+        schedules.push(schedule);
     }
     let mut variants = Vec::new();
     let mut graphs = Vec::new();
     let mut pipelines: Vec<PipelineProvenance> = Vec::new();
     let mut scenes = Vec::new();
     for (index, scene) in plan.scenes.iter().enumerate() {
-        let mut prepared = build_all(plan, gpu, scene, &mut ticker)?;
+        let mut prepared = build_all(plan, &schedules, gpu, scene, &mut ticker)?;
         if index == 0 {
             // Schedules do not depend on the scene: describe them once.
             for (v, p) in plan.variants.iter().zip(&prepared) {
@@ -218,16 +223,22 @@ fn merge_provenance(pipelines: &mut Vec<PipelineProvenance>, new: PipelineProven
 /// Every variant built for `scene`.
 fn build_all<'g>(
     plan: &Plan,
+    schedules: &[Schedule],
     gpu: &'g Gpu,
     scene: &ScenePlan,
     ticker: &mut Ticker<'_>,
 ) -> Result<Vec<Prepared<'g>>, AbError> {
     let mut prepared = Vec::new();
-    for v in &plan.variants {
+    for (v, schedule) in plan.variants.iter().zip(schedules) {
         let size = plan.options.render_size(v.is_reference);
-        let p = prepare(gpu, &v.pipeline, &v.sets, &scene.data, size).map_err(render_error(
-            format!("pipeline {} on scene {}", v.pipeline.display(), scene.name),
-        ))?;
+        let source = PipelineSource::new(&v.pipeline, &v.sets);
+        let p = prepare_compiled(gpu, schedule.clone(), &source, &scene.data, size).map_err(
+            render_error(format!(
+                "pipeline {} on scene {}",
+                v.pipeline.display(),
+                scene.name
+            )),
+        )?;
         ticker.step(format!("{}: built {}", scene.name, v.label))?;
         prepared.push(p);
     }
