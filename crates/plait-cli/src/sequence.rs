@@ -132,7 +132,8 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
         );
     }
     let pending = PendingDir::create(args.out, "frames.json", "frame sequence")?;
-    // The files read before the device is opened; one compile, for it.
+    // Pipeline and scene files are read before the device opens; the one
+    // compile is for the device (its capabilities and limits).
     let source = PipelineSource::new(args.pipeline, args.sets);
     let loaded = source.load(&[])?;
     let data = SceneData::new(args.scene.clone())?;
