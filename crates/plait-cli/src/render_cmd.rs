@@ -126,7 +126,45 @@ pub fn render(
     })
 }
 
+/// What a render did, printed with `PLAIT_COUNT=1`: the test that holds a
+/// render to one load, one compile and one read of the pass library.
+struct Counts {
+    loads: usize,
+    compiles: usize,
+    library_reads: usize,
+}
+
+impl Counts {
+    fn now() -> Self {
+        Counts {
+            loads: plait_graph::counters::loads(),
+            compiles: plait_graph::counters::compiles(),
+            library_reads: plait_passes::library_reads(),
+        }
+    }
+
+    fn report_since(&self) {
+        if std::env::var_os("PLAIT_COUNT").is_none() {
+            return;
+        }
+        let now = Counts::now();
+        eprintln!(
+            "counts: loads={} compiles={} pass_library_reads={}",
+            now.loads - self.loads,
+            now.compiles - self.compiles,
+            now.library_reads - self.library_reads
+        );
+    }
+}
+
 pub fn run(args: RenderArgs) -> Result<()> {
+    let counts = Counts::now();
+    let result = run_counted(args);
+    counts.report_since();
+    result
+}
+
+fn run_counted(args: RenderArgs) -> Result<()> {
     if let Some(frames) = args.frames {
         let pipeline = resolve_pipeline(args.pipeline.as_deref());
         let scene = load_scene(args.scene.as_deref())?;

@@ -17,6 +17,7 @@
 //! ```
 
 pub mod compile;
+pub mod counters;
 pub mod dot;
 pub mod error;
 pub mod expr;
@@ -46,7 +47,7 @@ pub use spec::*;
 pub use value::Value;
 
 pub use compile::fit::{
-    Capabilities as CompileCapabilities, NoShaders, PassCheck, PassChecker, SlotRef,
+    Capabilities as CompileCapabilities, NoShaders, PassCheck, PassChecker, SlotRef, apply_settled,
 };
 pub use compile::{compile, compile_with};
 pub use dot::{to_dot, to_svg};

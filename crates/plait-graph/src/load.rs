@@ -180,6 +180,7 @@ pub struct PassDecl {
 /// Loads a pipeline file, following `extends` and applying `--set` flags
 /// (`overrides` holds the `key=value` texts).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Pipeline, Errors> {
+    crate::counters::LOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     // The file as a whole: a file that cannot be read has no line 1.
     // `plait_assets` reads built-in copies (`<built-in>/…`) too.
     let text = plait_assets::read_to_string(path).map_err(|e| {

@@ -25,6 +25,9 @@ pub mod simulation;
 pub mod spec_util;
 pub mod visibility;
 
+use std::cell::RefCell;
+use std::rc::Rc;
+
 use plait_gpu::Capabilities;
 use plait_gpu::pass::check::ShaderChecker;
 use plait_gpu::pass::{PassLibrary, PassType};
@@ -36,8 +39,55 @@ pub struct RustPassType(pub fn() -> Box<dyn PassType>);
 
 inventory::collect!(RustPassType);
 
-/// Every pass type plait ships.
-pub fn library() -> PassLibrary {
+/// Every pass type plait ships, and those on the search path.
+///
+/// Read once per thread and again only when a pass-type file or its shader
+/// on the search path changes (the viewer edits them live): a render asks
+/// for the library when it compiles, checks against the adapter and builds,
+/// and should parse its files once.
+pub fn library() -> Rc<PassLibrary> {
+    thread_local! {
+        static CACHE: RefCell<Option<(u64, Rc<PassLibrary>)>> = const { RefCell::new(None) };
+    }
+    let stamp = library_stamp();
+    CACHE.with_borrow_mut(|cache| match cache {
+        Some((s, lib)) if *s == stamp => lib.clone(),
+        _ => {
+            let lib = Rc::new(read_library());
+            *cache = Some((stamp, lib.clone()));
+            lib
+        }
+    })
+}
+
+/// How many times this process parsed the pass library's files
+/// ([`library`] reads them again only when they change).
+pub fn library_reads() -> usize {
+    LIBRARY_READS.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+static LIBRARY_READS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// The pass-type files and shaders on the search path, by name, size and
+/// modification time.
+fn library_stamp() -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for ext in ["toml", "wgsl"] {
+        for path in plait_assets::list(data_pass::PASS_TYPE_DIR, ext) {
+            path.hash(&mut h);
+            if let Ok(meta) = std::fs::metadata(&path) {
+                meta.len().hash(&mut h);
+                meta.modified().ok().hash(&mut h);
+            }
+        }
+    }
+    h.finish()
+}
+
+/// Parse every pass type (what [`library`] caches).
+fn read_library() -> PassLibrary {
+    LIBRARY_READS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let mut lib = PassLibrary {
         // The providers' params mean the same in a data-only pass that
         // imports plait::hair_fragment as in the Rust pass types.

@@ -14,13 +14,12 @@ use plait_graph::{PassShape, ScheduledPass};
 
 use super::layout::binding_type;
 use super::pass_type::{BuildContext, PassType, shader_source};
+use super::pipeline::PipelineParts;
 use super::plan::{BindingPlan, BindingSource, binding_aliases, unguardable};
-use super::record::{DrawWhat, ShaderPass, ShaderPassKind};
-use super::state::{DepthMode, RasterState, from_decl};
+use super::record::ShaderPass;
+use super::state::{RasterState, from_decl};
 use crate::GpuError;
 use crate::depth_guard::{DepthGuard, GUARD_BINDING};
-use crate::geometry::{hair_vertex_layout, opaque_vertex_layout};
-use crate::pool::texture_format;
 use crate::shader::Define;
 
 /// One draw (or dispatch) of a shader for a pass.
@@ -122,7 +121,7 @@ pub fn build_shader_pass<T: PassType + ?Sized>(
     Ok(Box::new(build_draw(&draw, pass, ctx)?))
 }
 
-fn pass_error(pass: &ScheduledPass, message: impl Into<String>) -> GpuError {
+pub(super) fn pass_error(pass: &ScheduledPass, message: impl Into<String>) -> GpuError {
     GpuError::Pass {
         pass: pass.name.clone(),
         message: message.into(),
@@ -160,11 +159,65 @@ pub fn build_draw(
     Ok(built)
 }
 
+/// The phases of [`build_draw`], inside its validation scope.
 fn build_inner(
     draw: &ShaderDraw,
     pass: &ScheduledPass,
     ctx: &BuildContext<'_>,
 ) -> Result<ShaderPass, GpuError> {
+    let (plan, guard, module) = plan_and_guard(draw, pass, ctx)?;
+    let is_compute = draw.shape == PassShape::Compute;
+    let (layout_entries, bind_group) = bind_group(&plan, guard, is_compute, pass, ctx)?;
+    let device = ctx.device;
+    let group1_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(&pass.name),
+        entries: &layout_entries,
+    });
+    let bind_group = bind_group(&group1_layout);
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(&pass.name),
+        bind_group_layouts: &[Some(ctx.frame_layout), Some(&group1_layout)],
+        immediate_size: 0,
+    });
+    // The library modules' digest too: they may be edited while plait runs.
+    let library = crate::modules::library_digest();
+    let shader_key = crate::cache::key(&[
+        &draw.path,
+        &draw.source,
+        &library,
+        &draw.defines,
+        &layout_entries,
+        &guard,
+    ]);
+    let parts = PipelineParts {
+        draw,
+        pass,
+        ctx,
+        module,
+        layout,
+        shader_key,
+        shader: std::cell::OnceCell::new(),
+    };
+    let kind = if is_compute {
+        parts.compute()?
+    } else {
+        parts.raster(&plan)?
+    };
+    Ok(ShaderPass {
+        name: pass.name.clone(),
+        kind,
+        bind_group,
+        clears: plan.clears,
+    })
+}
+
+/// Compose the module, plan its bindings, and guard its storage writes
+/// behind the depth test where the hardware cannot ([`DepthGuard`]).
+fn plan_and_guard(
+    draw: &ShaderDraw,
+    pass: &ScheduledPass,
+    ctx: &BuildContext<'_>,
+) -> Result<(BindingPlan, DepthGuard, std::sync::Arc<naga::Module>), GpuError> {
     let module = crate::modules::compose(&draw.path, &draw.source, &draw.defines)?;
     let (plan, errors) = BindingPlan::new(
         &module,
@@ -178,213 +231,25 @@ fn build_inner(
         // `plait check` reports these with their place; here only the first.
         return Err(pass_error(pass, e.kind.to_string()));
     }
-    let is_compute = draw.shape == PassShape::Compute;
-    let state = &draw.state;
-    let guard = match (&plan.depth, is_compute) {
-        (Some(_), false) => DepthGuard::choose(
-            Some(state.depth.compare()),
-            plan.writes_storage,
-            ctx.capabilities.early_depth_test,
-        ),
-        _ => DepthGuard::Unneeded,
-    };
-    if !is_compute && unguardable(&plan, state.depth, ctx.capabilities.early_depth_test).is_some() {
+    if draw.shape == PassShape::Compute || plan.depth.is_none() {
+        return Ok((plan, DepthGuard::Unneeded, module));
+    }
+    let depth = draw.state.depth;
+    let early = ctx.capabilities.early_depth_test;
+    if unguardable(&plan, depth, early).is_some() {
         return Err(GpuError::MissingFeature {
             pass: pass.name.clone(),
             feature: "SHADER_EARLY_DEPTH_TEST (storage writes behind a multisampled or written depth target cannot be tested in the shader)".into(),
             adapter: ctx.adapter_name.to_owned(),
         });
     }
-    let module = if guard == DepthGuard::Unneeded {
-        module
-    } else {
-        let mut guarded = (*module).clone();
-        guard.apply(&mut guarded);
-        std::sync::Arc::new(guarded)
-    };
-
-    let (layout_entries, bind_group) = bind_group(&plan, guard, is_compute, pass, ctx)?;
-    let device = ctx.device;
-    let group1_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(&pass.name),
-        entries: &layout_entries,
-    });
-    let bind_group = bind_group(&group1_layout);
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(&pass.name),
-        bind_group_layouts: &[Some(ctx.frame_layout), Some(&group1_layout)],
-        immediate_size: 0,
-    });
-    // Compiled only when the cache has no pipeline for this shader and state.
-    let shader = std::cell::OnceCell::new();
-    let shader = || {
-        shader.get_or_init(|| {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(&pass.name),
-                source: wgpu::ShaderSource::Naga(Cow::Owned((*module).clone())),
-            })
-        })
-    };
-    // The library modules' digest too: they may be edited while plait runs.
-    let library = crate::modules::library_digest();
-    let shader_key: [&dyn std::fmt::Debug; 6] = [
-        &draw.path,
-        &draw.source,
-        &library,
-        &draw.defines,
-        &layout_entries,
-        &guard,
-    ];
-
-    let kind = if is_compute {
-        let entry = module
-            .entry_points
-            .iter()
-            .find(|e| e.stage == naga::ShaderStage::Compute)
-            .ok_or_else(|| pass_error(pass, "the shader has no @compute entry point"))?;
-        let wg = entry.workgroup_size;
-        let workgroups = [0, 1, 2].map(|i| draw.threads[i].div_ceil(wg[i].max(1)));
-        let key = crate::cache::key(&[&shader_key, &entry.name]);
-        let pipeline = ctx.pipelines.compute(key, || {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(&pass.name),
-                layout: Some(&layout),
-                module: shader(),
-                entry_point: Some(entry.name.as_str()),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        });
-        ShaderPassKind::Compute {
-            pipeline,
-            workgroups,
-        }
-    } else {
-        let what = match draw.shape {
-            PassShape::Fullscreen => DrawWhat::Fullscreen,
-            _ => match pass.draw.as_deref() {
-                Some("hair") => DrawWhat::Hair,
-                Some("opaque") => DrawWhat::Opaque,
-                other => {
-                    return Err(pass_error(
-                        pass,
-                        format!("cannot draw {other:?}: use \"hair\" or \"opaque\""),
-                    ));
-                }
-            },
-        };
-        let color_states: Vec<Option<wgpu::ColorTargetState>> = plan
-            .colors
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                Some(wgpu::ColorTargetState {
-                    format: texture_format(c.format),
-                    blend: state.blend.get(i).copied().flatten(),
-                    write_mask: state
-                        .write_mask
-                        .get(i)
-                        .copied()
-                        .unwrap_or(wgpu::ColorWrites::ALL),
-                })
-            })
-            .collect();
-        let samples = plan
-            .depth
-            .as_ref()
-            .map(|d| d.samples)
-            .or_else(|| plan.colors.last().map(|c| c.samples))
-            .unwrap_or(1);
-        let mut depth = None;
-        let depth_stencil = plan.depth.as_ref().map(|d| {
-            let (write, compare) = match (state.depth, d.written) {
-                (DepthMode::TestWrite(c), true) => (true, c),
-                (DepthMode::TestWrite(c), false) | (DepthMode::TestOnly(c), _) => (false, c),
-            };
-            depth = Some((d.resource, d.loads || !d.written, write));
-            wgpu::DepthStencilState {
-                format: texture_format(d.format),
-                depth_write_enabled: Some(write),
-                depth_compare: Some(compare),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }
-        });
-        let vertex_layouts = match what {
-            DrawWhat::Hair => vec![Some(hair_vertex_layout())],
-            DrawWhat::Opaque => vec![Some(opaque_vertex_layout())],
-            DrawWhat::Fullscreen => vec![],
-        };
-        let has_fragment = module
-            .entry_points
-            .iter()
-            .any(|e| e.stage == naga::ShaderStage::Fragment);
-        let primitive = wgpu::PrimitiveState {
-            topology: if what == DrawWhat::Hair {
-                wgpu::PrimitiveTopology::LineList
-            } else {
-                wgpu::PrimitiveTopology::TriangleList
-            },
-            cull_mode: state.cull_mode,
-            front_face: wgpu::FrontFace::Ccw,
-            ..Default::default()
-        };
-        let multisample = wgpu::MultisampleState {
-            count: samples,
-            mask: !0,
-            alpha_to_coverage_enabled: state.alpha_to_coverage,
-        };
-        let key = crate::cache::key(&[
-            &shader_key,
-            &primitive,
-            &depth_stencil,
-            &multisample,
-            &color_states,
-            &vertex_layouts,
-            &has_fragment,
-        ]);
-        let pipeline = ctx.pipelines.render(key, || {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&pass.name),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: shader(),
-                    entry_point: None,
-                    compilation_options: Default::default(),
-                    buffers: &vertex_layouts,
-                },
-                primitive,
-                depth_stencil: depth_stencil.clone(),
-                multisample,
-                fragment: has_fragment.then(|| wgpu::FragmentState {
-                    module: shader(),
-                    entry_point: None,
-                    compilation_options: Default::default(),
-                    targets: &color_states,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        });
-        ShaderPassKind::Raster {
-            pipeline,
-            colors: plan
-                .colors
-                .iter()
-                .map(|c| (c.resource, c.loads || state.load_colors))
-                .collect(),
-            resolves: plan.colors.iter().map(|c| c.resolve).collect(),
-            depth,
-            state: state.clone(),
-            draw: what,
-        }
-    };
-    Ok(ShaderPass {
-        name: pass.name.clone(),
-        kind,
-        bind_group,
-        clears: plan.clears,
-    })
+    let guard = DepthGuard::choose(Some(depth.compare()), plan.writes_storage, early);
+    if guard == DepthGuard::Unneeded {
+        return Ok((plan, guard, module));
+    }
+    let mut guarded = (*module).clone();
+    guard.apply(&mut guarded);
+    Ok((plan, guard, std::sync::Arc::new(guarded)))
 }
 
 type MakeBindGroup<'a> = Box<dyn FnOnce(&wgpu::BindGroupLayout) -> Option<wgpu::BindGroup> + 'a>;

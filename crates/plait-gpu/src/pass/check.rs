@@ -6,8 +6,8 @@
 //! capabilities.
 
 use plait_graph::{
-    Access, Error as GraphError, ErrorKind, Location, PassCheck, PassChecker, PassShape,
-    ResolvedResource, ScheduledPass, SlotRef,
+    Error as GraphError, ErrorKind, Location, PassCheck, PassChecker, PassShape, ResolvedResource,
+    ScheduledPass,
 };
 
 use super::pass_type::{PassLibrary, PassType, shader_source};
@@ -141,28 +141,9 @@ pub fn check_pass(
         &binding_aliases(&spec),
     );
     errors.extend(plan_errors);
-    let settled: Vec<(SlotRef, Access)> = plan
-        .settled
-        .iter()
-        .map(|&(is_write, i, access)| {
-            let slot = if is_write {
-                SlotRef::Write(i)
-            } else {
-                SlotRef::Read(i)
-            };
-            (slot, access)
-        })
-        .collect();
     // The state is read from the pass as it will be: accesses settled.
     let mut settled_pass = pass.clone();
-    for &(is_write, i, access) in &plan.settled {
-        let list = if is_write {
-            &mut settled_pass.writes
-        } else {
-            &mut settled_pass.reads
-        };
-        list[i].access = access;
-    }
+    plait_graph::apply_settled(&mut settled_pass, &plan.settled);
     let mut blended = Vec::new();
     if spec.state_from_data && spec.shape != PassShape::Compute {
         let decl = t.raster_decl(&settled_pass);
@@ -183,7 +164,7 @@ pub fn check_pass(
     }
     PassCheck {
         errors,
-        settled,
+        settled: plan.settled,
         blended,
     }
 }

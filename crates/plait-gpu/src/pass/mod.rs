@@ -17,7 +17,7 @@
 //! By concern: [`pass_type`] (the trait, its contexts, the library),
 //! [`defaults`] (defines and thread counts a type gets unless it says
 //! otherwise), [`state`] (fixed-function state, from Rust or from TOML),
-//! [`layout`] (bind group layouts), [`plan`] (which shader binding each slot feeds — computed once per pass
+//! [`layout`] (bind group layouts), `pipeline` (the cached wgpu pipeline of a draw), [`plan`] (which shader binding each slot feeds — computed once per pass
 //! from the schedule and naga's reflection, used by `plait check`, build and
 //! record), [`build`] (bind groups and pipelines) and [`record`] (commands).
 
@@ -27,6 +27,7 @@ pub mod defaults;
 pub mod layout;
 pub mod param_use;
 pub mod pass_type;
+mod pipeline;
 pub mod plan;
 pub mod record;
 pub mod state;
@@ -40,5 +41,5 @@ pub use pass_type::{
 };
 pub use plait_graph::raster_decl::BlendPreset;
 pub use plan::BindingPlan;
-pub use record::{DrawWhat, ShaderPass, ShaderPassKind};
+pub use record::{ColorAttachment, DepthAttachment, DrawWhat, ShaderPass, ShaderPassKind};
 pub use state::{DepthMode, RasterState, blend_preset};

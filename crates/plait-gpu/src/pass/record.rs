@@ -15,10 +15,8 @@ pub struct ShaderPass {
 pub enum ShaderPassKind {
     Raster {
         pipeline: wgpu::RenderPipeline,
-        colors: Vec<(plait_graph::ResourceId, bool)>,
-        /// Per colour target: the single-sampled texture its samples resolve into.
-        resolves: Vec<Option<plait_graph::ResourceId>>,
-        depth: Option<(plait_graph::ResourceId, bool, bool)>,
+        colors: Vec<ColorAttachment>,
+        depth: Option<DepthAttachment>,
         state: RasterState,
         draw: DrawWhat,
     },
@@ -26,6 +24,26 @@ pub enum ShaderPassKind {
         pipeline: wgpu::ComputePipeline,
         workgroups: [u32; 3],
     },
+}
+
+/// A colour target as the render pass attaches it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ColorAttachment {
+    pub resource: plait_graph::ResourceId,
+    /// Keep the contents, else clear to the state's clear colour.
+    pub loads: bool,
+    /// The single-sampled texture the samples resolve into.
+    pub resolve: Option<plait_graph::ResourceId>,
+}
+
+/// The depth target as the render pass attaches it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthAttachment {
+    pub resource: plait_graph::ResourceId,
+    /// Keep the contents, else clear to the state's clear depth.
+    pub loads: bool,
+    /// The pipeline writes depth.
+    pub writes: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,58 +95,68 @@ impl ShaderPass {
             ShaderPassKind::Raster {
                 pipeline,
                 colors,
-                resolves,
                 depth,
                 state,
                 draw,
             } => {
                 let color_attachments: Vec<_> = colors
                     .iter()
-                    .zip(resolves)
-                    .map(|(&(id, loads), resolve)| {
+                    .map(
+                        |&ColorAttachment {
+                             resource,
+                             loads,
+                             resolve,
+                         }| {
+                            let view = ctx
+                                .pool
+                                .texture(resource)
+                                .map(|(_, v)| v)
+                                .expect("colour targets are textures (checked at build)");
+                            Some(wgpu::RenderPassColorAttachment {
+                                view,
+                                depth_slice: None,
+                                resolve_target: resolve
+                                    .and_then(|r| ctx.pool.texture(r))
+                                    .map(|(_, v)| v),
+                                ops: wgpu::Operations {
+                                    load: if loads {
+                                        wgpu::LoadOp::Load
+                                    } else {
+                                        wgpu::LoadOp::Clear(state.clear_color)
+                                    },
+                                    store: wgpu::StoreOp::Store,
+                                },
+                            })
+                        },
+                    )
+                    .collect();
+                let depth_attachment = depth.map(
+                    |DepthAttachment {
+                         resource,
+                         loads,
+                         writes,
+                     }| {
                         let view = ctx
                             .pool
-                            .texture(id)
+                            .texture(resource)
                             .map(|(_, v)| v)
-                            .expect("colour targets are textures (checked at build)");
-                        Some(wgpu::RenderPassColorAttachment {
+                            .expect("depth targets are textures (checked at build)");
+                        wgpu::RenderPassDepthStencilAttachment {
                             view,
-                            depth_slice: None,
-                            resolve_target: resolve
-                                .and_then(|r| ctx.pool.texture(r))
-                                .map(|(_, v)| v),
-                            ops: wgpu::Operations {
+                            // Only tested, never written: attached read-only, so the
+                            // pass may also sample it (fragment lists test it by hand).
+                            depth_ops: (writes || !loads).then_some(wgpu::Operations {
                                 load: if loads {
                                     wgpu::LoadOp::Load
                                 } else {
-                                    wgpu::LoadOp::Clear(state.clear_color)
+                                    wgpu::LoadOp::Clear(state.clear_depth)
                                 },
                                 store: wgpu::StoreOp::Store,
-                            },
-                        })
-                    })
-                    .collect();
-                let depth_attachment = depth.map(|(id, loads, write)| {
-                    let view = ctx
-                        .pool
-                        .texture(id)
-                        .map(|(_, v)| v)
-                        .expect("depth targets are textures (checked at build)");
-                    wgpu::RenderPassDepthStencilAttachment {
-                        view,
-                        // Only tested, never written: attached read-only, so the
-                        // pass may also sample it (fragment lists test it by hand).
-                        depth_ops: (write || !loads).then_some(wgpu::Operations {
-                            load: if loads {
-                                wgpu::LoadOp::Load
-                            } else {
-                                wgpu::LoadOp::Clear(state.clear_depth)
-                            },
-                            store: wgpu::StoreOp::Store,
-                        }),
-                        stencil_ops: None,
-                    }
-                });
+                            }),
+                            stencil_ops: None,
+                        }
+                    },
+                );
                 let mut rpass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some(&self.name),
                     color_attachments: &color_attachments,

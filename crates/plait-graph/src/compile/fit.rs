@@ -11,7 +11,7 @@
 
 use crate::error::Error;
 use crate::format::Format;
-use crate::schedule::{ResolvedResource, ResourceDesc, ResourceId, ScheduledPass};
+use crate::schedule::{Binding, ResolvedResource, ResourceDesc, ResourceId, ScheduledPass};
 use crate::spec::Access;
 
 /// What the adapter can do that changes a schedule (not merely refuses it).
@@ -39,6 +39,45 @@ impl Default for Capabilities {
 pub enum SlotRef {
     Read(usize),
     Write(usize),
+}
+
+impl SlotRef {
+    /// Every slot of `pass`, reads first, with its binding.
+    pub fn all(pass: &ScheduledPass) -> impl Iterator<Item = (SlotRef, &Binding)> {
+        let reads = pass.reads.iter().enumerate();
+        let writes = pass.writes.iter().enumerate();
+        reads
+            .map(|(i, b)| (SlotRef::Read(i), b))
+            .chain(writes.map(|(i, b)| (SlotRef::Write(i), b)))
+    }
+
+    pub fn is_write(self) -> bool {
+        matches!(self, SlotRef::Write(_))
+    }
+
+    /// The binding this refers to in `pass`, if it has that many slots.
+    pub fn get(self, pass: &ScheduledPass) -> Option<&Binding> {
+        match self {
+            SlotRef::Read(i) => pass.reads.get(i),
+            SlotRef::Write(i) => pass.writes.get(i),
+        }
+    }
+
+    pub fn get_mut(self, pass: &mut ScheduledPass) -> Option<&mut Binding> {
+        match self {
+            SlotRef::Read(i) => pass.reads.get_mut(i),
+            SlotRef::Write(i) => pass.writes.get_mut(i),
+        }
+    }
+}
+
+/// Give `pass`'s slots the accesses a checker settled.
+pub fn apply_settled(pass: &mut ScheduledPass, settled: &[(SlotRef, Access)]) {
+    for &(slot, access) in settled {
+        if let Some(b) = slot.get_mut(pass) {
+            b.access = access;
+        }
+    }
 }
 
 /// What checking one pass against its shader found.
@@ -86,15 +125,7 @@ pub(super) fn check_passes<'p>(
     for pass in passes {
         let found = checker.check_pass(pass, resources);
         errors.extend(found.errors);
-        for (slot, access) in found.settled {
-            let binding = match slot {
-                SlotRef::Read(i) => pass.reads.get_mut(i),
-                SlotRef::Write(i) => pass.writes.get_mut(i),
-            };
-            if let Some(b) = binding {
-                b.access = access;
-            }
-        }
+        apply_settled(pass, &found.settled);
         blended.extend(found.blended);
     }
     (errors, blended)

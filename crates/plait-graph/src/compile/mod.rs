@@ -52,6 +52,7 @@ pub fn compile_with(
     opts: &CompileOptions,
     checker: &dyn fit::PassChecker,
 ) -> Result<Schedule, Errors> {
+    crate::counters::COMPILES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let mut errors = Vec::new();
 
     // Resource descriptors, indexed like `pipeline.resources`.

@@ -1,0 +1,113 @@
+//! The attachments and clears of a binding plan, which follow from the
+//! accesses as settled: colour targets (with their MSAA resolves), the depth
+//! target, and the storage buffers that start the pass zeroed.
+
+use plait_graph::{Access, Binding, SlotRef};
+
+use super::{ColorTarget, DepthTarget, Planner};
+
+impl<'a> Planner<'a> {
+    /// Fill the plan's colours, clears and depth target.
+    pub(super) fn attachments(&mut self) {
+        let settled: Vec<(SlotRef, Access, &'a Binding)> = SlotRef::all(self.pass)
+            .map(|(slot, b)| (slot, self.access_of(slot, b.access), b))
+            .collect();
+        let writes: Vec<(Access, &Binding)> = settled
+            .iter()
+            .filter(|(s, _, _)| s.is_write())
+            .map(|&(_, a, b)| (a, b))
+            .collect();
+        let color_slots: Vec<&str> = writes
+            .iter()
+            .filter(|(a, _)| *a == Access::ColorTarget)
+            .map(|(_, b)| b.slot.as_str())
+            .collect();
+        let resolve_of = |slot: &str| {
+            slot.strip_suffix("_resolve")
+                .is_some_and(|base| color_slots.contains(&base))
+        };
+        for &(a, b) in &writes {
+            match a {
+                Access::ColorTarget if !resolve_of(&b.slot) => self.color_target(b, &writes),
+                // Storage textures are not zeroed: clearing one needs
+                // CLEAR_TEXTURE, which core WebGPU lacks; their kernels write
+                // every texel (the lighting maps, the environment cube).
+                Access::StorageWrite if !b.loads && self.texture(b.resource).is_none() => {
+                    self.plan.clears.push(b.resource)
+                }
+                _ => {}
+            }
+        }
+        // Written depth first: a pass that writes depth tests against it.
+        let depth = settled
+            .iter()
+            .filter(|(_, a, _)| *a == Access::DepthTarget)
+            .min_by_key(|(s, _, _)| !s.is_write());
+        self.plan.depth = depth.and_then(|&(slot, _, b)| {
+            let (format, samples) = self.texture(b.resource)?;
+            Some(DepthTarget {
+                slot: b.slot.clone(),
+                resource: b.resource,
+                format,
+                samples,
+                written: slot.is_write(),
+                loads: b.loads,
+            })
+        });
+    }
+
+    /// A colour target, with the `<slot>_resolve` target its samples
+    /// resolve into if the pass writes one.
+    fn color_target(&mut self, b: &Binding, writes: &[(Access, &Binding)]) {
+        let Some((format, samples)) = self.texture(b.resource) else {
+            if self.resources.get(b.resource).is_some() {
+                let message = format!("colour target `{}` is not a texture", b.slot);
+                self.error(&b.location, message);
+            }
+            return;
+        };
+        let resolve = writes
+            .iter()
+            .find(|(_, r)| r.slot == format!("{}_resolve", b.slot))
+            .map(|(_, r)| *r);
+        if let Some(r) = resolve {
+            self.check_resolve(b, r, format, samples);
+        }
+        self.plan.colors.push(ColorTarget {
+            slot: b.slot.clone(),
+            resource: b.resource,
+            format,
+            samples,
+            loads: b.loads,
+            resolve: resolve.map(|r| r.resource),
+        });
+    }
+
+    /// wgpu resolves only a multisampled target into a single-sampled one of
+    /// the same format: say so at load, not as a validation error mid-frame.
+    fn check_resolve(
+        &mut self,
+        b: &Binding,
+        r: &Binding,
+        format: plait_graph::Format,
+        samples: u32,
+    ) {
+        let Some((resolve_format, resolve_samples)) = self.texture(r.resource) else {
+            return;
+        };
+        if samples >= 2 && resolve_samples == 1 && resolve_format == format {
+            return;
+        }
+        let name = |i: usize| self.resources.get(i).map_or("?", |r| r.name.as_str());
+        let message = format!(
+            "`{}` (slot `{}`, {samples} sample(s), {}) cannot be resolved into `{}` (slot `{}`, {resolve_samples} sample(s), {}): a resolve needs a multisampled colour target (samples 4) and a single-sampled target of the same format",
+            name(b.resource),
+            b.slot,
+            format.name(),
+            name(r.resource),
+            r.slot,
+            resolve_format.name(),
+        );
+        self.error(&r.location, message);
+    }
+}
