@@ -64,14 +64,25 @@ pub struct Library {
 pub fn library_files() -> Vec<(String, PathBuf)> {
     let mut files: Vec<(String, PathBuf)> = MODULE_FOLDERS
         .iter()
-        .flat_map(|f| plait_assets::list_tree(f, "wgsl"))
+        .flat_map(|f| list_tree(f, "wgsl"))
         .collect();
     files.extend(
-        plait_assets::list_tree(plait_graph::techniques::TECHNIQUES_DIR, "toml")
+        list_tree(plait_graph::techniques::TECHNIQUES_DIR, "toml")
             .into_iter()
             .filter(|(key, _)| key.ends_with(&format!("/{POINT_FILE}"))),
     );
     files
+}
+
+/// The files of `folder` with extension `ext`, nearest copy of each: a
+/// loaded pipeline's own `techniques/` before the search path's
+/// ([`plait_assets::technique_roots`]), the built-in copies last.
+fn list_tree(folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
+    if folder == plait_graph::techniques::TECHNIQUES_DIR {
+        plait_assets::list_tree_in(&plait_assets::technique_roots(), folder, ext)
+    } else {
+        plait_assets::list_tree(folder, ext)
+    }
 }
 
 /// The library as found now: read again only when a file of it changed
@@ -95,7 +106,7 @@ pub fn discover() -> Result<Arc<Library>, ShaderError> {
 fn read_library() -> Result<Library, ShaderError> {
     let mut found: BTreeMap<String, LibraryModule> = BTreeMap::new();
     for folder in MODULE_FOLDERS {
-        for (key, path) in plait_assets::list_tree(folder, "wgsl") {
+        for (key, path) in list_tree(folder, "wgsl") {
             let source = plait_assets::read_to_string(&path)
                 .map_err(|e| ShaderError {
                     message: format!("{}: cannot read file: {e}", path.display()),

@@ -69,10 +69,12 @@ pub fn library_reads() -> usize {
 static LIBRARY_READS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
 /// The pass-type files and shaders on the search path, by name, size and
-/// modification time.
+/// modification time, and the shader library's stamp (the providers found
+/// are the choices of the shared params).
 fn library_stamp() -> u64 {
     use std::hash::{Hash, Hasher};
     let mut h = std::collections::hash_map::DefaultHasher::new();
+    plait_gpu::modules::library_stamp().hash(&mut h);
     for ext in ["toml", "wgsl"] {
         for path in plait_assets::list(data_pass::PASS_TYPE_DIR, ext) {
             path.hash(&mut h);

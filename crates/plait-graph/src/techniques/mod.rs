@@ -67,7 +67,7 @@ pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 /// The techniques folder beside `pipeline`: its own folder's, or an
 /// ancestor's — relative to the working directory when it is below it, so
 /// messages name `techniques/…` as a user would.
-fn techniques_beside(pipeline: &Path) -> Option<PathBuf> {
+pub(crate) fn techniques_beside(pipeline: &Path) -> Option<PathBuf> {
     let dir = pipeline.parent().unwrap_or(Path::new(""));
     let absolute = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
     let found = absolute

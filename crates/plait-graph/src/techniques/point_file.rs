@@ -313,7 +313,11 @@ fn split_signature(text: &str) -> Option<(String, String, String)> {
 pub fn wgsl_points() -> Result<Vec<WgslPoint>, Errors> {
     let mut points = Vec::new();
     let mut errors = Vec::new();
-    for (key, path) in plait_assets::list_tree(super::TECHNIQUES_DIR, "toml") {
+    for (key, path) in plait_assets::list_tree_in(
+        &plait_assets::technique_roots(),
+        super::TECHNIQUES_DIR,
+        "toml",
+    ) {
         let parts: Vec<&str> = key.split('/').collect();
         let [_, point, file] = parts.as_slice() else {
             continue;
