@@ -234,6 +234,53 @@ fn read_slot(
     output: bool,
 ) -> Option<(SlotSpec, Option<WordsPerTexel>)> {
     r.keys(t, SLOT_KEYS, ctx);
+    let (kind, access) = read_kind_and_access(r, t, location, ctx, output)?;
+    let formats = match t.get("formats") {
+        None => Formats::Any,
+        Some(e) => read_formats(r, e, ctx)?,
+    };
+    let flag = |r: &mut Reader<'_>, key: &str| match t.get(key) {
+        Some(e) => r.bool(&e.value, &format!("{ctx}.{key}")).unwrap_or(false),
+        None => false,
+    };
+    let optional = flag(r, "optional");
+    let loads = flag(r, "loads");
+    let doc = match t.get("doc") {
+        Some(e) => r.string(&e.value, &format!("{ctx}.doc"))?,
+        None => String::new(),
+    };
+    let binding = match t.get("binding") {
+        Some(e) => Some(r.string(&e.value, &format!("{ctx}.binding"))?),
+        None => None,
+    };
+    let words = match t.get("words_per_texel") {
+        None => None,
+        Some(e) => Some(read_words_per_texel(r, name, kind, e, ctx)?),
+    };
+    Some((
+        SlotSpec {
+            name: name.to_owned(),
+            kind,
+            access,
+            formats,
+            loads,
+            optional,
+            doc,
+            binding,
+        },
+        words,
+    ))
+}
+
+/// A slot's `kind` and `access` (one its kind allows); a written access
+/// outside [outputs] is reported.
+fn read_kind_and_access(
+    r: &mut Reader<'_>,
+    t: &Table,
+    location: &Location,
+    ctx: &str,
+    output: bool,
+) -> Option<(ResourceKind, Access)> {
     let need = |r: &mut Reader<'_>, key: &str| {
         let e = t.get(key);
         if e.is_none() {
@@ -269,96 +316,74 @@ fn read_slot(
             format!("{ctx}: a written slot (`{access}`) belongs under [outputs]"),
         );
     }
-    let formats = match t.get("formats") {
-        None => Formats::Any,
-        Some(e) => {
-            let mut list = Vec::new();
-            for s in r.strings(&e.value, &format!("{ctx}.formats"))? {
-                match s.parse::<Format>() {
-                    Ok(f) => list.push(f),
-                    Err(_) => r.schema(
-                        &e.value.location,
-                        format!(
-                            "{ctx}.formats: unknown format `{s}`{}",
-                            crate::suggest::did_you_mean(&s, Format::ALL.iter().map(|f| f.name()))
-                        ),
-                    ),
-                }
-            }
-            Formats::OneOf(list)
+    Some((kind, access))
+}
+
+/// A slot's `formats` list; unknown names are reported and left out.
+fn read_formats(r: &mut Reader<'_>, e: &crate::load::Entry, ctx: &str) -> Option<Formats> {
+    let mut list = Vec::new();
+    for s in r.strings(&e.value, &format!("{ctx}.formats"))? {
+        match s.parse::<Format>() {
+            Ok(f) => list.push(f),
+            Err(_) => r.schema(
+                &e.value.location,
+                format!(
+                    "{ctx}.formats: unknown format `{s}`{}",
+                    crate::suggest::did_you_mean(&s, Format::ALL.iter().map(|f| f.name()))
+                ),
+            ),
         }
+    }
+    Some(Formats::OneOf(list))
+}
+
+/// Slot `name`'s `words_per_texel` table.
+fn read_words_per_texel(
+    r: &mut Reader<'_>,
+    name: &str,
+    kind: ResourceKind,
+    e: &crate::load::Entry,
+    ctx: &str,
+) -> Option<WordsPerTexel> {
+    let wctx = format!("{ctx}.words_per_texel");
+    let wt = r.table(&e.value, &wctx)?;
+    r.keys(wt, WORDS_KEYS, &wctx);
+    if kind != ResourceKind::Buffer {
+        r.schema(
+            &e.key,
+            format!("{wctx}: only a buffer holds words per texel"),
+        );
+    }
+    let Some(of) = wt.get("of") else {
+        r.schema(
+            &e.value.location,
+            format!("{wctx} needs `of` (a texture slot)"),
+        );
+        return None;
     };
-    let flag = |r: &mut Reader<'_>, key: &str| match t.get(key) {
-        Some(e) => r.bool(&e.value, &format!("{ctx}.{key}")).unwrap_or(false),
-        None => false,
-    };
-    let optional = flag(r, "optional");
-    let loads = flag(r, "loads");
-    let doc = match t.get("doc") {
-        Some(e) => r.string(&e.value, &format!("{ctx}.doc"))?,
-        None => String::new(),
-    };
-    let binding = match t.get("binding") {
-        Some(e) => Some(r.string(&e.value, &format!("{ctx}.binding"))?),
-        None => None,
-    };
-    let words = match t.get("words_per_texel") {
-        None => None,
-        Some(e) => {
-            let wctx = format!("{ctx}.words_per_texel");
-            let wt = r.table(&e.value, &wctx)?;
-            r.keys(wt, WORDS_KEYS, &wctx);
-            if kind != ResourceKind::Buffer {
+    let positive = |r: &mut Reader<'_>, key: &str, default: u64| match wt.get(key) {
+        None => Some(default),
+        Some(v) => match r.int(&v.value, &format!("{wctx}.{key}"))? {
+            n if n >= 1 => Some(n as u64),
+            _ => {
                 r.schema(
-                    &e.key,
-                    format!("{wctx}: only a buffer holds words per texel"),
+                    &v.value.location,
+                    format!("{wctx}.{key} must be at least 1"),
                 );
+                None
             }
-            let Some(of) = wt.get("of") else {
-                r.schema(
-                    &e.value.location,
-                    format!("{wctx} needs `of` (a texture slot)"),
-                );
-                return None;
-            };
-            let positive = |r: &mut Reader<'_>, key: &str, default: u64| match wt.get(key) {
-                None => Some(default),
-                Some(v) => match r.int(&v.value, &format!("{wctx}.{key}"))? {
-                    n if n >= 1 => Some(n as u64),
-                    _ => {
-                        r.schema(
-                            &v.value.location,
-                            format!("{wctx}.{key} must be at least 1"),
-                        );
-                        None
-                    }
-                },
-            };
-            Some(WordsPerTexel {
-                slot: name.to_owned(),
-                of: r.string(&of.value, &format!("{wctx}.of"))?,
-                multiple: positive(r, "multiple", 1)?,
-                max: positive(r, "max", u64::from(u32::MAX))?,
-                hint: match wt.get("hint") {
-                    Some(h) => Some(r.string(&h.value, &format!("{wctx}.hint"))?),
-                    None => None,
-                },
-            })
-        }
-    };
-    Some((
-        SlotSpec {
-            name: name.to_owned(),
-            kind,
-            access,
-            formats,
-            loads,
-            optional,
-            doc,
-            binding,
         },
-        words,
-    ))
+    };
+    Some(WordsPerTexel {
+        slot: name.to_owned(),
+        of: r.string(&of.value, &format!("{wctx}.of"))?,
+        multiple: positive(r, "multiple", 1)?,
+        max: positive(r, "max", u64::from(u32::MAX))?,
+        hint: match wt.get("hint") {
+            Some(h) => Some(r.string(&h.value, &format!("{wctx}.hint"))?),
+            None => None,
+        },
+    })
 }
 
 fn read_param(

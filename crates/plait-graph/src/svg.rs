@@ -18,6 +18,12 @@ use std::fmt::Write as _;
 use crate::schedule::{Binding, DROPPED_RESOURCE, ResourceDesc, Schedule, ScheduledPass};
 use crate::spec::ResourceKind;
 
+mod measure;
+use measure::{
+    header_len, label_geometry, picture_width, row_labels, sharing_notes, technique_entries,
+    technique_labels,
+};
+
 const FONT: &str = "DejaVu Sans, Verdana, Arial, sans-serif";
 const FONT_SIZE: f64 = 12.0;
 /// Average advance of a character at `FONT_SIZE`, regular and bold (no font
@@ -139,227 +145,260 @@ fn mark_of(pass: &ScheduledPass, resource: usize) -> Option<Mark> {
 
 /// The SVG picture of `schedule` (see the module docs).
 pub fn schedule_svg(schedule: &Schedule) -> String {
-    let rows: Vec<(&ScheduledPass, bool)> = schedule
-        .passes
-        .iter()
-        .map(|p| (p, false))
-        .chain(schedule.culled.iter().map(|c| (&c.pass, true)))
-        .collect();
-    // Columns in order of first use; ties (written by the same pass) by name
-    // order in the file.
-    let mut columns: Vec<usize> = (0..schedule.resources.len()).collect();
-    columns.sort_by_key(|&r| (schedule.resources[r].first_use, r));
+    let layout = Layout::new(schedule);
+    let mut out = String::new();
+    layout.write_title(&mut out);
+    layout.write_headers(&mut out);
+    layout.write_rows(&mut out);
+    for (c, &r) in layout.columns.iter().enumerate() {
+        layout.write_column(&mut out, c, r);
+    }
+    layout.write_legend_key(&mut out);
+    layout.write_legend_notes(&mut out);
+    out.push_str("</svg>\n");
+    out
+}
 
-    let row_labels: Vec<(String, String)> = rows
-        .iter()
-        .map(|(p, culled)| {
-            let kind = if *culled {
-                format!("{} (culled)", p.type_name)
-            } else {
-                p.type_name.clone()
-            };
-            (p.name.clone(), kind)
-        })
-        .collect();
-    // Pass names in bold, their types in a second aligned column.
-    let name_w = row_labels
-        .iter()
-        .map(|(n, _)| bold_width(n))
-        .fold(0.0, f64::max);
-    let kind_x = MARGIN + 8.0 + name_w + 10.0;
-    let label_w = row_labels
-        .iter()
-        .map(|(_, k)| kind_x - MARGIN + text_width(k))
-        .fold(text_width("output"), f64::max)
-        + 14.0;
-    let headers: Vec<(String, String)> = columns
-        .iter()
-        .map(|&r| {
-            let res = &schedule.resources[r];
-            (res.name.clone(), short_desc(&res.desc))
-        })
-        .collect();
-    let header_len = |(n, d): &(String, String)| bold_width(n) + 8.0 + text_width(d);
-    let header_h = HEADER_STEP * headers.len() as f64 + 8.0;
+/// Where everything goes in the picture, worked out before drawing.
+struct Layout<'s> {
+    schedule: &'s Schedule,
+    /// Live passes in execution order, then culled ones (`true`).
+    rows: Vec<(&'s ScheduledPass, bool)>,
+    /// Resource ids, in column order.
+    columns: Vec<usize>,
+    /// Per row: the pass name and its type.
+    row_labels: Vec<(String, String)>,
+    /// Per column: the resource name and its short description.
+    headers: Vec<(String, String)>,
+    kind_x: f64,
+    label_w: f64,
+    grid_x: f64,
+    top: f64,
+    legend_y: f64,
+    notes: Vec<String>,
+    technique_labels: Vec<String>,
+    technique_entries: Vec<(String, f64)>,
+    technique_lines: Vec<Vec<(usize, f64)>>,
+    technique_y: f64,
+    width: f64,
+    height: f64,
+}
 
-    let grid_x = MARGIN + label_w + 10.0;
-    let col_x = |c: usize| grid_x + COL_W * (c as f64 + 0.5);
-    let top = MARGIN + TITLE_H + header_h;
-    // Live passes, then the output line, then culled passes.
-    let live = schedule.passes.len();
-    let slot_y = |slot: usize| top + ROW_H * (slot as f64 + 0.5);
-    let row_y = |i: usize| slot_y(if i < live { i } else { i + 1 });
-    let output_y = slot_y(live);
-    let grid_bottom = top + ROW_H * (rows.len() as f64 + 1.0);
-    let legend_y = grid_bottom + 22.0;
-    let header_right = headers
-        .iter()
-        .enumerate()
-        .map(|(c, h)| col_x(c) - 4.0 + header_len(h))
-        .fold(grid_x + COL_W * columns.len() as f64, f64::max);
-    let mut notes = Vec::new();
-    for physical in &schedule.physical {
-        if physical.users.len() > 1 {
-            let names: Vec<&str> = physical
-                .users
-                .iter()
-                .map(|&u| schedule.resources[u].name.as_str())
-                .collect();
-            notes.push(format!("one allocation for {}", names.join(", ")));
+/// The x of column `c`'s line in a grid starting at `grid_x`.
+fn column_x(grid_x: f64, c: usize) -> f64 {
+    grid_x + COL_W * (c as f64 + 0.5)
+}
+
+impl<'s> Layout<'s> {
+    /// Lays out the rows, columns, labels and legend of `schedule`.
+    fn new(schedule: &'s Schedule) -> Self {
+        let rows: Vec<(&ScheduledPass, bool)> = schedule
+            .passes
+            .iter()
+            .map(|p| (p, false))
+            .chain(schedule.culled.iter().map(|c| (&c.pass, true)))
+            .collect();
+        // Columns in order of first use; ties (written by the same pass) by name
+        // order in the file.
+        let mut columns: Vec<usize> = (0..schedule.resources.len()).collect();
+        columns.sort_by_key(|&r| (schedule.resources[r].first_use, r));
+
+        let row_labels = row_labels(&rows);
+        let (kind_x, label_w) = label_geometry(&row_labels);
+        let headers: Vec<(String, String)> = columns
+            .iter()
+            .map(|&r| {
+                let res = &schedule.resources[r];
+                (res.name.clone(), short_desc(&res.desc))
+            })
+            .collect();
+        let header_h = HEADER_STEP * headers.len() as f64 + 8.0;
+
+        let grid_x = MARGIN + label_w + 10.0;
+        let top = MARGIN + TITLE_H + header_h;
+        let grid_bottom = top + ROW_H * (rows.len() as f64 + 1.0);
+        let legend_y = grid_bottom + 22.0;
+        let header_right = headers
+            .iter()
+            .enumerate()
+            .map(|(c, h)| column_x(grid_x, c) - 4.0 + header_len(h))
+            .fold(grid_x + COL_W * columns.len() as f64, f64::max);
+        let notes = sharing_notes(schedule);
+        let technique_labels = technique_labels(schedule, &rows);
+        let technique_entries = technique_entries(&technique_labels);
+        let width = picture_width(header_right, &notes, &technique_entries);
+        let technique_lines = wrap_entries(&technique_entries, width - MARGIN * 2.0);
+        // The legend's second line (texture / buffer) holds the first note.
+        let technique_y = legend_y + 18.0 * (1 + notes.len().max(1)) as f64;
+        let height =
+            (legend_y + 18.0 * (notes.len().max(1) + technique_lines.len()) as f64 + 18.0 + MARGIN)
+                .ceil();
+        Layout {
+            schedule,
+            rows,
+            columns,
+            row_labels,
+            headers,
+            kind_x,
+            label_w,
+            grid_x,
+            top,
+            legend_y,
+            notes,
+            technique_labels,
+            technique_entries,
+            technique_lines,
+            technique_y,
+            width,
+            height,
         }
     }
-    // Each technique's passes share a tint, named in the legend: what a
-    // `--set techniques.…` swap changes. A technique that adds no pass (it
-    // only sets params, or culled nothing into the rows) has no tint to name.
-    let technique_labels: Vec<String> = schedule
-        .techniques
-        .iter()
-        .map(|t| t.label())
-        .filter(|l| rows.iter().any(|(p, _)| p.technique.as_ref() == Some(l)))
-        .collect();
-    let tint = |pass: &ScheduledPass| {
+
+    /// The x of column `c`'s line.
+    fn col_x(&self, c: usize) -> f64 {
+        column_x(self.grid_x, c)
+    }
+
+    /// The y of row slot `slot`.
+    fn slot_y(&self, slot: usize) -> f64 {
+        self.top + ROW_H * (slot as f64 + 0.5)
+    }
+
+    /// The y of row `i`: live passes, then the output line, then culled passes.
+    fn row_y(&self, i: usize) -> f64 {
+        let live = self.schedule.passes.len();
+        self.slot_y(if i < live { i } else { i + 1 })
+    }
+
+    /// The y of the output line, below the live passes.
+    fn output_y(&self) -> f64 {
+        self.slot_y(self.schedule.passes.len())
+    }
+
+    /// The fill of `pass`'s label: its technique's tint, or white.
+    fn tint(&self, pass: &ScheduledPass) -> &'static str {
         pass.technique
             .as_ref()
-            .and_then(|t| technique_labels.iter().position(|l| l == t))
+            .and_then(|t| self.technique_labels.iter().position(|l| l == t))
             .map_or("white", |i| TECHNIQUE_TINTS[i % TECHNIQUE_TINTS.len()])
-    };
-    // Everything the legend writes fits the picture: its first line, the
-    // notes beside the second, and at least the widest technique entry.
-    let technique_entries: Vec<(String, f64)> = technique_labels
-        .iter()
-        .map(|l| {
-            let text = format!("technique {l}");
-            let w = 16.0 + text_width(&text);
-            (text, w)
-        })
-        .collect();
-    let width = [
-        header_right + MARGIN,
-        MARGIN * 2.0 + LEGEND_W,
-        notes
-            .iter()
-            .map(|n| NOTES_X + text_width(n) + MARGIN)
-            .fold(0.0, f64::max),
-        technique_entries
-            .iter()
-            .map(|(_, w)| MARGIN * 2.0 + w)
-            .fold(0.0, f64::max),
-    ]
-    .into_iter()
-    .fold(0.0, f64::max)
-    .ceil();
-    let technique_lines = wrap_entries(&technique_entries, width - MARGIN * 2.0);
-    // The legend's second line (texture / buffer) holds the first note.
-    let technique_y = legend_y + 18.0 * (1 + notes.len().max(1)) as f64;
-    let height =
-        (legend_y + 18.0 * (notes.len().max(1) + technique_lines.len()) as f64 + 18.0 + MARGIN)
-            .ceil();
-
-    let mut out = String::new();
-    let _ = write!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="{FONT}" font-size="{FONT_SIZE}">"#
-    );
-    let _ = write!(
-        out,
-        r#"<rect x="0" y="0" width="{width}" height="{height}" fill="white"/>"#
-    );
-    let culled = if schedule.culled.is_empty() {
-        String::new()
-    } else {
-        format!(", {} culled", schedule.culled.len())
-    };
-    let _ = write!(
-        out,
-        r#"<text x="{MARGIN}" y="{}" font-size="15" font-weight="bold">{}</text><text x="{}" y="{}" fill="{GREY}">{} passes{culled}, {} resources, {} peak</text>"#,
-        MARGIN + 16.0,
-        escape(&schedule.name),
-        MARGIN + bold_width(&schedule.name) * 15.0 / FONT_SIZE + 12.0,
-        MARGIN + 16.0,
-        schedule.passes.len(),
-        schedule.resources.len(),
-        bytes(schedule.memory.peak_bytes)
-    );
-
-    // Column headers as stairs: header c on its own line, a leader from it
-    // down to its column. Later headers start lower and further right, so no
-    // text crosses a leader.
-    for (c, (name, desc)) in headers.iter().enumerate() {
-        let x = col_x(c);
-        let y = MARGIN + TITLE_H + HEADER_STEP * (c as f64 + 1.0);
-        let _ = write!(
-            out,
-            r#"<line x1="{x}" y1="{}" x2="{x}" y2="{}" stroke="{GUIDE}" stroke-width="1.5"/>"#,
-            y + 3.0,
-            top
-        );
-        let _ = write!(
-            out,
-            r#"<text x="{}" y="{y}" font-weight="bold">{}</text><text x="{}" y="{y}" fill="{GREY}">{}</text>"#,
-            x - 4.0,
-            escape(name),
-            x - 4.0 + bold_width(name) + 8.0,
-            escape(desc)
-        );
     }
 
-    // Row guides and pass labels.
-    for (i, ((name, kind), (_, culled))) in row_labels.iter().zip(&rows).enumerate() {
-        let y = row_y(i);
-        let dash = if *culled {
-            r#" stroke-dasharray="4 3""#
+    /// The `<svg>` element, the background and the title line.
+    fn write_title(&self, out: &mut String) {
+        let (width, height, schedule) = (self.width, self.height, self.schedule);
+        let _ = write!(
+            out,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="{FONT}" font-size="{FONT_SIZE}">"#
+        );
+        let _ = write!(
+            out,
+            r#"<rect x="0" y="0" width="{width}" height="{height}" fill="white"/>"#
+        );
+        let culled = if schedule.culled.is_empty() {
+            String::new()
         } else {
-            ""
+            format!(", {} culled", schedule.culled.len())
         };
-        let colour = if *culled { GREY } else { "#222222" };
         let _ = write!(
             out,
-            r#"<line x1="{MARGIN}" y1="{y}" x2="{}" y2="{y}" stroke="{GUIDE}"/>"#,
-            grid_x + COL_W * columns.len() as f64
-        );
-        let _ = write!(
-            out,
-            r#"<rect x="{MARGIN}" y="{}" width="{label_w}" height="{}" rx="3" fill="{}" stroke="{colour}"{dash}/>"#,
-            y - ROW_H / 2.0 + 3.0,
-            ROW_H - 6.0,
-            tint(rows[i].0)
-        );
-        let _ = write!(
-            out,
-            r#"<text x="{}" y="{}" font-weight="bold" fill="{colour}">{}</text><text x="{}" y="{}" fill="{GREY}">{}</text>"#,
-            MARGIN + 8.0,
-            y + 4.0,
-            escape(name),
-            kind_x,
-            y + 4.0,
-            escape(kind)
+            r#"<text x="{MARGIN}" y="{}" font-size="15" font-weight="bold">{}</text><text x="{}" y="{}" fill="{GREY}">{} passes{culled}, {} resources, {} peak</text>"#,
+            MARGIN + 16.0,
+            escape(&schedule.name),
+            MARGIN + bold_width(&schedule.name) * 15.0 / FONT_SIZE + 12.0,
+            MARGIN + 16.0,
+            schedule.passes.len(),
+            schedule.resources.len(),
+            bytes(schedule.memory.peak_bytes)
         );
     }
-    let _ = write!(
-        out,
-        r#"<text x="{}" y="{}" font-style="italic" fill="{GREY}">output</text>"#,
-        MARGIN + 8.0,
-        output_y + 4.0
-    );
 
-    // Lifetimes and marks.
-    for (c, &r) in columns.iter().enumerate() {
-        let res = &schedule.resources[r];
+    /// The column headers, stacked like stairs.
+    fn write_headers(&self, out: &mut String) {
+        // Column headers as stairs: header c on its own line, a leader from it
+        // down to its column. Later headers start lower and further right, so no
+        // text crosses a leader.
+        for (c, (name, desc)) in self.headers.iter().enumerate() {
+            let x = self.col_x(c);
+            let y = MARGIN + TITLE_H + HEADER_STEP * (c as f64 + 1.0);
+            let _ = write!(
+                out,
+                r#"<line x1="{x}" y1="{}" x2="{x}" y2="{}" stroke="{GUIDE}" stroke-width="1.5"/>"#,
+                y + 3.0,
+                self.top
+            );
+            let _ = write!(
+                out,
+                r#"<text x="{}" y="{y}" font-weight="bold">{}</text><text x="{}" y="{y}" fill="{GREY}">{}</text>"#,
+                x - 4.0,
+                escape(name),
+                x - 4.0 + bold_width(name) + 8.0,
+                escape(desc)
+            );
+        }
+    }
+
+    /// Row guides and pass labels, and the output line's label.
+    fn write_rows(&self, out: &mut String) {
+        let label_w = self.label_w;
+        for (i, ((name, kind), (_, culled))) in self.row_labels.iter().zip(&self.rows).enumerate() {
+            let y = self.row_y(i);
+            let dash = if *culled {
+                r#" stroke-dasharray="4 3""#
+            } else {
+                ""
+            };
+            let colour = if *culled { GREY } else { "#222222" };
+            let _ = write!(
+                out,
+                r#"<line x1="{MARGIN}" y1="{y}" x2="{}" y2="{y}" stroke="{GUIDE}"/>"#,
+                self.grid_x + COL_W * self.columns.len() as f64
+            );
+            let _ = write!(
+                out,
+                r#"<rect x="{MARGIN}" y="{}" width="{label_w}" height="{}" rx="3" fill="{}" stroke="{colour}"{dash}/>"#,
+                y - ROW_H / 2.0 + 3.0,
+                ROW_H - 6.0,
+                self.tint(self.rows[i].0)
+            );
+            let _ = write!(
+                out,
+                r#"<text x="{}" y="{}" font-weight="bold" fill="{colour}">{}</text><text x="{}" y="{}" fill="{GREY}">{}</text>"#,
+                MARGIN + 8.0,
+                y + 4.0,
+                escape(name),
+                self.kind_x,
+                y + 4.0,
+                escape(kind)
+            );
+        }
+        let _ = write!(
+            out,
+            r#"<text x="{}" y="{}" font-style="italic" fill="{GREY}">output</text>"#,
+            MARGIN + 8.0,
+            self.output_y() + 4.0
+        );
+    }
+
+    /// Column `c` (resource `r`): its lifetime line, an arrow if it is an
+    /// output, and a mark on every row that touches it.
+    fn write_column(&self, out: &mut String, c: usize, r: usize) {
+        let res = &self.schedule.resources[r];
         let colour = match res.desc.kind() {
             ResourceKind::Texture => TEXTURE_COLOUR,
             ResourceKind::Buffer => BUFFER_COLOUR,
         };
-        let x = col_x(c);
-        let is_output = schedule.outputs.contains(&r);
+        let x = self.col_x(c);
+        let output_y = self.output_y();
+        let is_output = self.schedule.outputs.contains(&r);
         let end = if is_output {
             output_y
         } else {
-            row_y(res.last_use)
+            self.row_y(res.last_use)
         };
         let _ = write!(
             out,
             r#"<line x1="{x}" y1="{}" x2="{x}" y2="{end}" stroke="{colour}" stroke-width="3"/>"#,
-            row_y(res.first_use)
+            self.row_y(res.first_use)
         );
         if is_output {
             let y = output_y;
@@ -373,11 +412,11 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
                 y + 3.0
             );
         }
-        for (i, (pass, culled)) in rows.iter().enumerate() {
+        for (i, (pass, culled)) in self.rows.iter().enumerate() {
             let Some(mark) = mark_of(pass, r) else {
                 continue;
             };
-            let y = row_y(i);
+            let y = self.row_y(i);
             let colour = if *culled { GREY } else { colour };
             if *culled {
                 // A culled pass sits below the live schedule: a dashed lead
@@ -387,85 +426,95 @@ pub fn schedule_svg(schedule: &Schedule) -> String {
                     r#"<line x1="{x}" y1="{end}" x2="{x}" y2="{y}" stroke="{GREY}" stroke-dasharray="3 3"/>"#
                 );
             }
-            let _ = match mark {
-                Mark::Write => write!(
-                    out,
-                    r#"<rect x="{}" y="{}" width="11" height="11" fill="{colour}"/>"#,
-                    x - 5.5,
-                    y - 5.5
-                ),
-                Mark::Adds => write!(out, r#"<circle cx="{x}" cy="{y}" r="6" fill="{colour}"/>"#),
-                Mark::Read => write!(
-                    out,
-                    r#"<circle cx="{x}" cy="{y}" r="5" fill="white" stroke="{colour}" stroke-width="2.5"/>"#
-                ),
-            };
+            write_mark(out, mark, x, y, colour);
         }
     }
 
-    // The legend, drawn with the same shapes as the marks.
-    let (ly, lx) = (legend_y, MARGIN);
-    let _ = write!(
-        out,
-        r##"<rect x="{}" y="{}" width="11" height="11" fill="{TEXTURE_COLOUR}"/><text x="{}" y="{}" fill="{GREY}">writes</text><circle cx="{}" cy="{}" r="5" fill="white" stroke="{TEXTURE_COLOUR}" stroke-width="2.5"/><text x="{}" y="{}" fill="{GREY}">reads</text><circle cx="{}" cy="{}" r="6" fill="{TEXTURE_COLOUR}"/><text x="{}" y="{}" fill="{GREY}">adds to what is there (blending, atomics)</text><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{GREY}" stroke-dasharray="4 3"/><text x="{}" y="{}" fill="{GREY}">culled</text>"##,
-        lx,
-        ly - 9.5,
-        lx + 16.0,
-        ly,
-        lx + 80.0,
-        ly - 4.0,
-        lx + 91.0,
-        ly,
-        lx + 146.0,
-        ly - 4.0,
-        lx + 158.0,
-        ly,
-        lx + 450.0,
-        ly - 4.0,
-        lx + 480.0,
-        ly - 4.0,
-        lx + 486.0,
-        ly
-    );
-    let _ = write!(
-        out,
-        r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{TEXTURE_COLOUR}" stroke-width="3"/><text x="{}" y="{}" fill="{GREY}">texture</text><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{BUFFER_COLOUR}" stroke-width="3"/><text x="{}" y="{}" fill="{GREY}">buffer lifetime</text>"#,
-        lx,
-        ly + 14.0,
-        lx + 12.0,
-        ly + 14.0,
-        lx + 16.0,
-        ly + 18.0,
-        lx + 80.0,
-        ly + 14.0,
-        lx + 92.0,
-        ly + 14.0,
-        lx + 96.0,
-        ly + 18.0
-    );
-    for (k, note) in notes.iter().enumerate() {
+    /// The legend's first two lines, drawn with the same shapes as the marks.
+    fn write_legend_key(&self, out: &mut String) {
+        let (ly, lx) = (self.legend_y, MARGIN);
         let _ = write!(
             out,
-            r#"<text x="{}" y="{}" fill="{GREY}">{}</text>"#,
-            NOTES_X,
-            legend_y + 18.0 + 18.0 * k as f64,
-            escape(note)
+            r##"<rect x="{}" y="{}" width="11" height="11" fill="{TEXTURE_COLOUR}"/><text x="{}" y="{}" fill="{GREY}">writes</text><circle cx="{}" cy="{}" r="5" fill="white" stroke="{TEXTURE_COLOUR}" stroke-width="2.5"/><text x="{}" y="{}" fill="{GREY}">reads</text><circle cx="{}" cy="{}" r="6" fill="{TEXTURE_COLOUR}"/><text x="{}" y="{}" fill="{GREY}">adds to what is there (blending, atomics)</text><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{GREY}" stroke-dasharray="4 3"/><text x="{}" y="{}" fill="{GREY}">culled</text>"##,
+            lx,
+            ly - 9.5,
+            lx + 16.0,
+            ly,
+            lx + 80.0,
+            ly - 4.0,
+            lx + 91.0,
+            ly,
+            lx + 146.0,
+            ly - 4.0,
+            lx + 158.0,
+            ly,
+            lx + 450.0,
+            ly - 4.0,
+            lx + 480.0,
+            ly - 4.0,
+            lx + 486.0,
+            ly
+        );
+        let _ = write!(
+            out,
+            r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{TEXTURE_COLOUR}" stroke-width="3"/><text x="{}" y="{}" fill="{GREY}">texture</text><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{BUFFER_COLOUR}" stroke-width="3"/><text x="{}" y="{}" fill="{GREY}">buffer lifetime</text>"#,
+            lx,
+            ly + 14.0,
+            lx + 12.0,
+            ly + 14.0,
+            lx + 16.0,
+            ly + 18.0,
+            lx + 80.0,
+            ly + 14.0,
+            lx + 92.0,
+            ly + 14.0,
+            lx + 96.0,
+            ly + 18.0
         );
     }
-    for (line, entries) in technique_lines.iter().enumerate() {
-        let y = technique_y + 18.0 * line as f64;
-        for &(k, x) in entries {
+
+    /// The notes beside the legend's second line, then the technique tints.
+    fn write_legend_notes(&self, out: &mut String) {
+        for (k, note) in self.notes.iter().enumerate() {
             let _ = write!(
                 out,
-                r#"<rect x="{}" y="{}" width="11" height="11" fill="{}" stroke="{GREY}"/><text x="{}" y="{y}" fill="{GREY}">{}</text>"#,
-                MARGIN + x,
-                y - 9.0,
-                TECHNIQUE_TINTS[k % TECHNIQUE_TINTS.len()],
-                MARGIN + x + 16.0,
-                escape(&technique_entries[k].0)
+                r#"<text x="{}" y="{}" fill="{GREY}">{}</text>"#,
+                NOTES_X,
+                self.legend_y + 18.0 + 18.0 * k as f64,
+                escape(note)
             );
         }
+        for (line, entries) in self.technique_lines.iter().enumerate() {
+            let y = self.technique_y + 18.0 * line as f64;
+            for &(k, x) in entries {
+                let _ = write!(
+                    out,
+                    r#"<rect x="{}" y="{}" width="11" height="11" fill="{}" stroke="{GREY}"/><text x="{}" y="{y}" fill="{GREY}">{}</text>"#,
+                    MARGIN + x,
+                    y - 9.0,
+                    TECHNIQUE_TINTS[k % TECHNIQUE_TINTS.len()],
+                    MARGIN + x + 16.0,
+                    escape(&self.technique_entries[k].0)
+                );
+            }
+        }
     }
-    out.push_str("</svg>\n");
-    out
+}
+
+/// One mark at (`x`, `y`): a square for a write, a filled circle for an
+/// add, a hollow one for a read.
+fn write_mark(out: &mut String, mark: Mark, x: f64, y: f64, colour: &str) {
+    let _ = match mark {
+        Mark::Write => write!(
+            out,
+            r#"<rect x="{}" y="{}" width="11" height="11" fill="{colour}"/>"#,
+            x - 5.5,
+            y - 5.5
+        ),
+        Mark::Adds => write!(out, r#"<circle cx="{x}" cy="{y}" r="6" fill="{colour}"/>"#),
+        Mark::Read => write!(
+            out,
+            r#"<circle cx="{x}" cy="{y}" r="5" fill="white" stroke="{colour}" stroke-width="2.5"/>"#
+        ),
+    };
 }

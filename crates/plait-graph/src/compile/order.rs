@@ -54,6 +54,34 @@ pub(super) fn order_passes(
     pipeline: &Pipeline,
     errors: &mut Vec<Error>,
 ) -> Option<Vec<usize>> {
+    let (graph, nodes) = build_graph(passes, pipeline, errors);
+    if report_cycles(&graph, passes, errors) {
+        return None;
+    }
+    let reach = reachability(&graph, &nodes, passes.len());
+    check_writers_ordered(passes, pipeline, &reach, errors);
+    Some(execution_order(&graph, &nodes))
+}
+
+/// Whether pass `pass` reads `resource`, by name or implicitly.
+fn reads_any(pass: &ScheduledPass, resource: usize, declared: usize) -> bool {
+    reads_from(pass, resource) || implicit_reads(pass, declared).contains(&resource)
+}
+
+/// The passes that write `resource`, in file order.
+fn writers_of(passes: &[ScheduledPass], resource: usize) -> Vec<usize> {
+    (0..passes.len())
+        .filter(|&p| writes_to(&passes[p], resource).is_some())
+        .collect()
+}
+
+/// The dependency graph, one node per pass (weighted by its index), with the
+/// ordering rules' edges; reports reads of resources nothing writes.
+fn build_graph(
+    passes: &[ScheduledPass],
+    pipeline: &Pipeline,
+    errors: &mut Vec<Error>,
+) -> (DiGraph<usize, ()>, Vec<NodeIndex>) {
     let mut graph: DiGraph<usize, ()> = DiGraph::new();
     let nodes: Vec<NodeIndex> = (0..passes.len()).map(|i| graph.add_node(i)).collect();
     let mut add_edge = |from: usize, to: usize| {
@@ -63,46 +91,11 @@ pub(super) fn order_passes(
     };
 
     let declared = pipeline.resources.len();
-    let reads = |p: usize, resource: usize| {
-        reads_from(&passes[p], resource) || implicit_reads(&passes[p], declared).contains(&resource)
-    };
+    let reads = |p: usize, resource: usize| reads_any(&passes[p], resource, declared);
     for resource in 0..declared + SCENE_RESOURCES.len() {
-        let writers: Vec<usize> = (0..passes.len())
-            .filter(|&p| writes_to(&passes[p], resource).is_some())
-            .collect();
+        let writers = writers_of(passes, resource);
         let readers: Vec<usize> = (0..passes.len()).filter(|&p| reads(p, resource)).collect();
-        // An earlier frame's version is written by the engine (a copy of the
-        // resource after each frame): it needs a writer of the resource. The
-        // scene writes its resources before any pass.
-        let previous_of = pipeline
-            .resources
-            .get_index(resource)
-            .and_then(|(_, r)| r.previous_of.as_ref());
-        let written_by_someone = match previous_of {
-            Some(of) => pipeline
-                .resources
-                .get_index_of(&of.resource)
-                .is_some_and(|base| passes.iter().any(|p| writes_to(p, base).is_some())),
-            None => !writers.is_empty() || resource >= declared,
-        };
-        if !written_by_someone {
-            for &r in &readers {
-                for b in passes[r].reads.iter().filter(|b| b.resource == resource) {
-                    let kind = match previous_of {
-                        Some(of) => ErrorKind::HistoryNeverWritten {
-                            previous: b.resource_name.clone(),
-                            resource: of.resource.clone(),
-                            reader: passes[r].name.clone(),
-                        },
-                        None => ErrorKind::NeverWritten {
-                            resource: b.resource_name.clone(),
-                            reader: passes[r].name.clone(),
-                        },
-                    };
-                    errors.push(Error::new(b.location.clone(), kind));
-                }
-            }
-        }
+        check_written(passes, pipeline, resource, &writers, &readers, errors);
         for &w in &writers {
             for &r in &readers {
                 add_edge(w, r);
@@ -117,13 +110,67 @@ pub(super) fn order_passes(
             }
         }
     }
+    (graph, nodes)
+}
 
+/// Reports each read of `resource` by `readers` when nothing writes it (or,
+/// for an earlier frame's version, nothing writes the resource it is of).
+fn check_written(
+    passes: &[ScheduledPass],
+    pipeline: &Pipeline,
+    resource: usize,
+    writers: &[usize],
+    readers: &[usize],
+    errors: &mut Vec<Error>,
+) {
+    // An earlier frame's version is written by the engine (a copy of the
+    // resource after each frame): it needs a writer of the resource. The
+    // scene writes its resources before any pass.
+    let declared = pipeline.resources.len();
+    let previous_of = pipeline
+        .resources
+        .get_index(resource)
+        .and_then(|(_, r)| r.previous_of.as_ref());
+    let written_by_someone = match previous_of {
+        Some(of) => pipeline
+            .resources
+            .get_index_of(&of.resource)
+            .is_some_and(|base| passes.iter().any(|p| writes_to(p, base).is_some())),
+        None => !writers.is_empty() || resource >= declared,
+    };
+    if written_by_someone {
+        return;
+    }
+    for &r in readers {
+        for b in passes[r].reads.iter().filter(|b| b.resource == resource) {
+            let kind = match previous_of {
+                Some(of) => ErrorKind::HistoryNeverWritten {
+                    previous: b.resource_name.clone(),
+                    resource: of.resource.clone(),
+                    reader: passes[r].name.clone(),
+                },
+                None => ErrorKind::NeverWritten {
+                    resource: b.resource_name.clone(),
+                    reader: passes[r].name.clone(),
+                },
+            };
+            errors.push(Error::new(b.location.clone(), kind));
+        }
+    }
+}
+
+/// Reports one cycle per strongly connected component; whether there was any.
+fn report_cycles(
+    graph: &DiGraph<usize, ()>,
+    passes: &[ScheduledPass],
+    errors: &mut Vec<Error>,
+) -> bool {
     let mut has_cycle = false;
-    for scc in petgraph::algo::tarjan_scc(&graph) {
+    for scc in petgraph::algo::tarjan_scc(graph) {
         if scc.len() > 1 {
             has_cycle = true;
             let members: HashSet<NodeIndex> = scc.iter().copied().collect();
-            let cycle = cycle_through(&graph, &members);
+            let cycle = cycle_through(graph, &members);
             let first = cycle.iter().copied().min().unwrap_or(0);
             let names = cycle
                 .iter()
@@ -136,26 +183,34 @@ pub(super) fn order_passes(
             ));
         }
     }
-    if has_cycle {
-        return None;
-    }
+    has_cycle
+}
 
-    // reach[a][b]: b runs after a along edges.
-    let reach: Vec<Vec<bool>> = nodes
+/// `reach[a][b]`: b runs after a along edges (or is a).
+fn reachability(graph: &DiGraph<usize, ()>, nodes: &[NodeIndex], count: usize) -> Vec<Vec<bool>> {
+    nodes
         .iter()
         .map(|&start| {
-            let mut row = vec![false; passes.len()];
-            let mut dfs = petgraph::visit::Dfs::new(&graph, start);
-            while let Some(n) = dfs.next(&graph) {
+            let mut row = vec![false; count];
+            let mut dfs = petgraph::visit::Dfs::new(graph, start);
+            while let Some(n) = dfs.next(graph) {
                 row[graph[n]] = true;
             }
             row
         })
-        .collect();
-    for resource in 0..declared + SCENE_RESOURCES.len() {
-        let writers: Vec<usize> = (0..passes.len())
-            .filter(|&p| writes_to(&passes[p], resource).is_some())
-            .collect();
+        .collect()
+}
+
+/// Reports, per resource, the first pair of its writers the edges leave
+/// unordered.
+fn check_writers_ordered(
+    passes: &[ScheduledPass],
+    pipeline: &Pipeline,
+    reach: &[Vec<bool>],
+    errors: &mut Vec<Error>,
+) {
+    for resource in 0..pipeline.resources.len() + SCENE_RESOURCES.len() {
+        let writers = writers_of(passes, resource);
         'pairs: for (i, &a) in writers.iter().enumerate() {
             for &b in &writers[i + 1..] {
                 if !reach[a][b] && !reach[b][a] {
@@ -174,17 +229,20 @@ pub(super) fn order_passes(
             }
         }
     }
+}
 
-    // Kahn's algorithm; among ready passes the earliest in the file goes first.
+/// The execution order of an acyclic graph: Kahn's algorithm, among ready
+/// passes the earliest in the file first.
+fn execution_order(graph: &DiGraph<usize, ()>, nodes: &[NodeIndex]) -> Vec<usize> {
     let mut indegree: Vec<usize> = nodes
         .iter()
         .map(|&n| graph.neighbors_directed(n, petgraph::Incoming).count())
         .collect();
-    let mut ready: BinaryHeap<Reverse<usize>> = (0..passes.len())
+    let mut ready: BinaryHeap<Reverse<usize>> = (0..nodes.len())
         .filter(|&i| indegree[i] == 0)
         .map(Reverse)
         .collect();
-    let mut order = Vec::with_capacity(passes.len());
+    let mut order = Vec::with_capacity(nodes.len());
     while let Some(Reverse(p)) = ready.pop() {
         order.push(p);
         for next in graph.neighbors(nodes[p]) {
@@ -195,7 +253,7 @@ pub(super) fn order_passes(
             }
         }
     }
-    Some(order)
+    order
 }
 
 /// One cycle inside a strongly connected component, as pass indices,

@@ -5,7 +5,7 @@
 
 use indexmap::IndexMap;
 
-use crate::error::{Error, ErrorKind, Location};
+use crate::error::{Error, ErrorKind, Location, Spanned};
 use crate::load::{PassDecl, Pipeline};
 use crate::scene_resources::{SCENE_RESOURCES, scene_resource};
 use crate::schedule::*;
@@ -84,165 +84,14 @@ pub(super) fn resolve_pass(
             },
         ));
     }
-    let pass_error = |location: &Location, message: String| {
-        Error::new(
-            location.clone(),
-            ErrorKind::Pass {
-                pass: decl.name.clone(),
-                message,
-            },
-        )
-    };
 
     let mut params = IndexMap::new();
     if let Some(spec) = spec {
-        for (name, value) in &decl.params {
-            let shared = registry.shared_params.iter().find(|p| &p.name == name);
-            if spec.dynamic_slots && shared.is_none() {
-                // Data-only passes: params are whatever the shader reads (a
-                // `params` uniform member or a define), checked against
-                // naga's reflection and the shader's text later.
-                params.insert(name.clone(), value.value.clone());
-                continue;
-            }
-            let own = spec.params.iter().find(|p| &p.name == name);
-            let Some(param) = own.or(shared.filter(|_| spec.dynamic_slots)) else {
-                let known: Vec<_> = spec.params.iter().map(|p| p.name.as_str()).collect();
-                errors.push(Error::new(
-                    value.location.clone(),
-                    ErrorKind::UnknownParam {
-                        pass: decl.name.clone(),
-                        pass_type: spec.name.clone(),
-                        param: name.clone(),
-                        known: if known.is_empty() {
-                            "none".into()
-                        } else {
-                            known.join(", ")
-                        },
-                    },
-                ));
-                continue;
-            };
-            match check_param(param, value, opts) {
-                Ok(v) => {
-                    params.insert(name.clone(), v);
-                }
-                Err(reason) => errors.push(Error::new(
-                    value.location.clone(),
-                    ErrorKind::BadParam {
-                        pass: decl.name.clone(),
-                        param: name.clone(),
-                        reason,
-                    },
-                )),
-            }
-        }
-        // Every param of the type, in the type's order, defaults filled in.
-        let mut ordered = IndexMap::new();
-        for param in &spec.params {
-            if let Some(v) = params.swap_remove(&param.name) {
-                ordered.insert(param.name.clone(), v);
-            } else if decl.params.contains_key(&param.name) {
-                // Already reported as a bad value.
-            } else if let Some(default) = &param.default {
-                ordered.insert(param.name.clone(), default.clone());
-            } else {
-                errors.push(Error::new(
-                    decl.location.clone(),
-                    ErrorKind::MissingParam {
-                        pass: decl.name.clone(),
-                        param: param.name.clone(),
-                    },
-                ));
-            }
-        }
-        if !spec.dynamic_slots {
-            params = ordered;
-        }
-
-        if spec.shape == PassShape::Raster {
-            for (field, value) in [("view", &decl.view), ("draw", &decl.draw)] {
-                if value.is_none() {
-                    let hint = if field == "view" {
-                        "light | camera"
-                    } else {
-                        "hair | opaque"
-                    };
-                    errors.push(pass_error(
-                        &decl.location,
-                        format!(
-                            "type `{}` rasterizes geometry and needs `{field} = ` {hint}",
-                            spec.name
-                        ),
-                    ));
-                }
-            }
-        } else {
-            for (field, value) in [("view", &decl.view), ("draw", &decl.draw)] {
-                if let Some(v) = value {
-                    errors.push(pass_error(
-                        &v.location,
-                        format!(
-                            "type `{}` draws no scene geometry, so `{field}` does not apply",
-                            spec.name
-                        ),
-                    ));
-                }
-            }
-        }
-        for (key, location) in decl.raster.keys() {
-            // A fullscreen pass has colour targets (blend, loads) and may
-            // write a depth target through `@builtin(frag_depth)` (depth);
-            // culling and alpha to coverage need geometry.
-            let applies = spec.state_from_data
-                && (matches!(key, "blend" | "loads" | "depth") || spec.shape == PassShape::Raster);
-            if !applies {
-                let why = if spec.state_from_data {
-                    "draws no scene geometry".to_owned()
-                } else {
-                    "sets its raster state in Rust (`depth`, `blend` and `cull` are for `type = \"raster\"`, `fullscreen` and pass types declared in TOML)".to_owned()
-                };
-                errors.push(pass_error(
-                    location,
-                    format!("type `{}` {why}, so `{key}` does not apply", spec.name),
-                ));
-            }
-        }
-        match (&decl.shader, spec.needs_shader) {
-            (None, true) => errors.push(pass_error(
-                &decl.location,
-                format!(
-                    "type `{}` runs a shader from the pipeline and needs `shader = \"….wgsl\"`",
-                    spec.name
-                ),
-            )),
-            (Some(s), false) => errors.push(pass_error(
-                &s.location,
-                format!(
-                    "type `{}` brings its own shader; `shader` does not apply",
-                    spec.name
-                ),
-            )),
-            _ => {}
-        }
-        for slot in &decl.raster.loads {
-            if !decl.writes.contains_key(&slot.value) {
-                let written: Vec<&str> = decl.writes.keys().map(String::as_str).collect();
-                errors.push(pass_error(
-                    &slot.location,
-                    format!(
-                        "`loads` names `{}`, which this pass does not write{} (written: {})",
-                        slot.value,
-                        crate::suggest::did_you_mean(&slot.value, written.iter().copied()),
-                        if written.is_empty() {
-                            "none".into()
-                        } else {
-                            written.join(", ")
-                        }
-                    ),
-                ));
-            }
-        }
+        params = check_params(decl, spec, registry, opts, errors);
+        check_view_and_draw(decl, spec, errors);
+        check_raster_keys(decl, spec, errors);
+        check_shader_field(decl, spec, errors);
+        check_loads(decl, errors);
     }
 
     let reads = bind_slots(decl, spec, pipeline, descs, Direction::Read, errors);
@@ -272,6 +121,211 @@ pub(super) fn resolve_pass(
     }
 }
 
+/// An error about pass `decl` at `location`.
+fn pass_error(decl: &PassDecl, location: &Location, message: String) -> Error {
+    Error::new(
+        location.clone(),
+        ErrorKind::Pass {
+            pass: decl.name.clone(),
+            message,
+        },
+    )
+}
+
+/// Checks the pass's params against its type, returning them normalised
+/// (and, unless the type's slots are dynamic, in the type's order with
+/// defaults filled in).
+fn check_params(
+    decl: &PassDecl,
+    spec: &PassTypeSpec,
+    registry: &Registry,
+    opts: &CompileOptions,
+    errors: &mut Vec<Error>,
+) -> IndexMap<String, Value> {
+    let mut params = IndexMap::new();
+    for (name, value) in &decl.params {
+        let shared = registry.shared_params.iter().find(|p| &p.name == name);
+        if spec.dynamic_slots && shared.is_none() {
+            // Data-only passes: params are whatever the shader reads (a
+            // `params` uniform member or a define), checked against
+            // naga's reflection and the shader's text later.
+            params.insert(name.clone(), value.value.clone());
+            continue;
+        }
+        let own = spec.params.iter().find(|p| &p.name == name);
+        let Some(param) = own.or(shared.filter(|_| spec.dynamic_slots)) else {
+            let known: Vec<_> = spec.params.iter().map(|p| p.name.as_str()).collect();
+            errors.push(Error::new(
+                value.location.clone(),
+                ErrorKind::UnknownParam {
+                    pass: decl.name.clone(),
+                    pass_type: spec.name.clone(),
+                    param: name.clone(),
+                    known: if known.is_empty() {
+                        "none".into()
+                    } else {
+                        known.join(", ")
+                    },
+                },
+            ));
+            continue;
+        };
+        match check_param(param, value, opts) {
+            Ok(v) => {
+                params.insert(name.clone(), v);
+            }
+            Err(reason) => errors.push(Error::new(
+                value.location.clone(),
+                ErrorKind::BadParam {
+                    pass: decl.name.clone(),
+                    param: name.clone(),
+                    reason,
+                },
+            )),
+        }
+    }
+    let ordered = order_params(decl, spec, &mut params, errors);
+    if !spec.dynamic_slots {
+        params = ordered;
+    }
+    params
+}
+
+/// Every param of the type, in the type's order, defaults filled in, taken
+/// out of `params`; reports the missing ones.
+fn order_params(
+    decl: &PassDecl,
+    spec: &PassTypeSpec,
+    params: &mut IndexMap<String, Value>,
+    errors: &mut Vec<Error>,
+) -> IndexMap<String, Value> {
+    let mut ordered = IndexMap::new();
+    for param in &spec.params {
+        if let Some(v) = params.swap_remove(&param.name) {
+            ordered.insert(param.name.clone(), v);
+        } else if decl.params.contains_key(&param.name) {
+            // Already reported as a bad value.
+        } else if let Some(default) = &param.default {
+            ordered.insert(param.name.clone(), default.clone());
+        } else {
+            errors.push(Error::new(
+                decl.location.clone(),
+                ErrorKind::MissingParam {
+                    pass: decl.name.clone(),
+                    param: param.name.clone(),
+                },
+            ));
+        }
+    }
+    ordered
+}
+
+/// `view` and `draw`: required of a raster pass, not applicable otherwise.
+fn check_view_and_draw(decl: &PassDecl, spec: &PassTypeSpec, errors: &mut Vec<Error>) {
+    if spec.shape == PassShape::Raster {
+        for (field, value) in [("view", &decl.view), ("draw", &decl.draw)] {
+            if value.is_none() {
+                let hint = if field == "view" {
+                    "light | camera"
+                } else {
+                    "hair | opaque"
+                };
+                errors.push(pass_error(
+                    decl,
+                    &decl.location,
+                    format!(
+                        "type `{}` rasterizes geometry and needs `{field} = ` {hint}",
+                        spec.name
+                    ),
+                ));
+            }
+        }
+    } else {
+        for (field, value) in [("view", &decl.view), ("draw", &decl.draw)] {
+            if let Some(v) = value {
+                errors.push(pass_error(
+                    decl,
+                    &v.location,
+                    format!(
+                        "type `{}` draws no scene geometry, so `{field}` does not apply",
+                        spec.name
+                    ),
+                ));
+            }
+        }
+    }
+}
+
+/// Reports each raster state key that does not apply to the pass's type.
+fn check_raster_keys(decl: &PassDecl, spec: &PassTypeSpec, errors: &mut Vec<Error>) {
+    for (key, location) in decl.raster.keys() {
+        // A fullscreen pass has colour targets (blend, loads) and may
+        // write a depth target through `@builtin(frag_depth)` (depth);
+        // culling and alpha to coverage need geometry.
+        let applies = spec.state_from_data
+            && (matches!(key, "blend" | "loads" | "depth") || spec.shape == PassShape::Raster);
+        if !applies {
+            let why = if spec.state_from_data {
+                "draws no scene geometry".to_owned()
+            } else {
+                "sets its raster state in Rust (`depth`, `blend` and `cull` are for `type = \"raster\"`, `fullscreen` and pass types declared in TOML)".to_owned()
+            };
+            errors.push(pass_error(
+                decl,
+                location,
+                format!("type `{}` {why}, so `{key}` does not apply", spec.name),
+            ));
+        }
+    }
+}
+
+/// `shader`: required when the type runs the pipeline's shader, not
+/// applicable when it brings its own.
+fn check_shader_field(decl: &PassDecl, spec: &PassTypeSpec, errors: &mut Vec<Error>) {
+    match (&decl.shader, spec.needs_shader) {
+        (None, true) => errors.push(pass_error(
+            decl,
+            &decl.location,
+            format!(
+                "type `{}` runs a shader from the pipeline and needs `shader = \"….wgsl\"`",
+                spec.name
+            ),
+        )),
+        (Some(s), false) => errors.push(pass_error(
+            decl,
+            &s.location,
+            format!(
+                "type `{}` brings its own shader; `shader` does not apply",
+                spec.name
+            ),
+        )),
+        _ => {}
+    }
+}
+
+/// Reports each slot `loads` names that the pass does not write.
+fn check_loads(decl: &PassDecl, errors: &mut Vec<Error>) {
+    for slot in &decl.raster.loads {
+        if !decl.writes.contains_key(&slot.value) {
+            let written: Vec<&str> = decl.writes.keys().map(String::as_str).collect();
+            errors.push(pass_error(
+                decl,
+                &slot.location,
+                format!(
+                    "`loads` names `{}`, which this pass does not write{} (written: {})",
+                    slot.value,
+                    crate::suggest::did_you_mean(&slot.value, written.iter().copied()),
+                    if written.is_empty() {
+                        "none".into()
+                    } else {
+                        written.join(", ")
+                    }
+                ),
+            ));
+        }
+    }
+}
+
 #[derive(Clone, Copy, PartialEq)]
 enum Direction {
     Read,
@@ -285,6 +339,18 @@ impl Direction {
             Direction::Write => "output",
         }
     }
+}
+
+/// What binding one direction of one pass's slots shares.
+struct Binder<'a> {
+    decl: &'a PassDecl,
+    spec: Option<&'a PassTypeSpec>,
+    pipeline: &'a Pipeline,
+    descs: &'a [Option<ResourceDesc>],
+    direction: Direction,
+    /// The type's slots for `direction` (none for an unknown type).
+    slots: &'a [SlotSpec],
+    errors: &'a mut Vec<Error>,
 }
 
 /// Binds `reads` or `writes`; `Binding::resource` is an index into
@@ -301,6 +367,15 @@ fn bind_slots(
         Direction::Read => (&decl.reads, spec.map_or(&[][..], |s| &s.inputs)),
         Direction::Write => (&decl.writes, spec.map_or(&[][..], |s| &s.outputs)),
     };
+    let mut binder = Binder {
+        decl,
+        spec,
+        pipeline,
+        descs,
+        direction,
+        slots,
+        errors,
+    };
     let mut bindings = Vec::new();
     for (slot_name, resource) in written {
         // `slot = ""` unbinds a slot the base file bound: how a variant
@@ -308,20 +383,64 @@ fn bind_slots(
         if resource.value.is_empty() {
             continue;
         }
+        if let Some(binding) = binder.bind(slot_name, resource) {
+            bindings.push(binding);
+        }
+    }
+    if spec.is_some() {
+        binder.check_missing(written);
+    }
+    bindings
+}
+
+impl Binder<'_> {
+    /// Binds one slot to the resource it names, or reports why it cannot be.
+    fn bind(&mut self, slot_name: &String, resource: &Spanned<String>) -> Option<Binding> {
         let scene = scene_resource(&resource.value);
-        let index = match (pipeline.resources.get_index_of(&resource.value), scene) {
-            (Some(index), _) => index,
+        let index = self.resource_index(resource)?;
+        self.check_not_history(index, resource)?;
+        let declared_kind = self
+            .pipeline
+            .resources
+            .get_index(index)
+            .map_or(ResourceKind::Buffer, |(_, r)| r.kind.value);
+        let slot = self.slots.iter().find(|s| &s.name == slot_name);
+        let (access, loads) = self.access(slot, slot_name, resource, declared_kind)?;
+        if let Some(slot) = slot {
+            self.check_fit(slot, slot_name, resource, index, declared_kind);
+        }
+        Some(Binding {
+            slot: slot_name.clone(),
+            resource: index,
+            resource_name: resource.value.clone(),
+            access,
+            // The scene's contents are there before any pass: never cleared.
+            // `loads = [...]`: the pass draws over what the attachment holds.
+            loads: loads
+                || (self.direction == Direction::Write
+                    && (scene.is_some() || self.decl.raster.keeps(slot_name))),
+            location: resource.location.clone(),
+        })
+    }
+
+    /// The index of the resource named, declared or scene (after the
+    /// declared ones), or `None` once reported unknown or not writable.
+    fn resource_index(&mut self, resource: &Spanned<String>) -> Option<usize> {
+        let pipeline = self.pipeline;
+        let scene = scene_resource(&resource.value);
+        match (pipeline.resources.get_index_of(&resource.value), scene) {
+            (Some(index), _) => Some(index),
             (None, Some((i, scene))) => {
-                if direction == Direction::Write && !scene.writable {
+                if self.direction == Direction::Write && !scene.writable {
                     let writable: Vec<_> = SCENE_RESOURCES
                         .iter()
                         .filter(|r| r.writable)
                         .map(|r| r.name)
                         .collect();
-                    errors.push(Error::new(
+                    self.errors.push(Error::new(
                         resource.location.clone(),
                         ErrorKind::Pass {
-                            pass: decl.name.clone(),
+                            pass: self.decl.name.clone(),
                             message: format!(
                                 "scene resource `{}` is read-only ({}); passes may write only {}",
                                 scene.name,
@@ -330,50 +449,62 @@ fn bind_slots(
                             ),
                         },
                     ));
-                    continue;
+                    return None;
                 }
-                pipeline.resources.len() + i
+                Some(pipeline.resources.len() + i)
             }
             (None, None) => {
-                errors.push(crate::history::undeclared(pipeline, resource));
-                continue;
+                self.errors
+                    .push(crate::history::undeclared(pipeline, resource));
+                None
             }
-        };
-        if direction == Direction::Write
-            && let Some((_, declared)) = pipeline.resources.get_index(index)
+        }
+    }
+
+    /// Reports a write to a history (`R.previous`), returning `None` then.
+    fn check_not_history(&mut self, index: usize, resource: &Spanned<String>) -> Option<()> {
+        if self.direction == Direction::Write
+            && let Some((_, declared)) = self.pipeline.resources.get_index(index)
             && let Some(of) = &declared.previous_of
         {
-            errors.push(Error::new(
+            self.errors.push(Error::new(
                 resource.location.clone(),
                 ErrorKind::WritesHistory {
-                    pass: decl.name.clone(),
+                    pass: self.decl.name.clone(),
                     previous: resource.value.clone(),
                     resource: of.resource.clone(),
                 },
             ));
-            continue;
+            return None;
         }
-        let declared_kind = pipeline
-            .resources
-            .get_index(index)
-            .map_or(ResourceKind::Buffer, |(_, r)| r.kind.value);
-        let slot = slots.iter().find(|s| &s.name == slot_name);
-        let (access, loads) = match (slot, spec) {
-            (Some(slot), _) => (slot.access, slot.loads),
+        Some(())
+    }
+
+    /// The slot's access and whether it loads, or `None` once the slot is
+    /// reported unknown to the type.
+    fn access(
+        &mut self,
+        slot: Option<&SlotSpec>,
+        slot_name: &str,
+        resource: &Spanned<String>,
+        declared_kind: ResourceKind,
+    ) -> Option<(Access, bool)> {
+        match (slot, self.spec) {
+            (Some(slot), _) => Some((slot.access, slot.loads)),
             // Data-only passes: the shader's bindings decide (checked later by
             // naga reflection); assume the common access for the direction.
             (None, Some(spec)) if spec.dynamic_slots => {
-                (dynamic_access(direction, declared_kind), false)
+                Some((dynamic_access(self.direction, declared_kind), false))
             }
             (None, Some(spec)) => {
-                let known: Vec<_> = slots.iter().map(|s| s.name.as_str()).collect();
-                errors.push(Error::new(
+                let known: Vec<_> = self.slots.iter().map(|s| s.name.as_str()).collect();
+                self.errors.push(Error::new(
                     resource.location.clone(),
                     ErrorKind::UnknownSlot {
-                        pass: decl.name.clone(),
+                        pass: self.decl.name.clone(),
                         pass_type: spec.name.clone(),
-                        direction: direction.word(),
-                        slot: slot_name.clone(),
+                        direction: self.direction.word(),
+                        slot: slot_name.to_owned(),
                         known: if known.is_empty() {
                             "none".into()
                         } else {
@@ -381,67 +512,65 @@ fn bind_slots(
                         },
                     },
                 ));
-                continue;
+                None
             }
             // Unknown pass type (already reported): keep the edge so graph
             // errors can still be found.
-            (None, None) => (dynamic_access(direction, declared_kind), false),
-        };
-        if let Some(slot) = slot {
-            if slot.kind != declared_kind {
-                errors.push(Error::new(
-                    resource.location.clone(),
-                    ErrorKind::KindMismatch {
-                        resource: resource.value.clone(),
-                        declared: declared_kind.to_string(),
-                        pass: decl.name.clone(),
-                        slot: slot_name.clone(),
-                        expected: slot.kind.to_string(),
-                    },
-                ));
-            } else if let Some(Some(ResourceDesc::Texture { format, .. })) = descs.get(index)
-                && !slot.formats.accepts(*format)
-            {
-                errors.push(Error::new(
-                    resource.location.clone(),
-                    ErrorKind::FormatMismatch {
-                        resource: resource.value.clone(),
-                        declared: format.to_string(),
-                        pass: decl.name.clone(),
-                        slot: slot_name.clone(),
-                        accepted: slot.formats.to_string(),
-                    },
-                ));
-            }
+            (None, None) => Some((dynamic_access(self.direction, declared_kind), false)),
         }
-        bindings.push(Binding {
-            slot: slot_name.clone(),
-            resource: index,
-            resource_name: resource.value.clone(),
-            access,
-            // The scene's contents are there before any pass: never cleared.
-            // `loads = [...]`: the pass draws over what the attachment holds.
-            loads: loads
-                || (direction == Direction::Write
-                    && (scene.is_some() || decl.raster.keeps(slot_name))),
-            location: resource.location.clone(),
-        });
     }
-    if spec.is_some() {
-        for slot in slots.iter().filter(|s| !s.optional) {
+
+    /// Checks the resource's kind, then its texture format, against the slot's.
+    fn check_fit(
+        &mut self,
+        slot: &SlotSpec,
+        slot_name: &str,
+        resource: &Spanned<String>,
+        index: usize,
+        declared_kind: ResourceKind,
+    ) {
+        if slot.kind != declared_kind {
+            self.errors.push(Error::new(
+                resource.location.clone(),
+                ErrorKind::KindMismatch {
+                    resource: resource.value.clone(),
+                    declared: declared_kind.to_string(),
+                    pass: self.decl.name.clone(),
+                    slot: slot_name.to_owned(),
+                    expected: slot.kind.to_string(),
+                },
+            ));
+        } else if let Some(Some(ResourceDesc::Texture { format, .. })) = self.descs.get(index)
+            && !slot.formats.accepts(*format)
+        {
+            self.errors.push(Error::new(
+                resource.location.clone(),
+                ErrorKind::FormatMismatch {
+                    resource: resource.value.clone(),
+                    declared: format.to_string(),
+                    pass: self.decl.name.clone(),
+                    slot: slot_name.to_owned(),
+                    accepted: slot.formats.to_string(),
+                },
+            ));
+        }
+    }
+
+    /// Reports each required slot of the type the pass leaves unbound.
+    fn check_missing(&mut self, written: &IndexMap<String, Spanned<String>>) {
+        for slot in self.slots.iter().filter(|s| !s.optional) {
             if !written.contains_key(&slot.name) {
-                errors.push(Error::new(
-                    decl.location.clone(),
+                self.errors.push(Error::new(
+                    self.decl.location.clone(),
                     ErrorKind::MissingSlot {
-                        pass: decl.name.clone(),
-                        direction: direction.word(),
+                        pass: self.decl.name.clone(),
+                        direction: self.direction.word(),
                         slot: slot.name.clone(),
                     },
                 ));
             }
         }
     }
-    bindings
 }
 
 fn dynamic_access(direction: Direction, kind: ResourceKind) -> Access {

@@ -22,22 +22,86 @@ pub(super) fn build_schedule(
     checker: &dyn PassChecker,
     caps: &Capabilities,
 ) -> Result<Schedule, Vec<Error>> {
-    // Live passes: writers of outputs and everything they depend on. Walking
-    // the execution order backwards sees every consumer before its producers.
+    let live = live_passes(pipeline, &passes, &order, outputs);
+    let Renumbered {
+        new_id,
+        mut resources,
+        dropped_resources,
+    } = renumber_resources(pipeline, &mut passes, &live, &descs);
+    let history = crate::history::copies(&resources);
+    let (mut scheduled, mut culled) = split_culled(passes, &order, &live);
+    settle_clears(&mut scheduled, &resources);
+    let output_ids: Vec<ResourceId> = outputs
+        .iter()
+        .map(|&o| new_id[o])
+        .filter(|&id| id != DROPPED_RESOURCE)
+        .collect();
+    set_spans(&scheduled, &mut resources, &output_ids);
+
+    // The shaders and the adapter, before the memory plan: what they settle
+    // is final (see `fit`).
+    let (errors, blended) = check_passes(
+        checker,
+        scheduled
+            .iter_mut()
+            .chain(culled.iter_mut().map(|c: &mut CulledPass| &mut c.pass)),
+        &resources,
+    );
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let notes = fit_formats(&mut resources, &blended, &history, caps);
+
+    let (physical, memory) = plan_memory(&mut resources);
+    Ok(Schedule {
+        name: pipeline.name.value.clone(),
+        description: pipeline.description.value.clone(),
+        files: pipeline.files.clone(),
+        techniques: pipeline.techniques.clone(),
+        params: pipeline
+            .params
+            .iter()
+            .map(|(k, v)| (k.clone(), v.value.clone()))
+            .collect(),
+        passes: scheduled,
+        culled,
+        resources,
+        dropped_resources,
+        physical,
+        outputs: output_ids,
+        history,
+        memory,
+        overflow: Vec::new(),
+        notes,
+    })
+}
+
+/// The versions a read of resource `r` also needs through its history, if
+/// it is a declared resource (scene resources have no history).
+fn history_chain(pipeline: &Pipeline, r: usize) -> Vec<usize> {
+    if r < pipeline.resources.len() {
+        crate::history::chain(pipeline, r)
+    } else {
+        Vec::new()
+    }
+}
+
+/// Marks the live passes, indexed like `passes`: writers of outputs and
+/// everything they depend on.
+fn live_passes(
+    pipeline: &Pipeline,
+    passes: &[ScheduledPass],
+    order: &[usize],
+    outputs: &[usize],
+) -> Vec<bool> {
+    // Walking the execution order backwards sees every consumer before its
+    // producers.
     let declared = pipeline.resources.len();
+    let mut needed: HashSet<usize> = outputs.iter().copied().collect();
+    let mut live = vec![false; passes.len()];
     // A history makes a read of `R.previous` need `R` (and the younger
     // versions it is copied through), whose writers may come later in the
     // order: walk again until nothing new is needed.
-    // Scene resources have no history.
-    let history_chain = |r: usize| {
-        if r < declared {
-            crate::history::chain(pipeline, r)
-        } else {
-            Vec::new()
-        }
-    };
-    let mut needed: HashSet<usize> = outputs.iter().copied().collect();
-    let mut live = vec![false; passes.len()];
     loop {
         let before = needed.len();
         for &p in order.iter().rev() {
@@ -60,21 +124,42 @@ pub(super) fn build_schedule(
                 );
             }
         }
-        let chained: Vec<usize> = needed.iter().flat_map(|&r| history_chain(r)).collect();
+        let chained: Vec<usize> = needed
+            .iter()
+            .flat_map(|&r| history_chain(pipeline, r))
+            .collect();
         needed.extend(chained);
         if needed.len() == before {
             break;
         }
     }
+    live
+}
 
-    // Renumber resources: keep those a live pass touches, in declaration order.
+/// The resources that survive renumbering.
+struct Renumbered {
+    /// Old index (declared, then scene) to new id, or [`DROPPED_RESOURCE`].
+    new_id: Vec<ResourceId>,
+    resources: Vec<ResolvedResource>,
+    dropped_resources: Vec<String>,
+}
+
+/// Keeps the resources a live pass touches, in declaration order, then the
+/// scene resources named, and renumbers every pass's bindings to match.
+fn renumber_resources(
+    pipeline: &Pipeline,
+    passes: &mut [ScheduledPass],
+    live: &[bool],
+    descs: &[Option<ResourceDesc>],
+) -> Renumbered {
+    let declared = pipeline.resources.len();
     let total = declared + SCENE_RESOURCES.len();
     let mut used = vec![false; total];
     for (p, pass) in passes.iter().enumerate() {
         if live[p] {
             for b in pass.reads.iter().chain(&pass.writes) {
                 used[b.resource] = true;
-                for r in history_chain(b.resource) {
+                for r in history_chain(pipeline, b.resource) {
                     used[r] = true;
                 }
             }
@@ -122,17 +207,29 @@ pub(super) fn build_schedule(
             });
         }
     }
-    for pass in &mut passes {
+    for pass in passes.iter_mut() {
         for b in pass.reads.iter_mut().chain(pass.writes.iter_mut()) {
             b.resource = new_id[b.resource];
         }
     }
-    let history = crate::history::copies(&resources);
+    Renumbered {
+        new_id,
+        resources,
+        dropped_resources,
+    }
+}
 
+/// Splits the passes into the live ones, in execution order, and the culled
+/// ones with why.
+fn split_culled(
+    passes: Vec<ScheduledPass>,
+    order: &[usize],
+    live: &[bool],
+) -> (Vec<ScheduledPass>, Vec<CulledPass>) {
     let mut slots: Vec<Option<ScheduledPass>> = passes.into_iter().map(Some).collect();
     let mut scheduled = Vec::new();
     let mut culled = Vec::new();
-    for &p in &order {
+    for &p in order {
         let Some(pass) = slots[p].take() else {
             continue;
         };
@@ -145,12 +242,16 @@ pub(super) fn build_schedule(
     }
     // Culled passes in file order: they have no execution order to follow.
     culled.sort_by_key(|(p, _)| *p);
-    let mut culled: Vec<CulledPass> = culled.into_iter().map(|(_, c)| c).collect();
+    let culled = culled.into_iter().map(|(_, c)| c).collect();
+    (scheduled, culled)
+}
 
+/// Decides which writes clear and which load.
+fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]) {
     // The first writer of a resource has nothing to load: it clears. A
     // persistent resource is never cleared by the engine: every writer loads.
     let mut written = vec![false; resources.len()];
-    for pass in &mut scheduled {
+    for pass in scheduled.iter_mut() {
         for b in &mut pass.writes {
             if resources[b.resource].lifetime == Lifetime::Persistent {
                 b.loads = true;
@@ -165,7 +266,15 @@ pub(super) fn build_schedule(
             written[b.resource] = true;
         }
     }
+}
 
+/// Sets each resource's span of use over the scheduled passes: outputs and
+/// contents that outlive the frame last to its end.
+fn set_spans(
+    scheduled: &[ScheduledPass],
+    resources: &mut [ResolvedResource],
+    output_ids: &[ResourceId],
+) {
     for (index, pass) in scheduled.iter().enumerate() {
         for b in pass.reads.iter().chain(&pass.writes) {
             let r = &mut resources[b.resource];
@@ -173,13 +282,8 @@ pub(super) fn build_schedule(
             r.last_use = r.last_use.max(index);
         }
     }
-    let output_ids: Vec<ResourceId> = outputs
-        .iter()
-        .map(|&o| new_id[o])
-        .filter(|&id| id != DROPPED_RESOURCE)
-        .collect();
     let end = scheduled.len().saturating_sub(1);
-    for &o in &output_ids {
+    for &o in output_ids {
         resources[o].last_use = end;
     }
     // Contents that outlive the frame span all of it, so the memory plan
@@ -188,44 +292,7 @@ pub(super) fn build_schedule(
         r.first_use = 0;
         r.last_use = end;
     }
-    crate::run_once::keep_across_frames(&scheduled, &mut resources);
-
-    // The shaders and the adapter, before the memory plan: what they settle
-    // is final (see `fit`).
-    let (errors, blended) = check_passes(
-        checker,
-        scheduled
-            .iter_mut()
-            .chain(culled.iter_mut().map(|c: &mut CulledPass| &mut c.pass)),
-        &resources,
-    );
-    if !errors.is_empty() {
-        return Err(errors);
-    }
-    let notes = fit_formats(&mut resources, &blended, &history, caps);
-
-    let (physical, memory) = plan_memory(&mut resources);
-    Ok(Schedule {
-        name: pipeline.name.value.clone(),
-        description: pipeline.description.value.clone(),
-        files: pipeline.files.clone(),
-        techniques: pipeline.techniques.clone(),
-        params: pipeline
-            .params
-            .iter()
-            .map(|(k, v)| (k.clone(), v.value.clone()))
-            .collect(),
-        passes: scheduled,
-        culled,
-        resources,
-        dropped_resources,
-        physical,
-        outputs: output_ids,
-        history,
-        memory,
-        overflow: Vec::new(),
-        notes,
-    })
+    crate::run_once::keep_across_frames(scheduled, resources);
 }
 
 fn cull_reason(pass: &ScheduledPass) -> String {

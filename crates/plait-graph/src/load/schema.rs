@@ -268,6 +268,61 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
         );
         return None;
     }
+    let kind = resource_kind(b, name, entry, t, &context)?;
+    b.check_keys(
+        t,
+        if kind.value == ResourceKind::Texture {
+            TEXTURE_KEYS
+        } else {
+            BUFFER_KEYS
+        },
+        &format!("{context} ({})", kind.value),
+    );
+    let Some(size_entry) = t.get("size") else {
+        b.schema(&entry.key, format!("{context} needs a `size`"));
+        return None;
+    };
+    let size = match kind.value {
+        ResourceKind::Buffer => buffer_size(b, name, &size_entry.value)?,
+        ResourceKind::Texture => texture_size(b, name, &size_entry.value)?,
+    };
+    let format = resource_format(b, name, entry, t, &context, kind.value)?;
+    let int_field = |key: &str| {
+        t.get(key)
+            .map(|e| e.value.clone())
+            .and_then(|n| match n.value {
+                Node::Scalar(v) => Some(Spanned::new(v, n.location)),
+                _ => None,
+            })
+    };
+    let history = resource_history(b, name, t);
+    let persistent = resource_persistent(b, name, t);
+    Some(ResourceDecl {
+        name: name.to_owned(),
+        format,
+        size,
+        layers: int_field("layers"),
+        samples: int_field("samples"),
+        location: entry.key.clone(),
+        history,
+        persistent,
+        previous_of: None,
+        overflow: match (kind.value, t.get("overflow")) {
+            (ResourceKind::Buffer, Some(e)) => crate::overflow::parse(&e.value, name, b.errors),
+            _ => None,
+        },
+        kind,
+    })
+}
+
+/// The resource's `kind`, where it is written.
+fn resource_kind(
+    b: &mut Builder<'_>,
+    name: &str,
+    entry: &Entry,
+    t: &Table,
+    context: &str,
+) -> Option<Spanned<ResourceKind>> {
     let Some(kind_entry) = t.get("kind") else {
         b.schema(
             &entry.key,
@@ -285,83 +340,93 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
     } else {
         ResourceKind::Buffer
     };
-    b.check_keys(
-        t,
-        if kind == ResourceKind::Texture {
-            TEXTURE_KEYS
-        } else {
-            BUFFER_KEYS
+    Some(Spanned::new(kind, kind_name.location))
+}
+
+/// A buffer's `size`: a byte count, an integer or an expression.
+fn buffer_size(b: &mut Builder<'_>, name: &str, size_node: &Spanned<Node>) -> Option<SizeDecl> {
+    match &size_node.value {
+        Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => Some(SizeDecl::Bytes(Spanned::new(
+            v.clone(),
+            size_node.location.clone(),
+        ))),
+        _ => {
+            b.schema(
+                &size_node.location,
+                format!(
+                    "resources.{name}.size of a buffer is a byte count (integer or expression)"
+                ),
+            );
+            None
+        }
+    }
+}
+
+/// A texture's `size`: `[width, height]`, `"screen"` or `"screen/N"`.
+fn texture_size(b: &mut Builder<'_>, name: &str, size_node: &Spanned<Node>) -> Option<SizeDecl> {
+    match &size_node.value {
+        Node::Scalar(Value::Str(s)) => match parse_screen_size(s) {
+            Some(divisor) => Some(SizeDecl::Screen {
+                divisor,
+                location: size_node.location.clone(),
+            }),
+            None => {
+                b.schema(&size_node.location, format!("resources.{name}.size is `{s}`; accepted: [width, height], \"screen\", \"screen/N\""));
+                None
+            }
         },
-        &format!("{context} ({kind})"),
-    );
-    let Some(size_entry) = t.get("size") else {
-        b.schema(&entry.key, format!("{context} needs a `size`"));
-        return None;
-    };
-    let size_node = &size_entry.value;
-    let size = match kind {
-        ResourceKind::Buffer => {
-            match &size_node.value {
+        Node::List(items) if items.len() == 2 => {
+            let dim = |n: &Spanned<Node>| match &n.value {
                 Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => {
-                    SizeDecl::Bytes(Spanned::new(v.clone(), size_node.location.clone()))
+                    Some(Spanned::new(v.clone(), n.location.clone()))
                 }
+                _ => None,
+            };
+            match (dim(&items[0]), dim(&items[1])) {
+                (Some(width), Some(height)) => Some(SizeDecl::Extent {
+                    width,
+                    height,
+                    location: size_node.location.clone(),
+                }),
                 _ => {
-                    b.schema(&size_node.location, format!("resources.{name}.size of a buffer is a byte count (integer or expression)"));
-                    return None;
+                    b.schema(
+                        &size_node.location,
+                        format!("resources.{name}.size must hold two integers or expressions"),
+                    );
+                    None
                 }
             }
         }
-        ResourceKind::Texture => {
-            match &size_node.value {
-                Node::Scalar(Value::Str(s)) => match parse_screen_size(s) {
-                    Some(divisor) => SizeDecl::Screen {
-                        divisor,
-                        location: size_node.location.clone(),
-                    },
-                    None => {
-                        b.schema(&size_node.location, format!("resources.{name}.size is `{s}`; accepted: [width, height], \"screen\", \"screen/N\""));
-                        return None;
-                    }
-                },
-                Node::List(items) if items.len() == 2 => {
-                    let dim = |n: &Spanned<Node>| match &n.value {
-                        Node::Scalar(v @ (Value::Int(_) | Value::Str(_))) => {
-                            Some(Spanned::new(v.clone(), n.location.clone()))
-                        }
-                        _ => None,
-                    };
-                    match (dim(&items[0]), dim(&items[1])) {
-                        (Some(width), Some(height)) => SizeDecl::Extent {
-                            width,
-                            height,
-                            location: size_node.location.clone(),
-                        },
-                        _ => {
-                            b.schema(
-                                &size_node.location,
-                                format!(
-                                    "resources.{name}.size must hold two integers or expressions"
-                                ),
-                            );
-                            return None;
-                        }
-                    }
-                }
-                _ => {
-                    b.schema(&size_node.location, format!("resources.{name}.size must be [width, height], \"screen\" or \"screen/N\""));
-                    return None;
-                }
-            }
+        _ => {
+            b.schema(
+                &size_node.location,
+                format!(
+                    "resources.{name}.size must be [width, height], \"screen\" or \"screen/N\""
+                ),
+            );
+            None
         }
-    };
-    let format = match (kind, t.get("format")) {
+    }
+}
+
+/// A texture's `format` (required; buffers have none). The outer `None`
+/// means an error was reported.
+fn resource_format(
+    b: &mut Builder<'_>,
+    name: &str,
+    entry: &Entry,
+    t: &Table,
+    context: &str,
+    kind: ResourceKind,
+) -> Option<Option<Spanned<Format>>> {
+    match (kind, t.get("format")) {
         (ResourceKind::Texture, Some(e)) => {
             let s = b.string(e, &format!("resources.{name}.format"))?;
             match s.value.parse::<Format>() {
-                Ok(f) => Some(Spanned::new(f, s.location)),
+                Ok(f) => Some(Some(Spanned::new(f, s.location))),
                 Err(err) => {
                     b.schema(&s.location, err.to_string());
-                    return None;
+                    None
                 }
             }
         }
@@ -370,19 +435,15 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
                 &entry.key,
                 format!("{context} is a texture and needs a `format`"),
             );
-            return None;
+            None
         }
-        _ => None,
-    };
-    let int_field = |key: &str| {
-        t.get(key)
-            .map(|e| e.value.clone())
-            .and_then(|n| match n.value {
-                Node::Scalar(v) => Some(Spanned::new(v, n.location)),
-                _ => None,
-            })
-    };
-    let history = t.get("history").and_then(|e| match &e.value.value {
+        _ => Some(None),
+    }
+}
+
+/// `history = N`: how many past frames are kept, if any.
+fn resource_history(b: &mut Builder<'_>, name: &str, t: &Table) -> Option<Spanned<u32>> {
+    t.get("history").and_then(|e| match &e.value.value {
         Node::Scalar(Value::Int(n)) if (1..=MAX_HISTORY).contains(n) => {
             Some(Spanned::new(*n as u32, e.value.location.clone()))
         }
@@ -395,8 +456,12 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
             );
             None
         }
-    });
-    let persistent = t.get("persistent").and_then(|e| match &e.value.value {
+    })
+}
+
+/// `persistent = true`: where it is written.
+fn resource_persistent(b: &mut Builder<'_>, name: &str, t: &Table) -> Option<Location> {
+    t.get("persistent").and_then(|e| match &e.value.value {
         Node::Scalar(Value::Bool(true)) => Some(e.value.location.clone()),
         Node::Scalar(Value::Bool(false)) => None,
         _ => {
@@ -406,22 +471,6 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
             );
             None
         }
-    });
-    Some(ResourceDecl {
-        name: name.to_owned(),
-        kind: Spanned::new(kind, kind_name.location),
-        format,
-        size,
-        layers: int_field("layers"),
-        samples: int_field("samples"),
-        location: entry.key.clone(),
-        history,
-        persistent,
-        previous_of: None,
-        overflow: match (kind, t.get("overflow")) {
-            (ResourceKind::Buffer, Some(e)) => crate::overflow::parse(&e.value, name, b.errors),
-            _ => None,
-        },
     })
 }
 

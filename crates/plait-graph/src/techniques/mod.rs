@@ -229,6 +229,10 @@ fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<N
     })
 }
 
+/// What a chosen point's technique exports to the passes that `uses` it:
+/// the point, where it was chosen, and the `reads` and `params` tables.
+type PointExports = (String, Location, Option<Table>, Option<Table>);
+
 /// Replace the `[techniques]` table of `root` (the pipeline after `extends`
 /// and `--set`) by the chosen techniques' data, and give every pass that
 /// `uses` a choice point that point's exports. Technique files read are added
@@ -244,11 +248,8 @@ pub(crate) fn apply_techniques(
         return chosen_list;
     };
     let chosen = top.shift_remove("techniques");
-    let mut exports: Vec<(String, Location, Option<Table>, Option<Table>)> = Vec::new();
+    let mut exports: Vec<PointExports> = Vec::new();
     let mut combined: Option<Spanned<Node>> = None;
-    // Which technique defined each resource and pass, to refuse two of them
-    // defining the same name.
-    let mut owners: Vec<(String, String, String)> = Vec::new();
     if let Some(entry) = &chosen {
         let Node::Table(points_table) = &entry.value.value else {
             errors.push(schema(
@@ -268,151 +269,20 @@ pub(crate) fn apply_techniques(
             ));
             return chosen_list;
         }
-        let known_points = roots.points();
+        let mut chooser = Chooser {
+            known_points: roots.points(),
+            roots,
+            files,
+            errors: &mut *errors,
+            chosen: Vec::new(),
+            exports: Vec::new(),
+            combined: None,
+            owners: Vec::new(),
+        };
         for (point, choice) in points_table {
-            if !known_points.contains(point) {
-                errors.push(schema(
-                    &choice.key,
-                    format!(
-                        "no choice point `{point}`{} (points: {})",
-                        did_you_mean(point, known_points.iter().map(String::as_str)),
-                        known_points.join(", ")
-                    ),
-                ));
-                continue;
-            }
-            let Node::Scalar(Value::Str(name)) = &choice.value.value else {
-                errors.push(schema(
-                    &choice.value.location,
-                    format!("techniques.{point} names a technique: a string"),
-                ));
-                continue;
-            };
-            let path = match roots.locate(point, name) {
-                Located::Found(path) => path,
-                Located::Missing => {
-                    let valid = roots.choices(point);
-                    let ranked = nearest_first(name, valid.iter().map(String::as_str));
-                    errors.push(schema(
-                        &choice.value.location,
-                        format!(
-                            "no {point} technique `{name}`{} (choices: {})",
-                            did_you_mean(name, valid.iter().map(String::as_str)),
-                            ranked.join(" | ")
-                        ),
-                    ));
-                    continue;
-                }
-                other => {
-                    let mut e = located_error(&other, point, name).expect("not found");
-                    // Reported at the choice, naming the folder.
-                    e.location = choice.value.location.clone();
-                    errors.push(e);
-                    continue;
-                }
-            };
-            let tree = match read_technique(&path) {
-                Ok(t) => t,
-                Err(mut e) => {
-                    errors.append(&mut e);
-                    continue;
-                }
-            };
-            files.push(path.clone());
-            chosen_list.push(ChosenTechnique {
-                point: point.clone(),
-                name: name.clone(),
-                path: path.clone(),
-            });
-            let Some(technique) = technique_table(&tree) else {
-                continue;
-            };
-            match technique.get("point").map(|e| &e.value) {
-                Some(Spanned {
-                    value: Node::Scalar(Value::Str(p)),
-                    ..
-                }) if p == point => {}
-                Some(other) => errors.push(schema(
-                    &other.location,
-                    format!("this technique fills the choice point `{point}` (it is in {TECHNIQUES_DIR}/{point}/); write `point = \"{point}\"`"),
-                )),
-                None => errors.push(schema(
-                    &tree.location,
-                    format!("[technique] needs `point = \"{point}\"`"),
-                )),
-            }
-            match roots.point_file(point) {
-                Some(Ok(promise)) => {
-                    errors.extend(point_file::check_writes(&promise, point, name, &tree))
-                }
-                Some(Err(mut e)) => errors.append(&mut e),
-                None => {}
-            }
-            let (mut reads, mut params) = (None, None);
-            if let Some(e) = technique.get("exports") {
-                match &e.value.value {
-                    Node::Table(t) => {
-                        for (key, x) in t {
-                            let slot = match &x.value.value {
-                                Node::Table(inner) => Some(inner.clone()),
-                                _ => {
-                                    errors.push(schema(
-                                        &x.value.location,
-                                        format!("exports.{key} must be a table"),
-                                    ));
-                                    None
-                                }
-                            };
-                            match key.as_str() {
-                                "reads" => reads = slot,
-                                "params" => params = slot,
-                                _ => errors.push(schema(
-                                    &x.key,
-                                    format!(
-                                        "exports has `reads` and `params`; not `{key}`{}",
-                                        did_you_mean(key, EXPORT_KEYS.iter().copied())
-                                    ),
-                                )),
-                            }
-                        }
-                    }
-                    _ => errors.push(schema(&e.value.location, "exports must be a table".into())),
-                }
-            }
-            exports.push((point.clone(), choice.value.location.clone(), reads, params));
-            // Two techniques may not define the same resource or pass.
-            for section in ["resources", "passes"] {
-                if let Some(t) = table(&tree, section) {
-                    for (item, e) in t {
-                        if let Some((_, other, _)) =
-                            owners.iter().find(|(s, _, i)| s == section && i == item)
-                        {
-                            errors.push(schema(
-                                &e.key,
-                                format!(
-                                    "{section}.{item} is defined by technique `{other}` too: two techniques cannot define the same name"
-                                ),
-                            ));
-                        } else {
-                            owners.push((
-                                section.to_owned(),
-                                format!("{point}/{name}"),
-                                item.clone(),
-                            ));
-                        }
-                    }
-                }
-            }
-            let Node::Table(mut t) = tree.value else {
-                continue;
-            };
-            t.shift_remove("technique");
-            let data = Spanned::new(Node::Table(t), tree.location);
-            match &mut combined {
-                Some(c) => merge(c, data),
-                None => combined = Some(data),
-            }
+            chooser.choose(point, choice);
         }
+        (chosen_list, exports, combined) = (chooser.chosen, chooser.exports, chooser.combined);
     }
     if !errors.is_empty() {
         return chosen_list;
@@ -430,10 +300,207 @@ pub(crate) fn apply_techniques(
     chosen_list
 }
 
+/// What reading the chosen techniques of `[techniques]` one by one gathers.
+struct Chooser<'a> {
+    roots: TechniqueRoots,
+    known_points: Vec<String>,
+    files: &'a mut Vec<PathBuf>,
+    errors: &'a mut Vec<Error>,
+    chosen: Vec<ChosenTechnique>,
+    exports: Vec<PointExports>,
+    /// The techniques' data (without `[technique]`), merged in choice order.
+    combined: Option<Spanned<Node>>,
+    /// Which technique defined each resource and pass, to refuse two of them
+    /// defining the same name: (section, `point/name`, item).
+    owners: Vec<(String, String, String)>,
+}
+
+impl Chooser<'_> {
+    /// Reads the technique chosen for `point`, checks it against its point
+    /// and gathers its exports and data.
+    fn choose(&mut self, point: &str, choice: &Entry) {
+        let Some((name, path)) = self.locate(point, choice) else {
+            return;
+        };
+        let tree = match read_technique(&path) {
+            Ok(t) => t,
+            Err(mut e) => {
+                self.errors.append(&mut e);
+                return;
+            }
+        };
+        self.files.push(path.clone());
+        self.chosen.push(ChosenTechnique {
+            point: point.to_owned(),
+            name: name.clone(),
+            path: path.clone(),
+        });
+        let Some(technique) = technique_table(&tree) else {
+            return;
+        };
+        self.check_point_key(technique, &tree, point);
+        match self.roots.point_file(point) {
+            Some(Ok(promise)) => self
+                .errors
+                .extend(point_file::check_writes(&promise, point, name, &tree)),
+            Some(Err(mut e)) => self.errors.append(&mut e),
+            None => {}
+        }
+        let (reads, params) = self.read_exports(technique);
+        self.exports.push((
+            point.to_owned(),
+            choice.value.location.clone(),
+            reads,
+            params,
+        ));
+        self.claim_names(&tree, point, name);
+        let Node::Table(mut t) = tree.value else {
+            return;
+        };
+        t.shift_remove("technique");
+        let data = Spanned::new(Node::Table(t), tree.location);
+        match &mut self.combined {
+            Some(c) => merge(c, data),
+            None => self.combined = Some(data),
+        }
+    }
+
+    /// The technique named for `point` and its file, or `None` once the
+    /// point, the name or the folder is reported.
+    fn locate<'c>(&mut self, point: &str, choice: &'c Entry) -> Option<(&'c String, PathBuf)> {
+        if !self.known_points.iter().any(|p| p == point) {
+            let known_points = &self.known_points;
+            self.errors.push(schema(
+                &choice.key,
+                format!(
+                    "no choice point `{point}`{} (points: {})",
+                    did_you_mean(point, known_points.iter().map(String::as_str)),
+                    known_points.join(", ")
+                ),
+            ));
+            return None;
+        }
+        let Node::Scalar(Value::Str(name)) = &choice.value.value else {
+            self.errors.push(schema(
+                &choice.value.location,
+                format!("techniques.{point} names a technique: a string"),
+            ));
+            return None;
+        };
+        match self.roots.locate(point, name) {
+            Located::Found(path) => Some((name, path)),
+            Located::Missing => {
+                let valid = self.roots.choices(point);
+                let ranked = nearest_first(name, valid.iter().map(String::as_str));
+                self.errors.push(schema(
+                    &choice.value.location,
+                    format!(
+                        "no {point} technique `{name}`{} (choices: {})",
+                        did_you_mean(name, valid.iter().map(String::as_str)),
+                        ranked.join(" | ")
+                    ),
+                ));
+                None
+            }
+            other => {
+                let mut e = located_error(&other, point, name).expect("not found");
+                // Reported at the choice, naming the folder.
+                e.location = choice.value.location.clone();
+                self.errors.push(e);
+                None
+            }
+        }
+    }
+
+    /// Checks that `[technique] point` names the point the folder is under.
+    fn check_point_key(&mut self, technique: &Table, tree: &Spanned<Node>, point: &str) {
+        match technique.get("point").map(|e| &e.value) {
+            Some(Spanned {
+                value: Node::Scalar(Value::Str(p)),
+                ..
+            }) if p == point => {}
+            Some(other) => self.errors.push(schema(
+                &other.location,
+                format!("this technique fills the choice point `{point}` (it is in {TECHNIQUES_DIR}/{point}/); write `point = \"{point}\"`"),
+            )),
+            None => self.errors.push(schema(
+                &tree.location,
+                format!("[technique] needs `point = \"{point}\"`"),
+            )),
+        }
+    }
+
+    /// The `reads` and `params` tables of `[technique.exports]`, reporting
+    /// anything else there.
+    fn read_exports(&mut self, technique: &Table) -> (Option<Table>, Option<Table>) {
+        let (mut reads, mut params) = (None, None);
+        let Some(e) = technique.get("exports") else {
+            return (reads, params);
+        };
+        let Node::Table(t) = &e.value.value else {
+            self.errors
+                .push(schema(&e.value.location, "exports must be a table".into()));
+            return (reads, params);
+        };
+        for (key, x) in t {
+            let slot = match &x.value.value {
+                Node::Table(inner) => Some(inner.clone()),
+                _ => {
+                    self.errors.push(schema(
+                        &x.value.location,
+                        format!("exports.{key} must be a table"),
+                    ));
+                    None
+                }
+            };
+            match key.as_str() {
+                "reads" => reads = slot,
+                "params" => params = slot,
+                _ => self.errors.push(schema(
+                    &x.key,
+                    format!(
+                        "exports has `reads` and `params`; not `{key}`{}",
+                        did_you_mean(key, EXPORT_KEYS.iter().copied())
+                    ),
+                )),
+            }
+        }
+        (reads, params)
+    }
+
+    /// Records the resources and passes technique `point/name` defines,
+    /// reporting any another technique defined first.
+    fn claim_names(&mut self, tree: &Spanned<Node>, point: &str, name: &str) {
+        // Two techniques may not define the same resource or pass.
+        for section in ["resources", "passes"] {
+            let Some(t) = table(tree, section) else {
+                continue;
+            };
+            for (item, e) in t {
+                if let Some((_, other, _)) = self
+                    .owners
+                    .iter()
+                    .find(|(s, _, i)| s == section && i == item)
+                {
+                    self.errors.push(schema(
+                        &e.key,
+                        format!(
+                            "{section}.{item} is defined by technique `{other}` too: two techniques cannot define the same name"
+                        ),
+                    ));
+                } else {
+                    self.owners
+                        .push((section.to_owned(), format!("{point}/{name}"), item.clone()));
+                }
+            }
+        }
+    }
+}
+
 /// Merge each used point's exports into the passes that `uses` it.
 fn give_exports(
     root: &mut Spanned<Node>,
-    exports: &[(String, Location, Option<Table>, Option<Table>)],
+    exports: &[PointExports],
     has_table: bool,
     errors: &mut Vec<Error>,
 ) {
