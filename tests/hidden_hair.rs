@@ -54,7 +54,7 @@ fn hair_maps(gpu: &Gpu, pipeline: &Path) -> (Vec<(String, bool)>, String) {
     for pass in schedule
         .passes
         .iter()
-        .filter(|p| p.draw.as_deref() == Some("hair"))
+        .filter(|p| p.draw == Some(plait_graph::Draw::Hair))
     {
         for w in &pass.writes {
             if !matches!(w.access, Access::StorageWrite | Access::ColorTarget) {

@@ -72,7 +72,7 @@ fn scheduled_pass(
         name: format!("test_{type_name}"),
         type_name: type_name.into(),
         shape,
-        view: view.map(str::to_owned),
+        view: view.and_then(plait_graph::View::from_name),
         draw: None,
         reads: vec![],
         writes: vec![],

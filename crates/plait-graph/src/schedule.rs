@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::Location;
 use crate::format::Format;
-use crate::spec::{Access, PassShape, ResourceKind};
+use crate::spec::{Access, Draw, PassShape, ResourceKind, View};
 use crate::value::Value;
 
 /// Index into [`Schedule::resources`].
@@ -132,10 +132,10 @@ pub struct ScheduledPass {
     pub name: String,
     pub type_name: String,
     pub shape: PassShape,
-    /// `light` or `camera` for raster passes.
-    pub view: Option<String>,
-    /// `hair` or `opaque` for raster passes.
-    pub draw: Option<String>,
+    /// Raster passes only.
+    pub view: Option<View>,
+    /// Raster passes only.
+    pub draw: Option<Draw>,
     pub reads: Vec<Binding>,
     pub writes: Vec<Binding>,
     /// Every param of the type, defaults filled in, values checked.

@@ -120,10 +120,10 @@ pub fn schedule_text(s: &Schedule) -> String {
 fn pass_text(out: &mut String, prefix: &str, p: &crate::schedule::ScheduledPass, s: &Schedule) {
     let mut head = format!("{prefix} {} [{}]", p.name, p.type_name);
     if let Some(view) = &p.view {
-        head += &format!(" view={view}");
+        head += &format!(" view={}", view.name());
     }
     if let Some(draw) = &p.draw {
-        head += &format!(" draw={draw}");
+        head += &format!(" draw={}", draw.name());
     }
     if p.run_once {
         head += " run=once";

@@ -190,6 +190,62 @@ pub enum PassShape {
     Compute,
 }
 
+/// Where a raster pass looks from (`view = "camera" | "light"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum View {
+    Camera,
+    Light,
+}
+
+/// The scene geometry a raster pass draws (`draw = "hair" | "opaque"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Draw {
+    Hair,
+    Opaque,
+}
+
+impl View {
+    /// The names a pipeline file may write, in the order errors list them.
+    pub const NAMES: &[&str] = &["light", "camera"];
+
+    pub fn from_name(name: &str) -> Option<View> {
+        match name {
+            "camera" => Some(View::Camera),
+            "light" => Some(View::Light),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            View::Camera => "camera",
+            View::Light => "light",
+        }
+    }
+}
+
+impl Draw {
+    /// The names a pipeline file may write, in the order errors list them.
+    pub const NAMES: &[&str] = &["hair", "opaque"];
+
+    pub fn from_name(name: &str) -> Option<Draw> {
+        match name {
+            "hair" => Some(Draw::Hair),
+            "opaque" => Some(Draw::Opaque),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Draw::Hair => "hair",
+            Draw::Opaque => "opaque",
+        }
+    }
+}
+
 /// The declaration of a pass type. Registered by the pass library.
 #[derive(Clone, Debug)]
 pub struct PassTypeSpec {

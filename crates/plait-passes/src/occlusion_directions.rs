@@ -163,8 +163,8 @@ pub(crate) fn kernel_pass(
     // The gather kernel adds into `vertex_ao`: it must not be cleared per direction.
     sub.writes = rebind(writes, true)?;
     if shape == PassShape::Raster {
-        sub.view = Some("light".into());
-        sub.draw = Some("hair".into());
+        sub.view = Some(plait_graph::View::Light);
+        sub.draw = Some(plait_graph::Draw::Hair);
     }
     Ok(sub)
 }

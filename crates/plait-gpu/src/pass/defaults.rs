@@ -27,10 +27,10 @@ pub fn default_defines(pass: &ScheduledPass) -> Vec<(String, Define)> {
             _ => {}
         }
     }
-    if pass.view.as_deref() == Some("light") {
+    if pass.view == Some(plait_graph::View::Light) {
         out.push(("LIGHT_VIEW".into(), Define::Bool(true)));
     }
-    if pass.draw.as_deref() == Some("opaque") {
+    if pass.draw == Some(plait_graph::Draw::Opaque) {
         out.push(("DRAW_OPAQUE".into(), Define::Bool(true)));
     }
     out

@@ -6,7 +6,7 @@ use std::borrow::Cow;
 use std::cell::OnceCell;
 use std::sync::Arc;
 
-use plait_graph::{PassShape, ScheduledPass};
+use plait_graph::{Draw, PassShape, ScheduledPass};
 
 use super::build::{ShaderDraw, pass_error};
 use super::pass_type::BuildContext;
@@ -152,15 +152,12 @@ impl PipelineParts<'_> {
     fn draw_what(&self) -> Result<DrawWhat, GpuError> {
         Ok(match self.draw.shape {
             PassShape::Fullscreen => DrawWhat::Fullscreen,
-            _ => match self.pass.draw.as_deref() {
-                Some("hair") => DrawWhat::Hair,
-                Some("opaque") => DrawWhat::Opaque,
-                other => {
-                    return Err(pass_error(
-                        self.pass,
-                        format!("cannot draw {other:?}: use \"hair\" or \"opaque\""),
-                    ));
-                }
+            _ => match self.pass.draw {
+                Some(Draw::Hair) => DrawWhat::Hair,
+                Some(Draw::Opaque) => DrawWhat::Opaque,
+                // Compile requires `draw` of a raster pass; a Rust pass type
+                // that records a raster draw of its own may forget it.
+                None => return Err(pass_error(self.pass, "a raster draw needs `draw = \"hair\"` or `\"opaque\"`")),
             },
         })
     }

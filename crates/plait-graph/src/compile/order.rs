@@ -27,7 +27,7 @@ fn reads_from(pass: &ScheduledPass, resource: usize) -> bool {
 /// Scene resource ids (after the `declared` ones) a pass reads without naming
 /// them: a hair draw reads the hair's vertices and indices.
 pub(super) fn implicit_reads(pass: &ScheduledPass, declared: usize) -> Vec<usize> {
-    if pass.draw.as_deref() != Some("hair") {
+    if pass.draw != Some(crate::spec::Draw::Hair) {
         return Vec::new();
     }
     DRAWN_HAIR

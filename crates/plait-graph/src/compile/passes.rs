@@ -10,7 +10,7 @@ use crate::load::{PassDecl, Pipeline};
 use crate::scene_resources::{SCENE_RESOURCES, scene_resource};
 use crate::schedule::*;
 use crate::spec::{
-    Access, ParamSpec, ParamType, PassShape, PassTypeSpec, Registry, ResourceKind, SlotSpec,
+    Access, Draw, ParamSpec, ParamType, PassShape, PassTypeSpec, Registry, ResourceKind, SlotSpec, View,
 };
 use crate::value::Value;
 
@@ -100,8 +100,9 @@ pub(super) fn resolve_pass(
         name: decl.name.clone(),
         type_name: decl.type_name.value.clone(),
         shape: spec.map_or(PassShape::Compute, |s| s.shape),
-        view: decl.view.as_ref().map(|v| v.value.clone()),
-        draw: decl.draw.as_ref().map(|v| v.value.clone()),
+        // Their names were checked at load.
+        view: decl.view.as_ref().and_then(|v| View::from_name(&v.value)),
+        draw: decl.draw.as_ref().and_then(|v| Draw::from_name(&v.value)),
         reads,
         writes,
         params,

@@ -43,10 +43,10 @@ pub(crate) const PASS_KEYS: &[&str] = &[
     "loads",
     "run",
 ];
-const VIEWS: &[&str] = &["light", "camera"];
+const VIEWS: &[&str] = crate::spec::View::NAMES;
 /// `run = "once"`: a precompute whose outputs are kept across frames.
 const RUNS: &[&str] = &["every_frame", "once"];
-const DRAWS: &[&str] = &["hair", "opaque"];
+const DRAWS: &[&str] = crate::spec::Draw::NAMES;
 
 struct Builder<'e> {
     errors: &'e mut Vec<Error>,

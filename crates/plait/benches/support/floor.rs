@@ -282,9 +282,9 @@ impl<'g> Floor<'g> {
                     })
                 })
                 .collect();
-            let geometry = match (pass.shape, pass.draw.as_deref()) {
+            let geometry = match (pass.shape, pass.draw) {
                 (PassShape::Fullscreen, _) => Geometry::Fullscreen,
-                (_, Some("opaque")) => Geometry::Opaque,
+                (_, Some(plait_graph::Draw::Opaque)) => Geometry::Opaque,
                 _ => Geometry::Hair,
             };
             let stride = match geometry {
@@ -352,7 +352,7 @@ impl<'g> Floor<'g> {
                 resolves,
                 depth,
                 clear_depth: state.clear_depth,
-                light_view: pass.view.as_deref() == Some("light"),
+                light_view: pass.view == Some(plait_graph::View::Light),
                 geometry,
                 clears,
             });
