@@ -60,7 +60,7 @@ fn hair_maps(gpu: &Gpu, pipeline: &Path) -> (Vec<(String, bool)>, String) {
             if !matches!(w.access, Access::StorageWrite | Access::ColorTarget) {
                 continue;
             }
-            let desc = &schedule.resources[w.resource].desc;
+            let desc = &schedule.resources[w.id()].desc;
             let readable = match desc {
                 ResourceDesc::Buffer { .. } => true,
                 ResourceDesc::Texture { samples, .. } => *samples == 1,

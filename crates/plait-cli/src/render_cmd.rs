@@ -242,9 +242,7 @@ fn names(schedule: &Schedule, bindings: &[plait_graph::Binding]) -> Vec<String> 
     bindings
         .iter()
         .map(|b| {
-            schedule
-                .resources
-                .get(b.resource)
+            b.resolved(&schedule.resources)
                 .map(|r| r.name.clone())
                 .unwrap_or_else(|| b.resource_name.clone())
         })

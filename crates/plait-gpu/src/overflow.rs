@@ -65,7 +65,7 @@ impl OverflowReadback {
                 let writer = schedule
                     .passes
                     .iter()
-                    .rposition(|p| p.writes.iter().any(|b| b.resource == c.counter))?;
+                    .rposition(|p| p.writes.iter().any(|b| b.resource == Some(c.counter)))?;
                 let size = pool.buffer(c.counter)?.size();
                 let staging = device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some(&format!("overflow readback {}", c.counter_name)),

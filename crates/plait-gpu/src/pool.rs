@@ -61,7 +61,7 @@ impl ResourcePool {
         let mut sampled = vec![false; schedule.physical.len()];
         for pass in schedule.passes.iter() {
             for b in pass.reads.iter().chain(pass.writes.iter()) {
-                let p = schedule.resources[b.resource].physical;
+                let p = schedule.resources[b.id()].physical;
                 match b.access {
                     Access::Sampled => {
                         tex_usage[p] |= wgpu::TextureUsages::TEXTURE_BINDING;

@@ -8,7 +8,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, DROPPED_RESOURCE, Schedule, ScheduledPass};
+use crate::schedule::{Binding, Schedule, ScheduledPass};
 
 /// Graphviz DOT of the schedule (for `dot -Tsvg`).
 pub fn to_dot(schedule: &Schedule) -> String {
@@ -37,11 +37,7 @@ fn label(lines: &[&str]) -> String {
 }
 
 fn resource_label(schedule: &Schedule, binding: &Binding) -> String {
-    match schedule
-        .resources
-        .get(binding.resource)
-        .filter(|_| binding.resource != DROPPED_RESOURCE)
-    {
+    match binding.resolved(&schedule.resources) {
         Some(r) => label(&[&binding.resource_name, &r.desc.label()]),
         None => label(&[&binding.resource_name]),
     }

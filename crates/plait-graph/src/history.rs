@@ -8,9 +8,7 @@ use std::cmp::Reverse;
 
 use crate::error::{Error, ErrorKind, Spanned};
 use crate::load::{Pipeline, ResourceDecl};
-use crate::schedule::{
-    DROPPED_RESOURCE, HistoryCopy, Lifetime, ResolvedResource, ResourceDesc, ResourceId,
-};
+use crate::schedule::{HistoryCopy, Lifetime, ResolvedResource, ResourceDesc, ResourceId};
 
 /// The resources a read of resource `r` (a declaration index) needs besides
 /// itself: for `NAME.previous.K`, `NAME` and every younger version it is
@@ -61,13 +59,17 @@ pub(crate) fn copies(resources: &[ResolvedResource]) -> Vec<HistoryCopy> {
 pub(crate) fn declared_lifetime(
     decl: &ResourceDecl,
     pipeline: &Pipeline,
-    new_id: &[ResourceId],
+    new_id: &[Option<ResourceId>],
 ) -> Lifetime {
-    if let Some(of) = &decl.previous_of {
-        let base = pipeline
+    // A live version keeps the resource it ages (`history_chain`); one whose
+    // base has no descriptor is an error compile reports, so it is a frame
+    // resource here rather than an id that names nothing.
+    if let Some(of) = &decl.previous_of
+        && let Some(base) = pipeline
             .resources
             .get_index_of(&of.resource)
-            .map_or(DROPPED_RESOURCE, |i| new_id[i]);
+            .and_then(|i| new_id[i])
+    {
         return Lifetime::Previous {
             of: base,
             frames_ago: of.frames_ago,

@@ -483,7 +483,7 @@ pub fn check_words_per_texel(
             .chain(pass.writes.iter())
             .find(|b| b.slot == slot)
             // A culled pass may name resources the schedule dropped.
-            .and_then(|b| resources.get(b.resource))
+            .and_then(|b| b.resolved(resources))
             .map(|r| (r.name.clone(), r.desc.clone()))
     };
     let (

@@ -11,9 +11,6 @@ use crate::value::Value;
 
 /// Index into [`Schedule::resources`].
 pub type ResourceId = usize;
-/// The `resource` of a culled pass's binding whose resource was dropped
-/// because only culled passes use it (see [`Binding::resource_name`]).
-pub const DROPPED_RESOURCE: ResourceId = usize::MAX;
 /// Index into [`Schedule::physical`].
 pub type PhysicalId = usize;
 
@@ -88,8 +85,9 @@ impl ResourceDesc {
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Binding {
     pub slot: String,
-    /// [`DROPPED_RESOURCE`] in a culled pass when the resource was dropped.
-    pub resource: ResourceId,
+    /// `None` only in a culled pass, when its resource was dropped because
+    /// only culled passes use it (see [`Binding::resource_name`]).
+    pub resource: Option<ResourceId>,
     /// The resource's name as written in the file.
     pub resource_name: String,
     pub access: Access,
@@ -100,6 +98,19 @@ pub struct Binding {
     pub loads: bool,
     #[serde(skip)]
     pub location: Location,
+}
+
+impl Binding {
+    /// The resource of a live pass's binding: compile gives each one.
+    pub fn id(&self) -> ResourceId {
+        self.resource
+            .expect("a live pass's binding names a live resource")
+    }
+
+    /// Its resource among `resources`, `None` if it was dropped.
+    pub fn resolved<'r>(&self, resources: &'r [ResolvedResource]) -> Option<&'r ResolvedResource> {
+        self.resource.and_then(|id| resources.get(id))
+    }
 }
 
 /// A technique a pipeline chose for one of its choice points.

@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, DROPPED_RESOURCE, Lifetime, Schedule};
+use crate::schedule::{Binding, Lifetime, Schedule};
 
 /// The schedule as text: passes in order, culled passes with reasons,
 /// resources with descriptor, bytes, lifetime and physical slot, memory.
@@ -142,7 +142,7 @@ fn pass_text(out: &mut String, prefix: &str, p: &crate::schedule::ScheduledPass,
     let bindings = |list: &[Binding]| -> String {
         list.iter()
             .map(|b| {
-                let dropped = if b.resource == DROPPED_RESOURCE || b.resource >= s.resources.len() {
+                let dropped = if b.resolved(&s.resources).is_none() {
                     " (dropped)"
                 } else {
                     ""

@@ -15,7 +15,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, DROPPED_RESOURCE, ResourceDesc, Schedule, ScheduledPass};
+use crate::schedule::{Binding, ResourceDesc, Schedule, ScheduledPass};
 use crate::spec::ResourceKind;
 
 mod measure;
@@ -130,7 +130,7 @@ enum Mark {
 }
 
 fn mark_of(pass: &ScheduledPass, resource: usize) -> Option<Mark> {
-    let touches = |b: &&Binding| b.resource == resource && b.resource != DROPPED_RESOURCE;
+    let touches = |b: &&Binding| b.resource == Some(resource);
     let writes: Vec<&Binding> = pass.writes.iter().filter(touches).collect();
     if writes.iter().any(|b| b.loads) {
         Some(Mark::Adds)

@@ -138,7 +138,7 @@ fn check_same_size(
             .iter()
             .chain(pass.writes.iter())
             .find(|b| b.slot == slot)?;
-        match resources.get(binding.resource)? {
+        match binding.resolved(resources)? {
             ResolvedResource {
                 name,
                 desc: ResourceDesc::Texture { width, height, .. },

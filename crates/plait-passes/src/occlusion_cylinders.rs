@@ -109,7 +109,7 @@ impl PassType for OcclusionCylinders {
         shadow_draw.threads = [vertices, 1, 1];
         let shadow = build_draw(&shadow_draw, &kernels, ctx)?;
         // Bound, so checked to exist; its size is the shader's concern.
-        let box_id = bound(pass, "hair_box")?.resource;
+        let box_id = bound(pass, "hair_box")?.id();
         if let ResourceDesc::Buffer { size } = ctx.schedule.resources[box_id].desc
             && size < 32
         {

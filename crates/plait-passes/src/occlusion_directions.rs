@@ -188,7 +188,7 @@ pub(crate) fn checked_vertex_count(
         .as_ref()
         .ok_or_else(|| error("the scene has no hair".into()))?;
     let vertices = hair.vertices.size() / std::mem::size_of::<plait_hair::StrandVertex>() as u64;
-    let ao = &ctx.schedule.resources[bound(pass, "vertex_ao")?.resource];
+    let ao = &ctx.schedule.resources[bound(pass, "vertex_ao")?.id()];
     if let ResourceDesc::Buffer { size } = ao.desc
         && size < vertices * 4
     {
@@ -217,9 +217,8 @@ impl PassType for OcclusionDirections {
     ) -> Result<(), String> {
         let directions = int_param(pass, "directions") as u64;
         let frames = pass.writes.iter().find(|b| b.slot == "direction_frames");
-        if let Some(ResourceDesc::Buffer { size }) = frames
-            .and_then(|b| resources.get(b.resource))
-            .map(|r| &r.desc)
+        if let Some(ResourceDesc::Buffer { size }) =
+            frames.and_then(|b| b.resolved(resources)).map(|r| &r.desc)
         {
             let need = directions * DIRECTION_FRAME_BYTES;
             if *size < need {
@@ -237,7 +236,7 @@ impl PassType for OcclusionDirections {
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
         let vertices = checked_vertex_count(pass, ctx)?;
-        let ao_id = bound(pass, "vertex_ao")?.resource;
+        let ao_id = bound(pass, "vertex_ao")?.id();
         let directions = int_param(pass, "directions").clamp(1, MAX_DIRECTIONS) as u32;
 
         // The frames kernel (one workgroup) and the gather kernel (a thread per vertex).
@@ -347,9 +346,9 @@ impl PassType for OcclusionDirections {
             layers,
             uniforms,
             groups,
-            frames_buffer: bound(pass, "direction_frames")?.resource,
+            frames_buffer: bound(pass, "direction_frames")?.id(),
             vertex_ao: ao_id,
-            no_opaque: bound(pass, "no_opaque")?.resource,
+            no_opaque: bound(pass, "no_opaque")?.id(),
             directions,
         }))
     }

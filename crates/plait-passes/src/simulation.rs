@@ -228,7 +228,7 @@ impl PassType for HairSimulation {
             return Err(why);
         }
         let status = pass.writes.iter().find(|b| b.slot == "status");
-        if let Some(r) = status.and_then(|b| resources.get(b.resource))
+        if let Some(r) = status.and_then(|b| b.resolved(resources))
             && r.desc.bytes() < STATUS_BYTES
         {
             return Err(format!(
@@ -250,7 +250,7 @@ impl PassType for HairSimulation {
             .writes
             .iter()
             .find(|b| b.slot == "status")
-            .map(|b| b.resource)
+            .map(plait_graph::Binding::id)
             .ok_or_else(|| GpuError::Pass {
                 pass: pass.name.clone(),
                 message: "needs a `status` buffer".into(),

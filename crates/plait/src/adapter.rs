@@ -133,9 +133,7 @@ fn point_of(p: &Problem, schedule: &Schedule) -> Option<String> {
             .iter()
             .find(|pass| {
                 pass.reads.iter().chain(&pass.writes).any(|b| {
-                    schedule
-                        .resources
-                        .get(b.resource)
+                    b.resolved(&schedule.resources)
                         .is_some_and(|r| r.name == *resource)
                 })
             })

@@ -348,9 +348,7 @@ pub fn build<'g>(
     // A pass that writes the drawn hair (guide interpolation) moves it itself.
     let hair_written = schedule.passes.iter().any(|p| {
         p.writes.iter().any(|b| {
-            schedule
-                .resources
-                .get(b.resource)
+            b.resolved(&schedule.resources)
                 .is_some_and(|r| r.scene && r.name == "hair_vertices")
         })
     });

@@ -42,7 +42,8 @@ pub fn default_threads(pass: &ScheduledPass, schedule: &Schedule) -> [u32; 3] {
     match pass
         .writes
         .first()
-        .map(|b| &schedule.resources[b.resource].desc)
+        .and_then(|b| b.resolved(&schedule.resources))
+        .map(|r| &r.desc)
     {
         Some(ResourceDesc::Texture {
             width,

@@ -157,7 +157,12 @@ impl PipelineParts<'_> {
                 Some(Draw::Opaque) => DrawWhat::Opaque,
                 // Compile requires `draw` of a raster pass; a Rust pass type
                 // that records a raster draw of its own may forget it.
-                None => return Err(pass_error(self.pass, "a raster draw needs `draw = \"hair\"` or `\"opaque\"`")),
+                None => {
+                    return Err(pass_error(
+                        self.pass,
+                        "a raster draw needs `draw = \"hair\"` or `\"opaque\"`",
+                    ));
+                }
             },
         })
     }

@@ -157,7 +157,7 @@ pub fn from_decl(
         .collect();
     // A culled pass may bind resources the schedule dropped: what they would
     // have been is unknown, so they are not held against it.
-    let dropped = |b: &plait_graph::Binding| resources.get(b.resource).is_none();
+    let dropped = |b: &plait_graph::Binding| b.resolved(resources).is_none();
     let any_dropped = pass.reads.iter().chain(pass.writes.iter()).any(dropped);
     for (slot, blend) in &decl.blend {
         if pass.writes.iter().any(|b| &b.slot == slot && dropped(b)) {
@@ -182,7 +182,7 @@ pub fn from_decl(
             ));
             continue;
         };
-        let Some(res) = resources.get(targets[index].resource) else {
+        let Some(res) = targets[index].resolved(resources) else {
             continue;
         };
         if let ResourceDesc::Texture { format, .. } = res.desc
@@ -246,7 +246,7 @@ pub fn from_decl(
         // wgpu accepts alpha to coverage only with more than one sample.
         let samples = targets
             .first()
-            .and_then(|b| resources.get(b.resource))
+            .and_then(|b| b.resolved(resources))
             .map(|r| match r.desc {
                 ResourceDesc::Texture { samples, .. } => samples,
                 ResourceDesc::Buffer { .. } => 1,

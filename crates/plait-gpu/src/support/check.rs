@@ -190,15 +190,12 @@ impl PassCtx<'_> {
                 .reads
                 .iter()
                 .chain(&self.pass.writes)
-                .find(|s| s.resource == id)
+                .find(|s| s.resource == Some(id))
         });
         match slot {
             Some(s) => (
                 s.location.clone(),
-                self.schedule
-                    .resources
-                    .get(s.resource)
-                    .map(|r| r.name.clone()),
+                s.resolved(&self.schedule.resources).map(|r| r.name.clone()),
             ),
             None => (self.pass.location.clone(), b.map(|b| b.name.clone())),
         }
@@ -386,7 +383,7 @@ impl PassCtx<'_> {
                 .writes
                 .iter()
                 .chain(&self.pass.reads)
-                .find(|b| b.resource == id)
+                .find(|b| b.resource == Some(id))
                 .map_or(self.pass.location.clone(), |b| b.location.clone())
         };
         let name_of = |id: usize| {

@@ -85,7 +85,7 @@ pub(super) fn usage_problems(
     out: &mut Vec<Problem>,
 ) {
     for b in pass.reads.iter().chain(&pass.writes) {
-        let Some(r) = schedule.resources.get(b.resource).filter(|r| !r.scene) else {
+        let Some(r) = b.resolved(&schedule.resources).filter(|r| !r.scene) else {
             continue;
         };
         let ResourceDesc::Texture {

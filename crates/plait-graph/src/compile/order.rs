@@ -17,11 +17,11 @@ use crate::scene_resources::{DRAWN_HAIR, SCENE_RESOURCES, scene_resource};
 use crate::schedule::{Binding, ScheduledPass};
 
 pub(super) fn writes_to(pass: &ScheduledPass, resource: usize) -> Option<&Binding> {
-    pass.writes.iter().find(|b| b.resource == resource)
+    pass.writes.iter().find(|b| b.resource == Some(resource))
 }
 
 fn reads_from(pass: &ScheduledPass, resource: usize) -> bool {
-    pass.reads.iter().any(|b| b.resource == resource)
+    pass.reads.iter().any(|b| b.resource == Some(resource))
 }
 
 /// Scene resource ids (after the `declared` ones) a pass reads without naming
@@ -142,7 +142,11 @@ fn check_written(
         return;
     }
     for &r in readers {
-        for b in passes[r].reads.iter().filter(|b| b.resource == resource) {
+        for b in passes[r]
+            .reads
+            .iter()
+            .filter(|b| b.resource == Some(resource))
+        {
             let kind = match previous_of {
                 Some(of) => ErrorKind::HistoryNeverWritten {
                     previous: b.resource_name.clone(),

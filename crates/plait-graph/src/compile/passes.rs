@@ -10,7 +10,8 @@ use crate::load::{PassDecl, Pipeline};
 use crate::scene_resources::{SCENE_RESOURCES, scene_resource};
 use crate::schedule::*;
 use crate::spec::{
-    Access, Draw, ParamSpec, ParamType, PassShape, PassTypeSpec, Registry, ResourceKind, SlotSpec, View,
+    Access, Draw, ParamSpec, ParamType, PassShape, PassTypeSpec, Registry, ResourceKind, SlotSpec,
+    View,
 };
 use crate::value::Value;
 
@@ -412,7 +413,7 @@ impl Binder<'_> {
         }
         Some(Binding {
             slot: slot_name.clone(),
-            resource: index,
+            resource: Some(index),
             resource_name: resource.value.clone(),
             access,
             // The scene's contents are there before any pass: never cleared.

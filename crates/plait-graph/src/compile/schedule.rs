@@ -31,11 +31,7 @@ pub(super) fn build_schedule(
     let history = crate::history::copies(&resources);
     let (mut scheduled, mut culled) = split_culled(passes, &order, &live);
     settle_clears(&mut scheduled, &resources);
-    let output_ids: Vec<ResourceId> = outputs
-        .iter()
-        .map(|&o| new_id[o])
-        .filter(|&id| id != DROPPED_RESOURCE)
-        .collect();
+    let output_ids: Vec<ResourceId> = outputs.iter().filter_map(|&o| new_id[o]).collect();
     set_spans(&scheduled, &mut resources, &output_ids);
 
     // The shaders and the adapter, before the memory plan: what they settle
@@ -105,23 +101,12 @@ fn live_passes(
     loop {
         let before = needed.len();
         for &p in order.iter().rev() {
-            if !live[p]
-                && passes[p]
-                    .writes
-                    .iter()
-                    .any(|b| needed.contains(&b.resource))
-            {
+            if !live[p] && passes[p].writes.iter().any(|b| needed.contains(&b.id())) {
                 live[p] = true;
-                needed.extend(passes[p].reads.iter().map(|b| b.resource));
+                needed.extend(passes[p].reads.iter().map(Binding::id));
                 needed.extend(implicit_reads(&passes[p], declared));
                 // A load-writer keeps earlier contents: their writers are needed too.
-                needed.extend(
-                    passes[p]
-                        .writes
-                        .iter()
-                        .filter(|b| b.loads)
-                        .map(|b| b.resource),
-                );
+                needed.extend(passes[p].writes.iter().filter(|b| b.loads).map(Binding::id));
             }
         }
         let chained: Vec<usize> = needed
@@ -138,8 +123,8 @@ fn live_passes(
 
 /// The resources that survive renumbering.
 struct Renumbered {
-    /// Old index (declared, then scene) to new id, or [`DROPPED_RESOURCE`].
-    new_id: Vec<ResourceId>,
+    /// Old index (declared, then scene) to new id, or `None` when dropped.
+    new_id: Vec<Option<ResourceId>>,
     resources: Vec<ResolvedResource>,
     dropped_resources: Vec<String>,
 }
@@ -158,20 +143,20 @@ fn renumber_resources(
     for (p, pass) in passes.iter().enumerate() {
         if live[p] {
             for b in pass.reads.iter().chain(&pass.writes) {
-                used[b.resource] = true;
-                for r in history_chain(pipeline, b.resource) {
+                used[b.id()] = true;
+                for r in history_chain(pipeline, b.id()) {
                     used[r] = true;
                 }
             }
         }
     }
-    let mut new_id = vec![DROPPED_RESOURCE; total];
+    let mut new_id: Vec<Option<ResourceId>> = vec![None; total];
     let mut resources = Vec::new();
     let mut dropped_resources = Vec::new();
     for (i, decl) in pipeline.resources.values().enumerate() {
         match (&descs[i], used[i]) {
             (Some(desc), true) => {
-                new_id[i] = resources.len();
+                new_id[i] = Some(resources.len());
                 resources.push(ResolvedResource {
                     name: decl.name.clone(),
                     desc: desc.clone(),
@@ -192,7 +177,7 @@ fn renumber_resources(
     // Scene resources a live pass names: after the declared ones, never dropped.
     for (i, scene) in SCENE_RESOURCES.iter().enumerate() {
         if used[declared + i] {
-            new_id[declared + i] = resources.len();
+            new_id[declared + i] = Some(resources.len());
             resources.push(ResolvedResource {
                 name: scene.name.to_owned(),
                 desc: ResourceDesc::Buffer { size: 0 },
@@ -209,7 +194,7 @@ fn renumber_resources(
     }
     for pass in passes.iter_mut() {
         for b in pass.reads.iter_mut().chain(pass.writes.iter_mut()) {
-            b.resource = new_id[b.resource];
+            b.resource = new_id[b.id()];
         }
     }
     Renumbered {
@@ -253,9 +238,9 @@ fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]
     let mut written = vec![false; resources.len()];
     for pass in scheduled.iter_mut() {
         for b in &mut pass.writes {
-            if resources[b.resource].lifetime == Lifetime::Persistent {
+            if resources[b.id()].lifetime == Lifetime::Persistent {
                 b.loads = true;
-            } else if !written[b.resource] {
+            } else if !written[b.id()] {
                 let also_read = pass.reads.iter().any(|r| r.resource == b.resource);
                 if !also_read {
                     b.loads = false;
@@ -263,7 +248,7 @@ fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]
             }
         }
         for b in &pass.writes {
-            written[b.resource] = true;
+            written[b.id()] = true;
         }
     }
 }
@@ -277,7 +262,7 @@ fn set_spans(
 ) {
     for (index, pass) in scheduled.iter().enumerate() {
         for b in pass.reads.iter().chain(&pass.writes) {
-            let r = &mut resources[b.resource];
+            let r = &mut resources[b.id()];
             r.first_use = r.first_use.min(index);
             r.last_use = r.last_use.max(index);
         }

@@ -180,7 +180,7 @@ impl<'g> Floor<'g> {
                 .writes
                 .iter()
                 .filter(|b| b.access == Access::StorageWrite && !b.loads)
-                .map(|b| b.resource)
+                .map(plait_graph::Binding::id)
                 .collect();
             if pass.shape == PassShape::Compute {
                 let threads = t.compute_threads(pass, schedule);
@@ -213,7 +213,7 @@ impl<'g> Floor<'g> {
                 .writes
                 .iter()
                 .filter(|b| b.access == Access::ColorTarget && !is_resolve(&b.slot))
-                .map(|b| (b.resource, b.loads || state.load_colors))
+                .map(|b| (b.id(), b.loads || state.load_colors))
                 .collect();
             let resolves: Vec<Option<ResourceId>> = pass
                 .writes
@@ -224,7 +224,7 @@ impl<'g> Floor<'g> {
                     pass.writes
                         .iter()
                         .find(|r| r.slot == name)
-                        .map(|r| r.resource)
+                        .map(plait_graph::Binding::id)
                 })
                 .collect();
             let depth = pass
@@ -235,7 +235,7 @@ impl<'g> Floor<'g> {
                 .find(|(b, _)| b.access == Access::DepthTarget)
                 .map(|(b, written)| {
                     let write = written && matches!(state.depth, DepthMode::TestWrite(_));
-                    (b.resource, !written || b.loads, write)
+                    (b.id(), !written || b.loads, write)
                 });
             let desc_of = |id: ResourceId| match schedule.resources[id].desc {
                 ResourceDesc::Texture {

@@ -33,7 +33,7 @@ impl<'a> Planner<'a> {
                 // CLEAR_TEXTURE, which core WebGPU lacks; their kernels write
                 // every texel (the lighting maps, the environment cube).
                 Access::StorageWrite if !b.loads && self.texture(b.resource).is_none() => {
-                    self.plan.clears.push(b.resource)
+                    self.plan.clears.extend(b.resource)
                 }
                 _ => {}
             }
@@ -47,7 +47,7 @@ impl<'a> Planner<'a> {
             let (format, samples) = self.texture(b.resource)?;
             Some(DepthTarget {
                 slot: b.slot.clone(),
-                resource: b.resource,
+                resource: b.id(),
                 format,
                 samples,
                 written: slot.is_write(),
@@ -60,7 +60,7 @@ impl<'a> Planner<'a> {
     /// resolve into if the pass writes one.
     fn color_target(&mut self, b: &Binding, writes: &[(Access, &Binding)]) {
         let Some((format, samples)) = self.texture(b.resource) else {
-            if self.resources.get(b.resource).is_some() {
+            if b.resolved(self.resources).is_some() {
                 let message = format!("colour target `{}` is not a texture", b.slot);
                 self.error(&b.location, message);
             }
@@ -75,11 +75,11 @@ impl<'a> Planner<'a> {
         }
         self.plan.colors.push(ColorTarget {
             slot: b.slot.clone(),
-            resource: b.resource,
+            resource: b.id(),
             format,
             samples,
             loads: b.loads,
-            resolve: resolve.map(|r| r.resource),
+            resolve: resolve.and_then(|r| r.resource),
         });
     }
 
@@ -98,13 +98,13 @@ impl<'a> Planner<'a> {
         if samples >= 2 && resolve_samples == 1 && resolve_format == format {
             return;
         }
-        let name = |i: usize| self.resources.get(i).map_or("?", |r| r.name.as_str());
+        let name = |b: &Binding| b.resolved(self.resources).map_or("?", |r| r.name.as_str());
         let message = format!(
             "`{}` (slot `{}`, {samples} sample(s), {}) cannot be resolved into `{}` (slot `{}`, {resolve_samples} sample(s), {}): a resolve needs a multisampled colour target (samples 4) and a single-sampled target of the same format",
-            name(b.resource),
+            name(b),
             b.slot,
             format.name(),
-            name(r.resource),
+            name(r),
             r.slot,
             resolve_format.name(),
         );

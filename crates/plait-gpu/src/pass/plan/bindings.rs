@@ -48,9 +48,12 @@ impl Planner<'_> {
             .chain(pass.writes.iter())
             .find(|s| self.binding_of(&s.slot) == sb.name);
         if let Some(s) = slot {
+            // A culled pass's slot may name a dropped resource: nothing
+            // to bind (the plan of a culled pass is checked, never built).
+            let resource = s.resource?;
             return Some(BindingSource::Slot {
-                resource: s.resource,
-                format: self.texture(s.resource).map(|(f, _)| f),
+                resource,
+                format: self.texture(Some(resource)).map(|(f, _)| f),
             });
         }
         if is_params(sb) {

@@ -188,8 +188,8 @@ impl<'a> Planner<'a> {
 
     /// `(format, samples)` of a texture resource; `None` for a buffer or a
     /// resource the schedule dropped.
-    fn texture(&self, id: ResourceId) -> Option<(Format, u32)> {
-        match self.resources.get(id).map(|r| &r.desc) {
+    fn texture(&self, id: Option<ResourceId>) -> Option<(Format, u32)> {
+        match id.and_then(|id| self.resources.get(id)).map(|r| &r.desc) {
             Some(ResourceDesc::Texture {
                 format, samples, ..
             }) => Some((*format, *samples)),

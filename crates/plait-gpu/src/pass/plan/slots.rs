@@ -17,7 +17,7 @@ impl Planner<'_> {
     pub(super) fn settle_slots(&mut self) -> usize {
         let mut color_targets = 0;
         for (slot, b) in SlotRef::all(self.pass) {
-            let Some(res) = self.resources.get(b.resource) else {
+            let Some(res) = b.resolved(self.resources) else {
                 // A culled pass's binding to a resource nothing live uses.
                 continue;
             };
@@ -104,7 +104,7 @@ impl Planner<'_> {
         let all_writes_live = pass
             .writes
             .iter()
-            .all(|b| self.resources.get(b.resource).is_some());
+            .all(|b| b.resolved(self.resources).is_some());
         let writes_depth = self
             .plan
             .settled
