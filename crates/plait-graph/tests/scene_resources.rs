@@ -91,3 +91,35 @@ fn declaring_a_scene_resource_is_an_error() {
     let message = compile_text(&text).unwrap_err().to_string();
     assert!(message.contains("is a scene resource"), "{message}");
 }
+
+/// A data-only type may declare params of its own beside the shader's: the
+/// declared ones get their defaults and come first, the shader's follow in
+/// file order (they used to vanish when the type declared any).
+#[test]
+fn a_data_only_pass_keeps_its_declared_defaults_and_its_shader_params() {
+    let mut r = registry();
+    let mut compute = PassTypeSpec::new("compute", PassShape::Compute, "", "");
+    compute.dynamic_slots = true;
+    compute.needs_shader = true;
+    compute.params.push(ParamSpec {
+        name: "steps".into(),
+        ty: ParamType::Int { min: 1, max: 64 },
+        default: Some(Value::Int(4)),
+        doc: String::new(),
+    });
+    r.register(compute);
+    let text = format!(
+        "{}params = {{ stiffness = 0.5, damping = 0.25 }}\n",
+        with_simulation("vertices = \"hair_vertices\"")
+    );
+    let s = compile(
+        &load_text(&text, &[]).unwrap(),
+        &r,
+        &CompileOptions::default(),
+    )
+    .unwrap();
+    let simulate = s.passes.iter().find(|p| p.name == "simulate").unwrap();
+    let names: Vec<&str> = simulate.params.keys().map(String::as_str).collect();
+    assert_eq!(names, ["steps", "stiffness", "damping"]);
+    assert_eq!(simulate.params["steps"], Value::Int(4));
+}

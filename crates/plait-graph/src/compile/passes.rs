@@ -186,11 +186,13 @@ fn check_params(
             )),
         }
     }
-    let ordered = order_params(decl, spec, &mut params, errors);
-    if !spec.dynamic_slots {
-        params = ordered;
+    let mut ordered = order_params(decl, spec, &mut params, errors);
+    if spec.dynamic_slots {
+        // A data-only pass also takes params its type does not declare (its
+        // shader's, checked against the shader): after the declared ones.
+        ordered.extend(params);
     }
-    params
+    ordered
 }
 
 /// Every param of the type, in the type's order, defaults filled in, taken
@@ -203,7 +205,7 @@ fn order_params(
 ) -> IndexMap<String, Value> {
     let mut ordered = IndexMap::new();
     for param in &spec.params {
-        if let Some(v) = params.swap_remove(&param.name) {
+        if let Some(v) = params.shift_remove(&param.name) {
             ordered.insert(param.name.clone(), v);
         } else if decl.params.contains_key(&param.name) {
             // Already reported as a bad value.
