@@ -4,7 +4,7 @@
 // from a global atomic counter, linked in with an atomic exchange of the
 // pixel's head pointer. Nodes past the capacity are dropped and counted
 // (counter word 1; the technique's `overflow` declares it). The resolve pass
-// (fragment_list_resolve) sorts each list by depth and blends it front to
+// (linked_list_resolve) sorts each list by depth and blends it front to
 // back: exact order, the same result as depth peeling (Sintorn & Assarsson
 // 2009 §2.2) in one geometry pass.
 #import plait::hair_fragment::{HairVertex, HairVaryings, hair_vertex, shade_hair}

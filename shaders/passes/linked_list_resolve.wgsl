@@ -1,5 +1,5 @@
-// fragment_list_resolve: walk the pixel's fragment list (built by
-// hair_fragment_list, plait::transparency::fragment_list), keep the nearest
+// linked_list_resolve: walk the pixel's fragment list (built by the hair
+// pass of techniques/transparency/linked_list/hair_lists.wgsl), keep the nearest
 // `max_sorted` (≤ 256) fragments sorted by depth (insertion sort), blend them front to
 // back: C += (1 - A) · α · rgb, A += (1 - A) · α — exactly what depth peeling
 // computes one layer at a time (Sintorn & Assarsson 2009 §2.2).
