@@ -66,13 +66,18 @@ pub fn add_pipeline_root(root: &Path) {
     }
 }
 
+/// The folders recorded by [`add_pipeline_root`], in the order recorded.
+pub fn pipeline_roots() -> Vec<PathBuf> {
+    PIPELINE_ROOTS
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .clone()
+}
+
 /// The folders whose `techniques/` the library reads: every loaded
 /// pipeline's own (see [`add_pipeline_root`]), then the search path.
 pub fn technique_roots() -> Vec<PathBuf> {
-    let mut roots = PIPELINE_ROOTS
-        .lock()
-        .unwrap_or_else(|p| p.into_inner())
-        .clone();
+    let mut roots = pipeline_roots();
     roots.extend(search_path());
     roots
 }

@@ -4,12 +4,14 @@
 
 mod common;
 
+use std::path::{Path, PathBuf};
+
 use common::{plait, root, text};
 
-#[test]
-fn a_self_shadow_provider_beside_the_pipeline_renders_like_the_original() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let point = dir.path().join("techniques/self_shadow");
+/// Deep opacity copied as `my_dom` into `dir/techniques/` (its import path
+/// and export renamed), beside a pipeline `dir/mine.toml` choosing it.
+fn own_copy(dir: &Path) -> PathBuf {
+    let point = dir.join("techniques/self_shadow");
     let mine = point.join("my_dom");
     std::fs::create_dir_all(&mine).expect("mkdir");
     let original = root().join("techniques/self_shadow");
@@ -35,12 +37,19 @@ fn a_self_shadow_provider_beside_the_pipeline_renders_like_the_original() {
         "self_shadow = \"deep_opacity\"",
         "self_shadow = \"my_dom\"",
     );
-    let pipeline = dir.path().join("mine.toml");
+    let pipeline = dir.join("mine.toml");
     std::fs::write(
         &pipeline,
         "[pipeline]\nname = \"mine\"\nextends = \"occupancy.toml\"\n\n[techniques]\nself_shadow = \"my_dom\"\n",
     )
     .expect("write the pipeline");
+    pipeline
+}
+
+#[test]
+fn a_self_shadow_provider_beside_the_pipeline_renders_like_the_original() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let pipeline = own_copy(dir.path());
     let render = |pipeline: &str, set: &str, out: &str| {
         let out = dir.path().join(out);
         let o = plait(&[
@@ -78,4 +87,30 @@ fn a_self_shadow_provider_beside_the_pipeline_renders_like_the_original() {
         "default.png",
     );
     assert!(mine != default, "the copy rendered the default technique");
+}
+
+/// The shader library is one per process: two pipelines checked together
+/// whose own folders declare one module are an error naming both files.
+#[test]
+fn two_pipelines_whose_own_folders_declare_one_module_are_an_error() {
+    let a = tempfile::tempdir().expect("tempdir");
+    let b = tempfile::tempdir().expect("tempdir");
+    let (pa, pb) = (own_copy(a.path()), own_copy(b.path()));
+    let o = plait(&[
+        "check",
+        pa.to_str().expect("utf-8"),
+        pb.to_str().expect("utf-8"),
+    ]);
+    let stderr = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("one module per import path"), "{stderr}");
+    for dir in [a.path(), b.path()] {
+        let file = dir.join("techniques/self_shadow/my_dom/self_shadow.wgsl");
+        let file = file.canonicalize().expect("the copy");
+        assert!(
+            stderr.contains(file.to_str().expect("utf-8")),
+            "{} is not named: {stderr}",
+            file.display()
+        );
+    }
 }

@@ -77,12 +77,33 @@ pub fn library_files() -> Vec<(String, PathBuf)> {
 /// The files of `folder` with extension `ext`, nearest copy of each: a
 /// loaded pipeline's own `techniques/` before the search path's
 /// ([`plait_assets::technique_roots`]), the built-in copies last.
+///
+/// A pipeline's own copy of a file shadows the search path's. Two pipelines'
+/// own folders holding the same file are both kept, so a module both declare
+/// is an error naming the two files, not a silent pick of the first.
 fn list_tree(folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
-    if folder == plait_graph::techniques::TECHNIQUES_DIR {
-        plait_assets::list_tree_in(&plait_assets::technique_roots(), folder, ext)
-    } else {
-        plait_assets::list_tree(folder, ext)
+    let mut found = plait_assets::list_tree(folder, ext);
+    if folder != plait_graph::techniques::TECHNIQUES_DIR {
+        return found;
     }
+    let mut own: Vec<(String, PathBuf)> = Vec::new();
+    for root in plait_assets::pipeline_roots() {
+        for (key, path) in plait_assets::list_tree_in(std::slice::from_ref(&root), folder, ext) {
+            if !plait_assets::is_builtin(&path) && !own.iter().any(|(_, p)| same_file(p, &path)) {
+                own.push((key, path));
+            }
+        }
+    }
+    found.retain(|(key, _)| !own.iter().any(|(k, _)| k == key));
+    own.extend(found);
+    own
+}
+
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    a == b
+        || a.canonicalize()
+            .ok()
+            .is_some_and(|a| b.canonicalize().ok() == Some(a))
 }
 
 /// The library as found now: read again only when a file of it changed
