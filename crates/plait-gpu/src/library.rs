@@ -138,12 +138,15 @@ fn read_library() -> Result<Library, ShaderError> {
                 continue;
             };
             if let Some(first) = found.get(&name) {
+                let at = |source: &str| import_path_line(source).unwrap_or(1);
                 return Err(ShaderError {
                     message: format!(
-                        "{}: declares `#define_import_path {name}`, which {} declares too: \
+                        "{}:{}:1: declares `#define_import_path {name}`, which {}:{}:1 declares too: \
                          one module per import path",
                         path.display(),
-                        first.path.display()
+                        at(&source),
+                        first.path.display(),
+                        at(&first.source),
                     ),
                     path,
                 });
@@ -281,6 +284,14 @@ fn import_path(source: &str) -> Option<String> {
         let name = rest.split_whitespace().next()?;
         Some(name.to_owned())
     })
+}
+
+/// The 1-based line of the `#define_import_path` directive.
+fn import_path_line(source: &str) -> Option<usize> {
+    let line = source
+        .lines()
+        .position(|l| l.trim_start().starts_with("#define_import_path"))?;
+    Some(line + 1)
 }
 
 /// Every `#import` line: the module path (`plait::frame::{a, b}` →
