@@ -140,7 +140,7 @@ fn a_broken_provider_or_pass_type_on_plait_path_is_an_error_at_its_line() {
         "a module declared twice",
         &o,
         &[
-            "again.wgsl",
+            "again.wgsl:1:1",
             "`#define_import_path plait::frame`",
             "declares too",
         ],
