@@ -229,11 +229,12 @@ fn check_view_and_draw(decl: &PassDecl, spec: &PassTypeSpec, errors: &mut Vec<Er
     if spec.shape == PassShape::Raster {
         for (field, value) in [("view", &decl.view), ("draw", &decl.draw)] {
             if value.is_none() {
-                let hint = if field == "view" {
-                    "light | camera"
+                let names = if field == "view" {
+                    View::NAMES
                 } else {
-                    "hair | opaque"
+                    Draw::NAMES
                 };
+                let hint = names.join(" | ");
                 errors.push(pass_error(
                     decl,
                     &decl.location,
