@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The README's performance figures, one benchmark after the other (see the
-# "Performance" section): the floor benchmark at the README's size and
+# The book's performance figures, one benchmark after the other (see its
+# "Performance" page): the floor benchmark at the page's size and
 # repeats, the executor's encode time (criterion), the scaling run, the
 # papers' speed claims. About
 # 30 minutes on lavapipe (2 cores); run it on an otherwise idle machine —
@@ -14,5 +14,5 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then export NODEVICE_SELECT=1; fi
 cargo bench --locked -p plait --bench floor -- --size 320x240 --repeats 5
 cargo bench --locked -p plait --bench encode
 cargo bench --locked -p plait --bench scaling -- --repeats 3 --largest
-# The papers' speed claims, interleaved, into the README's claims table.
-cargo bench --locked -p plait --bench claims -- --repeats 3 --readme
+# The papers' speed claims, interleaved, into the book's claims page.
+cargo bench --locked -p plait --bench claims -- --repeats 3 --write

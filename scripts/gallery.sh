@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the README's measured gallery: the tables between the
+# Regenerates the book's measured gallery (book/src/guide/gallery.md): the
+# tables between the
 # `<!-- gallery:NAME -->` and `<!-- /gallery:NAME -->` markers come from the
 # `report.md` of two `plait ab` runs, and the thumbnails in docs/variants/
 # from their images — no figure in those tables is typed by hand.
@@ -36,16 +37,18 @@ for v in weighted_average alpha_to_coverage opaque linked_list shortcut; do
 done
 cp "$out/transparency/stray-reference.png" docs/variants/depth_peeling.png
 
-# Put each report.md between its markers in the README.
+# Put each report.md between its markers in the gallery page; the book's
+# technique and pipeline pages take their rows from there (scripts/book.sh).
+page=book/src/guide/gallery.md
 replace() {
     local name=$1 file=$2
     awk -v name="$name" -v file="$file" '
         $0 == "<!-- gallery:" name " -->" { print; while ((getline line < file) > 0) print line; skip = 1; next }
         $0 == "<!-- /gallery:" name " -->" { skip = 0 }
         !skip { print }
-    ' README.md > README.md.new
-    mv README.md.new README.md
+    ' "$page" > "$page.new"
+    mv "$page.new" "$page"
 }
 replace shadows "$out/shadows/report.md"
 replace transparency "$out/transparency/report.md"
-echo "README.md gallery tables and docs/variants/*.png regenerated; look at the thumbnails before committing them."
+echo "$page gallery tables and docs/variants/*.png regenerated; look at the thumbnails before committing them."

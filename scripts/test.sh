@@ -10,6 +10,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/ensure-vulkan.sh
 # Xvfb for the `plait view` test (a window on a virtual display).
 bash scripts/ensure-xvfb.sh
+# Headless Chromium for the book's browser check (crates/plait-cli/tests/book.rs).
+bash scripts/ensure-chromium.sh
 
 # Pin the tests to lavapipe when it is installed, as blade's CI does: the
 # golden images were made with it, and other ICDs on a GPU-less machine only

@@ -46,7 +46,7 @@ fn visibility_errors(gpu: &Gpu, scene: &SceneData, variants: &[&str]) -> Vec<f64
 /// Sintorn & Assarsson 2009 Fig. 4–5: occupancy + slab maps follow the
 /// visibility function better than deep opacity maps with 3 layers, and the
 /// slab map helps (occupancy bits alone are worse) — on every scene, by at
-/// least the factors of [`VISIBILITY_RATIO_FLOORS`] (the README's claims
+/// least the factors of [`VISIBILITY_RATIO_FLOORS`] (the book's claims
 /// table states them).
 #[test]
 fn occupancy_follows_visibility_better_than_deep_opacity_maps() {
@@ -189,7 +189,7 @@ fn image_errors(
 /// Sintorn & Assarsson 2009 §3.4, Fig. 2: occupancy-order blending is closer
 /// to the exactly sorted image than weighted-average blending and than opaque
 /// strands, in RMSE and in SSIM, by at least the factors of
-/// [`BLENDING_CASES`] (the README's claims table states them). `small`
+/// [`BLENDING_CASES`] (the book's claims table states them). `small`
 /// against depth peeling (the paper's ground truth); `stray` against the
 /// per-pixel fragment lists sorted exactly (`linked_list.toml`), which equal
 /// depth peeling (tested below on `small`) and cost far less on that scene

@@ -17,7 +17,7 @@
 //! The suite runs 248,000 inputs (a few seconds per target);
 //! `PLAIT_FUZZ_SCALE=K` runs K times as many, and `PLAIT_FUZZ_SEED=N` another
 //! deterministic stream (the suite's is fixed, so CI is repeatable). The
-//! long run (README): `PLAIT_FUZZ_SCALE=41 PLAIT_FUZZ_SEED=2 cargo test -p
+//! long run (the book's Reliability page): `PLAIT_FUZZ_SCALE=41 PLAIT_FUZZ_SEED=2 cargo test -p
 //! plait-tests --test fuzz -- --nocapture --test-threads=2`.
 //!
 //! Not coverage-guided: that is `fuzz/` (cargo-fuzz, nightly, its own

@@ -1,7 +1,7 @@
 //! The opaque shadow's 3×3 PCF as the GPU computes it: `plait::shadow::pcf_3x3`
 //! (four `textureGatherCompare` with the nine bilinear taps' weights applied in
 //! the shader) must equal nine `textureSampleCompareLevel` taps one texel
-//! apart — the filter it replaced for speed (README, Performance) — on a
+//! apart — the filter it replaced for speed (the book's Performance page) — on a
 //! noisy depth map, inside it, across its texels' edges and past its border.
 
 mod probe;

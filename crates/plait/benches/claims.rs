@@ -1,5 +1,5 @@
 //! The papers' speed claims, side by side in one run:
-//! `cargo bench -p plait --bench claims [-- --repeats N --readme]`.
+//! `cargo bench -p plait --bench claims [-- --repeats N --write]`.
 //!
 //! Each claim compares two pipelines on a scene at a size. Every pipeline is
 //! prepared once, rendered once to warm up, then rendered in interleaved
@@ -7,8 +7,8 @@
 //! falls on both sides of a ratio alike. It prints, per claim, the median GPU
 //! frame times, their ratio, the spread of the per-round ratios, the paper's
 //! ratio, and whether the claim holds: plait's ratio points the way the
-//! paper's does. `--readme` writes the table between the
-//! `<!-- claims:speed -->` markers of README.md: the README's speed figures
+//! paper's does. `--write` writes the table between the
+//! `<!-- claims:speed -->` markers of book/src/guide/claims.md: the book's speed figures
 //! are this output, never typed by hand.
 //! A benchmark, not a test: nothing here fails on a slow machine.
 
@@ -164,11 +164,11 @@ fn main() {
     }
     let table = table(&gpu, repeats, &runs);
     println!("{table}");
-    if std::env::args().any(|a| a == "--readme") {
-        let readme = root.join("README.md");
-        write_between_markers(&readme, "claims:speed", &table)
-            .unwrap_or_else(|e| panic!("{}: {e}", readme.display()));
-        eprintln!("wrote the table into {}", readme.display());
+    if std::env::args().any(|a| a == "--write") {
+        let page = root.join("book/src/guide/claims.md");
+        write_between_markers(&page, "claims:speed", &table)
+            .unwrap_or_else(|e| panic!("{}: {e}", page.display()));
+        eprintln!("wrote the table into {}", page.display());
     }
 }
 

@@ -13,7 +13,7 @@
 //! out: its work depends on the layers it finds, so it has no fixed floor.
 //! `--side plait` or `--side floor` renders only that side (no hand-written
 //! program): one process per side, to profile each under `perf record`
-//! (README, "where the time goes").
+//! (the book's Performance page, "where the time goes").
 //! A benchmark, not a test: nothing here fails on a slow machine.
 
 mod support;
@@ -53,7 +53,7 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(3)
         .max(1);
-    // Small by default (14 pipelines, each with its floor); the README's figures use 320x240.
+    // Small by default (14 pipelines, each with its floor); the book's figures use 320x240.
     let size = size_arg((160, 120));
     let only: Option<Vec<String>> =
         arg("--only").map(|s| s.split(',').map(|n| n.trim().to_owned()).collect());

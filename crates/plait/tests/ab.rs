@@ -118,7 +118,7 @@ fn a_tiny_run_reports_every_variant_and_writes_its_files() {
     assert_eq!(json["provenance"]["command_line"], "test 'a b'");
     let html = std::fs::read_to_string(dir.path().join("report.html")).expect("html");
     assert!(html.contains("occupancy") && html.contains("Provenance"));
-    // The Markdown tables the README's gallery is made from: a row per variant.
+    // The Markdown tables the book's gallery page is made from: a row per variant.
     let md = std::fs::read_to_string(dir.path().join("report.md")).expect("report.md");
     for v in &report.variants {
         assert!(

@@ -1,5 +1,5 @@
 //! The report as Markdown tables (`report.md`): one table per scene, one row
-//! per variant — what the README's gallery tables are made from
+//! per variant — what the book's gallery tables are made from
 //! (`scripts/gallery.sh`), so no figure there is typed by hand.
 
 use std::fmt::Write as _;

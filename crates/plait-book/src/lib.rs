@@ -1,0 +1,183 @@
+//! plait's book: the hand-written guide of `book/`, plus a page per
+//! technique and per gallery pipeline generated from their files, built with
+//! mdBook (as a library, so the book builds with the crate versions of
+//! `Cargo.lock`) and checked — every link and image resolves, nothing is
+//! loaded from the network — by [`check`]; [`browser`] opens every page in
+//! headless Chromium.
+//!
+//! Nothing on a generated page is typed by hand: descriptions, papers,
+//! params, memory and files come from `technique.toml` and the pipeline
+//! files; ranges from the pass library (`plait passes --json`); pictures and
+//! schedules from the `plait` binary; measured rows from the tables
+//! `scripts/gallery.sh` writes into the gallery page.
+
+pub mod browser;
+pub mod check;
+mod context;
+mod error;
+mod figures;
+pub mod measured;
+mod params;
+mod pipeline_page;
+mod plait_cmd;
+pub mod runnable;
+mod stage;
+mod technique_page;
+
+use std::path::{Path, PathBuf};
+
+pub use context::DEFAULT_PIPELINE;
+pub use error::BookError;
+pub use figures::FigureSettings;
+pub use plait_cmd::Plait;
+
+/// The gallery page whose marked tables are the last measurement run.
+pub const GALLERY_PAGE: &str = "book/src/guide/gallery.md";
+
+/// What to build, and where.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// The repository root (holds `book/`, `pipelines/`, `techniques/`).
+    pub repo: PathBuf,
+    /// The staged book (emptied and rewritten).
+    pub stage: PathBuf,
+    /// Where the HTML goes (`target/book`).
+    pub out: PathBuf,
+    /// The `plait` binary that makes the figures.
+    pub plait: PathBuf,
+    pub figures: FigureSettings,
+}
+
+/// A generated page: its path under `src/` and what it documents.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Generated {
+    Technique {
+        point: String,
+        name: String,
+        page: String,
+    },
+    Pipeline {
+        file: String,
+        page: String,
+    },
+}
+
+/// The built book.
+#[derive(Clone, Debug)]
+pub struct Built {
+    pub out: PathBuf,
+    pub generated: Vec<Generated>,
+}
+
+/// Stages, generates and builds the book.
+pub fn build(opts: &Options) -> Result<Built, BookError> {
+    let src = stage::prepare(&opts.repo, &opts.stage)?;
+    let plait = Plait {
+        exe: opts.plait.clone(),
+        repo: opts.repo.clone(),
+    };
+    let roots = plait_graph::techniques::TechniqueRoots::at(opts.repo.join("techniques"));
+    let catalog = plait_graph::techniques::catalog(&roots).map_err(|errors| {
+        BookError::content(
+            opts.repo.join("techniques"),
+            plait_graph::Errors(errors).to_string(),
+        )
+    })?;
+    let mut ctx = context::Context {
+        repo: opts.repo.clone(),
+        pipelines: context::gallery(&opts.repo)?,
+        pass_params: context::pass_params(&plait)?,
+        runs: measured::read(&opts.repo.join(GALLERY_PAGE))?,
+        figures: figures::Figures::new(&plait, &src, opts.figures.clone())?,
+    };
+
+    let mut generated = Vec::new();
+    let mut technique_toc = String::new();
+    let mut point = String::new();
+    for info in &catalog {
+        if info.point != point {
+            point = info.point.clone();
+            let intro = format!("techniques/{point}.md");
+            write(&src.join(&intro), &point_page(&point, &catalog))?;
+            technique_toc.push_str(&format!("- [{point}]({intro})\n"));
+        }
+        let page = technique_page::page_path(&info.point, &info.name);
+        write(&src.join(&page), &technique_page::write(info, &mut ctx)?)?;
+        technique_toc.push_str(&format!("  - [{}]({page})\n", info.name));
+        generated.push(Generated::Technique {
+            point: info.point.clone(),
+            name: info.name.clone(),
+            page,
+        });
+    }
+    let mut pipeline_toc = String::new();
+    for p in ctx.pipelines.clone() {
+        write(&src.join(&p.page), &pipeline_page::write(&p, &mut ctx)?)?;
+        pipeline_toc.push_str(&format!("- [{}]({})\n", p.file_name, p.page));
+        generated.push(Generated::Pipeline {
+            file: p.file_name.clone(),
+            page: p.page.clone(),
+        });
+    }
+    fill_summary(&src, &technique_toc, &pipeline_toc)?;
+    run_mdbook(&opts.stage, &opts.out)?;
+    Ok(Built {
+        out: opts.out.clone(),
+        generated,
+    })
+}
+
+/// A choice point's page: its contract and the techniques that fill it.
+fn point_page(point: &str, catalog: &[plait_graph::techniques::TechniqueInfo]) -> String {
+    let mut md = format!(
+        "# The `{point}` choice point\n\n\
+         A pipeline picks one technique here with `{point} = \"NAME\"` in its `[techniques]` \
+         table, or `--set techniques.{point}=NAME`. `plait techniques` lists the same.\n\n\
+         | technique | what | source | memory |\n|---|---|---|---|\n"
+    );
+    for t in catalog.iter().filter(|t| t.point == point) {
+        md.push_str(&format!(
+            "| [{}]({point}/{}.md) | {} | {} | {} |\n",
+            t.name,
+            t.name,
+            params::cell(&t.description),
+            params::cell(&t.source),
+            params::cell(&t.memory)
+        ));
+    }
+    md
+}
+
+fn write(path: &Path, text: &str) -> Result<(), BookError> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(BookError::io(dir))?;
+    }
+    std::fs::write(path, text).map_err(BookError::io(path))
+}
+
+/// Puts the generated tables of contents at their markers of `SUMMARY.md`;
+/// a marker missing is an error (the pages would be built but unreachable).
+fn fill_summary(src: &Path, techniques: &str, pipelines: &str) -> Result<(), BookError> {
+    let path = src.join("SUMMARY.md");
+    let text = std::fs::read_to_string(&path).map_err(BookError::io(&path))?;
+    let mut out = text.clone();
+    for (marker, toc) in [
+        ("<!-- generated:techniques -->", techniques),
+        ("<!-- generated:pipelines -->", pipelines),
+    ] {
+        if !out.contains(marker) {
+            return Err(BookError::content(&path, format!("no `{marker}` line")));
+        }
+        out = out.replace(marker, toc.trim_end());
+    }
+    write(&path, &out)
+}
+
+fn run_mdbook(stage: &Path, out: &Path) -> Result<(), BookError> {
+    let config_path = stage.join("book.toml");
+    let mut config =
+        mdbook_driver::config::Config::from_disk(&config_path).map_err(BookError::MdBook)?;
+    config.build.build_dir = out.to_path_buf();
+    let book = mdbook_driver::MDBook::load_with_config(stage, config).map_err(BookError::MdBook)?;
+    book.build().map_err(BookError::MdBook)
+}

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Builds plait's book into target/book/index.html: the guide (book/src/), a
+# page per technique and per gallery pipeline generated from their files, the
+# pictures rendered by `plait` on the small and stray scenes, and the design
+# notes; then checks every link and image. No network is needed.
+#   bash scripts/book.sh                     # build + file check
+#   bash scripts/book.sh --browser           # + every page opened in headless Chromium
+#   bash scripts/book.sh --screenshots DIR   # + pictures of the index and a technique page
+# Further flags: --size WxH (pictures, default 256x192), --out DIR, --stage DIR.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+bash scripts/ensure-vulkan.sh
+if [[ " $* " == *" --browser "* || " $* " == *" --screenshots "* ]]; then
+    bash scripts/ensure-chromium.sh
+fi
+cargo build --locked -p plait-cli -p plait-book
+target="${CARGO_TARGET_DIR:-$root/target}"
+exec "$target/debug/plait-book" --plait "$target/debug/plait" "$@"
