@@ -90,13 +90,18 @@ pub fn write(info: &TechniqueInfo, ctx: &mut Context) -> Result<String, BookErro
     } else {
         md.push_str(
             "Set with `--set params.NAME=VALUE`. The range is what the pass that reads the param accepts \
-             (`plait passes`); an out-of-range value is an error at load.\n\n\
-             | param | default | accepted | read by | what |\n|---|---|---|---|---|\n",
+             (`plait passes`); an out-of-range value is an error at load.\n\n",
         );
+        // A list, not a table: the comments are sentences, and five columns
+        // of them overflow the page.
         for r in rows {
             md.push_str(&format!(
-                "| `{}` | `{}` | {} | {} | {} |\n",
-                r.name, r.default, r.accepts, r.read_by, r.comment
+                "- **`{}`** = `{}` — {}\\\n  *accepts* {}; *read by* {}\n",
+                r.name,
+                r.default,
+                nonempty(&r.comment),
+                r.accepts,
+                nonempty(&r.read_by)
             ));
         }
         md.push('\n');
