@@ -120,6 +120,7 @@ pub fn build(opts: &Options) -> Result<Built, BookError> {
         });
     }
     fill_summary(&src, &technique_toc, &pipeline_toc)?;
+    fill_default_frame(&src, &opts.stage, &plait)?;
     run_mdbook(&opts.stage, &opts.out)?;
     Ok(Built {
         out: opts.out.clone(),
@@ -171,6 +172,37 @@ fn fill_summary(src: &Path, techniques: &str, pipelines: &str) -> Result<(), Boo
         out = out.replace(marker, toc.trim_end());
     }
     write(&path, &out)
+}
+
+/// The guide page that shows the default render's per-pass table, and its
+/// marker.
+pub const DEFAULT_FRAME_PAGE: &str = "guide/first-render.md";
+const DEFAULT_FRAME_MARKER: &str = "<!-- generated:default-frame -->";
+
+/// Puts the per-pass table of `plait render` (the default pipeline on the
+/// built-in scene, as `scripts/render.sh` runs it) at its marker: measured
+/// on the machine that builds the book, whose adapter the table's first line
+/// names, never typed by hand.
+fn fill_default_frame(src: &Path, stage: &Path, plait: &Plait) -> Result<(), BookError> {
+    let path = src.join(DEFAULT_FRAME_PAGE);
+    let text = std::fs::read_to_string(&path).map_err(BookError::io(&path))?;
+    if !text.contains(DEFAULT_FRAME_MARKER) {
+        return Err(BookError::content(
+            &path,
+            format!("no `{DEFAULT_FRAME_MARKER}` line"),
+        ));
+    }
+    // Outside `src/`, so mdBook does not copy the picture into the site.
+    let png = stage.join("default-frame.png");
+    let table = plait.run(&["render".into(), "--out".into(), png.display().to_string()])?;
+    // Its last line names the picture, a path of this machine's stage.
+    let table: Vec<&str> = table.lines().filter(|l| !l.starts_with("wrote ")).collect();
+    let table = table.join("\n");
+    let block = format!(
+        "```text\n$ plait render   # what bash scripts/render.sh runs\n{}\n```",
+        table.trim_end()
+    );
+    write(&path, &text.replace(DEFAULT_FRAME_MARKER, &block))
 }
 
 fn run_mdbook(stage: &Path, out: &Path) -> Result<(), BookError> {

@@ -83,6 +83,27 @@ fn the_book_has_a_page_per_technique_and_pipeline_and_opens_cleanly_in_chromium(
     );
     assert_eq!(pipelines, gallery(), "pipeline pages vs pipelines/*.toml");
 
+    // The default render's table is measured while the book builds.
+    let first = built
+        .out
+        .join(Path::new(plait_book::DEFAULT_FRAME_PAGE).with_extension("html"));
+    let first = std::fs::read_to_string(&first).expect("the first-render page");
+    for row in [
+        "$ plait render   # what bash scripts/render.sh runs",
+        "light_occupancy",
+        "GPU ms",
+        "frame",
+    ] {
+        assert!(
+            first.contains(row),
+            "the default frame's table lacks `{row}`"
+        );
+    }
+    assert!(
+        !first.contains("generated:default-frame"),
+        "marker left in the page"
+    );
+
     let problems = plait_book::check::check(&built.out);
     assert!(problems.is_empty(), "broken book:\n{}", join(&problems));
 
