@@ -48,8 +48,9 @@ impl Plait {
 /// A render or graph the book shows, as the command a reader would type.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Figure {
-    /// `plait render` arguments after the subcommand, without `--out`.
+    /// The pipeline, by the name the search path finds (`deep_opacity.toml`).
     pub pipeline: String,
+    /// `--set` values (`techniques.shading=marschner`).
     pub sets: Vec<String>,
 }
 
@@ -95,21 +96,21 @@ impl Figure {
         size: (u32, u32),
         out: &Path,
     ) -> Result<String, BookError> {
-        let mut args = self.render_args(scene, size);
-        let shown = format!("plait {}", args.join(" "));
-        args.push("--out".into());
-        args.push(out.display().to_string());
-        plait.run(&args)?;
-        Ok(shown)
+        run_to(plait, self.render_args(scene, size), out)
     }
 
     /// Writes the schedule's SVG to `out`; returns the command as shown.
     pub fn graph(&self, plait: &Plait, out: &Path) -> Result<String, BookError> {
-        let mut args = self.graph_args();
-        let shown = format!("plait {}", args.join(" "));
-        args.push("--out".into());
-        args.push(out.display().to_string());
-        plait.run(&args)?;
-        Ok(shown)
+        run_to(plait, self.graph_args(), out)
     }
+}
+
+/// Runs `plait ARGS --out OUT`; returns the command as a page shows it,
+/// without the `--out` of this machine's stage.
+fn run_to(plait: &Plait, mut args: Vec<String>, out: &Path) -> Result<String, BookError> {
+    let shown = format!("plait {}", args.join(" "));
+    args.push("--out".into());
+    args.push(out.display().to_string());
+    plait.run(&args)?;
+    Ok(shown)
 }
