@@ -8,7 +8,8 @@
 //!   interpolation (Halén & Wester 2007 §2.5), stray strands
 //!   (Sintorn & Assarsson 2009 Fig. 4/5).
 //! - [`tfx`]: AMD TressFX's binary `.tfx` format (versions 3 and 4), read and
-//!   written; [`asset`] tells the two formats apart.
+//!   written; [`usd`]: `BasisCurves` grooms in USD (`.usda`, `.usdc`,
+//!   `.usdz`), read and written; [`asset`] tells the formats apart.
 //! - [`guides`]: guide strands and the binding of every rendered strand to
 //!   them, the CPU reference of GPU guide interpolation.
 //! - [`follow`]: follow strands around guide strands, as TressFX makes them.
@@ -37,6 +38,7 @@ pub mod scene;
 mod strands;
 pub mod tfx;
 pub mod transform;
+pub mod usd;
 
 pub use asset::{Asset, AssetError, Format};
 pub use environment::{Environment, EnvironmentError, EnvironmentImage};
@@ -51,3 +53,4 @@ pub use scene::{
 pub use strands::{Aabb, StrandVertex, Strands};
 pub use tfx::{TfxError, TfxFile, TfxWarning};
 pub use transform::{Scale, Transform};
+pub use usd::{UsdError, UsdGroom, UsdOptions};

@@ -77,13 +77,18 @@ impl Scene {
 }
 
 /// What a file leaves out of the look (`crate::groom::dress`): a `.tfx`
-/// file's absent thickness and colour arrays; nothing for a `.hair` file,
+/// file's absent thickness and colour arrays, a USD stage's absent `widths`
+/// and `displayColor` (on every prim read); nothing for a `.hair` file,
 /// whose header states defaults for both.
 fn missing_look(asset: &Asset) -> Missing {
     match asset {
         Asset::Tfx(file) => Missing {
             thickness: file.strand_thickness.is_none(),
             color: file.vertex_color.is_none(),
+        },
+        Asset::Usd(groom) => Missing {
+            thickness: groom.lacks_widths(),
+            color: groom.lacks_colors(),
         },
         Asset::Hair(_) => Missing::default(),
     }

@@ -70,7 +70,10 @@ pub enum SceneError {
     /// The `.tfx` file could not be read (the error names it).
     #[error(transparent)]
     Tfx(#[from] TfxError),
-    /// The hair file is of neither format (the error names it).
+    /// The USD groom could not be read (the error names the file and prim).
+    #[error(transparent)]
+    Usd(#[from] crate::usd::UsdError),
+    /// The hair file is of no format plait reads (the error names it).
     #[error("{0}")]
     UnknownAsset(String),
     /// The environment image could not be used (the error names it).
@@ -83,6 +86,7 @@ impl From<AssetError> for SceneError {
         match e {
             AssetError::Hair(e) => SceneError::Hair(e),
             AssetError::Tfx(e) => SceneError::Tfx(e),
+            AssetError::Usd(e) => SceneError::Usd(e),
             unknown @ AssetError::Unknown { .. } => SceneError::UnknownAsset(unknown.to_string()),
         }
     }

@@ -1,0 +1,353 @@
+//! Grooms in USD (`.usda`, `.usdc`, `.usdz`, `.usd`): every `BasisCurves`
+//! prim under a chosen prim becomes strands, read through the `openusd`
+//! crate (text, binary crate and zip package, with composition: sublayers,
+//! references, payloads, variants).
+//!
+//! - Curves: `linear` as they are; `cubic` with basis `bezier`, `bspline` or
+//!   `catmullRom` evaluated to polylines of `segments_per_span` segments per
+//!   span; wrap `nonperiodic` or `pinned` (see [`curves`]).
+//! - `widths` (diameters) become thickness; `primvars:displayColor` the
+//!   colour and `primvars:displayOpacity` the opacity (constant, per curve,
+//!   per span end or per vertex).
+//! - Every prim's `xformOp`s up to the root, then the stage's
+//!   `metersPerUnit` and `upAxis` (USD's fallbacks: centimetres, Y up): the
+//!   strands come out in metres, Y up.
+//!
+//! Writing ([`write`]) gives one linear `BasisCurves` prim with vertex
+//! widths, colours and opacities, in metres and Y up.
+
+pub mod curves;
+mod stage;
+mod write;
+
+#[cfg(test)]
+mod tests;
+
+use std::path::{Path, PathBuf};
+
+use crate::strands::Strands;
+pub use curves::{Basis, CurveKind, CurvesData, Interpolation, Primvar, Wrap};
+pub use stage::StageUnits;
+pub use write::{WriteFormat, write};
+
+/// Segments per cubic span when a scene or command does not say.
+pub const DEFAULT_SEGMENTS_PER_SPAN: u32 = 8;
+/// The most segments per span plait evaluates.
+pub const MAX_SEGMENTS_PER_SPAN: u32 = 256;
+
+/// Everything that makes a USD groom unreadable; [`UsdError::InFile`] names
+/// the file.
+#[derive(Debug, thiserror::Error)]
+pub enum UsdError {
+    /// The file could not be read at all.
+    #[error("cannot read file: {0}")]
+    Read(std::io::Error),
+    /// Not a USD file (or one the reader cannot open): the reader's words.
+    #[error("not a readable USD file: {0}")]
+    NotUsd(String),
+    /// The prim named does not exist.
+    #[error("prim `{prim}` is not on the stage{}", hint(.nearest))]
+    NoPrim {
+        /// The prim asked for.
+        prim: String,
+        /// The nearest prim path, if one is close.
+        nearest: Option<String>,
+    },
+    /// Nothing to read under the prim.
+    #[error("no BasisCurves prim under `{prim}`{}", found_note(.others))]
+    NoCurves {
+        /// The prim searched.
+        prim: String,
+        /// Curve prims of types plait does not read, e.g. `NurbsCurves /a`.
+        others: Vec<String>,
+    },
+    /// A field of a prim (or of the stage, prim `/`) is wrong.
+    #[error("prim `{prim}`, field `{field}`: {message}")]
+    Field {
+        /// The prim.
+        prim: String,
+        /// The attribute or metadata field.
+        field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// An option is out of range.
+    #[error("{0}")]
+    Option(String),
+    /// Any of the above for a named file.
+    #[error("{}: {error}", path.display())]
+    InFile {
+        /// The file.
+        path: PathBuf,
+        /// The problem.
+        error: Box<UsdError>,
+    },
+}
+
+fn hint(nearest: &Option<String>) -> String {
+    nearest
+        .as_ref()
+        .map(|n| format!(" (did you mean `{n}`?)"))
+        .unwrap_or_default()
+}
+
+fn found_note(others: &[String]) -> String {
+    if others.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " (found {}: plait reads BasisCurves only)",
+            others.join(", ")
+        )
+    }
+}
+
+impl UsdError {
+    /// This error, naming `path`.
+    pub fn in_file(self, path: &Path) -> UsdError {
+        match self {
+            e @ UsdError::InFile { .. } => e,
+            e => UsdError::InFile {
+                path: path.to_path_buf(),
+                error: Box::new(e),
+            },
+        }
+    }
+}
+
+/// What to read from a stage.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct UsdOptions {
+    /// The prim whose `BasisCurves` descendants (itself included) are read;
+    /// `None` reads the whole stage.
+    pub prim: Option<String>,
+    /// Segments per span of a cubic curve (1..=256).
+    pub segments_per_span: u32,
+}
+
+impl Default for UsdOptions {
+    fn default() -> UsdOptions {
+        UsdOptions {
+            prim: None,
+            segments_per_span: DEFAULT_SEGMENTS_PER_SPAN,
+        }
+    }
+}
+
+impl UsdOptions {
+    /// Range checks; messages name the option as `field`.
+    pub fn validate(&self, prim_field: &str, segments_field: &str) -> Result<(), String> {
+        if !(1..=MAX_SEGMENTS_PER_SPAN).contains(&self.segments_per_span) {
+            return Err(format!(
+                "{segments_field} must be in 1..={MAX_SEGMENTS_PER_SPAN}, got {}",
+                self.segments_per_span
+            ));
+        }
+        if let Some(p) = &self.prim
+            && !p.starts_with('/')
+        {
+            return Err(format!(
+                "{prim_field} must be an absolute prim path such as \"/Groom\", got {p:?}"
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One `BasisCurves` prim as read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurvesPrim {
+    /// Its path.
+    pub path: String,
+    /// `type` and `basis`.
+    pub kind: CurveKind,
+    /// `wrap`.
+    pub wrap: Wrap,
+    /// Curves in it.
+    pub curves: usize,
+    /// Control points in it.
+    pub points: usize,
+    /// `widths`' interpolation, if authored.
+    pub widths: Option<Interpolation>,
+    /// `primvars:displayColor`'s interpolation, if authored.
+    pub colors: Option<Interpolation>,
+    /// `primvars:displayOpacity`'s interpolation, if authored.
+    pub opacity: Option<Interpolation>,
+}
+
+/// A groom read from a USD stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UsdGroom {
+    /// The strands, in metres, Y up.
+    pub strands: Strands,
+    /// The prims they came from.
+    pub prims: Vec<CurvesPrim>,
+    /// The stage's units.
+    pub units: StageUnits,
+    /// The container: `usda`, `usdc` or `usdz`.
+    pub container: &'static str,
+    /// The options read with.
+    pub options: UsdOptions,
+}
+
+impl UsdGroom {
+    /// True if no prim has `widths` (the scene then gives the default look).
+    pub fn lacks_widths(&self) -> bool {
+        self.prims.iter().all(|p| p.widths.is_none())
+    }
+
+    /// True if no prim has `primvars:displayColor`.
+    pub fn lacks_colors(&self) -> bool {
+        self.prims.iter().all(|p| p.colors.is_none())
+    }
+
+    /// Reads `bytes` as the USD file `path` (named in errors; its extension
+    /// picks the format). `on_disk`: layers it names resolve beside it.
+    /// Warnings come back as text.
+    pub fn from_bytes(
+        path: &Path,
+        bytes: Vec<u8>,
+        options: &UsdOptions,
+        on_disk: bool,
+    ) -> Result<(UsdGroom, Vec<String>), UsdError> {
+        read(path, bytes, options, on_disk).map_err(|e| e.in_file(path))
+    }
+}
+
+/// The container a file's bytes are.
+pub fn container(bytes: &[u8]) -> &'static str {
+    if bytes.starts_with(b"PXR-USDC") {
+        "usdc"
+    } else if bytes.starts_with(b"PK\x03\x04") {
+        "usdz"
+    } else {
+        "usda"
+    }
+}
+
+fn read(
+    path: &Path,
+    bytes: Vec<u8>,
+    options: &UsdOptions,
+    on_disk: bool,
+) -> Result<(UsdGroom, Vec<String>), UsdError> {
+    options
+        .validate("prim", "segments_per_span")
+        .map_err(UsdError::Option)?;
+    let container = container(&bytes);
+    let stage = stage::open(path, bytes, on_disk)?;
+    let stage_field = |(field, message): (&'static str, String)| UsdError::Field {
+        prim: "/".into(),
+        field,
+        message,
+    };
+    let units = stage::units(&stage).map_err(stage_field)?;
+    let all = stage::prim_paths(&stage).map_err(UsdError::NotUsd)?;
+    let root_name = options.prim.clone().unwrap_or_else(|| "/".into());
+    let root = openusd::sdf::path(&root_name).map_err(|e| UsdError::Field {
+        prim: root_name.clone(),
+        field: "prim",
+        message: format!("is not a prim path: {e:#}"),
+    })?;
+    if root != openusd::sdf::Path::abs_root() && !all.contains(&root) {
+        let names: Vec<&str> = all.iter().map(|p| p.as_str()).collect();
+        return Err(UsdError::NoPrim {
+            prim: root_name,
+            nearest: plait_graph::suggest::nearest(root.as_str(), names).map(str::to_string),
+        });
+    }
+    let mut warnings: Vec<String> = stage
+        .composition_errors()
+        .iter()
+        .map(|e| format!("composition: {e}"))
+        .collect();
+    let mut found = Vec::new();
+    let mut others = Vec::new();
+    for p in all.iter().filter(|p| p.has_prefix(&root)) {
+        match stage::type_name(&stage, p).as_deref() {
+            Some("BasisCurves") => found.push(p.clone()),
+            Some(t @ ("NurbsCurves" | "HermiteCurves")) => {
+                others.push(format!("{t} {}", p.as_str()))
+            }
+            _ => {}
+        }
+    }
+    if found.is_empty() {
+        return Err(UsdError::NoCurves {
+            prim: root_name,
+            others,
+        });
+    }
+    for o in &others {
+        warnings.push(format!("{o} is not read: plait reads BasisCurves only"));
+    }
+    let to_plait = units.to_plait();
+    let mut strands = Strands::new();
+    let mut prims = Vec::new();
+    let mut total = 0u64;
+    let mut data = Vec::new();
+    for p in &found {
+        let field = |(field, message): (&'static str, String)| UsdError::Field {
+            prim: p.as_str().to_string(),
+            field,
+            message,
+        };
+        let prim = stage.prim(p.clone());
+        let d = stage::curves_data(&prim).map_err(field)?;
+        total += d.check(options.segments_per_span).map_err(field)?;
+        if total > curves::MAX_POINTS {
+            return Err(field((
+                "points",
+                format!(
+                    "the stage's curves evaluate to more than {} points",
+                    curves::MAX_POINTS
+                ),
+            )));
+        }
+        let world = to_plait * stage::to_world(&stage, p).map_err(field)?;
+        prims.push(CurvesPrim {
+            path: p.as_str().to_string(),
+            kind: d.kind,
+            wrap: d.wrap,
+            curves: d.counts.len(),
+            points: d.points.len(),
+            widths: d.widths.as_ref().map(|w| w.interpolation),
+            colors: d.colors.as_ref().map(|w| w.interpolation),
+            opacity: d.opacity.as_ref().map(|w| w.interpolation),
+        });
+        data.push((d, world));
+    }
+    // Everything is checked: now the output is allocated, once.
+    strands
+        .offsets
+        .reserve(prims.iter().map(|p| p.curves).sum());
+    for v in [&mut strands.thickness, &mut strands.alpha] {
+        v.reserve(total as usize);
+    }
+    strands.points.reserve(total as usize);
+    strands.color.reserve(total as usize);
+    let lacking: Vec<&str> = prims
+        .iter()
+        .filter(|p| p.widths.is_none())
+        .map(|p| p.path.as_str())
+        .collect();
+    if !lacking.is_empty() && lacking.len() < prims.len() {
+        warnings.push(format!(
+            "{} have no widths: their strands are 1 unit wide",
+            lacking.join(", ")
+        ));
+    }
+    for (d, world) in &data {
+        d.append_to(&mut strands, *world, options.segments_per_span, 1.0);
+    }
+    Ok((
+        UsdGroom {
+            strands,
+            prims,
+            units,
+            container,
+            options: options.clone(),
+        },
+        warnings,
+    ))
+}
