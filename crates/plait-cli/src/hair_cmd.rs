@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
+use plait_hair::usd::{self, UsdGroom, UsdOptions, WriteFormat};
 use plait_hair::{Asset, Format, GroomSpec, HairFile, Strands, Style, TfxFile, generate};
 
 use crate::output::PendingFile;
@@ -18,20 +19,25 @@ pub struct HairArgs {
 /// The `hair` subcommands.
 #[derive(clap::Subcommand, Debug)]
 pub enum HairCommand {
-    /// Print a .hair or .tfx file's counts, arrays, header fields and bounds.
+    /// Print a .hair, .tfx or USD file's counts, arrays, header fields and bounds.
     Info {
-        /// The .hair or .tfx file.
+        /// The .hair, .tfx or USD (.usda, .usdc, .usdz, .usd) file.
         file: PathBuf,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        usd: UsdArgs,
     },
-    /// Convert between .hair and .tfx (the output's extension picks the format).
+    /// Convert between .hair, .tfx and USD (the output's extension picks the
+    /// format; USD is written as linear BasisCurves).
     Convert {
-        /// The .hair or .tfx file to read.
+        /// The .hair, .tfx or USD file to read.
         input: PathBuf,
-        /// The file to write: *.hair or *.tfx.
+        /// The file to write: *.hair, *.tfx, *.usda, *.usdc or *.usdz.
         output: PathBuf,
+        #[command(flatten)]
+        usd: UsdArgs,
         /// Vertices per strand in a .tfx output (default: the most any
         /// strand has); strands with another count are resampled by arc
         /// length. TressFX itself loads 4, 8, 16, 32 or 64.
@@ -58,15 +64,46 @@ pub enum HairCommand {
     },
 }
 
+/// What to read from a USD input.
+#[derive(clap::Args, Debug)]
+pub struct UsdArgs {
+    /// USD input: read the BasisCurves under this prim (default: the whole stage).
+    #[arg(long)]
+    prim: Option<String>,
+    /// USD input: polyline segments per cubic curve span (1..=256).
+    #[arg(long, default_value_t = usd::DEFAULT_SEGMENTS_PER_SPAN)]
+    segments_per_span: u32,
+}
+
+impl UsdArgs {
+    fn options(&self, input: &Path) -> anyhow::Result<UsdOptions> {
+        let options = UsdOptions {
+            prim: self.prim.clone(),
+            segments_per_span: self.segments_per_span,
+        };
+        options
+            .validate("--prim", "--segments-per-span")
+            .map_err(|e| anyhow::anyhow!(e))?;
+        let given = self.prim.is_some() || self.segments_per_span != usd::DEFAULT_SEGMENTS_PER_SPAN;
+        if given && Format::from_extension(input) != Some(Format::Usd) {
+            bail!(
+                "--prim and --segments-per-span apply to a USD input (.usda, .usdc, .usdz or .usd)"
+            );
+        }
+        Ok(options)
+    }
+}
+
 /// Runs a `hair` subcommand.
 pub fn run(args: HairArgs) -> anyhow::Result<()> {
     match args.command {
-        HairCommand::Info { file, json } => info(&file, json),
+        HairCommand::Info { file, json, usd } => info(&file, json, &usd.options(&file)?),
         HairCommand::Convert {
             input,
             output,
+            usd,
             vertices_per_strand,
-        } => convert(&input, &output, vertices_per_strand),
+        } => convert(&input, &output, &usd.options(&input)?, vertices_per_strand),
         HairCommand::Generate {
             style,
             strands,
@@ -128,10 +165,15 @@ pub fn generate_spec(
     Ok(spec)
 }
 
-fn convert(input: &Path, output: &Path, vertices_per_strand: Option<u32>) -> anyhow::Result<()> {
+fn convert(
+    input: &Path,
+    output: &Path,
+    usd_options: &UsdOptions,
+    vertices_per_strand: Option<u32>,
+) -> anyhow::Result<()> {
     let Some(format) = Format::from_extension(output) else {
         bail!(
-            "{}: the output's extension must be .hair or .tfx",
+            "{}: the output's extension must be .hair, .tfx, .usda, .usdc or .usdz",
             output.display()
         );
     };
@@ -145,7 +187,7 @@ fn convert(input: &Path, output: &Path, vertices_per_strand: Option<u32>) -> any
     }
     // Reserve the output first, so an unwritable path fails before reading.
     let pending = PendingFile::create(output, "OUTPUT")?;
-    let (asset, warnings) = Asset::read(input)?;
+    let (asset, warnings) = Asset::read_with(input, usd_options)?;
     for w in &warnings {
         eprintln!("warning: {}: {w}", input.display());
     }
@@ -163,6 +205,12 @@ fn convert(input: &Path, output: &Path, vertices_per_strand: Option<u32>) -> any
         }
         Format::Tfx => tfx_bytes(&strands, vertices_per_strand)
             .with_context(|| format!("converting {} to .tfx", input.display()))?,
+        Format::Usd => {
+            let container = WriteFormat::from_extension(output).unwrap_or(WriteFormat::Usda);
+            usd::write(&strands, container)
+                .map_err(|e| e.in_file(output))
+                .with_context(|| format!("converting {} to USD", input.display()))?
+        }
     };
     pending.commit(&bytes)?;
     // What `plait hair info` would warn about the written file (a vertex
@@ -193,12 +241,111 @@ fn tfx_bytes(strands: &Strands, vertices_per_strand: Option<u32>) -> anyhow::Res
     Ok(file.to_bytes()?)
 }
 
-fn info(path: &Path, json: bool) -> anyhow::Result<()> {
-    let (asset, warnings) = Asset::read(path)?;
+fn info(path: &Path, json: bool, usd: &UsdOptions) -> anyhow::Result<()> {
+    let (asset, warnings) = Asset::read_with(path, usd)?;
     match asset {
         Asset::Hair(file) => hair_info(path, &file, warnings, json),
         Asset::Tfx(file) => tfx_info(path, &file, warnings, json),
+        Asset::Usd(groom) => usd_info(path, &groom, warnings, json),
     }
+}
+
+fn curve_kind(p: &usd::CurvesPrim) -> String {
+    let kind = match p.kind {
+        usd::CurveKind::Linear => "linear".to_string(),
+        usd::CurveKind::Cubic(b) => format!("cubic {}", b.token()),
+    };
+    let wrap = match p.wrap {
+        usd::Wrap::Nonperiodic => "nonperiodic",
+        usd::Wrap::Pinned => "pinned",
+    };
+    format!("{kind}, {wrap}")
+}
+
+fn usd_info(path: &Path, g: &UsdGroom, warnings: Vec<String>, json: bool) -> anyhow::Result<()> {
+    let (min, max) = bounds_of(g.strands.bounds());
+    let interp = |i: Option<usd::Interpolation>| i.map(|i| i.token());
+    if json {
+        let prims: Vec<_> = g
+            .prims
+            .iter()
+            .map(|p| {
+                serde_json::json!({
+                    "path": p.path,
+                    "curves": curve_kind(p),
+                    "curve_count": p.curves,
+                    "control_points": p.points,
+                    "widths": interp(p.widths),
+                    "display_color": interp(p.colors),
+                    "display_opacity": interp(p.opacity),
+                })
+            })
+            .collect();
+        let v = serde_json::json!({
+            "file": path.display().to_string(),
+            "format": "usd",
+            "container": g.container,
+            "prim": g.options.prim.as_deref().unwrap_or("/"),
+            "segments_per_span": g.options.segments_per_span,
+            "meters_per_unit": g.units.meters_per_unit,
+            "meters_per_unit_authored": g.units.meters_authored,
+            "up_axis": if g.units.z_up { "Z" } else { "Y" },
+            "prims": prims,
+            "strands": g.strands.strand_count(),
+            "points": g.strands.point_count(),
+            "segments": g.strands.segment_count(),
+            "bounds": { "min": min, "max": max },
+            "warnings": warnings,
+        });
+        outln!("{v}")?;
+        return Ok(());
+    }
+    outln!("file:         {}", path.display())?;
+    outln!("format:       USD ({}), BasisCurves", g.container)?;
+    outln!(
+        "stage:        metersPerUnit {}{}, upAxis {} (read as metres, Y up)",
+        g.units.meters_per_unit,
+        if g.units.meters_authored {
+            ""
+        } else {
+            " (not authored: USD's fallback)"
+        },
+        if g.units.z_up { "Z" } else { "Y" }
+    )?;
+    for p in &g.prims {
+        let arrays: Vec<String> = [
+            ("widths", p.widths),
+            ("displayColor", p.colors),
+            ("displayOpacity", p.opacity),
+        ]
+        .iter()
+        .filter_map(|(n, i)| i.map(|i| format!("{n} ({})", i.token())))
+        .collect();
+        outln!(
+            "prim:         {} — {} curves, {} control points, {}; {}",
+            p.path,
+            p.curves,
+            p.points,
+            curve_kind(p),
+            if arrays.is_empty() {
+                "no widths or colours".to_string()
+            } else {
+                arrays.join(", ")
+            }
+        )?;
+    }
+    outln!(
+        "strands:      {} ({} points, {} segments; cubic spans at {} segments)",
+        g.strands.strand_count(),
+        g.strands.point_count(),
+        g.strands.segment_count(),
+        g.options.segments_per_span
+    )?;
+    outln!("bounds:       min {min:?} max {max:?}")?;
+    for w in &warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok(())
 }
 
 fn bounds_of(b: plait_hair::Aabb) -> ([f32; 3], [f32; 3]) {

@@ -154,7 +154,10 @@ fn bad_tfx_input_exits_2_naming_the_file_and_writes_nothing() {
         "x.obj",
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(text(&o.stderr).contains("x.obj: the output's extension must be .hair or .tfx"));
+    assert!(
+        text(&o.stderr)
+            .contains("x.obj: the output's extension must be .hair, .tfx, .usda, .usdc or .usdz")
+    );
 }
 
 /// A scene naming a `.tfx` groom in its own units and axes, with follow

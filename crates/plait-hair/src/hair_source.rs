@@ -4,7 +4,9 @@
 //!
 //! ```toml
 //! [hair]
-//! file = "models/mohawk.tfx"   # .hair or .tfx, relative to the scene file
+//! file = "models/mohawk.tfx"   # .hair, .tfx or USD, relative to the scene file
+//! prim = "/Groom"              # USD only: read the BasisCurves under this prim
+//! segments_per_span = 8        # USD only: polyline segments per cubic span
 //! follow_strands = 4           # per guide strand (TressFX files hold guides only)
 //! follow_radius = 0.004        # root offset, in the file's units
 //! follow_tip_spread = 1.0      # offset × (1 + spread·t) toward the tip
@@ -22,11 +24,12 @@ use serde::Deserialize;
 use crate::follow::FollowStrands;
 use crate::groom::GroomSpec;
 use crate::transform::Transform;
+use crate::usd::{DEFAULT_SEGMENTS_PER_SPAN, UsdOptions};
 
 /// Where the hair comes from.
 #[derive(Debug, Clone, PartialEq)]
 pub enum HairSource {
-    /// A `.hair` or `.tfx` file (relative to the scene file).
+    /// A `.hair`, `.tfx` or USD file (relative to the scene file).
     File(PathBuf),
     /// A procedural groom.
     Procedural(GroomSpec),
@@ -43,6 +46,8 @@ pub struct Hair {
     pub follow: Option<FollowStrands>,
     /// Placement in the scene, applied after the follow strands.
     pub transform: Option<Transform>,
+    /// What to read from a USD file (`prim`, `segments_per_span`).
+    pub usd: UsdOptions,
 }
 
 impl From<HairSource> for Hair {
@@ -51,6 +56,7 @@ impl From<HairSource> for Hair {
             source,
             follow: None,
             transform: None,
+            usd: UsdOptions::default(),
         }
     }
 }
@@ -65,6 +71,8 @@ struct HairToml {
     follow_tip_spread: Option<f32>,
     follow_seed: Option<u64>,
     transform: Option<Transform>,
+    prim: Option<String>,
+    segments_per_span: Option<u32>,
 }
 
 impl TryFrom<HairToml> for Hair {
@@ -98,10 +106,22 @@ impl TryFrom<HairToml> for Hair {
             }
             (None, Some(_)) => return Err("hair.follow_radius needs follow_strands".into()),
         };
+        let is_usd = matches!(&source, HairSource::File(p)
+            if crate::asset::Format::from_extension(p) == Some(crate::asset::Format::Usd));
+        if !is_usd && (t.prim.is_some() || t.segments_per_span.is_some()) {
+            return Err(
+                "hair.prim and hair.segments_per_span apply to a USD file (hair.file ending in .usda, .usdc, .usdz or .usd)"
+                    .into(),
+            );
+        }
         Ok(Hair {
             source,
             follow,
             transform: t.transform,
+            usd: UsdOptions {
+                prim: t.prim,
+                segments_per_span: t.segments_per_span.unwrap_or(DEFAULT_SEGMENTS_PER_SPAN),
+            },
         })
     }
 }
@@ -118,6 +138,8 @@ impl Hair {
         if let Some(t) = &self.transform {
             t.validate()?;
         }
+        self.usd
+            .validate("hair.prim", "hair.segments_per_span")?;
         Ok(())
     }
 }

@@ -18,7 +18,7 @@ impl Scene {
     pub fn strands(&self) -> Result<Strands, SceneError> {
         let (mut strands, origin, missing) = match &self.hair.source {
             HairSource::File(path) => {
-                let (asset, _warnings) = Asset::read(path)?;
+                let (asset, _warnings) = Asset::read_with(path, &self.hair.usd)?;
                 (asset.strands(), path.clone(), missing_look(&asset))
             }
             HairSource::Procedural(spec) => (

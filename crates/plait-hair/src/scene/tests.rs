@@ -280,3 +280,44 @@ fn unknown_fields_name_their_place_and_the_nearest_field() {
         "{e}"
     );
 }
+
+/// A USD groom: `prim` and `segments_per_span` reach the reader; they are
+/// refused for other files; out-of-range values name the field.
+#[test]
+fn a_usd_groom_reads_the_prim_the_scene_names() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let curves = |x: i32| {
+        format!(
+            "    def BasisCurves \"C\"\n    {{\n        uniform token type = \"cubic\"\n        uniform token basis = \"bspline\"\n        int[] curveVertexCounts = [5]\n        point3f[] points = [({x},0,0),({x},1,0),({x},2,0),({x},3,0),({x},4,0)]\n    }}\n"
+        )
+    };
+    let usda = format!(
+        "#usda 1.0\n(\n    metersPerUnit = 1\n)\ndef Xform \"A\"\n{{\n{}}}\ndef Xform \"B\"\n{{\n{}}}\n",
+        curves(1),
+        curves(2)
+    );
+    std::fs::write(dir.path().join("g.usda"), usda).expect("write");
+    let path = dir.path().join("s.toml");
+    std::fs::write(
+        &path,
+        "[hair]\nfile = \"g.usda\"\nprim = \"/B\"\nsegments_per_span = 3\n",
+    )
+    .expect("write");
+    let s = Scene::load(&path).expect("loads");
+    let strands = s.strands().expect("reads");
+    // One curve of 2 B-spline spans at 3 segments each: 7 points, all at x = 2.
+    assert_eq!(strands.point_count(), 7);
+    assert!(strands.points.iter().all(|p| (p.x - 2.0).abs() < 1e-5), "{:?}", strands.points);
+    std::fs::write(&path, "[hair]\nfile = \"g.usda\"\nprim = \"/Nope\"\n").expect("write");
+    let e = Scene::load(&path).expect("loads").strands().unwrap_err();
+    assert!(e.to_string().contains("g.usda: prim `/Nope`"), "{e}");
+
+    let p = Path::new("s.toml");
+    let e = Scene::from_toml_str("[hair]\nfile = \"g.hair\"\nprim = \"/A\"\n", p).unwrap_err();
+    assert!(e.to_string().contains("hair.prim and hair.segments_per_span apply to a USD file"), "{e}");
+    let e = Scene::from_toml_str("[hair]\nfile = \"g.usdz\"\nsegments_per_span = 0\n", p)
+        .unwrap_err();
+    assert!(e.to_string().contains("hair.segments_per_span must be in 1..=256"), "{e}");
+    let e = Scene::from_toml_str("[hair]\nfile = \"g.usdc\"\nprim = \"B\"\n", p).unwrap_err();
+    assert!(e.to_string().contains("hair.prim must be an absolute prim path"), "{e}");
+}
