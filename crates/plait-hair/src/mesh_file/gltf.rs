@@ -30,7 +30,17 @@ pub fn read_bytes(bytes: &[u8], path: &Path, limits: &Limits) -> Result<Mesh, Me
         path: path.to_path_buf(),
         message,
     };
-    let file = Gltf::from_slice(bytes).map_err(|e| error(format!("not a valid glTF 2.0 file: {e}")))?;
+    check_glb_header(bytes).map_err(error)?;
+    let invalid = |e: gltf::Error| error(format!("not a valid glTF 2.0 file: {e}"));
+    // Parsed first, validated once the attribute indices are known to be in
+    // range: gltf-json 1.4.1's validation indexes the accessors with the
+    // POSITION attribute's index unchecked (a panic, found by tests/fuzz.rs).
+    let parsed = Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
+    check_attribute_indices(parsed.document.as_json()).map_err(error)?;
+    let file = Gltf {
+        document: gltf::Document::from_json(parsed.document.into_json()).map_err(invalid)?,
+        blob: parsed.blob,
+    };
     let buffers = load_buffers(&file, path, limits).map_err(error)?;
     let mut out = Mesh {
         name: path
@@ -57,6 +67,47 @@ pub fn read_bytes(bytes: &[u8], path: &Path, limits: &Limits) -> Result<Mesh, Me
         return Err(error("the file places no triangle mesh".into()));
     }
     Ok(out)
+}
+
+/// A GLB header's total length must cover the header itself: gltf 1.4.1's
+/// `Glb::from_slice` subtracts the header's 12 bytes from it unchecked (an
+/// overflow panic in debug builds, found by `tests/fuzz.rs`).
+fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.starts_with(b"glTF") {
+        return Ok(());
+    }
+    let length = bytes
+        .get(8..12)
+        .map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]))
+        .ok_or("not a valid glTF 2.0 file: the GLB header is cut short")?;
+    if length < 12 {
+        return Err(format!(
+            "not a valid glTF 2.0 file: the GLB header's length is {length}, less than the header's 12 bytes"
+        ));
+    }
+    Ok(())
+}
+
+/// Every primitive's attributes name an accessor the file has.
+fn check_attribute_indices(root: &gltf::json::Root) -> Result<(), String> {
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for (semantic, index) in &primitive.attributes {
+                if index.value() >= root.accessors.len() {
+                    return Err(format!(
+                        "not a valid glTF 2.0 file: meshes[{m}].primitives[{p}].attributes[{:?}] is accessor {}, but the file has {}",
+                        match semantic {
+                            gltf::json::validation::Checked::Valid(s) => s.to_string(),
+                            gltf::json::validation::Checked::Invalid => "?".into(),
+                        },
+                        index.value(),
+                        root.accessors.len()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Every buffer's bytes: the GLB's BIN chunk or an external file next to

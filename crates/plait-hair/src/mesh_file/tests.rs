@@ -149,6 +149,20 @@ fn bad_files_are_named_with_the_mesh_primitive_and_field() {
             &["bad.glb", "not a valid glTF 2.0 file"],
         ),
         (to_glb(&m)[..40].to_vec(), &["bad.glb", "not a valid glTF"]),
+        // Found by tests/fuzz.rs, each a panic inside gltf 1.4.1: a GLB
+        // length below its header's, and a POSITION accessor out of range.
+        (
+            {
+                let mut b = to_glb(&m);
+                b[8..12].copy_from_slice(&3u32.to_le_bytes());
+                b
+            },
+            &["bad.glb", "GLB header's length is 3"],
+        ),
+        (
+            edited(&m, |j| j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9.into()),
+            &["bad.glb", "meshes[0].primitives[0].attributes[\"POSITION\"] is accessor 9, but the file has 3"],
+        ),
     ];
     for (bytes, wanted) in cases {
         let e = error_of(&bytes);
