@@ -11,9 +11,10 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
 secs="${1:-60}"
 cd "$root"
-mkdir -p "$here"/corpus/{hair,tfx,scene,pipeline} "$here/logs"
+mkdir -p "$here"/corpus/{hair,tfx,scene,pipeline,gltf} "$here/logs"
 cp examples/scenes/*.toml "$here/corpus/scene/"
 cp pipelines/*.toml "$here/corpus/pipeline/"
+cp examples/scenes/*.glb "$here/corpus/gltf/"
 for spec in "4 3" "40 16"; do
     set -- $spec
     cargo run -q -p plait-cli -- hair generate --strands "$1" --segments "$2" \
@@ -23,7 +24,7 @@ for spec in "4 3" "40 16"; do
 done
 cd "$here"
 total=0
-for target in hair tfx scene pipeline; do
+for target in hair tfx scene pipeline gltf; do
     # -s none: plait has no unsafe code; coverage guidance without ASan runs
     # several times faster.
     cargo +nightly fuzz run -s none "$target" "corpus/$target" -- \

@@ -12,7 +12,9 @@
 //    segment whose parent is the pinned root moves only its child, any other
 //    moves both ends by half — each sweep followed by collisions with the
 //    head's ellipsoids (a node inside is moved out along the ellipsoid's
-//    radius). Roots are pinned to the head.
+//    radius) and with the head mesh's signed distance field (a node where
+//    the trilinear distance d < 0 is moved by −d along the field's
+//    gradient, onto the surface). Roots are pinned to the head.
 // 3. Faults, once per frame: a non-finite node or a strand longer than
 //    `max_stretch` × its rest length sets a flag and the strand's index in
 //    `status` (read back by the pass after the frame).
@@ -47,6 +49,10 @@ struct Collider {
 // faulty strand (atomicMax of a zeroed buffer finds the smallest index);
 // [2]: the stretch of that kind in thousandths.
 @group(1) @binding(6) var<storage, read_write> status: array<atomic<u32>>;
+// The head mesh's distance field at rest (plait_hair::sdf's layout):
+// [0..3] origin, [3] cell, [4..7] dims as u32 bits, [7] 1 if present,
+// then the distances, x fastest.
+@group(1) @binding(7) var<storage, read> head_sdf: array<f32>;
 
 const UP: vec3<f32> = vec3<f32>(0.0, 1.0, 0.0);
 
@@ -83,7 +89,8 @@ fn gust(p: vec3<f32>, time: f32) -> vec3<f32> {
     );
 }
 
-// Moves `p` out of every collider (posed by `model`) along its radius.
+// Moves `p` out of every collider (posed by `model`): the ellipsoids along
+// their radius, then the head mesh's distance field.
 fn collide(p: vec3<f32>, model: mat4x4<f32>) -> vec3<f32> {
     let rotation = mat3x3<f32>(model[0].xyz, model[1].xyz, model[2].xyz);
     let translation = model[3].xyz;
@@ -99,7 +106,61 @@ fn collide(p: vec3<f32>, model: mat4x4<f32>) -> vec3<f32> {
             q = shape.center.xyz + e / d * shape.radii.xyz;
         }
     }
+    q = collide_sdf(q);
     return rotation * q + translation;
+}
+
+fn sdf_dims() -> vec3<u32> {
+    return vec3<u32>(bitcast<u32>(head_sdf[4]), bitcast<u32>(head_sdf[5]), bitcast<u32>(head_sdf[6]));
+}
+
+fn sdf_at(i: vec3<u32>, dims: vec3<u32>) -> f32 {
+    return head_sdf[8u + i.x + dims.x * (i.y + dims.y * i.z)];
+}
+
+// Trilinear distance at grid coordinates `g` (clamped into the grid).
+fn sdf_sample(g: vec3<f32>, dims: vec3<u32>) -> f32 {
+    let top = vec3<f32>(dims) - vec3<f32>(1.0);
+    let c = clamp(g, vec3<f32>(0.0), top);
+    let base = min(floor(c), max(top - vec3<f32>(1.0), vec3<f32>(0.0)));
+    let f = c - base;
+    let b = vec3<u32>(base);
+    let x00 = mix(sdf_at(b, dims), sdf_at(b + vec3<u32>(1u, 0u, 0u), dims), f.x);
+    let x10 = mix(sdf_at(b + vec3<u32>(0u, 1u, 0u), dims), sdf_at(b + vec3<u32>(1u, 1u, 0u), dims), f.x);
+    let x01 = mix(sdf_at(b + vec3<u32>(0u, 0u, 1u), dims), sdf_at(b + vec3<u32>(1u, 0u, 1u), dims), f.x);
+    let x11 = mix(sdf_at(b + vec3<u32>(0u, 1u, 1u), dims), sdf_at(b + vec3<u32>(1u, 1u, 1u), dims), f.x);
+    return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+}
+
+// Moves `q` (head rest space) out of the head mesh: by −d along the
+// gradient (central differences over half a cell) where the distance d < 0.
+// Outside the grid nothing is inside (the grid reaches past the mesh).
+fn collide_sdf(q: vec3<f32>) -> vec3<f32> {
+    if (arrayLength(&head_sdf) < 8u || head_sdf[7] != 1.0) {
+        return q;
+    }
+    let dims = sdf_dims();
+    let origin = vec3<f32>(head_sdf[0], head_sdf[1], head_sdf[2]);
+    let cell = head_sdf[3];
+    let g = (q - origin) / cell;
+    if (any(g < vec3<f32>(0.0)) || any(g > vec3<f32>(dims) - vec3<f32>(1.0))) {
+        return q;
+    }
+    let d = sdf_sample(g, dims);
+    if (d >= 0.0) {
+        return q;
+    }
+    let h = 0.5;
+    let grad = vec3<f32>(
+        sdf_sample(g + vec3<f32>(h, 0.0, 0.0), dims) - sdf_sample(g - vec3<f32>(h, 0.0, 0.0), dims),
+        sdf_sample(g + vec3<f32>(0.0, h, 0.0), dims) - sdf_sample(g - vec3<f32>(0.0, h, 0.0), dims),
+        sdf_sample(g + vec3<f32>(0.0, 0.0, h), dims) - sdf_sample(g - vec3<f32>(0.0, 0.0, h), dims),
+    );
+    let len = length(grad);
+    if (len <= 1e-12) {
+        return q;
+    }
+    return q - d * grad / len;
 }
 
 @compute @workgroup_size(64)

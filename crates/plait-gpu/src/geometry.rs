@@ -1,11 +1,13 @@
 //! Scene geometry on the GPU: hair as a line list, opaque meshes as one
 //! triangle list, and the scene resources of simulation
 //! (`plait_graph::scene_resources`): guides at rest and now, every drawn
-//! strand's guide binding, the head's colliders.
+//! strand's guide binding, the head's colliders (ellipsoids and the head
+//! mesh's signed distance field).
 
 use glam::Vec3;
 use plait_hair::guides::Guides;
 use plait_hair::mesh::Mesh;
+use plait_hair::sdf::SignedDistanceField;
 use plait_hair::{StrandVertex, Strands};
 use wgpu::util::DeviceExt;
 
@@ -89,6 +91,9 @@ pub struct GuideBuffers {
     pub previous: wgpu::Buffer,
     pub strand_guides: wgpu::Buffer,
     pub colliders: wgpu::Buffer,
+    /// The head mesh's signed distance field (`plait_hair::sdf`'s GPU
+    /// layout; all zeros, "no field", without a head mesh).
+    pub head_sdf: wgpu::Buffer,
     pub guide_count: u32,
     pub point_count: u32,
     pub collider_count: u32,
@@ -135,6 +140,7 @@ impl GuideBuffers {
         guides: &Guides,
         drawn: &Strands,
         colliders: &[Collider],
+        head_sdf: Option<&SignedDistanceField>,
         pose: glam::Mat4,
     ) -> Self {
         let g = &guides.strands;
@@ -189,6 +195,13 @@ impl GuideBuffers {
             strand_guides: storage(device, "strand_guides", bytemuck::cast_slice(&bindings)),
             // No collider: one of radii 0, which nothing is inside.
             colliders: storage(device, "head_colliders", bytemuck::cast_slice(&shapes)),
+            // No field: `storage` pads an empty buffer with zeros, whose
+            // presence word (7) is 0.
+            head_sdf: storage(
+                device,
+                "head_sdf",
+                bytemuck::cast_slice(&head_sdf.map(|f| f.gpu_words()).unwrap_or_default()),
+            ),
             guide_count: strands.len() as u32,
             point_count: rest.len() as u32,
             collider_count: colliders.len() as u32,
@@ -253,12 +266,13 @@ impl SceneGeometry {
             meshes,
             &Guides::identity(strands),
             &[],
+            None,
             glam::Mat4::IDENTITY,
         )
     }
 
-    /// Hair and meshes, with the groom's guides and the head's colliders for
-    /// simulation (at rest; its state starts at rest moved by `pose`, the
+    /// Hair and meshes, with the groom's guides and the head's colliders
+    /// (ellipsoids, and the head mesh's distance field) for simulation (at rest; its state starts at rest moved by `pose`, the
     /// head's first pose). `guides.bindings` has one entry per strand of `strands`.
     pub fn upload_with_guides(
         device: &wgpu::Device,
@@ -266,6 +280,7 @@ impl SceneGeometry {
         meshes: &[Mesh],
         guides: &Guides,
         colliders: &[Collider],
+        head_sdf: Option<&SignedDistanceField>,
         pose: glam::Mat4,
     ) -> Self {
         // Guides made for other strands (a caller cut the strands after
@@ -287,7 +302,7 @@ impl SceneGeometry {
                 position: v.position,
                 normal: v.normal,
                 albedo: mesh.albedo,
-                head: if mesh.name == "head" { 1.0 } else { 0.0 },
+                head: if mesh.head { 1.0 } else { 0.0 },
             }));
             indices.extend(mesh.indices.iter().map(|i| i + base));
         }
@@ -299,7 +314,7 @@ impl SceneGeometry {
             segment_count: strands.segment_count() as u32,
             environment: None,
             point_count: strands.point_count() as u32,
-            guides: GuideBuffers::upload(device, guides, strands, colliders, pose),
+            guides: GuideBuffers::upload(device, guides, strands, colliders, head_sdf, pose),
         }
     }
 
@@ -316,6 +331,7 @@ impl SceneGeometry {
             "guide_previous" => Some(&g.previous),
             "strand_guides" => Some(&g.strand_guides),
             "head_colliders" => Some(&g.colliders),
+            "head_sdf" => Some(&g.head_sdf),
             _ => None,
         }
     }

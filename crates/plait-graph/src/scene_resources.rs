@@ -64,6 +64,11 @@ pub const SCENE_RESOURCES: &[SceneResource] = &[
         writable: false,
         doc: "ellipsoids the hair collides with, at rest: vec4 centre, vec4 radii each (none: one with radii 0)",
     },
+    SceneResource {
+        name: "head_sdf",
+        writable: false,
+        doc: "the head mesh's signed distance field at rest, f32s: origin xyz, cell, dims xyz (u32 bits), 1 if present (0: no head mesh), then the distances, x fastest",
+    },
 ];
 
 /// The scene resources a `draw = "hair"` pass reads without naming them.

@@ -33,6 +33,8 @@ pub mod hair_file;
 pub mod hair_source;
 pub mod light;
 pub mod mesh;
+pub mod mesh_file;
+pub mod sdf;
 pub mod rng;
 pub mod scene;
 mod strands;

@@ -25,6 +25,10 @@ pub struct Mesh {
     pub indices: Vec<u32>,
     /// Diffuse albedo (linear RGB).
     pub albedo: [f32; 3],
+    /// The head: it moves with the head's pose (`Scene::head_model`); the
+    /// rest of the opaque geometry stays put. Not the name, so a static mesh
+    /// read from `head.glb` stays put too.
+    pub head: bool,
 }
 
 impl Mesh {
@@ -74,6 +78,7 @@ impl Mesh {
             vertices,
             indices,
             albedo: [0.8, 0.8, 0.8],
+            head: false,
         }
     }
 
@@ -98,12 +103,19 @@ impl Mesh {
             vertices,
             indices: vec![0, 1, 2, 0, 2, 3],
             albedo: [0.6, 0.6, 0.6],
+            head: false,
         }
     }
 
     /// Sets the name.
     pub fn with_name(mut self, name: impl Into<String>) -> Mesh {
         self.name = name.into();
+        self
+    }
+
+    /// Marks the mesh as the head (it moves with the head's pose).
+    pub fn as_head(mut self) -> Mesh {
+        self.head = true;
         self
     }
 

@@ -62,18 +62,24 @@ impl Transform {
 
     /// Finite numbers and an invertible matrix; the message names the field.
     pub fn validate(&self) -> Result<(), String> {
+        self.validate_named("hair.transform")
+    }
+
+    /// [`Transform::validate`] for the transform at `field` (e.g.
+    /// `meshes[0].transform`).
+    pub fn validate_named(&self, field: &str) -> Result<(), String> {
         let finite = |v: &[f32]| v.iter().all(|c| c.is_finite());
         if !finite(&self.scale.vector().to_array()) {
             return Err(format!(
-                "hair.transform.scale must be finite, got {:?}",
+                "{field}.scale must be finite, got {:?}",
                 self.scale.vector().to_array()
             ));
         }
         if !finite(&self.rotate_degrees) {
-            return Err("hair.transform.rotate_degrees must be finite".into());
+            return Err(format!("{field}.rotate_degrees must be finite"));
         }
         if !finite(&self.translate) {
-            return Err("hair.transform.translate must be finite".into());
+            return Err(format!("{field}.translate must be finite"));
         }
         // The rotation has determinant 1, so the scale decides; a
         // determinant that underflows to 0 or a subnormal is as singular as 0
@@ -82,7 +88,7 @@ impl Transform {
         let det = m.determinant();
         if !det.is_normal() || !m.inverse().is_finite() {
             return Err(format!(
-                "hair.transform is not invertible: scale {:?} has determinant {det}",
+                "{field} is not invertible: scale {:?} has determinant {det}",
                 self.scale.vector().to_array()
             ));
         }

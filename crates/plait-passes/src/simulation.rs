@@ -1,7 +1,8 @@
 //! `hair_simulation`: guide strands simulated on the GPU as chains of nodes —
 //! Verlet integration with gravity, damping and wind, the spring model's
 //! pull towards the rest shape, length constraints iterated `iterations`
-//! times and collisions with the head (Halén & Wester 2007 §4, §4.4, §5.9);
+//! times and collisions with the head — its ellipsoids and its mesh's signed
+//! distance field (Halén & Wester 2007 §4, §4.4, §5.9);
 //! `shaders/passes/sim_verlet.wgsl` has the equations.
 //!
 //! State is the scene's (`guide_positions`, `guide_previous`,
@@ -81,6 +82,14 @@ fn spec() -> PassTypeSpec {
                     "the head's ellipsoids (head_colliders)",
                 ),
                 "head_colliders",
+            ),
+            aliased(
+                buffer(
+                    "sdf",
+                    Access::StorageRead,
+                    "the head mesh's signed distance field (head_sdf)",
+                ),
+                "head_sdf",
             ),
         ],
         outputs: vec![

@@ -176,6 +176,9 @@ pub struct SceneData {
     /// the groom has none) and the head's colliders.
     pub guides: plait_hair::guides::Guides,
     pub colliders: Vec<plait_gpu::geometry::Collider>,
+    /// The head mesh's signed distance field (a `[[meshes]]` entry with
+    /// `role = "head"`), baked once here: the simulation's mesh collider.
+    pub head_sdf: Option<plait_hair::sdf::SignedDistanceField>,
 }
 
 impl SceneData {
@@ -204,7 +207,9 @@ impl SceneData {
                 radii: h.radii.into(),
             })
             .collect();
+        let head_sdf = scene.head_sdf();
         Ok(SceneData {
+            head_sdf,
             scene,
             strands,
             meshes,
@@ -362,6 +367,7 @@ pub fn build<'g>(
         &scene.meshes,
         &scene.guides,
         &scene.colliders,
+        scene.head_sdf.as_ref(),
         hair_pose,
     );
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);

@@ -41,6 +41,7 @@ impl Scene {
                 half_size: 6.0,
                 albedo: [0.6, 0.6, 0.6],
             }),
+            meshes: Vec::new(),
             camera: Camera {
                 eye: [2.0, 0.5, 7.6],
                 target: [0.0, -0.6, 0.0],

@@ -54,8 +54,8 @@ impl Scene {
         Ok(strands)
     }
 
-    /// Fits the camera and light given as `"fit"` to `hair` (the head is
-    /// added; the ground only widens the depth range).
+    /// Fits the camera and light given as `"fit"` to `hair` (the head and
+    /// the `[[meshes]]` are added; the ground only widens the depth range).
     pub fn frame(&mut self, hair: Aabb) {
         let head = self
             .head
@@ -65,7 +65,7 @@ impl Scene {
                 Aabb::new(c - r, c + r)
             })
             .unwrap_or(Aabb::EMPTY);
-        let subject = hair.union(&head);
+        let subject = hair.union(&head).union(&self.file_mesh_bounds());
         if let Some(fit) = &self.framing.camera {
             self.camera = fit.camera(subject, subject.union(&self.opaque_bounds()));
         }

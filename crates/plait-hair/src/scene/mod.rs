@@ -10,10 +10,12 @@
 //! Here the scene's types; `parse` reads the TOML (positions in messages),
 //! `validate` range-checks it, `builtin` is the default scene, `hair` loads
 //! the hair and fits `"fit"` camera and light to it, `opaque` is the head and
-//! ground geometry and the head's animated pose.
+//! ground geometry and the head's animated pose, `meshes` the `[[meshes]]`
+//! read from files.
 
 mod builtin;
 mod hair;
+mod meshes;
 mod opaque;
 mod parse;
 #[cfg(test)]
@@ -31,6 +33,7 @@ use crate::environment::{Environment, EnvironmentError};
 use crate::hair_file::HairError;
 pub use crate::hair_source::{Hair, HairSource};
 pub use crate::light::{Light, LightKind};
+pub use meshes::{DEFAULT_SDF_RESOLUTION, MAX_SDF_RESOLUTION, MeshRole, SceneMesh, SceneMeshError};
 use crate::tfx::TfxError;
 
 /// Errors loading a scene or its hair.
@@ -79,6 +82,10 @@ pub enum SceneError {
     /// The environment image could not be used (the error names it).
     #[error(transparent)]
     Environment(#[from] EnvironmentError),
+    /// A `[[meshes]]` file could not be used (the error names it, the mesh
+    /// and primitive or field, and where the scene names the file).
+    #[error(transparent)]
+    Mesh(#[from] SceneMeshError),
 }
 
 impl From<AssetError> for SceneError {
@@ -194,6 +201,8 @@ pub struct Scene {
     pub head: Option<Head>,
     /// The ground, if any.
     pub ground: Option<Ground>,
+    /// Meshes read from files (`[[meshes]]`), placed in the scene.
+    pub meshes: Vec<SceneMesh>,
     /// The camera (until [`Scene::load_hair`], a stand-in when it is fitted).
     pub camera: Camera,
     /// The one light (likewise).

@@ -1,5 +1,5 @@
-//! The scene's opaque geometry (head ellipsoid, ground plane), the head's
-//! pose over time under `[animation]`, and their bounds.
+//! The scene's opaque geometry (head ellipsoid, ground plane, `[[meshes]]`),
+//! the head's pose over time under `[animation]`, and their bounds.
 
 use glam::Vec3;
 
@@ -14,24 +14,38 @@ impl Scene {
     pub fn head_model(&self, time: f32) -> glam::Mat4 {
         match &self.animation {
             None => glam::Mat4::IDENTITY,
-            Some(a) => {
-                let center = self
-                    .head
-                    .as_ref()
-                    .map_or(Vec3::ZERO, |h| Vec3::from(h.center));
-                a.head_model(time, center)
-            }
+            Some(a) => a.head_model(time, self.head_center()),
         }
     }
 
-    /// Opaque geometry: the head ellipsoid and the ground plane, if present.
+    /// The head's centre: the ellipsoid's, else the head mesh's bounds'.
+    fn head_center(&self) -> Vec3 {
+        if let Some(h) = &self.head {
+            return Vec3::from(h.center);
+        }
+        self.head_mesh().map_or(Vec3::ZERO, |m| {
+            let b = mesh_bounds(&m.mesh);
+            0.5 * (b.min + b.max)
+        })
+    }
+
+    /// Bounds of the meshes read from files (`[[meshes]]`), at rest.
+    pub fn file_mesh_bounds(&self) -> Aabb {
+        self.meshes
+            .iter()
+            .fold(Aabb::EMPTY, |b, m| b.union(&mesh_bounds(&m.mesh)))
+    }
+
+    /// Opaque geometry: the head ellipsoid and the ground plane, if present,
+    /// then the `[[meshes]]`; the head's meshes are marked `head`.
     pub fn opaque_meshes(&self) -> Vec<Mesh> {
         let mut out = Vec::new();
         if let Some(h) = &self.head {
             out.push(
                 Mesh::ellipsoid(h.center.into(), h.radii.into(), 32, 64)
                     .with_name("head")
-                    .with_albedo(h.albedo),
+                    .with_albedo(h.albedo)
+                    .as_head(),
             );
         }
         if let Some(g) = &self.ground {
@@ -41,6 +55,7 @@ impl Scene {
                     .with_albedo(g.albedo),
             );
         }
+        out.extend(self.meshes.iter().map(|m| m.mesh.clone()));
         out
     }
 
@@ -49,7 +64,7 @@ impl Scene {
         self.opaque_meshes()
             .iter()
             .flat_map(|m| {
-                let pose = if m.name == "head" {
+                let pose = if m.head {
                     head_model
                 } else {
                     glam::Mat4::IDENTITY
@@ -68,4 +83,11 @@ impl Scene {
             .flat_map(|m| m.vertices.iter().map(|v| Vec3::from(v.position)))
             .fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(p, p)))
     }
+}
+
+fn mesh_bounds(mesh: &Mesh) -> Aabb {
+    mesh.vertices
+        .iter()
+        .map(|v| Vec3::from(v.position))
+        .fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(p, p)))
 }

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
+use super::meshes::MeshToml;
 use super::{
     Animation, Background, Camera, Framing, Ground, Hair, HairMaterial, HairSource, Head, Scene,
     SceneError,
@@ -27,6 +28,8 @@ struct SceneToml {
     head: Option<Head>,
     #[serde(default)]
     ground: Option<Ground>,
+    #[serde(default)]
+    meshes: Vec<MeshToml>,
     #[serde(default)]
     camera: CameraSetting,
     #[serde(default = "LightSetting::fitted")]
@@ -52,6 +55,8 @@ impl From<SceneToml> for Scene {
             hair: t.hair,
             head: t.head,
             ground: t.ground,
+            // Read from their files by `from_toml_str`.
+            meshes: Vec::new(),
             camera,
             light: t.light.light,
             framing: Framing {
@@ -112,7 +117,7 @@ impl Scene {
     /// Parses scene text; `path` is used in messages and to resolve relative
     /// paths (against its directory).
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
-        let parsed: SceneToml = toml::from_str(text).map_err(|e| {
+        let mut parsed: SceneToml = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((1, 1), |s| line_col(text, s.start));
             SceneError::Parse {
                 path: path.to_path_buf(),
@@ -134,12 +139,23 @@ impl Scene {
                 message: e.message,
             });
         }
+        let mesh_entries = std::mem::take(&mut parsed.meshes);
         let mut scene = Scene::from(parsed);
         scene.environment.declared_at = environment_at;
-        scene.validate().map_err(|message| SceneError::Invalid {
+        let invalid = |message| SceneError::Invalid {
             path: path.to_path_buf(),
             message,
-        })?;
+        };
+        scene.validate().map_err(invalid)?;
+        for (i, m) in mesh_entries.iter().enumerate() {
+            m.validate(i).map_err(invalid)?;
+        }
+        let heads = mesh_entries.iter().filter(|m| m.is_head()).count();
+        if heads > 1 {
+            return Err(invalid(format!(
+                "{heads} meshes have role = \"head\"; a scene has one head"
+            )));
+        }
         let dir = path.parent().unwrap_or(Path::new(""));
         if let HairSource::File(p) = &mut scene.hair.source
             && p.is_relative()
@@ -153,17 +169,23 @@ impl Scene {
         }
         scene.environment.resolve_paths(dir);
         if plait_assets::is_builtin(path) {
-            scene.check_builtin_files(path)?;
+            let mesh_files: Vec<PathBuf> = mesh_entries.iter().map(|m| dir.join(m.file())).collect();
+            scene.check_builtin_files(path, &mesh_files)?;
+        }
+        for (i, m) in mesh_entries.iter().enumerate() {
+            let (line, column) = line_col(text, m.file_span().start);
+            let at = format!("{}:{line}:{column}", path.display());
+            scene.meshes.push(m.load(i, dir, at)?);
         }
         Ok(scene)
     }
 
     /// A built-in copy of a scene (`<built-in>/examples/scenes/…`) carries
     /// its text only: a file it names (hair, background or environment
-    /// image) is not built in, which is said here rather than as a missing
+    /// image, mesh) is not built in, which is said here rather than as a missing
     /// `<built-in>/…` file at render time.
-    fn check_builtin_files(&self, path: &Path) -> Result<(), SceneError> {
-        let mut named: Vec<&Path> = Vec::new();
+    fn check_builtin_files(&self, path: &Path, meshes: &[PathBuf]) -> Result<(), SceneError> {
+        let mut named: Vec<&Path> = meshes.iter().map(PathBuf::as_path).collect();
         if let HairSource::File(p) = &self.hair.source {
             named.push(p);
         }

@@ -24,6 +24,7 @@ fn all_example_scenes_load_and_validate() {
         "stray.toml",
         "head_turn.toml",
         "stray_shake.toml",
+        "mesh_head.toml",
     ] {
         let s = Scene::load(examples().join(name)).unwrap_or_else(|e| panic!("{e}"));
         let HairSource::Procedural(g) = &s.hair.source else {
@@ -320,4 +321,75 @@ fn a_usd_groom_reads_the_prim_the_scene_names() {
     assert!(e.to_string().contains("hair.segments_per_span must be in 1..=256"), "{e}");
     let e = Scene::from_toml_str("[hair]\nfile = \"g.usdc\"\nprim = \"B\"\n", p).unwrap_err();
     assert!(e.to_string().contains("hair.prim must be an absolute prim path"), "{e}");
+}
+
+/// The mesh head example: the head is the mesh (named "head", so it moves
+/// with the animation), its pivot the neck, the camera fitted to the groom
+/// and the mesh together.
+#[test]
+fn a_mesh_head_is_opaque_geometry_that_moves_and_frames() {
+    let mut s = Scene::load(examples().join("mesh_head.toml")).expect("mesh_head.toml loads");
+    assert!(s.head.is_none());
+    let head = s.head_mesh().expect("a head mesh");
+    assert_eq!(head.mesh.name, "head");
+    assert_eq!(head.sdf_resolution, 32);
+    let meshes = s.opaque_meshes();
+    assert_eq!(meshes.iter().filter(|m| m.head).count(), 1);
+    let b = s.file_mesh_bounds();
+    assert!((b.max - Vec3::new(0.9, 1.05, 1.0)).length() < 1e-3, "{b:?}");
+    // Fitting: with a tiny groom far off to the side, the camera still sees the head.
+    let far = Strands::new();
+    let mut tiny = far.clone();
+    tiny.push_strand(&[Vec3::new(5.0, 0.0, 0.0), Vec3::new(5.0, 0.1, 0.0)], |_| 0.01, |_| 1.0, Vec3::ONE);
+    s.frame(tiny.bounds());
+    let c = &s.camera;
+    let target = Vec3::from(c.target);
+    assert!(target.x < 4.0, "the fit ignores the head mesh: target {target}");
+}
+
+fn scene_with_meshes(text: &str) -> Result<Scene, SceneError> {
+    Scene::from_toml_str(text, &examples().join("mesh_test.toml"))
+}
+
+#[test]
+fn mesh_entries_are_checked_and_named() {
+    let missing = scene_with_meshes("[[meshes]]\nfile = \"nothing.glb\"\nrole = \"head\"\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        missing.contains("nothing.glb: cannot read file") && missing.contains("mesh_test.toml:2:8"),
+        "{missing}"
+    );
+    let role = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"hed\"\n")
+        .unwrap_err()
+        .to_string();
+    assert!(role.contains("mesh_test.toml:3:8") && role.contains("head"), "{role}");
+    let two = scene_with_meshes(
+        "[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\n[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(two.contains("2 meshes have role = \"head\""), "{two}");
+    let sdf = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\nsdf_resolution = 16\n")
+        .unwrap_err()
+        .to_string();
+    assert!(sdf.contains("meshes[0].sdf_resolution applies to role = \"head\" only"), "{sdf}");
+    let res = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\nsdf_resolution = 1000\n")
+        .unwrap_err()
+        .to_string();
+    assert!(res.contains("meshes[0].sdf_resolution must be in 4..=128"), "{res}");
+    let transform = scene_with_meshes(
+        "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\n[meshes.transform]\nscale = 0.0\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(transform.contains("meshes[0].transform is not invertible"), "{transform}");
+    // A static mesh, placed: moved by the transform, keeps its file's name.
+    let placed = scene_with_meshes(
+        "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\n[meshes.transform]\ntranslate = [3.0, 0.0, 0.0]\n",
+    )
+    .expect("loads");
+    assert!(placed.head_mesh().is_none());
+    assert!((placed.file_mesh_bounds().min.x - 2.1).abs() < 1e-3);
+    assert!(placed.opaque_meshes().iter().all(|m| !m.head));
 }
