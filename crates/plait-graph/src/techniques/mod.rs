@@ -229,9 +229,15 @@ fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<N
     })
 }
 
-/// What a chosen point's technique exports to the passes that `uses` it:
-/// the point, where it was chosen, and the `reads` and `params` tables.
-type PointExports = (String, Location, Option<Table>, Option<Table>);
+/// What a chosen point's technique exports to the passes that use it.
+struct PointExports {
+    point: String,
+    reads: Option<Table>,
+    params: Option<Table>,
+    /// The geometries whose every pass uses the point without `uses`
+    /// (its point file's `draws`).
+    draws: Vec<String>,
+}
 
 /// Replace the `[techniques]` table of `root` (the pipeline after `extends`
 /// and `--set`) by the chosen techniques' data, and give every pass that
@@ -339,20 +345,23 @@ impl Chooser<'_> {
             return;
         };
         self.check_point_key(technique, &tree, point);
+        let mut draws = Vec::new();
         match self.roots.point_file(point) {
-            Some(Ok(promise)) => self
-                .errors
-                .extend(point_file::check_writes(&promise, point, name, &tree)),
+            Some(Ok(promise)) => {
+                self.errors
+                    .extend(point_file::check_writes(&promise, point, name, &tree));
+                draws = promise.draws.into_iter().map(|d| d.value).collect();
+            }
             Some(Err(mut e)) => self.errors.append(&mut e),
             None => {}
         }
         let (reads, params) = self.read_exports(technique);
-        self.exports.push((
-            point.to_owned(),
-            choice.value.location.clone(),
+        self.exports.push(PointExports {
+            point: point.to_owned(),
             reads,
             params,
-        ));
+            draws,
+        });
         self.claim_names(&tree, point, name);
         let Node::Table(mut t) = tree.value else {
             return;
@@ -497,7 +506,8 @@ impl Chooser<'_> {
     }
 }
 
-/// Merge each used point's exports into the passes that `uses` it.
+/// Merge each used point's exports into the passes that `uses` it, and into
+/// every pass drawing a geometry a point's file `draws`.
 fn give_exports(
     root: &mut Spanned<Node>,
     exports: &[PointExports],
@@ -521,61 +531,80 @@ fn give_exports(
         let Node::Table(fields) = &mut pass.value.value else {
             continue;
         };
-        let Some(uses) = fields.shift_remove("uses") else {
-            continue;
-        };
-        let Node::List(items) = &uses.value.value else {
-            errors.push(schema(
-                &uses.value.location,
-                format!(
-                    "passes.{pass_name}.uses lists choice points, e.g. `uses = [\"self_shadow\"]`"
-                ),
-            ));
-            continue;
-        };
-        for item in items {
-            let Node::Scalar(Value::Str(point)) = &item.value else {
+        let mut used: Vec<(&PointExports, Location)> = Vec::new();
+        if let Some(uses) = fields.shift_remove("uses") {
+            let Node::List(items) = &uses.value.value else {
                 errors.push(schema(
-                    &item.location,
-                    "`uses` lists choice point names".into(),
+                    &uses.value.location,
+                    format!(
+                        "passes.{pass_name}.uses lists choice points, e.g. `uses = [\"self_shadow\"]`"
+                    ),
                 ));
                 continue;
             };
-            let Some((_, _, reads, params)) = exports.iter().find(|(p, ..)| p == point) else {
-                let known: Vec<&str> = exports.iter().map(|(p, ..)| p.as_str()).collect();
-                errors.push(schema(
-                    &item.location,
-                    if has_table {
-                        format!(
-                            "pass `{pass_name}` uses `{point}`, which [techniques] does not choose{} (chosen: {})",
-                            did_you_mean(point, known.iter().copied()),
-                            known.join(", ")
-                        )
-                    } else {
-                        format!("pass `{pass_name}` uses `{point}`, but the pipeline has no [techniques] table choosing one")
-                    },
-                ));
-                continue;
-            };
-            for (section, export) in [("reads", reads), ("params", params)] {
-                let Some(export) = export else { continue };
-                let exported = Spanned::new(Node::Table(export.clone()), item.location.clone());
-                match fields.get_mut(section) {
-                    Some(own) => {
-                        // The pass's own entries win: merge them over the exports.
-                        let mine = std::mem::replace(&mut own.value, exported);
-                        merge(&mut own.value, mine);
-                    }
-                    None => {
-                        fields.insert(
-                            section.to_owned(),
-                            Entry {
-                                key: item.location.clone(),
-                                value: exported,
-                            },
-                        );
-                    }
+            for item in items {
+                let Node::Scalar(Value::Str(point)) = &item.value else {
+                    errors.push(schema(
+                        &item.location,
+                        "`uses` lists choice point names".into(),
+                    ));
+                    continue;
+                };
+                let Some(export) = exports.iter().find(|e| &e.point == point) else {
+                    let known: Vec<&str> = exports.iter().map(|e| e.point.as_str()).collect();
+                    errors.push(schema(
+                        &item.location,
+                        if has_table {
+                            format!(
+                                "pass `{pass_name}` uses `{point}`, which [techniques] does not choose{} (chosen: {})",
+                                did_you_mean(point, known.iter().copied()),
+                                known.join(", ")
+                            )
+                        } else {
+                            format!("pass `{pass_name}` uses `{point}`, but the pipeline has no [techniques] table choosing one")
+                        },
+                    ));
+                    continue;
+                };
+                used.push((export, item.location.clone()));
+            }
+        }
+        // A point the pass's geometry joins it to, unless `uses` named it.
+        if let Some(draw) = fields.get("draw")
+            && let Node::Scalar(Value::Str(geometry)) = &draw.value.value
+        {
+            for export in exports.iter().filter(|e| e.draws.contains(geometry)) {
+                if !used.iter().any(|(u, _)| u.point == export.point) {
+                    used.push((export, draw.value.location.clone()));
                 }
+            }
+        }
+        for (export, at) in used {
+            give(fields, export, &at);
+        }
+    }
+}
+
+/// Merges one point's exports into a pass's `reads` and `params` (the
+/// pass's own entries win); `at` is where the pass came to use it.
+fn give(fields: &mut Table, export: &PointExports, at: &Location) {
+    for (section, export) in [("reads", &export.reads), ("params", &export.params)] {
+        let Some(export) = export else { continue };
+        let exported = Spanned::new(Node::Table(export.clone()), at.clone());
+        match fields.get_mut(section) {
+            Some(own) => {
+                // The pass's own entries win: merge them over the exports.
+                let mine = std::mem::replace(&mut own.value, exported);
+                merge(&mut own.value, mine);
+            }
+            None => {
+                fields.insert(
+                    section.to_owned(),
+                    Entry {
+                        key: at.clone(),
+                        value: exported,
+                    },
+                );
             }
         }
     }
