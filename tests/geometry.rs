@@ -130,7 +130,10 @@ fn widening_the_kept_strands_keeps_the_hair_closer_to_every_strand_than_dropping
     let widened = compare(&lod, &all, &mask);
     let thinned = compare(&only_dropped, &all, &mask);
     eprintln!("{}", report("lod (widened) vs strands", &widened));
-    eprintln!("{}", report("kept strands, not widened, vs strands", &thinned));
+    eprintln!(
+        "{}",
+        report("kept strands, not widened, vs strands", &thinned)
+    );
     assert!(
         widened.hair_mean < thinned.hair_mean * 0.75,
         "widening must bring the hair closer to every strand: {} vs {}",
@@ -180,4 +183,64 @@ fn the_kept_strands_are_nested_and_their_count_follows_the_fraction() {
         );
         previous = now;
     }
+}
+
+/// `lod` composes with every self-shadowing and every transparency technique
+/// (the combination test renders all pairs with the default fraction; here
+/// each one with strands actually dropped): each renders, and each image
+/// differs from the same choice with every strand.
+#[test]
+fn lod_drops_strands_under_every_self_shadowing_and_transparency_technique() {
+    let (_lock, gpu) = open_gpu();
+    let mut scene = load_scene("examples/scenes/small.toml");
+    let step = (scene.strands.strand_count() / 200).max(1);
+    scene.strands = strands_subset(&scene.strands, |s| s % step == 0);
+    // Three times as far: a small groom on screen.
+    let camera = &mut scene.scene.camera;
+    let (eye, target) = (
+        glam::Vec3::from(camera.eye),
+        glam::Vec3::from(camera.target),
+    );
+    camera.eye = (target + (eye - target) * 3.0).to_array();
+    let k = kept_fraction(&scene, 1.0);
+    assert!(k < 0.8, "the far small scene must drop strands (kept {k})");
+    let roots = plait_graph::techniques::TechniqueRoots::at(repo_root().join("techniques"));
+    let mut failures = Vec::new();
+    for point in ["self_shadow", "transparency"] {
+        for name in roots.choices(point) {
+            let choice = format!("techniques.{point}={name}");
+            let pipeline = repo_root().join("pipelines/occupancy.toml");
+            let image = |sets: Vec<String>| -> Result<RgbaImage, String> {
+                let p =
+                    prepare(&gpu, &pipeline, &sets, &scene, (96, 72)).map_err(|e| e.to_string())?;
+                p.renderer.render().map_err(|e| e.to_string())?;
+                p.image().map_err(|e| e.to_string())
+            };
+            let lod = image(vec![
+                choice.clone(),
+                "techniques.geometry=lod".into(),
+                FRACTION.into(),
+            ]);
+            let all = image(vec![choice.clone()]);
+            match (lod, all) {
+                (Ok(lod), Ok(all)) => {
+                    let differing = lod
+                        .pixels()
+                        .zip(all.pixels())
+                        .filter(|(a, b)| a != b)
+                        .count();
+                    eprintln!("{choice}: {differing} pixels differ from every strand");
+                    if differing == 0 {
+                        failures.push(format!("{choice}: lod changed nothing"));
+                    }
+                }
+                (lod, all) => failures.push(format!(
+                    "{choice}: lod {:?}, strands {:?}",
+                    lod.err(),
+                    all.err()
+                )),
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

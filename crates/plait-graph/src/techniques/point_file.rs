@@ -434,15 +434,26 @@ doc = "Fraction of the light reaching `world`."
 
     #[test]
     fn a_point_file_may_join_every_draw_of_a_geometry() {
-        let p = parse("geometry", Path::new("point.toml"), "[point]\ndraws = [\"hair\"]\n")
-            .expect("parses");
+        let p = parse(
+            "geometry",
+            Path::new("point.toml"),
+            "[point]\ndraws = [\"hair\"]\n",
+        )
+        .expect("parses");
         assert_eq!(p.draws.len(), 1);
         assert_eq!(p.draws[0].value, "hair");
-        let text = parse("geometry", Path::new("point.toml"), "[point]\ndraws = [\"hairs\"]\n")
-            .unwrap_err()
-            .to_string();
+        let text = parse(
+            "geometry",
+            Path::new("point.toml"),
+            "[point]\ndraws = [\"hairs\"]\n",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(text.contains("point.toml:2:10"), "{text}");
-        assert!(text.contains("no geometry `hairs`; did you mean `hair`?"), "{text}");
+        assert!(
+            text.contains("no geometry `hairs`; did you mean `hair`?"),
+            "{text}"
+        );
     }
 
     #[test]
