@@ -49,6 +49,8 @@ struct Frame {
     // [animation]; identity for a still head), and one frame earlier.
     head_model: mat4x4<f32>,
     head_model_previous: mat4x4<f32>,
+    // The hair's bounding sphere: xyz centre, w radius (world units).
+    hair_sphere: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

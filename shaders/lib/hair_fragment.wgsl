@@ -26,6 +26,7 @@
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
 #import plait::strand_coverage::strand_coverage
+#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha}
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 
@@ -36,6 +37,8 @@ struct HairVertex {
     @location(2) tangent: vec3<f32>,
     @location(3) alpha: f32,
     @location(4) color: vec3<f32>,
+    // Which strand it belongs to (the `geometry` point drops or widens it).
+    @location(5) strand_id: u32,
     // The vertex's index in the hair vertex buffer: per-vertex resources
     // (ambient occlusion) are indexed by it.
     @builtin(vertex_index) index: u32,
@@ -60,14 +63,15 @@ struct HairFragment {
 
 fn hair_vertex(v: HairVertex) -> HairVaryings {
     var out: HairVaryings;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    let lod = strand_lod_weight(v.strand_id);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(v.position, 1.0), lod);
     out.world = v.position;
     out.tangent = v.tangent;
     out.color = v.color;
     // A strand thinner than a pixel covers only part of it: its coverage
     // weighs its alpha in every blending technique (and sets the sample mask
     // of alpha to coverage).
-    out.alpha = v.alpha * strand_coverage(v.position, v.tangent, v.thickness);
+    out.alpha = strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness), lod);
     out.occlusion = occlusion_at(v.index);
     return out;
 }

@@ -8,9 +8,12 @@
 #define_import_path plait::hair_map
 
 #import plait::frame::{view_proj, view_linear_depth}
+#import plait::strand_lod::{strand_lod_weight, strand_lod_clip}
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
+    // The `geometry` point drops the strands the shaded draws drop.
+    @location(5) strand_id: u32,
 }
 
 struct MapFragment {
@@ -21,7 +24,7 @@ struct MapFragment {
 
 fn map_vertex(v: MapVertex) -> MapFragment {
     var out: MapFragment;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(v.position, 1.0), strand_lod_weight(v.strand_id));
     out.depth = view_linear_depth(v.position);
     return out;
 }

@@ -5,12 +5,14 @@
 // blending weighs (Sintorn & Assarsson 2009 §3.4).
 #import plait::frame::{frame, view_proj}
 #import plait::strand_coverage::strand_coverage
+#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha}
 
 struct SumVertex {
     @location(0) position: vec3<f32>,
     @location(1) thickness: f32,
     @location(2) tangent: vec3<f32>,
     @location(3) alpha: f32,
+    @location(5) strand_id: u32,
 }
 
 struct SumFragment {
@@ -21,8 +23,10 @@ struct SumFragment {
 @vertex
 fn vs_main(v: SumVertex) -> SumFragment {
     var out: SumFragment;
-    out.clip = view_proj() * vec4<f32>(v.position, 1.0);
-    out.alpha = v.alpha * strand_coverage(v.position, v.tangent, v.thickness);
+    // The strands and weights of the hair pass (plait::hair_fragment).
+    let lod = strand_lod_weight(v.strand_id);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(v.position, 1.0), lod);
+    out.alpha = strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness), lod);
     return out;
 }
 

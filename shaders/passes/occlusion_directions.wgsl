@@ -36,11 +36,11 @@ struct HairVertex {
 }
 
 // One direction's frame, padded to 768 bytes so each can be bound as the
-// frame uniform at a 256-byte aligned offset (Frame is 720 bytes since it
-// holds head_model and head_model_previous).
+// frame uniform at a 256-byte aligned offset (Frame is 736 bytes since it
+// holds head_model, head_model_previous and hair_sphere).
 struct DirectionFrame {
     uniforms: Frame,
-    pad: array<vec4<f32>, 3>,
+    pad: array<vec4<f32>, 2>,
 }
 
 struct AoParams {

@@ -44,6 +44,10 @@ pub struct FrameUniforms {
     pub head_model: [[f32; 4]; 4],
     /// `head_model` one frame earlier (velocities, simulation collisions).
     pub head_model_previous: [[f32; 4]; 4],
+    /// The hair's bounding sphere (xyz centre, w radius, world units) as the
+    /// frame poses it: how big the groom looks from a view
+    /// (`plait::geometry::lod` derives its strand count from it).
+    pub hair_sphere: [f32; 4],
 }
 
 /// Hair nearer the light than a point by at most this much (world units) is
@@ -133,6 +137,7 @@ impl FrameUniforms {
             ],
             head_model: Mat4::IDENTITY.to_cols_array_2d(),
             head_model_previous: Mat4::IDENTITY.to_cols_array_2d(),
+            hair_sphere: hair_sphere(hair_bounds),
         }
     }
 
@@ -305,6 +310,16 @@ fn strand_coverage(
     pixels.length().min(1.0)
 }
 
+/// The sphere around `bounds` (its centre, half its diagonal); a point for
+/// no hair.
+fn hair_sphere(bounds: Aabb) -> [f32; 4] {
+    if !(bounds.min.is_finite() && bounds.max.is_finite()) {
+        return [0.0; 4];
+    }
+    let centre = (bounds.min + bounds.max) * 0.5;
+    v4(centre, (bounds.max - bounds.min).length() * 0.5)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -358,6 +373,7 @@ mod tests {
             conventions,
             head_model,
             head_model_previous,
+            hair_sphere,
         ];
         assert_eq!(wgsl, rust);
         assert_eq!(*span as u64, FRAME_UNIFORMS_SIZE);

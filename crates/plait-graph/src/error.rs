@@ -110,6 +110,14 @@ pub enum ErrorKind {
         param: String,
         reason: String,
     },
+    /// One `--set` value refused the same way by several passes (a param
+    /// every hair draw takes): one error, naming them all.
+    #[error("param `{param}` of passes {}: {reason}", passes.iter().map(|p| format!("`{p}`")).collect::<Vec<_>>().join(", "))]
+    BadParamOfPasses {
+        passes: Vec<String>,
+        param: String,
+        reason: String,
+    },
     #[error(
         "pass `{pass}` of type `{pass_type}` has no {direction} slot `{slot}`{} (it has: {known})",
         hint(slot, known)

@@ -218,8 +218,13 @@ pub fn load_str(
     let (choices, rest): (Vec<&String>, Vec<&String>) = overrides
         .iter()
         .partition(|f| f.trim_start().starts_with("techniques."));
+    let implied = if choices.is_empty() {
+        Vec::new()
+    } else {
+        crate::techniques::TechniqueRoots::for_pipeline(path_for_messages).implied_points()
+    };
     for flag in choices {
-        apply_override(&mut root, flag, &mut errors);
+        apply_override(&mut root, flag, &implied, &mut errors);
     }
     let mut techniques = Vec::new();
     if errors.is_empty() {
@@ -230,7 +235,7 @@ pub fn load_str(
         return Err(Errors(errors));
     }
     for flag in rest {
-        apply_override(&mut root, flag, &mut errors);
+        apply_override(&mut root, flag, &[], &mut errors);
     }
     if !errors.is_empty() {
         return Err(Errors(errors));

@@ -11,7 +11,15 @@ use crate::load::{
 };
 use crate::value::Value;
 
-pub(crate) fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut Vec<Error>) {
+/// `implied_points` are the choice points every pipeline has whether its
+/// `[techniques]` lists them or not (a point file's `draws`: `geometry`),
+/// so `--set techniques.geometry=lod` works on any pipeline.
+pub(crate) fn apply_override(
+    root: &mut Spanned<Node>,
+    flag: &str,
+    implied_points: &[String],
+    errors: &mut Vec<Error>,
+) {
     let location = Location::Flag {
         flag: flag.to_owned(),
     };
@@ -47,7 +55,7 @@ pub(crate) fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut 
             None => break,
         }
     }
-    if let Err(reason) = check_override_target(&root.value, &path) {
+    if let Err(reason) = check_override_target(&root.value, &path, implied_points) {
         return errors.push(Error::new(
             location.clone(),
             ErrorKind::UnknownSetKey {
@@ -90,7 +98,11 @@ pub(crate) fn apply_override(root: &mut Spanned<Node>, flag: &str, errors: &mut 
 /// `params.slices`) would otherwise add a key nothing reads and be silently
 /// ignored. A pass's params and slots are checked against its type later,
 /// where a param the file leaves at its default can still be set.
-fn check_override_target(root: &Node, path: &[&str]) -> Result<(), String> {
+fn check_override_target(
+    root: &Node,
+    path: &[&str],
+    implied_points: &[String],
+) -> Result<(), String> {
     let Node::Table(top) = root else {
         return Ok(());
     };
@@ -164,7 +176,12 @@ fn check_override_target(root: &Node, path: &[&str]) -> Result<(), String> {
             }
         }
         "techniques" => {
-            let points = keys_of("techniques");
+            let mut points = keys_of("techniques");
+            for implied in implied_points {
+                if !points.contains(&implied.as_str()) {
+                    points.push(implied);
+                }
+            }
             if !points.contains(&name) {
                 return Err(unknown("choice point in [techniques]", name, &points));
             }

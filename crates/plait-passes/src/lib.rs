@@ -11,6 +11,7 @@ pub mod data_pass;
 pub mod density_clustering;
 pub mod depth_peeling;
 pub mod depth_range;
+pub mod geometry;
 pub mod hair_fragment;
 pub mod hair_shade;
 pub mod interpolation;
@@ -92,8 +93,9 @@ fn read_library() -> PassLibrary {
     LIBRARY_READS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let mut lib = PassLibrary {
         // The providers' params mean the same in a data-only pass that
-        // imports plait::hair_fragment as in the Rust pass types.
-        shared_params: hair_fragment::shading_params(),
+        // imports plait::hair_fragment as in the Rust pass types; the
+        // geometry provider's in every pass that draws hair.
+        shared_params: [hair_fragment::shading_params(), geometry::params()].concat(),
         ..PassLibrary::default()
     };
     // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml),

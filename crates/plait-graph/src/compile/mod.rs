@@ -20,7 +20,7 @@ mod resources;
 mod schedule;
 mod values;
 
-use crate::error::{Error, ErrorKind, Errors};
+use crate::error::{Error, ErrorKind, Errors, Location};
 use crate::load::{Pipeline, location_order};
 use crate::scene_resources::{SCENE_RESOURCES, scene_resource};
 use crate::schedule::*;
@@ -93,6 +93,7 @@ pub fn compile_with(
     crate::overflow::check(pipeline, opts, &mut errors);
 
     let Some(order) = order.filter(|_| errors.is_empty()) else {
+        let mut errors = merge_flag_param_errors(errors);
         errors.sort_by(|a, b| location_order(&a.location, &b.location));
         return Err(Errors(errors));
     };
@@ -117,4 +118,62 @@ pub fn compile_with(
 /// are evaluated.
 pub(crate) fn int_of(v: &crate::value::Value, opts: &CompileOptions) -> Result<i64, String> {
     values::int_value(v, opts)
+}
+
+/// One error per `--set` flag, param and reason: a flag whose value every
+/// pass taking the param refuses (`params.lod_screen_fraction=1.5` reaches
+/// every hair draw) is one mistake, named once with the passes it reached.
+fn merge_flag_param_errors(errors: Vec<Error>) -> Vec<Error> {
+    let mut out: Vec<Error> = Vec::new();
+    for e in errors {
+        let (
+            Location::Flag { .. },
+            ErrorKind::BadParam {
+                pass,
+                param,
+                reason,
+            },
+        ) = (&e.location, &e.kind)
+        else {
+            out.push(e);
+            continue;
+        };
+        let same = out.iter_mut().find(|o| {
+            o.location == e.location
+                && matches!(&o.kind,
+                    ErrorKind::BadParam { param: p, reason: r, .. }
+                    | ErrorKind::BadParamOfPasses { param: p, reason: r, .. }
+                    if p == param && r == reason)
+        });
+        match same {
+            Some(o) => {
+                o.kind = match std::mem::replace(&mut o.kind, ErrorKind::Io(String::new())) {
+                    ErrorKind::BadParam {
+                        pass: first,
+                        param,
+                        reason,
+                    } => ErrorKind::BadParamOfPasses {
+                        passes: vec![first, pass.clone()],
+                        param,
+                        reason,
+                    },
+                    ErrorKind::BadParamOfPasses {
+                        mut passes,
+                        param,
+                        reason,
+                    } => {
+                        passes.push(pass.clone());
+                        ErrorKind::BadParamOfPasses {
+                            passes,
+                            param,
+                            reason,
+                        }
+                    }
+                    other => other,
+                };
+            }
+            None => out.push(e),
+        }
+    }
+    out
 }

@@ -145,6 +145,14 @@ fn check_params(
     errors: &mut Vec<Error>,
 ) -> IndexMap<String, Value> {
     let mut params = IndexMap::new();
+    // A pass that draws hair takes the providers' params whatever its type:
+    // the `geometry` point joins every hair draw (its point file's `draws`),
+    // and its provider runs in the vertex stage they all share.
+    let draws_hair = decl
+        .draw
+        .as_ref()
+        .is_some_and(|d| crate::Draw::from_name(&d.value) == Some(crate::Draw::Hair));
+    let takes_shared = spec.dynamic_slots || draws_hair;
     for (name, value) in &decl.params {
         let shared = registry.shared_params.iter().find(|p| &p.name == name);
         if spec.dynamic_slots && shared.is_none() {
@@ -155,7 +163,7 @@ fn check_params(
             continue;
         }
         let own = spec.params.iter().find(|p| &p.name == name);
-        let Some(param) = own.or(shared.filter(|_| spec.dynamic_slots)) else {
+        let Some(param) = own.or(shared.filter(|_| takes_shared)) else {
             let known: Vec<_> = spec.params.iter().map(|p| p.name.as_str()).collect();
             errors.push(Error::new(
                 value.location.clone(),
@@ -187,9 +195,10 @@ fn check_params(
         }
     }
     let mut ordered = order_params(decl, spec, &mut params, errors);
-    if spec.dynamic_slots {
+    if takes_shared {
         // A data-only pass also takes params its type does not declare (its
-        // shader's, checked against the shader): after the declared ones.
+        // shader's, checked against the shader), and a hair draw the
+        // providers' params: after the declared ones.
         ordered.extend(params);
     }
     ordered

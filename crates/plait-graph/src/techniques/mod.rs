@@ -57,10 +57,12 @@ const FILE_KEYS: &[&str] = &["technique", "params", "resources", "passes"];
 const EXPORT_KEYS: &[&str] = &["reads", "params"];
 
 mod catalog;
+mod exports;
 pub mod point_file;
 mod roots;
 
 pub use catalog::{TechniqueInfo, catalog};
+use exports::{PointExports, give_exports};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 
@@ -229,10 +231,6 @@ fn read_with_includes(path: &Path, chain: &mut Vec<PathBuf>) -> Result<Spanned<N
     })
 }
 
-/// What a chosen point's technique exports to the passes that `uses` it:
-/// the point, where it was chosen, and the `reads` and `params` tables.
-type PointExports = (String, Location, Option<Table>, Option<Table>);
-
 /// Replace the `[techniques]` table of `root` (the pipeline after `extends`
 /// and `--set`) by the chosen techniques' data, and give every pass that
 /// `uses` a choice point that point's exports. Technique files read are added
@@ -339,20 +337,23 @@ impl Chooser<'_> {
             return;
         };
         self.check_point_key(technique, &tree, point);
+        let mut draws = Vec::new();
         match self.roots.point_file(point) {
-            Some(Ok(promise)) => self
-                .errors
-                .extend(point_file::check_writes(&promise, point, name, &tree)),
+            Some(Ok(promise)) => {
+                self.errors
+                    .extend(point_file::check_writes(&promise, point, name, &tree));
+                draws = promise.draws.into_iter().map(|d| d.value).collect();
+            }
             Some(Err(mut e)) => self.errors.append(&mut e),
             None => {}
         }
         let (reads, params) = self.read_exports(technique);
-        self.exports.push((
-            point.to_owned(),
-            choice.value.location.clone(),
+        self.exports.push(PointExports {
+            point: point.to_owned(),
             reads,
             params,
-        ));
+            draws,
+        });
         self.claim_names(&tree, point, name);
         let Node::Table(mut t) = tree.value else {
             return;
@@ -491,90 +492,6 @@ impl Chooser<'_> {
                 } else {
                     self.owners
                         .push((section.to_owned(), format!("{point}/{name}"), item.clone()));
-                }
-            }
-        }
-    }
-}
-
-/// Merge each used point's exports into the passes that `uses` it.
-fn give_exports(
-    root: &mut Spanned<Node>,
-    exports: &[PointExports],
-    has_table: bool,
-    errors: &mut Vec<Error>,
-) {
-    let Node::Table(top) = &mut root.value else {
-        return;
-    };
-    let Some(Entry {
-        value: Spanned {
-            value: Node::Table(passes),
-            ..
-        },
-        ..
-    }) = top.get_mut("passes")
-    else {
-        return;
-    };
-    for (pass_name, pass) in passes.iter_mut() {
-        let Node::Table(fields) = &mut pass.value.value else {
-            continue;
-        };
-        let Some(uses) = fields.shift_remove("uses") else {
-            continue;
-        };
-        let Node::List(items) = &uses.value.value else {
-            errors.push(schema(
-                &uses.value.location,
-                format!(
-                    "passes.{pass_name}.uses lists choice points, e.g. `uses = [\"self_shadow\"]`"
-                ),
-            ));
-            continue;
-        };
-        for item in items {
-            let Node::Scalar(Value::Str(point)) = &item.value else {
-                errors.push(schema(
-                    &item.location,
-                    "`uses` lists choice point names".into(),
-                ));
-                continue;
-            };
-            let Some((_, _, reads, params)) = exports.iter().find(|(p, ..)| p == point) else {
-                let known: Vec<&str> = exports.iter().map(|(p, ..)| p.as_str()).collect();
-                errors.push(schema(
-                    &item.location,
-                    if has_table {
-                        format!(
-                            "pass `{pass_name}` uses `{point}`, which [techniques] does not choose{} (chosen: {})",
-                            did_you_mean(point, known.iter().copied()),
-                            known.join(", ")
-                        )
-                    } else {
-                        format!("pass `{pass_name}` uses `{point}`, but the pipeline has no [techniques] table choosing one")
-                    },
-                ));
-                continue;
-            };
-            for (section, export) in [("reads", reads), ("params", params)] {
-                let Some(export) = export else { continue };
-                let exported = Spanned::new(Node::Table(export.clone()), item.location.clone());
-                match fields.get_mut(section) {
-                    Some(own) => {
-                        // The pass's own entries win: merge them over the exports.
-                        let mine = std::mem::replace(&mut own.value, exported);
-                        merge(&mut own.value, mine);
-                    }
-                    None => {
-                        fields.insert(
-                            section.to_owned(),
-                            Entry {
-                                key: item.location.clone(),
-                                value: exported,
-                            },
-                        );
-                    }
                 }
             }
         }

@@ -3,6 +3,7 @@
 //! ```toml
 //! [point]
 //! writes = ["final"]                    # every technique of the point writes these
+//! draws = ["hair"]                      # every pass drawing these uses the point, unasked
 //!
 //! [wgsl]                                # a point answered in WGSL
 //! param = "self_shadow"
@@ -17,6 +18,10 @@
 //!
 //! `writes` is checked when a technique is chosen: one of its passes must
 //! write each resource named (a transparency technique composes `final`).
+//! `draws` makes the point part of every pass that draws that geometry, as
+//! if the pass listed it in `uses`: the `geometry` point decides which
+//! strands every hair draw rasterizes, so no pass, technique or pipeline
+//! file has to remember to ask for it.
 //!
 //! Every technique of a WGSL point ships a WGSL module declaring
 //! `#define_import_path <providers>::<name>` wherever it lives on the search
@@ -134,6 +139,8 @@ impl WgslPoint {
 pub struct PointFile {
     /// Resources one of each technique's passes must write.
     pub writes: Vec<Spanned<String>>,
+    /// Geometries (`draw` values) whose every pass uses the point.
+    pub draws: Vec<Spanned<String>>,
     pub wgsl: Option<WgslPoint>,
 }
 
@@ -160,18 +167,35 @@ fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<PointFi
     let mut file = PointFile::default();
     if let Some(p) = top.get("point") {
         let t = r.table(&p.value, "[point]")?;
-        r.keys(t, &["writes"], "[point]");
-        if let Some(w) = t.get("writes") {
+        r.keys(t, &["writes", "draws"], "[point]");
+        for (key, what, list) in [
+            ("writes", "resource names", &mut file.writes),
+            ("draws", "geometries (`draw` values)", &mut file.draws),
+        ] {
+            let Some(w) = t.get(key) else { continue };
             let Node::List(items) = &w.value.value else {
                 r.schema(
                     &w.value.location,
-                    "point.writes must be a list of resource names".into(),
+                    format!("point.{key} must be a list of {what}"),
                 );
                 return None;
             };
             for item in items {
-                let name = r.string(item, "point.writes")?;
-                file.writes.push(Spanned::new(name, item.location.clone()));
+                let name = r.string(item, &format!("point.{key}"))?;
+                list.push(Spanned::new(name, item.location.clone()));
+            }
+        }
+        for d in &file.draws {
+            if !crate::Draw::NAMES.contains(&d.value.as_str()) {
+                r.schema(
+                    &d.location,
+                    format!(
+                        "point.draws: no geometry `{}`{} (draw values: {})",
+                        d.value,
+                        crate::suggest::did_you_mean(&d.value, crate::Draw::NAMES.iter().copied()),
+                        crate::Draw::NAMES.join(", ")
+                    ),
+                );
             }
         }
     }
@@ -406,6 +430,30 @@ doc = "Fraction of the light reaching `world`."
         assert_eq!(p.writes.len(), 1);
         assert_eq!(p.writes[0].value, "final");
         assert_eq!(p.writes[0].location.to_string(), "point.toml:2:11");
+    }
+
+    #[test]
+    fn a_point_file_may_join_every_draw_of_a_geometry() {
+        let p = parse(
+            "geometry",
+            Path::new("point.toml"),
+            "[point]\ndraws = [\"hair\"]\n",
+        )
+        .expect("parses");
+        assert_eq!(p.draws.len(), 1);
+        assert_eq!(p.draws[0].value, "hair");
+        let text = parse(
+            "geometry",
+            Path::new("point.toml"),
+            "[point]\ndraws = [\"hairs\"]\n",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(text.contains("point.toml:2:10"), "{text}");
+        assert!(
+            text.contains("no geometry `hairs`; did you mean `hair`?"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -142,6 +142,16 @@ impl TechniqueRoots {
         })
     }
 
+    /// The points every pipeline has, listed in its `[techniques]` or not:
+    /// those whose point file `draws` a geometry (every pass drawing it uses
+    /// them). A broken point file is reported when the point is chosen.
+    pub fn implied_points(&self) -> Vec<String> {
+        self.points()
+            .into_iter()
+            .filter(|p| matches!(self.point_file(p), Some(Ok(f)) if !f.draws.is_empty()))
+            .collect()
+    }
+
     /// Where the technique `name` of `point` is.
     pub fn locate(&self, point: &str, name: &str) -> Located {
         let folder = |root: &Path| root.join(point).join(name);

@@ -1,0 +1,81 @@
+//! The `geometry` point from the command line (issue 23): `--set
+//! techniques.geometry=lod` works on any pipeline, with or without the point
+//! in its `[techniques]`, and a screen fraction out of range is one error
+//! naming the param, exit 2, no image written.
+
+mod common;
+use common::{plait, text};
+
+#[test]
+fn lod_renders_on_a_pipeline_that_does_not_list_the_point() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("lod.png");
+    // forward.toml's [techniques] names shading, lighting and ambient_occlusion only.
+    let run = plait(&[
+        "render",
+        "pipelines/forward.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--set",
+        "techniques.geometry=lod",
+        "--set",
+        "params.lod_screen_fraction=1.0",
+        "--out",
+        out.to_str().expect("utf-8 path"),
+    ]);
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(out.exists());
+    assert!(
+        text(&run.stdout).contains("geometry/lod"),
+        "{}",
+        text(&run.stdout)
+    );
+}
+
+#[test]
+fn a_screen_fraction_out_of_range_is_one_error_naming_the_param() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("bad.png");
+    for bad in ["1.5", "0"] {
+        let flag = format!("params.lod_screen_fraction={bad}");
+        let run = plait(&[
+            "render",
+            "--scene",
+            "examples/scenes/small.toml",
+            "--size",
+            "64x48",
+            "--set",
+            "techniques.geometry=lod",
+            "--set",
+            &flag,
+            "--out",
+            out.to_str().expect("utf-8 path"),
+        ]);
+        let stderr = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{stderr}");
+        assert!(!out.exists(), "no image for a refused render");
+        // Every hair draw takes the param: still one error, at the flag.
+        assert_eq!(stderr.matches("error:").count(), 1, "{stderr}");
+        assert!(
+            stderr.contains(&format!(
+                "--set {flag}: param `lod_screen_fraction` of passes"
+            )),
+            "{stderr}"
+        );
+        assert!(stderr.contains("out of range 0.001..=1"), "{stderr}");
+    }
+    let typo = plait(&[
+        "check",
+        "pipelines/occupancy.toml",
+        "--set",
+        "techniques.geometry=lods",
+    ]);
+    assert_eq!(typo.status.code(), Some(2));
+    assert!(
+        text(&typo.stderr).contains("did you mean `lod`?"),
+        "{}",
+        text(&typo.stderr)
+    );
+}
