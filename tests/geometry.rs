@@ -5,7 +5,6 @@
 //! the same strands dropped without it; a screen fraction out of range is an
 //! error naming the param.
 
-use glam::{Mat4, Vec4};
 use image::RgbaImage;
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
@@ -43,30 +42,12 @@ fn no_hair(gpu: &Gpu, relative: &str, stem: &str) -> RgbaImage {
     image
 }
 
-/// The kept fraction `plait::geometry::lod` computes for this frame (its
-/// WGSL, `kept_fraction`, in f32 as the GPU does it).
+/// The kept fraction `plait::geometry::lod` computes for this frame.
 fn kept_fraction(scene: &SceneData, screen_fraction: f32) -> f32 {
-    let frame = scene.frame(SIZE, 0);
-    let sphere = Vec4::from(frame.hair_sphere);
-    let (centre, radius) = (sphere.truncate(), sphere.w);
-    let view = Mat4::from_cols_array_2d(&frame.camera_view);
-    let view_proj = Mat4::from_cols_array_2d(&frame.camera_view_proj);
-    let up = view.row(1).truncate();
-    let a = view_proj * centre.extend(1.0);
-    let b = view_proj * (centre + up * radius).extend(1.0);
-    let s = if a.w <= radius || b.w <= 0.0 {
-        1e9
-    } else {
-        (b.y / b.w - a.y / a.w).abs()
-    };
-    let strands = scene.strands.strand_count() as f32;
-    (s / screen_fraction).clamp(1.0 / strands, 1.0)
+    plait::strand_lod::kept_fraction(&scene.frame(SIZE, 0), screen_fraction)
 }
 
-/// Whether `plait::geometry::lod` draws strand `id` at kept fraction `k`.
-fn kept(id: u32, k: f32) -> bool {
-    k >= 1.0 || (id.wrapping_mul(0x9E37_79B9) >> 8) < (k * 16_777_216.0) as u32
-}
+use plait::strand_lod::kept;
 
 fn report(what: &str, c: &Comparison) -> String {
     format!("{what}: {}", c.summary())

@@ -107,6 +107,8 @@ pub fn render(
     let report = prepared.renderer.render()?;
     plait::overflow::check_frame(&report)?;
     let mut notes = prepared.renderer.notes().to_vec();
+    let frame = plait::session::frame_uniforms(prepared.schedule(), &data, size, 0);
+    notes.extend(plait::strand_lod::note(prepared.schedule(), &frame));
     let image = match show {
         Some(name) => {
             let texels = prepared.renderer.read_resource(name)?;

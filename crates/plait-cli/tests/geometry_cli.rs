@@ -15,7 +15,7 @@ fn lod_renders_on_a_pipeline_that_does_not_list_the_point() {
         "render",
         "pipelines/forward.toml",
         "--scene",
-        "examples/scenes/small.toml",
+        "tests/fixtures/golden_far.toml",
         "--size",
         "64x48",
         "--set",
@@ -31,6 +31,13 @@ fn lod_renders_on_a_pipeline_that_does_not_list_the_point() {
         text(&run.stdout).contains("geometry/lod"),
         "{}",
         text(&run.stdout)
+    );
+    // The strands left out are named, never silent.
+    let stderr = text(&run.stderr);
+    assert!(stderr.contains("note: geometry lod: "), "{stderr}");
+    assert!(
+        stderr.contains(" strands drawn from the camera, each for "),
+        "{stderr}"
     );
 }
 

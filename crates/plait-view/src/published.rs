@@ -98,6 +98,24 @@ pub(crate) fn describe_schedule(s: &mut Shared, schedule: &Schedule) {
             choices: roots.choices(&t.point),
         })
         .collect();
+    // A point every pipeline has (`geometry`) can be switched here even when
+    // the pipeline leaves it to its default.
+    for point in roots.implied_points() {
+        if s.techniques.iter().any(|t| t.point == point) {
+            continue;
+        }
+        let default = match roots.point_file(&point) {
+            Some(Ok(file)) => file.wgsl.map(|w| w.default.value),
+            _ => None,
+        };
+        if let Some(chosen) = default {
+            s.techniques.push(TechniqueChoice {
+                choices: roots.choices(&point),
+                point,
+                chosen,
+            });
+        }
+    }
     s.params = schedule
         .params
         .iter()

@@ -208,3 +208,37 @@ fn orbiting_the_camera_changes_the_picture() {
             .is_some_and(|o| o.image.as_raw() != first.image.as_raw())
     });
 }
+
+/// The geometry point, which occupancy.toml's [techniques] leaves to its
+/// default, is a drop-down of the viewer too: `lod` is chosen live.
+#[test]
+fn the_geometry_point_is_a_live_choice_though_the_pipeline_does_not_list_it() {
+    let e = start(None);
+    e.until("the first frame", |s| s.frames >= 1);
+    {
+        let s = e.shared.lock().expect("state");
+        let point = s
+            .techniques
+            .iter()
+            .find(|t| t.point == "geometry")
+            .expect("the geometry choice point");
+        assert_eq!(point.chosen, "strands");
+        assert!(
+            point.choices.iter().any(|c| c == "lod"),
+            "{:?}",
+            point.choices
+        );
+    }
+    e.send(Command::SetTechnique("geometry".into(), "lod".into()));
+    e.until("the technique swap", |s| {
+        s.error.is_some() || (s.reloads == 1 && s.frames >= 1)
+    });
+    let s = e.shared.lock().expect("state");
+    assert!(s.error.is_none(), "{:?}", s.error);
+    let point = s
+        .techniques
+        .iter()
+        .find(|t| t.point == "geometry")
+        .expect("the geometry choice point");
+    assert_eq!(point.chosen, "lod");
+}

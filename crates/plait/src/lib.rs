@@ -24,3 +24,4 @@ pub mod overflow;
 pub mod probe;
 pub mod session;
 pub mod source;
+pub mod strand_lod;
