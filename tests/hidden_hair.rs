@@ -25,6 +25,28 @@ fn small_scene() -> SceneData {
     data
 }
 
+/// The small scene with its head read from `examples/scenes/head.glb` (the
+/// same ellipsoid as a mesh, `[[meshes]]` with role "head") instead of
+/// `[head]`: the guarantee covers mesh occluders.
+fn small_mesh_head_scene() -> SceneData {
+    let path = repo_root().join("examples/scenes/small.toml");
+    let text = std::fs::read_to_string(&path).expect("small.toml");
+    let start = text.find("[head]").expect("small.toml has a [head]");
+    let end = start + text[start..].find("\n\n").expect("a blank line after [head]");
+    let head = repo_root().join("examples/scenes/head.glb");
+    let text = format!(
+        "{}[[meshes]]\nfile = {:?}\nrole = \"head\"{}",
+        &text[..start],
+        head.display().to_string(),
+        &text[end..]
+    );
+    let scene = plait_hair::Scene::from_toml_str(&text, &path).expect("the mesh head scene parses");
+    assert!(scene.head.is_none() && scene.head_mesh().is_some());
+    let mut data = SceneData::new(scene).expect("the mesh head scene loads");
+    data.strands = strands_subset(&data.strands, |s| s % 4 == 0);
+    data
+}
+
 /// Short strands well inside the head (an ellipsoid of radii ≥ 0.9 at the
 /// origin): every fragment of them is behind the head's surface, from the
 /// light and from the camera.
@@ -218,4 +240,17 @@ fn in_shader_depth_test_gives_the_same_guarantee() {
     let mut hidden = small_scene();
     add_hidden_strands(&mut hidden.strands, visible.strands.strand_count());
     assert_same_maps(&gpu, &visible, &hidden, "in-shader depth test");
+}
+
+/// Hair entirely inside a head read from a glTF file leaves every storage
+/// map at zero and every image as without it: the depth guarantee covers
+/// mesh occluders (they are drawn by the same opaque passes).
+#[test]
+fn hair_hidden_in_a_mesh_head_is_not_counted() {
+    let (_lock, gpu) = open_gpu();
+    let visible = small_mesh_head_scene();
+    let mut hidden = small_mesh_head_scene();
+    add_hidden_strands(&mut hidden.strands, visible.strands.strand_count());
+    assert_eq!(visible.strands.bounds(), hidden.strands.bounds());
+    assert_same_maps(&gpu, &visible, &hidden, "mesh head");
 }
