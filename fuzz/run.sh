@@ -11,7 +11,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
 secs="${1:-60}"
 cd "$root"
-mkdir -p "$here"/corpus/{hair,tfx,scene,pipeline} "$here/logs"
+mkdir -p "$here"/corpus/{hair,tfx,usd,scene,pipeline} "$here/logs"
 cp examples/scenes/*.toml "$here/corpus/scene/"
 cp pipelines/*.toml "$here/corpus/pipeline/"
 for spec in "4 3" "40 16"; do
@@ -20,10 +20,12 @@ for spec in "4 3" "40 16"; do
         --out "$here/corpus/hair/g$1x$2.hair" >/dev/null
     cargo run -q -p plait-cli -- hair convert "$here/corpus/hair/g$1x$2.hair" \
         "$here/corpus/tfx/g$1x$2.tfx" >/dev/null
+    cargo run -q -p plait-cli -- hair convert "$here/corpus/hair/g$1x$2.hair" \
+        "$here/corpus/usd/g$1x$2.usda" >/dev/null
 done
 cd "$here"
 total=0
-for target in hair tfx scene pipeline; do
+for target in hair tfx usd scene pipeline; do
     # -s none: plait has no unsafe code; coverage guidance without ASan runs
     # several times faster.
     cargo +nightly fuzz run -s none "$target" "corpus/$target" -- \

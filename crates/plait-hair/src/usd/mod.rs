@@ -74,6 +74,10 @@ pub enum UsdError {
     /// An option is out of range.
     #[error("{0}")]
     Option(String),
+    /// The USD reader (the `openusd` crate) panicked on this file: a bug
+    /// in it, reported rather than crashing plait.
+    #[error("the USD reader failed on this file ({0}); please report it")]
+    ReaderPanic(String),
     /// Any of the above for a named file.
     #[error("{}: {error}", path.display())]
     InFile {
@@ -210,7 +214,18 @@ impl UsdGroom {
         options: &UsdOptions,
         on_disk: bool,
     ) -> Result<(UsdGroom, Vec<String>), UsdError> {
-        read(path, bytes, options, on_disk).map_err(|e| e.in_file(path))
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            read(path, bytes, options, on_disk)
+        }));
+        let result = result.unwrap_or_else(|panic| {
+            let what = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(UsdError::ReaderPanic(what))
+        });
+        result.map_err(|e| e.in_file(path))
     }
 }
 
@@ -337,8 +352,31 @@ fn read(
             lacking.join(", ")
         ));
     }
-    for (d, world) in &data {
-        d.append_to(&mut strands, *world, options.segments_per_span, 1.0);
+    for ((d, world), prim) in data.iter().zip(&prims) {
+        let from = strands.points.len();
+        let negative = d.append_to(&mut strands, *world, options.segments_per_span, 1.0);
+        if negative > 0 {
+            warnings.push(format!(
+                "{}: {negative} evaluated widths overshoot below 0 (the basis overshoots between its vertices) and are 0",
+                prim.path
+            ));
+        }
+        // Finite control points can still overflow once placed (a huge
+        // scale): checked on what was built.
+        if let Some(i) = (from..strands.points.len())
+            .find(|&i| !(strands.points[i].is_finite() && strands.thickness[i].is_finite()))
+        {
+            return Err(UsdError::Field {
+                prim: prim.path.clone(),
+                field: "xformOpOrder",
+                message: format!(
+                    "the prim's transform takes point {} to {} (width {}): not finite",
+                    i - from,
+                    strands.points[i],
+                    strands.thickness[i]
+                ),
+            });
+        }
     }
     Ok((
         UsdGroom {

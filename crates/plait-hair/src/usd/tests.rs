@@ -351,9 +351,7 @@ fn bad_input_names_the_file_and_the_prim_or_field() {
         "`periodic` is not supported",
     );
     bad(
-        &format!(
-            "uniform token type = \"cubic\"\nint[] curveVertexCounts = [5]\npoint3f[] points = [(0,0,0),(1,0,0),(2,0,0),(3,0,0),(4,0,0)]"
-        ),
+        "uniform token type = \"cubic\"\nint[] curveVertexCounts = [5]\npoint3f[] points = [(0,0,0),(1,0,0),(2,0,0),(3,0,0),(4,0,0)]",
         "curveVertexCounts",
         "a Bézier curve needs 4 + 3k",
     );
@@ -431,4 +429,61 @@ fn unwritable_strands_are_refused() {
     s.push_strand(&[Vec3::ZERO], |_| 1.0, |_| 1.0, Vec3::ONE);
     let e = write(&s, WriteFormat::Usda).unwrap_err().to_string();
     assert!(e.contains("strand 0 has 1 point(s)"), "{e}");
+}
+
+#[test]
+fn overshooting_widths_are_zero_and_said() {
+    // Catmull-Rom overshoots below 0 between widths 1, 0, 0, 1.
+    let text = curves(&format!(
+        "uniform token type = \"cubic\"\nuniform token basis = \"catmullRom\"\nint[] curveVertexCounts = [4]\n{FOUR}\nfloat[] widths = [4, 0, 0, 4]"
+    ));
+    let (g, warnings) = read_text(&text, &UsdOptions::default()).unwrap();
+    assert!(g.strands.thickness.iter().all(|&w| w >= 0.0));
+    assert!(g.strands.thickness.contains(&0.0));
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.contains("/C: ") && w.contains("overshoot below 0")),
+        "{warnings:?}"
+    );
+}
+
+#[test]
+fn a_transform_that_overflows_is_an_error() {
+    let text = stage(
+        "def BasisCurves \"C\"\n{\n    float3 xformOp:scale = (1e30, 1e30, 1e30)\n    uniform token[] xformOpOrder = [\"xformOp:scale\"]\n    uniform token type = \"linear\"\n    int[] curveVertexCounts = [2]\n    point3f[] points = [(0, 0, 0), (1e30, 0, 0)]\n}",
+    );
+    let e = read_err(&text);
+    assert!(
+        e.contains("prim `/C`, field `xformOpOrder`") && e.contains("not finite"),
+        "{e}"
+    );
+}
+
+/// Found by fuzzing: openusd 0.6 loops forever evaluating an xformOpOrder
+/// entry that is not an attribute name; plait refuses it first.
+#[test]
+fn a_malformed_xform_op_order_is_an_error_not_a_hang() {
+    let text = stage(
+        "def Xform \"G\"\n{\n    double3 xformOp:translate = (1, 0, 0)\n    uniform token[] xformOpOrder = [\"xformOp:trty = [0.5]\n    }\n}\nanslate\"]\n    def BasisCurves \"H\"\n    {\n        uniform token type = \"linear\"\n        int[] curveVertexCounts = [2]\n        point3f[] points = [(0,0,0),(0,1,0)]\n    }\n}",
+    );
+    let e = read_err(&text);
+    assert!(
+        e.contains("prim `/G/H`, field `xformOpOrder`: on /G: ")
+            && e.contains("is not an xformOp: attribute name"),
+        "{e}"
+    );
+}
+
+/// Found by fuzzing: openusd 0.6's traversal recurses without end on a
+/// prim named by a string that is not an identifier; plait refuses it first.
+#[test]
+fn a_prim_name_that_is_not_an_identifier_is_an_error() {
+    let e = read_err(&stage("def BasisCurves \"0,0),(1\n}\nB\"\n{\n}"));
+    assert!(
+        e.contains(
+            "t.usda: not a readable USD file: prim name \"0,0),(1\\n}\\nB\" is not an identifier"
+        ),
+        "{e}"
+    );
 }
