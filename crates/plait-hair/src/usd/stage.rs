@@ -111,6 +111,16 @@ impl Resolver for GroomResolver {
             return Ok(Box::new(Cursor::new(self.read_packaged(&inner)?)));
         }
         match &self.disk {
+            // A device or FIFO a file names would be read forever.
+            Some(_)
+                if !ar::is_package_relative_path(&path)
+                    && !std::fs::metadata(&**resolved).is_ok_and(|m| m.is_file()) =>
+            {
+                Err(io::Error::new(
+                    io::ErrorKind::InvalidInput,
+                    format!("{path}: not a regular file"),
+                ))
+            }
             Some(disk) => disk.open_asset(resolved),
             None => Err(io::Error::new(
                 io::ErrorKind::NotFound,

@@ -487,3 +487,29 @@ fn a_prim_name_that_is_not_an_identifier_is_an_error() {
         "{e}"
     );
 }
+
+/// Layers a file names resolve beside it on disk; one that is missing or
+/// not a regular file is a warning (the composition error), not a hang.
+#[test]
+fn layers_beside_the_file_compose_and_devices_are_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::write(
+        dir.path().join("curves.usda"),
+        curves("uniform token type = \"linear\"\nint[] curveVertexCounts = [2]\npoint3f[] points = [(0,0,0),(0,3,0)]"),
+    )
+    .expect("write");
+    let root = stage(
+        "def \"G\" (\n    prepend references = @./curves.usda@</C>\n)\n{\n}\ndef \"Z\" (\n    prepend references = @/dev/zero@</C>\n)\n{\n}",
+    );
+    let path = dir.path().join("root.usda");
+    std::fs::write(&path, &root).expect("write");
+    let (asset, warnings) =
+        crate::Asset::read_with(&path, &UsdOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let strands = asset.strands();
+    assert_eq!(strands.strand_count(), 1);
+    assert_eq!(strands.points[1], Vec3::new(0.0, 3.0, 0.0));
+    assert!(
+        warnings.iter().any(|w| w.contains("/dev/zero")),
+        "{warnings:?}"
+    );
+}
