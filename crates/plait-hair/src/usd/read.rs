@@ -33,7 +33,10 @@ pub(super) fn read(
     let strands = build(&data, &prims, total, options, &mut warnings)?;
     // Prims compose lazily: their errors are known once they were read.
     let composition = stage.composition_errors();
-    warnings.splice(0..0, composition.iter().map(|e| format!("composition: {e}")));
+    warnings.splice(
+        0..0,
+        composition.iter().map(|e| format!("composition: {e}")),
+    );
     Ok((
         UsdGroom {
             strands,
