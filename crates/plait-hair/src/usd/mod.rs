@@ -16,6 +16,7 @@
 //! Writing ([`write`]) gives one linear `BasisCurves` prim with vertex
 //! widths, colours and opacities, in metres and Y up.
 
+mod crate_check;
 pub mod curves;
 mod read;
 mod stage;

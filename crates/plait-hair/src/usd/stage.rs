@@ -105,10 +105,10 @@ impl Resolver for GroomResolver {
     fn open_asset(&self, resolved: &ResolvedPath) -> io::Result<Box<dyn ar::Asset>> {
         let path = resolved.to_string_lossy();
         if self.is_root(&path) {
-            return Ok(Box::new(Cursor::new(self.bytes.as_ref().clone())));
+            return checked(self.bytes.as_ref().clone());
         }
         if let Some(inner) = self.packaged(&path) {
-            return Ok(Box::new(Cursor::new(self.read_packaged(&inner)?)));
+            return checked(self.read_packaged(&inner)?);
         }
         match &self.disk {
             // A device or FIFO a file names would be read forever.
@@ -121,7 +121,7 @@ impl Resolver for GroomResolver {
                     format!("{path}: not a regular file"),
                 ))
             }
-            Some(disk) => disk.open_asset(resolved),
+            Some(disk) => checked(disk.open_asset(resolved)?.read_all()?),
             None => Err(io::Error::new(
                 io::ErrorKind::NotFound,
                 format!("{path}: not found (only the file itself is read here)"),
@@ -132,6 +132,16 @@ impl Resolver for GroomResolver {
     fn identity(&self) -> String {
         format!("plait:{}", self.name)
     }
+}
+
+/// An asset's bytes for the crate, a `.usdc` one checked first
+/// (`super::crate_check`).
+fn checked(bytes: Vec<u8>) -> io::Result<Box<dyn ar::Asset>> {
+    if bytes.starts_with(b"PXR-USDC") {
+        super::crate_check::check(&bytes)
+            .map_err(|m| io::Error::new(io::ErrorKind::InvalidData, m))?;
+    }
+    Ok(Box::new(Cursor::new(bytes)))
 }
 
 /// Opens `bytes` as the stage named `path` (its extension picks the format;

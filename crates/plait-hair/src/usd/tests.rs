@@ -513,3 +513,66 @@ fn layers_beside_the_file_compose_and_devices_are_refused() {
         "{warnings:?}"
     );
 }
+
+/// A `.usdc` whose header claims more than the file holds is an error
+/// naming the section, before openusd allocates what it claims.
+#[test]
+fn a_crate_file_claiming_more_than_it_holds_is_an_error() {
+    let good = write(&sample_strands(), WriteFormat::Usdc).unwrap();
+    let read = |bytes: Vec<u8>| {
+        UsdGroom::from_bytes(Path::new("c.usdc"), bytes, &UsdOptions::default(), false)
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    assert!(read(good.clone()).is_ok());
+    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().unwrap());
+    let toc = u64_at(&good, 16) as usize;
+    let sections = u64_at(&good, toc) as usize;
+    let section = |name: &str| {
+        (0..sections)
+            .map(|i| toc + 8 + 32 * i)
+            .find(|&at| good[at..at + 16].starts_with(name.as_bytes()))
+            .unwrap()
+    };
+    let tokens_start = u64_at(&good, section("TOKENS") + 16) as usize;
+    let cases: Vec<(Vec<u8>, &str)> = vec![
+        (
+            {
+                let mut b = good.clone();
+                b[tokens_start..tokens_start + 8].copy_from_slice(&u64::MAX.to_le_bytes());
+                b
+            },
+            "section TOKENS claims 18446744073709551615 tokens",
+        ),
+        (
+            {
+                let mut b = good.clone();
+                b[tokens_start + 16..tokens_start + 24].copy_from_slice(&(1u64 << 60).to_le_bytes());
+                b
+            },
+            "section TOKENS claims 1152921504606846976 compressed bytes",
+        ),
+        (
+            {
+                let mut b = good.clone();
+                let at = section("PATHS") + 24;
+                b[at..at + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
+                b
+            },
+            "section PATHS (1099511627776 bytes at",
+        ),
+        (
+            {
+                let mut b = good.clone();
+                b[9] = 3;
+                b
+            },
+            "crate version 0.3",
+        ),
+        (good[..40].to_vec(), "past the end"),
+    ];
+    for (bytes, want) in cases {
+        let e = read(bytes).unwrap_err();
+        assert!(e.starts_with("c.usdc: not a readable USD file") && e.contains(want), "{want}: {e}");
+    }
+}
