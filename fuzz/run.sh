@@ -11,7 +11,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
 secs="${1:-60}"
 cd "$root"
-mkdir -p "$here"/corpus/{hair,tfx,scene,pipeline,gltf} "$here/logs"
+mkdir -p "$here"/corpus/{hair,tfx,usd,scene,pipeline,gltf} "$here/logs"
 cp examples/scenes/*.toml "$here/corpus/scene/"
 cp pipelines/*.toml "$here/corpus/pipeline/"
 cp examples/scenes/*.glb "$here/corpus/gltf/"
@@ -21,10 +21,12 @@ for spec in "4 3" "40 16"; do
         --out "$here/corpus/hair/g$1x$2.hair" >/dev/null
     cargo run -q -p plait-cli -- hair convert "$here/corpus/hair/g$1x$2.hair" \
         "$here/corpus/tfx/g$1x$2.tfx" >/dev/null
+    cargo run -q -p plait-cli -- hair convert "$here/corpus/hair/g$1x$2.hair" \
+        "$here/corpus/usd/g$1x$2.usda" >/dev/null
 done
 cd "$here"
 total=0
-for target in hair tfx scene pipeline gltf; do
+for target in hair tfx usd scene pipeline gltf; do
     # -s none: plait has no unsafe code; coverage guidance without ASan runs
     # several times faster.
     cargo +nightly fuzz run -s none "$target" "corpus/$target" -- \

@@ -138,8 +138,7 @@ impl Hair {
         if let Some(t) = &self.transform {
             t.validate()?;
         }
-        self.usd
-            .validate("hair.prim", "hair.segments_per_span")?;
+        self.usd.validate("hair.prim", "hair.segments_per_span")?;
         Ok(())
     }
 }

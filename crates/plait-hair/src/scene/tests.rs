@@ -308,19 +308,35 @@ fn a_usd_groom_reads_the_prim_the_scene_names() {
     let strands = s.strands().expect("reads");
     // One curve of 2 B-spline spans at 3 segments each: 7 points, all at x = 2.
     assert_eq!(strands.point_count(), 7);
-    assert!(strands.points.iter().all(|p| (p.x - 2.0).abs() < 1e-5), "{:?}", strands.points);
+    assert!(
+        strands.points.iter().all(|p| (p.x - 2.0).abs() < 1e-5),
+        "{:?}",
+        strands.points
+    );
     std::fs::write(&path, "[hair]\nfile = \"g.usda\"\nprim = \"/Nope\"\n").expect("write");
     let e = Scene::load(&path).expect("loads").strands().unwrap_err();
     assert!(e.to_string().contains("g.usda: prim `/Nope`"), "{e}");
 
     let p = Path::new("s.toml");
     let e = Scene::from_toml_str("[hair]\nfile = \"g.hair\"\nprim = \"/A\"\n", p).unwrap_err();
-    assert!(e.to_string().contains("hair.prim and hair.segments_per_span apply to a USD file"), "{e}");
-    let e = Scene::from_toml_str("[hair]\nfile = \"g.usdz\"\nsegments_per_span = 0\n", p)
-        .unwrap_err();
-    assert!(e.to_string().contains("hair.segments_per_span must be in 1..=256"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("hair.prim and hair.segments_per_span apply to a USD file"),
+        "{e}"
+    );
+    let e =
+        Scene::from_toml_str("[hair]\nfile = \"g.usdz\"\nsegments_per_span = 0\n", p).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("hair.segments_per_span must be in 1..=256"),
+        "{e}"
+    );
     let e = Scene::from_toml_str("[hair]\nfile = \"g.usdc\"\nprim = \"B\"\n", p).unwrap_err();
-    assert!(e.to_string().contains("hair.prim must be an absolute prim path"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("hair.prim must be an absolute prim path"),
+        "{e}"
+    );
 }
 
 /// The mesh head example: the head is the mesh (named "head", so it moves

@@ -313,13 +313,26 @@ impl CurvesData {
     /// uniform scale also scales the widths; a prim without `widths` gets
     /// `default_width`. Call [`CurvesData::check`] first: it guarantees
     /// every index here is in range.
+    ///
+    /// Returns how many evaluated widths fell below 0 and were made 0: vertex
+    /// widths on a Catmull-Rom (or B-spline, pinned) curve overshoot like the
+    /// curve does, and a width cannot be negative.
     pub fn append_to(
         &self,
         strands: &mut Strands,
         to_world: DMat4,
         segments_per_span: u32,
         default_width: f32,
-    ) {
+    ) -> usize {
+        let mut negative = 0usize;
+        let mut width = |w: f32| {
+            if w < 0.0 {
+                negative += 1;
+                0.0
+            } else {
+                w
+            }
+        };
         let width_scale = to_world.determinant().abs().cbrt() as f32;
         let place = |p: Vec3| to_world.transform_point3(p.as_dvec3()).as_vec3();
         let mut first = 0usize;
@@ -339,7 +352,7 @@ impl CurvesData {
                     for i in 0..n {
                         strands.points.push(place(self.points[first + i]));
                         let (w, col, a) = curve.at_vertex(i, default_width);
-                        strands.thickness.push(w * width_scale);
+                        strands.thickness.push(width(w) * width_scale);
                         strands.color.push(col);
                         strands.alpha.push(a);
                     }
@@ -352,7 +365,7 @@ impl CurvesData {
                             let t = j as f32 / seg as f32;
                             let (w, col, a) = curve.cubic(basis, s, t, default_width);
                             strands.points.push(place(curve.cubic_point(basis, s, t)));
-                            strands.thickness.push(w * width_scale);
+                            strands.thickness.push(width(w) * width_scale);
                             strands.color.push(col);
                             strands.alpha.push(a);
                         }
@@ -363,6 +376,7 @@ impl CurvesData {
             first += n;
             first_varying += span_count + 1;
         }
+        negative
     }
 }
 

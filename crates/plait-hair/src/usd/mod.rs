@@ -16,7 +16,9 @@
 //! Writing ([`write`]) gives one linear `BasisCurves` prim with vertex
 //! widths, colours and opacities, in metres and Y up.
 
+mod crate_check;
 pub mod curves;
+mod read;
 mod stage;
 mod write;
 
@@ -74,6 +76,10 @@ pub enum UsdError {
     /// An option is out of range.
     #[error("{0}")]
     Option(String),
+    /// The USD reader (the `openusd` crate) panicked on this file: a bug
+    /// in it, reported rather than crashing plait.
+    #[error("the USD reader failed on this file ({0}); please report it")]
+    ReaderPanic(String),
     /// Any of the above for a named file.
     #[error("{}: {error}", path.display())]
     InFile {
@@ -210,7 +216,18 @@ impl UsdGroom {
         options: &UsdOptions,
         on_disk: bool,
     ) -> Result<(UsdGroom, Vec<String>), UsdError> {
-        read(path, bytes, options, on_disk).map_err(|e| e.in_file(path))
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            read::read(path, bytes, options, on_disk)
+        }));
+        let result = result.unwrap_or_else(|panic| {
+            let what = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(UsdError::ReaderPanic(what))
+        });
+        result.map_err(|e| e.in_file(path))
     }
 }
 
@@ -223,131 +240,4 @@ pub fn container(bytes: &[u8]) -> &'static str {
     } else {
         "usda"
     }
-}
-
-fn read(
-    path: &Path,
-    bytes: Vec<u8>,
-    options: &UsdOptions,
-    on_disk: bool,
-) -> Result<(UsdGroom, Vec<String>), UsdError> {
-    options
-        .validate("prim", "segments_per_span")
-        .map_err(UsdError::Option)?;
-    let container = container(&bytes);
-    let stage = stage::open(path, bytes, on_disk)?;
-    let stage_field = |(field, message): (&'static str, String)| UsdError::Field {
-        prim: "/".into(),
-        field,
-        message,
-    };
-    let units = stage::units(&stage).map_err(stage_field)?;
-    let all = stage::prim_paths(&stage).map_err(UsdError::NotUsd)?;
-    let root_name = options.prim.clone().unwrap_or_else(|| "/".into());
-    let root = openusd::sdf::path(&root_name).map_err(|e| UsdError::Field {
-        prim: root_name.clone(),
-        field: "prim",
-        message: format!("is not a prim path: {e:#}"),
-    })?;
-    if root != openusd::sdf::Path::abs_root() && !all.contains(&root) {
-        let names: Vec<&str> = all.iter().map(|p| p.as_str()).collect();
-        return Err(UsdError::NoPrim {
-            prim: root_name,
-            nearest: plait_graph::suggest::nearest(root.as_str(), names).map(str::to_string),
-        });
-    }
-    let mut warnings: Vec<String> = stage
-        .composition_errors()
-        .iter()
-        .map(|e| format!("composition: {e}"))
-        .collect();
-    let mut found = Vec::new();
-    let mut others = Vec::new();
-    for p in all.iter().filter(|p| p.has_prefix(&root)) {
-        match stage::type_name(&stage, p).as_deref() {
-            Some("BasisCurves") => found.push(p.clone()),
-            Some(t @ ("NurbsCurves" | "HermiteCurves")) => {
-                others.push(format!("{t} {}", p.as_str()))
-            }
-            _ => {}
-        }
-    }
-    if found.is_empty() {
-        return Err(UsdError::NoCurves {
-            prim: root_name,
-            others,
-        });
-    }
-    for o in &others {
-        warnings.push(format!("{o} is not read: plait reads BasisCurves only"));
-    }
-    let to_plait = units.to_plait();
-    let mut strands = Strands::new();
-    let mut prims = Vec::new();
-    let mut total = 0u64;
-    let mut data = Vec::new();
-    for p in &found {
-        let field = |(field, message): (&'static str, String)| UsdError::Field {
-            prim: p.as_str().to_string(),
-            field,
-            message,
-        };
-        let prim = stage.prim(p.clone());
-        let d = stage::curves_data(&prim).map_err(field)?;
-        total += d.check(options.segments_per_span).map_err(field)?;
-        if total > curves::MAX_POINTS {
-            return Err(field((
-                "points",
-                format!(
-                    "the stage's curves evaluate to more than {} points",
-                    curves::MAX_POINTS
-                ),
-            )));
-        }
-        let world = to_plait * stage::to_world(&stage, p).map_err(field)?;
-        prims.push(CurvesPrim {
-            path: p.as_str().to_string(),
-            kind: d.kind,
-            wrap: d.wrap,
-            curves: d.counts.len(),
-            points: d.points.len(),
-            widths: d.widths.as_ref().map(|w| w.interpolation),
-            colors: d.colors.as_ref().map(|w| w.interpolation),
-            opacity: d.opacity.as_ref().map(|w| w.interpolation),
-        });
-        data.push((d, world));
-    }
-    // Everything is checked: now the output is allocated, once.
-    strands
-        .offsets
-        .reserve(prims.iter().map(|p| p.curves).sum());
-    for v in [&mut strands.thickness, &mut strands.alpha] {
-        v.reserve(total as usize);
-    }
-    strands.points.reserve(total as usize);
-    strands.color.reserve(total as usize);
-    let lacking: Vec<&str> = prims
-        .iter()
-        .filter(|p| p.widths.is_none())
-        .map(|p| p.path.as_str())
-        .collect();
-    if !lacking.is_empty() && lacking.len() < prims.len() {
-        warnings.push(format!(
-            "{} have no widths: their strands are 1 unit wide",
-            lacking.join(", ")
-        ));
-    }
-    for (d, world) in &data {
-        d.append_to(&mut strands, *world, options.segments_per_span, 1.0);
-    }
-    Ok((
-        UsdGroom {
-            strands,
-            prims,
-            units,
-            container,
-            options: options.clone(),
-        },
-        warnings,
-    ))
 }

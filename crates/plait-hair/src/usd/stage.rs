@@ -105,13 +105,23 @@ impl Resolver for GroomResolver {
     fn open_asset(&self, resolved: &ResolvedPath) -> io::Result<Box<dyn ar::Asset>> {
         let path = resolved.to_string_lossy();
         if self.is_root(&path) {
-            return Ok(Box::new(Cursor::new(self.bytes.as_ref().clone())));
+            return checked(self.bytes.as_ref().clone());
         }
         if let Some(inner) = self.packaged(&path) {
-            return Ok(Box::new(Cursor::new(self.read_packaged(&inner)?)));
+            return checked(self.read_packaged(&inner)?);
         }
         match &self.disk {
-            Some(disk) => disk.open_asset(resolved),
+            // A device or FIFO a file names would be read forever.
+            Some(_)
+                if !ar::is_package_relative_path(&path)
+                    && !std::fs::metadata(&**resolved).is_ok_and(|m| m.is_file()) =>
+            {
+                Err(io::Error::new(
+                    io::ErrorKind::InvalidInput,
+                    format!("{path}: not a regular file"),
+                ))
+            }
+            Some(disk) => checked(disk.open_asset(resolved)?.read_all()?),
             None => Err(io::Error::new(
                 io::ErrorKind::NotFound,
                 format!("{path}: not found (only the file itself is read here)"),
@@ -122,6 +132,16 @@ impl Resolver for GroomResolver {
     fn identity(&self) -> String {
         format!("plait:{}", self.name)
     }
+}
+
+/// An asset's bytes for the crate, a `.usdc` one checked first
+/// (`super::crate_check`).
+fn checked(bytes: Vec<u8>) -> io::Result<Box<dyn ar::Asset>> {
+    if bytes.starts_with(b"PXR-USDC") {
+        super::crate_check::check(&bytes)
+            .map_err(|m| io::Error::new(io::ErrorKind::InvalidData, m))?;
+    }
+    Ok(Box::new(Cursor::new(bytes)))
 }
 
 /// Opens `bytes` as the stage named `path` (its extension picks the format;
@@ -151,18 +171,10 @@ pub(crate) fn open(path: &Path, bytes: Vec<u8>, on_disk: bool) -> Result<Stage, 
         bytes: Arc::new(bytes),
         disk,
     };
-    // The crate may panic on input it does not expect; a panic here is a
-    // bug in it, reported as this file's error rather than a crash.
-    let opened = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        Stage::builder().resolver(resolver).open(&name)
-    }));
-    match opened {
-        Ok(Ok(stage)) => Ok(stage),
-        Ok(Err(e)) => Err(UsdError::NotUsd(format!("{e:#}"))),
-        Err(_) => Err(UsdError::NotUsd(
-            "the USD reader failed on this file".into(),
-        )),
-    }
+    Stage::builder()
+        .resolver(resolver)
+        .open(&name)
+        .map_err(|e| UsdError::NotUsd(format!("{e:#}")))
 }
 
 /// A prim viewed as `Xformable`, whatever its type (an `Xform`, a `Scope`,
@@ -251,8 +263,48 @@ fn token(v: &Value) -> Option<String> {
     }
 }
 
+/// A prim name USD allows: an identifier.
+fn is_identifier(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// Every prim spec in every layer of the stage has an identifier for a
+/// name: the text reader takes any quoted string, and the crate's
+/// traversal recurses without end on some (found by fuzzing).
+fn check_prim_names(stage: &Stage) -> Result<(), String> {
+    for id in stage.layer_identifiers() {
+        let Some(layer) = stage.layer(&id) else {
+            continue;
+        };
+        let data = layer.data();
+        for path in data.spec_paths() {
+            if data.spec_type(&path) != Some(sdf::SpecType::Prim) {
+                continue;
+            }
+            let text = path.as_str();
+            let tail = text.rsplit('/').next().unwrap_or(text);
+            // A prim inside a variant: `/A{set=sel}B`.
+            let name = match tail.contains('{') {
+                true => tail.rsplit('}').next().unwrap_or(tail),
+                false => tail,
+            };
+            if !is_identifier(name) {
+                return Err(format!(
+                    "prim name {name:?} is not an identifier (letters, digits and _, not starting with a digit)"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Every prim path on the stage, depth first.
 pub(crate) fn prim_paths(stage: &Stage) -> Result<Vec<sdf::Path>, String> {
+    check_prim_names(stage)?;
     let mut paths = Vec::new();
     stage
         .traverse(PrimPredicate::DEFAULT, |p| paths.push(p.clone()))
@@ -281,6 +333,7 @@ pub(crate) fn to_world(stage: &Stage, path: &sdf::Path) -> Result<DMat4, (&'stat
             break;
         }
         let x = AnyXformable(stage.prim(p.clone()));
+        check_op_order(&x).map_err(|m| ("xformOpOrder", format!("on {}: {m}", p.as_str())))?;
         let local = x
             .local_to_parent_transform(TimeCode::EARLIEST)
             .map_err(|e| ("xformOpOrder", format!("on {}: {e:#}", p.as_str())))?;
@@ -294,6 +347,34 @@ pub(crate) fn to_world(stage: &Stage, path: &sdf::Path) -> Result<DMat4, (&'stat
         return Err(("xformOpOrder", "the prim's transform is not finite".into()));
     }
     Ok(world)
+}
+
+/// Every `xformOpOrder` entry is `!resetXformStack!` or an (optionally
+/// `!invert!`ed) `xformOp:` attribute name of identifier characters: the
+/// crate evaluating the ops loops forever on some malformed names (found by
+/// fuzzing), so they are refused first.
+fn check_op_order(x: &AnyXformable) -> Result<(), String> {
+    let Some(order) = x.xform_op_order().map_err(|e| format!("{e:#}"))? else {
+        return Ok(());
+    };
+    for op in &order {
+        if op == "!resetXformStack!" {
+            continue;
+        }
+        let name = op.strip_prefix("!invert!").unwrap_or(op);
+        let valid = name.strip_prefix("xformOp:").is_some_and(|rest| {
+            !rest.is_empty()
+                && rest.split(':').all(|part| {
+                    !part.is_empty() && part.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+                })
+        });
+        if !valid {
+            return Err(format!(
+                "{op:?} is not an xformOp: attribute name (xformOp:translate, !invert!xformOp:scale:pivot, …)"
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// An attribute's value: its first time sample, else its default.

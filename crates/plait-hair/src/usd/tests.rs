@@ -351,9 +351,7 @@ fn bad_input_names_the_file_and_the_prim_or_field() {
         "`periodic` is not supported",
     );
     bad(
-        &format!(
-            "uniform token type = \"cubic\"\nint[] curveVertexCounts = [5]\npoint3f[] points = [(0,0,0),(1,0,0),(2,0,0),(3,0,0),(4,0,0)]"
-        ),
+        "uniform token type = \"cubic\"\nint[] curveVertexCounts = [5]\npoint3f[] points = [(0,0,0),(1,0,0),(2,0,0),(3,0,0),(4,0,0)]",
         "curveVertexCounts",
         "a Bézier curve needs 4 + 3k",
     );
@@ -431,4 +429,150 @@ fn unwritable_strands_are_refused() {
     s.push_strand(&[Vec3::ZERO], |_| 1.0, |_| 1.0, Vec3::ONE);
     let e = write(&s, WriteFormat::Usda).unwrap_err().to_string();
     assert!(e.contains("strand 0 has 1 point(s)"), "{e}");
+}
+
+#[test]
+fn overshooting_widths_are_zero_and_said() {
+    // Catmull-Rom overshoots below 0 between widths 1, 0, 0, 1.
+    let text = curves(&format!(
+        "uniform token type = \"cubic\"\nuniform token basis = \"catmullRom\"\nint[] curveVertexCounts = [4]\n{FOUR}\nfloat[] widths = [4, 0, 0, 4]"
+    ));
+    let (g, warnings) = read_text(&text, &UsdOptions::default()).unwrap();
+    assert!(g.strands.thickness.iter().all(|&w| w >= 0.0));
+    assert!(g.strands.thickness.contains(&0.0));
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.contains("/C: ") && w.contains("overshoot below 0")),
+        "{warnings:?}"
+    );
+}
+
+#[test]
+fn a_transform_that_overflows_is_an_error() {
+    let text = stage(
+        "def BasisCurves \"C\"\n{\n    float3 xformOp:scale = (1e30, 1e30, 1e30)\n    uniform token[] xformOpOrder = [\"xformOp:scale\"]\n    uniform token type = \"linear\"\n    int[] curveVertexCounts = [2]\n    point3f[] points = [(0, 0, 0), (1e30, 0, 0)]\n}",
+    );
+    let e = read_err(&text);
+    assert!(
+        e.contains("prim `/C`, field `xformOpOrder`") && e.contains("not finite"),
+        "{e}"
+    );
+}
+
+/// Found by fuzzing: openusd 0.6 loops forever evaluating an xformOpOrder
+/// entry that is not an attribute name; plait refuses it first.
+#[test]
+fn a_malformed_xform_op_order_is_an_error_not_a_hang() {
+    let text = stage(
+        "def Xform \"G\"\n{\n    double3 xformOp:translate = (1, 0, 0)\n    uniform token[] xformOpOrder = [\"xformOp:trty = [0.5]\n    }\n}\nanslate\"]\n    def BasisCurves \"H\"\n    {\n        uniform token type = \"linear\"\n        int[] curveVertexCounts = [2]\n        point3f[] points = [(0,0,0),(0,1,0)]\n    }\n}",
+    );
+    let e = read_err(&text);
+    assert!(
+        e.contains("prim `/G/H`, field `xformOpOrder`: on /G: ")
+            && e.contains("is not an xformOp: attribute name"),
+        "{e}"
+    );
+}
+
+/// Found by fuzzing: openusd 0.6's traversal recurses without end on a
+/// prim named by a string that is not an identifier; plait refuses it first.
+#[test]
+fn a_prim_name_that_is_not_an_identifier_is_an_error() {
+    let e = read_err(&stage("def BasisCurves \"0,0),(1\n}\nB\"\n{\n}"));
+    assert!(
+        e.contains(
+            "t.usda: not a readable USD file: prim name \"0,0),(1\\n}\\nB\" is not an identifier"
+        ),
+        "{e}"
+    );
+}
+
+/// Layers a file names resolve beside it on disk; one that is missing or
+/// not a regular file is a warning (the composition error), not a hang.
+#[test]
+fn layers_beside_the_file_compose_and_devices_are_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::write(
+        dir.path().join("curves.usda"),
+        curves("uniform token type = \"linear\"\nint[] curveVertexCounts = [2]\npoint3f[] points = [(0,0,0),(0,3,0)]"),
+    )
+    .expect("write");
+    let root = stage(
+        "def \"G\" (\n    prepend references = @./curves.usda@</C>\n)\n{\n}\ndef \"Z\" (\n    prepend references = @/dev/zero@</C>\n)\n{\n}",
+    );
+    let path = dir.path().join("root.usda");
+    std::fs::write(&path, &root).expect("write");
+    let (asset, warnings) =
+        crate::Asset::read_with(&path, &UsdOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let strands = asset.strands();
+    assert_eq!(strands.strand_count(), 1);
+    assert_eq!(strands.points[1], Vec3::new(0.0, 3.0, 0.0));
+    assert!(
+        warnings.iter().any(|w| w.contains("/dev/zero")),
+        "{warnings:?}"
+    );
+}
+
+/// A `.usdc` whose header claims more than the file holds is an error
+/// naming the section, before openusd allocates what it claims.
+#[test]
+fn a_crate_file_claiming_more_than_it_holds_is_an_error() {
+    let good = write(&sample_strands(), WriteFormat::Usdc).unwrap();
+    let read = |bytes: Vec<u8>| {
+        UsdGroom::from_bytes(Path::new("c.usdc"), bytes, &UsdOptions::default(), false)
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    assert!(read(good.clone()).is_ok());
+    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().unwrap());
+    let toc = u64_at(&good, 16) as usize;
+    let sections = u64_at(&good, toc) as usize;
+    let section = |name: &str| {
+        (0..sections)
+            .map(|i| toc + 8 + 32 * i)
+            .find(|&at| good[at..at + 16].starts_with(name.as_bytes()))
+            .unwrap()
+    };
+    let tokens_start = u64_at(&good, section("TOKENS") + 16) as usize;
+    let cases: Vec<(Vec<u8>, &str)> = vec![
+        (
+            {
+                let mut b = good.clone();
+                b[tokens_start..tokens_start + 8].copy_from_slice(&u64::MAX.to_le_bytes());
+                b
+            },
+            "section TOKENS claims 18446744073709551615 tokens",
+        ),
+        (
+            {
+                let mut b = good.clone();
+                b[tokens_start + 16..tokens_start + 24].copy_from_slice(&(1u64 << 60).to_le_bytes());
+                b
+            },
+            "section TOKENS claims 1152921504606846976 compressed bytes",
+        ),
+        (
+            {
+                let mut b = good.clone();
+                let at = section("PATHS") + 24;
+                b[at..at + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
+                b
+            },
+            "section PATHS (1099511627776 bytes at",
+        ),
+        (
+            {
+                let mut b = good.clone();
+                b[9] = 3;
+                b
+            },
+            "crate version 0.3",
+        ),
+        (good[..40].to_vec(), "past the end"),
+    ];
+    for (bytes, want) in cases {
+        let e = read(bytes).unwrap_err();
+        assert!(e.starts_with("c.usdc: not a readable USD file") && e.contains(want), "{want}: {e}");
+    }
 }
