@@ -1,8 +1,9 @@
 //! Mesh files a scene names under `[[meshes]]` (docs/formats.md, "Meshes").
 //!
 //! The format is chosen by the file's extension ([`read`]): `.glb` and
-//! `.gltf` are glTF 2.0 ([`gltf`]); a second format (USD) plugs in as one
-//! more arm there, returning the same [`Mesh`]. Every reader checks the
+//! `.gltf` are glTF 2.0 ([`gltf`]); `.usd`, `.usda`, `.usdc` and `.usdz`
+//! are the `Mesh` prims of a USD stage (`crate::usd::mesh`), returning the
+//! same [`Mesh`]. Every reader checks the
 //! counts a file claims against [`Limits`] before it reads (or allocates for)
 //! them, and rejects non-finite positions, so what reaches the GPU and the
 //! signed distance field bake is bounded and finite.
@@ -49,17 +50,28 @@ pub struct MeshFileError {
 }
 
 /// The extensions [`read`] knows, for messages.
-pub const EXTENSIONS: &[&str] = &["glb", "gltf"];
+pub const EXTENSIONS: &[&str] = &["glb", "gltf", "usd", "usda", "usdc", "usdz"];
 
 /// Reads the mesh file at `path` (format by extension) as one triangle mesh
 /// in the file's own space, named after the file.
 pub fn read(path: &Path, limits: &Limits) -> Result<Mesh, MeshFileError> {
+    read_prim(path, None, limits)
+}
+
+/// [`read`], with USD's `Mesh` prims taken under `prim` only (an error for
+/// formats without prims).
+pub fn read_prim(path: &Path, prim: Option<&str>, limits: &Limits) -> Result<Mesh, MeshFileError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .unwrap_or_default();
     match extension.as_str() {
+        "glb" | "gltf" if prim.is_some() => Err(MeshFileError {
+            path: path.to_path_buf(),
+            message: "`prim` applies to USD files only: a glTF file has no prims".into(),
+        }),
+        "usd" | "usda" | "usdc" | "usdz" => crate::usd::mesh::read(path, prim, limits),
         "glb" | "gltf" => {
             let bytes = read_file(path, limits)?;
             gltf::read_bytes(&bytes, path, limits)

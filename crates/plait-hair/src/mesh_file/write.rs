@@ -87,13 +87,9 @@ pub fn to_glb(mesh: &Mesh) -> Vec<u8> {
 /// The example head (`examples/scenes/head.glb`): the built-in scene's head
 /// ellipsoid as a mesh.
 pub fn example_head_glb() -> Vec<u8> {
-    let head = crate::mesh::Mesh::ellipsoid(
-        glam::Vec3::ZERO,
-        glam::Vec3::new(0.9, 1.05, 1.0),
-        32,
-        64,
-    )
-    .with_name("head")
-    .with_albedo([0.75, 0.55, 0.45]);
+    let head =
+        crate::mesh::Mesh::ellipsoid(glam::Vec3::ZERO, glam::Vec3::new(0.9, 1.05, 1.0), 32, 64)
+            .with_name("head")
+            .with_albedo([0.75, 0.55, 0.45]);
     to_glb(&head)
 }

@@ -41,6 +41,8 @@ pub(super) struct MeshToml {
     #[serde(default)]
     transform: Transform,
     sdf_resolution: Option<u32>,
+    /// USD files only: read the `Mesh` prims under this prim.
+    prim: Option<String>,
 }
 
 /// A mesh of the scene, read and placed.
@@ -82,7 +84,15 @@ impl MeshToml {
         {
             return Err(format!("{field}.albedo must be finite"));
         }
-        self.transform.validate_named(&format!("{field}.transform"))?;
+        self.transform
+            .validate_named(&format!("{field}.transform"))?;
+        if let Some(p) = &self.prim
+            && !p.starts_with('/')
+        {
+            return Err(format!(
+                "{field}.prim must be an absolute prim path such as \"/Head\", got {p:?}"
+            ));
+        }
         match (self.role, self.sdf_resolution) {
             (MeshRole::Static, Some(_)) => Err(format!(
                 "{field}.sdf_resolution applies to role = \"head\" only (a static mesh does not collide)"
@@ -107,7 +117,8 @@ impl MeshToml {
             index,
             declared_at: declared_at.clone(),
         };
-        let mut mesh = crate::mesh_file::read(&file, &Limits::DEFAULT).map_err(fail)?;
+        let mut mesh = crate::mesh_file::read_prim(&file, self.prim.as_deref(), &Limits::DEFAULT)
+            .map_err(fail)?;
         place(&mut mesh, &self.transform).map_err(|message| {
             fail(MeshFileError {
                 path: file.clone(),

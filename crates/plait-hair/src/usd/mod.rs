@@ -18,8 +18,9 @@
 
 mod crate_check;
 pub mod curves;
+pub(crate) mod mesh;
 mod read;
-mod stage;
+pub(crate) mod stage;
 mod write;
 
 #[cfg(test)]
@@ -241,3 +242,6 @@ pub fn container(bytes: &[u8]) -> &'static str {
         "usda"
     }
 }
+
+#[cfg(test)]
+mod mesh_tests;

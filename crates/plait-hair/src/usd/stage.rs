@@ -378,7 +378,7 @@ fn check_op_order(x: &AnyXformable) -> Result<(), String> {
 }
 
 /// An attribute's value: its first time sample, else its default.
-fn value(prim: &Prim, name: &str) -> Result<Option<Value>, (&'static str, String)> {
+pub(crate) fn value(prim: &Prim, name: &str) -> Result<Option<Value>, (&'static str, String)> {
     let attr = prim.attribute(name);
     attr.get_at::<Value>(TimeCode::EARLIEST)
         .map_err(|e| (static_name(name), format!("{e:#}")))
@@ -394,11 +394,14 @@ fn static_name(name: &str) -> &'static str {
         "type" => "type",
         "basis" => "basis",
         "wrap" => "wrap",
+        "faceVertexCounts" => "faceVertexCounts",
+        "faceVertexIndices" => "faceVertexIndices",
+        "normals" => "normals",
         _ => "attribute",
     }
 }
 
-fn vec3s(field: &'static str, v: Value) -> Result<Vec<Vec3>, (&'static str, String)> {
+pub(crate) fn vec3s(field: &'static str, v: Value) -> Result<Vec<Vec3>, (&'static str, String)> {
     Ok(match v {
         Value::Vec3fVec(v) => v.into_iter().map(|p| Vec3::new(p.x, p.y, p.z)).collect(),
         Value::Vec3dVec(v) => v
@@ -434,7 +437,7 @@ fn floats(field: &'static str, v: Value) -> Result<Vec<f32>, (&'static str, Stri
     })
 }
 
-fn kind(v: &Value) -> String {
+pub(crate) fn kind(v: &Value) -> String {
     let s = format!("{v:?}");
     s.split(['(', ' ', '{']).next().unwrap_or("").to_string()
 }

@@ -547,7 +547,8 @@ fn a_crate_file_claiming_more_than_it_holds_is_an_error() {
         (
             {
                 let mut b = good.clone();
-                b[tokens_start + 16..tokens_start + 24].copy_from_slice(&(1u64 << 60).to_le_bytes());
+                b[tokens_start + 16..tokens_start + 24]
+                    .copy_from_slice(&(1u64 << 60).to_le_bytes());
                 b
             },
             "section TOKENS claims 1152921504606846976 compressed bytes",
@@ -573,6 +574,9 @@ fn a_crate_file_claiming_more_than_it_holds_is_an_error() {
     ];
     for (bytes, want) in cases {
         let e = read(bytes).unwrap_err();
-        assert!(e.starts_with("c.usdc: not a readable USD file") && e.contains(want), "{want}: {e}");
+        assert!(
+            e.starts_with("c.usdc: not a readable USD file") && e.contains(want),
+            "{want}: {e}"
+        );
     }
 }
