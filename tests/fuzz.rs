@@ -383,19 +383,27 @@ fn fuzz_gltf_reader() {
     }
     let limits = Limits::DEFAULT;
     // Measured: 7% accepted.
-    fuzz("gltf", 100_000, 0.035, mutated(&seeds, GLTF_TOKENS), |bytes| {
-        let Ok(mesh) = gltf::read_bytes(bytes, Path::new("x.glb"), &limits) else {
-            return Ok(false);
-        };
-        let again = gltf::read_bytes(&write::to_glb(&mesh), Path::new("y.glb"), &limits)
-            .map_err(|e| TestCaseError::fail(format!("written mesh does not read back: {e}")))?;
-        let positions = |m: &Mesh| m.vertices.iter().map(|v| v.position).collect::<Vec<_>>();
-        prop_assert_eq!(positions(&again), positions(&mesh));
-        prop_assert_eq!(&again.indices, &mesh.indices);
-        let sdf = plait_hair::sdf::SignedDistanceField::bake(&mesh, 6);
-        prop_assert!(sdf.values.iter().all(|d| !d.is_nan()));
-        Ok(true)
-    });
+    fuzz(
+        "gltf",
+        100_000,
+        0.035,
+        mutated(&seeds, GLTF_TOKENS),
+        |bytes| {
+            let Ok(mesh) = gltf::read_bytes(bytes, Path::new("x.glb"), &limits) else {
+                return Ok(false);
+            };
+            let again = gltf::read_bytes(&write::to_glb(&mesh), Path::new("y.glb"), &limits)
+                .map_err(|e| {
+                    TestCaseError::fail(format!("written mesh does not read back: {e}"))
+                })?;
+            let positions = |m: &Mesh| m.vertices.iter().map(|v| v.position).collect::<Vec<_>>();
+            prop_assert_eq!(positions(&again), positions(&mesh));
+            prop_assert_eq!(&again.indices, &mesh.indices);
+            let sdf = plait_hair::sdf::SignedDistanceField::bake(&mesh, 6);
+            prop_assert!(sdf.values.iter().all(|d| !d.is_nan()));
+            Ok(true)
+        },
+    );
 }
 
 /// `.tfx` (both versions): read, write as TressFX 4, read again: the same
@@ -528,6 +536,9 @@ fn fuzz_usd_reader() {
         usda(
             "def BasisCurves \"B\"\n{\n    uniform token type = \"cubic\"\n    int[] curveVertexCounts = [7]\n    point3f[] points = [(0,0,0),(1,0,0),(2,0,0),(3,0,0),(4,0,0),(5,0,0),(6,0,0)]\n    float[] widths = [1, 2, 3] (interpolation = \"varying\")\n    color3f[] primvars:displayColor = [(1,0,0),(0,1,0),(0,0,1),(1,1,0),(1,0,1),(0,1,1),(1,1,1)] (interpolation = \"vertex\")\n}\ndef BasisCurves \"R\"\n{\n    uniform token type = \"cubic\"\n    uniform token basis = \"catmullRom\"\n    int[] curveVertexCounts = [4]\n    point3f[] points = [(0,0,0),(0,1,0),(1,1,0),(1,0,0)]\n}",
         ),
+        usda(
+            "def Xform \"G\"\n{\n    double3 xformOp:translate = (0, 0, 10)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n    def Mesh \"M\"\n    {\n        point3f[] points = [(0,0,0),(1,0,0),(1,1,0),(0,1,0),(0,0,1)]\n        int[] faceVertexCounts = [4, 3]\n        int[] faceVertexIndices = [0, 1, 2, 3, 0, 1, 4]\n        normal3f[] normals = [(0,0,1),(0,0,1),(0,0,1),(0,0,1),(0,1,0)]\n        uniform token orientation = \"leftHanded\"\n        color3f[] primvars:displayColor = [(0.5, 0.4, 0.3)]\n    }\n}",
+        ),
     ];
     // Text only: openusd 0.6's crate (.usdc) reader allocates the sizes a
     // file claims before checking them, so a mutated .usdc aborts the
@@ -540,6 +551,36 @@ fn fuzz_usd_reader() {
     fuzz("usd", 40_000, 0.045, strategy, |input| {
         let bytes = input.to_vec();
         let mut accepted = false;
+        // The same stages as scene meshes: every Mesh prim, or none found.
+        for prim in [None, Some("/G")] {
+            let limits = plait_hair::mesh_file::Limits::DEFAULT;
+            match plait_hair::usd::mesh::read_bytes(
+                Path::new("m.usda"),
+                bytes.clone(),
+                prim,
+                &limits,
+                false,
+            ) {
+                Ok(mesh) => {
+                    accepted = true;
+                    let n = mesh.vertices.len() as u32;
+                    prop_assert!(
+                        mesh.indices.len() % 3 == 0 && mesh.indices.iter().all(|&i| i < n)
+                    );
+                    prop_assert!(
+                        mesh.vertices.iter().all(|v| v
+                            .position
+                            .iter()
+                            .chain(&v.normal)
+                            .all(|c| c.is_finite()))
+                    );
+                }
+                Err(e) if e.message.starts_with(plait_hair::usd::mesh::READER_PANIC) => {
+                    return Err(TestCaseError::fail(format!("{e}")));
+                }
+                Err(_) => {}
+            }
+        }
         for prim in [None, Some("/G".to_string())] {
             let options = UsdOptions {
                 prim,

@@ -13,22 +13,36 @@ use super::stage;
 use crate::mesh::{Mesh, MeshVertex};
 use crate::mesh_file::{Limits, MeshFileError};
 
+/// The start of the message when openusd panicked on a file (the fuzz
+/// target fails on it).
+pub const READER_PANIC: &str = "the USD reader failed on this file (a bug in openusd)";
+
 /// Reads every `Mesh` prim of the stage at `path` (under `prim` if given).
 pub fn read(path: &Path, prim: Option<&str>, limits: &Limits) -> Result<Mesh, MeshFileError> {
+    let bytes = crate::mesh_file::read_file(path, limits)?;
+    read_bytes(path, bytes, prim, limits, true)
+}
+
+/// Reads `bytes` as the USD file `path` (named in errors; its extension
+/// picks the format). `on_disk`: layers it names resolve beside it.
+pub fn read_bytes(
+    path: &Path,
+    bytes: Vec<u8>,
+    prim: Option<&str>,
+    limits: &Limits,
+    on_disk: bool,
+) -> Result<Mesh, MeshFileError> {
     let error = |message: String| MeshFileError {
         path: path.to_path_buf(),
         message,
     };
-    let bytes = crate::mesh_file::read_file(path, limits)?;
     // openusd may panic on malformed input: reported, never a crash.
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        read_stage(path, bytes, prim, limits)
+        read_stage(path, bytes, prim, limits, on_disk)
     }));
     match result {
         Ok(r) => r.map_err(error),
-        Err(_) => Err(error(
-            "the USD reader failed on this file (a bug in openusd); please report it".into(),
-        )),
+        Err(_) => Err(error(format!("{READER_PANIC}; please report it"))),
     }
 }
 
@@ -37,8 +51,9 @@ fn read_stage(
     bytes: Vec<u8>,
     prim: Option<&str>,
     limits: &Limits,
+    on_disk: bool,
 ) -> Result<Mesh, String> {
-    let stage = stage::open(path, bytes, true).map_err(|e| e.to_string())?;
+    let stage = stage::open(path, bytes, on_disk).map_err(|e| e.to_string())?;
     let units = stage::units(&stage)
         .map_err(|(field, message)| format!("prim `/`, field `{field}`: {message}"))?;
     let found = select(&stage, prim)?;

@@ -18,7 +18,7 @@
 
 mod crate_check;
 pub mod curves;
-pub(crate) mod mesh;
+pub mod mesh;
 mod read;
 pub(crate) mod stage;
 mod write;
