@@ -1,5 +1,7 @@
 //! Writes the files the example scenes read that the repository makes
-//! itself: `examples/scenes/head.glb`, the head of `mesh_head.toml`.
+//! itself: `examples/scenes/head.glb`, the head of `mesh_head.toml`, and
+//! `examples/scenes/groom.usda`, its groom (`plait_hair::usd::example_groom_usda`:
+//! the procedural groom grown over the same ellipsoid, written as USD).
 //!
 //!     cargo run --example make_assets [-- OUT_DIR]
 //!
@@ -19,6 +21,10 @@ fn main() -> std::io::Result<()> {
     std::fs::create_dir_all(&dir)?;
     let path = dir.join("head.glb");
     let bytes = plait_hair::mesh_file::write::example_head_glb();
+    std::fs::write(&path, &bytes)?;
+    println!("{}: {} bytes", path.display(), bytes.len());
+    let path = dir.join("groom.usda");
+    let bytes = plait_hair::usd::example_groom_usda();
     std::fs::write(&path, &bytes)?;
     println!("{}: {} bytes", path.display(), bytes.len());
     Ok(())

@@ -69,6 +69,16 @@ fn the_committed_example_head_is_what_make_assets_writes() {
 }
 
 #[test]
+fn the_committed_example_groom_is_what_make_assets_writes() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/groom.usda");
+    let committed = std::fs::read(&path).expect("examples/scenes/groom.usda is committed");
+    assert!(
+        committed == crate::usd::example_groom_usda(),
+        "examples/scenes/groom.usda differs from what `cargo run --example make_assets` writes; run it"
+    );
+}
+
+#[test]
 fn json_gltf_with_an_external_bin_reads() {
     let dir = tempfile::tempdir().expect("temp dir");
     let bytes = to_glb(&triangle());

@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 use crate::strands::Strands;
 pub use curves::{Basis, CurveKind, CurvesData, Interpolation, Primvar, Wrap};
 pub use stage::StageUnits;
-pub use write::{WriteFormat, write};
+pub use write::{WriteFormat, example_groom_usda, write};
 
 /// Segments per cubic span when a scene or command does not say.
 pub const DEFAULT_SEGMENTS_PER_SPAN: u32 = 8;

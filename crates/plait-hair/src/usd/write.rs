@@ -190,3 +190,24 @@ fn layer(strands: &Strands, counts: Vec<i32>) -> Result<sdf::Data, String> {
     }
     Ok(data)
 }
+
+/// The example groom (`examples/scenes/groom.usda`): 300 strands of
+/// the procedural groom grown over the example head's ellipsoid (the shape
+/// of `examples/scenes/head.glb`), written as `.usda` with widths and
+/// colours. `cargo run --example make_assets` writes it; a test checks the
+/// committed file is these bytes.
+pub fn example_groom_usda() -> Vec<u8> {
+    let spec = crate::groom::GroomSpec {
+        style: crate::groom::Style::Straight,
+        strands: 300,
+        segments: 12,
+        seed: 7,
+        length: 2.0,
+        thickness: 0.012,
+        alpha: 0.85,
+        color: [0.25, 0.15, 0.07],
+        ..Default::default()
+    };
+    let strands = crate::groom::generate(&spec);
+    write(&strands, WriteFormat::Usda).expect("the procedural groom has strands")
+}
