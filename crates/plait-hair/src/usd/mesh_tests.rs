@@ -158,3 +158,41 @@ fn limits_are_checked() {
         "{e}"
     );
 }
+
+#[test]
+fn a_scene_names_usd_meshes_under_a_prim() {
+    let path = write("scene_cube.usda", &stage("metersPerUnit = 1", CUBE));
+    let scene_path = path.with_file_name("scene.toml");
+    let scene = |extra: &str, file: &str| {
+        format!(
+            "[hair.procedural]\nstrands = 10\nsegments = 4\n\n[[meshes]]\nfile = \"{file}\"\nrole = \"static\"\n{extra}\n"
+        )
+    };
+    let s = crate::scene::Scene::from_toml_str(
+        &scene("prim = \"/Head\"", "scene_cube.usda"),
+        &scene_path,
+    )
+    .expect("a USD mesh under /Head loads");
+    assert_eq!(s.meshes.len(), 1);
+    assert_eq!(s.meshes[0].mesh.albedo, [0.5, 0.25, 0.125]);
+    let e = crate::scene::Scene::from_toml_str(
+        &scene("prim = \"/Hed\"", "scene_cube.usda"),
+        &scene_path,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("scene_cube.usda") && e.contains("did you mean `/Head`"),
+        "{e}"
+    );
+    let e = crate::scene::Scene::from_toml_str(
+        &scene("prim = \"Head\"", "scene_cube.usda"),
+        &scene_path,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("meshes[0].prim must be an absolute prim path"),
+        "{e}"
+    );
+}
