@@ -40,7 +40,11 @@ impl SignedDistanceField {
     /// raised to 4 at least.
     pub fn bake(mesh: &Mesh, resolution: u32) -> SignedDistanceField {
         let resolution = resolution.max(4);
-        let points: Vec<Vec3> = mesh.vertices.iter().map(|v| Vec3::from(v.position)).collect();
+        let points: Vec<Vec3> = mesh
+            .vertices
+            .iter()
+            .map(|v| Vec3::from(v.position))
+            .collect();
         let (lo, hi) = points.iter().fold(
             (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
             |(lo, hi), p| (lo.min(*p), hi.max(*p)),
@@ -146,8 +150,16 @@ impl Grid {
     /// Grid index range of coordinates `lo..=hi` (clamped to the grid).
     fn span(&self, lo: Vec3, hi: Vec3) -> ([u32; 3], [u32; 3]) {
         let top = glam::UVec3::from(self.dims) - glam::UVec3::ONE;
-        let a = ((lo - self.origin) / self.cell).floor().max(Vec3::ZERO).as_uvec3().min(top);
-        let b = ((hi - self.origin) / self.cell).ceil().max(Vec3::ZERO).as_uvec3().min(top);
+        let a = ((lo - self.origin) / self.cell)
+            .floor()
+            .max(Vec3::ZERO)
+            .as_uvec3()
+            .min(top);
+        let b = ((hi - self.origin) / self.cell)
+            .ceil()
+            .max(Vec3::ZERO)
+            .as_uvec3()
+            .min(top);
         (a.to_array(), b.to_array())
     }
 
@@ -178,16 +190,25 @@ impl Grid {
         let [nx, ny, nz] = self.dims.map(|d| d as i64);
         for _round in 0..2 {
             for order in 0..8 {
-                let step = [1 - 2 * (order & 1), 1 - 2 * ((order >> 1) & 1), 1 - 2 * ((order >> 2) & 1)];
+                let step = [
+                    1 - 2 * (order & 1),
+                    1 - 2 * ((order >> 1) & 1),
+                    1 - 2 * ((order >> 2) & 1),
+                ];
                 let range = |n: i64, s: i64| -> Vec<i64> {
-                    if s > 0 { (0..n).collect() } else { (0..n).rev().collect() }
+                    if s > 0 {
+                        (0..n).collect()
+                    } else {
+                        (0..n).rev().collect()
+                    }
                 };
                 for k in range(nz, step[2]) {
                     for j in range(ny, step[1]) {
                         for i in range(nx, step[0]) {
                             let here = self.index(i as u32, j as u32, k as u32);
                             let p = self.point(i as u32, j as u32, k as u32);
-                            for (di, dj, dk) in [(step[0], 0, 0), (0, step[1], 0), (0, 0, step[2])] {
+                            for (di, dj, dk) in [(step[0], 0, 0), (0, step[1], 0), (0, 0, step[2])]
+                            {
                                 let (a, b, c) = (i - di, j - dj, k - dk);
                                 if a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz {
                                     continue;
@@ -350,8 +371,12 @@ mod tests {
     fn triangle_distance_by_region() {
         let t = [Vec3::ZERO, Vec3::X, Vec3::Y];
         assert!((point_triangle_distance(Vec3::new(0.2, 0.2, 0.5), &t) - 0.5).abs() < 1e-6);
-        assert!((point_triangle_distance(Vec3::new(-1.0, -1.0, 0.0), &t) - 2f32.sqrt()).abs() < 1e-6);
+        assert!(
+            (point_triangle_distance(Vec3::new(-1.0, -1.0, 0.0), &t) - 2f32.sqrt()).abs() < 1e-6
+        );
         assert!((point_triangle_distance(Vec3::new(0.5, -2.0, 0.0), &t) - 2.0).abs() < 1e-6);
-        assert!((point_triangle_distance(Vec3::new(1.0, 1.0, 0.0), &t) - 0.5f32.sqrt()).abs() < 1e-6);
+        assert!(
+            (point_triangle_distance(Vec3::new(1.0, 1.0, 0.0), &t) - 0.5f32.sqrt()).abs() < 1e-6
+        );
     }
 }

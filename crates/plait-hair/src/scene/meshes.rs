@@ -82,7 +82,8 @@ impl MeshToml {
         {
             return Err(format!("{field}.albedo must be finite"));
         }
-        self.transform.validate_named(&format!("{field}.transform"))?;
+        self.transform
+            .validate_named(&format!("{field}.transform"))?;
         match (self.role, self.sdf_resolution) {
             (MeshRole::Static, Some(_)) => Err(format!(
                 "{field}.sdf_resolution applies to role = \"head\" only (a static mesh does not collide)"

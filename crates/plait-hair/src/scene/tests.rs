@@ -299,11 +299,19 @@ fn a_mesh_head_is_opaque_geometry_that_moves_and_frames() {
     // Fitting: with a tiny groom far off to the side, the camera still sees the head.
     let far = Strands::new();
     let mut tiny = far.clone();
-    tiny.push_strand(&[Vec3::new(5.0, 0.0, 0.0), Vec3::new(5.0, 0.1, 0.0)], |_| 0.01, |_| 1.0, Vec3::ONE);
+    tiny.push_strand(
+        &[Vec3::new(5.0, 0.0, 0.0), Vec3::new(5.0, 0.1, 0.0)],
+        |_| 0.01,
+        |_| 1.0,
+        Vec3::ONE,
+    );
     s.frame(tiny.bounds());
     let c = &s.camera;
     let target = Vec3::from(c.target);
-    assert!(target.x < 4.0, "the fit ignores the head mesh: target {target}");
+    assert!(
+        target.x < 4.0,
+        "the fit ignores the head mesh: target {target}"
+    );
 }
 
 fn scene_with_meshes(text: &str) -> Result<Scene, SceneError> {
@@ -322,27 +330,43 @@ fn mesh_entries_are_checked_and_named() {
     let role = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"hed\"\n")
         .unwrap_err()
         .to_string();
-    assert!(role.contains("mesh_test.toml:3:8") && role.contains("head"), "{role}");
+    assert!(
+        role.contains("mesh_test.toml:3:8") && role.contains("head"),
+        "{role}"
+    );
     let two = scene_with_meshes(
         "[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\n[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\n",
     )
     .unwrap_err()
     .to_string();
     assert!(two.contains("2 meshes have role = \"head\""), "{two}");
-    let sdf = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\nsdf_resolution = 16\n")
-        .unwrap_err()
-        .to_string();
-    assert!(sdf.contains("meshes[0].sdf_resolution applies to role = \"head\" only"), "{sdf}");
-    let res = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\nsdf_resolution = 1000\n")
-        .unwrap_err()
-        .to_string();
-    assert!(res.contains("meshes[0].sdf_resolution must be in 4..=128"), "{res}");
+    let sdf = scene_with_meshes(
+        "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\nsdf_resolution = 16\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        sdf.contains("meshes[0].sdf_resolution applies to role = \"head\" only"),
+        "{sdf}"
+    );
+    let res = scene_with_meshes(
+        "[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\nsdf_resolution = 1000\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        res.contains("meshes[0].sdf_resolution must be in 4..=128"),
+        "{res}"
+    );
     let transform = scene_with_meshes(
         "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\n[meshes.transform]\nscale = 0.0\n",
     )
     .unwrap_err()
     .to_string();
-    assert!(transform.contains("meshes[0].transform is not invertible"), "{transform}");
+    assert!(
+        transform.contains("meshes[0].transform is not invertible"),
+        "{transform}"
+    );
     // A static mesh, placed: moved by the transform, keeps its file's name.
     let placed = scene_with_meshes(
         "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\n[meshes.transform]\ntranslate = [3.0, 0.0, 0.0]\n",
