@@ -383,19 +383,27 @@ fn fuzz_gltf_reader() {
     }
     let limits = Limits::DEFAULT;
     // Measured: 7% accepted.
-    fuzz("gltf", 100_000, 0.035, mutated(&seeds, GLTF_TOKENS), |bytes| {
-        let Ok(mesh) = gltf::read_bytes(bytes, Path::new("x.glb"), &limits) else {
-            return Ok(false);
-        };
-        let again = gltf::read_bytes(&write::to_glb(&mesh), Path::new("y.glb"), &limits)
-            .map_err(|e| TestCaseError::fail(format!("written mesh does not read back: {e}")))?;
-        let positions = |m: &Mesh| m.vertices.iter().map(|v| v.position).collect::<Vec<_>>();
-        prop_assert_eq!(positions(&again), positions(&mesh));
-        prop_assert_eq!(&again.indices, &mesh.indices);
-        let sdf = plait_hair::sdf::SignedDistanceField::bake(&mesh, 6);
-        prop_assert!(sdf.values.iter().all(|d| !d.is_nan()));
-        Ok(true)
-    });
+    fuzz(
+        "gltf",
+        100_000,
+        0.035,
+        mutated(&seeds, GLTF_TOKENS),
+        |bytes| {
+            let Ok(mesh) = gltf::read_bytes(bytes, Path::new("x.glb"), &limits) else {
+                return Ok(false);
+            };
+            let again = gltf::read_bytes(&write::to_glb(&mesh), Path::new("y.glb"), &limits)
+                .map_err(|e| {
+                    TestCaseError::fail(format!("written mesh does not read back: {e}"))
+                })?;
+            let positions = |m: &Mesh| m.vertices.iter().map(|v| v.position).collect::<Vec<_>>();
+            prop_assert_eq!(positions(&again), positions(&mesh));
+            prop_assert_eq!(&again.indices, &mesh.indices);
+            let sdf = plait_hair::sdf::SignedDistanceField::bake(&mesh, 6);
+            prop_assert!(sdf.values.iter().all(|d| !d.is_nan()));
+            Ok(true)
+        },
+    );
 }
 
 /// `.tfx` (both versions): read, write as TressFX 4, read again: the same

@@ -32,7 +32,10 @@ fn small_mesh_head_scene() -> SceneData {
     let path = repo_root().join("examples/scenes/small.toml");
     let text = std::fs::read_to_string(&path).expect("small.toml");
     let start = text.find("[head]").expect("small.toml has a [head]");
-    let end = start + text[start..].find("\n\n").expect("a blank line after [head]");
+    let end = start
+        + text[start..]
+            .find("\n\n")
+            .expect("a blank line after [head]");
     let head = repo_root().join("examples/scenes/head.glb");
     let text = format!(
         "{}[[meshes]]\nfile = {:?}\nrole = \"head\"{}",

@@ -26,7 +26,10 @@ const ELLIPSOID_HEAD: &str = "[head]\ncenter = [0.0, 0.0, 0.0]\nradii = [0.9, 1.
 /// its signed distance field only (the scene has no ellipsoid).
 fn mesh_head() -> String {
     let file = repo_root().join("examples/scenes/head.glb");
-    format!("[[meshes]]\nfile = {:?}\nrole = \"head\"\n", file.display().to_string())
+    format!(
+        "[[meshes]]\nfile = {:?}\nrole = \"head\"\n",
+        file.display().to_string()
+    )
 }
 
 fn groom_on(strands: u32, guides: Option<u32>, head: &str) -> SceneData {
@@ -261,7 +264,10 @@ fn collisions_keep_the_hair_outside_a_mesh_head() {
     let mut without = groom_on(16, None, &mesh_head());
     without.head_sdf = None;
     let deepest = pressed_onto(&gpu, &without);
-    assert!(deepest < 0.95, "with no collider the hair enters the head: |q| = {deepest}");
+    assert!(
+        deepest < 0.95,
+        "with no collider the hair enters the head: |q| = {deepest}"
+    );
 }
 
 /// The deepest node (in ellipsoid units, 1 on the surface) after 30 frames
@@ -437,7 +443,10 @@ fn a_mesh_head_turn_keeps_the_hair_outside() {
     let text = std::fs::read_to_string(&path).expect("head_turn.toml");
     let text = text.replace(ELLIPSOID_HEAD, &mesh_head());
     let scene = Scene::from_toml_str(&text, &path).expect("the mesh head turn parses");
-    assert!(scene.head.is_none(), "head_turn.toml's [head] is the default ellipsoid");
+    assert!(
+        scene.head.is_none(),
+        "head_turn.toml's [head] is the default ellipsoid"
+    );
     let scene = SceneData::new(scene).expect("loads");
     head_turn(&gpu, &scene, 0.99);
 }

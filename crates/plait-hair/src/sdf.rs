@@ -30,6 +30,72 @@ pub struct SignedDistanceField {
     pub values: Vec<f32>,
 }
 
+/// Edges of `mesh` that do not border exactly two triangles, with vertices
+/// at the same place (within a millionth of the mesh's size) taken as one: 0
+/// for a closed surface, which the field's sign by parity needs. Counted
+/// once per edge; returns the count and one such edge's end points.
+pub fn open_edges(mesh: &Mesh) -> (usize, Option<[Vec3; 2]>) {
+    use std::collections::HashMap;
+    let points: Vec<Vec3> = mesh
+        .vertices
+        .iter()
+        .map(|v| Vec3::from(v.position))
+        .collect();
+    let (lo, hi) = points.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    // Welding by rounding alone splits two nearly equal points that straddle
+    // a cell boundary; each point looks in the 27 cells around its own for
+    // an earlier one within `tolerance`.
+    let tolerance = ((hi - lo).max_element() * 1e-6).max(f32::MIN_POSITIVE);
+    let cell = |p: Vec3| ((p - lo) / tolerance).floor().as_ivec3();
+    let mut grid: HashMap<[i32; 3], Vec<(Vec3, u32)>> = HashMap::new();
+    let mut count = 0u32;
+    let ids: Vec<u32> = points
+        .iter()
+        .map(|&p| {
+            let c = cell(p);
+            for dz in -1..=1 {
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let near = grid.get(&(c + glam::IVec3::new(dx, dy, dz)).to_array());
+                        if let Some(&(_, id)) = near
+                            .into_iter()
+                            .flatten()
+                            .find(|(q, _)| (*q - p).abs().max_element() <= tolerance)
+                        {
+                            return id;
+                        }
+                    }
+                }
+            }
+            count += 1;
+            grid.entry(c.to_array()).or_default().push((p, count - 1));
+            count - 1
+        })
+        .collect();
+    let mut edges: HashMap<(u32, u32), (u32, [Vec3; 2])> = HashMap::new();
+    for t in mesh.indices.chunks_exact(3) {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            let (i, j) = (ids[a as usize], ids[b as usize]);
+            if i == j {
+                continue; // a collapsed edge (a pole) borders nothing
+            }
+            let e = edges
+                .entry((i.min(j), i.max(j)))
+                .or_insert((0, [points[a as usize], points[b as usize]]));
+            e.0 += 1;
+        }
+    }
+    let open: Vec<&[Vec3; 2]> = edges
+        .values()
+        .filter(|(n, _)| *n != 2)
+        .map(|(_, e)| e)
+        .collect();
+    (open.len(), open.first().map(|e| **e))
+}
+
 /// Floats before the distances in [`SignedDistanceField::gpu_words`].
 pub const GPU_HEADER_WORDS: usize = 8;
 
@@ -40,7 +106,11 @@ impl SignedDistanceField {
     /// raised to 4 at least.
     pub fn bake(mesh: &Mesh, resolution: u32) -> SignedDistanceField {
         let resolution = resolution.max(4);
-        let points: Vec<Vec3> = mesh.vertices.iter().map(|v| Vec3::from(v.position)).collect();
+        let points: Vec<Vec3> = mesh
+            .vertices
+            .iter()
+            .map(|v| Vec3::from(v.position))
+            .collect();
         let (lo, hi) = points.iter().fold(
             (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
             |(lo, hi), p| (lo.min(*p), hi.max(*p)),
@@ -146,8 +216,16 @@ impl Grid {
     /// Grid index range of coordinates `lo..=hi` (clamped to the grid).
     fn span(&self, lo: Vec3, hi: Vec3) -> ([u32; 3], [u32; 3]) {
         let top = glam::UVec3::from(self.dims) - glam::UVec3::ONE;
-        let a = ((lo - self.origin) / self.cell).floor().max(Vec3::ZERO).as_uvec3().min(top);
-        let b = ((hi - self.origin) / self.cell).ceil().max(Vec3::ZERO).as_uvec3().min(top);
+        let a = ((lo - self.origin) / self.cell)
+            .floor()
+            .max(Vec3::ZERO)
+            .as_uvec3()
+            .min(top);
+        let b = ((hi - self.origin) / self.cell)
+            .ceil()
+            .max(Vec3::ZERO)
+            .as_uvec3()
+            .min(top);
         (a.to_array(), b.to_array())
     }
 
@@ -178,16 +256,25 @@ impl Grid {
         let [nx, ny, nz] = self.dims.map(|d| d as i64);
         for _round in 0..2 {
             for order in 0..8 {
-                let step = [1 - 2 * (order & 1), 1 - 2 * ((order >> 1) & 1), 1 - 2 * ((order >> 2) & 1)];
+                let step = [
+                    1 - 2 * (order & 1),
+                    1 - 2 * ((order >> 1) & 1),
+                    1 - 2 * ((order >> 2) & 1),
+                ];
                 let range = |n: i64, s: i64| -> Vec<i64> {
-                    if s > 0 { (0..n).collect() } else { (0..n).rev().collect() }
+                    if s > 0 {
+                        (0..n).collect()
+                    } else {
+                        (0..n).rev().collect()
+                    }
                 };
                 for k in range(nz, step[2]) {
                     for j in range(ny, step[1]) {
                         for i in range(nx, step[0]) {
                             let here = self.index(i as u32, j as u32, k as u32);
                             let p = self.point(i as u32, j as u32, k as u32);
-                            for (di, dj, dk) in [(step[0], 0, 0), (0, step[1], 0), (0, 0, step[2])] {
+                            for (di, dj, dk) in [(step[0], 0, 0), (0, step[1], 0), (0, 0, step[2])]
+                            {
                                 let (a, b, c) = (i - di, j - dj, k - dk);
                                 if a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz {
                                     continue;
@@ -347,11 +434,29 @@ mod tests {
     }
 
     #[test]
+    fn closed_and_open_meshes_are_told_apart() {
+        let head = Mesh::ellipsoid(Vec3::ZERO, Vec3::new(0.9, 1.05, 1.0), 32, 64);
+        assert_eq!(
+            open_edges(&head).0,
+            0,
+            "the UV ellipsoid is closed once its seam is welded"
+        );
+        let mut open = head.clone();
+        open.indices.truncate(open.indices.len() - 3 * 64); // the bottom cap's ring
+        assert_eq!(open_edges(&open).0, 64);
+        assert_eq!(open_edges(&Mesh::ground_plane(Vec3::ZERO, 1.0)).0, 4);
+    }
+
+    #[test]
     fn triangle_distance_by_region() {
         let t = [Vec3::ZERO, Vec3::X, Vec3::Y];
         assert!((point_triangle_distance(Vec3::new(0.2, 0.2, 0.5), &t) - 0.5).abs() < 1e-6);
-        assert!((point_triangle_distance(Vec3::new(-1.0, -1.0, 0.0), &t) - 2f32.sqrt()).abs() < 1e-6);
+        assert!(
+            (point_triangle_distance(Vec3::new(-1.0, -1.0, 0.0), &t) - 2f32.sqrt()).abs() < 1e-6
+        );
         assert!((point_triangle_distance(Vec3::new(0.5, -2.0, 0.0), &t) - 2.0).abs() < 1e-6);
-        assert!((point_triangle_distance(Vec3::new(1.0, 1.0, 0.0), &t) - 0.5f32.sqrt()).abs() < 1e-6);
+        assert!(
+            (point_triangle_distance(Vec3::new(1.0, 1.0, 0.0), &t) - 0.5f32.sqrt()).abs() < 1e-6
+        );
     }
 }

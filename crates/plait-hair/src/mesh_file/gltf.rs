@@ -153,7 +153,10 @@ fn load_buffers(file: &Gltf, path: &Path, limits: &Limits) -> Result<Vec<Vec<u8>
 /// Every placed mesh with its world matrix: the default (or first) scene's
 /// node trees, or every mesh at the identity when the file has no scene.
 fn instances(document: &gltf::Document) -> Result<Vec<(gltf::Mesh<'_>, Mat4)>, String> {
-    let Some(scene) = document.default_scene().or_else(|| document.scenes().next()) else {
+    let Some(scene) = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    else {
         return Ok(document.meshes().map(|m| (m, Mat4::IDENTITY)).collect());
     };
     let mut out = Vec::new();
@@ -170,7 +173,10 @@ fn instances(document: &gltf::Document) -> Result<Vec<(gltf::Mesh<'_>, Mat4)>, S
         }
         let model = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
         if !model.is_finite() {
-            return Err(format!("node {}: its transform is not finite", node.index()));
+            return Err(format!(
+                "node {}: its transform is not finite",
+                node.index()
+            ));
         }
         if let Some(mesh) = node.mesh() {
             out.push((mesh, model));
@@ -231,7 +237,11 @@ fn append_primitive(
             (0..count as u32).collect()
         }
     };
-    if let Some((k, &i)) = indices.iter().enumerate().find(|(_, i)| **i as usize >= count) {
+    if let Some((k, &i)) = indices
+        .iter()
+        .enumerate()
+        .find(|(_, i)| **i as usize >= count)
+    {
         return Err(format!(
             "indices: index {k} is {i}, but POSITION has {count} vertices"
         ));
@@ -370,7 +380,11 @@ fn read_vec3(accessor: &gltf::Accessor<'_>, buffers: &[Vec<u8>]) -> Result<Vec<V
             "is {:?} of {:?}{}; plait reads VEC3 of 32-bit floats",
             accessor.dimensions(),
             accessor.data_type(),
-            if accessor.normalized() { " (normalized)" } else { "" }
+            if accessor.normalized() {
+                " (normalized)"
+            } else {
+                ""
+            }
         ));
     }
     let (bytes, stride) = element_bytes(accessor, buffers, 12)?;

@@ -25,7 +25,7 @@ fn edited(mesh: &Mesh, edit: impl FnOnce(&mut Value)) -> Vec<u8> {
     let mut json: Value = serde_json::from_slice(&glb.json).expect("JSON");
     edit(&mut json);
     let mut text = serde_json::to_vec(&json).expect("serializes");
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
     gltf::binary::Glb {
@@ -75,10 +75,18 @@ fn json_gltf_with_an_external_bin_reads() {
     let glb = gltf::binary::Glb::from_slice(&bytes).expect("splits");
     let mut json: Value = serde_json::from_slice(&glb.json).expect("JSON");
     json["buffers"][0]["uri"] = "tri.bin".into();
-    std::fs::write(dir.path().join("tri.gltf"), serde_json::to_vec(&json).expect("json"))
-        .expect("write");
-    let missing = read(&dir.path().join("tri.gltf"), &Limits::DEFAULT).unwrap_err().to_string();
-    assert!(missing.contains("tri.bin") && missing.contains("buffer 0"), "{missing}");
+    std::fs::write(
+        dir.path().join("tri.gltf"),
+        serde_json::to_vec(&json).expect("json"),
+    )
+    .expect("write");
+    let missing = read(&dir.path().join("tri.gltf"), &Limits::DEFAULT)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        missing.contains("tri.bin") && missing.contains("buffer 0"),
+        "{missing}"
+    );
     std::fs::write(dir.path().join("tri.bin"), glb.bin.as_deref().expect("bin")).expect("write");
     let mesh = read(&dir.path().join("tri.gltf"), &Limits::DEFAULT).expect("reads");
     assert_eq!(mesh.indices, triangle().indices);
@@ -96,7 +104,11 @@ fn bad_files_are_named_with_the_mesh_primitive_and_field() {
                     .remove("POSITION");
             }),
             // The gltf crate's validation names the field.
-            &["bad.glb", "meshes[0].primitives[0].attributes[\"POSITION\"]", "Missing"],
+            &[
+                "bad.glb",
+                "meshes[0].primitives[0].attributes[\"POSITION\"]",
+                "Missing",
+            ],
         ),
         (
             // Index 0 of the index buffer's first u32 made huge.
@@ -111,7 +123,11 @@ fn bad_files_are_named_with_the_mesh_primitive_and_field() {
         ),
         (
             edited(&m, |j| j["accessors"][0]["count"] = 3_000_000_000u64.into()),
-            &["bad.glb", "POSITION claims 3000000000 vertices", "limit of 1048576"],
+            &[
+                "bad.glb",
+                "POSITION claims 3000000000 vertices",
+                "limit of 1048576",
+            ],
         ),
         (
             edited(&m, |j| j["accessors"][0]["count"] = 500_000.into()),
@@ -137,7 +153,9 @@ fn bad_files_are_named_with_the_mesh_primitive_and_field() {
             &["bad.glb", "primitive 0", "triangle lists only"],
         ),
         (
-            edited(&m, |j| j["buffers"][0]["uri"] = "data:application/octet-stream;base64,AAAA".into()),
+            edited(&m, |j| {
+                j["buffers"][0]["uri"] = "data:application/octet-stream;base64,AAAA".into()
+            }),
             &["bad.glb", "data: URI"],
         ),
         (
@@ -145,7 +163,9 @@ fn bad_files_are_named_with_the_mesh_primitive_and_field() {
             &["bad.glb", "POSITION", "VEC3 of 32-bit floats"],
         ),
         (
-            edited(&m, |j| j["meshes"][0]["primitives"][0]["indices"] = 7.into()),
+            edited(&m, |j| {
+                j["meshes"][0]["primitives"][0]["indices"] = 7.into()
+            }),
             &["bad.glb", "not a valid glTF 2.0 file"],
         ),
         (to_glb(&m)[..40].to_vec(), &["bad.glb", "not a valid glTF"]),
@@ -160,8 +180,13 @@ fn bad_files_are_named_with_the_mesh_primitive_and_field() {
             &["bad.glb", "GLB header's length is 3"],
         ),
         (
-            edited(&m, |j| j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9.into()),
-            &["bad.glb", "meshes[0].primitives[0].attributes[\"POSITION\"] is accessor 9, but the file has 3"],
+            edited(&m, |j| {
+                j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9.into()
+            }),
+            &[
+                "bad.glb",
+                "meshes[0].primitives[0].attributes[\"POSITION\"] is accessor 9, but the file has 3",
+            ],
         ),
     ];
     for (bytes, wanted) in cases {
@@ -174,8 +199,15 @@ fn bad_files_are_named_with_the_mesh_primitive_and_field() {
 
 #[test]
 fn missing_files_and_unknown_formats_are_named() {
-    let e = read(Path::new("/nonexistent/head.glb"), &Limits::DEFAULT).unwrap_err().to_string();
+    let e = read(Path::new("/nonexistent/head.glb"), &Limits::DEFAULT)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("/nonexistent/head.glb: cannot read file"), "{e}");
-    let e = read(Path::new("head.obj"), &Limits::DEFAULT).unwrap_err().to_string();
-    assert!(e.contains("head.obj: unknown mesh format `.obj`") && e.contains("`.glb`"), "{e}");
+    let e = read(Path::new("head.obj"), &Limits::DEFAULT)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("head.obj: unknown mesh format `.obj`") && e.contains("`.glb`"),
+        "{e}"
+    );
 }

@@ -65,10 +65,10 @@ pub fn to_glb(mesh: &Mesh) -> Vec<u8> {
     });
     let mut text = serde_json::to_vec(&document).expect("a JSON value serializes");
     // Chunks are 4-byte aligned: JSON padded with spaces, BIN with zeros.
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let length = 12 + 8 + text.len() + 8 + bin.len();
@@ -87,13 +87,9 @@ pub fn to_glb(mesh: &Mesh) -> Vec<u8> {
 /// The example head (`examples/scenes/head.glb`): the built-in scene's head
 /// ellipsoid as a mesh.
 pub fn example_head_glb() -> Vec<u8> {
-    let head = crate::mesh::Mesh::ellipsoid(
-        glam::Vec3::ZERO,
-        glam::Vec3::new(0.9, 1.05, 1.0),
-        32,
-        64,
-    )
-    .with_name("head")
-    .with_albedo([0.75, 0.55, 0.45]);
+    let head =
+        crate::mesh::Mesh::ellipsoid(glam::Vec3::ZERO, glam::Vec3::new(0.9, 1.05, 1.0), 32, 64)
+            .with_name("head")
+            .with_albedo([0.75, 0.55, 0.45]);
     to_glb(&head)
 }

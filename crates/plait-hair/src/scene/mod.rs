@@ -33,8 +33,8 @@ use crate::environment::{Environment, EnvironmentError};
 use crate::hair_file::HairError;
 pub use crate::hair_source::{Hair, HairSource};
 pub use crate::light::{Light, LightKind};
-pub use meshes::{DEFAULT_SDF_RESOLUTION, MAX_SDF_RESOLUTION, MeshRole, SceneMesh, SceneMeshError};
 use crate::tfx::TfxError;
+pub use meshes::{DEFAULT_SDF_RESOLUTION, MAX_SDF_RESOLUTION, MeshRole, SceneMesh, SceneMeshError};
 
 /// Errors loading a scene or its hair.
 #[derive(Debug, thiserror::Error)]

@@ -169,7 +169,8 @@ impl Scene {
         }
         scene.environment.resolve_paths(dir);
         if plait_assets::is_builtin(path) {
-            let mesh_files: Vec<PathBuf> = mesh_entries.iter().map(|m| dir.join(m.file())).collect();
+            let mesh_files: Vec<PathBuf> =
+                mesh_entries.iter().map(|m| dir.join(m.file())).collect();
             scene.check_builtin_files(path, &mesh_files)?;
         }
         for (i, m) in mesh_entries.iter().enumerate() {

@@ -356,11 +356,19 @@ fn a_mesh_head_is_opaque_geometry_that_moves_and_frames() {
     // Fitting: with a tiny groom far off to the side, the camera still sees the head.
     let far = Strands::new();
     let mut tiny = far.clone();
-    tiny.push_strand(&[Vec3::new(5.0, 0.0, 0.0), Vec3::new(5.0, 0.1, 0.0)], |_| 0.01, |_| 1.0, Vec3::ONE);
+    tiny.push_strand(
+        &[Vec3::new(5.0, 0.0, 0.0), Vec3::new(5.0, 0.1, 0.0)],
+        |_| 0.01,
+        |_| 1.0,
+        Vec3::ONE,
+    );
     s.frame(tiny.bounds());
     let c = &s.camera;
     let target = Vec3::from(c.target);
-    assert!(target.x < 4.0, "the fit ignores the head mesh: target {target}");
+    assert!(
+        target.x < 4.0,
+        "the fit ignores the head mesh: target {target}"
+    );
 }
 
 fn scene_with_meshes(text: &str) -> Result<Scene, SceneError> {
@@ -379,27 +387,43 @@ fn mesh_entries_are_checked_and_named() {
     let role = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"hed\"\n")
         .unwrap_err()
         .to_string();
-    assert!(role.contains("mesh_test.toml:3:8") && role.contains("head"), "{role}");
+    assert!(
+        role.contains("mesh_test.toml:3:8") && role.contains("head"),
+        "{role}"
+    );
     let two = scene_with_meshes(
         "[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\n[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\n",
     )
     .unwrap_err()
     .to_string();
     assert!(two.contains("2 meshes have role = \"head\""), "{two}");
-    let sdf = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\nsdf_resolution = 16\n")
-        .unwrap_err()
-        .to_string();
-    assert!(sdf.contains("meshes[0].sdf_resolution applies to role = \"head\" only"), "{sdf}");
-    let res = scene_with_meshes("[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\nsdf_resolution = 1000\n")
-        .unwrap_err()
-        .to_string();
-    assert!(res.contains("meshes[0].sdf_resolution must be in 4..=128"), "{res}");
+    let sdf = scene_with_meshes(
+        "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\nsdf_resolution = 16\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        sdf.contains("meshes[0].sdf_resolution applies to role = \"head\" only"),
+        "{sdf}"
+    );
+    let res = scene_with_meshes(
+        "[[meshes]]\nfile = \"head.glb\"\nrole = \"head\"\nsdf_resolution = 1000\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        res.contains("meshes[0].sdf_resolution must be in 4..=128"),
+        "{res}"
+    );
     let transform = scene_with_meshes(
         "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\n[meshes.transform]\nscale = 0.0\n",
     )
     .unwrap_err()
     .to_string();
-    assert!(transform.contains("meshes[0].transform is not invertible"), "{transform}");
+    assert!(
+        transform.contains("meshes[0].transform is not invertible"),
+        "{transform}"
+    );
     // A static mesh, placed: moved by the transform, keeps its file's name.
     let placed = scene_with_meshes(
         "[[meshes]]\nfile = \"head.glb\"\nrole = \"static\"\n[meshes.transform]\ntranslate = [3.0, 0.0, 0.0]\n",
@@ -408,4 +432,27 @@ fn mesh_entries_are_checked_and_named() {
     assert!(placed.head_mesh().is_none());
     assert!((placed.file_mesh_bounds().min.x - 2.1).abs() < 1e-3);
     assert!(placed.opaque_meshes().iter().all(|m| !m.head));
+}
+
+/// A head mesh must be closed (its collision field's sign counts
+/// crossings); an open one is refused naming the file, a static one is fine.
+#[test]
+fn an_open_head_mesh_is_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut open = crate::mesh::Mesh::ellipsoid(Vec3::ZERO, Vec3::ONE, 8, 16);
+    open.indices.truncate(open.indices.len() - 3 * 16);
+    let file = dir.path().join("open.glb");
+    std::fs::write(&file, crate::mesh_file::write::to_glb(&open)).expect("write");
+    let text = |role: &str| {
+        format!(
+            "[[meshes]]\nfile = {:?}\nrole = {role:?}\n",
+            file.display().to_string()
+        )
+    };
+    let e = scene_with_meshes(&text("head")).unwrap_err().to_string();
+    assert!(
+        e.contains("open.glb: the head mesh is not closed: 16 edges") && e.contains("meshes[0]"),
+        "{e}"
+    );
+    scene_with_meshes(&text("static")).expect("an open static mesh is fine");
 }
