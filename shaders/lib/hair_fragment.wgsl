@@ -20,9 +20,8 @@
 // each strand by a compute pass (`strand`, Tafuri 2019's "strand space"),
 // whose radiance the fragment interpolates instead of shading.
 //
-// Group 1 binding 0 is the opaque shadow map (slot `shadow_map`, bound by
-// `plait::hair_radiance`); bindings 10–54 belong to the providers; a
-// technique's own slots start at 60.
+// Group 1 binding 0 is the opaque shadow map (slot `shadow_map`); bindings
+// 10–54 belong to the providers; a technique's own slots start at 60.
 #define_import_path plait::hair_fragment
 
 #import plait::frame::{frame, view_proj}
@@ -30,6 +29,8 @@
 #import plait::ambient_occlusion::occlusion_at
 #import plait::shading_space::strand_space_radiance
 #import plait::strand_coverage::strand_coverage
+
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
 
 // A hair vertex as the scene's hair vertex buffer holds it.
 struct HairVertex {
@@ -93,7 +94,7 @@ fn shade_hair(in: HairVaryings) -> HairFragment {
     if (shaded.w > 0.0) {
         return HairFragment(shaded.rgb, fragment_alpha(in));
     }
-    let rgb = hair_radiance(in.world, in.tangent, in.color, in.occlusion);
+    let rgb = hair_radiance(shadow_map, in.world, in.tangent, in.color, in.occlusion);
     return HairFragment(rgb, fragment_alpha(in));
 }
 

@@ -6,7 +6,9 @@
 // and the strand-space compute pass (`techniques/shading_space/strand/`)
 // cannot shade differently.
 //
-// Group 1 binding 0 is the opaque shadow map (slot `shadow_map`).
+// The opaque shadow map is an argument: the caller binds it (group 1 binding
+// 0, slot `shadow_map`), so a pass that imports the hair stage without
+// shading (ShortCut's depth pass) binds no shadow map.
 #define_import_path plait::hair_radiance
 
 #import plait::frame::{frame, to_light}
@@ -15,12 +17,10 @@
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
 
-@group(1) @binding(0) var shadow_map: texture_depth_2d;
-
 // `tangent` need not be unit length; `color` is the strand's colour (the
 // frame's hair colour multiplies it); `occlusion` the fraction of the
 // environment's light reaching the point.
-fn hair_radiance(world: vec3<f32>, tangent_in: vec3<f32>, color: vec3<f32>, occlusion: f32) -> vec3<f32> {
+fn hair_radiance(shadow_map: texture_depth_2d, world: vec3<f32>, tangent_in: vec3<f32>, color: vec3<f32>, occlusion: f32) -> vec3<f32> {
     let tangent = normalize(tangent_in);
     let l = to_light(world);
     let e = normalize(frame.camera_position.xyz - world);

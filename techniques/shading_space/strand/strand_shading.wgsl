@@ -31,6 +31,7 @@ struct Strand {
 struct ShadingSpaceParams {
     shading_points: u32,
 }
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(60) var<uniform> shading_space_params: ShadingSpaceParams;
 @group(1) @binding(61) var<storage, read_write> strand_radiance: array<vec4<f32>>;
 @group(1) @binding(62) var<storage, read> strands: array<Strand>;
@@ -60,5 +61,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let tangent = mix(a.tangent, b.tangent, f);
     let color = mix(a.color, b.color, f);
     let occlusion = mix(occlusion_at(first + i0), occlusion_at(first + i1), f);
-    strand_radiance[id.x] = vec4<f32>(hair_radiance(world, tangent, color, occlusion), 1.0);
+    strand_radiance[id.x] = vec4<f32>(hair_radiance(shadow_map, world, tangent, color, occlusion), 1.0);
 }
