@@ -1,7 +1,7 @@
 //! USD text (`.usda`): any bytes give a groom or an error; a groom writes
 //! back as `.usda` and reads again to the same strands. Text only, as in
-//! `tests/fuzz.rs`: openusd 0.6's `.usdc` reader allocates the sizes a file
-//! claims before checking them (docs/formats.md, "USD grooms").
+//! `tests/fuzz.rs`: openusd 0.6's `.usdc` reader allocates sizes a file
+//! claims deep in it before checking them (docs/formats.md, "USD grooms").
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use plait_hair::usd::{self, UsdGroom, UsdOptions, WriteFormat};

@@ -12,19 +12,22 @@
 // (Sintorn & Assarsson 2009 §3.5) and by the hair itself (`self_shadow`),
 // plus the rest of the environment's light (`lighting`) darkened by per-vertex
 // occlusion (`ambient_occlusion`): one provider per choice point, chosen by the
-// pass's `uses`. Its alpha is the strand's alpha × the part of the pixel the
-// strand covers (`strand_coverage`).
+// pass's `uses` (`plait::hair_radiance`). Its alpha is the strand's alpha ×
+// the part of the pixel the strand covers (`strand_coverage`).
+//
+// Where the colour is computed is a choice point too (`shading_space`): per
+// fragment (`fragment`, the default), or once per frame at a few points of
+// each strand by a compute pass (`strand`, Tafuri 2019's "strand space"),
+// whose radiance the fragment interpolates instead of shading.
 //
 // Group 1 binding 0 is the opaque shadow map (slot `shadow_map`); bindings
-// 10–49 belong to the providers; a technique's own slots start at 60.
+// 10–54 belong to the providers; a technique's own slots start at 60.
 #define_import_path plait::hair_fragment
 
-#import plait::frame::{frame, view_proj, to_light}
-#import plait::shading::shade_direct
-#import plait::lighting::shade_environment
+#import plait::frame::{frame, view_proj}
+#import plait::hair_radiance::hair_radiance
 #import plait::ambient_occlusion::occlusion_at
-#import plait::shadow::opaque_shadow
-#import plait::self_shadow::self_shadow
+#import plait::shading_space::strand_space_radiance
 #import plait::strand_coverage::strand_coverage
 #import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha}
 
@@ -53,6 +56,13 @@ struct HairVaryings {
     @location(3) alpha: f32,
     // Fraction of the environment's light reaching the strand here.
     @location(4) occlusion: f32,
+    // Where the fragment lies along its strand, for strand-space shading: the
+    // strand, the segment's first vertex (the line's provoking vertex; hair
+    // segments join vertices i and i + 1), and the vertex index's parity,
+    // interpolated — 0 → 1 from an even first vertex, 1 → 0 from an odd one.
+    @location(5) @interpolate(flat) strand: u32,
+    @location(6) @interpolate(flat) segment: u32,
+    @location(7) parity: f32,
 }
 
 // A shaded hair fragment: straight (not premultiplied) colour and alpha.
@@ -73,19 +83,26 @@ fn hair_vertex(v: HairVertex) -> HairVaryings {
     // of alpha to coverage).
     out.alpha = strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness), lod);
     out.occlusion = occlusion_at(v.index);
+    out.strand = v.strand_id;
+    out.segment = v.index;
+    out.parity = f32(v.index & 1u);
     return out;
 }
 
 fn shade_hair(in: HairVaryings) -> HairFragment {
-    let tangent = normalize(in.tangent);
-    let l = to_light(in.world);
-    let e = normalize(frame.camera_position.xyz - in.world);
-    let visibility = self_shadow(in.world) * opaque_shadow(shadow_map, in.world, 0.002);
-    let base = in.color * frame.hair_color.rgb;
-    let direct = shade_direct(tangent, l, e, base);
-    let environment = shade_environment(in.world, tangent, e, base) * in.occlusion;
-    let rgb = frame.light_color.rgb * direct * visibility + environment;
+    // Strand space: the radiance a compute pass shaded along the strand this
+    // frame, interpolated; w = 0 when the colour is shaded here.
+    let shaded = strand_space_radiance(in.strand, in.segment, segment_fraction(in));
+    if (shaded.w > 0.0) {
+        return HairFragment(shaded.rgb, fragment_alpha(in));
+    }
+    let rgb = hair_radiance(shadow_map, in.world, in.tangent, in.color, in.occlusion);
     return HairFragment(rgb, fragment_alpha(in));
+}
+
+// How far along its segment the fragment lies, 0 at the segment's first vertex.
+fn segment_fraction(in: HairVaryings) -> f32 {
+    return select(in.parity, 1.0 - in.parity, (in.segment & 1u) == 1u);
 }
 
 // The fragment's alpha alone (coverage × strand alpha × hair colour alpha),

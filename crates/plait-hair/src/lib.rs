@@ -4,6 +4,9 @@
 //! - [`Strands`]: the renderable model (points, per-point thickness, alpha,
 //!   color), its bounds, and its GPU line-list layout [`StrandVertex`].
 //! - [`mesh`]: opaque geometry (head ellipsoid, ground plane).
+//! - [`mesh_file`]: mesh files a scene names (`[[meshes]]`: glTF 2.0),
+//!   read with every count bounded first, and written (`.glb`).
+//! - [`sdf`]: a mesh's signed distance field, the head mesh's collider.
 //! - [`groom`]: deterministic procedural grooms, guide strands with barycentric
 //!   interpolation (Halén & Wester 2007 §2.5), stray strands
 //!   (Sintorn & Assarsson 2009 Fig. 4/5).

@@ -30,6 +30,72 @@ pub struct SignedDistanceField {
     pub values: Vec<f32>,
 }
 
+/// Edges of `mesh` that do not border exactly two triangles, with vertices
+/// at the same place (within a millionth of the mesh's size) taken as one: 0
+/// for a closed surface, which the field's sign by parity needs. Counted
+/// once per edge; returns the count and one such edge's end points.
+pub fn open_edges(mesh: &Mesh) -> (usize, Option<[Vec3; 2]>) {
+    use std::collections::HashMap;
+    let points: Vec<Vec3> = mesh
+        .vertices
+        .iter()
+        .map(|v| Vec3::from(v.position))
+        .collect();
+    let (lo, hi) = points.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    // Welding by rounding alone splits two nearly equal points that straddle
+    // a cell boundary; each point looks in the 27 cells around its own for
+    // an earlier one within `tolerance`.
+    let tolerance = ((hi - lo).max_element() * 1e-6).max(f32::MIN_POSITIVE);
+    let cell = |p: Vec3| ((p - lo) / tolerance).floor().as_ivec3();
+    let mut grid: HashMap<[i32; 3], Vec<(Vec3, u32)>> = HashMap::new();
+    let mut count = 0u32;
+    let ids: Vec<u32> = points
+        .iter()
+        .map(|&p| {
+            let c = cell(p);
+            for dz in -1..=1 {
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let near = grid.get(&(c + glam::IVec3::new(dx, dy, dz)).to_array());
+                        if let Some(&(_, id)) = near
+                            .into_iter()
+                            .flatten()
+                            .find(|(q, _)| (*q - p).abs().max_element() <= tolerance)
+                        {
+                            return id;
+                        }
+                    }
+                }
+            }
+            count += 1;
+            grid.entry(c.to_array()).or_default().push((p, count - 1));
+            count - 1
+        })
+        .collect();
+    let mut edges: HashMap<(u32, u32), (u32, [Vec3; 2])> = HashMap::new();
+    for t in mesh.indices.chunks_exact(3) {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            let (i, j) = (ids[a as usize], ids[b as usize]);
+            if i == j {
+                continue; // a collapsed edge (a pole) borders nothing
+            }
+            let e = edges
+                .entry((i.min(j), i.max(j)))
+                .or_insert((0, [points[a as usize], points[b as usize]]));
+            e.0 += 1;
+        }
+    }
+    let open: Vec<&[Vec3; 2]> = edges
+        .values()
+        .filter(|(n, _)| *n != 2)
+        .map(|(_, e)| e)
+        .collect();
+    (open.len(), open.first().map(|e| **e))
+}
+
 /// Floats before the distances in [`SignedDistanceField::gpu_words`].
 pub const GPU_HEADER_WORDS: usize = 8;
 
@@ -365,6 +431,20 @@ mod tests {
         }
         assert!(checked > 20_000, "{checked}");
         assert_eq!(sdf.sample(Vec3::splat(10.0)), None);
+    }
+
+    #[test]
+    fn closed_and_open_meshes_are_told_apart() {
+        let head = Mesh::ellipsoid(Vec3::ZERO, Vec3::new(0.9, 1.05, 1.0), 32, 64);
+        assert_eq!(
+            open_edges(&head).0,
+            0,
+            "the UV ellipsoid is closed once its seam is welded"
+        );
+        let mut open = head.clone();
+        open.indices.truncate(open.indices.len() - 3 * 64); // the bottom cap's ring
+        assert_eq!(open_edges(&open).0, 64);
+        assert_eq!(open_edges(&Mesh::ground_plane(Vec3::ZERO, 1.0)).0, 4);
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! The slots and params of the shared hair-fragment stage
 //! (`shaders/lib/hair_fragment.wgsl`, `plait::hair_fragment`) for the pass
 //! types written in Rust that shade hair (`hair_shade`, `hair_depth_peel`):
-//! the opaque shadow map and what the self_shadow, shading, lighting and
-//! ambient_occlusion providers bind and take. Data-only raster passes that
+//! the opaque shadow map and what the self_shadow, shading, lighting,
+//! ambient_occlusion and shading_space providers bind and take. Data-only raster passes that
 //! import the stage need none of this: their slots come from the shader's
 //! bindings and their params from the providers' exports (`uses`).
 //!
@@ -12,7 +12,7 @@
 use plait_graph::{Access, ParamSpec, SlotSpec};
 
 use crate::spec_util::{DEPTH, texture};
-use crate::{lighting, occlusion, shading, visibility};
+use crate::{lighting, occlusion, shading, shading_space, visibility};
 
 /// The shading inputs of every hair pass: the opaque shadow map, the
 /// visibility provider's light maps, and what the shading, lighting and
@@ -28,6 +28,7 @@ pub fn shading_inputs() -> Vec<SlotSpec> {
     v.extend(shading::slots());
     v.extend(lighting::slots());
     v.extend(occlusion::slots());
+    v.extend(shading_space::slots());
     v
 }
 
@@ -37,5 +38,6 @@ pub fn shading_params() -> Vec<ParamSpec> {
     p.extend(shading::params());
     p.extend(lighting::params());
     p.extend(occlusion::params());
+    p.extend(shading_space::params());
     p
 }

@@ -22,6 +22,7 @@ pub mod occlusion_directions;
 pub mod occupancy;
 pub mod opaque_shade;
 pub mod shading;
+pub mod shading_space;
 pub mod simulation;
 pub mod spec_util;
 pub mod visibility;

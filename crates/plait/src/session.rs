@@ -23,6 +23,10 @@ pub enum SessionError {
     Gpu(#[from] GpuError),
     #[error("the pipeline declares no output")]
     NoOutput,
+    /// A param the scene cannot satisfy (more shading points than a strand
+    /// has points), naming the param and the `--set` flag that gave it.
+    #[error("{0}")]
+    SceneFit(String),
     /// A bounded buffer the session sizes dropped data it cannot hold
     /// ([`crate::overflow`]); each counter says what `--set` would hold it.
     #[error("{}; {message}", crate::overflow::list(.overflow))]
@@ -292,11 +296,57 @@ pub fn prepare_compiled<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
+    check_scene_fit(&schedule, source, scene)?;
     let opts = gpu_options(gpu, size);
     // A grown buffer changes only sizes, which the executor checks again
     // against the adapter before it allocates anything.
     let recompile = |extra: &[String]| source.compile(extra, &opts);
     crate::overflow::prepare_holding(gpu, schedule, &recompile, &source.path, scene, size)
+}
+
+/// Params that only the scene can check, checked before any GPU work:
+/// strand-space shading's `shading_points` (K shading points evenly spread
+/// along a strand need K ≤ its points — more would shade between the same
+/// two vertices twice, and the contract is one shading point per strand
+/// point at most, as Frostbite's).
+pub fn check_scene_fit(
+    schedule: &Schedule,
+    source: &crate::source::PipelineSource,
+    scene: &SceneData,
+) -> Result<(), SessionError> {
+    let shortest = scene
+        .strands
+        .ranges()
+        .enumerate()
+        .min_by_key(|(_, r)| r.len());
+    for pass in schedule
+        .passes
+        .iter()
+        .filter(|p| p.type_name == "strand_shading")
+    {
+        let Some(points) = pass.params.get("shading_points").and_then(|v| v.as_i64()) else {
+            continue;
+        };
+        let Some((strand, range)) = shortest.clone() else {
+            continue;
+        };
+        if points > range.len() as i64 {
+            let flag = source
+                .sets
+                .iter()
+                .rev()
+                .find(|s| s.starts_with("params.shading_points="))
+                .map(|s| format!("--set {s}: "))
+                .unwrap_or_default();
+            return Err(SessionError::SceneFit(format!(
+                "{flag}param `shading_points` of pass `{}`: {points} shading points per strand, but strand {strand} of the scene has {} points; shading_points must be at most {} for this scene",
+                pass.name,
+                range.len(),
+                range.len()
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Standard inputs for frame `index` of `scene` at `size` as `schedule`

@@ -25,7 +25,7 @@ fn edited(mesh: &Mesh, edit: impl FnOnce(&mut Value)) -> Vec<u8> {
     let mut json: Value = serde_json::from_slice(&glb.json).expect("JSON");
     edit(&mut json);
     let mut text = serde_json::to_vec(&json).expect("serializes");
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
     gltf::binary::Glb {

@@ -65,10 +65,10 @@ pub fn to_glb(mesh: &Mesh) -> Vec<u8> {
     });
     let mut text = serde_json::to_vec(&document).expect("a JSON value serializes");
     // Chunks are 4-byte aligned: JSON padded with spaces, BIN with zeros.
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let length = 12 + 8 + text.len() + 8 + bin.len();

@@ -125,6 +125,18 @@ impl MeshToml {
                 message,
             })
         })?;
+        if self.role == MeshRole::Head
+            && let (count @ 1.., Some([a, b])) = crate::sdf::open_edges(&mesh)
+        {
+            return Err(fail(MeshFileError {
+                path: file.clone(),
+                message: format!(
+                    "the head mesh is not closed: {count} edges border one triangle or more than two (one from {a} to {b}); \
+                     its collision field tells inside from outside by counting crossings, which needs a closed surface — \
+                     close it (e.g. cap the neck) or give it role = \"static\""
+                ),
+            }));
+        }
         let albedo = match self.role {
             MeshRole::Head => {
                 mesh.name = "head".into();

@@ -442,3 +442,26 @@ fn mesh_entries_are_checked_and_named() {
     assert!((placed.file_mesh_bounds().min.x - 2.1).abs() < 1e-3);
     assert!(placed.opaque_meshes().iter().all(|m| !m.head));
 }
+
+/// A head mesh must be closed (its collision field's sign counts
+/// crossings); an open one is refused naming the file, a static one is fine.
+#[test]
+fn an_open_head_mesh_is_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut open = crate::mesh::Mesh::ellipsoid(Vec3::ZERO, Vec3::ONE, 8, 16);
+    open.indices.truncate(open.indices.len() - 3 * 16);
+    let file = dir.path().join("open.glb");
+    std::fs::write(&file, crate::mesh_file::write::to_glb(&open)).expect("write");
+    let text = |role: &str| {
+        format!(
+            "[[meshes]]\nfile = {:?}\nrole = {role:?}\n",
+            file.display().to_string()
+        )
+    };
+    let e = scene_with_meshes(&text("head")).unwrap_err().to_string();
+    assert!(
+        e.contains("open.glb: the head mesh is not closed: 16 edges") && e.contains("meshes[0]"),
+        "{e}"
+    );
+    scene_with_meshes(&text("static")).expect("an open static mesh is fine");
+}

@@ -1,0 +1,123 @@
+//! Shading-space providers: every `shading_space` technique answers
+//! `strand_radiance(strand, segment, along) -> vec4` in the hair fragment
+//! stage: a radiance shaded elsewhere this frame (w = 1) or "shade this
+//! fragment" (w = 0; `fragment`, the default). Its uniform is
+//! `shading_space_params` (binding 50), its resources bind at 51–54 through
+//! the optional slots below.
+//!
+//! `strand` (Tafuri 2019, Frostbite's "strand space") fills its buffer with
+//! the `strand_shading` pass: one thread per shading point of every drawn
+//! strand, its WGSL in the technique's folder.
+
+use plait_gpu::GpuError;
+use plait_gpu::pass::{BuildContext, PassType, PreparedPass, ShaderDraw, build_draw};
+use plait_graph::{
+    Access, ParamSpec, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, SlotSpec,
+};
+
+use crate::occlusion_directions::{bound, int_param};
+use crate::spec_util::{SlotExt, buffer, choice, int};
+
+/// The largest `shading_points` a pass takes (frostbitten-hair-webgpu shades 64).
+pub const MAX_SHADING_POINTS: i64 = 256;
+
+/// Bytes of one shading point's radiance (`vec4<f32>`).
+const RADIANCE_BYTES: u64 = 16;
+
+/// The providers, by param value: every module `plait::shading_space::NAME` found.
+pub fn providers() -> Vec<String> {
+    plait_gpu::library::providers("shading_space")
+}
+
+/// The optional input slots any provider may need.
+pub fn slots() -> Vec<SlotSpec> {
+    vec![
+        buffer(
+            "shading_radiance",
+            Access::StorageRead,
+            "strand: radiance per shading point (vec4<f32>), `shading_points` per strand",
+        )
+        .optional(),
+        buffer(
+            "shading_strands",
+            Access::StorageRead,
+            "strand: the scene's `strand_guides` (each strand's first vertex and point count)",
+        )
+        .optional(),
+    ]
+}
+
+/// Params of the providers (filled into `shading_space_params` by member name).
+pub fn params() -> Vec<ParamSpec> {
+    vec![
+        choice(
+            "shading_space",
+            "fragment",
+            &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+            "where hair is shaded: per fragment, or at shading points along each strand (shading_space provider)",
+        ),
+        int(
+            "shading_points",
+            16,
+            1,
+            MAX_SHADING_POINTS,
+            "strand: shading points per strand, evenly spread from root to tip (at most the points of the scene's shortest strand)",
+        ),
+    ]
+}
+
+/// `strand_shading`: a data-only compute pass (its slots are its shader's
+/// bindings) dispatched over the scene's strands × `shading_points`, which
+/// only the built geometry knows — hence Rust.
+pub struct StrandShading;
+
+inventory::submit! { crate::RustPassType(|| Box::new(StrandShading)) }
+
+impl PassType for StrandShading {
+    fn spec(&self) -> PassTypeSpec {
+        PassTypeSpec {
+            source: "Tafuri 2019".into(),
+            ..PassTypeSpec::data_only(
+                "strand_shading",
+                PassShape::Compute,
+                "A WGSL compute shader run once per shading point of every drawn strand (strands × `shading_points` threads); slots are the shader's bindings.",
+            )
+        }
+    }
+
+    fn shader(&self) -> Option<&str> {
+        None
+    }
+
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
+        let error = |message: String| GpuError::Pass {
+            pass: pass.name.clone(),
+            message,
+        };
+        let points = int_param(pass, "shading_points").max(1) as u64;
+        let strands = u64::from(ctx.geometry.strand_count);
+        let out = bound(pass, "strand_radiance")?;
+        let resource = &ctx.schedule.resources[out.id()];
+        if let ResourceDesc::Buffer { size } = resource.desc
+            && size < strands * points * RADIANCE_BYTES
+        {
+            return Err(error(format!(
+                "`{}` holds {} strands of {points} shading points ({size} bytes) but the hair has {strands} strands: raise the technique's `shading_max_strands` param",
+                resource.name,
+                size / (points * RADIANCE_BYTES)
+            )));
+        }
+        let threads = u32::try_from(strands * points).map_err(|_| {
+            error(format!(
+                "{strands} strands × {points} shading points are too many threads"
+            ))
+        })?;
+        let mut draw = ShaderDraw::of(self, pass, ctx)?;
+        draw.threads = [threads, 1, 1];
+        Ok(Box::new(build_draw(&draw, pass, ctx)?))
+    }
+}
