@@ -30,6 +30,20 @@ pub fn repo_root() -> PathBuf {
         .to_path_buf()
 }
 
+/// `examples/scenes/small.toml` with its `[head]` table replaced by `head`
+/// (TOML text, e.g. a `[[meshes]]` head read from `head.glb`).
+pub fn small_scene_with_head(head: &str) -> plait_hair::Scene {
+    let path = repo_root().join("examples/scenes/small.toml");
+    let text = std::fs::read_to_string(&path).expect("small.toml");
+    let start = text.find("[head]").expect("small.toml has a [head]");
+    let end = start
+        + text[start..]
+            .find("\n\n")
+            .expect("a blank line after [head]");
+    let text = format!("{}{head}{}", &text[..start], &text[end..]);
+    plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses")
+}
+
 /// `PLAIT_BLESS=1` (re)writes snapshots and golden images instead of comparing.
 pub fn bless() -> bool {
     std::env::var("PLAIT_BLESS").is_ok_and(|v| !v.is_empty() && v != "0")

@@ -13,7 +13,9 @@ use glam::Vec3;
 use plait::session::{SceneData, compile_checked, gpu_options, prepare};
 use plait_gpu::Gpu;
 use plait_graph::{Access, ResourceDesc};
-use plait_tests::{open_gpu, pipeline_files, rel, repo_root, strands_subset};
+use plait_tests::{
+    open_gpu, pipeline_files, rel, repo_root, small_scene_with_head, strands_subset,
+};
 
 const SIZE: (u32, u32) = (96, 72);
 
@@ -29,21 +31,11 @@ fn small_scene() -> SceneData {
 /// same ellipsoid as a mesh, `[[meshes]]` with role "head") instead of
 /// `[head]`: the guarantee covers mesh occluders.
 fn small_mesh_head_scene() -> SceneData {
-    let path = repo_root().join("examples/scenes/small.toml");
-    let text = std::fs::read_to_string(&path).expect("small.toml");
-    let start = text.find("[head]").expect("small.toml has a [head]");
-    let end = start
-        + text[start..]
-            .find("\n\n")
-            .expect("a blank line after [head]");
     let head = repo_root().join("examples/scenes/head.glb");
-    let text = format!(
-        "{}[[meshes]]\nfile = {:?}\nrole = \"head\"{}",
-        &text[..start],
-        head.display().to_string(),
-        &text[end..]
-    );
-    let scene = plait_hair::Scene::from_toml_str(&text, &path).expect("the mesh head scene parses");
+    let scene = small_scene_with_head(&format!(
+        "[[meshes]]\nfile = {:?}\nrole = \"head\"",
+        head.display().to_string()
+    ));
     assert!(scene.head.is_none() && scene.head_mesh().is_some());
     let mut data = SceneData::new(scene).expect("the mesh head scene loads");
     data.strands = strands_subset(&data.strands, |s| s % 4 == 0);

@@ -7,22 +7,13 @@
 use std::path::Path;
 
 use plait::session::{SceneData, prepare};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{open_gpu, repo_root, small_scene_with_head};
 
 const SIZE: (u32, u32) = (96, 72);
 
 /// `examples/scenes/small.toml` with its `[head]` replaced by `head`.
 fn small_with(head: &str) -> SceneData {
-    let path = repo_root().join("examples/scenes/small.toml");
-    let text = std::fs::read_to_string(&path).expect("small.toml");
-    let start = text.find("[head]").expect("small.toml has a [head]");
-    let end = start
-        + text[start..]
-            .find("\n\n")
-            .expect("a blank line after [head]");
-    let text = format!("{}{head}{}", &text[..start], &text[end..]);
-    let scene = plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses");
-    SceneData::new(scene).expect("the scene loads")
+    SceneData::new(small_scene_with_head(head)).expect("the scene loads")
 }
 
 fn mesh_head(role: &str, translate: [f32; 3]) -> String {
