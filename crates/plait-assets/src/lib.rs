@@ -137,12 +137,20 @@ pub fn builtin_files() -> &'static [(&'static str, &'static str)] {
 /// `path` relative to the working directory when it lies inside it (shorter
 /// messages in a checkout), else unchanged.
 fn shorten(path: PathBuf) -> PathBuf {
-    let Ok(cwd) = std::env::current_dir() else {
-        return path;
-    };
-    let cwd = cwd.canonicalize().unwrap_or(cwd);
-    match path.strip_prefix(&cwd) {
-        Ok(rel) if !rel.as_os_str().is_empty() => rel.to_path_buf(),
+    shorten_in(canonical_cwd().as_deref(), path)
+}
+
+/// The working directory, resolved (once per listing: resolving it walks
+/// every component of the path through `readlink`).
+fn canonical_cwd() -> Option<PathBuf> {
+    let cwd = std::env::current_dir().ok()?;
+    Some(cwd.canonicalize().unwrap_or(cwd))
+}
+
+/// [`shorten`] against an already resolved working directory.
+fn shorten_in(cwd: Option<&Path>, path: PathBuf) -> PathBuf {
+    match cwd.map(|cwd| path.strip_prefix(cwd)) {
+        Some(Ok(rel)) if !rel.as_os_str().is_empty() => rel.to_path_buf(),
         _ => path,
     }
 }
@@ -338,11 +346,14 @@ pub fn list_tree_in(roots: &[PathBuf], folder: &str, ext: &str) -> Vec<(String, 
         return Vec::new();
     };
     let mut found: std::collections::BTreeMap<String, PathBuf> = Default::default();
+    let cwd = canonical_cwd();
     for root in roots {
         let mut here = Vec::new();
         walk(&root.join(&folder), &folder, ext, &mut here);
         for (key, path) in here {
-            found.entry(key).or_insert_with(|| shorten(path));
+            found
+                .entry(key)
+                .or_insert_with(|| shorten_in(cwd.as_deref(), path));
         }
     }
     let prefix = format!("{folder}/");

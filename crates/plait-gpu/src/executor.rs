@@ -91,6 +91,7 @@ impl<'g> Renderer<'g> {
         frame: &FrameUniforms,
         base_dir: &Path,
     ) -> Result<Self, GpuError> {
+        let _one_library = crate::modules::LibrarySnapshot::take();
         let device = &gpu.device;
         for r in &schedule.resources {
             if let ResourceDesc::Texture { width, height, .. } = r.desc {

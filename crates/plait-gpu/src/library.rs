@@ -87,9 +87,16 @@ fn list_tree(folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
         return found;
     }
     let mut own: Vec<(String, PathBuf)> = Vec::new();
+    // Each file resolved once: this runs on every library stamp, i.e. on
+    // every shader composition, and resolving walks the path by `readlink`.
+    let mut seen: std::collections::HashSet<PathBuf> = std::collections::HashSet::new();
     for root in plait_assets::pipeline_roots() {
         for (key, path) in plait_assets::list_tree_in(std::slice::from_ref(&root), folder, ext) {
-            if !plait_assets::is_builtin(&path) && !own.iter().any(|(_, p)| same_file(p, &path)) {
+            if plait_assets::is_builtin(&path) {
+                continue;
+            }
+            let resolved = path.canonicalize().unwrap_or_else(|_| path.clone());
+            if seen.insert(resolved) {
                 own.push((key, path));
             }
         }
@@ -97,13 +104,6 @@ fn list_tree(folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
     found.retain(|(key, _)| !own.iter().any(|(k, _)| k == key));
     own.extend(found);
     own
-}
-
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    a == b
-        || a.canonicalize()
-            .ok()
-            .is_some_and(|a| b.canonicalize().ok() == Some(a))
 }
 
 /// The library as found now: read again only when a file of it changed

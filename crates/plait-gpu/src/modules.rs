@@ -72,10 +72,56 @@ pub fn check_library() -> Result<(), ShaderError> {
     Ok(())
 }
 
+thread_local! {
+    /// The stamp pinned by the outermost live [`LibrarySnapshot`] of this
+    /// thread, and how many snapshots are live.
+    static PINNED: std::cell::Cell<(usize, u64)> = const { std::cell::Cell::new((0, 0)) };
+}
+
+/// While alive, [`library_stamp`] on this thread returns the stamp taken when
+/// the outermost snapshot was made instead of walking the library's folders
+/// again. One compile or build asks for the stamp hundreds of times (every
+/// composition, every provider lookup) and should see one library anyway: a
+/// file saved halfway through is picked up by the next compile, not half of
+/// this one.
+pub struct LibrarySnapshot {
+    _not_send: std::marker::PhantomData<*const ()>,
+}
+
+impl LibrarySnapshot {
+    pub fn take() -> Self {
+        let (depth, stamp) = PINNED.get();
+        let stamp = if depth == 0 {
+            walk_library_stamp()
+        } else {
+            stamp
+        };
+        PINNED.set((depth + 1, stamp));
+        LibrarySnapshot {
+            _not_send: std::marker::PhantomData,
+        }
+    }
+}
+
+impl Drop for LibrarySnapshot {
+    fn drop(&mut self) {
+        let (depth, stamp) = PINNED.get();
+        PINNED.set((depth.saturating_sub(1), stamp));
+    }
+}
+
 /// Where each library module is read from and when it last changed, hashed:
 /// cheap (no file is read) and different after an edit, or when a copy on
-/// the search path appears or goes.
+/// the search path appears or goes. Within a [`LibrarySnapshot`], the stamp
+/// it took.
 pub fn library_stamp() -> u64 {
+    match PINNED.get() {
+        (0, _) => walk_library_stamp(),
+        (_, stamp) => stamp,
+    }
+}
+
+fn walk_library_stamp() -> u64 {
     use std::hash::{Hash, Hasher};
     let mut h = std::hash::DefaultHasher::new();
     for (key, path) in crate::library::library_files() {

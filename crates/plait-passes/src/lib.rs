@@ -126,6 +126,7 @@ fn read_library() -> PassLibrary {
 /// the final schedule (`plait check` and every render run this, before any
 /// GPU work).
 pub fn compile(pipeline: &Pipeline, opts: &CompileOptions) -> Result<Schedule, Errors> {
+    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     compile_in(&library(), pipeline, opts)
 }
 
@@ -135,6 +136,7 @@ pub fn compile_in(
     pipeline: &Pipeline,
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
+    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     let checker = ShaderChecker::new(library, Capabilities::of_compile(opts));
     // A broken pass-type file or shader library first: the params' choices
     // (the providers found) and the pass types come from them, so what

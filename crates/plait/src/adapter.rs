@@ -45,6 +45,7 @@ pub fn check_schedule_on(
     source: &PipelineSource,
     size: (u32, u32),
 ) -> Result<(), SessionError> {
+    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     let library = plait_passes::library();
     let Err(mut unsupported) = check_schedule(schedule, &library, &gpu.support, &gpu.capabilities)
     else {

@@ -281,6 +281,8 @@ pub fn prepare<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
+    // One library for the whole preparation (see `LibrarySnapshot`).
+    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     let source = crate::source::PipelineSource::new(pipeline, sets);
     let schedule = crate::adapter::compile_on(gpu, &source.load(&[])?, &source, size)?;
     prepare_compiled(gpu, schedule, &source, scene, size)
@@ -296,6 +298,7 @@ pub fn prepare_compiled<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
+    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     check_scene_fit(&schedule, source, scene)?;
     let opts = gpu_options(gpu, size);
     // A grown buffer changes only sizes, which the executor checks again
