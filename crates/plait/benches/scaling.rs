@@ -1,5 +1,5 @@
 //! Frame time of the default pipeline against the hair's segment count:
-//! `cargo bench -p plait --bench scaling [-- --size WxH --repeats N --segments 75000,150000,… --largest]`.
+//! `cargo bench -p plait --bench scaling [-- --size WxH --repeats N --segments 75000,150000,… --variant KEY=V,KEY=V … --largest]`.
 //!
 //! Generated grooms (the default scene's wavy groom, 32 segments per strand,
 //! the strand count scaled) from 75,000 to 2,000,000 segments — the paper's
@@ -9,7 +9,10 @@
 //! ms = a + b · segments with its R², the memory per segment (vertex and
 //! index buffers; the schedule's maps do not grow with the hair) and the
 //! largest groom the adapter's buffer limit allows; `--largest` doubles the
-//! groom until a frame fails or takes longer than `--max-seconds` (120). A benchmark, not a test.
+//! groom until a frame fails or takes longer than `--max-seconds` (120).
+//! Each `--variant` is a column of `--set`s (e.g.
+//! `--variant techniques.transparency=compute_raster,techniques.shading_space=strand`),
+//! rendered interleaved with the others. A benchmark, not a test.
 
 mod support;
 
@@ -51,6 +54,30 @@ fn fit(points: &[(f64, f64)]) -> (f64, f64, f64) {
     (a, b, 1.0 - ss_res / ss_tot)
 }
 
+/// Every `--name value` given (repeatable flags).
+fn args(name: &str) -> Vec<String> {
+    let all: Vec<String> = std::env::args().collect();
+    all.windows(2)
+        .filter(|w| w[0] == name)
+        .map(|w| w[1].clone())
+        .collect()
+}
+
+/// `--variant KEY=V,KEY=V` (repeatable): the `--set`s of each column; none
+/// given, the pipeline as it is. Rendered interleaved in one run, so the
+/// columns see the same machine load.
+fn variants() -> Vec<Vec<String>> {
+    let given: Vec<Vec<String>> = args("--variant")
+        .iter()
+        .map(|v| v.split(',').map(|s| s.trim().to_string()).collect())
+        .collect();
+    if given.is_empty() {
+        vec![Vec::new()]
+    } else {
+        given
+    }
+}
+
 fn main() {
     let repeats: usize = arg("--repeats")
         .and_then(|s| s.parse().ok())
@@ -66,17 +93,32 @@ fn main() {
         return;
     }
     let pipeline = repo_root().join("pipelines/occupancy.toml");
+    let variants = variants();
     let scenes: Vec<SceneData> = counts.iter().map(|&n| scene_with(n)).collect();
-    let prepared: Vec<Prepared> = scenes
+    // prepared[v][s]: variant v on groom s.
+    let prepared: Vec<Vec<Prepared>> = variants
         .iter()
-        .map(|s| prepare(&gpu, &pipeline, &[], s, size).unwrap_or_else(|e| panic!("{e}")))
+        .map(|sets| {
+            scenes
+                .iter()
+                .map(|s| {
+                    prepare(&gpu, &pipeline, sets, s, size)
+                        .unwrap_or_else(|e| panic!("{sets:?}: {e}"))
+                })
+                .collect()
+        })
         .collect();
-    let mut times = vec![Vec::new(); prepared.len()];
+    let mut times = vec![vec![Vec::new(); scenes.len()]; variants.len()];
     for repeat in 0..=repeats {
-        for (i, p) in prepared.iter().enumerate() {
-            let report = p.renderer.render().unwrap_or_else(|e| panic!("{e}"));
-            if repeat > 0 {
-                times[i].push(report.total_gpu_ms.unwrap_or(f64::NAN));
+        for s in 0..scenes.len() {
+            for (v, column) in prepared.iter().enumerate() {
+                let report = column[s]
+                    .renderer
+                    .render()
+                    .unwrap_or_else(|e| panic!("{e}"));
+                if repeat > 0 {
+                    times[v][s].push(report.total_gpu_ms.unwrap_or(f64::NAN));
+                }
             }
         }
     }
@@ -88,28 +130,47 @@ fn main() {
         gpu.backend_name()
     );
     println!();
-    println!("| segments | strands | frame GPU ms | ms per million segments |");
-    println!("|---:|---:|---:|---:|");
-    let mut points = Vec::new();
-    for (s, t) in scenes.iter().zip(&times) {
+    let name = |sets: &Vec<String>| {
+        if sets.is_empty() {
+            "as is".to_string()
+        } else {
+            sets.join(" ")
+        }
+    };
+    let mut header = "| segments | strands |".to_string();
+    let mut rule = "|---:|---:|".to_string();
+    for sets in &variants {
+        header += &format!(" {}: frame GPU ms | ms per million segments |", name(sets));
+        rule += "---:|---:|";
+    }
+    println!("{header}\n{rule}");
+    let mut points = vec![Vec::new(); variants.len()];
+    for (i, s) in scenes.iter().enumerate() {
         let segments = s.strands.segment_count() as f64;
-        let ms = median(t);
-        points.push((segments, ms));
-        println!(
-            "| {} | {} | {ms:.0} | {:.0} |",
+        let mut row = format!(
+            "| {} | {} |",
             s.strands.segment_count(),
-            s.strands.strand_count(),
-            ms / segments * 1e6
+            s.strands.strand_count()
         );
+        for (v, column) in times.iter().enumerate() {
+            let ms = median(&column[i]);
+            points[v].push((segments, ms));
+            row += &format!(" {ms:.0} | {:.0} |", ms / segments * 1e6);
+        }
+        println!("{row}");
     }
-    if points.len() >= 2 {
-        let (a, b, r2) = fit(&points);
-        println!();
-        println!(
-            "fit: frame ms = {a:.1} + {:.1} per million segments, R² = {r2:.4}",
-            b * 1e6
-        );
+    for (sets, points) in variants.iter().zip(&points) {
+        if points.len() >= 2 {
+            let (a, b, r2) = fit(points);
+            println!();
+            println!(
+                "fit ({}): frame ms = {a:.1} + {:.1} per million segments, R² = {r2:.4}",
+                name(sets),
+                b * 1e6
+            );
+        }
     }
+    let prepared = &prepared[0];
     let per_segment = bytes_per_segment();
     let fixed = prepared
         .first()
@@ -142,7 +203,7 @@ fn main() {
         let mut segments = counts.iter().copied().max().unwrap_or(2_000_000) * 2;
         while segments <= largest {
             let scene = scene_with(segments);
-            let result = prepare(&gpu, &pipeline, &[], &scene, size)
+            let result = prepare(&gpu, &pipeline, &variants[0], &scene, size)
                 .map_err(|e| e.to_string())
                 .and_then(|p| p.renderer.render().map_err(|e| e.to_string()));
             match result {
