@@ -1,7 +1,7 @@
 //! Fuzzing every parser a user can feed (issue 14): the pipeline loader
 //! (with `extends` and `--set`) and compiler, the scene loader, the `.hair`,
-//! `.tfx` and USD text (`.usda`) readers, the glTF mesh reader, and shader
-//! composition (naga_oil + naga).
+//! `.tfx`, USD text (`.usda`) and binary (`.usdc`) readers, the glTF mesh
+//! reader, and shader composition (naga_oil + naga). One file per target.
 //!
 //! Property-based and mutation-driven with proptest: each input is a file
 //! from the repository (pipelines, scenes, shaders, byte-built assets) with
@@ -19,7 +19,7 @@
 //! once, so a parser that trusts a size a file claims fails here even where
 //! the system would have lent it the memory.
 //!
-//! The suite runs 388,000 inputs (a few seconds per target);
+//! The suite runs 408,000 inputs (a few seconds per target);
 //! `PLAIT_FUZZ_SCALE=K` runs K times as many, and `PLAIT_FUZZ_SEED=N` another
 //! deterministic stream (the suite's is fixed, so CI is repeatable). The
 //! long run (the book's Reliability page): `PLAIT_FUZZ_SCALE=41 PLAIT_FUZZ_SEED=2 cargo test -p
