@@ -21,8 +21,11 @@ for spec in "4 3" "40 16"; do
         --out "$here/corpus/hair/g$1x$2.hair" >/dev/null
     cargo run -q -p plait-cli -- hair convert "$here/corpus/hair/g$1x$2.hair" \
         "$here/corpus/tfx/g$1x$2.tfx" >/dev/null
-    cargo run -q -p plait-cli -- hair convert "$here/corpus/hair/g$1x$2.hair" \
-        "$here/corpus/usd/g$1x$2.usda" >/dev/null
+    # The usd target reads text and binary alike (as a .usd): both seeded.
+    for ext in usda usdc; do
+        cargo run -q -p plait-cli -- hair convert "$here/corpus/hair/g$1x$2.hair" \
+            "$here/corpus/usd/g$1x$2.$ext" >/dev/null
+    done
 done
 cd "$here"
 total=0

@@ -253,3 +253,36 @@ fn a_usd_scene_renders_framed() {
         "hair spans {lo:?}..{hi:?}: lying down"
     );
 }
+
+/// A binary `.usdc` whose points array claims 2^40 points (12 TiB) is an
+/// error naming the file, the attribute and the field, exit 2, read as a
+/// groom and as a scene's mesh — never an abort on the allocation.
+#[test]
+fn a_usdc_claiming_a_huge_array_is_an_error() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut strands = Strands::new();
+    let points = [glam::Vec3::ZERO, glam::Vec3::new(0.0, -0.1, 0.01)];
+    strands.push_strand(&points, |_| 0.002, |_| 1.0, glam::Vec3::ONE);
+    let mut bytes =
+        plait_hair::usd::write(&strands, plait_hair::usd::WriteFormat::Usdc).expect("writes");
+    let first: Vec<u8> = [0.0f32, 0.0, 0.0, 0.0, -0.1, 0.01]
+        .iter()
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+    let at = bytes
+        .windows(24)
+        .position(|w| w == first)
+        .expect("the points")
+        - 8;
+    bytes[at..at + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
+    let file = write(dir.path(), "huge.usdc", &bytes);
+    let o = plait(&["hair", "info", s(&file)]);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("huge.usdc")
+            && err.contains("attribute `/Groom/Strands.points`, field `default`")
+            && err.contains("1099511627776 elements of 12 bytes"),
+        "{err}"
+    );
+}

@@ -7,7 +7,9 @@
 //! What is drawn: every triangle primitive of every mesh the default scene's
 //! nodes place (all meshes, unplaced, when the file has no scene), each by
 //! its node's world matrix, merged into one mesh. Normals are the file's or,
-//! when it has none, the area-weighted average of the faces'.
+//! when it has none, the area-weighted average of the faces'. The albedo is
+//! the primitives' materials' `baseColorFactor` (their mean by triangle
+//! count when they differ; 0.8 grey when no primitive has a material).
 
 use std::path::Path;
 
@@ -34,7 +36,7 @@ pub fn read_bytes(bytes: &[u8], path: &Path, limits: &Limits) -> Result<Mesh, Me
     let invalid = |e: gltf::Error| error(format!("not a valid glTF 2.0 file: {e}"));
     // Parsed first, validated once the attribute indices are known to be in
     // range: gltf-json 1.4.1's validation indexes the accessors with the
-    // POSITION attribute's index unchecked (a panic, found by tests/fuzz.rs).
+    // POSITION attribute's index unchecked (a panic, found by tests/fuzz/).
     let parsed = Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
     check_attribute_indices(parsed.document.as_json()).map_err(error)?;
     let file = Gltf {
@@ -51,6 +53,7 @@ pub fn read_bytes(bytes: &[u8], path: &Path, limits: &Limits) -> Result<Mesh, Me
         albedo: [0.8, 0.8, 0.8],
         head: false,
     };
+    let (mut colour, mut weight) = ([0.0f64; 3], 0.0f64);
     for (mesh, model) in instances(&file.document).map_err(error)? {
         for primitive in mesh.primitives() {
             let at = format!(
@@ -59,19 +62,36 @@ pub fn read_bytes(bytes: &[u8], path: &Path, limits: &Limits) -> Result<Mesh, Me
                 mesh.name().map_or(String::new(), |n| format!(" (`{n}`)")),
                 primitive.index()
             );
+            let before = out.indices.len();
             append_primitive(&mut out, &primitive, model, &buffers, limits)
                 .map_err(|m| error(format!("{at}: {m}")))?;
+            if primitive.material().index().is_some() {
+                let triangles = ((out.indices.len() - before) / 3) as f64;
+                let [r, g, b, _] = primitive
+                    .material()
+                    .pbr_metallic_roughness()
+                    .base_color_factor();
+                for (s, c) in colour.iter_mut().zip([r, g, b]) {
+                    *s += triangles * f64::from(c);
+                }
+                weight += triangles;
+            }
         }
     }
     if out.indices.is_empty() {
         return Err(error("the file places no triangle mesh".into()));
+    }
+    // One mesh has one albedo: its materials' base colour factors, weighted
+    // by the triangles each covers (textures are not read).
+    if weight > 0.0 {
+        out.albedo = colour.map(|c| (c / weight) as f32);
     }
     Ok(out)
 }
 
 /// A GLB header's total length must cover the header itself: gltf 1.4.1's
 /// `Glb::from_slice` subtracts the header's 12 bytes from it unchecked (an
-/// overflow panic in debug builds, found by `tests/fuzz.rs`).
+/// overflow panic in debug builds, found by `tests/fuzz/`).
 fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
     if !bytes.starts_with(b"glTF") {
         return Ok(());

@@ -58,6 +58,26 @@ fn a_written_mesh_reads_back_exactly() {
     assert_eq!(read.name, "head");
 }
 
+/// The albedo is the material's `baseColorFactor`; without a material,
+/// 0.8 grey.
+#[test]
+fn the_albedo_is_the_materials_base_colour() {
+    let mesh = triangle().with_albedo([0.2, 0.4, 0.6]);
+    let read = |bytes: &[u8]| {
+        super::gltf::read_bytes(bytes, Path::new("m.glb"), &Limits::DEFAULT)
+            .expect("reads")
+            .albedo
+    };
+    assert_eq!(read(&to_glb(&mesh)), [0.2, 0.4, 0.6]);
+    let bare = edited(&mesh, |json| {
+        json.as_object_mut().unwrap().remove("materials");
+        for p in json["meshes"][0]["primitives"].as_array_mut().unwrap() {
+            p.as_object_mut().unwrap().remove("material");
+        }
+    });
+    assert_eq!(read(&bare), [0.8, 0.8, 0.8]);
+}
+
 #[test]
 fn the_committed_example_head_is_what_make_assets_writes() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/head.glb");

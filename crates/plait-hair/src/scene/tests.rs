@@ -441,6 +441,13 @@ fn mesh_entries_are_checked_and_named() {
     assert!(placed.head_mesh().is_none());
     assert!((placed.file_mesh_bounds().min.x - 2.1).abs() < 1e-3);
     assert!(placed.opaque_meshes().iter().all(|m| !m.head));
+    // No `albedo`: the file's material colour (head.glb's baseColorFactor).
+    let file_mesh = placed.opaque_meshes();
+    let file_mesh = file_mesh
+        .iter()
+        .find(|m| m.name == "head")
+        .expect("the mesh");
+    assert_eq!(file_mesh.albedo, [0.75, 0.55, 0.45]);
 }
 
 /// A head mesh must be closed (its collision field's sign counts
