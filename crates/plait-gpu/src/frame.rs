@@ -72,7 +72,14 @@ impl FrameUniforms {
         size: (u32, u32),
         frame_index: u32,
     ) -> Self {
-        Self::seen_from(&scene.camera, scene, strands, scene_bounds, size, frame_index)
+        Self::seen_from(
+            &scene.camera,
+            scene,
+            strands,
+            scene_bounds,
+            size,
+            frame_index,
+        )
     }
 
     /// [`FrameUniforms::new`] with `camera` in place of the scene's (an
@@ -98,8 +105,7 @@ impl FrameUniforms {
         let view = camera.view();
         let proj = camera.projection(aspect);
         let view_proj = proj * view;
-        let covered_alpha =
-            mean_covered_alpha(strands, view_proj, Vec3::from(camera.eye), size);
+        let covered_alpha = mean_covered_alpha(strands, view_proj, Vec3::from(camera.eye), size);
         let light = LightFrustum::fit(scene, hair_bounds, scene_bounds);
         let to_light = scene.light.direction_to_light();
         let (light_dir_w, light_pos) = match &scene.light.kind {

@@ -124,7 +124,10 @@ impl Animation {
             if let Some(d) = &key.camera_distance
                 && let Err(why) = crate::camera::check_camera_distance(*d.get_ref() as f64)
             {
-                return Err(error(d.span(), format!("{}: {why}", what("camera_distance"))));
+                return Err(error(
+                    d.span(),
+                    format!("{}: {why}", what("camera_distance")),
+                ));
             }
             if let Some(before) = previous
                 && *key.time.get_ref() <= *before.get_ref()
@@ -349,7 +352,8 @@ mod tests {
                 a.camera_distance(t)
             );
         }
-        let smooth = parse(&DOLLY.replace("[animation]\n", "[animation]\ninterpolation = \"smooth\"\n"));
+        let smooth =
+            parse(&DOLLY.replace("[animation]\n", "[animation]\ninterpolation = \"smooth\"\n"));
         assert!(smooth.camera_distance(0.25) < a.camera_distance(0.25));
         assert!((smooth.camera_distance(0.5) - 3.0).abs() < 1e-5);
         // No key moves the camera: it stays where the scene puts it.

@@ -65,7 +65,8 @@ pub fn distance_charts(report: &Report) -> Vec<String> {
             .iter()
             .filter(|v| reference || !v.is_reference)
             .map(|v| Series {
-                name: v.label.clone(),
+                // Ids (`forward@lod`): labels with every --set are too long for a legend.
+                name: v.id.clone(),
                 line: true,
                 points: swept
                     .at
@@ -89,7 +90,10 @@ pub fn distance_charts(report: &Report) -> Vec<String> {
             title: format!("{}: error vs camera distance", swept.scene),
             x_label: "camera distance (× the scene's)".into(),
             y_label: "ꟻLIP mean vs reference".into(),
-            note: Some("the reference is rendered from the same distance".into()),
+            note: Some(
+                "the reference is rendered from the same distance; mean over the whole image, so it falls as the hair covers fewer pixels"
+                    .into(),
+            ),
             series: series(&swept, flip, false),
         }));
         charts.push(svg(&Chart {
@@ -102,6 +106,9 @@ pub fn distance_charts(report: &Report) -> Vec<String> {
     }
     charts
 }
+
+/// What the error column is, and how it is not to be read.
+const MEAN_NOTE: &str = "ꟻLIP mean over the whole image: as the camera backs off the hair covers fewer pixels, so every variant's mean falls with the distance; compare variants at one distance (a row), not a variant across rows.";
 
 /// The variants in the table's column order: the others, then the reference.
 fn columns(report: &Report) -> impl Iterator<Item = &Variant> {
@@ -120,15 +127,21 @@ pub fn distance_markdown(report: &Report) -> String {
         "wall ms"
     };
     for swept in swept_scenes(report) {
-        let _ = writeln!(out, "\n**{}: error and frame time vs camera distance**\n", swept.scene);
+        let _ = writeln!(
+            out,
+            "\n**{}: error and frame time vs camera distance**\n",
+            swept.scene
+        );
+        out.push_str(MEAN_NOTE);
+        out.push_str("\n\n");
         out.push_str("| distance |");
         let mut rule = String::from("|---:|");
         for v in columns(report) {
             if !v.is_reference {
-                let _ = write!(out, " {} ꟻLIP |", v.label);
+                let _ = write!(out, " {} ꟻLIP |", v.id);
                 rule.push_str("---:|");
             }
-            let _ = write!(out, " {} {unit} |", v.label);
+            let _ = write!(out, " {} {unit} |", v.id);
             rule.push_str("---:|");
         }
         let _ = writeln!(out, "\n{rule}");
@@ -159,6 +172,8 @@ pub(super) fn distance_html(report: &Report) -> String {
     let mut h = String::from(
         "<h2>Camera distance</h2><p class=note>every scene seen from its camera moved back along its view ray (× its distance to the target); every variant and the reference rendered from there; error = ꟻLIP mean against the reference</p>",
     );
+    let _ = write!(h, "<p class=note>{}</p>", escape(MEAN_NOTE));
+    h.push_str("<p class=note>columns: variant ids (hover for the full label)</p>");
     for s in &swept {
         let _ = write!(
             h,
@@ -167,9 +182,19 @@ pub(super) fn distance_html(report: &Report) -> String {
         );
         for v in columns(report) {
             if !v.is_reference {
-                let _ = write!(h, "<th>{} ꟻLIP</th>", escape(&v.label));
+                let _ = write!(
+                    h,
+                    "<th title=\"{}\">{} ꟻLIP</th>",
+                    escape(&v.label),
+                    escape(&v.id)
+                );
             }
-            let _ = write!(h, "<th>{} ms</th>", escape(&v.label));
+            let _ = write!(
+                h,
+                "<th title=\"{}\">{} ms</th>",
+                escape(&v.label),
+                escape(&v.id)
+            );
         }
         h.push_str("</tr>");
         for (factor, scene) in &s.at {

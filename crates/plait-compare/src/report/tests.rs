@@ -369,7 +369,7 @@ fn a_camera_distance_sweep_is_a_table_and_charts_in_every_form() {
     let r = distance_sample();
     let md = distance_markdown(&r);
     let rows: Vec<&str> = md.lines().filter(|l| l.ends_with('|')).collect();
-    // Header, rule, a row per distance.
+    // Header, rule, a row per distance; columns named by variant id.
     assert_eq!(rows.len(), 2 + 3, "{md}");
     assert_eq!(
         rows[0],

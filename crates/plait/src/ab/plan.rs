@@ -434,7 +434,9 @@ mod tests {
             CameraDistances::parse("1, 2,4.5").unwrap(),
             CameraDistances(vec![1.0, 2.0, 4.5])
         );
-        for bad in ["", "1,,2", "1,x", "0", "-1", "nan", "inf", "1e9", "1,2,1", "2,2.0"] {
+        for bad in [
+            "", "1,,2", "1,x", "0", "-1", "nan", "inf", "1e9", "1,2,1", "2,2.0",
+        ] {
             assert!(CameraDistances::parse(bad).is_err(), "{bad}");
         }
         let t = SweepSpec::parse("techniques.self_shadow=occupancy,exact").unwrap();
