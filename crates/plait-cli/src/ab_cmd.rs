@@ -12,7 +12,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use plait::ab::{AbError, AbOptions, Plan, Step, SweepSpec};
+use plait::ab::{AbError, AbOptions, CameraDistances, Plan, Step, SweepSpec};
 use plait_compare::report::Report;
 use plait_gpu::Gpu;
 
@@ -39,6 +39,12 @@ pub struct AbArgs {
     /// rows, the second's in columns). Applies to the variants, not the reference.
     #[arg(long, value_name = "KEY=V1,V2,...", value_parser = SweepSpec::parse)]
     sweep: Vec<SweepSpec>,
+    /// Render every scene (variants and reference alike) with its camera
+    /// moved back along its view ray to each of these factors of its
+    /// distance to the target (`1,2,4,8`; each > 0, at most 100): error
+    /// and frame time against distance.
+    #[arg(long, value_name = "F1,F2,...", value_parser = CameraDistances::parse)]
+    camera_distance: Option<CameraDistances>,
     /// Timed frames per variant (after one warm-up frame), interleaved A B C A B C ….
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=10000))]
     repeats: u32,
@@ -132,6 +138,7 @@ pub fn run(args: AbArgs) -> Result<()> {
             frames,
             fps: args.fps,
         }),
+        camera_distances: args.camera_distance.map_or_else(Vec::new, |d| d.0),
     })?;
     let gpu = Gpu::new()?;
     // A --size past the adapter's limits names the flag, not a resource of

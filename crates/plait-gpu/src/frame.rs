@@ -1,7 +1,7 @@
 //! The frame's standard inputs (group 0 of every pass), computed from the scene.
 
 use glam::{Mat4, Vec3};
-use plait_hair::scene::{Background, LightKind, Scene};
+use plait_hair::scene::{Background, Camera, LightKind, Scene};
 use plait_hair::{Aabb, Strands};
 
 /// Mirrors `struct Frame` in `shaders/lib/frame.wgsl`; every member is 16-byte
@@ -72,6 +72,26 @@ impl FrameUniforms {
         size: (u32, u32),
         frame_index: u32,
     ) -> Self {
+        Self::seen_from(
+            &scene.camera,
+            scene,
+            strands,
+            scene_bounds,
+            size,
+            frame_index,
+        )
+    }
+
+    /// [`FrameUniforms::new`] with `camera` in place of the scene's (an
+    /// animated dolly: `Scene::camera_at`); the light is fitted as ever.
+    pub fn seen_from(
+        camera: &Camera,
+        scene: &Scene,
+        strands: &Strands,
+        scene_bounds: Aabb,
+        size: (u32, u32),
+        frame_index: u32,
+    ) -> Self {
         let hair_bounds = strands.bounds();
         let mean_alpha = if strands.alpha.is_empty() {
             1.0
@@ -82,11 +102,10 @@ impl FrameUniforms {
                 as f32
         };
         let aspect = size.0 as f32 / size.1.max(1) as f32;
-        let view = scene.camera.view();
-        let proj = scene.camera.projection(aspect);
+        let view = camera.view();
+        let proj = camera.projection(aspect);
         let view_proj = proj * view;
-        let covered_alpha =
-            mean_covered_alpha(strands, view_proj, Vec3::from(scene.camera.eye), size);
+        let covered_alpha = mean_covered_alpha(strands, view_proj, Vec3::from(camera.eye), size);
         let light = LightFrustum::fit(scene, hair_bounds, scene_bounds);
         let to_light = scene.light.direction_to_light();
         let (light_dir_w, light_pos) = match &scene.light.kind {
@@ -107,7 +126,7 @@ impl FrameUniforms {
             light_view_proj: (light.projection * light.view).to_cols_array_2d(),
             light_view: light.view.to_cols_array_2d(),
             light_inv_view_proj: (light.projection * light.view).inverse().to_cols_array_2d(),
-            camera_position: v4(Vec3::from(scene.camera.eye), 1.0),
+            camera_position: v4(Vec3::from(camera.eye), 1.0),
             light_direction: v4(to_light, light_dir_w),
             light_position: v4(light_pos, 1.0),
             light_color: v4(light_color, 1.0),
@@ -122,7 +141,7 @@ impl FrameUniforms {
                 1.0 / size.1 as f32,
             ],
             jitter: [0.0, 0.0, 0.0, frame_index as f32],
-            near_far: [scene.camera.near, scene.camera.far, light.near, light.far],
+            near_far: [camera.near, camera.far, light.near, light.far],
             conventions: [
                 SELF_SHADOW_BIAS / (light.far - light.near).max(1e-6),
                 1.0,

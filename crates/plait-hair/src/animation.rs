@@ -9,16 +9,21 @@
 //! time = 0.0                   # seconds, strictly increasing
 //! rotate_degrees = [0, 0, 0]   # about X, then Y, then Z, as [hair.transform]
 //! translate = [0, 0, 0]        # applied after the rotation
+//! camera_distance = 1.0        # the camera's distance to its target, × (a dolly)
 //!
 //! [[animation.keys]]
 //! time = 1.0
 //! rotate_degrees = [0, 40, 0]
+//! camera_distance = 2.0
 //! ```
 //!
 //! The pose at time t is the head's world-from-rest matrix
 //! `T(pivot + translate) · R · T(-pivot)`, interpolated between the keys
 //! around t (rotations by slerp); before the first key the first pose holds,
-//! after the last the last. Every bad value is reported at its line and
+//! after the last the last. `camera_distance` (1 when a key leaves it out)
+//! moves the scene's camera along its view ray, that many times as far from
+//! its target ([`crate::camera::Camera::dollied`]), interpolated like the
+//! translation. Every bad value is reported at its line and
 //! column: unsorted times, NaN or infinite numbers, wrong arity.
 
 use glam::{Mat4, Quat, Vec3};
@@ -49,6 +54,10 @@ pub struct Key {
     /// Translation, applied after the rotation.
     #[serde(default)]
     pub translate: Option<Spanned<[f32; 3]>>,
+    /// The camera's distance to its target, as a factor of the scene's
+    /// (1 = as the scene places it, 2 = twice as far): a dolly.
+    #[serde(default)]
+    pub camera_distance: Option<Spanned<f32>>,
 }
 
 /// The scene's `[animation]`: keyframes of the head (and of every opaque
@@ -112,6 +121,14 @@ impl Animation {
                     ));
                 }
             }
+            if let Some(d) = &key.camera_distance
+                && let Err(why) = crate::camera::check_camera_distance(*d.get_ref() as f64)
+            {
+                return Err(error(
+                    d.span(),
+                    format!("{}: {why}", what("camera_distance")),
+                ));
+            }
             if let Some(before) = previous
                 && *key.time.get_ref() <= *before.get_ref()
             {
@@ -143,23 +160,49 @@ impl Animation {
             * Mat4::from_translation(-pivot)
     }
 
+    /// The camera's distance factor at `time` (a dolly; 1 = the scene's
+    /// camera), between the keys around it.
+    pub fn camera_distance(&self, time: f32) -> f32 {
+        let at = |k: &Key| k.camera_distance.as_ref().map_or(1.0, |d| *d.get_ref());
+        match self.segment(time) {
+            Segment::Held(k) => at(k),
+            Segment::Between(a, b, s) => at(a) + (at(b) - at(a)) * s,
+            Segment::None => 1.0,
+        }
+    }
+
     /// Rotation and translation at `time`, between the keys around it.
     fn pose(&self, time: f32) -> (Quat, Vec3) {
-        let keys = self.keys.get_ref();
         let at = |k: &Key| {
             (
                 rotation(k),
                 Vec3::from(k.translate.as_ref().map_or([0.0; 3], |t| *t.get_ref())),
             )
         };
+        match self.segment(time) {
+            Segment::Held(k) => at(k),
+            Segment::Between(a, b, s) => {
+                let (ra, ta) = at(a);
+                let (rb, tb) = at(b);
+                (ra.slerp(rb, s).normalize(), ta.lerp(tb, s))
+            }
+            Segment::None => (Quat::IDENTITY, Vec3::ZERO),
+        }
+    }
+
+    /// The keys around `time` and how far between them (eased when the
+    /// interpolation is smooth); before the first key the first holds,
+    /// after the last the last.
+    fn segment(&self, time: f32) -> Segment<'_> {
+        let keys = self.keys.get_ref();
         let (Some(first), Some(last)) = (keys.first(), keys.last()) else {
-            return (Quat::IDENTITY, Vec3::ZERO);
+            return Segment::None;
         };
         if time <= *first.time.get_ref() {
-            return at(first);
+            return Segment::Held(first);
         }
         if time >= *last.time.get_ref() {
-            return at(last);
+            return Segment::Held(last);
         }
         // The first key after `time`; the one before it starts the segment.
         let next = keys.partition_point(|k| *k.time.get_ref() <= time);
@@ -169,9 +212,7 @@ impl Animation {
         if self.interpolation == Interpolation::Smooth {
             s = s * s * (3.0 - 2.0 * s);
         }
-        let (ra, ta) = at(a);
-        let (rb, tb) = at(b);
-        (ra.slerp(rb, s).normalize(), ta.lerp(tb, s))
+        Segment::Between(a, b, s)
     }
 
     /// Time of the last key: how long the animation runs.
@@ -181,6 +222,16 @@ impl Animation {
             .last()
             .map_or(0.0, |k| *k.time.get_ref())
     }
+}
+
+/// Where a time falls among the keys.
+enum Segment<'k> {
+    /// No keys (refused by `validate`).
+    None,
+    /// Before the first key or after the last: that key's values.
+    Held(&'k Key),
+    /// Between two keys, this fraction of the way (0..1).
+    Between(&'k Key, &'k Key, f32),
 }
 
 /// `[x, y, z]` degrees about X, then Y, then Z (as `[hair.transform]`).
@@ -275,5 +326,51 @@ mod tests {
         let text = TURN.replace("time = 1.0", "time = inf");
         let e = parse(&text).validate().unwrap_err();
         assert_eq!(&text[e.span], "inf");
+    }
+
+    const DOLLY: &str = "[animation]\n[[animation.keys]]\ntime = 0.0\n[[animation.keys]]\ntime = 1.0\ncamera_distance = 5.0\n[[animation.keys]]\ntime = 2.0\n";
+
+    /// The dolly is interpolated like the other fields, 1 where a key
+    /// leaves it out, held outside the keys.
+    #[test]
+    fn the_camera_distance_is_interpolated_between_keys() {
+        let a = parse(DOLLY);
+        a.validate().expect("valid");
+        for (t, d) in [
+            (-1.0, 1.0),
+            (0.0, 1.0),
+            (0.25, 2.0),
+            (0.5, 3.0),
+            (1.0, 5.0),
+            (1.5, 3.0),
+            (2.0, 1.0),
+            (9.0, 1.0),
+        ] {
+            assert!(
+                (a.camera_distance(t) - d).abs() < 1e-5,
+                "t = {t}: {} not {d}",
+                a.camera_distance(t)
+            );
+        }
+        let smooth =
+            parse(&DOLLY.replace("[animation]\n", "[animation]\ninterpolation = \"smooth\"\n"));
+        assert!(smooth.camera_distance(0.25) < a.camera_distance(0.25));
+        assert!((smooth.camera_distance(0.5) - 3.0).abs() < 1e-5);
+        // No key moves the camera: it stays where the scene puts it.
+        assert_eq!(parse(TURN).camera_distance(0.5), 1.0);
+    }
+
+    #[test]
+    fn a_bad_camera_distance_points_at_the_value() {
+        for bad in ["0.0", "-2.0", "nan", "inf", "1000.0"] {
+            let text = DOLLY.replace("camera_distance = 5.0", &format!("camera_distance = {bad}"));
+            let e = parse(&text).validate().unwrap_err();
+            assert_eq!(&text[e.span.clone()], bad);
+            assert!(
+                e.message.starts_with("animation.keys[1].camera_distance: "),
+                "{}",
+                e.message
+            );
+        }
     }
 }

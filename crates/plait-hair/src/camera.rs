@@ -67,6 +67,57 @@ impl Camera {
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view()
     }
+
+    /// The camera moved along its view ray, `factor` times as far from its
+    /// target (`eye = target + factor · (eye − target)`), looking the same
+    /// way with the same field of view: the same scene, smaller on screen
+    /// (`plait ab --camera-distance`, the `camera_distance` animation key).
+    ///
+    /// The depth range moves with the eye: everything the camera saw is
+    /// `(factor − 1) · |eye − target|` deeper after a dolly out, so `far`
+    /// grows by that much (nothing falls behind it), and `near` scales with
+    /// the factor (nearest geometry is at least that far: `near` < the
+    /// target's distance), keeping depth precision where the hair now is.
+    /// A dolly in keeps `far` and scales `near` down, so no geometry that
+    /// came nearer is clipped that was not in front of the old eye.
+    pub fn dollied(&self, factor: f32) -> Camera {
+        if factor == 1.0 {
+            return self.clone();
+        }
+        let target = Vec3::from(self.target);
+        let offset = Vec3::from(self.eye) - target;
+        let moved_back = (factor - 1.0).max(0.0) * offset.length();
+        Camera {
+            eye: (target + factor * offset).to_array(),
+            near: self.near * factor,
+            far: self.far + moved_back,
+            ..self.clone()
+        }
+    }
+}
+
+/// The largest `camera_distance` factor (`--camera-distance`, the animation
+/// key): at 100× any framed groom covers a few pixels, and past it the
+/// depth range of a fitted camera loses the precision a depth test needs.
+pub const MAX_CAMERA_DISTANCE: f32 = 100.0;
+
+/// Why a camera distance factor is refused (the caller names the flag or
+/// field): it must be finite, > 0 and at most [`MAX_CAMERA_DISTANCE`].
+pub fn check_camera_distance(factor: f64) -> Result<(), String> {
+    if !factor.is_finite() {
+        return Err(format!("{factor} is not a finite number"));
+    }
+    if factor <= 0.0 {
+        return Err(format!(
+            "{factor} must be > 0 (1 = the scene's camera, 2 = twice as far from its target)"
+        ));
+    }
+    if factor > MAX_CAMERA_DISTANCE as f64 {
+        return Err(format!(
+            "{factor} is more than {MAX_CAMERA_DISTANCE} (the hair would cover a few pixels)"
+        ));
+    }
+    Ok(())
 }
 
 /// How to fit a camera to the hair: from which direction, with which field
@@ -267,5 +318,51 @@ impl<'de> Deserialize<'de> for CameraSetting {
             }
         }
         d.deserialize_any(V)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The eye moves along its view ray, `d` times as far from the target;
+    /// the view direction, fov and up stay; the depth range holds what it held.
+    #[test]
+    fn a_dollied_camera_is_d_times_farther_from_its_target() {
+        let c = Camera {
+            eye: [1.0, 2.0, 5.0],
+            target: [0.0, 1.0, 0.0],
+            up: [0.0, 1.0, 0.0],
+            fov_y_degrees: 30.0,
+            near: 0.5,
+            far: 20.0,
+        };
+        let distance = |c: &Camera| (Vec3::from(c.eye) - Vec3::from(c.target)).length();
+        let direction = |c: &Camera| (Vec3::from(c.target) - Vec3::from(c.eye)).normalize();
+        for d in [0.5f32, 1.0, 2.0, 8.0] {
+            let far = c.dollied(d);
+            assert!(
+                (distance(&far) - d * distance(&c)).abs() < 1e-4 * d,
+                "d = {d}: {} vs {}",
+                distance(&far),
+                d * distance(&c)
+            );
+            assert!((direction(&far) - direction(&c)).length() < 1e-5);
+            assert_eq!(far.target, c.target);
+            assert_eq!(far.fov_y_degrees, c.fov_y_degrees);
+            assert!((far.near - c.near * d).abs() < 1e-6);
+            // Every point the camera saw before is still before `far`.
+            assert!(far.far - distance(&far) >= c.far - distance(&c) - 1e-4);
+        }
+        assert_eq!(c.dollied(1.0), c);
+    }
+
+    #[test]
+    fn camera_distances_are_finite_positive_and_bounded() {
+        assert!(check_camera_distance(1.0).is_ok());
+        assert!(check_camera_distance(MAX_CAMERA_DISTANCE as f64).is_ok());
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 101.0] {
+            assert!(check_camera_distance(bad).is_err(), "{bad}");
+        }
     }
 }

@@ -20,6 +20,9 @@ pub struct FramePose {
     /// The head's world-from-rest matrix now and one frame earlier.
     pub head: Mat4,
     pub head_previous: Mat4,
+    /// The camera's distance to its target as a factor of the scene's (the
+    /// animation's `camera_distance`, a dolly; 1 = the scene's camera).
+    pub camera_distance: f32,
 }
 
 impl FramePose {
@@ -32,6 +35,7 @@ impl FramePose {
             time,
             head: scene.scene.head_model(time),
             head_previous: scene.scene.head_model(previous),
+            camera_distance: scene.scene.camera_distance(time),
         }
     }
 }
@@ -63,7 +67,8 @@ impl SceneData {
             .scene
             .opaque_bounds_posed(pose.head)
             .union(&hair.bounds());
-        FrameUniforms::new(&self.scene, hair, bounds, size, pose.index).with_motion(
+        let camera = self.scene.camera.dollied(pose.camera_distance);
+        FrameUniforms::seen_from(&camera, &self.scene, hair, bounds, size, pose.index).with_motion(
             pose.time,
             pose.head,
             pose.head_previous,

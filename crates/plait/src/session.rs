@@ -167,6 +167,9 @@ pub fn check_pipeline(
 }
 
 /// A scene's geometry on the CPU, built once and shared by every pipeline rendering it.
+/// (Clone: `plait ab --camera-distance` copies it per distance rather than
+/// reading and baking its files again.)
+#[derive(Clone)]
 pub struct SceneData {
     pub scene: Scene,
     pub strands: plait_hair::Strands,
@@ -242,6 +245,7 @@ impl SceneData {
             time: 0.0,
             head,
             head_previous: head,
+            camera_distance: self.scene.camera_distance(0.0),
         };
         self.frame_posed(size, &pose, self.hair_posed(head).as_ref())
     }

@@ -87,6 +87,8 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     );
     h.push_str("<p class=\"note\">Click an image (or press <b>f</b> for all) to flip between the variant and the reference. Zoom: <a href=\"#\" onclick=\"zoom(1);return false\">1×</a> <a href=\"#\" onclick=\"zoom(2);return false\">2×</a> <a href=\"#\" onclick=\"zoom(3);return false\">3×</a></p>");
 
+    h.push_str(&super::distance::distance_html(report));
+
     for scene in &report.scenes {
         let _ = write!(h, "<h2>Scene {}</h2>", escape(&scene.name));
         // Summary table.

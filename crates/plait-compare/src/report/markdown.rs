@@ -7,7 +7,9 @@ use std::fmt::Write as _;
 use super::{Report, cost_ms};
 
 /// `| variant | frame GPU ms | × reference | peak MiB | mean / max |ΔV| | RMSE | SSIM | FLIP |`
-/// per scene; |ΔV| only where the variants were probed.
+/// per scene; |ΔV| only where the variants were probed. With
+/// `--camera-distance`, first a table per scene of error and frame time
+/// against the distance ([`super::distance_markdown`]).
 pub fn markdown(report: &Report) -> String {
     let mut out = String::new();
     let timing = if report.provenance.timestamps {
@@ -28,6 +30,7 @@ pub fn markdown(report: &Report) -> String {
         report.provenance.size[1],
         report.provenance.adapter.name
     );
+    out.push_str(&super::distance::distance_markdown(report));
     for scene in &report.scenes {
         // A provider probed against itself (every variant sharing the
         // reference's self-shadowing) says nothing: no |ΔV| column then.

@@ -30,6 +30,13 @@
 //! the reference and without sweeps). Schema 1 had one `sweep` (or `null`)
 //! and a `sweep_value` per variant.
 //!
+//! With `--camera-distance F1,F2,…` the report also holds
+//! `camera_distances: [F1, F2, …]`, and each scene is there once per factor
+//! (`small@d2`) with `distance: {scene, factor}`: the same scene, its camera
+//! F times as far from its target, the reference rendered from there too.
+//! The HTML and Markdown add error (ꟻLIP mean) and frame time against the
+//! distance, one series per variant, and a table (`distance_table`).
+//!
 //! `visibility` is the self-shadowing error (Sintorn & Assarsson 2009
 //! Fig. 5): for variants whose pipeline has a visibility provider, curves of
 //! visibility against depth along probe rays from the light (the
@@ -37,12 +44,14 @@
 //! the rays through the hair; `null` when the reference has no provider.
 
 mod charts;
+mod distance;
 mod html;
 mod markdown;
 #[cfg(test)]
 mod tests;
 
 pub use charts::scene_charts;
+pub use distance::{distance_charts, distance_markdown};
 pub use html::html;
 pub use markdown::markdown;
 
@@ -59,6 +68,10 @@ pub struct Report {
     pub provenance: Provenance,
     /// The `--sweep`s in order: none, one, or two (a grid).
     pub sweeps: Vec<Sweep>,
+    /// `--camera-distance`: the factors every scene was seen from, in order
+    /// (left out without it).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub camera_distances: Vec<f64>,
     pub variants: Vec<Variant>,
     pub scenes: Vec<SceneResult>,
 }
@@ -161,8 +174,21 @@ pub struct SceneResult {
     pub name: String,
     /// `null` for the built-in default scene.
     pub path: Option<String>,
+    /// With `--camera-distance`: which scene, and how far back its camera
+    /// was (every variant and the reference seen from there).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub distance: Option<CameraDistance>,
     pub reference_image: String,
     pub runs: Vec<Run>,
+}
+
+/// A scene seen from a camera moved along its view ray.
+#[derive(Clone, Debug, Serialize)]
+pub struct CameraDistance {
+    /// The scene's name without the distance (`small` for `small@d2`).
+    pub scene: String,
+    /// Distance to the camera's target, × the scene's (1 = as the scene has it).
+    pub factor: f64,
 }
 
 /// One variant on one scene.

@@ -77,6 +77,7 @@ fn sample() -> Report {
             key: "params.x".into(),
             values: vec!["1".into(), "2".into()],
         }],
+        camera_distances: vec![],
         variants: vec![
             variant("reference", true, None),
             variant("a@1", false, Some("1")),
@@ -85,6 +86,7 @@ fn sample() -> Report {
         scenes: vec![SceneResult {
             name: "s".into(),
             path: None,
+            distance: None,
             reference_image: "r.png".into(),
             runs: vec![run("reference", 0.0), run("a@1", 0.2), run("a@2", 0.1)],
         }],
@@ -340,4 +342,63 @@ fn dropped_data_is_in_json_html_and_markdown() {
     let md = markdown(&report);
     assert!(md.contains(" dropped |"), "no dropped column:\n{md}");
     assert!(md.contains(" 14400 |"), "count missing:\n{md}");
+}
+
+/// The sample seen from three camera distances, `a@1`'s error growing with
+/// the distance (ꟻLIP = factor / 10) and `a@2`'s constant.
+fn distance_sample() -> Report {
+    let mut r = sample();
+    r.sweeps.clear();
+    r.camera_distances = vec![1.0, 2.0, 4.0];
+    let template = r.scenes.remove(0);
+    for factor in [1.0, 2.0, 4.0] {
+        let mut scene = template.clone();
+        scene.name = format!("s@d{factor}");
+        scene.distance = Some(CameraDistance {
+            scene: "s".into(),
+            factor,
+        });
+        scene.runs[1].metrics.flip_mean = factor / 10.0;
+        r.scenes.push(scene);
+    }
+    r
+}
+
+#[test]
+fn a_camera_distance_sweep_is_a_table_and_charts_in_every_form() {
+    let r = distance_sample();
+    let md = distance_markdown(&r);
+    let rows: Vec<&str> = md.lines().filter(|l| l.ends_with('|')).collect();
+    // Header, rule, a row per distance; columns named by variant id.
+    assert_eq!(rows.len(), 2 + 3, "{md}");
+    assert_eq!(
+        rows[0],
+        "| distance | a@1 ꟻLIP | a@1 GPU ms | a@2 ꟻLIP | a@2 GPU ms | reference GPU ms |"
+    );
+    assert_eq!(rows[3], "| 2× | 0.2000 | 2.50 | 0.1000 | 2.50 | 2.50 |");
+    assert_eq!(rows[4], "| 4× | 0.4000 | 2.50 | 0.1000 | 2.50 | 2.50 |");
+    assert!(markdown(&r).contains(&md), "report.md holds the table");
+    // Error and time against distance for the one scene.
+    let charts = distance_charts(&r);
+    assert_eq!(charts.len(), 2);
+    assert!(charts[0].contains("s: error vs camera distance"));
+    assert!(
+        !charts[0].contains(">reference</text>"),
+        "the reference's error is 0 by construction"
+    );
+    assert!(charts[1].contains(">reference</text>"), "{}", charts[1]);
+    let page = html(&r, &[]);
+    assert!(page.contains("<h2>Camera distance</h2>"));
+    assert!(page.contains("<tr><td>4×</td><td>0.40000</td>"), "{page}");
+    let json = serde_json::to_value(&r).expect("json");
+    assert_eq!(json["camera_distances"], serde_json::json!([1.0, 2.0, 4.0]));
+    assert_eq!(json["scenes"][2]["distance"]["factor"], 4.0);
+    assert_eq!(json["scenes"][2]["distance"]["scene"], "s");
+    // Without the sweep: nothing of it anywhere.
+    let plain = sample();
+    assert!(distance_markdown(&plain).is_empty());
+    assert!(!html(&plain, &[]).contains("Camera distance"));
+    let json = serde_json::to_value(&plain).expect("json");
+    assert!(json.get("camera_distances").is_none());
+    assert!(json["scenes"][0].get("distance").is_none());
 }

@@ -1,5 +1,6 @@
 //! The scene's opaque geometry (head ellipsoid, ground plane, `[[meshes]]`),
-//! the head's pose over time under `[animation]`, and their bounds.
+//! the head's pose (and the camera's dolly) over time under `[animation]`,
+//! and their bounds.
 
 use glam::Vec3;
 
@@ -16,6 +17,15 @@ impl Scene {
             None => glam::Mat4::IDENTITY,
             Some(a) => a.head_model(time, self.head_center()),
         }
+    }
+
+    /// The camera's distance to its target at `time` seconds, as a factor
+    /// of the scene's (the animation's `camera_distance`; 1 without one):
+    /// the frame sees through `camera.dollied(factor)`.
+    pub fn camera_distance(&self, time: f32) -> f32 {
+        self.animation
+            .as_ref()
+            .map_or(1.0, |a| a.camera_distance(time))
     }
 
     /// The head's centre: the ellipsoid's, else the head mesh's bounds'.

@@ -17,15 +17,17 @@ fn default_toml_equals_builtin() {
 
 #[test]
 fn all_example_scenes_load_and_validate() {
-    for name in [
-        "small.toml",
-        "default.toml",
-        "dense.toml",
-        "stray.toml",
-        "head_turn.toml",
-        "stray_shake.toml",
-        "mesh_head.toml",
-    ] {
+    // Every scene in the folder, so a new one is checked without being listed.
+    let mut names: Vec<String> = std::fs::read_dir(examples())
+        .expect("examples/scenes")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    names.sort();
+    for known in ["small.toml", "default.toml", "head_turn.toml", "dolly.toml"] {
+        assert!(names.iter().any(|n| n == known), "{known} not found");
+    }
+    for name in names.iter().map(String::as_str) {
         let s = Scene::load(examples().join(name)).unwrap_or_else(|e| panic!("{e}"));
         // mesh_head.toml wears the USD groom make_assets writes.
         if name == "mesh_head.toml" {
@@ -43,6 +45,12 @@ fn all_example_scenes_load_and_validate() {
             "small.toml" => assert!(g.strands <= 1000 && g.segments <= 16),
             "dense.toml" => assert!(g.strands >= 20_000),
             "stray.toml" | "stray_shake.toml" => assert!(g.stray_strands > 0),
+            // A small groom whose camera dollies from 1× to 6× in a second.
+            "dolly.toml" => {
+                assert!(g.strands <= 1000);
+                assert_eq!(s.camera_distance(0.0), 1.0);
+                assert_eq!(s.camera_distance(1.0), 6.0);
+            }
             _ => {}
         }
     }

@@ -22,7 +22,7 @@ mod temporal;
 
 use std::path::PathBuf;
 
-pub use plan::{AbOptions, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
+pub use plan::{AbOptions, CameraDistances, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
 pub use supersample::box_filter;

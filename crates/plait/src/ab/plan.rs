@@ -53,6 +53,40 @@ impl SweepSpec {
     }
 }
 
+/// `--camera-distance F1,F2,…`: every scene (and the reference) rendered
+/// with its camera moved along its view ray to F times its distance from
+/// its target ([`plait_hair::Camera::dollied`]), F finite, > 0, at most
+/// [`plait_hair::camera::MAX_CAMERA_DISTANCE`], each listed once.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraDistances(pub Vec<f64>);
+
+impl CameraDistances {
+    /// `1,2,4,8`: distinct factors, each a valid camera distance. The
+    /// message says what is wrong with which value (clap names the flag).
+    pub fn parse(text: &str) -> Result<Self, SweepSyntaxError> {
+        let bad = |message: String| Err(SweepSyntaxError(message));
+        let mut factors = Vec::new();
+        for item in text.split(',').map(str::trim) {
+            if item.is_empty() {
+                return bad(format!(
+                    "`{text}`: empty value in the comma-separated list (e.g. 1,2,4,8)"
+                ));
+            }
+            let Ok(f) = item.parse::<f64>() else {
+                return bad(format!("`{item}` is not a number (e.g. 1,2,4,8)"));
+            };
+            if let Err(why) = plait_hair::camera::check_camera_distance(f) {
+                return bad(format!("factor {why}"));
+            }
+            if factors.contains(&f) {
+                return bad(format!("`{text}`: factor {item} is listed twice"));
+            }
+            factors.push(f);
+        }
+        Ok(CameraDistances(factors))
+    }
+}
+
 /// Everything an A/B run is asked to do.
 #[derive(Clone, Debug)]
 pub struct AbOptions {
@@ -78,6 +112,9 @@ pub struct AbOptions {
     /// An animated sequence per variant and scene for the temporal metric
     /// (`--frames N --fps F`), or none.
     pub sequence: Option<Sequence>,
+    /// `--camera-distance`: each scene at each of these camera distances
+    /// (factors of the scene's own), or empty: each scene as it is.
+    pub camera_distances: Vec<f64>,
 }
 
 /// Frames 0..frames of each scene's animation at fps.
@@ -112,6 +149,7 @@ impl AbOptions {
             supersample: 1,
             command: Vec::new(),
             sequence: None,
+            camera_distances: Vec::new(),
         }
     }
 }
@@ -131,12 +169,16 @@ pub struct VariantPlan {
     pub is_reference: bool,
 }
 
-/// A scene, loaded once for every variant.
+/// A scene, loaded once for every variant (once per camera distance).
 pub struct ScenePlan {
-    /// Unique, usable in file names (the file's stem, `default` for the built-in one).
+    /// Unique, usable in file names (the file's stem, `default` for the
+    /// built-in one; `small@d2` at camera distance 2).
     pub name: String,
     /// `None` for the built-in scene.
     pub path: Option<PathBuf>,
+    /// With `--camera-distance`: the scene's name without the distance,
+    /// and the factor its camera was moved back by.
+    pub distance: Option<(String, f64)>,
     pub data: SceneData,
 }
 
@@ -263,11 +305,28 @@ impl Plan {
                 .as_deref()
                 .map(stem)
                 .unwrap_or_else(|| "default".into());
-            scenes.push(ScenePlan {
-                name: unique(sanitize(&name), &mut scene_names),
-                path,
-                data,
-            });
+            let name = unique(sanitize(&name), &mut scene_names);
+            if options.camera_distances.is_empty() {
+                scenes.push(ScenePlan {
+                    name,
+                    path,
+                    distance: None,
+                    data,
+                });
+                continue;
+            }
+            // The same scene, its camera moved: the reference too sees it
+            // from there (unlike a --sweep, which changes only the variants).
+            for &factor in &options.camera_distances {
+                let mut data = data.clone();
+                data.scene.camera = data.scene.camera.dollied(factor as f32);
+                scenes.push(ScenePlan {
+                    name: unique(sanitize(&format!("{name}@d{factor}")), &mut scene_names),
+                    path: path.clone(),
+                    distance: Some((name.clone(), factor)),
+                    data,
+                });
+            }
         }
         Ok(Plan {
             options,
@@ -371,6 +430,15 @@ mod tests {
         assert!(SweepSpec::parse("=1,2").is_err());
         assert!(SweepSpec::parse("k=1,,2").is_err());
         assert!(SweepSpec::parse("k=1,1").is_err());
+        assert_eq!(
+            CameraDistances::parse("1, 2,4.5").unwrap(),
+            CameraDistances(vec![1.0, 2.0, 4.5])
+        );
+        for bad in [
+            "", "1,,2", "1,x", "0", "-1", "nan", "inf", "1e9", "1,2,1", "2,2.0",
+        ] {
+            assert!(CameraDistances::parse(bad).is_err(), "{bad}");
+        }
         let t = SweepSpec::parse("techniques.self_shadow=occupancy,exact").unwrap();
         assert_eq!(t.values, ["occupancy", "exact"]);
     }
@@ -440,6 +508,28 @@ mod tests {
         assert_eq!(reference.sets, ["params.light_size=256"]);
         assert_eq!(plan.scenes[0].name, "small");
         assert_eq!(plan.step_count(), 7 * (4 + 5));
+    }
+
+    /// Each scene once per camera distance, named by it, its camera that
+    /// many times as far from the target; the variants untouched.
+    #[test]
+    fn camera_distances_plan_each_scene_at_each_distance() {
+        let mut o = options();
+        o.camera_distances = vec![1.0, 2.5, 8.0];
+        let plan = Plan::new(o).expect("plan");
+        assert_eq!(plan.variants.len(), 2);
+        let names: Vec<&str> = plan.scenes.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["small@d1", "small@d2.5", "small@d8"]);
+        let gap = |s: &ScenePlan| {
+            let c = &s.data.scene.camera;
+            (glam::Vec3::from(c.eye) - glam::Vec3::from(c.target)).length()
+        };
+        let base = gap(&plan.scenes[0]);
+        for (scene, d) in plan.scenes.iter().zip([1.0f32, 2.5, 8.0]) {
+            assert_eq!(scene.distance, Some(("small".into(), d as f64)));
+            assert!((gap(scene) - d * base).abs() < 1e-4 * d, "{}", scene.name);
+        }
+        assert_eq!(plan.step_count(), 3 * 2 * (4 + 5));
     }
 
     #[test]

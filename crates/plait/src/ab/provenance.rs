@@ -142,10 +142,15 @@ pub(super) fn provenance(
     pipelines: Vec<PipelineProvenance>,
 ) -> Result<Provenance, AbError> {
     let o = &plan.options;
-    let scenes = plan
-        .scenes
-        .iter()
-        .filter_map(|s| s.path.as_deref())
+    // A scene at several camera distances is one file, hashed once.
+    let mut scene_paths: Vec<&Path> = Vec::new();
+    for path in plan.scenes.iter().filter_map(|s| s.path.as_deref()) {
+        if !scene_paths.contains(&path) {
+            scene_paths.push(path);
+        }
+    }
+    let scenes = scene_paths
+        .into_iter()
         .map(hash_file)
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Provenance {

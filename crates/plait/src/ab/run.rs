@@ -7,7 +7,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use plait_compare::report::{
-    PipelineProvenance, Report, Run, SCHEMA, SceneResult, Sweep, Variant, Visibility,
+    CameraDistance, PipelineProvenance, Report, Run, SCHEMA, SceneResult, Sweep, Variant,
+    Visibility,
 };
 use plait_compare::{Comparison, heatmap};
 use plait_gpu::Gpu;
@@ -184,6 +185,7 @@ pub fn run(
                 values: s.values.clone(),
             })
             .collect(),
+        camera_distances: plan.options.camera_distances.clone(),
         variants,
         scenes,
     };
@@ -419,6 +421,13 @@ fn scene_result(
     Ok(SceneResult {
         name: scene.name.clone(),
         path: scene.path.as_ref().map(|p| p.display().to_string()),
+        distance: scene
+            .distance
+            .as_ref()
+            .map(|(name, factor)| CameraDistance {
+                scene: name.clone(),
+                factor: *factor,
+            }),
         reference_image,
         runs,
     })
