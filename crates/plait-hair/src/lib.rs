@@ -43,6 +43,7 @@ pub mod sdf;
 mod strands;
 pub mod tfx;
 pub mod transform;
+pub mod wisps;
 pub mod usd;
 
 pub use asset::{Asset, AssetError, Format};
