@@ -21,7 +21,9 @@ use crate::rng::SplitMix64;
 use crate::strands::{StrandVertex, Strands};
 
 /// Consecutive rejected darts after which the collision radius shrinks
-/// (relaxation, Lagae & Dutré 2005 §3: "a large number of failed attempts").
+/// (relaxation dart throwing, Lagae & Dutré 2005, as Halén & Wester 2007
+/// §2.2 describes it: "if a large number of failed attempts … occur, the
+/// collision radius is reduced by a fraction"). The thesis gives no numbers.
 pub const RELAXATION_FAILURES: u32 = 64;
 /// The fraction the radius keeps at each relaxation step.
 pub const RELAXATION_FACTOR: f32 = 0.9;

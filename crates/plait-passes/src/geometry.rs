@@ -9,7 +9,7 @@ use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 use crate::spec_util::{SlotExt, choice, float, int, texture};
 
 /// `wisp_count` when a pipeline does not set it.
-pub const WISP_COUNT_DEFAULT: i64 = 400;
+pub const WISP_COUNT_DEFAULT: i64 = 300;
 
 /// The providers, by param value: every module `plait::geometry::NAME` found.
 pub fn providers() -> Vec<String> {
@@ -54,7 +54,7 @@ pub fn params() -> Vec<ParamSpec> {
         ),
         float(
             "wisp_width",
-            0.03,
+            0.15,
             1e-4,
             10.0,
             "wisps: a wisp's width across the view (model units)",

@@ -50,7 +50,7 @@ fn wisp_u(index: u32) -> f32 {
     return f32(index & 1u);
 }
 
-// The texture's levels: level 0 is size × size, the atlas 2·size wide.
+// The texture's levels, down to 1 × 1: floor(log2(size)) + 1.
 fn wisp_levels() -> u32 {
     let size = textureDimensions(wisp_texture).y;
     return firstLeadingBit(max(size, 1u)) + 1u;
@@ -72,9 +72,14 @@ fn wisp_level(world: vec3<f32>, tangent: vec3<f32>) -> f32 {
 // Texel (u, v) of level `level`, nearest.
 fn wisp_level_texel(u: f32, v: f32, level: u32) -> vec4<f32> {
     let size = textureDimensions(wisp_texture).y;
-    let width = max(size >> level, 1u);
-    // Level l starts where the levels before it end: 2·size − 2·width.
-    let start = 2u * size - 2u * width;
+    // Level l starts where the levels before it end (each half the one
+    // before, rounded down, at least 1: strand_texture.wgsl's layout).
+    var start = 0u;
+    var width = size;
+    for (var l = 0u; l < level; l += 1u) {
+        start += width;
+        width = max(width / 2u, 1u);
+    }
     let x = min(u32(clamp(u, 0.0, 1.0) * f32(width)), width - 1u);
     let y = min(u32(clamp(v, 0.0, 1.0) * f32(width)), width - 1u);
     return textureLoad(wisp_texture, vec2<u32>(start + x, y), 0);

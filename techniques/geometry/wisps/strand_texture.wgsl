@@ -11,8 +11,8 @@
 // wisp's edges so the strip has no hard border.
 //
 // The mip chain sits beside level 0 in the same texture (width 2 × size):
-// level l, size / 2^l texels a side, starts at x = 2·size − 2·size / 2^l, row
-// 0. Each of its texels is the box filter of the 2^l × 2^l level-0 texels it
+// level l + 1, half of level l a side (rounded down, at least 1), starts
+// where level l ends, row 0. Each of its texels is the box filter of the 2^l × 2^l level-0 texels it
 // covers, computed here directly (colour averaged weighted by alpha), which
 // is what a GPU's mip generation would give (§2.4: "the graphics cards
 // ability of generating mipmaps will provide level of detail").
@@ -45,7 +45,7 @@ fn strand_count() -> u32 {
 fn strands_at(u: f32, v: f32) -> vec4<f32> {
     let n = strand_count();
     let nf = f32(n);
-    let half_width = 0.35 / nf;
+    let half_width = 0.6 / nf;
     var out = vec4<f32>(0.0);
     // A strand strays at most one spacing from its place: its two
     // neighbours on each side can reach (u, v).
@@ -94,15 +94,20 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
         return vec4<f32>(0.0);
     }
     let scale = 1u << level;
+    // The texel's 2^l × 2^l footprint in level 0, averaged exactly up to
+    // 16 × 16 texels; beyond, 16 × 16 evenly spread samples of it (a texel
+    // of level 8 or coarser would otherwise loop 65536 times and more).
+    let taps = min(scale, 16u);
+    let step = f32(scale) / f32(taps);
     var sum = vec4<f32>(0.0);
-    for (var j = 0u; j < scale; j += 1u) {
-        for (var i = 0u; i < scale; i += 1u) {
-            let tx = (x - start) * scale + i;
-            let ty = y * scale + j;
-            sum += strands_at((f32(tx) + 0.5) / f32(size), (f32(ty) + 0.5) / f32(size));
+    for (var j = 0u; j < taps; j += 1u) {
+        for (var i = 0u; i < taps; i += 1u) {
+            let tx = f32((x - start) * scale) + (f32(i) + 0.5) * step;
+            let ty = f32(y * scale) + (f32(j) + 0.5) * step;
+            sum += strands_at(tx / f32(size), ty / f32(size));
         }
     }
-    let mean = sum / f32(scale * scale);
+    let mean = sum / f32(taps * taps);
     // Straight colour (the shader multiplies the strand's colour by it).
     let rgb = select(vec3<f32>(1.0), mean.rgb / mean.a, mean.a > 1e-6);
     return vec4<f32>(rgb, mean.a);
