@@ -452,6 +452,8 @@ impl Binder<'_> {
                 || (self.direction == Direction::Write
                     && (scene.is_some() || self.decl.raster.keeps(slot_name))),
             location: resource.location.clone(),
+            shared: !self.slots.iter().any(|s| &s.name == slot_name)
+                && self.shared.iter().any(|s| &s.name == slot_name),
         })
     }
 
