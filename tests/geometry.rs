@@ -242,10 +242,7 @@ fn wisps_match_their_golden_at_a_near_and_a_far_camera_and_fail_as_strands_and_l
         // texture's pass runs in the test's time.
         let wisps = render(
             &gpu,
-            &[
-                "techniques.geometry=wisps",
-                "params.wisp_texture_size=64",
-            ],
+            &["techniques.geometry=wisps", "params.wisp_texture_size=64"],
             &scene,
         );
         if let Err(e) = check_golden(&format!("wisps_{camera}"), &wisps, &mask) {

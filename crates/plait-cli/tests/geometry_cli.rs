@@ -117,7 +117,9 @@ fn wisps_render_and_name_what_they_follow() {
         "{stderr}"
     );
     assert!(
-        stderr.contains("the groom has no guide strands: each follows the strand rooted at its centre"),
+        stderr.contains(
+            "the groom has no guide strands: each follows the strand rooted at its centre"
+        ),
         "{stderr}"
     );
 }

@@ -43,8 +43,8 @@ pub mod sdf;
 mod strands;
 pub mod tfx;
 pub mod transform;
-pub mod wisps;
 pub mod usd;
+pub mod wisps;
 
 pub use asset::{Asset, AssetError, Format};
 pub use environment::{Environment, EnvironmentError, EnvironmentImage};

@@ -48,8 +48,12 @@ pub struct Darts {
 /// than `count` candidates lie apart at all (duplicated roots).
 pub fn relaxation_dart_throwing(candidates: &[Vec3], count: usize, seed: u64) -> Darts {
     let mut chosen: Vec<usize> = Vec::with_capacity(count);
-    let lo = candidates.iter().fold(Vec3::splat(f32::MAX), |a, &p| a.min(p));
-    let hi = candidates.iter().fold(Vec3::splat(f32::MIN), |a, &p| a.max(p));
+    let lo = candidates
+        .iter()
+        .fold(Vec3::splat(f32::MAX), |a, &p| a.min(p));
+    let hi = candidates
+        .iter()
+        .fold(Vec3::splat(f32::MIN), |a, &p| a.max(p));
     let mut radius = if candidates.is_empty() {
         0.0
     } else {
@@ -167,7 +171,12 @@ pub fn build_wisps(strands: &Strands, guides: &Guides, count: usize) -> (WispMes
             mesh.vertices.extend([vertex, vertex]);
         }
         for j in 0..range.len() as u32 - 1 {
-            let (a, b, c, d) = (base + 2 * j, base + 2 * j + 1, base + 2 * j + 2, base + 2 * j + 3);
+            let (a, b, c, d) = (
+                base + 2 * j,
+                base + 2 * j + 1,
+                base + 2 * j + 2,
+                base + 2 * j + 3,
+            );
             mesh.indices.extend([a, b, c, b, d, c]);
         }
         mesh.wisp_count += 1;
