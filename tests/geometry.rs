@@ -225,3 +225,41 @@ fn lod_drops_strands_under_every_self_shadowing_and_transparency_technique() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `wisps` (polygon wisps with a strand texture, Halén & Wester 2007
+/// §2.2–2.4, `techniques/geometry/wisps/technique.toml`): a golden image at
+/// the near and the far camera, each of which fails against `strands` and
+/// against `lod` at the same camera.
+#[test]
+fn wisps_match_their_golden_at_a_near_and_a_far_camera_and_fail_as_strands_and_lod() {
+    let (_lock, gpu) = open_gpu();
+    let mut failures = Vec::new();
+    for camera in ["near", "far"] {
+        let relative = format!("tests/fixtures/golden_{camera}.toml");
+        let scene = load_scene(&relative);
+        let mask = no_hair(&gpu, &relative, &format!("no_hair_{camera}"));
+        // A small strand texture: the golden is about the wisps, and the
+        // texture's pass runs in the test's time.
+        let wisps = render(
+            &gpu,
+            &["techniques.geometry=wisps", "params.wisp_texture_size=64"],
+            &scene,
+        );
+        if let Err(e) = check_golden(&format!("wisps_{camera}"), &wisps, &mask) {
+            failures.push(e);
+        }
+        let strands = render(&gpu, &[], &scene);
+        let lod = render(&gpu, &["techniques.geometry=lod", FRACTION], &scene);
+        for (other, image) in [("strands", &strands), ("lod", &lod)] {
+            let c = compare(&wisps, image, &mask);
+            eprintln!("{}", report(&format!("{camera}: wisps as {other}"), &c));
+            if c.passes() {
+                failures.push(report(
+                    &format!("{camera}: wisps pass as the {other} image"),
+                    &c,
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -29,7 +29,7 @@
 #import plait::ambient_occlusion::occlusion_at
 #import plait::shading_space::strand_space_radiance
 #import plait::strand_coverage::strand_coverage
-#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha}
+#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha, strand_lod_position, strand_lod_vertex, strand_lod_wisps, strand_lod_texture_coordinates, strand_lod_texel}
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 
@@ -63,6 +63,9 @@ struct HairVaryings {
     @location(5) @interpolate(flat) strand: u32,
     @location(6) @interpolate(flat) segment: u32,
     @location(7) parity: f32,
+    // A wisp's strand-texture coordinates (u across, v along, mip level);
+    // 0 for strands (plait::strand_lod).
+    @location(8) wisp: vec3<f32>,
 }
 
 // A shaded hair fragment: straight (not premultiplied) colour and alpha.
@@ -74,15 +77,19 @@ struct HairFragment {
 fn hair_vertex(v: HairVertex) -> HairVaryings {
     var out: HairVaryings;
     let lod = strand_lod_weight(v.strand_id);
-    out.clip = strand_lod_clip(view_proj() * vec4<f32>(v.position, 1.0), lod);
-    out.world = v.position;
+    // A wisp vertex becomes its strip's corner (the position of a strand's).
+    let world = strand_lod_position(v.position, v.tangent, v.index);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(world, 1.0), lod);
+    out.world = world;
     out.tangent = v.tangent;
     out.color = v.color;
     // A strand thinner than a pixel covers only part of it: its coverage
     // weighs its alpha in every blending technique (and sets the sample mask
-    // of alpha to coverage).
-    out.alpha = strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness), lod);
-    out.occlusion = occlusion_at(v.index);
+    // of alpha to coverage). A wisp's coverage is its texture's alpha.
+    let coverage = select(strand_coverage(v.position, v.tangent, v.thickness), 1.0, strand_lod_wisps());
+    out.alpha = strand_lod_alpha(v.alpha * coverage, lod);
+    out.wisp = strand_lod_texture_coordinates(v.position, v.tangent, v.thickness, v.index);
+    out.occlusion = occlusion_at(strand_lod_vertex(v.index, v.strand_id));
     out.strand = v.strand_id;
     out.segment = v.index;
     out.parity = f32(v.index & 1u);
@@ -92,11 +99,15 @@ fn hair_vertex(v: HairVertex) -> HairVaryings {
 fn shade_hair(in: HairVaryings) -> HairFragment {
     // Strand space: the radiance a compute pass shaded along the strand this
     // frame, interpolated; w = 0 when the colour is shaded here.
-    let shaded = strand_space_radiance(in.strand, in.segment, segment_fraction(in));
-    if (shaded.w > 0.0) {
-        return HairFragment(shaded.rgb, fragment_alpha(in));
+    // Wisps are shaded here: the strand-space pass shades strands.
+    if (!strand_lod_wisps()) {
+        let shaded = strand_space_radiance(in.strand, in.segment, segment_fraction(in));
+        if (shaded.w > 0.0) {
+            return HairFragment(shaded.rgb, fragment_alpha(in));
+        }
     }
-    let rgb = hair_radiance(shadow_map, in.world, in.tangent, in.color, in.occlusion);
+    let texel = strand_lod_texel(in.wisp);
+    let rgb = hair_radiance(shadow_map, in.world, in.tangent, in.color * texel.rgb, in.occlusion);
     return HairFragment(rgb, fragment_alpha(in));
 }
 
@@ -108,5 +119,5 @@ fn segment_fraction(in: HairVaryings) -> f32 {
 // The fragment's alpha alone (coverage × strand alpha × hair colour alpha),
 // for passes that need how much the fragment hides but not its colour.
 fn fragment_alpha(in: HairVaryings) -> f32 {
-    return clamp(in.alpha * frame.hair_color.a, 0.0, 1.0);
+    return clamp(in.alpha * strand_lod_texel(in.wisp).a * frame.hair_color.a, 0.0, 1.0);
 }

@@ -8,12 +8,15 @@
 #define_import_path plait::hair_map
 
 #import plait::frame::{view_proj, view_linear_depth}
-#import plait::strand_lod::{strand_lod_weight, strand_lod_clip}
+#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_position}
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
+    // A wisp's strip spreads across it (plait::strand_lod_position).
+    @location(2) tangent: vec3<f32>,
     // The `geometry` point drops the strands the shaded draws drop.
     @location(5) strand_id: u32,
+    @builtin(vertex_index) index: u32,
 }
 
 struct MapFragment {
@@ -24,8 +27,9 @@ struct MapFragment {
 
 fn map_vertex(v: MapVertex) -> MapFragment {
     var out: MapFragment;
-    out.clip = strand_lod_clip(view_proj() * vec4<f32>(v.position, 1.0), strand_lod_weight(v.strand_id));
-    out.depth = view_linear_depth(v.position);
+    let world = strand_lod_position(v.position, v.tangent, v.index);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(world, 1.0), strand_lod_weight(v.strand_id));
+    out.depth = view_linear_depth(world);
     return out;
 }
 

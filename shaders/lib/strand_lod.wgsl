@@ -8,6 +8,9 @@
 
 #import plait::frame::frame
 #import plait::geometry::geometry_strand_weight
+#ifdef GEOMETRY_WISPS
+#import plait::geometry::wisps::{wisp_corner, wisp_u, wisp_level, wisp_texel}
+#endif
 
 // How many of the groom's strands this one stands for (0: not drawn).
 fn strand_lod_weight(strand_id: u32) -> f32 {
@@ -37,4 +40,60 @@ fn strand_lod_alpha(alpha: f32, weight: f32) -> f32 {
         return alpha;
     }
     return (1.0 - pow(1.0 - a, weight)) / material;
+}
+
+// `geometry = "wisps"` (techniques/geometry/wisps): every hair draw draws the
+// wisps' triangles, whose vertices carry a guide point each; the functions
+// below turn one into its strip's corner and read the strand texture. For
+// strands they leave everything as it was.
+
+// Where hair vertex `index` at `position` is drawn: itself, or, for a wisp
+// vertex, its strip's corner facing the view.
+fn strand_lod_position(position: vec3<f32>, tangent: vec3<f32>, index: u32) -> vec3<f32> {
+#ifdef GEOMETRY_WISPS
+    return wisp_corner(position, tangent, index);
+#else
+    return position;
+#endif
+}
+
+// The hair vertex whose per-vertex results (ambient occlusion) this vertex
+// reads: itself, or the one a wisp vertex stands for (its `strand_id`).
+fn strand_lod_vertex(index: u32, strand_id: u32) -> u32 {
+#ifdef GEOMETRY_WISPS
+    return strand_id;
+#else
+    return index;
+#endif
+}
+
+// Whether hair draws draw wisps (shaded per fragment whatever the
+// shading space: the strand-space pass shades the strands, not the wisps).
+fn strand_lod_wisps() -> bool {
+#ifdef GEOMETRY_WISPS
+    return true;
+#else
+    return false;
+#endif
+}
+
+// A wisp vertex's strand-texture coordinates: u across (0, 1 at its sides),
+// v along (its `thickness`: 0 root, 1 tip), the mip level; 0 for strands.
+fn strand_lod_texture_coordinates(position: vec3<f32>, tangent: vec3<f32>, thickness: f32, index: u32) -> vec3<f32> {
+#ifdef GEOMETRY_WISPS
+    return vec3<f32>(wisp_u(index), thickness, wisp_level(position, tangent));
+#else
+    return vec3<f32>(0.0);
+#endif
+}
+
+// What the strand texture makes of a fragment at `coordinates`: rgb
+// multiplies its colour, alpha its alpha (the wisp's coverage there); 1 for
+// strands.
+fn strand_lod_texel(coordinates: vec3<f32>) -> vec4<f32> {
+#ifdef GEOMETRY_WISPS
+    return wisp_texel(coordinates.x, coordinates.y, coordinates.z);
+#else
+    return vec4<f32>(1.0);
+#endif
 }

@@ -5,7 +5,7 @@
 // blending weighs (Sintorn & Assarsson 2009 §3.4).
 #import plait::frame::{frame, view_proj}
 #import plait::strand_coverage::strand_coverage
-#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha}
+#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha, strand_lod_position, strand_lod_wisps, strand_lod_texture_coordinates, strand_lod_texel}
 
 struct SumVertex {
     @location(0) position: vec3<f32>,
@@ -13,11 +13,14 @@ struct SumVertex {
     @location(2) tangent: vec3<f32>,
     @location(3) alpha: f32,
     @location(5) strand_id: u32,
+    @builtin(vertex_index) index: u32,
 }
 
 struct SumFragment {
     @builtin(position) clip: vec4<f32>,
     @location(0) alpha: f32,
+    // A wisp's strand-texture coordinates (plait::strand_lod).
+    @location(1) wisp: vec3<f32>,
 }
 
 @vertex
@@ -25,12 +28,15 @@ fn vs_main(v: SumVertex) -> SumFragment {
     var out: SumFragment;
     // The strands and weights of the hair pass (plait::hair_fragment).
     let lod = strand_lod_weight(v.strand_id);
-    out.clip = strand_lod_clip(view_proj() * vec4<f32>(v.position, 1.0), lod);
-    out.alpha = strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness), lod);
+    let world = strand_lod_position(v.position, v.tangent, v.index);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(world, 1.0), lod);
+    let coverage = select(strand_coverage(v.position, v.tangent, v.thickness), 1.0, strand_lod_wisps());
+    out.alpha = strand_lod_alpha(v.alpha * coverage, lod);
+    out.wisp = strand_lod_texture_coordinates(v.position, v.tangent, v.thickness, v.index);
     return out;
 }
 
 @fragment
 fn fs_main(in: SumFragment) -> @location(0) vec4<f32> {
-    return vec4<f32>(clamp(in.alpha * frame.hair_color.a, 0.0, 1.0), 1.0, 0.0, 0.0);
+    return vec4<f32>(clamp(in.alpha * strand_lod_texel(in.wisp).a * frame.hair_color.a, 0.0, 1.0), 1.0, 0.0, 0.0);
 }

@@ -86,3 +86,73 @@ fn a_screen_fraction_out_of_range_is_one_error_naming_the_param() {
         text(&typo.stderr)
     );
 }
+
+/// `geometry = "wisps"` renders on any pipeline, and says what it built:
+/// how many wisps, and that the groom (no guides) lends its strands as guides.
+#[test]
+fn wisps_render_and_name_what_they_follow() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("wisps.png");
+    let run = plait(&[
+        "render",
+        "pipelines/forward.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--set",
+        "techniques.geometry=wisps",
+        "--set",
+        "params.wisp_count=50",
+        "--set",
+        "params.wisp_texture_size=32",
+        "--out",
+        out.to_str().expect("utf-8 path"),
+    ]);
+    let stderr = text(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(out.exists());
+    assert!(
+        stderr.contains("note: geometry wisps: 50 wisps for 400 strands"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(
+            "the groom has no guide strands: each follows the strand rooted at its centre"
+        ),
+        "{stderr}"
+    );
+}
+
+/// Bad wisp params: one error each, naming the param (or the texture the
+/// size makes, with the adapter's limit), exit 2, no image.
+#[test]
+fn bad_wisp_params_are_one_error_naming_the_param() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("bad.png");
+    for (flag, says) in [
+        ("params.wisp_count=0", "param `wisp_count` of passes"),
+        ("params.wisp_count=5000", "param `wisp_count` of passes"),
+        ("params.wisp_width=0", "param `wisp_width` of passes"),
+        ("params.wisp_texture_size=40000", "wisp_texture"),
+    ] {
+        let run = plait(&[
+            "render",
+            "--scene",
+            "examples/scenes/small.toml",
+            "--size",
+            "64x48",
+            "--set",
+            "techniques.geometry=wisps",
+            "--set",
+            flag,
+            "--out",
+            out.to_str().expect("utf-8 path"),
+        ]);
+        let stderr = text(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{flag}: {stderr}");
+        assert!(!out.exists(), "no image for a refused render");
+        assert_eq!(stderr.matches("error:").count(), 1, "{flag}: {stderr}");
+        assert!(stderr.contains(says), "{flag}: {stderr}");
+    }
+}

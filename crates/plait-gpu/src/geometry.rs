@@ -61,6 +61,9 @@ pub struct DrawBuffers {
 /// Everything a raster pass can draw.
 pub struct SceneGeometry {
     pub hair: Option<DrawBuffers>,
+    /// `geometry = "wisps"`: the wisps' triangle list, which every hair
+    /// draw draws instead of the hair's lines ([`SceneGeometry::set_wisps`]).
+    pub wisps: Option<DrawBuffers>,
     pub opaque: Option<DrawBuffers>,
     /// The hair's vertices as a storage buffer too, for compute passes.
     pub strand_count: u32,
@@ -309,12 +312,28 @@ impl SceneGeometry {
         let opaque = upload(device, "opaque", &vertices, &indices);
         SceneGeometry {
             hair,
+            wisps: None,
             opaque,
             strand_count: strands.strand_count() as u32,
             segment_count: strands.segment_count() as u32,
             environment: None,
             point_count: strands.point_count() as u32,
             guides: GuideBuffers::upload(device, guides, strands, colliders, head_sdf, pose),
+        }
+    }
+
+    /// Hair draws draw `wisps` (triangles, hair vertex layout:
+    /// `plait_hair::wisps::WispMesh`) instead of the hair's lines.
+    pub fn set_wisps(&mut self, device: &wgpu::Device, wisps: &plait_hair::wisps::WispMesh) {
+        self.wisps = upload(device, "wisps", &wisps.vertices, &wisps.indices);
+    }
+
+    /// What a hair draw draws: the wisps' triangles when there are wisps,
+    /// the hair's lines otherwise.
+    pub fn hair_draw(&self) -> (Option<&DrawBuffers>, wgpu::PrimitiveTopology) {
+        match &self.wisps {
+            Some(w) => (Some(w), wgpu::PrimitiveTopology::TriangleList),
+            None => (self.hair.as_ref(), wgpu::PrimitiveTopology::LineList),
         }
     }
 

@@ -98,6 +98,11 @@ pub struct Binding {
     pub loads: bool,
     #[serde(skip)]
     pub location: Location,
+    /// One of the slots every pass drawing hair takes
+    /// ([`crate::Registry::shared_slots`]): a shader that does not read it
+    /// (a depth-only hair draw) leaves it unbound.
+    #[serde(skip)]
+    pub shared: bool,
 }
 
 impl Binding {

@@ -309,6 +309,10 @@ pub struct Registry {
     /// data-only pass takes any param its shader reads, but one of these
     /// names is held to its spec (range, choices) as a typed pass would be.
     pub shared_params: Vec<ParamSpec>,
+    /// Optional input slots every pass drawing hair takes whatever its type:
+    /// the `geometry` providers' (`wisp_texture`), given to every hair draw
+    /// by the point's `draws`; a pass whose shader binds none leaves it unbound.
+    pub shared_slots: Vec<SlotSpec>,
 }
 
 impl Registry {

@@ -44,6 +44,7 @@ mod strands;
 pub mod tfx;
 pub mod transform;
 pub mod usd;
+pub mod wisps;
 
 pub use asset::{Asset, AssetError, Format};
 pub use environment::{Environment, EnvironmentError, EnvironmentImage};

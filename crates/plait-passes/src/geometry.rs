@@ -4,13 +4,29 @@
 //! without asking (the point file's `draws = ["hair"]`), so its params are
 //! the library's shared params, taken by every hair draw whatever its type.
 
-use plait_graph::ParamSpec;
+use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
-use crate::spec_util::{choice, float};
+use crate::spec_util::{SlotExt, choice, float, int, texture};
+
+/// `wisp_count` when a pipeline does not set it.
+pub const WISP_COUNT_DEFAULT: i64 = 300;
 
 /// The providers, by param value: every module `plait::geometry::NAME` found.
 pub fn providers() -> Vec<String> {
     plait_gpu::library::providers("geometry")
+}
+
+/// The providers' optional input slots, taken by every pass drawing hair.
+pub fn slots() -> Vec<SlotSpec> {
+    vec![
+        texture(
+            "wisp_texture",
+            Access::Sampled,
+            &[Format::Rgba16Float],
+            "wisps: the strand texture and its mip chain side by side (Halén & Wester 2007 §2.3–2.4)",
+        )
+        .optional(),
+    ]
 }
 
 /// Params of the providers (filled into `geometry_params` by member name).
@@ -28,6 +44,20 @@ pub fn params() -> Vec<ParamSpec> {
             0.001,
             1.0,
             "lod: the groom's height on screen (fraction of the screen height) from which every strand is drawn; below it the strand count falls in proportion",
+        ),
+        int(
+            "wisp_count",
+            WISP_COUNT_DEFAULT,
+            1,
+            4096,
+            "wisps: how many wisps relaxation dart throwing spreads over the scalp (at most one per strand root; O(n²) at load)",
+        ),
+        float(
+            "wisp_width",
+            0.15,
+            1e-4,
+            10.0,
+            "wisps: a wisp's width across the view (model units)",
         ),
     ]
 }

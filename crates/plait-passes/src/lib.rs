@@ -97,6 +97,7 @@ fn read_library() -> PassLibrary {
         // imports plait::hair_fragment as in the Rust pass types; the
         // geometry provider's in every pass that draws hair.
         shared_params: [hair_fragment::shading_params(), geometry::params()].concat(),
+        shared_slots: geometry::slots(),
         ..PassLibrary::default()
     };
     // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml),

@@ -242,3 +242,36 @@ fn the_geometry_point_is_a_live_choice_though_the_pipeline_does_not_list_it() {
         .expect("the geometry choice point");
     assert_eq!(point.chosen, "lod");
 }
+
+/// `wisps` is found by the drop-down like any technique folder, and chosen
+/// live: the engine rebuilds with the wisps' strips and their note.
+#[test]
+fn wisps_are_a_live_choice_of_the_geometry_point() {
+    let e = start(None);
+    e.until("the first frame", |s| s.frames >= 1);
+    {
+        let s = e.shared.lock().expect("state");
+        let point = s
+            .techniques
+            .iter()
+            .find(|t| t.point == "geometry")
+            .expect("the geometry choice point");
+        assert!(
+            point.choices.iter().any(|c| c == "wisps"),
+            "{:?}",
+            point.choices
+        );
+    }
+    e.send(Command::SetTechnique("geometry".into(), "wisps".into()));
+    e.until("the technique swap", |s| {
+        s.error.is_some() || (s.reloads == 1 && s.frames >= 1)
+    });
+    let s = e.shared.lock().expect("state");
+    assert!(s.error.is_none(), "{:?}", s.error);
+    let point = s
+        .techniques
+        .iter()
+        .find(|t| t.point == "geometry")
+        .expect("the geometry choice point");
+    assert_eq!(point.chosen, "wisps");
+}

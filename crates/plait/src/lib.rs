@@ -25,3 +25,4 @@ pub mod probe;
 pub mod session;
 pub mod source;
 pub mod strand_lod;
+pub mod wisps;

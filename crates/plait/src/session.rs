@@ -396,7 +396,7 @@ pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
 /// file it came from (relative shader paths resolve against its folder).
 pub fn build<'g>(
     gpu: &'g Gpu,
-    schedule: Schedule,
+    mut schedule: Schedule,
     pipeline: &Path,
     scene: &SceneData,
     size: (u32, u32),
@@ -428,6 +428,10 @@ pub fn build<'g>(
         hair_pose,
     );
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
+    if let Some((wisps, note)) = crate::wisps::build(&schedule, scene) {
+        geometry.set_wisps(&gpu.device, &wisps);
+        schedule.notes.push(note);
+    }
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
         gpu,

@@ -141,6 +141,8 @@ pub struct PassLibrary {
     pub types: IndexMap<String, Box<dyn PassType>>,
     /// See [`plait_graph::Registry::shared_params`].
     pub shared_params: Vec<plait_graph::ParamSpec>,
+    /// See [`plait_graph::Registry::shared_slots`].
+    pub shared_slots: Vec<plait_graph::SlotSpec>,
     /// Pass-type files found but not loadable (file:line:col each): every
     /// compile with this library reports them.
     pub problems: Vec<plait_graph::Error>,
@@ -166,6 +168,7 @@ impl PassLibrary {
             r.register(t.spec());
         }
         r.shared_params = self.shared_params.clone();
+        r.shared_slots = self.shared_slots.clone();
         r
     }
 }

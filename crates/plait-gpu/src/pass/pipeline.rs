@@ -91,7 +91,7 @@ impl PipelineParts<'_> {
             .any(|e| e.stage == naga::ShaderStage::Fragment);
         let primitive = wgpu::PrimitiveState {
             topology: if what == DrawWhat::Hair {
-                wgpu::PrimitiveTopology::LineList
+                self.ctx.geometry.hair_draw().1
             } else {
                 wgpu::PrimitiveTopology::TriangleList
             },

@@ -174,7 +174,7 @@ impl ShaderPass {
                     rpass.set_bind_group(1, bg, &[]);
                 }
                 let buffers = match draw {
-                    DrawWhat::Hair => ctx.geometry.hair.as_ref(),
+                    DrawWhat::Hair => ctx.geometry.hair_draw().0,
                     DrawWhat::Opaque => ctx.geometry.opaque.as_ref(),
                     DrawWhat::Fullscreen => {
                         rpass.draw(0..3, 0..1);

@@ -95,8 +95,18 @@ pub(super) fn resolve_pass(
         check_loads(decl, errors);
     }
 
-    let reads = bind_slots(decl, spec, pipeline, descs, Direction::Read, errors);
-    let writes = bind_slots(decl, spec, pipeline, descs, Direction::Write, errors);
+    // A pass drawing hair also takes the geometry providers' slots.
+    let draws_hair = decl
+        .draw
+        .as_ref()
+        .is_some_and(|d| crate::Draw::from_name(&d.value) == Some(crate::Draw::Hair));
+    let shared: &[SlotSpec] = if draws_hair {
+        &registry.shared_slots
+    } else {
+        &[]
+    };
+    let reads = bind_slots(decl, spec, shared, pipeline, descs, Direction::Read, errors);
+    let writes = bind_slots(decl, spec, &[], pipeline, descs, Direction::Write, errors);
     ScheduledPass {
         name: decl.name.clone(),
         type_name: decl.type_name.value.clone(),
@@ -359,6 +369,8 @@ impl Direction {
 struct Binder<'a> {
     decl: &'a PassDecl,
     spec: Option<&'a PassTypeSpec>,
+    /// Slots the pass takes beyond its type's ([`Registry::shared_slots`]).
+    shared: &'a [SlotSpec],
     pipeline: &'a Pipeline,
     descs: &'a [Option<ResourceDesc>],
     direction: Direction,
@@ -372,6 +384,7 @@ struct Binder<'a> {
 fn bind_slots(
     decl: &PassDecl,
     spec: Option<&PassTypeSpec>,
+    shared: &[SlotSpec],
     pipeline: &Pipeline,
     descs: &[Option<ResourceDesc>],
     direction: Direction,
@@ -384,6 +397,7 @@ fn bind_slots(
     let mut binder = Binder {
         decl,
         spec,
+        shared,
         pipeline,
         descs,
         direction,
@@ -418,7 +432,11 @@ impl Binder<'_> {
             .resources
             .get_index(index)
             .map_or(ResourceKind::Buffer, |(_, r)| r.kind.value);
-        let slot = self.slots.iter().find(|s| &s.name == slot_name);
+        let slot = self
+            .slots
+            .iter()
+            .chain(self.shared)
+            .find(|s| &s.name == slot_name);
         let (access, loads) = self.access(slot, slot_name, resource, declared_kind)?;
         if let Some(slot) = slot {
             self.check_fit(slot, slot_name, resource, index, declared_kind);
@@ -434,6 +452,8 @@ impl Binder<'_> {
                 || (self.direction == Direction::Write
                     && (scene.is_some() || self.decl.raster.keeps(slot_name))),
             location: resource.location.clone(),
+            shared: !self.slots.iter().any(|s| &s.name == slot_name)
+                && self.shared.iter().any(|s| &s.name == slot_name),
         })
     }
 

@@ -30,6 +30,8 @@ impl Planner<'_> {
                         self.plan.settled.push((slot, access));
                     }
                 }
+                // A slot every hair draw takes, which this shader does not read.
+                None if b.shared => {}
                 None => {
                     if !matches!(b.access, Access::ColorTarget | Access::DepthTarget) {
                         let message = format!(

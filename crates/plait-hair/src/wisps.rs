@@ -1,0 +1,261 @@
+//! Polygon wisps (Halén & Wester, "Real-Time Hair Simulation and
+//! Visualization for Games", M.Sc. thesis, Lund University, 2007, §2.2–2.4,
+//! §5.4): wisp centres spread over the scalp by relaxation dart throwing
+//! (Lagae & Dutré 2005, as §2.2 uses it), each wisp a triangle strip along its
+//! guide strand, as wide as the `wisp_width` param (the vertex shader turns
+//! it to face the camera, `techniques/geometry/wisps/geometry.wgsl`).
+//!
+//! On the CPU, once at load: the thesis makes wisps as a preprocessing step
+//! ("there is no need for a fast algorithm", §2.2), dart throwing is
+//! sequential (every dart tests the darts accepted before it), and a few
+//! hundred to a few thousand wisps take milliseconds.
+//!
+//! The scalp is where the groom's strands are rooted: a dart is a strand root
+//! drawn at random, so darts fall on the scalp with the groom's own root
+//! density, whatever the scalp's shape or mesh.
+
+use glam::Vec3;
+
+use crate::guides::Guides;
+use crate::rng::SplitMix64;
+use crate::strands::{StrandVertex, Strands};
+
+/// Consecutive rejected darts after which the collision radius shrinks
+/// (relaxation dart throwing, Lagae & Dutré 2005, as Halén & Wester 2007
+/// §2.2 describes it: "if a large number of failed attempts … occur, the
+/// collision radius is reduced by a fraction"). The thesis gives no numbers.
+pub const RELAXATION_FAILURES: u32 = 64;
+/// The fraction the radius keeps at each relaxation step.
+pub const RELAXATION_FACTOR: f32 = 0.9;
+/// The seed of the darts: wisps are the same at every load.
+pub const WISP_SEED: u64 = 0x5749_5350_5345_4544;
+
+/// Centres chosen by relaxation dart throwing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Darts {
+    /// Indices into the candidate points, in the order accepted.
+    pub chosen: Vec<usize>,
+    /// The collision radius when the last dart was accepted: every two
+    /// chosen points lie at least this far apart (the radius only shrinks).
+    pub radius: f32,
+}
+
+/// `count` of `candidates` at least [`Darts::radius`] apart: darts drawn at
+/// random (seeded), a dart within the radius of an accepted one rejected,
+/// and the radius shrunk by [`RELAXATION_FACTOR`] after
+/// [`RELAXATION_FAILURES`] rejections in a row, starting from the
+/// candidates' bounding-box diagonal. Fewer than `count` only when fewer
+/// than `count` candidates lie apart at all (duplicated roots).
+pub fn relaxation_dart_throwing(candidates: &[Vec3], count: usize, seed: u64) -> Darts {
+    let mut chosen: Vec<usize> = Vec::with_capacity(count);
+    let lo = candidates
+        .iter()
+        .fold(Vec3::splat(f32::MAX), |a, &p| a.min(p));
+    let hi = candidates
+        .iter()
+        .fold(Vec3::splat(f32::MIN), |a, &p| a.max(p));
+    let mut radius = if candidates.is_empty() {
+        0.0
+    } else {
+        (hi - lo).length()
+    };
+    // Below this the radius cannot separate distinct f32 points: stop.
+    let floor = radius * 1e-6;
+    let mut rng = SplitMix64::new(seed);
+    let mut failures = 0;
+    let mut accepted_radius = radius;
+    while chosen.len() < count && !candidates.is_empty() && radius > floor {
+        let i = (rng.next_u64() % candidates.len() as u64) as usize;
+        let p = candidates[i];
+        let r2 = radius * radius;
+        if chosen
+            .iter()
+            .all(|&c| candidates[c].distance_squared(p) >= r2)
+        {
+            chosen.push(i);
+            accepted_radius = radius;
+            failures = 0;
+        } else {
+            failures += 1;
+            if failures >= RELAXATION_FAILURES {
+                radius *= RELAXATION_FACTOR;
+                failures = 0;
+            }
+        }
+    }
+    Darts {
+        chosen,
+        radius: accepted_radius,
+    }
+}
+
+/// The wisps' triangle list on the GPU. A wisp vertex has the hair's vertex
+/// layout ([`StrandVertex`], so every hair draw's shader reads it) with two
+/// fields meaning something else, as `plait::hair_fragment` reads them under
+/// `GEOMETRY_WISPS`:
+/// - `thickness`: how far along its wisp the vertex lies, 0 at the root, 1 at
+///   the tip (the strand texture's v; the width is the `wisp_width` param);
+/// - `strand_id`: the hair vertex it stands for — the point at the same
+///   fraction along the strand rooted at the wisp's centre — so per-vertex
+///   resources (ambient occlusion, strand-space radiance) are read there.
+///
+/// The vertices come in pairs, one per side of the strip (even = left, odd =
+/// right): the vertex shader offsets them across the view.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct WispMesh {
+    pub vertices: Vec<StrandVertex>,
+    pub indices: Vec<u32>,
+    pub wisp_count: usize,
+    /// The dart throwing's final collision radius (model units).
+    pub radius: f32,
+}
+
+/// Whether the wisps followed the groom's guides or, having none, its strands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WispGuides {
+    Guides,
+    Strands,
+}
+
+/// `count` wisps over `strands`' roots, each along its nearest guide of
+/// `guides` (moved to the wisp's centre), or along the strand rooted at its
+/// centre when the groom has no guides ([`Guides::is_identity`]).
+pub fn build_wisps(strands: &Strands, guides: &Guides, count: usize) -> (WispMesh, WispGuides) {
+    let roots: Vec<Vec3> = strands
+        .ranges()
+        .map(|r| strands.points.get(r.start).copied().unwrap_or(Vec3::ZERO))
+        .collect();
+    let darts = relaxation_dart_throwing(&roots, count, WISP_SEED);
+    let own = guides.is_identity() || guides.strands.strand_count() == 0;
+    let (followed, kind) = if own {
+        (strands, WispGuides::Strands)
+    } else {
+        (&guides.strands, WispGuides::Guides)
+    };
+    let guide_roots: Vec<Vec3> = followed
+        .ranges()
+        .map(|r| followed.points.get(r.start).copied().unwrap_or(Vec3::ZERO))
+        .collect();
+    let (guide_vertices, _) = followed.line_list();
+    let mut mesh = WispMesh {
+        radius: darts.radius,
+        ..WispMesh::default()
+    };
+    for &s in &darts.chosen {
+        let centre = roots[s];
+        let g = if own {
+            s
+        } else {
+            nearest(&guide_roots, centre)
+        };
+        let range = followed.strand_range(g);
+        let source = strands.strand_range(s);
+        if range.len() < 2 || source.is_empty() {
+            continue;
+        }
+        let offset = centre - guide_roots[g];
+        let base = mesh.vertices.len() as u32;
+        let last = (range.len() - 1) as f32;
+        for (j, k) in range.clone().enumerate() {
+            let t = j as f32 / last;
+            let src = source.start + (t * (source.len() - 1) as f32).round() as usize;
+            let g = guide_vertices[k];
+            let vertex = StrandVertex {
+                position: (Vec3::from(g.position) + offset).to_array(),
+                thickness: t,
+                tangent: g.tangent,
+                alpha: strands.alpha[src],
+                color: strands.color[src].to_array(),
+                strand_id: src as u32,
+            };
+            mesh.vertices.extend([vertex, vertex]);
+        }
+        for j in 0..range.len() as u32 - 1 {
+            let (a, b, c, d) = (
+                base + 2 * j,
+                base + 2 * j + 1,
+                base + 2 * j + 2,
+                base + 2 * j + 3,
+            );
+            mesh.indices.extend([a, b, c, b, d, c]);
+        }
+        mesh.wisp_count += 1;
+    }
+    (mesh, kind)
+}
+
+fn nearest(points: &[Vec3], p: Vec3) -> usize {
+    points
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.distance_squared(p).total_cmp(&b.1.distance_squared(p)))
+        .map_or(0, |(i, _)| i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(n: usize) -> Vec<Vec3> {
+        let mut rng = SplitMix64::new(7);
+        (0..n)
+            .map(|_| Vec3::new(rng.signed(), rng.signed(), 0.0))
+            .collect()
+    }
+
+    #[test]
+    fn darts_keep_a_minimum_distance_and_are_deterministic() {
+        let points = grid(4000);
+        let darts = relaxation_dart_throwing(&points, 200, WISP_SEED);
+        assert_eq!(darts.chosen.len(), 200);
+        // Poisson-disk property: no two centres closer than the final radius.
+        let mut closest = f32::MAX;
+        for (i, &a) in darts.chosen.iter().enumerate() {
+            for &b in &darts.chosen[i + 1..] {
+                closest = closest.min(points[a].distance(points[b]));
+            }
+        }
+        assert!(closest >= darts.radius, "{closest} < {}", darts.radius);
+        // And the radius is that of an even spread, not a tiny one: 200
+        // disks of radius r/2 packed in the 2×2 square cover at most ~0.9 of
+        // it, so r ≈ 2·sqrt(0.9 · 4 / (200 π)) ≈ 0.15; pure random picks
+        // would come as close as ~0.01.
+        assert!(darts.radius > 0.08, "radius {}", darts.radius);
+        assert!(closest > 0.08, "closest {closest}");
+        assert_eq!(darts, relaxation_dart_throwing(&points, 200, WISP_SEED));
+        assert_ne!(darts, relaxation_dart_throwing(&points, 200, WISP_SEED + 1));
+    }
+
+    #[test]
+    fn darts_stop_when_the_candidates_run_out() {
+        let points = vec![Vec3::ZERO, Vec3::ZERO, Vec3::X];
+        let darts = relaxation_dart_throwing(&points, 3, 1);
+        assert_eq!(darts.chosen.len(), 2);
+    }
+
+    #[test]
+    fn a_wisp_is_a_strip_along_its_strand() {
+        let mut strands = Strands::new();
+        for x in 0..10 {
+            let root = Vec3::new(x as f32, 0.0, 0.0);
+            strands.push_strand(
+                &[root, root + Vec3::Y, root + 2.0 * Vec3::Y],
+                |_| 0.01,
+                |_| 1.0,
+                Vec3::ONE,
+            );
+        }
+        let (mesh, kind) = build_wisps(&strands, &Guides::identity(&strands), 4);
+        assert_eq!(kind, WispGuides::Strands);
+        assert_eq!(mesh.wisp_count, 4);
+        // 3 points × 2 sides, 2 segments × 2 triangles per wisp.
+        assert_eq!(mesh.vertices.len(), 4 * 6);
+        assert_eq!(mesh.indices.len(), 4 * 12);
+        let v = &mesh.vertices[..6];
+        assert_eq!(v[0].thickness, 0.0);
+        assert_eq!(v[5].thickness, 1.0);
+        // Each vertex names the hair vertex it stands for.
+        let src = v[2].strand_id as usize;
+        assert_eq!(strands.points[src], Vec3::from(v[2].position));
+    }
+}
