@@ -13,9 +13,9 @@
 //    fragment alpha (strand alpha × plait::strand_coverage × material
 //    alpha, widened by plait::strand_lod, interpolated between its two
 //    vertices as the rasterizer interpolates it) times the pixel's
-//    analytic coverage of the one-pixel-wide line: 1 − |distance along the
-//    minor axis| (a tent, summing to 1 over the pixels of each column the
-//    line crosses, as a rasterized line puts one fragment in each). Only
+//    analytic coverage of the one-pixel-wide line: 1 − |distance across
+//    the line| (a tent: over each column the line crosses it sums to the
+//    band's area there, as a rasterized one-pixel-wide line covers it). Only
 //    where the segment's depth is in front of the opaque depth ("less", as
 //    every hair draw tests it).
 // 3. A pixel whose A reaches `opacity_threshold` stops; when every pixel of
@@ -96,9 +96,12 @@ fn bin_of(key: f32, lo: f32, hi: f32, bins: u32) -> u32 {
 }
 
 // Where pixel centre `p` meets the line from a to b: x = the part of the
-// pixel the one-pixel-wide line covers (the tent across its minor axis),
-// y = t, the screen-space fraction along the line (half-open [0, 1), so
-// the segments of a strand meet without counting a pixel twice).
+// pixel the one-pixel-wide line covers — a tent of the pixel centre's
+// distance across the line, which sums to 1 / cos θ over the pixels of a
+// column (θ: the line's angle to its major axis), the area of a
+// one-pixel-wide band there, as a rasterized line of width 1 covers it —;
+// y = t, the screen-space fraction along the line's major axis (half-open
+// [0, 1), so the segments of a strand meet without counting a pixel twice).
 fn line_coverage(p: vec2<f32>, a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
     let d = b - a;
     var t: f32;
@@ -116,7 +119,9 @@ fn line_coverage(p: vec2<f32>, a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
     if (t < 0.0 || t >= 1.0) {
         return vec2<f32>(0.0);
     }
-    return vec2<f32>(max(1.0 - abs(off), 0.0), t);
+    // The distance across the line: the minor-axis offset × cos θ.
+    let across = abs(off) * max(abs(d.x), abs(d.y)) / length(d);
+    return vec2<f32>(max(1.0 - across, 0.0), t);
 }
 
 // The fragment alpha at a vertex (before the material alpha), as
