@@ -7,7 +7,11 @@
 // The `geometry` point's answer is honoured as every hair draw honours it
 // (plait::strand_lod): a strand of weight 0 is not binned. A segment is left
 // out of a tile whose farthest opaque depth is at or in front of the
-// segment's nearest depth (tile_depth): hidden there everywhere.
+// segment's nearest depth (tile_depth): hidden there everywhere; in a tile
+// that test keeps, only if some pixel of the tile that tile_blend would draw
+// it in (its coverage rule, below) has the segment in front of the opaque
+// depth — so hair hidden behind the head takes no capacity, is never
+// counted, and the image is the same as without it.
 //
 // Each tile holds `segments_per_tile` indices; a segment past that is
 // dropped and counted: raster_counter[0] counts dropped appends, [1] the
@@ -38,6 +42,7 @@ struct Params {
 @group(1) @binding(4) var<storage, read_write> tile_counts: array<atomic<u32>>;
 @group(1) @binding(5) var<storage, read_write> tile_segments: array<u32>;
 @group(1) @binding(6) var<storage, read_write> raster_counter: array<atomic<u32>>;
+@group(1) @binding(7) var opaque_depth: texture_depth_2d;
 
 // Screen position in pixels (y down, pixel centres at +0.5) and NDC depth.
 fn project(p: vec3<f32>) -> vec4<f32> {
@@ -45,6 +50,50 @@ fn project(p: vec3<f32>) -> vec4<f32> {
     let ndc = c.xyz / c.w;
     let xy = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.screen_size.xy;
     return vec4<f32>(xy, ndc.z, c.w);
+}
+
+// Whether segment a → b (screen xy, NDC z) is in front of the opaque depth
+// at some pixel of the tile from `lo` to `hi` (inclusive) that tile_blend
+// draws it in: pixel centres whose major-axis coordinate falls in [0, 1)
+// of the segment and whose distance across the line is under one pixel
+// (blend.wgsl, line_coverage).
+fn visible_in_tile(a: vec4<f32>, b: vec4<f32>, lo: vec2<i32>, hi: vec2<i32>) -> bool {
+    let d = b.xy - a.xy;
+    let x_major = abs(d.x) >= abs(d.y);
+    // Swizzled so that .x is the major axis.
+    let a2 = select(a.yx, a.xy, x_major);
+    let d2 = select(d.yx, d, x_major);
+    let lo2 = select(lo.yx, lo, x_major);
+    let hi2 = select(hi.yx, hi, x_major);
+    if (abs(d2.x) < 1e-6) {
+        return false;
+    }
+    let cos_theta = abs(d2.x) / length(d2);
+    let first = max(lo2.x, i32(floor(min(a2.x, a2.x + d2.x) - 0.5)));
+    let last = min(hi2.x, i32(floor(max(a2.x, a2.x + d2.x) + 0.5)));
+    for (var i = first; i <= last; i++) {
+        let t = (f32(i) + 0.5 - a2.x) / d2.x;
+        if (t < 0.0 || t >= 1.0) {
+            continue;
+        }
+        let minor = a2.y + t * d2.y;
+        let z = mix(a.z, b.z, t);
+        if (z < 0.0) {
+            continue;
+        }
+        let from_j = max(lo2.y, i32(floor(minor - 1.5)));
+        let to_j = min(hi2.y, i32(floor(minor + 1.5)));
+        for (var j = from_j; j <= to_j; j++) {
+            if (abs(f32(j) + 0.5 - minor) * cos_theta >= 1.0) {
+                continue;
+            }
+            let pixel = select(vec2<i32>(j, i), vec2<i32>(i, j), x_major);
+            if (z < textureLoad(opaque_depth, pixel, 0)) {
+                return true;
+            }
+        }
+    }
+    return false;
 }
 
 @compute @workgroup_size(64)
@@ -92,6 +141,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             let tile = u32(ty * tiles.x + tx);
             if (near_z >= bitcast<f32>(tile_far[tile])) {
+                continue;
+            }
+            let tile_lo = vec2<i32>(tx, ty) * t;
+            let tile_hi = min(tile_lo + vec2<i32>(t - 1), size - vec2<i32>(1));
+            if (!visible_in_tile(a, b, tile_lo, tile_hi)) {
                 continue;
             }
             let slot = atomicAdd(&tile_counts[tile], 1u);
