@@ -6,9 +6,9 @@
 //! straddles, keeping the band's area: 1 / cos θ per column, as the
 //! rasterized line of width 1 covers it).
 
+use glam::Vec3;
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
-use glam::Vec3;
 use plait_tests::{open_gpu, repo_root, strands_subset};
 
 const SIZE: (u32, u32) = (96, 72);
@@ -53,7 +53,8 @@ fn isolated_strands_cover_what_rasterized_lines_cover() {
     let (raster, raster_at) = hair_alpha(&gpu, "pipelines/linked_list.toml", &[], &sparse);
     let (compute, compute_at) = hair_alpha(&gpu, "pipelines/compute_raster.toml", &[], &sparse);
     let ratio = compute / raster;
-    let shift = ((compute_at[0] - raster_at[0]).powi(2) + (compute_at[1] - raster_at[1]).powi(2)).sqrt();
+    let shift =
+        ((compute_at[0] - raster_at[0]).powi(2) + (compute_at[1] - raster_at[1]).powi(2)).sqrt();
     println!(
         "Σα raster {raster:.3}, compute {compute:.3} (× {ratio:.4}); centroid {raster_at:?} → {compute_at:?}, shift {shift:.3} px"
     );
@@ -78,9 +79,15 @@ fn hand_built_strands_in_front_of_the_head() {
     }
     scene.strands = strands;
     let (raster, raster_at) = hair_alpha(&gpu, "pipelines/linked_list.toml", &[], &scene);
-    let (compute, compute_at) = hair_alpha(&gpu, "pipelines/compute_raster.toml", &["params.shading_points=8"], &scene);
+    let (compute, compute_at) = hair_alpha(
+        &gpu,
+        "pipelines/compute_raster.toml",
+        &["params.shading_points=8"],
+        &scene,
+    );
     let ratio = compute / raster;
-    let shift = ((compute_at[0] - raster_at[0]).powi(2) + (compute_at[1] - raster_at[1]).powi(2)).sqrt();
+    let shift =
+        ((compute_at[0] - raster_at[0]).powi(2) + (compute_at[1] - raster_at[1]).powi(2)).sqrt();
     println!(
         "hand-built: Σα raster {raster:.3}, compute {compute:.3} (× {ratio:.4}); centroid {raster_at:?} → {compute_at:?}"
     );

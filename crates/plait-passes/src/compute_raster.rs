@@ -69,7 +69,8 @@ pub struct TileBlend;
 inventory::submit! { crate::RustPassType(|| Box::new(StrandBin)) }
 inventory::submit! { crate::RustPassType(|| Box::new(TileBlend)) }
 
-const SOURCE: &str = "Tafuri 2019 (Frostbite); Unreal Engine 5 hair rasterizer; Unity HDRP High Quality Lines";
+const SOURCE: &str =
+    "Tafuri 2019 (Frostbite); Unreal Engine 5 hair rasterizer; Unity HDRP High Quality Lines";
 
 impl PassType for StrandBin {
     fn spec(&self) -> PassTypeSpec {
