@@ -305,3 +305,27 @@ fn hair_hidden_in_a_mesh_head_is_not_counted() {
     let pipelines = pipelines_covering_every_hair_pass(&gpu);
     assert_same_maps(&gpu, &pipelines, &visible, &hidden, "mesh head");
 }
+
+/// compute_raster bins segments in compute, not in a hair draw, so the maps
+/// above see only its image: hair entirely behind the head must not be
+/// binned into any tile either (tile_depth's conservative cull), so it takes
+/// no tile capacity and is never counted as overflow — and is not drawn.
+#[test]
+fn compute_raster_bins_no_hidden_hair() {
+    let (_lock, gpu) = open_gpu();
+    let pipeline = repo_root().join("pipelines/compute_raster.toml");
+    let mut scene = small_scene();
+    scene.strands = plait_hair::Strands::new();
+    add_hidden_strands(&mut scene.strands, 200);
+    let set = "pipeline.outputs=[\"final\", \"tile_counts\", \"raster_counter\", \"hair\"]";
+    let prepared = prepare(&gpu, &pipeline, &[set.into()], &scene, SIZE)
+        .unwrap_or_else(|e| panic!("preparing compute_raster: {e}"));
+    prepared.renderer.render().expect("renders");
+    for name in ["tile_counts", "raster_counter"] {
+        let bytes = prepared.renderer.read_buffer(name).expect(name);
+        let binned = bytes.chunks_exact(4).filter(|w| w != &[0; 4]).count();
+        assert_eq!(binned, 0, "`{name}`: hidden hair was binned");
+    }
+    let hair = prepared.renderer.read_resource("hair").expect("hair").bytes;
+    assert!(hair.iter().all(|&b| b == 0), "hidden hair was drawn");
+}

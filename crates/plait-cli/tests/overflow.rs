@@ -196,3 +196,87 @@ fn ab_reports_every_variants_drops() {
     let md = std::fs::read_to_string(out.join("report.md")).expect("report.md");
     assert!(md.contains(&format!(" {} |", dropped[0].1)), "{md}");
 }
+
+/// compute_raster: each screen tile holds `segments_per_tile` segments; a
+/// cap of 2 (set by the user) overflows on the small scene and is counted
+/// and reported, in --json and in the table; by default it grows.
+#[test]
+fn a_capped_compute_raster_tile_reports_its_drops() {
+    let json = render_json(
+        "pipelines/compute_raster.toml",
+        &["params.segments_per_tile=2"],
+    );
+    let c = counter(&json);
+    assert_eq!(c["of"], "tile_segments");
+    assert_eq!(c["pass"], "strand_bin");
+    assert_eq!(c["grows"], false, "a --set is the user's cap");
+    assert!(count(c, "dropped") > 0, "{c}");
+    // Tiles at 64x48 with 8-px tiles (+1 a side): 9 × 7, 2 segments each.
+    assert_eq!(count(c, "capacity"), 9 * 7 * 2, "{c}");
+    assert!(count(c, "value_needed") > 2, "{c}");
+    assert!(count(c, "needed") > count(c, "capacity"), "{c}");
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("out.png");
+    let o = plait(&[
+        "render",
+        "pipelines/compute_raster.toml",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--size",
+        "64x48",
+        "--set",
+        "params.segments_per_tile=2",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let table = text(&o.stdout);
+    let line = table
+        .lines()
+        .find(|l| l.starts_with("dropped:"))
+        .unwrap_or_else(|| panic!("no dropped line:\n{table}"));
+    assert!(
+        line.contains("`tile_segments` (pass `strand_bin`) dropped"),
+        "{line}"
+    );
+    assert!(line.contains("--set params.segments_per_tile="), "{line}");
+
+    let held = render_json("pipelines/compute_raster.toml", &[]);
+    let c = counter(&held);
+    assert_eq!(c["grows"], true, "{c}");
+    assert_eq!(count(c, "dropped"), 0, "{held}");
+}
+
+/// A tiling param compute_raster cannot run with is refused when the
+/// pipeline is loaded (exit 2), naming the param: a tile that is not a power
+/// of two or larger than a workgroup, a bin count out of range.
+#[test]
+fn compute_raster_refuses_impossible_tiling_params() {
+    for (set, named) in [
+        ("params.tile_size=6", "params.tile_size"),
+        ("params.tile_size=32", "params.tile_size"),
+        ("params.depth_bins=0", "params.depth_bins"),
+        ("params.depth_bins=65", "params.depth_bins"),
+        ("params.segments_per_tile=0", "params.segments_per_tile"),
+    ] {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let out = dir.path().join("out.png");
+        let o = plait(&[
+            "render",
+            "pipelines/compute_raster.toml",
+            "--scene",
+            "examples/scenes/small.toml",
+            "--size",
+            "64x48",
+            "--set",
+            set,
+            "--out",
+            out.to_str().expect("utf-8"),
+        ]);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{set}: {err}");
+        assert!(err.contains(named), "{set}: {err}");
+        assert!(!out.exists(), "{set}: no image from a refused pipeline");
+    }
+}

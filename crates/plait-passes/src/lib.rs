@@ -6,6 +6,7 @@
 //! with every pass checked against its shader with naga (no GPU), which
 //! `plait check` and `plait render` both run before any GPU work.
 
+pub mod compute_raster;
 pub mod data_only;
 pub mod data_pass;
 pub mod density_clustering;

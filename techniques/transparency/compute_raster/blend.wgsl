@@ -1,0 +1,295 @@
+// compute_raster, tile_blend: one workgroup per screen tile, one thread per
+// pixel (tile_size² threads).
+//
+// 1. The tile's segments (strand_bin) are partitioned into `depth_bins`
+//    bins of the camera depth of their midpoints, uniform between the
+//    tile's nearest and farthest segment (a counting sort in workgroup
+//    memory), and each bin is then sorted by that depth (insertion sort,
+//    ties by segment index, so the image is the same every run): the tile's
+//    segments front to back, by segment.
+// 2. Bin after bin, the threads project the bin's segments into workgroup
+//    memory a chunk at a time, and each pixel blends them front to back,
+//    C += (1 - A) · α · rgb, A += (1 - A) · α, with α the segment's
+//    fragment alpha (strand alpha × plait::strand_coverage × material
+//    alpha, widened by plait::strand_lod, interpolated between its two
+//    vertices as the rasterizer interpolates it) times the pixel's
+//    analytic coverage of the one-pixel-wide line: 1 − |distance across
+//    the line| (a tent: over each column the line crosses it sums to the
+//    band's area there, as a rasterized one-pixel-wide line covers it). Only
+//    where the segment's depth is in front of the opaque depth ("less", as
+//    every hair draw tests it).
+// 3. A pixel whose A reaches `opacity_threshold` stops; when every pixel of
+//    the tile has, the tile stops (the early out of Unity HDRP's High
+//    Quality Lines and Frostbite).
+//
+// Colour: where the fragment stage gets it (plait::shading_space) —
+// strand space interpolates the strand_shading pass's radiance; with
+// fragment shading the pixel is shaded here through plait::hair_radiance
+// at the interpolated point, as the hair fragment stage shades it.
+#import plait::frame::frame
+#import plait::hair_radiance::hair_radiance
+#import plait::ambient_occlusion::occlusion_at
+#import plait::shading_space::strand_space_radiance
+#import plait::strand_coverage::strand_coverage
+#import plait::strand_lod::{strand_lod_weight, strand_lod_alpha}
+
+struct HairPoint {
+    position: vec3<f32>,
+    thickness: f32,
+    tangent: vec3<f32>,
+    alpha: f32,
+    color: vec3<f32>,
+    strand: u32,
+}
+
+struct Params {
+    tile_size: u32,
+    depth_bins: u32,
+    segments_per_tile: u32,
+    opacity_threshold: f32,
+}
+
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
+@group(1) @binding(60) var<uniform> params: Params;
+@group(1) @binding(61) var<storage, read> hair_vertices: array<HairPoint>;
+@group(1) @binding(62) var<storage, read> hair_indices: array<u32>;
+@group(1) @binding(63) var<storage, read> tile_counts: array<u32>;
+@group(1) @binding(64) var<storage, read> tile_segments: array<u32>;
+// Per tile slot: segment index, depth key bits — the tile's sorted order.
+@group(1) @binding(65) var<storage, read_write> tile_sorted: array<u32>;
+@group(1) @binding(66) var opaque_depth: texture_depth_2d;
+// Premultiplied hair, blended front to back (for compose_hair_over).
+@group(1) @binding(67) var hair: texture_storage_2d<rgba16float, write>;
+
+const TILE: u32 = #{TILE_SIZE}u;
+const THREADS: u32 = TILE * TILE;
+// tile_size ≤ 16 and depth_bins ≤ 64 are checked at load (compute_raster.rs).
+const MAX_BINS: u32 = 64u;
+
+var<workgroup> bin_count: array<atomic<u32>, MAX_BINS>;
+var<workgroup> bin_start: array<u32, 65>;
+var<workgroup> key_range: array<atomic<u32>, 2>;
+var<workgroup> finished: atomic<u32>;
+var<workgroup> all_finished: u32;
+// One chunk of a bin's segments, projected: screen xy (pixels), NDC z, clip w.
+var<workgroup> chunk_a: array<vec4<f32>, THREADS>;
+var<workgroup> chunk_b: array<vec4<f32>, THREADS>;
+var<workgroup> chunk_segment: array<u32, THREADS>;
+
+fn project(p: vec3<f32>) -> vec4<f32> {
+    let c = frame.camera_view_proj * vec4<f32>(p, 1.0);
+    let ndc = c.xyz / c.w;
+    let xy = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.screen_size.xy;
+    return vec4<f32>(xy, ndc.z, c.w);
+}
+
+// The sort key: camera depth (clip w, > 0 for every binned segment) of the
+// segment's midpoint.
+fn segment_key(s: u32) -> f32 {
+    let p = 0.5 * (hair_vertices[hair_indices[2u * s]].position + hair_vertices[hair_indices[2u * s + 1u]].position);
+    return max((frame.camera_view_proj * vec4<f32>(p, 1.0)).w, 0.0);
+}
+
+fn bin_of(key: f32, lo: f32, hi: f32, bins: u32) -> u32 {
+    let f = (key - lo) / max(hi - lo, 1e-20);
+    return min(u32(max(f, 0.0) * f32(bins)), bins - 1u);
+}
+
+// Where pixel centre `p` meets the line from a to b: x = the part of the
+// pixel the one-pixel-wide line covers — a tent of the pixel centre's
+// distance across the line, which sums to 1 / cos θ over the pixels of a
+// column (θ: the line's angle to its major axis), the area of a
+// one-pixel-wide band there, as a rasterized line of width 1 covers it —;
+// y = t, the screen-space fraction along the line's major axis (half-open
+// [0, 1), so the segments of a strand meet without counting a pixel twice).
+fn line_coverage(p: vec2<f32>, a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    let d = b - a;
+    var t: f32;
+    var off: f32;
+    if (abs(d.x) >= abs(d.y)) {
+        if (abs(d.x) < 1e-6) {
+            return vec2<f32>(0.0);
+        }
+        t = (p.x - a.x) / d.x;
+        off = a.y + t * d.y - p.y;
+    } else {
+        t = (p.y - a.y) / d.y;
+        off = a.x + t * d.x - p.x;
+    }
+    if (t < 0.0 || t >= 1.0) {
+        return vec2<f32>(0.0);
+    }
+    // The distance across the line: the minor-axis offset × cos θ.
+    let across = abs(off) * max(abs(d.x), abs(d.y)) / length(d);
+    return vec2<f32>(max(1.0 - across, 0.0), t);
+}
+
+// The fragment alpha at a vertex (before the material alpha), as
+// plait::hair_fragment's vertex stage computes it.
+fn vertex_alpha(v: HairPoint) -> f32 {
+    return strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness), strand_lod_weight(v.strand));
+}
+
+// Straight colour and alpha of segment s at screen fraction t, weighed by `weight`.
+fn shade_segment(s: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec4<f32> {
+    // Perspective-correct fraction along the segment (1/w is linear on screen).
+    let along = (t / b.w) / ((1.0 - t) / a.w + t / b.w);
+    let i0 = hair_indices[2u * s];
+    let i1 = hair_indices[2u * s + 1u];
+    let v0 = hair_vertices[i0];
+    let v1 = hair_vertices[i1];
+    let alpha = clamp(mix(vertex_alpha(v0), vertex_alpha(v1), along) * frame.hair_color.a, 0.0, 1.0) * weight;
+    let shaded = strand_space_radiance(v0.strand, i0, along);
+    if (shaded.w > 0.0) {
+        return vec4<f32>(shaded.rgb, alpha);
+    }
+    let world = mix(v0.position, v1.position, along);
+    let tangent = mix(v0.tangent, v1.tangent, along);
+    let color = mix(v0.color, v1.color, along);
+    let occlusion = mix(occlusion_at(i0), occlusion_at(i1), along);
+    return vec4<f32>(hair_radiance(shadow_map, world, tangent, color, occlusion), alpha);
+}
+
+@compute @workgroup_size(TILE, TILE)
+fn main(
+    @builtin(local_invocation_index) lid: u32,
+    @builtin(local_invocation_id) local: vec3<u32>,
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+) {
+    let bins = clamp(params.depth_bins, 1u, MAX_BINS);
+    let cap = params.segments_per_tile;
+    let tile = group.y * groups.x + group.x;
+    let base = tile * cap;
+    if (lid < MAX_BINS) {
+        atomicStore(&bin_count[lid], 0u);
+    }
+    if (lid == 0u) {
+        atomicStore(&key_range[0], 0xffffffffu);
+        atomicStore(&key_range[1], 0u);
+        atomicStore(&finished, 0u);
+    }
+    workgroupBarrier();
+    let n = min(tile_counts[tile], cap);
+
+    // 1. Depth range, bin counts, placement, per-bin sort.
+    for (var i = lid; i < n; i += THREADS) {
+        let bits = bitcast<u32>(segment_key(tile_segments[base + i]));
+        atomicMin(&key_range[0], bits);
+        atomicMax(&key_range[1], bits);
+    }
+    workgroupBarrier();
+    let lo = bitcast<f32>(atomicLoad(&key_range[0]));
+    let hi = bitcast<f32>(atomicLoad(&key_range[1]));
+    for (var i = lid; i < n; i += THREADS) {
+        atomicAdd(&bin_count[bin_of(segment_key(tile_segments[base + i]), lo, hi, bins)], 1u);
+    }
+    workgroupBarrier();
+    if (lid == 0u) {
+        var sum = 0u;
+        for (var b = 0u; b < bins; b++) {
+            bin_start[b] = sum;
+            sum += atomicLoad(&bin_count[b]);
+            atomicStore(&bin_count[b], 0u);
+        }
+        bin_start[bins] = sum;
+    }
+    workgroupBarrier();
+    for (var i = lid; i < n; i += THREADS) {
+        let s = tile_segments[base + i];
+        let key = segment_key(s);
+        let b = bin_of(key, lo, hi, bins);
+        let at = base + bin_start[b] + atomicAdd(&bin_count[b], 1u);
+        tile_sorted[2u * at] = s;
+        tile_sorted[2u * at + 1u] = bitcast<u32>(key);
+    }
+    storageBarrier();
+    workgroupBarrier();
+    for (var b = lid; b < bins; b += THREADS) {
+        let first = base + bin_start[b];
+        let end = base + bin_start[b + 1u];
+        for (var i = first + 1u; i < end; i++) {
+            let s = tile_sorted[2u * i];
+            let k = tile_sorted[2u * i + 1u];
+            var j = i;
+            loop {
+                if (j <= first) {
+                    break;
+                }
+                let ps = tile_sorted[2u * (j - 1u)];
+                let pk = tile_sorted[2u * (j - 1u) + 1u];
+                if (pk < k || (pk == k && ps < s)) {
+                    break;
+                }
+                tile_sorted[2u * j] = ps;
+                tile_sorted[2u * j + 1u] = pk;
+                j--;
+            }
+            tile_sorted[2u * j] = s;
+            tile_sorted[2u * j + 1u] = k;
+        }
+    }
+    storageBarrier();
+    workgroupBarrier();
+
+    // 2. Front to back, bin after bin, a chunk of projected segments at a time.
+    let pixel = group.xy * TILE + local.xy;
+    let size = vec2<u32>(frame.screen_size.xy);
+    let inside = all(pixel < size);
+    var opaque = 0.0;
+    if (inside) {
+        opaque = textureLoad(opaque_depth, pixel, 0);
+    }
+    let centre = vec2<f32>(pixel) + 0.5;
+    var color = vec3<f32>(0.0);
+    var alpha = 0.0;
+    var done = !inside;
+    if (done) {
+        atomicAdd(&finished, 1u);
+    }
+    for (var b = 0u; b < bins; b++) {
+        let first = workgroupUniformLoad(&bin_start[b]);
+        let end = workgroupUniformLoad(&bin_start[b + 1u]);
+        for (var c = first; c < end; c += THREADS) {
+            let j = c + lid;
+            if (j < end) {
+                let s = tile_sorted[2u * (base + j)];
+                chunk_segment[lid] = s;
+                chunk_a[lid] = project(hair_vertices[hair_indices[2u * s]].position);
+                chunk_b[lid] = project(hair_vertices[hair_indices[2u * s + 1u]].position);
+            }
+            workgroupBarrier();
+            let m = min(THREADS, end - c);
+            for (var k = 0u; k < m && !done; k++) {
+                let a = chunk_a[k];
+                let e = chunk_b[k];
+                let cover = line_coverage(centre, a.xy, e.xy);
+                if (cover.x <= 0.0) {
+                    continue;
+                }
+                let z = mix(a.z, e.z, cover.y);
+                if (z < 0.0 || z >= opaque) {
+                    continue;
+                }
+                let f = shade_segment(chunk_segment[k], cover.y, a, e, cover.x);
+                color += (1.0 - alpha) * f.a * f.rgb;
+                alpha += (1.0 - alpha) * f.a;
+                if (alpha >= params.opacity_threshold) {
+                    done = true;
+                    atomicAdd(&finished, 1u);
+                }
+            }
+            workgroupBarrier();
+        }
+        // 3. Every pixel of the tile opaque: the rest of the bins are hidden.
+        if (lid == 0u) {
+            all_finished = atomicLoad(&finished);
+        }
+        if (workgroupUniformLoad(&all_finished) >= THREADS) {
+            break;
+        }
+    }
+    if (inside) {
+        textureStore(hair, pixel, vec4<f32>(color, alpha));
+    }
+}
