@@ -3,19 +3,25 @@
 // hair, for the modified shadow map's nearest-hair depth (Halén & Wester 2007 §3.3.2).
 #import plait::frame::{view_proj, opaque_world}
 
+#ifdef DRAW_OPAQUE
 struct VertexIn {
     @location(0) position: vec3<f32>,
-#ifdef DRAW_OPAQUE
     // 1 for the head, which moves with the scene's animation.
     @location(3) head: f32,
-#endif
 }
 
 @vertex
 fn vs_main(v: VertexIn) -> @builtin(position) vec4<f32> {
-#ifdef DRAW_OPAQUE
     return view_proj() * vec4<f32>(opaque_world(v.position, v.head), 1.0);
-#else
-    return view_proj() * vec4<f32>(v.position, 1.0);
-#endif
 }
+#else
+// Hair goes through the geometry choice like every other map of hair: the
+// strands the `lod` technique drops are dropped here too, and a wisp vertex
+// becomes its strip's corner (drawn as it is, a wisp's strip has no width).
+#import plait::hair_map::{MapVertex, map_vertex}
+
+@vertex
+fn vs_main(v: MapVertex) -> @builtin(position) vec4<f32> {
+    return map_vertex(v).clip;
+}
+#endif

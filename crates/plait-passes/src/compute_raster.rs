@@ -21,9 +21,23 @@ pub const MAX_TILE_SIZE: i64 = 16;
 /// The depth bins' counters live in workgroup memory (blend.wgsl's `MAX_BINS`).
 pub const MAX_DEPTH_BINS: i64 = 64;
 
-/// The tiling params a pass sets (`param` looks one up), each checked; the
+/// The tiling params a pass sets (`param` looks one up), each checked, and
+/// the geometry it is asked to draw; the
 /// message names the param.
 fn check_params<'v>(param: impl Fn(&str) -> Option<&'v Value>) -> Result<(), String> {
+    // A line rasterizer bins strand segments; the wisps of `geometry = wisps`
+    // are triangle strips it cannot draw. Refused here rather than drawn as
+    // strands, which would compare another geometry than the one chosen.
+    if let Some(Value::Str(g)) = param("geometry")
+        && g == "wisps"
+    {
+        return Err(
+            "techniques.transparency = compute_raster rasterizes strand segments, but \
+             techniques.geometry = wisps draws triangle strips: choose geometry strands or lod \
+             with compute_raster, or another transparency technique with wisps"
+                .into(),
+        );
+    }
     let int = |name: &str| param(name).and_then(Value::as_i64);
     if let Some(t) = int("tile_size")
         && (t < 2 || t > MAX_TILE_SIZE || (t & (t - 1)) != 0)

@@ -1,6 +1,8 @@
 //! A chosen technique's exports reach the passes that use its point: those
 //! that list it in `uses`, and every pass drawing a geometry its point file
-//! `draws` (the `geometry` point: every hair draw).
+//! `draws` (the `geometry` point: every hair draw). A compute pass that draws
+//! hair its own way (the compute rasterizer) `uses` such a point too, and,
+//! like a draw, gets its default when the pipeline does not choose it.
 
 use crate::error::{Error, Location, Spanned};
 use crate::load::{Entry, Node, Table, merge};
@@ -24,6 +26,7 @@ pub(super) struct PointExports {
 pub(super) fn give_exports(
     root: &mut Spanned<Node>,
     exports: &[PointExports],
+    implicit: &[String],
     has_table: bool,
     errors: &mut Vec<Error>,
 ) {
@@ -64,6 +67,12 @@ pub(super) fn give_exports(
                     continue;
                 };
                 let Some(export) = exports.iter().find(|e| &e.point == point) else {
+                    // Unchosen, a point joined to every draw (`draws`, the
+                    // `geometry` point) is its WGSL default: nothing to give,
+                    // as for the draws themselves.
+                    if implicit.contains(point) {
+                        continue;
+                    }
                     let known: Vec<&str> = exports.iter().map(|e| e.point.as_str()).collect();
                     errors.push(schema(
                         &item.location,

@@ -248,6 +248,9 @@ pub(crate) fn apply_techniques(
     let chosen = top.shift_remove("techniques");
     let mut exports: Vec<PointExports> = Vec::new();
     let mut combined: Option<Spanned<Node>> = None;
+    // Points joined to every draw of a geometry (`draws`): unchosen, their
+    // WGSL default applies, so a pass may `uses` one without a choice.
+    let mut implicit: Vec<String> = Vec::new();
     if let Some(entry) = &chosen {
         let Node::Table(points_table) = &entry.value.value else {
             errors.push(schema(
@@ -267,6 +270,11 @@ pub(crate) fn apply_techniques(
             ));
             return chosen_list;
         }
+        implicit = roots
+            .points()
+            .into_iter()
+            .filter(|p| matches!(roots.point_file(p), Some(Ok(f)) if !f.draws.is_empty()))
+            .collect();
         let mut chooser = Chooser {
             known_points: roots.points(),
             roots,
@@ -294,7 +302,7 @@ pub(crate) fn apply_techniques(
         merge(&mut base, pipeline);
         *root = base;
     }
-    give_exports(root, &exports, chosen.is_some(), errors);
+    give_exports(root, &exports, &implicit, chosen.is_some(), errors);
     chosen_list
 }
 
