@@ -10,16 +10,8 @@
 
 #import plait::hair_radiance::hair_radiance
 #import plait::ambient_occlusion::occlusion_at
+#import plait::hair_point::HairPoint
 
-// A hair vertex as `hair_vertices` holds it (48 B, `StrandVertex`).
-struct HairPoint {
-    position: vec3<f32>,
-    thickness: f32,
-    tangent: vec3<f32>,
-    alpha: f32,
-    color: vec3<f32>,
-    strand: u32,
-}
 
 // One drawn strand of `strand_guides` (48 B): ids.w = first vertex, root.w = point count.
 struct Strand {

@@ -20,16 +20,8 @@
 // technique's `overflow` declaration) and may grow the param.
 #import plait::frame::frame
 #import plait::strand_lod::strand_lod_weight
+#import plait::hair_point::{HairPoint, screen_project}
 
-// A hair vertex as `hair_vertices` holds it (48 B, `StrandVertex`).
-struct HairPoint {
-    position: vec3<f32>,
-    thickness: f32,
-    tangent: vec3<f32>,
-    alpha: f32,
-    color: vec3<f32>,
-    strand: u32,
-}
 
 struct Params {
     tile_size: u32,
@@ -43,14 +35,6 @@ struct Params {
 @group(1) @binding(5) var<storage, read_write> tile_segments: array<u32>;
 @group(1) @binding(6) var<storage, read_write> raster_counter: array<atomic<u32>>;
 @group(1) @binding(7) var opaque_depth: texture_depth_2d;
-
-// Screen position in pixels (y down, pixel centres at +0.5) and NDC depth.
-fn project(p: vec3<f32>) -> vec4<f32> {
-    let c = frame.camera_view_proj * vec4<f32>(p, 1.0);
-    let ndc = c.xyz / c.w;
-    let xy = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.screen_size.xy;
-    return vec4<f32>(xy, ndc.z, c.w);
-}
 
 // Whether segment a → b (screen xy, NDC z) is in front of the opaque depth
 // at some pixel of the tile from `lo` to `hi` (inclusive) that tile_blend
@@ -107,8 +91,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (strand_lod_weight(v0.strand) <= 0.0) {
         return;
     }
-    let a = project(v0.position);
-    let b = project(v1.position);
+    let a = screen_project(v0.position);
+    let b = screen_project(v1.position);
     // Segments reaching behind the eye are not drawn (the hair is in front
     // of the camera in every scene plait renders; the raster path clips).
     if (a.w <= 0.0 || b.w <= 0.0) {

@@ -32,15 +32,8 @@
 #import plait::shading_space::strand_space_radiance
 #import plait::strand_coverage::strand_coverage
 #import plait::strand_lod::{strand_lod_weight, strand_lod_alpha}
+#import plait::hair_point::{HairPoint, screen_project}
 
-struct HairPoint {
-    position: vec3<f32>,
-    thickness: f32,
-    tangent: vec3<f32>,
-    alpha: f32,
-    color: vec3<f32>,
-    strand: u32,
-}
 
 struct Params {
     tile_size: u32,
@@ -75,13 +68,6 @@ var<workgroup> all_finished: u32;
 var<workgroup> chunk_a: array<vec4<f32>, THREADS>;
 var<workgroup> chunk_b: array<vec4<f32>, THREADS>;
 var<workgroup> chunk_segment: array<u32, THREADS>;
-
-fn project(p: vec3<f32>) -> vec4<f32> {
-    let c = frame.camera_view_proj * vec4<f32>(p, 1.0);
-    let ndc = c.xyz / c.w;
-    let xy = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.screen_size.xy;
-    return vec4<f32>(xy, ndc.z, c.w);
-}
 
 // The sort key: camera depth (clip w, > 0 for every binned segment) of the
 // segment's midpoint.
@@ -255,8 +241,8 @@ fn main(
             if (j < end) {
                 let s = tile_sorted[2u * (base + j)];
                 chunk_segment[lid] = s;
-                chunk_a[lid] = project(hair_vertices[hair_indices[2u * s]].position);
-                chunk_b[lid] = project(hair_vertices[hair_indices[2u * s + 1u]].position);
+                chunk_a[lid] = screen_project(hair_vertices[hair_indices[2u * s]].position);
+                chunk_b[lid] = screen_project(hair_vertices[hair_indices[2u * s + 1u]].position);
             }
             workgroupBarrier();
             let m = min(THREADS, end - c);

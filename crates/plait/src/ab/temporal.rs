@@ -32,13 +32,22 @@ pub(super) fn measure(
             move |source| AbError::Render { what, source }
         };
         let mut frames = Vec::with_capacity(sequence.frames as usize);
+        // The reference renders at its supersampled size and is filtered
+        // down, as its still image is (`--supersample`).
+        let render_size = plan.options.render_size(v.is_reference);
+        let k = render_size.0 / size.0.max(1);
         for index in 0..sequence.frames {
-            p.render_frame(&scene.data, size, index, sequence.fps)
+            p.render_frame(&scene.data, render_size, index, sequence.fps)
                 .map_err(render_error("rendering"))?;
-            frames.push(p.image().map_err(|e| AbError::Render {
+            let image = p.image().map_err(|e| AbError::Render {
                 what: what("reading the image of"),
                 source: e.into(),
-            })?);
+            })?;
+            frames.push(if k > 1 {
+                super::supersample::box_filter(&image, k)
+            } else {
+                image
+            });
         }
         images.push(frames);
         probes.push(
