@@ -1,5 +1,5 @@
 // compute_raster, strand_bin: one thread per hair segment (the line list's
-// vertex pairs) projects it with the camera and appends its index to every
+// vertex pairs) projects it with the camera and appends it (its first vertex) to every
 // screen tile it may touch: its screen bounding box grown by one pixel (the
 // analytic coverage of tile_blend reaches one pixel either side of the
 // line), narrowed to the tiles the line passes within that pixel of.
@@ -134,7 +134,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             let slot = atomicAdd(&tile_counts[tile], 1u);
             if (slot < cap) {
-                tile_segments[tile * cap + slot] = s;
+                // The segment's first vertex: a strand's segment i joins
+                // vertices i and i + 1 (`Strands::line_list`), so tile_blend
+                // needs no index buffer (a binding fewer: the WebGPU default
+                // of 8 storage buffers per stage holds it with strand space
+                // and occupancy's maps).
+                tile_segments[tile * cap + slot] = hair_indices[2u * s];
             } else {
                 atomicAdd(&raster_counter[0], 1u);
                 atomicMax(&raster_counter[1], (slot + 1u) * allocated);

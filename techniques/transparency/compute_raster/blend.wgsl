@@ -5,7 +5,7 @@
 //    bins of the camera depth of their midpoints, uniform between the
 //    tile's nearest and farthest segment (a counting sort in workgroup
 //    memory), and each bin is then sorted by that depth (insertion sort,
-//    ties by segment index, so the image is the same every run): the tile's
+//    ties by the segment's first vertex, i.e. segment order, so the image is the same every run): the tile's
 //    segments front to back, by segment.
 // 2. Bin after bin, the threads project the bin's segments into workgroup
 //    memory a chunk at a time, and each pixel blends them front to back,
@@ -45,10 +45,9 @@ struct Params {
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(60) var<uniform> params: Params;
 @group(1) @binding(61) var<storage, read> hair_vertices: array<HairPoint>;
-@group(1) @binding(62) var<storage, read> hair_indices: array<u32>;
 @group(1) @binding(63) var<storage, read> tile_counts: array<u32>;
 @group(1) @binding(64) var<storage, read> tile_segments: array<u32>;
-// Per tile slot: segment index, depth key bits — the tile's sorted order.
+// Per tile slot: the segment's first vertex, depth key bits — the tile's sorted order.
 @group(1) @binding(65) var<storage, read_write> tile_sorted: array<u32>;
 @group(1) @binding(66) var opaque_depth: texture_depth_2d;
 // Premultiplied hair, blended front to back (for compose_hair_over).
@@ -72,7 +71,7 @@ var<workgroup> chunk_segment: array<u32, THREADS>;
 // The sort key: camera depth (clip w, > 0 for every binned segment) of the
 // segment's midpoint.
 fn segment_key(s: u32) -> f32 {
-    let p = 0.5 * (hair_vertices[hair_indices[2u * s]].position + hair_vertices[hair_indices[2u * s + 1u]].position);
+    let p = 0.5 * (hair_vertices[s].position + hair_vertices[s + 1u].position);
     return max((frame.camera_view_proj * vec4<f32>(p, 1.0)).w, 0.0);
 }
 
@@ -120,8 +119,8 @@ fn vertex_alpha(v: HairPoint) -> f32 {
 fn shade_segment(s: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec4<f32> {
     // Perspective-correct fraction along the segment (1/w is linear on screen).
     let along = (t / b.w) / ((1.0 - t) / a.w + t / b.w);
-    let i0 = hair_indices[2u * s];
-    let i1 = hair_indices[2u * s + 1u];
+    let i0 = s;
+    let i1 = s + 1u;
     let v0 = hair_vertices[i0];
     let v1 = hair_vertices[i1];
     let alpha = clamp(mix(vertex_alpha(v0), vertex_alpha(v1), along) * frame.hair_color.a, 0.0, 1.0) * weight;
@@ -241,8 +240,8 @@ fn main(
             if (j < end) {
                 let s = tile_sorted[2u * (base + j)];
                 chunk_segment[lid] = s;
-                chunk_a[lid] = screen_project(hair_vertices[hair_indices[2u * s]].position);
-                chunk_b[lid] = screen_project(hair_vertices[hair_indices[2u * s + 1u]].position);
+                chunk_a[lid] = screen_project(hair_vertices[s].position);
+                chunk_b[lid] = screen_project(hair_vertices[s + 1u].position);
             }
             workgroupBarrier();
             let m = min(THREADS, end - c);
