@@ -81,10 +81,22 @@ fn fmt_tick(v: f64) -> String {
     }
 }
 
-/// The chart as a standalone `<svg>` element (640×400).
+/// The chart as a standalone `<svg>` element (640×400, wider when a
+/// series' name needs more than the legend's 170 px).
 pub fn svg(chart: &Chart) -> String {
-    let (w, h) = (640.0, 400.0);
-    let (left, right, top, bottom) = (70.0, 170.0, 44.0, 50.0);
+    // The legend column fits the longest name (about 6.5 px a character at
+    // 11 px sans-serif, after the marker): labels such as
+    // `occupancy [techniques.transparency=compute_raster, …]` were cut off
+    // at the image's edge.
+    let longest = chart
+        .series
+        .iter()
+        .map(|s| s.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    let right = f64::max(170.0, 30.0 + 6.5 * longest as f64);
+    let (w, h) = (470.0 + right, 400.0);
+    let (left, top, bottom) = (70.0, 44.0, 50.0);
     let pts: Vec<&Point> = chart
         .series
         .iter()
@@ -460,6 +472,46 @@ mod tests {
                 "marker at ({cx}, {cy}) r {r} touches the frame"
             );
         }
+    }
+
+    #[test]
+    fn a_long_series_name_widens_the_chart_to_hold_its_legend() {
+        let chart = |name: &str| Chart {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            note: None,
+            series: vec![Series {
+                name: name.into(),
+                line: false,
+                points: vec![Point {
+                    x: 1.0,
+                    y: 1.0,
+                    size: None,
+                    label: None,
+                }],
+            }],
+        };
+        let width = |s: &str| -> f64 {
+            let at = s.find("width=\"").expect("width") + 7;
+            s[at..]
+                .split('"')
+                .next()
+                .expect("value")
+                .parse()
+                .expect("number")
+        };
+        assert_eq!(width(&svg(&chart("short"))), 640.0);
+        let long =
+            "occupancy [techniques.transparency=compute_raster, techniques.shading_space=strand]";
+        let wide = svg(&chart(long));
+        // The legend text starts 22 px into the column; at ~6.5 px a
+        // character it must end inside the image.
+        assert!(
+            width(&wide) >= 470.0 + 22.0 + 6.5 * long.len() as f64,
+            "{}",
+            width(&wide)
+        );
     }
 
     #[test]
