@@ -80,7 +80,7 @@ pub fn run(opts: ViewOptions) -> Result<(), ViewError> {
     };
     let wake_proxy = proxy;
     let engine_shared = shared.clone();
-    std::thread::Builder::new()
+    let engine_thread = std::thread::Builder::new()
         .name("plait-render".into())
         .spawn(move || {
             let wake = Box::new(move || {
@@ -90,10 +90,19 @@ pub fn run(opts: ViewOptions) -> Result<(), ViewError> {
         })
         .map_err(|e| ViewError::Engine(format!("cannot start the render thread: {e}")))?;
     let mut app = app::App::new(tx, shared.clone(), opts.inspect);
-    event_loop
+    let ran = event_loop
         .run_app(&mut app)
-        .map_err(|e| ViewError::Window(e.to_string()))?;
-    if let Some(failure) = app.failure {
+        .map_err(|e| ViewError::Window(e.to_string()));
+    // The render thread holds its own device: let it finish before the
+    // process exits. Exiting while it still ran inside the driver crashed
+    // the viewer now and then (SIGSEGV after the screenshot, under load on
+    // lavapipe). Dropping the app closes the command channel, which ends
+    // the thread if `Quit` did not.
+    let failure = app.failure.take();
+    drop(app);
+    let _ = engine_thread.join();
+    ran?;
+    if let Some(failure) = failure {
         return Err(ViewError::Window(failure));
     }
     let fatal = shared.lock().ok().and_then(|s| s.fatal.clone());
