@@ -209,38 +209,41 @@ fn orbiting_the_camera_changes_the_picture() {
     });
 }
 
+/// The geometry point's state as the drop-down shows it.
+fn geometry_point(s: &Shared) -> (String, Vec<String>) {
+    let point = s
+        .techniques
+        .iter()
+        .find(|t| t.point == "geometry")
+        .expect("the geometry choice point");
+    (point.chosen.clone(), point.choices.clone())
+}
+
+/// After the first frame: `name` is offered by the geometry drop-down, is
+/// chosen live, and the engine rebuilds without an error.
+fn choose_geometry_live(e: &Running, name: &str) {
+    let (_, choices) = geometry_point(&e.shared.lock().expect("state"));
+    assert!(choices.iter().any(|c| c == name), "{choices:?}");
+    e.send(Command::SetTechnique("geometry".into(), name.into()));
+    e.until("the technique swap", |s| {
+        s.error.is_some() || (s.reloads == 1 && s.frames >= 1)
+    });
+    let s = e.shared.lock().expect("state");
+    assert!(s.error.is_none(), "{:?}", s.error);
+    assert_eq!(geometry_point(&s).0, name);
+}
+
 /// The geometry point, which occupancy.toml's [techniques] leaves to its
 /// default, is a drop-down of the viewer too: `lod` is chosen live.
 #[test]
 fn the_geometry_point_is_a_live_choice_though_the_pipeline_does_not_list_it() {
     let e = start(None);
     e.until("the first frame", |s| s.frames >= 1);
-    {
-        let s = e.shared.lock().expect("state");
-        let point = s
-            .techniques
-            .iter()
-            .find(|t| t.point == "geometry")
-            .expect("the geometry choice point");
-        assert_eq!(point.chosen, "strands");
-        assert!(
-            point.choices.iter().any(|c| c == "lod"),
-            "{:?}",
-            point.choices
-        );
-    }
-    e.send(Command::SetTechnique("geometry".into(), "lod".into()));
-    e.until("the technique swap", |s| {
-        s.error.is_some() || (s.reloads == 1 && s.frames >= 1)
-    });
-    let s = e.shared.lock().expect("state");
-    assert!(s.error.is_none(), "{:?}", s.error);
-    let point = s
-        .techniques
-        .iter()
-        .find(|t| t.point == "geometry")
-        .expect("the geometry choice point");
-    assert_eq!(point.chosen, "lod");
+    assert_eq!(
+        geometry_point(&e.shared.lock().expect("state")).0,
+        "strands"
+    );
+    choose_geometry_live(&e, "lod");
 }
 
 /// `wisps` is found by the drop-down like any technique folder, and chosen
@@ -249,29 +252,5 @@ fn the_geometry_point_is_a_live_choice_though_the_pipeline_does_not_list_it() {
 fn wisps_are_a_live_choice_of_the_geometry_point() {
     let e = start(None);
     e.until("the first frame", |s| s.frames >= 1);
-    {
-        let s = e.shared.lock().expect("state");
-        let point = s
-            .techniques
-            .iter()
-            .find(|t| t.point == "geometry")
-            .expect("the geometry choice point");
-        assert!(
-            point.choices.iter().any(|c| c == "wisps"),
-            "{:?}",
-            point.choices
-        );
-    }
-    e.send(Command::SetTechnique("geometry".into(), "wisps".into()));
-    e.until("the technique swap", |s| {
-        s.error.is_some() || (s.reloads == 1 && s.frames >= 1)
-    });
-    let s = e.shared.lock().expect("state");
-    assert!(s.error.is_none(), "{:?}", s.error);
-    let point = s
-        .techniques
-        .iter()
-        .find(|t| t.point == "geometry")
-        .expect("the geometry choice point");
-    assert_eq!(point.chosen, "wisps");
+    choose_geometry_live(&e, "wisps");
 }
