@@ -40,7 +40,7 @@ fn check_params<'v>(param: impl Fn(&str) -> Option<&'v Value>) -> Result<(), Str
     }
     let int = |name: &str| param(name).and_then(Value::as_i64);
     if let Some(t) = int("tile_size")
-        && (t < 2 || t > MAX_TILE_SIZE || (t & (t - 1)) != 0)
+        && (!(2..=MAX_TILE_SIZE).contains(&t) || (t & (t - 1)) != 0)
     {
         return Err(format!(
             "params.tile_size = {t}: a tile is one workgroup of tile_size² threads, so tile_size must be a power of two from 2 to {MAX_TILE_SIZE} ({MAX_TILE_SIZE}² = 256 invocations, the WebGPU workgroup limit)"
