@@ -280,3 +280,64 @@ fn compute_raster_refuses_impossible_tiling_params() {
         assert!(!out.exists(), "{set}: no image from a refused pipeline");
     }
 }
+
+/// `plait render pipelines/compute_raster.toml` on the stray scene at 32x32
+/// with 16-px tiles: four tiles, each with the `--set`s given.
+fn render_four_tiles(sets: &[&str], out: &std::path::Path) -> std::process::Output {
+    let mut args = vec![
+        "render",
+        "pipelines/compute_raster.toml",
+        "--scene",
+        "examples/scenes/stray.toml",
+        "--size",
+        "32x32",
+        "--set",
+        "params.tile_size=16",
+        "--json",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ];
+    for s in sets {
+        args.extend(["--set", s]);
+    }
+    plait(&args)
+}
+
+/// lavapipe ends every loop of a shader invocation once the invocation has
+/// run 65,535 iterations in all, silently; tile_blend counts its own
+/// invocations that did not finish (raster_counter's `incomplete` word) and
+/// the frame fails. One depth bin makes each tile's sort rank every segment
+/// against every other — ~7,000 segments per tile here, far past the budget
+/// on llvmpipe; 32 bins keep it well inside, and the frame counts nothing.
+/// A driver without the limit renders both.
+#[test]
+fn compute_raster_fails_a_frame_whose_tiles_could_not_finish() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fine = dir.path().join("fine.png");
+    let o = render_four_tiles(&[], &fine);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
+    let c = counter(&json);
+    assert_eq!(c["last_pass"], "tile_blend", "{c}");
+    assert_eq!(count(c, "incomplete"), 0, "{c}");
+    assert_eq!(count(c, "dropped"), 0, "{c}");
+    let llvmpipe = json["adapter"]["name"]
+        .as_str()
+        .expect("adapter name")
+        .contains("llvmpipe");
+
+    let cut = dir.path().join("cut.png");
+    let o = render_four_tiles(&["params.depth_bins=1"], &cut);
+    let err = text(&o.stderr);
+    if llvmpipe {
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("shader invocations of pass `tile_blend` could not finish"),
+            "{err}"
+        );
+        assert!(err.contains("65,535"), "{err}");
+        assert!(!cut.exists(), "no image from a frame that lacks tiles");
+    } else {
+        assert!(o.status.success(), "{err}");
+    }
+}

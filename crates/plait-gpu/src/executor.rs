@@ -50,6 +50,12 @@ impl FrameReport {
     pub fn dropped(&self) -> impl Iterator<Item = &Overflow> {
         self.overflow.iter().filter(|o| o.dropped > 0)
     }
+
+    /// The counters whose pass had invocations that could not finish
+    /// ([`Overflow::incomplete`]).
+    pub fn incomplete(&self) -> impl Iterator<Item = &Overflow> {
+        self.overflow.iter().filter(|o| o.incomplete > 0)
+    }
 }
 
 struct Timestamps {

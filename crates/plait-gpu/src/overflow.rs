@@ -19,7 +19,8 @@ use crate::readback::map_buffer;
 /// What one overflow counter read after a frame.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Overflow {
-    /// The pass that writes the counter.
+    /// The pass that writes the counter (the first, when several do: the
+    /// one that appends to `of`).
     pub pass: String,
     /// The counter buffer.
     pub counter: String,
@@ -39,6 +40,13 @@ pub struct Overflow {
     pub per: u64,
     /// The value of `param` that would hold `needed`.
     pub value_needed: u64,
+    /// Shader invocations that could not finish their work this frame (the
+    /// counter's `incomplete` word; 0 without one): the output lacks data
+    /// no param can restore, so any count fails the frame.
+    pub incomplete: u64,
+    /// The pass after which the counter is read (its last writer): the one
+    /// whose invocations `incomplete` counts.
+    pub last_pass: String,
     /// Whether `param` has its technique's default, which the session may
     /// raise ([`OverflowCounter::grows`]); `false` for a value the user set.
     pub grows: bool,
@@ -46,6 +54,8 @@ pub struct Overflow {
 
 struct Entry {
     counter: OverflowCounter,
+    /// Index in `Schedule::passes` of the first pass writing the counter.
+    first: usize,
     /// Index in `Schedule::passes` of the last pass writing the counter.
     writer: usize,
     staging: wgpu::Buffer,
@@ -62,10 +72,11 @@ impl OverflowReadback {
             .overflow
             .iter()
             .filter_map(|c| {
-                let writer = schedule
-                    .passes
-                    .iter()
-                    .rposition(|p| p.writes.iter().any(|b| b.resource == Some(c.counter)))?;
+                let writes = |p: &plait_graph::ScheduledPass| {
+                    p.writes.iter().any(|b| b.resource == Some(c.counter))
+                };
+                let first = schedule.passes.iter().position(writes)?;
+                let writer = schedule.passes.iter().rposition(writes)?;
                 let size = pool.buffer(c.counter)?.size();
                 let staging = device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some(&format!("overflow readback {}", c.counter_name)),
@@ -75,6 +86,7 @@ impl OverflowReadback {
                 });
                 Some(Entry {
                     counter: c.clone(),
+                    first,
                     writer,
                     staging,
                 })
@@ -121,7 +133,7 @@ impl OverflowReadback {
                 let c = &e.counter;
                 let needed = word(c.needed_word);
                 Ok(Overflow {
-                    pass: schedule.passes[e.writer].name.clone(),
+                    pass: schedule.passes[e.first].name.clone(),
                     counter: c.counter_name.clone(),
                     of: c.of.clone(),
                     dropped: word(c.dropped_word),
@@ -131,6 +143,8 @@ impl OverflowReadback {
                     value: c.value,
                     per: c.per,
                     value_needed: c.value_for(needed),
+                    incomplete: c.incomplete_word.map_or(0, word),
+                    last_pass: schedule.passes[e.writer].name.clone(),
                     grows: c.grows,
                 })
             })
@@ -143,6 +157,19 @@ impl OverflowReadback {
 /// (--set params.nodes_per_pixel=2) ``.
 impl std::fmt::Display for Overflow {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.incomplete > 0 {
+            write!(
+                f,
+                "{} shader invocations of pass `{}` could not finish their work (counted in `{}`): \
+                 lavapipe, for one, ends every loop of an invocation once it has run 65,535 \
+                 iterations in all",
+                self.incomplete, self.last_pass, self.counter
+            )?;
+            if self.dropped == 0 {
+                return Ok(());
+            }
+            f.write_str("; ")?;
+        }
         write!(
             f,
             "`{}` (pass `{}`) dropped {}: it holds {} (params.{}={})",

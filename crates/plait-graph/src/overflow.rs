@@ -15,6 +15,12 @@
 //! something was dropped). `of` holds `param × per` items, so
 //! `ceil(needed / per)` is the value of `param` that holds everything.
 //!
+//! `incomplete = W` (optional) names a word counting shader invocations that
+//! could not finish their work — a shader's own check, for limits no load-time
+//! check can see (lavapipe stops every loop of an invocation once the
+//! invocation has run 65,535 loop iterations in total). Any non-zero count
+//! fails the frame: its output is missing data, and no param holds it.
+//!
 //! Why the param's origin matters: a param the user set (a `--set` flag or a
 //! pipeline file) is a cap to respect and report; one that still has its
 //! technique file's default is only a starting size, which the session may
@@ -26,7 +32,7 @@ use crate::node_reader::Reader;
 use crate::schedule::{CompileOptions, OverflowCounter, ResolvedResource};
 use crate::value::Value;
 
-const KEYS: &[&str] = &["of", "dropped", "needed", "param", "per"];
+const KEYS: &[&str] = &["of", "dropped", "needed", "param", "per", "incomplete"];
 /// Counters are small: a word index past this is a mistake, not a layout.
 const MAX_WORD: i64 = 63;
 
@@ -36,6 +42,8 @@ pub struct OverflowDecl {
     pub of: Spanned<String>,
     pub dropped: Spanned<u32>,
     pub needed: Spanned<u32>,
+    /// The word counting invocations that could not finish (module docs).
+    pub incomplete: Option<Spanned<u32>>,
     pub param: Spanned<String>,
     /// Items of `of` per unit of `param`: an integer or an expression.
     pub per: Spanned<Value>,
@@ -105,10 +113,15 @@ pub(crate) fn parse(
         },
     };
     let (of, dropped, needed, param) = (of?, dropped?, needed?, param?);
+    let incomplete = match t.get("incomplete") {
+        Some(e) => Some(word(&mut r, e, "incomplete")?),
+        None => None,
+    };
     Some(OverflowDecl {
         of: string(&mut r, of, "of")?,
         dropped: word(&mut r, dropped, "dropped")?,
         needed: word(&mut r, needed, "needed")?,
+        incomplete,
         param: string(&mut r, param, "param")?,
         per,
         location: node.location.clone(),
@@ -147,6 +160,7 @@ pub(crate) fn counters(
                 of: d.of.value.clone(),
                 dropped_word: d.dropped.value,
                 needed_word: d.needed.value,
+                incomplete_word: d.incomplete.as_ref().map(|w| w.value),
                 param: d.param.value.clone(),
                 value,
                 per,
@@ -217,7 +231,10 @@ fn resolve_one(
             _ => None,
         }
     {
-        for w in [&d.dropped, &d.needed] {
+        for w in [Some(&d.dropped), Some(&d.needed), d.incomplete.as_ref()]
+            .into_iter()
+            .flatten()
+        {
             if (w.value as i64 + 1) * 4 > bytes {
                 errors.push(bad(
                     &w.location,

@@ -296,6 +296,9 @@ pub struct OverflowCounter {
     pub of: String,
     pub dropped_word: u32,
     pub needed_word: u32,
+    /// The word counting shader invocations that could not finish their
+    /// work (`incomplete`, [`crate::overflow`]); any count fails the frame.
+    pub incomplete_word: Option<u32>,
     pub param: String,
     /// The param's value in this schedule.
     pub value: i64,

@@ -74,6 +74,29 @@ fn a_word_past_the_counter_is_an_error_at_its_value() {
     );
 }
 
+/// `incomplete` (the word counting invocations that could not finish) is
+/// optional, carried by the schedule, and held inside the counter too.
+#[test]
+fn the_incomplete_word_is_optional_and_checked_like_the_others() {
+    let past = pipeline(&format!("{GOOD}, incomplete = 2"));
+    let e = errors(&past, &[]);
+    let column = past.lines().nth(14).unwrap().rfind("2 }").unwrap() + 1;
+    assert!(
+        e.contains(&format!("overflow.toml:15:{column}: resource `counter`: word 2 is past the end of the counter (8 bytes = 2 words)")),
+        "{e}"
+    );
+    let text = pipeline(&format!("{GOOD}, incomplete = 1"))
+        + "\n[passes.fill]\ntype = \"fill\"\nwrites = { pool = \"pool\", counter = \"counter\" }\n";
+    let p = load_str(PATH.as_ref(), &text, &[]).expect("loads");
+    let s = compile(&p, &registry(), &CompileOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.overflow[0].incomplete_word, Some(1));
+    let without = pipeline(GOOD)
+        + "\n[passes.fill]\ntype = \"fill\"\nwrites = { pool = \"pool\", counter = \"counter\" }\n";
+    let p = load_str(PATH.as_ref(), &without, &[]).expect("loads");
+    let s = compile(&p, &registry(), &CompileOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.overflow[0].incomplete_word, None);
+}
+
 #[test]
 fn unknown_param_and_buffer_suggest_the_nearest() {
     let e = errors(

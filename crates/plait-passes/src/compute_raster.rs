@@ -12,7 +12,9 @@
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{BuildContext, PassType, PreparedPass, ShaderDraw, build_draw};
-use plait_graph::{PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, Value};
+use plait_graph::{Access, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, Value};
+
+use crate::spec_util::{SlotExt, buffer};
 
 /// The largest tile side: a tile is one workgroup of tile_size² threads, and
 /// 16 × 16 = 256 is the invocations per workgroup every WebGPU adapter
@@ -121,6 +123,22 @@ impl PassType for TileBlend {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
             source: SOURCE.into(),
+            // Written over what strand_bin left (its bins and tile counts are
+            // read first), so it runs after it: the two slots that load.
+            outputs: vec![
+                buffer(
+                    "tile_segments",
+                    Access::StorageWrite,
+                    "strand_bin's binned segments in, the tile's sorted order out",
+                )
+                .loads(),
+                buffer(
+                    "raster_counter",
+                    Access::StorageWrite,
+                    "strand_bin's tile counts in; the invocations that could not finish counted",
+                )
+                .loads(),
+            ],
             ..PassTypeSpec::data_only(
                 "tile_blend",
                 PassShape::Compute,

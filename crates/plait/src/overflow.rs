@@ -15,6 +15,10 @@
 //!   extends) is a cap: the render goes on and every frame report says what
 //!   was dropped, for the caller to show (`plait render`, `plait ab`).
 //!
+//! A counter may also count shader invocations that could not finish their
+//! work (`incomplete`, [`plait_graph::overflow`]): such a frame fails
+//! whoever sized what, since no param restores the missing data.
+//!
 //! The sizing frame is thrown away and the pipeline built anew, so the
 //! caller's first frame is the renderer's first (histories, `run = "once"`).
 
@@ -49,12 +53,14 @@ pub fn prepare_holding<'g>(
         return build(gpu, schedule, pipeline, scene, size);
     }
     let first = sizing_frame(gpu, &schedule, pipeline, scene, size)?;
+    check_complete(&first)?;
     let short: Vec<Overflow> = growable_drops(&first).cloned().collect();
     if short.is_empty() {
         return build(gpu, schedule, pipeline, scene, size);
     }
     let grown = grow(gpu, recompile, &short)?;
     let again = sizing_frame(gpu, &grown, pipeline, scene, size)?;
+    check_complete(&again)?;
     let still: Vec<Overflow> = growable_drops(&again).cloned().collect();
     if !still.is_empty() {
         return Err(SessionError::Dropped {
@@ -70,6 +76,7 @@ pub fn prepare_holding<'g>(
 /// frame of a sequence asking for more than the first; the user's caps are
 /// reported, not failed).
 pub fn check_frame(report: &FrameReport) -> Result<(), SessionError> {
+    check_complete(report)?;
     let short: Vec<Overflow> = growable_drops(report).cloned().collect();
     if short.is_empty() {
         return Ok(());
@@ -77,6 +84,20 @@ pub fn check_frame(report: &FrameReport) -> Result<(), SessionError> {
     Err(SessionError::Dropped {
         message: "this frame asked for more than the first, which sized the buffer; set its size with the --set above".into(),
         overflow: short,
+    })
+}
+
+/// A frame whose passes had invocations that could not finish: an error.
+fn check_complete(report: &FrameReport) -> Result<(), SessionError> {
+    let cut: Vec<Overflow> = report.incomplete().cloned().collect();
+    if cut.is_empty() {
+        return Ok(());
+    }
+    Err(SessionError::Dropped {
+        message: "the frame lacks what they did not do, and no size restores it; less work \
+                  per invocation, or a driver without the limit, avoids it"
+            .into(),
+        overflow: cut,
     })
 }
 
@@ -166,6 +187,8 @@ mod tests {
             value: 11,
             per: 25_600,
             value_needed: 18,
+            incomplete: 0,
+            last_pass: "hair_lists".into(),
             grows,
         }
     }
@@ -189,6 +212,22 @@ mod tests {
             .to_string();
         assert!(e.contains("dropped 5"), "{e}");
         assert!(e.contains("--set params.nodes_per_pixel=18"), "{e}");
+    }
+
+    /// Invocations that could not finish fail the frame, even where the
+    /// user chose the sizes, and the message says why.
+    #[test]
+    fn incomplete_invocations_fail_a_frame() {
+        let mut o = counter(0, false);
+        o.incomplete = 3;
+        let e = check_frame(&frame(vec![o]))
+            .expect_err("an incomplete pass")
+            .to_string();
+        assert!(
+            e.contains("3 shader invocations of pass `hair_lists`"),
+            "{e}"
+        );
+        assert!(e.contains("65,535"), "{e}");
     }
 
     #[test]

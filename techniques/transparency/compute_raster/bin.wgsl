@@ -17,7 +17,8 @@
 // dropped and counted: raster_counter[0] counts dropped appends, [1] the
 // capacity (in indices of `tile_segments`) that would have held them all —
 // the fullest tile's count × tiles — so the engine reports it (the
-// technique's `overflow` declaration) and may grow the param.
+// technique's `overflow` declaration) and may grow the param;
+// raster_counter[3 + tile] counts the tile's segments.
 #import plait::frame::frame
 #import plait::strand_lod::strand_lod_weight
 #import plait::hair_point::{HairPoint, screen_project}
@@ -31,8 +32,8 @@ struct Params {
 @group(1) @binding(1) var<storage, read> hair_vertices: array<HairPoint>;
 @group(1) @binding(2) var<storage, read> hair_indices: array<u32>;
 @group(1) @binding(3) var<storage, read> tile_far: array<u32>;
-@group(1) @binding(4) var<storage, read_write> tile_counts: array<atomic<u32>>;
 @group(1) @binding(5) var<storage, read_write> tile_segments: array<u32>;
+// [0] dropped, [1] needed, [2] tile_blend's, [3 + tile] the tile's count.
 @group(1) @binding(6) var<storage, read_write> raster_counter: array<atomic<u32>>;
 @group(1) @binding(7) var opaque_depth: texture_depth_2d;
 
@@ -132,7 +133,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if (!visible_in_tile(a, b, tile_lo, tile_hi)) {
                 continue;
             }
-            let slot = atomicAdd(&tile_counts[tile], 1u);
+            let slot = atomicAdd(&raster_counter[3u + tile], 1u);
             if (slot < cap) {
                 // The segment's first vertex: a strand's segment i joins
                 // vertices i and i + 1 (`Strands::line_list`), so tile_blend

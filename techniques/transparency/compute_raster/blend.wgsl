@@ -4,9 +4,10 @@
 // 1. The tile's segments (strand_bin) are partitioned into `depth_bins`
 //    bins of the camera depth of their midpoints, uniform between the
 //    tile's nearest and farthest segment (a counting sort in workgroup
-//    memory), and each bin is then sorted by that depth (insertion sort,
-//    ties by the segment's first vertex, i.e. segment order, so the image is the same every run): the tile's
-//    segments front to back, by segment.
+//    memory), and each bin is then sorted by that depth (each segment's
+//    rank in its bin, ties by the segment's first vertex, i.e. segment
+//    order, so the image is the same every run): the tile's segments front
+//    to back, by segment.
 // 2. Down the tile's sorted list, 64 segments at a time, each segment's
 //    thread projects it into workgroup memory and marks the pixels it may
 //    cover (cover_pixels); each pixel blends its marked segments front to
@@ -47,9 +48,13 @@ struct Params {
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(60) var<uniform> params: Params;
 @group(1) @binding(61) var<storage, read> hair_vertices: array<HairPoint>;
-@group(1) @binding(63) var<storage, read> tile_counts: array<u32>;
-@group(1) @binding(64) var<storage, read> tile_segments: array<u32>;
-// Per tile slot: the segment's first vertex, depth key bits — the tile's sorted order.
+// [0] dropped and [1] needed (strand_bin's), [2] this pass's invocations
+// that did not finish, [3 + tile] the tile's segment count.
+@group(1) @binding(63) var<storage, read_write> raster_counter: array<atomic<u32>>;
+// Per tile slot: the binned segment (strand_bin), then the tile's sorted order.
+@group(1) @binding(64) var<storage, read_write> tile_segments: array<u32>;
+// Per tile slot: the segment's first vertex and its depth key's bits, placed
+// in its depth bin.
 @group(1) @binding(65) var<storage, read_write> tile_sorted: array<u32>;
 @group(1) @binding(66) var opaque_depth: texture_depth_2d;
 // Premultiplied hair, blended front to back (for compose_hair_over).
@@ -206,8 +211,11 @@ fn main(
         atomicStore(&key_range[1], 0u);
         atomicStore(&finished, 0u);
     }
+    // Counted until the invocation shows, at its end, that its loops ran to
+    // completion (see the end of main).
+    atomicAdd(&raster_counter[2], 1u);
     workgroupBarrier();
-    let n = min(tile_counts[tile], cap);
+    let n = min(atomicLoad(&raster_counter[3u + tile]), cap);
 
     // 1. Depth range, bin counts, placement, per-bin sort.
     for (var i = lid; i < n; i += THREADS) {
@@ -242,29 +250,23 @@ fn main(
     }
     storageBarrier();
     workgroupBarrier();
-    for (var b = lid; b < bins; b += THREADS) {
-        let first = base + bin_start[b];
-        let end = base + bin_start[b + 1u];
-        for (var i = first + 1u; i < end; i++) {
-            let s = tile_sorted[2u * i];
-            let k = tile_sorted[2u * i + 1u];
-            var j = i;
-            loop {
-                if (j <= first) {
-                    break;
-                }
-                let ps = tile_sorted[2u * (j - 1u)];
-                let pk = tile_sorted[2u * (j - 1u) + 1u];
-                if (pk < k || (pk == k && ps < s)) {
-                    break;
-                }
-                tile_sorted[2u * j] = ps;
-                tile_sorted[2u * j + 1u] = pk;
-                j--;
-            }
-            tile_sorted[2u * j] = s;
-            tile_sorted[2u * j + 1u] = k;
+    // Each segment's place in its bin is its rank there: the bin's segments
+    // before it by (key bits, segment) — a total order, so the sorted list is
+    // the same every run whatever order the atomics placed them in. All
+    // threads share the work (a thread per bin running an insertion sort,
+    // quadratic in the bin, could spend lavapipe's loop budget alone).
+    for (var i = lid; i < n; i += THREADS) {
+        let s = tile_sorted[2u * (base + i)];
+        let k = tile_sorted[2u * (base + i) + 1u];
+        let b = bin_of(bitcast<f32>(k), lo, hi, bins);
+        let first = bin_start[b];
+        var rank = 0u;
+        for (var j = first; j < bin_start[b + 1u]; j++) {
+            let other = tile_sorted[2u * (base + j) + 1u];
+            let earlier = other < k || (other == k && tile_sorted[2u * (base + j)] < s);
+            rank += select(0u, 1u, earlier);
         }
+        tile_segments[base + first + rank] = s;
     }
     storageBarrier();
     workgroupBarrier();
@@ -284,7 +286,7 @@ fn main(
     if (done) {
         atomicAdd(&finished, 1u);
     }
-    // The bins lie one after another in tile_sorted, so the chunks run over
+    // The bins lie one after another in the sorted list, so the chunks run over
     // the tile's whole sorted list: a chunk per bin left most of each chunk
     // empty (a tile's bins hold a few segments each) and paid its barriers
     // 32 times over.
@@ -296,7 +298,7 @@ fn main(
         workgroupBarrier();
         let j = c + lid;
         if (lid < CHUNK && j < end) {
-            let s = tile_sorted[2u * (base + j)];
+            let s = tile_segments[base + j];
             let v0 = hair_vertices[s];
             let v1 = hair_vertices[s + 1u];
             let a = screen_project(v0.position);
@@ -344,5 +346,19 @@ fn main(
     }
     if (inside) {
         textureStore(hair, pixel, vec4<f32>(color, alpha));
+    }
+    // lavapipe gives an invocation 65,535 loop iterations in all, then ends
+    // every loop after its current iteration — silently, and with barriers
+    // in the loops the rest of the workgroup may never write. A last loop of
+    // tile_size laps (≥ 2, a uniform the compiler cannot unroll) runs once
+    // when the budget is spent: only an invocation that completes it takes
+    // itself off the count, so raster_counter[2] counts every invocation
+    // that was cut short or never got here, and the engine fails the frame.
+    var laps = 0u;
+    for (var q = 0u; q < params.tile_size; q++) {
+        laps += 1u;
+    }
+    if (laps == params.tile_size) {
+        atomicSub(&raster_counter[2], 1u);
     }
 }
