@@ -317,18 +317,17 @@ fn compute_raster_bins_no_hidden_hair() {
     let mut scene = small_scene();
     scene.strands = plait_hair::Strands::new();
     add_hidden_strands(&mut scene.strands, 200);
-    let set = "pipeline.outputs=[\"final\", \"raster_counter\", \"hair\"]";
+    let set = "pipeline.outputs=[\"final\", \"tile_ranges\", \"raster_counter\", \"hair\"]";
     let prepared = prepare(&gpu, &pipeline, &[set.into()], &scene, SIZE)
         .unwrap_or_else(|e| panic!("preparing compute_raster: {e}"));
     prepared.renderer.render().expect("renders");
-    // Every word: what was dropped or needed, tile_blend's unfinished
-    // invocations, and each tile's count.
-    let bytes = prepared
-        .renderer
-        .read_buffer("raster_counter")
-        .expect("raster_counter");
-    let binned = bytes.chunks_exact(4).filter(|w| w != &[0; 4]).count();
-    assert_eq!(binned, 0, "`raster_counter`: hidden hair was binned");
+    // Every word: each tile's count and first slot; what was dropped or
+    // needed and tile_blend's unfinished invocations.
+    for name in ["tile_ranges", "raster_counter"] {
+        let bytes = prepared.renderer.read_buffer(name).expect(name);
+        let binned = bytes.chunks_exact(4).filter(|w| w != &[0; 4]).count();
+        assert_eq!(binned, 0, "`{name}`: hidden hair was binned");
+    }
     let hair = prepared.renderer.read_resource("hair").expect("hair").bytes;
     assert!(hair.iter().all(|&b| b == 0), "hidden hair was drawn");
 }

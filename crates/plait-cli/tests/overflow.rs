@@ -197,24 +197,25 @@ fn ab_reports_every_variants_drops() {
     assert!(md.contains(&format!(" {} |", dropped[0].1)), "{md}");
 }
 
-/// compute_raster: each screen tile holds `segments_per_tile` segments; a
-/// cap of 2 (set by the user) overflows on the small scene and is counted
-/// and reported, in --json and in the table; by default it grows.
+/// compute_raster: the tiles share a pool of `binned_segments` (tile,
+/// segment) pairs; a cap of 2 (set by the user) overflows on the small
+/// scene and is counted and reported, in --json and in the table; by
+/// default it grows.
 #[test]
 fn a_capped_compute_raster_tile_reports_its_drops() {
     let json = render_json(
         "pipelines/compute_raster.toml",
-        &["params.segments_per_tile=2"],
+        &["params.binned_segments=2"],
     );
     let c = counter(&json);
     assert_eq!(c["of"], "tile_segments");
-    assert_eq!(c["pass"], "strand_bin");
+    assert_eq!(c["pass"], "tile_scan");
     assert_eq!(c["grows"], false, "a --set is the user's cap");
     assert!(count(c, "dropped") > 0, "{c}");
-    // Tiles at 64x48 with 8-px tiles (+1 a side): 9 × 7, 2 segments each.
-    assert_eq!(count(c, "capacity"), 9 * 7 * 2, "{c}");
-    assert!(count(c, "value_needed") > 2, "{c}");
-    assert!(count(c, "needed") > count(c, "capacity"), "{c}");
+    assert_eq!(count(c, "capacity"), 2, "{c}");
+    // The pool holds 2 of the pairs the tiles needed; the rest are dropped.
+    assert_eq!(count(c, "dropped"), count(c, "needed") - 2, "{c}");
+    assert_eq!(count(c, "value_needed"), count(c, "needed"), "{c}");
 
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("out.png");
@@ -226,7 +227,7 @@ fn a_capped_compute_raster_tile_reports_its_drops() {
         "--size",
         "64x48",
         "--set",
-        "params.segments_per_tile=2",
+        "params.binned_segments=2",
         "--out",
         out.to_str().expect("utf-8"),
     ]);
@@ -237,10 +238,10 @@ fn a_capped_compute_raster_tile_reports_its_drops() {
         .find(|l| l.starts_with("dropped:"))
         .unwrap_or_else(|| panic!("no dropped line:\n{table}"));
     assert!(
-        line.contains("`tile_segments` (pass `strand_bin`) dropped"),
+        line.contains("`tile_segments` (pass `tile_scan`) dropped"),
         "{line}"
     );
-    assert!(line.contains("--set params.segments_per_tile="), "{line}");
+    assert!(line.contains("--set params.binned_segments="), "{line}");
 
     let held = render_json("pipelines/compute_raster.toml", &[]);
     let c = counter(&held);
@@ -258,7 +259,7 @@ fn compute_raster_refuses_impossible_tiling_params() {
         ("params.tile_size=32", "params.tile_size"),
         ("params.depth_bins=0", "params.depth_bins"),
         ("params.depth_bins=65", "params.depth_bins"),
-        ("params.segments_per_tile=0", "params.segments_per_tile"),
+        ("params.binned_segments=0", "params.binned_segments"),
     ] {
         let dir = tempfile::tempdir().expect("tempdir");
         let out = dir.path().join("out.png");

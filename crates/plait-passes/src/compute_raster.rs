@@ -3,12 +3,14 @@
 //! back with analytic coverage, all in compute (Tafuri 2019, Frostbite;
 //! Unreal Engine 5's hair rasterizer; Unity HDRP High Quality Lines).
 //!
-//! Both are data-only compute passes (their slots are their shaders'
-//! bindings); Rust is needed for what TOML cannot say: `strand_bin` runs one
-//! thread per hair segment (only the built geometry knows how many), and
-//! both check the tiling params when the pipeline is loaded, so a tile size
-//! the workgroup cannot hold is an error naming the param, before any GPU
-//! work.
+//! All are data-only compute passes (their slots are their shaders'
+//! bindings); Rust is needed for what TOML cannot say: `tile_count` and
+//! `strand_bin` run one thread per hair segment (only the built geometry
+//! knows how many), `tile_scan` one workgroup; `tile_scan` and `tile_blend`
+//! keep and add to what an earlier pass wrote (output slots that load, so
+//! they run after it); and each checks the tiling params when the pipeline
+//! is loaded, so a tile size the workgroup cannot hold is an error naming
+//! the param, before any GPU work.
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{BuildContext, PassType, PreparedPass, ShaderDraw, build_draw};
@@ -22,6 +24,11 @@ use crate::spec_util::{SlotExt, buffer};
 pub const MAX_TILE_SIZE: i64 = 16;
 /// The depth bins' counters live in workgroup memory (blend.wgsl's `MAX_BINS`).
 pub const MAX_DEPTH_BINS: i64 = 64;
+/// The pool's slots are u32 indices, and tile_blend's words after them two
+/// per slot: 3 × slots must stay a u32 index.
+pub const MAX_BINNED_SEGMENTS: i64 = (u32::MAX / 3) as i64;
+/// tile_scan runs as one workgroup of this many threads (scan.wgsl).
+const SCAN_THREADS: u32 = 256;
 
 /// The tiling params a pass sets (`param` looks one up), each checked, and
 /// the geometry it is asked to draw; the
@@ -55,11 +62,11 @@ fn check_params<'v>(param: impl Fn(&str) -> Option<&'v Value>) -> Result<(), Str
             "params.depth_bins = {b} is out of range 1..={MAX_DEPTH_BINS}"
         ));
     }
-    if let Some(c) = int("segments_per_tile")
-        && c < 1
+    if let Some(c) = int("binned_segments")
+        && !(1..=MAX_BINNED_SEGMENTS).contains(&c)
     {
         return Err(format!(
-            "params.segments_per_tile = {c}: a tile must hold at least one segment"
+            "params.binned_segments = {c}: the pool holds 1 to {MAX_BINNED_SEGMENTS} (tile, segment) pairs (u32 slot indices, 12 bytes each)"
         ));
     }
     if let Some(v) = param("opacity_threshold") {
@@ -78,11 +85,15 @@ fn check_params<'v>(param: impl Fn(&str) -> Option<&'v Value>) -> Result<(), Str
 /// `strand_bin`: one thread per hair segment appends it to every screen tile
 /// it touches.
 pub struct StrandBin;
+/// `tile_scan`: one workgroup turns the tiles' counts into their first
+/// slots in the shared pool.
+pub struct TileScan;
 /// `tile_blend`: one workgroup per screen tile (the default dispatch: one
 /// thread per texel of the first written texture) blends its segments.
 pub struct TileBlend;
 
 inventory::submit! { crate::RustPassType(|| Box::new(StrandBin)) }
+inventory::submit! { crate::RustPassType(|| Box::new(TileScan)) }
 inventory::submit! { crate::RustPassType(|| Box::new(TileBlend)) }
 
 const SOURCE: &str =
@@ -95,7 +106,7 @@ impl PassType for StrandBin {
             ..PassTypeSpec::data_only(
                 "strand_bin",
                 PassShape::Compute,
-                "A WGSL compute shader run once per hair segment (the scene's segment count of threads): bins segments into screen tiles; slots are the shader's bindings; tile_size, depth_bins, segments_per_tile checked at load.",
+                "A WGSL compute shader run once per hair segment (the scene's segment count of threads): bins segments into screen tiles; slots are the shader's bindings; tile_size, depth_bins, binned_segments checked at load.",
             )
         }
     }
@@ -119,6 +130,40 @@ impl PassType for StrandBin {
     }
 }
 
+impl PassType for TileScan {
+    fn spec(&self) -> PassTypeSpec {
+        PassTypeSpec {
+            source: SOURCE.into(),
+            // Adds each tile's first slot to the counts tile_count wrote.
+            outputs: vec![
+                buffer(
+                    "tile_ranges",
+                    Access::StorageWrite,
+                    "per tile its count in (tile_count's), its first slot out",
+                )
+                .loads(),
+            ],
+            ..PassTypeSpec::data_only(
+                "tile_scan",
+                PassShape::Compute,
+                "A WGSL compute shader run as one workgroup of 256 threads: the tiles' first slots in the shared pool (a prefix sum of their counts); slots are the shader's bindings.",
+            )
+        }
+    }
+
+    fn shader(&self) -> Option<&str> {
+        None
+    }
+
+    fn compute_threads(&self, _: &ScheduledPass, _: &plait_graph::Schedule) -> [u32; 3] {
+        [SCAN_THREADS, 1, 1]
+    }
+
+    fn check_sizes(&self, pass: &ScheduledPass, _: &[ResolvedResource]) -> Result<(), String> {
+        check_params(|name| pass.params.get(name))
+    }
+}
+
 impl PassType for TileBlend {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
@@ -129,20 +174,20 @@ impl PassType for TileBlend {
                 buffer(
                     "tile_segments",
                     Access::StorageWrite,
-                    "strand_bin's binned segments in, the tile's sorted order out",
+                    "strand_bin's binned segments in, the tiles' sorted orders out",
                 )
                 .loads(),
                 buffer(
                     "raster_counter",
                     Access::StorageWrite,
-                    "strand_bin's tile counts in; the invocations that could not finish counted",
+                    "tile_scan's drop counts kept; the invocations that could not finish counted",
                 )
                 .loads(),
             ],
             ..PassTypeSpec::data_only(
                 "tile_blend",
                 PassShape::Compute,
-                "A WGSL compute shader run as one workgroup per screen tile (threads: the first written texture's texels); slots are the shader's bindings; tile_size, depth_bins, segments_per_tile checked at load.",
+                "A WGSL compute shader run as one workgroup per screen tile (threads: the first written texture's texels); slots are the shader's bindings; tile_size, depth_bins, binned_segments checked at load.",
             )
         }
     }
@@ -173,8 +218,8 @@ mod tests {
         }
         let e = check(&[("depth_bins", Value::Int(65))]).unwrap_err();
         assert!(e.contains("params.depth_bins"), "{e}");
-        let e = check(&[("segments_per_tile", Value::Int(0))]).unwrap_err();
-        assert!(e.contains("params.segments_per_tile"), "{e}");
+        let e = check(&[("binned_segments", Value::Int(0))]).unwrap_err();
+        assert!(e.contains("params.binned_segments"), "{e}");
         let e = check(&[("opacity_threshold", Value::Float(1.5))]).unwrap_err();
         assert!(e.contains("params.opacity_threshold"), "{e}");
     }

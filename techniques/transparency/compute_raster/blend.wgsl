@@ -41,21 +41,22 @@
 struct Params {
     tile_size: u32,
     depth_bins: u32,
-    segments_per_tile: u32,
+    binned_segments: u32,
     opacity_threshold: f32,
 }
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(60) var<uniform> params: Params;
 @group(1) @binding(61) var<storage, read> hair_vertices: array<HairPoint>;
-// [0] dropped and [1] needed (strand_bin's), [2] this pass's invocations
-// that did not finish, [3 + tile] the tile's segment count.
+// [0] dropped and [1] needed (tile_scan's), [2] this pass's invocations
+// that did not finish.
 @group(1) @binding(63) var<storage, read_write> raster_counter: array<atomic<u32>>;
-// Per tile slot: the binned segment (strand_bin), then the tile's sorted order.
+// The pool, `binned_segments` slots: words [0, P) a slot's segment (strand_bin's,
+// then the tile's sorted order, written here); words [P, 3P) per slot the
+// segment and its depth key's bits, placed in its depth bin (pair_at).
 @group(1) @binding(64) var<storage, read_write> tile_segments: array<u32>;
-// Per tile slot: the segment's first vertex and its depth key's bits, placed
-// in its depth bin.
-@group(1) @binding(65) var<storage, read_write> tile_sorted: array<u32>;
+// Per tile: [2 tile] its count, [2 tile + 1] its first slot.
+@group(1) @binding(65) var<storage, read> tile_ranges: array<u32>;
 @group(1) @binding(66) var opaque_depth: texture_depth_2d;
 // Premultiplied hair, blended front to back (for compose_hair_over).
 @group(1) @binding(67) var hair: texture_storage_2d<rgba16float, write>;
@@ -93,6 +94,11 @@ var<workgroup> pixel_segments: array<atomic<u32>, THREADS * WORDS>;
 fn segment_key(s: u32) -> f32 {
     let p = 0.5 * (hair_vertices[s].position + hair_vertices[s + 1u].position);
     return max((frame.camera_view_proj * vec4<f32>(p, 1.0)).w, 0.0);
+}
+
+// The word of slot `slot`'s (segment, key bits) pair in tile_segments.
+fn pair_at(slot: u32) -> u32 {
+    return params.binned_segments + 2u * slot;
 }
 
 fn bin_of(key: f32, lo: f32, hi: f32, bins: u32) -> u32 {
@@ -200,9 +206,11 @@ fn main(
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     let bins = clamp(params.depth_bins, 1u, MAX_BINS);
-    let cap = params.segments_per_tile;
     let tile = group.y * groups.x + group.x;
-    let base = tile * cap;
+    // The tile's slots; those past the pool were never written (counted as
+    // dropped by tile_scan).
+    let base = tile_ranges[2u * tile + 1u];
+    let held = params.binned_segments - min(base, params.binned_segments);
     if (lid < MAX_BINS) {
         atomicStore(&bin_count[lid], 0u);
     }
@@ -215,7 +223,7 @@ fn main(
     // completion (see the end of main).
     atomicAdd(&raster_counter[2], 1u);
     workgroupBarrier();
-    let n = min(atomicLoad(&raster_counter[3u + tile]), cap);
+    let n = min(tile_ranges[2u * tile], held);
 
     // 1. Depth range, bin counts, placement, per-bin sort.
     for (var i = lid; i < n; i += THREADS) {
@@ -245,8 +253,8 @@ fn main(
         let key = segment_key(s);
         let b = bin_of(key, lo, hi, bins);
         let at = base + bin_start[b] + atomicAdd(&bin_count[b], 1u);
-        tile_sorted[2u * at] = s;
-        tile_sorted[2u * at + 1u] = bitcast<u32>(key);
+        tile_segments[pair_at(at)] = s;
+        tile_segments[pair_at(at) + 1u] = bitcast<u32>(key);
     }
     storageBarrier();
     workgroupBarrier();
@@ -256,14 +264,14 @@ fn main(
     // threads share the work (a thread per bin running an insertion sort,
     // quadratic in the bin, could spend lavapipe's loop budget alone).
     for (var i = lid; i < n; i += THREADS) {
-        let s = tile_sorted[2u * (base + i)];
-        let k = tile_sorted[2u * (base + i) + 1u];
+        let s = tile_segments[pair_at(base + i)];
+        let k = tile_segments[pair_at(base + i) + 1u];
         let b = bin_of(bitcast<f32>(k), lo, hi, bins);
         let first = bin_start[b];
         var rank = 0u;
         for (var j = first; j < bin_start[b + 1u]; j++) {
-            let other = tile_sorted[2u * (base + j) + 1u];
-            let earlier = other < k || (other == k && tile_sorted[2u * (base + j)] < s);
+            let other = tile_segments[pair_at(base + j) + 1u];
+            let earlier = other < k || (other == k && tile_segments[pair_at(base + j)] < s);
             rank += select(0u, 1u, earlier);
         }
         tile_segments[base + first + rank] = s;

@@ -1,0 +1,151 @@
+// plait::compute_raster::tiles — the screen tiles a hair segment lands in,
+// for the compute rasterizer's two binning passes: tile_count counts them
+// per tile, strand_bin fills the slots tile_scan gave each tile. Both walk
+// the same tiles through these functions, so the fill lands exactly where
+// the count said it would.
+//
+// A segment (the line list's vertex pair; the stored index is its first
+// vertex: a strand's segment i joins vertices i and i + 1) lands in a tile
+// when its screen bounding box grown by one pixel (tile_blend's analytic
+// coverage reaches one pixel either side of the line) overlaps the tile,
+// the line passes within that pixel of it, and it is not hidden there by
+// the opaque scene: not behind the tile's farthest opaque depth
+// (tile_depth), and in front of the opaque depth at some pixel of the tile
+// that tile_blend would draw it in — so hair hidden behind the head takes
+// no slot, is never counted, and the image is the same as without it. The
+// `geometry` point's answer is honoured as every hair draw honours it
+// (plait::strand_lod): a strand of weight 0 lands nowhere.
+#define_import_path plait::compute_raster::tiles
+
+#import plait::frame::frame
+#import plait::strand_lod::strand_lod_weight
+#import plait::hair_point::{HairPoint, screen_project}
+
+@group(1) @binding(1) var<storage, read> hair_vertices: array<HairPoint>;
+@group(1) @binding(2) var<storage, read> hair_indices: array<u32>;
+@group(1) @binding(3) var<storage, read> tile_far: array<u32>;
+@group(1) @binding(7) var opaque_depth: texture_depth_2d;
+
+// A segment on the screen: its ends (screen xy, NDC z, clip w), the tiles
+// its grown bounding box covers (inclusive; none when first > last), the
+// line's unit normal, its nearest depth, and the vertex a tile stores.
+struct Span {
+    a: vec4<f32>,
+    b: vec4<f32>,
+    first_tile: vec2<i32>,
+    last_tile: vec2<i32>,
+    normal: vec2<f32>,
+    near_z: f32,
+    vertex: u32,
+}
+
+// Tiles across the screen (the row length of every per-tile buffer).
+fn tiles_across(t: i32) -> i32 {
+    return (i32(frame.screen_size.x) + t - 1) / t;
+}
+
+fn no_tiles(span: Span) -> Span {
+    var none = span;
+    none.first_tile = vec2<i32>(1);
+    none.last_tile = vec2<i32>(0);
+    return none;
+}
+
+// Segment `s` of the line list with tiles of side `t`.
+fn segment_span(s: u32, t: i32) -> Span {
+    var span: Span;
+    span = no_tiles(span);
+    if (2u * s + 1u >= arrayLength(&hair_indices)) {
+        return span;
+    }
+    span.vertex = hair_indices[2u * s];
+    let v0 = hair_vertices[span.vertex];
+    let v1 = hair_vertices[hair_indices[2u * s + 1u]];
+    if (strand_lod_weight(v0.strand) <= 0.0) {
+        return span;
+    }
+    span.a = screen_project(v0.position);
+    span.b = screen_project(v1.position);
+    // Segments reaching behind the eye are not drawn (the hair is in front
+    // of the camera in every scene plait renders; the raster path clips).
+    if (span.a.w <= 0.0 || span.b.w <= 0.0) {
+        return span;
+    }
+    span.near_z = min(span.a.z, span.b.z);
+    if (span.near_z >= 1.0 || max(span.a.z, span.b.z) < 0.0) {
+        return span;
+    }
+    let size = vec2<i32>(frame.screen_size.xy);
+    let lo = max(vec2<i32>(floor(min(span.a.xy, span.b.xy) - 1.0)), vec2<i32>(0));
+    let hi = min(vec2<i32>(floor(max(span.a.xy, span.b.xy) + 1.0)), size - vec2<i32>(1));
+    if (any(lo > hi)) {
+        return span;
+    }
+    let d = span.b.xy - span.a.xy;
+    let len = length(d);
+    span.normal = select(vec2<f32>(0.0, 1.0), vec2<f32>(-d.y, d.x) / len, len > 1e-6);
+    span.first_tile = lo / t;
+    span.last_tile = hi / t;
+    return span;
+}
+
+// Whether the segment lands in tile (tx, ty) (the header's rules).
+fn lands_in(span: Span, tx: i32, ty: i32, t: i32) -> bool {
+    // Half the tile's diagonal plus the one pixel the coverage reaches.
+    let reach = f32(t) * 0.70710678 + 1.5;
+    let centre = (vec2<f32>(f32(tx), f32(ty)) + 0.5) * f32(t);
+    if (abs(dot(centre - span.a.xy, span.normal)) > reach) {
+        return false;
+    }
+    if (span.near_z >= bitcast<f32>(tile_far[u32(ty * tiles_across(t) + tx)])) {
+        return false;
+    }
+    let size = vec2<i32>(frame.screen_size.xy);
+    let tile_lo = vec2<i32>(tx, ty) * t;
+    let tile_hi = min(tile_lo + vec2<i32>(t - 1), size - vec2<i32>(1));
+    return visible_in_tile(span.a, span.b, tile_lo, tile_hi);
+}
+
+// Whether segment a → b (screen xy, NDC z) is in front of the opaque depth
+// at some pixel of the tile from `lo` to `hi` (inclusive) that tile_blend
+// draws it in: pixel centres whose major-axis coordinate falls in [0, 1)
+// of the segment and whose distance across the line is under one pixel
+// (blend.wgsl, line_coverage).
+fn visible_in_tile(a: vec4<f32>, b: vec4<f32>, lo: vec2<i32>, hi: vec2<i32>) -> bool {
+    let d = b.xy - a.xy;
+    let x_major = abs(d.x) >= abs(d.y);
+    // Swizzled so that .x is the major axis.
+    let a2 = select(a.yx, a.xy, x_major);
+    let d2 = select(d.yx, d, x_major);
+    let lo2 = select(lo.yx, lo, x_major);
+    let hi2 = select(hi.yx, hi, x_major);
+    if (abs(d2.x) < 1e-6) {
+        return false;
+    }
+    let cos_theta = abs(d2.x) / length(d2);
+    let first = max(lo2.x, i32(floor(min(a2.x, a2.x + d2.x) - 0.5)));
+    let last = min(hi2.x, i32(floor(max(a2.x, a2.x + d2.x) + 0.5)));
+    for (var i = first; i <= last; i++) {
+        let t = (f32(i) + 0.5 - a2.x) / d2.x;
+        if (t < 0.0 || t >= 1.0) {
+            continue;
+        }
+        let minor = a2.y + t * d2.y;
+        let z = mix(a.z, b.z, t);
+        if (z < 0.0) {
+            continue;
+        }
+        let from_j = max(lo2.y, i32(floor(minor - 1.5)));
+        let to_j = min(hi2.y, i32(floor(minor + 1.5)));
+        for (var j = from_j; j <= to_j; j++) {
+            if (abs(f32(j) + 0.5 - minor) * cos_theta >= 1.0) {
+                continue;
+            }
+            let pixel = select(vec2<i32>(j, i), vec2<i32>(i, j), x_major);
+            if (z < textureLoad(opaque_depth, pixel, 0)) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
