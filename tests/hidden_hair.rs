@@ -190,15 +190,15 @@ fn assert_same_maps(
     let mut checked = 0;
     for pipeline in pipelines {
         let pipeline = pipeline.as_path();
-        let a = render_maps(gpu, &pipeline, visible);
-        let b = render_maps(gpu, &pipeline, with_hidden);
+        let a = render_maps(gpu, pipeline, visible);
+        let b = render_maps(gpu, pipeline, with_hidden);
         for ((name, wa), (_, wb)) in a.iter().zip(&b) {
             checked += 1;
             if wa != wb {
                 let differing = wa.iter().zip(wb).filter(|(x, y)| x != y).count();
                 failures.push(format!(
                     "{}: `{name}` differs once hidden hair is added ({differing} of {} words)",
-                    rel(&pipeline),
+                    rel(pipeline),
                     wa.len()
                 ));
             }
