@@ -3,7 +3,8 @@
 //! a near and a far camera, each of which fails against `strands` at the
 //! same camera; its widening brings the image closer to every strand than
 //! the same strands dropped without it; a screen fraction out of range is an
-//! error naming the param.
+//! error naming the param. `wisps` has goldens too, follows the hair as it
+//! moves, takes strand-space shading, and draws fewer, wider wisps far away.
 
 use image::RgbaImage;
 use plait::session::{SceneData, prepare};
@@ -228,7 +229,8 @@ fn lod_drops_strands_under_every_self_shadowing_and_transparency_technique() {
 
 /// `wisps` (polygon wisps with a strand texture, Halén & Wester 2007
 /// §2.2–2.4, `techniques/geometry/wisps/technique.toml`): a golden image at
-/// the near and the far camera, each of which fails against `strands` and
+/// the near and the far camera (where the wisps' default level of detail
+/// draws fewer, wider wisps), each of which fails against `strands` and
 /// against `lod` at the same camera.
 #[test]
 fn wisps_match_their_golden_at_a_near_and_a_far_camera_and_fail_as_strands_and_lod() {
@@ -274,10 +276,16 @@ const WISPS: [&str; 3] = [
     "params.wisp_count=120",
 ];
 
-fn prepare_small<'g>(gpu: &'g Gpu, sets: &[&str], scene: &SceneData, size: (u32, u32)) -> plait::session::Prepared<'g> {
+fn prepare_small<'g>(
+    gpu: &'g Gpu,
+    sets: &[&str],
+    scene: &SceneData,
+    size: (u32, u32),
+) -> plait::session::Prepared<'g> {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let pipeline = repo_root().join("pipelines/occupancy.toml");
-    prepare(gpu, &pipeline, &sets, scene, size).unwrap_or_else(|e| panic!("preparing {sets:?}: {e}"))
+    prepare(gpu, &pipeline, &sets, scene, size)
+        .unwrap_or_else(|e| panic!("preparing {sets:?}: {e}"))
 }
 
 /// Σα per pixel of the visible hair fragments (the occupancy pipeline's
@@ -303,7 +311,10 @@ fn hair_centre(sums: &[f32], width: u32) -> (glam::Vec2, f32) {
         y += a * (i as u32 / width) as f64;
     }
     assert!(total > 0.0, "no hair on screen");
-    (glam::Vec2::new((x / total) as f32, (y / total) as f32), total as f32)
+    (
+        glam::Vec2::new((x / total) as f32, (y / total) as f32),
+        total as f32,
+    )
 }
 
 /// Mean |a − b| over the RGB channels of two images (0–255).
@@ -335,7 +346,11 @@ fn wisps_follow_the_hair_when_the_head_turns() {
     assert_ne!(guided, text, "head_turn.toml's groom has 400 strands");
     let guided = plait_hair::Scene::from_toml_str(&guided, &path).expect("parses");
     let cases = [
-        ("animation", load_scene("examples/scenes/head_turn.toml"), vec![]),
+        (
+            "animation",
+            load_scene("examples/scenes/head_turn.toml"),
+            vec![],
+        ),
         (
             "verlet, guides",
             SceneData::new(guided).expect("loads"),
@@ -357,7 +372,10 @@ fn wisps_follow_the_hair_when_the_head_turns() {
                     centre.push(hair_centre(&alpha_sums(&prepared), SMALL.0).0);
                 }
             }
-            eprintln!("{what}: {geometry:?}: hair centre {} → {}", centre[0], centre[1]);
+            eprintln!(
+                "{what}: {geometry:?}: hair centre {} → {}",
+                centre[0], centre[1]
+            );
             shifts.push(centre[1] - centre[0]);
         }
         let (strands, wisps) = (shifts[0], shifts[1]);
@@ -404,7 +422,9 @@ fn strand_space_shading_reaches_the_wisps() {
     let gouraud = image(&["techniques.shading_space=strand", &every]);
     let far = mean_difference(&one, &fragment);
     let near = mean_difference(&gouraud, &fragment);
-    eprintln!("wisps, strand space vs per fragment: 1 point {far:.3}, {points} points {near:.3} (mean |Δ| / 255)");
+    eprintln!(
+        "wisps, strand space vs per fragment: 1 point {far:.3}, {points} points {near:.3} (mean |Δ| / 255)"
+    );
     assert!(
         far > 0.5 && far > 3.0 * near,
         "one shading point per strand must change the wisps ({far:.3}) far more than one per hair vertex ({near:.3})"
@@ -413,11 +433,12 @@ fn strand_space_shading_reaches_the_wisps() {
 
 /// The wisps' own level of detail (Halén & Wester 2007 §2.4: "reducing the
 /// number of wisps and at the same time increasing their width"): at the far
-/// camera (the groom spans ~0.4 of the screen, `wisp_lod_screen_fraction` =
-/// 1) fewer wisps are drawn, each wider, and
-/// the hair's total coverage on screen (Σα over the image) stays within 10 %
-/// of every wisp's (drawn without widening it would fall to the kept
-/// fraction); at the near camera (~0.70) the image is every wisp's, exactly.
+/// camera (the groom spans ~0.4 of the screen; every wisp drawn only from a
+/// full screen's height) fewer wisps are drawn, each wider, and the hair's
+/// total coverage on screen (Σα over the image) stays within 10 % of every
+/// wisp's (drawn without widening it would fall to the kept fraction); at
+/// the near camera (~0.70, default fraction 0.5) the image is every
+/// wisp's, exactly.
 #[test]
 fn far_away_fewer_wider_wisps_keep_the_coverage_and_near_nothing_changes() {
     let (_lock, gpu) = open_gpu();
@@ -431,14 +452,22 @@ fn far_away_fewer_wider_wisps_keep_the_coverage_and_near_nothing_changes() {
             prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
             let count = prepared.wisp_count.expect("wisps were built");
             let (_, total) = hair_centre(&alpha_sums(&prepared), size.0);
-            (prepared.image().unwrap_or_else(|e| panic!("{e}")), total, count)
+            (
+                prepared.image().unwrap_or_else(|e| panic!("{e}")),
+                total,
+                count,
+            )
         };
         // Near: the default fraction (0.5), which the groom exceeds there;
         // far: every wisp only from a full screen's height (1), so about a
         // third are drawn, each about three times as wide.
         let fraction = if camera == "near" { 0.5 } else { 1.0 };
         let set = format!("params.wisp_lod_screen_fraction={fraction}");
-        let lod_sets = if camera == "near" { vec![] } else { vec![set.as_str()] };
+        let lod_sets = if camera == "near" {
+            vec![]
+        } else {
+            vec![set.as_str()]
+        };
         let (lod, lod_sum, count) = render(&lod_sets);
         let (all, all_sum, _) = render(&["params.wisp_lod_screen_fraction=0"]);
         let frame = scene.frame(size, 0);

@@ -125,9 +125,9 @@ fn wisps_render_and_name_what_they_follow() {
 }
 
 /// The wisps' level of detail leaves wisps out on purpose, never silently:
-/// far away (the groom spans ~0.39 of the screen, every wisp drawn only from
-/// 1) a note says how many are drawn and how much wider; with it off
-/// (`wisp_lod_screen_fraction = 0`) no such note.
+/// far away (the groom spans ~0.39 of the screen; every wisp drawn only
+/// from a full screen's height) a note says how many are drawn and how much
+/// wider; with it off (`wisp_lod_screen_fraction = 0`) no such note.
 #[test]
 fn fewer_wisps_far_away_are_named_in_a_note() {
     let dir = tempfile::tempdir().expect("temp dir");
@@ -153,9 +153,14 @@ fn fewer_wisps_far_away_are_named_in_a_note() {
         ]);
         let stderr = text(&run.stderr);
         assert!(run.status.success(), "{stderr}");
-        let note = "note: geometry wisps: 39 of 100 wisps drawn from the camera, each 2.56× as wide";
+        let note =
+            "note: geometry wisps: 39 of 100 wisps drawn from the camera, each 2.56× as wide";
         assert_eq!(stderr.contains(note), noted, "{fraction}: {stderr}");
-        assert_eq!(stderr.contains("wisps drawn from the camera"), noted, "{fraction}: {stderr}");
+        assert_eq!(
+            stderr.contains("wisps drawn from the camera"),
+            noted,
+            "{fraction}: {stderr}"
+        );
     }
 }
 

@@ -3,7 +3,10 @@
 //! §5.4): wisp centres spread over the scalp by relaxation dart throwing
 //! (Lagae & Dutré 2005, as §2.2 uses it), each wisp a triangle strip along its
 //! guide strand, as wide as the `wisp_width` param (the vertex shader turns
-//! it to face the camera, `techniques/geometry/wisps/geometry.wgsl`).
+//! it to face the camera and moves it with the hair vertices it stands for,
+//! `techniques/geometry/wisps/geometry.wgsl`). The wisps are stored in the
+//! order their centres were accepted, a progressive Poisson-disk sample:
+//! the wisps' level of detail draws a prefix of them (§2.4).
 //!
 //! On the CPU, once at load: the thesis makes wisps as a preprocessing step
 //! ("there is no need for a fast algorithm", §2.2), dart throwing is
