@@ -3,7 +3,8 @@
 //! a near and a far camera, each of which fails against `strands` at the
 //! same camera; its widening brings the image closer to every strand than
 //! the same strands dropped without it; a screen fraction out of range is an
-//! error naming the param.
+//! error naming the param. `wisps` has goldens too, follows the hair as it
+//! moves, takes strand-space shading, and draws fewer, wider wisps far away.
 
 use image::RgbaImage;
 use plait::session::{SceneData, prepare};
@@ -228,7 +229,8 @@ fn lod_drops_strands_under_every_self_shadowing_and_transparency_technique() {
 
 /// `wisps` (polygon wisps with a strand texture, Halén & Wester 2007
 /// §2.2–2.4, `techniques/geometry/wisps/technique.toml`): a golden image at
-/// the near and the far camera, each of which fails against `strands` and
+/// the near and the far camera (where the wisps' default level of detail
+/// draws fewer, wider wisps), each of which fails against `strands` and
 /// against `lod` at the same camera.
 #[test]
 fn wisps_match_their_golden_at_a_near_and_a_far_camera_and_fail_as_strands_and_lod() {
@@ -262,4 +264,232 @@ fn wisps_match_their_golden_at_a_near_and_a_far_camera_and_fail_as_strands_and_l
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Small renders for the wisps' own tests (seconds each on lavapipe).
+const SMALL: (u32, u32) = (96, 72);
+/// A small strand texture and fewer wisps: these tests are about where the
+/// wisps are and how they are shaded, not about the texture.
+const WISPS: [&str; 3] = [
+    "techniques.geometry=wisps",
+    "params.wisp_texture_size=32",
+    "params.wisp_count=120",
+];
+
+fn prepare_small<'g>(
+    gpu: &'g Gpu,
+    sets: &[&str],
+    scene: &SceneData,
+    size: (u32, u32),
+) -> plait::session::Prepared<'g> {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    prepare(gpu, &pipeline, &sets, scene, size)
+        .unwrap_or_else(|e| panic!("preparing {sets:?}: {e}"))
+}
+
+/// Σα per pixel of the visible hair fragments (the occupancy pipeline's
+/// `camera_alpha`, red), after the last render.
+fn alpha_sums(prepared: &plait::session::Prepared) -> Vec<f32> {
+    let texels = prepared
+        .renderer
+        .read_resource("camera_alpha")
+        .unwrap_or_else(|e| panic!("{e}"));
+    (0..(texels.width * texels.height) as usize)
+        .map(|i| texels.texel(i)[0])
+        .collect()
+}
+
+/// The Σα-weighted centre of the hair on screen (pixels) and the total Σα.
+fn hair_centre(sums: &[f32], width: u32) -> (glam::Vec2, f32) {
+    let mut total = 0.0f64;
+    let (mut x, mut y) = (0.0f64, 0.0f64);
+    for (i, &a) in sums.iter().enumerate() {
+        let a = a as f64;
+        total += a;
+        x += a * (i as u32 % width) as f64;
+        y += a * (i as u32 / width) as f64;
+    }
+    assert!(total > 0.0, "no hair on screen");
+    (
+        glam::Vec2::new((x / total) as f32, (y / total) as f32),
+        total as f32,
+    )
+}
+
+/// Mean |a − b| over the RGB channels of two images (0–255).
+fn mean_difference(a: &RgbaImage, b: &RgbaImage) -> f64 {
+    let sum: u64 = a
+        .pixels()
+        .zip(b.pixels())
+        .map(|(p, q)| (0..3).map(|c| p[c].abs_diff(q[c]) as u64).sum::<u64>())
+        .sum();
+    sum as f64 / (3 * a.width() * a.height()) as f64
+}
+
+/// Wisps move with the hair (Halén & Wester 2007 §2, §4: the wisps are the
+/// geometry that moves): every wisp vertex follows the hair vertex it stands
+/// for in `hair_vertices`, which the head's animation rewrites each frame
+/// (on the CPU) and the simulation's guide interpolation rewrites (on the
+/// GPU). In the head-turn scene (45° at t = 1 s) the hair's on-screen centre
+/// (Σα weighted) moves as far with wisps as with strands: rigidly with the
+/// head and, with `simulation = verlet` on a groom of guide strands (the
+/// wisps then follow guides moved to their centres, offset from the strand
+/// they stand for), lagging behind it. Wisps built once at rest and drawn
+/// from there would not move at all.
+#[test]
+fn wisps_follow_the_hair_when_the_head_turns() {
+    let (_lock, gpu) = open_gpu();
+    let path = repo_root().join("examples/scenes/head_turn.toml");
+    let text = std::fs::read_to_string(&path).expect("head_turn.toml");
+    let guided = text.replace("strands = 400\n", "strands = 400\nguides = 60\n");
+    assert_ne!(guided, text, "head_turn.toml's groom has 400 strands");
+    let guided = plait_hair::Scene::from_toml_str(&guided, &path).expect("parses");
+    let cases = [
+        (
+            "animation",
+            load_scene("examples/scenes/head_turn.toml"),
+            vec![],
+        ),
+        (
+            "verlet, guides",
+            SceneData::new(guided).expect("loads"),
+            vec!["techniques.simulation=verlet", "params.light_size=16"],
+        ),
+    ];
+    for (what, scene, extra) in cases {
+        let mut shifts = Vec::new();
+        for geometry in [&[][..], &WISPS[..]] {
+            let mut sets = extra.clone();
+            sets.extend_from_slice(geometry);
+            let mut prepared = prepare_small(&gpu, &sets, &scene, SMALL);
+            let mut centre = Vec::new();
+            for frame in 0..=30 {
+                prepared
+                    .render_frame(&scene, SMALL, frame, 30.0)
+                    .unwrap_or_else(|e| panic!("{e}"));
+                if frame % 30 == 0 {
+                    centre.push(hair_centre(&alpha_sums(&prepared), SMALL.0).0);
+                }
+            }
+            eprintln!(
+                "{what}: {geometry:?}: hair centre {} → {}",
+                centre[0], centre[1]
+            );
+            shifts.push(centre[1] - centre[0]);
+        }
+        let (strands, wisps) = (shifts[0], shifts[1]);
+        assert!(
+            strands.length() > 4.0,
+            "{what}: the strands must move on screen for this test to tell anything: {strands}"
+        );
+        // Wisps are wider and fewer than the strands, so their centre is not
+        // the strands' — but it moves with the hair: within a fifth of the
+        // strands' motion (and a pixel).
+        assert!(
+            (wisps - strands).length() < 0.2 * strands.length() + 1.0,
+            "{what}: the wisps moved {wisps} px on screen, the strands {strands} px"
+        );
+    }
+}
+
+/// `shading_space = strand` shades wisp fragments too: a wisp fragment reads
+/// the radiance shaded at the hair vertex it stands for, interpolated along
+/// the strand. With one shading point per strand (its middle) every wisp is
+/// shaded flat, far from per-fragment shading; with a shading point at every
+/// hair vertex (Gouraud along the strand) it is close to it. Wisps that fell
+/// back to per-fragment shading would give the same image for both.
+#[test]
+fn strand_space_shading_reaches_the_wisps() {
+    let (_lock, gpu) = open_gpu();
+    let scene = load_scene("examples/scenes/small.toml");
+    let points = scene
+        .strands
+        .ranges()
+        .map(|r| r.len())
+        .min()
+        .expect("strands");
+    let image = |extra: &[&str]| {
+        let mut sets = WISPS.to_vec();
+        sets.extend_from_slice(extra);
+        let prepared = prepare_small(&gpu, &sets, &scene, SMALL);
+        prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+        prepared.image().unwrap_or_else(|e| panic!("{e}"))
+    };
+    let every = format!("params.shading_points={points}");
+    let fragment = image(&[]);
+    let one = image(&["techniques.shading_space=strand", "params.shading_points=1"]);
+    let gouraud = image(&["techniques.shading_space=strand", &every]);
+    let far = mean_difference(&one, &fragment);
+    let near = mean_difference(&gouraud, &fragment);
+    eprintln!(
+        "wisps, strand space vs per fragment: 1 point {far:.3}, {points} points {near:.3} (mean |Δ| / 255)"
+    );
+    assert!(
+        far > 0.5 && far > 3.0 * near,
+        "one shading point per strand must change the wisps ({far:.3}) far more than one per hair vertex ({near:.3})"
+    );
+}
+
+/// The wisps' own level of detail (Halén & Wester 2007 §2.4: "reducing the
+/// number of wisps and at the same time increasing their width"): at the far
+/// camera (the groom spans ~0.4 of the screen; every wisp drawn only from a
+/// full screen's height) fewer wisps are drawn, each wider, and the hair's
+/// total coverage on screen (Σα over the image) stays within 10 % of every
+/// wisp's (drawn without widening it would fall to the kept fraction); at
+/// the near camera (~0.70, default fraction 0.5) the image is every
+/// wisp's, exactly.
+#[test]
+fn far_away_fewer_wider_wisps_keep_the_coverage_and_near_nothing_changes() {
+    let (_lock, gpu) = open_gpu();
+    let size = (128, 96);
+    for camera in ["near", "far"] {
+        let scene = load_scene(&format!("tests/fixtures/golden_{camera}.toml"));
+        let render = |extra: &[&str]| {
+            let mut sets = WISPS.to_vec();
+            sets.extend_from_slice(extra);
+            let prepared = prepare_small(&gpu, &sets, &scene, size);
+            prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+            let count = prepared.wisp_count.expect("wisps were built");
+            let (_, total) = hair_centre(&alpha_sums(&prepared), size.0);
+            (
+                prepared.image().unwrap_or_else(|e| panic!("{e}")),
+                total,
+                count,
+            )
+        };
+        // Near: the default fraction (0.5), which the groom exceeds there;
+        // far: every wisp only from a full screen's height (1), so about a
+        // third are drawn, each about three times as wide.
+        let fraction = if camera == "near" { 0.5 } else { 1.0 };
+        let set = format!("params.wisp_lod_screen_fraction={fraction}");
+        let lod_sets = if camera == "near" {
+            vec![]
+        } else {
+            vec![set.as_str()]
+        };
+        let (lod, lod_sum, count) = render(&lod_sets);
+        let (all, all_sum, _) = render(&["params.wisp_lod_screen_fraction=0"]);
+        let frame = scene.frame(size, 0);
+        let kept = plait::wisps::kept_wisps(&frame, fraction, count);
+        eprintln!(
+            "{camera}: {kept} of {count} wisps drawn, Σα {lod_sum:.1} vs every wisp's {all_sum:.1}, mean |Δ| {:.3}",
+            mean_difference(&lod, &all)
+        );
+        if camera == "near" {
+            assert_eq!(kept, count, "near: every wisp is drawn");
+            assert!(lod == all, "near: the image must be every wisp's");
+        } else {
+            assert!(
+                kept < count / 2,
+                "far: the level of detail must leave wisps out ({kept} of {count})"
+            );
+            assert!(lod != all, "far: fewer wisps must change the image");
+            let ratio = lod_sum / all_sum;
+            assert!(
+                (ratio - 1.0).abs() < 0.1,
+                "far: {kept} wider wisps cover {ratio:.3} of what {count} do (Σα)"
+            );
+        }
+    }
 }

@@ -29,7 +29,7 @@
 #import plait::ambient_occlusion::occlusion_at
 #import plait::shading_space::strand_space_radiance
 #import plait::strand_coverage::strand_coverage
-#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha, strand_lod_position, strand_lod_vertex, strand_lod_wisps, strand_lod_texture_coordinates, strand_lod_texel}
+#import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_alpha, strand_lod_vertex, strand_lod_wisps, strand_lod_fraction, strand_lod_texel}
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 
@@ -56,10 +56,12 @@ struct HairVaryings {
     @location(3) alpha: f32,
     // Fraction of the environment's light reaching the strand here.
     @location(4) occlusion: f32,
-    // Where the fragment lies along its strand, for strand-space shading: the
-    // strand, the segment's first vertex (the line's provoking vertex; hair
-    // segments join vertices i and i + 1), and the vertex index's parity,
-    // interpolated — 0 → 1 from an even first vertex, 1 → 0 from an odd one.
+    // Where the fragment lies along its strand, for strand-space shading
+    // (plait::strand_lod::strand_lod_place): the strand, for strands the
+    // segment's first vertex (the line's provoking vertex; hair segments
+    // join vertices i and i + 1) and the vertex index's parity, interpolated
+    // — 0 → 1 from an even first vertex, 1 → 0 from an odd one; for wisps
+    // the strand's first vertex and the index along it, interpolated.
     @location(5) @interpolate(flat) strand: u32,
     @location(6) @interpolate(flat) segment: u32,
     @location(7) parity: f32,
@@ -76,44 +78,47 @@ struct HairFragment {
 
 fn hair_vertex(v: HairVertex) -> HairVaryings {
     var out: HairVaryings;
-    let lod = strand_lod_weight(v.strand_id);
-    // A wisp vertex becomes its strip's corner (the position of a strand's).
-    let world = strand_lod_position(v.position, v.tangent, v.index);
-    out.clip = strand_lod_clip(view_proj() * vec4<f32>(world, 1.0), lod);
-    out.world = world;
-    out.tangent = v.tangent;
-    out.color = v.color;
+    // Where the geometry draws the vertex: itself, or a wisp vertex's strip
+    // corner, following the hair vertex it stands for.
+    let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(p.world, 1.0), p.weight);
+    out.world = p.world;
+    out.tangent = p.tangent;
+    out.color = p.color;
     // A strand thinner than a pixel covers only part of it: its coverage
     // weighs its alpha in every blending technique (and sets the sample mask
     // of alpha to coverage). A wisp's coverage is its texture's alpha.
     let coverage = select(strand_coverage(v.position, v.tangent, v.thickness), 1.0, strand_lod_wisps());
-    out.alpha = strand_lod_alpha(v.alpha * coverage, lod);
-    out.wisp = strand_lod_texture_coordinates(v.position, v.tangent, v.thickness, v.index);
+    out.alpha = strand_lod_alpha(p.alpha * coverage, p.weight);
+    out.wisp = p.texture;
     out.occlusion = occlusion_at(strand_lod_vertex(v.index, v.strand_id));
-    out.strand = v.strand_id;
-    out.segment = v.index;
-    out.parity = f32(v.index & 1u);
+    out.strand = p.strand;
+    out.segment = p.segment;
+    out.parity = p.along;
     return out;
 }
 
 fn shade_hair(in: HairVaryings) -> HairFragment {
-    // Strand space: the radiance a compute pass shaded along the strand this
-    // frame, interpolated; w = 0 when the colour is shaded here.
-    // Wisps are shaded here: the strand-space pass shades strands.
-    if (!strand_lod_wisps()) {
-        let shaded = strand_space_radiance(in.strand, in.segment, segment_fraction(in));
-        if (shaded.w > 0.0) {
-            return HairFragment(shaded.rgb, fragment_alpha(in));
-        }
-    }
     let texel = strand_lod_texel(in.wisp);
+    // Strand space: the radiance a compute pass shaded along the strand this
+    // frame, interpolated; w = 0 when the colour is shaded here. A wisp
+    // fragment reads it where the hair vertex it stands for lies (the strand
+    // the wisp follows), scaled by the strand texture's brightness — which
+    // the per-fragment path puts into the albedo instead: the two agree on
+    // every term linear in the albedo (Kajiya-Kay's diffuse; its specular,
+    // untinted by the albedo, the texture dims here and not there).
+    let shaded = strand_space_radiance(in.strand, in.segment, segment_fraction(in));
+    if (shaded.w > 0.0) {
+        return HairFragment(shaded.rgb * texel.rgb, fragment_alpha(in));
+    }
     let rgb = hair_radiance(shadow_map, in.world, in.tangent, in.color * texel.rgb, in.occlusion);
     return HairFragment(rgb, fragment_alpha(in));
 }
 
-// How far along its segment the fragment lies, 0 at the segment's first vertex.
+// How far along its strand past hair vertex `in.segment` the fragment lies
+// (within the segment from it, for strands: 0 at its first vertex).
 fn segment_fraction(in: HairVaryings) -> f32 {
-    return select(in.parity, 1.0 - in.parity, (in.segment & 1u) == 1u);
+    return strand_lod_fraction(in.segment, in.parity);
 }
 
 // The fragment's alpha alone (coverage × strand alpha × hair colour alpha),

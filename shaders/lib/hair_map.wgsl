@@ -8,12 +8,15 @@
 #define_import_path plait::hair_map
 
 #import plait::frame::{view_proj, view_linear_depth}
-#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_position}
+#import plait::strand_lod::{strand_lod_place, strand_lod_clip}
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
-    // A wisp's strip spreads across it (plait::strand_lod_position).
+    // A wisp vertex's slots all place it (plait::strand_lod_place).
+    @location(1) thickness: f32,
     @location(2) tangent: vec3<f32>,
+    @location(3) alpha: f32,
+    @location(4) color: vec3<f32>,
     // The `geometry` point drops the strands the shaded draws drop.
     @location(5) strand_id: u32,
     @builtin(vertex_index) index: u32,
@@ -27,9 +30,9 @@ struct MapFragment {
 
 fn map_vertex(v: MapVertex) -> MapFragment {
     var out: MapFragment;
-    let world = strand_lod_position(v.position, v.tangent, v.index);
-    out.clip = strand_lod_clip(view_proj() * vec4<f32>(world, 1.0), strand_lod_weight(v.strand_id));
-    out.depth = view_linear_depth(world);
+    let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(p.world, 1.0), p.weight);
+    out.depth = view_linear_depth(p.world);
     return out;
 }
 

@@ -9,7 +9,7 @@
 #import plait::frame::frame
 #import plait::geometry::geometry_strand_weight
 #ifdef GEOMETRY_WISPS
-#import plait::geometry::wisps::{wisp_corner, wisp_u, wisp_level, wisp_texel}
+#import plait::geometry::wisps::{wisp_point, wisp_texel}
 #endif
 
 // How many of the groom's strands this one stands for (0: not drawn).
@@ -43,17 +43,72 @@ fn strand_lod_alpha(alpha: f32, weight: f32) -> f32 {
 }
 
 // `geometry = "wisps"` (techniques/geometry/wisps): every hair draw draws the
-// wisps' triangles, whose vertices carry a guide point each; the functions
-// below turn one into its strip's corner and read the strand texture. For
-// strands they leave everything as it was.
+// wisps' triangles, whose vertices each follow a hair vertex; the functions
+// below place them and read the strand texture. For strands they leave
+// everything as it was.
 
-// Where hair vertex `index` at `position` is drawn: itself, or, for a wisp
-// vertex, its strip's corner facing the view.
-fn strand_lod_position(position: vec3<f32>, tangent: vec3<f32>, index: u32) -> vec3<f32> {
+// A hair draw's vertex as the geometry places it this frame.
+struct LodVertex {
+    // Where it is drawn: a strand's point, or a wisp's strip corner.
+    world: vec3<f32>,
+    tangent: vec3<f32>,
+    alpha: f32,
+    color: vec3<f32>,
+    // How many strands it stands for (strand_lod_weight; 0 = not drawn).
+    weight: f32,
+    // A wisp's strand-texture coordinates (u across, v along, mip level);
+    // 0 for strands.
+    texture: vec3<f32>,
+    // Where it lies along its strand, for strand-space shading
+    // (plait::hair_fragment): the strand, a hair vertex of it (`segment`)
+    // and `along`, interpolated, from which the fragment's place is
+    // segment + fraction (strand_lod_fraction).
+    strand: u32,
+    segment: u32,
+    along: f32,
+}
+
+// Hair vertex buffer entry `index` (the vertex stage's inputs) placed.
+fn strand_lod_place(position: vec3<f32>, thickness: f32, tangent: vec3<f32>, alpha: f32, color: vec3<f32>, strand_id: u32, index: u32) -> LodVertex {
+    var out: LodVertex;
 #ifdef GEOMETRY_WISPS
-    return wisp_corner(position, tangent, index);
+    // A plait_hair::wisps::WispVertex in the hair vertex's slots.
+    let w = wisp_point(position, thickness, tangent, alpha, color, strand_id, index);
+    out.world = w.corner;
+    out.tangent = w.tangent;
+    out.alpha = w.alpha;
+    out.color = w.color;
+    out.weight = w.weight;
+    out.texture = w.texture;
+    // The strand's first vertex (flat, the same on the whole wisp) and the
+    // point's index along the strand, interpolated across the strip.
+    out.strand = w.strand;
+    out.segment = w.first;
+    out.along = w.point;
 #else
-    return position;
+    out.world = position;
+    out.tangent = tangent;
+    out.alpha = alpha;
+    out.color = color;
+    out.weight = strand_lod_weight(strand_id);
+    out.texture = vec3<f32>(0.0);
+    // A line's provoking vertex is its first, vertex i of the segment i,
+    // i + 1: the parity of the index, interpolated, runs 0 → 1 from an even
+    // first vertex and 1 → 0 from an odd one.
+    out.strand = strand_id;
+    out.segment = index;
+    out.along = f32(index & 1u);
+#endif
+    return out;
+}
+
+// How far past hair vertex `segment` a fragment lies along its strand, in
+// hair vertices, from its interpolated `along` (strand_lod_place).
+fn strand_lod_fraction(segment: u32, along: f32) -> f32 {
+#ifdef GEOMETRY_WISPS
+    return along;
+#else
+    return select(along, 1.0 - along, (segment & 1u) == 1u);
 #endif
 }
 
@@ -67,23 +122,13 @@ fn strand_lod_vertex(index: u32, strand_id: u32) -> u32 {
 #endif
 }
 
-// Whether hair draws draw wisps (shaded per fragment whatever the
-// shading space: the strand-space pass shades the strands, not the wisps).
+// Whether hair draws draw wisps (their coverage is their strand texture's
+// alpha, not a line's pixel coverage).
 fn strand_lod_wisps() -> bool {
 #ifdef GEOMETRY_WISPS
     return true;
 #else
     return false;
-#endif
-}
-
-// A wisp vertex's strand-texture coordinates: u across (0, 1 at its sides),
-// v along (its `thickness`: 0 root, 1 tip), the mip level; 0 for strands.
-fn strand_lod_texture_coordinates(position: vec3<f32>, tangent: vec3<f32>, thickness: f32, index: u32) -> vec3<f32> {
-#ifdef GEOMETRY_WISPS
-    return vec3<f32>(wisp_u(index), thickness, wisp_level(position, tangent));
-#else
-    return vec3<f32>(0.0);
 #endif
 }
 

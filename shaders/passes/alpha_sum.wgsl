@@ -5,13 +5,14 @@
 // blending weighs (Sintorn & Assarsson 2009 §3.4).
 #import plait::frame::{frame, view_proj}
 #import plait::strand_coverage::strand_coverage
-#import plait::strand_lod::{strand_lod_weight, strand_lod_clip, strand_lod_alpha, strand_lod_position, strand_lod_wisps, strand_lod_texture_coordinates, strand_lod_texel}
+#import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_alpha, strand_lod_wisps, strand_lod_texel}
 
 struct SumVertex {
     @location(0) position: vec3<f32>,
     @location(1) thickness: f32,
     @location(2) tangent: vec3<f32>,
     @location(3) alpha: f32,
+    @location(4) color: vec3<f32>,
     @location(5) strand_id: u32,
     @builtin(vertex_index) index: u32,
 }
@@ -27,12 +28,11 @@ struct SumFragment {
 fn vs_main(v: SumVertex) -> SumFragment {
     var out: SumFragment;
     // The strands and weights of the hair pass (plait::hair_fragment).
-    let lod = strand_lod_weight(v.strand_id);
-    let world = strand_lod_position(v.position, v.tangent, v.index);
-    out.clip = strand_lod_clip(view_proj() * vec4<f32>(world, 1.0), lod);
+    let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+    out.clip = strand_lod_clip(view_proj() * vec4<f32>(p.world, 1.0), p.weight);
     let coverage = select(strand_coverage(v.position, v.tangent, v.thickness), 1.0, strand_lod_wisps());
-    out.alpha = strand_lod_alpha(v.alpha * coverage, lod);
-    out.wisp = strand_lod_texture_coordinates(v.position, v.tangent, v.thickness, v.index);
+    out.alpha = strand_lod_alpha(p.alpha * coverage, p.weight);
+    out.wisp = p.texture;
     return out;
 }
 

@@ -109,6 +109,9 @@ pub fn render(
     let mut notes = prepared.renderer.notes().to_vec();
     let frame = plait::session::frame_uniforms(prepared.schedule(), &data, size, 0);
     notes.extend(plait::strand_lod::note(prepared.schedule(), &frame));
+    if let Some(count) = prepared.wisp_count {
+        notes.extend(plait::wisps::lod_note(prepared.schedule(), &frame, count));
+    }
     let image = match show {
         Some(name) => {
             let texels = prepared.renderer.read_resource(name)?;

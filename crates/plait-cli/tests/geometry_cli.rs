@@ -124,6 +124,46 @@ fn wisps_render_and_name_what_they_follow() {
     );
 }
 
+/// The wisps' level of detail leaves wisps out on purpose, never silently:
+/// far away (the groom spans ~0.39 of the screen; every wisp drawn only
+/// from a full screen's height) a note says how many are drawn and how much
+/// wider; with it off (`wisp_lod_screen_fraction = 0`) no such note.
+#[test]
+fn fewer_wisps_far_away_are_named_in_a_note() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("far.png");
+    for (fraction, noted) in [("1", true), ("0", false)] {
+        let run = plait(&[
+            "render",
+            "pipelines/forward.toml",
+            "--scene",
+            "tests/fixtures/golden_far.toml",
+            "--size",
+            "64x48",
+            "--set",
+            "techniques.geometry=wisps",
+            "--set",
+            "params.wisp_count=100",
+            "--set",
+            "params.wisp_texture_size=32",
+            "--set",
+            &format!("params.wisp_lod_screen_fraction={fraction}"),
+            "--out",
+            out.to_str().expect("utf-8 path"),
+        ]);
+        let stderr = text(&run.stderr);
+        assert!(run.status.success(), "{stderr}");
+        let note =
+            "note: geometry wisps: 39 of 100 wisps drawn from the camera, each 2.56× as wide";
+        assert_eq!(stderr.contains(note), noted, "{fraction}: {stderr}");
+        assert_eq!(
+            stderr.contains("wisps drawn from the camera"),
+            noted,
+            "{fraction}: {stderr}"
+        );
+    }
+}
+
 /// Bad wisp params: one error each, naming the param (or the texture the
 /// size makes, with the adapter's limit), exit 2, no image.
 #[test]
@@ -134,6 +174,14 @@ fn bad_wisp_params_are_one_error_naming_the_param() {
         ("params.wisp_count=0", "param `wisp_count` of passes"),
         ("params.wisp_count=5000", "param `wisp_count` of passes"),
         ("params.wisp_width=0", "param `wisp_width` of passes"),
+        (
+            "params.wisp_lod_screen_fraction=1.5",
+            "param `wisp_lod_screen_fraction` of passes",
+        ),
+        (
+            "params.wisp_lod_screen_fraction=-0.1",
+            "param `wisp_lod_screen_fraction` of passes",
+        ),
         ("params.wisp_texture_size=40000", "wisp_texture"),
     ] {
         let run = plait(&[

@@ -3,7 +3,10 @@
 //! §5.4): wisp centres spread over the scalp by relaxation dart throwing
 //! (Lagae & Dutré 2005, as §2.2 uses it), each wisp a triangle strip along its
 //! guide strand, as wide as the `wisp_width` param (the vertex shader turns
-//! it to face the camera, `techniques/geometry/wisps/geometry.wgsl`).
+//! it to face the camera and moves it with the hair vertices it stands for,
+//! `techniques/geometry/wisps/geometry.wgsl`). The wisps are stored in the
+//! order their centres were accepted, a progressive Poisson-disk sample:
+//! the wisps' level of detail draws a prefix of them (§2.4).
 //!
 //! On the CPU, once at load: the thesis makes wisps as a preprocessing step
 //! ("there is no need for a fast algorithm", §2.2), dart throwing is
@@ -89,21 +92,45 @@ pub fn relaxation_dart_throwing(candidates: &[Vec3], count: usize, seed: u64) ->
     }
 }
 
-/// The wisps' triangle list on the GPU. A wisp vertex has the hair's vertex
-/// layout ([`StrandVertex`], so every hair draw's shader reads it) with two
-/// fields meaning something else, as `plait::hair_fragment` reads them under
-/// `GEOMETRY_WISPS`:
-/// - `thickness`: how far along its wisp the vertex lies, 0 at the root, 1 at
-///   the tip (the strand texture's v; the width is the `wisp_width` param);
-/// - `strand_id`: the hair vertex it stands for — the point at the same
-///   fraction along the strand rooted at the wisp's centre — so per-vertex
-///   resources (ambient occlusion, strand-space radiance) are read there.
-///
-/// The vertices come in pairs, one per side of the strip (even = left, odd =
-/// right): the vertex shader offsets them across the view.
+/// One wisp vertex on the GPU (48 bytes, `#[repr(C)]`): the hair vertex
+/// layout's slots ([`StrandVertex`], so every hair draw's vertex stage reads
+/// it, locations 0–5) holding what a wisp vertex needs to follow the hair
+/// vertex it stands for (`techniques/geometry/wisps/geometry.wgsl`,
+/// `wisp_point`). Its colour, alpha and current place come from that hair
+/// vertex in the scene's `hair_vertices` every frame.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WispVertex {
+    /// `position`: the wisp's spine point minus the hair vertex's position,
+    /// at rest (0 when the wisp follows the strand rooted at its centre).
+    pub offset: [f32; 3],
+    /// `thickness`: how far along its wisp the vertex lies, 0 at the root, 1
+    /// at the tip (the strand texture's v).
+    pub along: f32,
+    /// `tangent`: the hair vertex's tangent at rest, the frame the offset is
+    /// kept in (the shader turns the offset as that tangent has turned).
+    pub rest_tangent: [f32; 3],
+    /// `alpha`: the hair vertex's index along its strand (0 at the root), so
+    /// strand-space shading finds the radiance shaded there.
+    pub point: f32,
+    /// `color`: x = the wisp's place in the dart throwing's acceptance order,
+    /// y = the mesh's wisp count (the wisps' own level of detail draws the
+    /// first k: a progressive Poisson-disk sample), z = 0.
+    pub order: [f32; 3],
+    /// `strand_id`: the hair vertex it stands for — the point at the same
+    /// fraction along the strand rooted at the wisp's centre.
+    pub hair_vertex: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<WispVertex>() == std::mem::size_of::<StrandVertex>());
+
+/// The wisps' triangle list on the GPU, wisp after wisp in the order their
+/// centres were accepted. The vertices come in pairs, one per side of the
+/// strip (even = left, odd = right): the vertex shader offsets them across
+/// the view.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct WispMesh {
-    pub vertices: Vec<StrandVertex>,
+    pub vertices: Vec<WispVertex>,
     pub indices: Vec<u32>,
     pub wisp_count: usize,
     /// The dart throwing's final collision radius (model units).
@@ -137,6 +164,9 @@ pub fn build_wisps(strands: &Strands, guides: &Guides, count: usize) -> (WispMes
         .map(|r| followed.points.get(r.start).copied().unwrap_or(Vec3::ZERO))
         .collect();
     let (guide_vertices, _) = followed.line_list();
+    // The hair at rest as it is uploaded: the offsets and rest tangents
+    // are taken from it.
+    let (hair, _) = strands.line_list();
     let mut mesh = WispMesh {
         radius: darts.radius,
         ..WispMesh::default()
@@ -153,20 +183,22 @@ pub fn build_wisps(strands: &Strands, guides: &Guides, count: usize) -> (WispMes
         if range.len() < 2 || source.is_empty() {
             continue;
         }
-        let offset = centre - guide_roots[g];
+        let shift = centre - guide_roots[g];
         let base = mesh.vertices.len() as u32;
         let last = (range.len() - 1) as f32;
+        let order = mesh.wisp_count as f32;
         for (j, k) in range.clone().enumerate() {
             let t = j as f32 / last;
-            let src = source.start + (t * (source.len() - 1) as f32).round() as usize;
-            let g = guide_vertices[k];
-            let vertex = StrandVertex {
-                position: (Vec3::from(g.position) + offset).to_array(),
-                thickness: t,
-                tangent: g.tangent,
-                alpha: strands.alpha[src],
-                color: strands.color[src].to_array(),
-                strand_id: src as u32,
+            let point = (t * (source.len() - 1) as f32).round() as usize;
+            let src = source.start + point;
+            let spine = Vec3::from(guide_vertices[k].position) + shift;
+            let vertex = WispVertex {
+                offset: (spine - Vec3::from(hair[src].position)).to_array(),
+                along: t,
+                rest_tangent: hair[src].tangent,
+                point: point as f32,
+                order: [order, 0.0, 0.0],
+                hair_vertex: src as u32,
             };
             mesh.vertices.extend([vertex, vertex]);
         }
@@ -180,6 +212,10 @@ pub fn build_wisps(strands: &Strands, guides: &Guides, count: usize) -> (WispMes
             mesh.indices.extend([a, b, c, b, d, c]);
         }
         mesh.wisp_count += 1;
+    }
+    let total = mesh.wisp_count as f32;
+    for v in &mut mesh.vertices {
+        v.order[1] = total;
     }
     (mesh, kind)
 }
@@ -252,10 +288,15 @@ mod tests {
         assert_eq!(mesh.vertices.len(), 4 * 6);
         assert_eq!(mesh.indices.len(), 4 * 12);
         let v = &mesh.vertices[..6];
-        assert_eq!(v[0].thickness, 0.0);
-        assert_eq!(v[5].thickness, 1.0);
-        // Each vertex names the hair vertex it stands for.
-        let src = v[2].strand_id as usize;
-        assert_eq!(strands.points[src], Vec3::from(v[2].position));
+        assert_eq!(v[0].along, 0.0);
+        assert_eq!(v[5].along, 1.0);
+        // Each vertex names the hair vertex it stands for, lies on it (no
+        // guides: no offset) and knows its place along the strand.
+        let src = v[2].hair_vertex as usize;
+        assert_eq!(v[2].offset, [0.0; 3]);
+        assert_eq!(v[2].point, 1.0);
+        assert_eq!(strands.points[src], strands.points[src - 1] + Vec3::Y);
+        // Wisps in acceptance order, each knowing how many there are.
+        assert_eq!(mesh.vertices[6].order, [1.0, 4.0, 0.0]);
     }
 }

@@ -11,6 +11,10 @@ use crate::spec_util::{SlotExt, choice, float, int, texture};
 /// `wisp_count` when a pipeline does not set it.
 pub const WISP_COUNT_DEFAULT: i64 = 300;
 
+/// `wisp_lod_screen_fraction` when a pipeline does not set it: the wisps'
+/// level of detail starts where `lod`'s default does.
+pub const WISP_LOD_SCREEN_FRACTION_DEFAULT: f64 = 0.5;
+
 /// The providers, by param value: every module `plait::geometry::NAME` found.
 pub fn providers() -> Vec<String> {
     plait_gpu::library::providers("geometry")
@@ -51,6 +55,13 @@ pub fn params() -> Vec<ParamSpec> {
             1,
             4096,
             "wisps: how many wisps relaxation dart throwing spreads over the scalp (at most one per strand root; O(n²) at load)",
+        ),
+        float(
+            "wisp_lod_screen_fraction",
+            WISP_LOD_SCREEN_FRACTION_DEFAULT,
+            0.0,
+            1.0,
+            "wisps: the groom's height on screen (fraction of the screen height) from which every wisp is drawn; below it fewer, wider wisps (Halén & Wester 2007 §2.4); 0 draws every wisp always",
         ),
         float(
             "wisp_width",

@@ -262,6 +262,9 @@ pub struct Prepared<'g> {
     /// CPU). A pipeline whose simulation writes the hair on the GPU turns it
     /// off; the light is still fitted to where rigid hair would be.
     pub hair_follows_head: bool,
+    /// `geometry = "wisps"`: how many wisps were built (their level of
+    /// detail draws a prefix of them, [`crate::wisps::kept_wisps`]).
+    pub wisp_count: Option<usize>,
 }
 
 impl Prepared<'_> {
@@ -428,9 +431,11 @@ pub fn build<'g>(
         hair_pose,
     );
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
+    let mut wisp_count = None;
     if let Some((wisps, note)) = crate::wisps::build(&schedule, scene) {
         geometry.set_wisps(&gpu.device, &wisps);
         schedule.notes.push(note);
+        wisp_count = Some(wisps.wisp_count);
     }
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(
@@ -449,5 +454,6 @@ pub fn build<'g>(
         output,
         hair_pose,
         hair_follows_head: !hair_written,
+        wisp_count,
     })
 }

@@ -55,3 +55,48 @@ pub fn build(schedule: &Schedule, scene: &SceneData) -> Option<(WispMesh, String
     );
     Some((mesh, note))
 }
+
+/// How many of `count` wisps the wisps' level of detail draws at `frame`'s
+/// camera for `wisp_lod_screen_fraction` = `fraction`, computed in f32 the
+/// way `wisp_lod` in `techniques/geometry/wisps/geometry.wgsl` does: the
+/// first ceil(k · count) of the acceptance order, k = the groom's screen
+/// fraction / `fraction` in [1 / count, 1]; every wisp when `fraction` is 0.
+/// Each drawn wisp is count / kept times as wide.
+pub fn kept_wisps(frame: &plait_gpu::frame::FrameUniforms, fraction: f32, count: usize) -> usize {
+    let n = count.max(1) as f32;
+    if fraction <= 0.0 {
+        return count;
+    }
+    let k = (crate::strand_lod::groom_screen_fraction(frame) / fraction).clamp(1.0 / n, 1.0);
+    if k >= 1.0 {
+        return count;
+    }
+    ((k * n).ceil().clamp(1.0, n) as usize).min(count)
+}
+
+/// "geometry wisps: m of n wisps drawn …" when the schedule draws wisps and
+/// their level of detail leaves some out at this frame's camera: wisps are
+/// left out on purpose, never silently.
+pub fn lod_note(
+    schedule: &Schedule,
+    frame: &plait_gpu::frame::FrameUniforms,
+    count: usize,
+) -> Option<String> {
+    if !chosen(schedule) {
+        return None;
+    }
+    let fraction = match schedule.params.get("wisp_lod_screen_fraction") {
+        Some(Value::Float(f)) => *f as f32,
+        Some(Value::Int(i)) => *i as f32,
+        _ => plait_passes::geometry::WISP_LOD_SCREEN_FRACTION_DEFAULT as f32,
+    };
+    let kept = kept_wisps(frame, fraction, count);
+    if kept >= count {
+        return None;
+    }
+    Some(format!(
+        "geometry wisps: {kept} of {count} wisps drawn from the camera, each {:.2}× as wide (the groom spans {:.3} of the screen's height; every wisp from wisp_lod_screen_fraction = {fraction})",
+        count as f32 / kept as f32,
+        crate::strand_lod::groom_screen_fraction(frame)
+    ))
+}
