@@ -282,14 +282,13 @@ fn compute_raster_refuses_impossible_tiling_params() {
     }
 }
 
-/// `plait render pipelines/compute_raster.toml` on the stray scene at 32x32
-/// with 16-px tiles: four tiles, each with the `--set`s given.
+/// `plait render pipelines/compute_raster.toml` on the built-in scene at
+/// 32x32 with 16-px tiles: four tiles sharing the whole groom, with the
+/// `--set`s given.
 fn render_four_tiles(sets: &[&str], out: &std::path::Path) -> std::process::Output {
     let mut args = vec![
         "render",
         "pipelines/compute_raster.toml",
-        "--scene",
-        "examples/scenes/stray.toml",
         "--size",
         "32x32",
         "--set",
@@ -308,8 +307,9 @@ fn render_four_tiles(sets: &[&str], out: &std::path::Path) -> std::process::Outp
 /// run 65,535 iterations in all, silently; tile_blend counts its own
 /// invocations that did not finish (raster_counter's `incomplete` word) and
 /// the frame fails. One depth bin makes each tile's sort rank every segment
-/// against every other — ~7,000 segments per tile here, far past the budget
-/// on llvmpipe; 32 bins keep it well inside, and the frame counts nothing.
+/// against every other — a quarter of the built-in groom per tile, far past
+/// the budget on llvmpipe; 32 bins keep it inside, and the frame counts
+/// nothing.
 /// A driver without the limit renders both.
 #[test]
 fn compute_raster_fails_a_frame_whose_tiles_could_not_finish() {
