@@ -51,6 +51,16 @@ struct Entry<'g> {
     floor_passes: Vec<Vec<f64>>,
 }
 
+/// A row to render: a gallery pipeline, with the user's `--set`s or not.
+struct Row {
+    label: String,
+    base: String,
+    path: PathBuf,
+    /// Every set the row applies (`--one-draw`'s, then the user's).
+    sets: Vec<String>,
+    user_sets: Vec<String>,
+}
+
 fn gallery(root: &Path) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("pipelines"))
         .unwrap_or_else(|e| panic!("pipelines/: {e}"))
@@ -133,31 +143,36 @@ fn main() {
     }
     // Every chosen pipeline, then beside it the same with the user's sets,
     // checked first without a GPU by the loader `plait render` uses.
-    let rows: Vec<(String, String, PathBuf, Vec<String>, Vec<String>)> = variants
-        .into_iter()
-        .flat_map(|(name, path, sets)| {
-            let mut rows = vec![(
-                name.clone(),
-                name.clone(),
-                path.clone(),
-                sets.clone(),
-                Vec::new(),
-            )];
-            if !args.sets.is_empty() {
-                let all = [sets.as_slice(), &args.sets].concat();
-                if let Err(e) = floor_args::check_sets(&path, &all) {
-                    usage_error(&format!(
-                        "{e}\n(pipeline `{name}`, {}, with {})",
-                        path.strip_prefix(&root).unwrap_or(&path).display(),
-                        floor_args::label("", &args.sets).trim()
-                    ));
-                }
-                let label = floor_args::label(&name, &args.sets);
-                rows.push((label, name, path, all, args.sets.clone()));
-            }
-            rows
-        })
-        .collect();
+    let mut rows = Vec::new();
+    for (name, path, sets) in variants {
+        if !args.sets_only {
+            rows.push(Row {
+                label: name.clone(),
+                base: name.clone(),
+                path: path.clone(),
+                sets: sets.clone(),
+                user_sets: Vec::new(),
+            });
+        }
+        if args.sets.is_empty() {
+            continue;
+        }
+        let all = [sets.as_slice(), &args.sets].concat();
+        if let Err(e) = floor_args::check_sets(&path, &all) {
+            usage_error(&format!(
+                "{e}\n(pipeline `{name}`, {}, with {})",
+                path.strip_prefix(&root).unwrap_or(&path).display(),
+                floor_args::label("", &args.sets).trim()
+            ));
+        }
+        rows.push(Row {
+            label: floor_args::label(&name, &args.sets),
+            base: name,
+            path,
+            sets: all,
+            user_sets: args.sets.clone(),
+        });
+    }
     let scene_path = args.scene.clone();
     let scene = SceneData::load(scene_path.as_deref())
         .unwrap_or_else(|e| usage_error(&format!("error: {e}")));
@@ -171,11 +186,16 @@ fn main() {
     }
     let library = plait::passes::library();
     let mut entries = Vec::new();
-    for (name, base, path, sets, user_sets) in rows {
-        let prepared = match prepare(&gpu, &path, &sets, &scene, size) {
+    for row in rows {
+        let name = row.label;
+        let prepared = match prepare(&gpu, &row.path, &row.sets, &scene, size) {
             Ok(p) => p,
             // A row the user asked for with --set cannot be left out quietly.
-            Err(e) if !user_sets.is_empty() => usage_error(&format!("error: {name}: {e}")),
+            Err(e) if !row.user_sets.is_empty() => {
+                let e = e.to_string();
+                let e = e.strip_prefix("error: ").unwrap_or(&e);
+                usage_error(&format!("error: row `{name}`: {e}"))
+            }
             Err(e) => {
                 eprintln!("{name}: not rendered: {e}");
                 continue;
@@ -193,8 +213,8 @@ fn main() {
         let passes = prepared.schedule().passes.len();
         entries.push(Entry {
             name,
-            base,
-            sets: user_sets,
+            base: row.base,
+            sets: row.user_sets,
             prepared,
             floor,
             plait_ms: Vec::new(),

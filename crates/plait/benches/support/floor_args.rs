@@ -23,6 +23,8 @@ clears and draws with trivial shaders), in interleaved repeats.
                     chosen is also rendered with the sets, in a row of its
                     own beside the pipeline as it is, against the floor of
                     its own schedule
+  --sets-only       only the --set rows, not the pipelines as they are (to
+                    profile a --set row alone with --side)
   --save DIR        write each row's image to DIR
   --one-draw        add the default pipeline with its maps built in one draw
   --side plait|floor  render one side only (to profile it with perf)
@@ -39,7 +41,7 @@ const WITH_VALUE: &[&str] = &[
     "--save",
     "--side",
 ];
-const WITHOUT_VALUE: &[&str] = &["--one-draw", "--bench", "--help"];
+const WITHOUT_VALUE: &[&str] = &["--one-draw", "--sets-only", "--bench", "--help"];
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Side {
@@ -56,6 +58,8 @@ pub struct FloorArgs {
     pub only: Option<Vec<String>>,
     /// `--set` texts in the order given, not yet checked against a pipeline.
     pub sets: Vec<String>,
+    /// Leave out the rows without the sets.
+    pub sets_only: bool,
     pub save: Option<PathBuf>,
     pub one_draw: bool,
     pub side: Side,
@@ -70,6 +74,7 @@ pub fn parse(args: &[String]) -> Result<FloorArgs, String> {
         scene: None,
         only: None,
         sets: Vec::new(),
+        sets_only: false,
         save: None,
         one_draw: false,
         side: Side::Both,
@@ -90,6 +95,7 @@ pub fn parse(args: &[String]) -> Result<FloorArgs, String> {
             }
             match flag {
                 "--one-draw" => out.one_draw = true,
+                "--sets-only" => out.sets_only = true,
                 "-h" | "--help" => out.help = true,
                 _ => {}
             }
@@ -139,6 +145,9 @@ pub fn parse(args: &[String]) -> Result<FloorArgs, String> {
             }
             _ => unreachable!("every flag of WITH_VALUE is matched"),
         }
+    }
+    if out.sets_only && out.sets.is_empty() {
+        return Err("--sets-only needs at least one --set KEY=VALUE".into());
     }
     Ok(out)
 }
