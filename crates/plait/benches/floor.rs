@@ -132,7 +132,7 @@ fn main() {
     if let Some(o) = &only {
         // A name that matches no pipeline is a mistake, not an empty run.
         let known = gallery_names(&root);
-        for name in o.iter().filter(|n| !variants.iter().any(|(v, ..)| v == *n)) {
+        if let Some(name) = o.iter().find(|n| !variants.iter().any(|(v, ..)| v == *n)) {
             let hint = plait::graph::suggest::nearest(name, known.iter().map(String::as_str))
                 .map(|n| format!("; did you mean `{n}`?"))
                 .unwrap_or_default();
