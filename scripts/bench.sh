@@ -12,6 +12,8 @@ bash scripts/ensure-vulkan.sh
 # Without a display session, Mesa's device-select layer has nothing to select (as scripts/test.sh).
 if [ -z "${XDG_RUNTIME_DIR:-}" ]; then export NODEVICE_SELECT=1; fi
 cargo bench --locked -p plait --bench floor -- --size 320x240 --repeats 5
+# Strand-space shading against its own floor, beside fragment space (issue 22).
+cargo bench --locked -p plait --bench floor -- --only occupancy --set techniques.shading_space=strand --size 320x240 --repeats 9
 cargo bench --locked -p plait --bench encode
 cargo bench --locked -p plait --bench scaling -- --repeats 3 --largest
 # The papers' speed claims, interleaved, into the book's claims page.

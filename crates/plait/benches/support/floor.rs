@@ -8,7 +8,8 @@
 //! draws per pass come from the pass type (`depth_range` draws twice,
 //! `density_clustering` once per k-means stage, everything else once), the
 //! state from [`raster_state_of`], the memory from plait's own pool. Compute
-//! passes dispatch an empty kernel over the same threads.
+//! passes dispatch an empty kernel over the same threads (`strand_shading`:
+//! strands × shading points, from the geometry, as its pass type counts them).
 
 use plait::gpu::Gpu;
 use plait::gpu::geometry::SceneGeometry;
@@ -79,6 +80,9 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
 
 @compute @workgroup_size(8, 8, 1)
 fn cs_empty() {}
+
+@compute @workgroup_size(64, 1, 1)
+fn cs_empty_1d() {}
 "#;
 
 /// A fragment stage writing a constant of each target's kind.
@@ -97,6 +101,29 @@ fn fragment_shader(targets: &[wgpu::TextureFormat]) -> String {
     format!(
         "struct Out {{\n{fields}}}\n@fragment\nfn fs_constant() -> Out {{\nvar out: Out;\n{body}return out;\n}}\n"
     )
+}
+
+/// Threads a compute pass runs. Most follow from the schedule (the pass
+/// type's `compute_threads`); `strand_shading` runs one per shading point
+/// of every strand, which only the geometry knows (as its pass type does).
+fn threads_of(
+    pass: &ScheduledPass,
+    schedule: &Schedule,
+    t: &dyn plait::gpu::pass::PassType,
+    geometry: &SceneGeometry,
+) -> [u32; 3] {
+    match pass.type_name.as_str() {
+        "strand_shading" => {
+            let points = pass
+                .params
+                .get("shading_points")
+                .and_then(Value::as_i64)
+                .unwrap_or(1)
+                .max(1) as u32;
+            [geometry.strand_count.saturating_mul(points), 1, 1]
+        }
+        _ => t.compute_threads(pass, schedule),
+    }
 }
 
 fn draws_of(pass: &ScheduledPass) -> usize {
@@ -183,23 +210,31 @@ impl<'g> Floor<'g> {
                 .map(plait_graph::Binding::id)
                 .collect();
             if pass.shape == PassShape::Compute {
-                let threads = t.compute_threads(pass, schedule);
+                let threads = threads_of(pass, schedule, t, &geometry);
+                // A row of threads runs in rows of 64 (8 × 8 tiles would
+                // run eight times the threads), a grid in 8 × 8 tiles.
+                let row = threads[1] <= 1 && threads[2] <= 1;
                 let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some(&pass.name),
                     layout: Some(&layout),
                     module: &vertex_module,
-                    entry_point: Some("cs_empty"),
+                    entry_point: Some(if row { "cs_empty_1d" } else { "cs_empty" }),
                     compilation_options: Default::default(),
                     cache: None,
                 });
-                passes.push(FloorPass::Compute {
-                    name: pass.name.clone(),
-                    pipeline,
-                    workgroups: [
+                let workgroups = if row {
+                    [threads[0].div_ceil(64), 1, 1]
+                } else {
+                    [
                         threads[0].div_ceil(8),
                         threads[1].div_ceil(8),
                         threads[2].max(1),
-                    ],
+                    ]
+                };
+                passes.push(FloorPass::Compute {
+                    name: pass.name.clone(),
+                    pipeline,
+                    workgroups,
                     clears,
                 });
                 continue;

@@ -3,5 +3,6 @@
 #![allow(dead_code)] // each benchmark uses a part
 
 pub mod floor;
+pub mod floor_args;
 pub mod handwritten;
 pub mod timing;

@@ -365,7 +365,11 @@ fn build_pass(
     let device = &gpu.device;
     // The copy plait itself would read (the library search path, `PLAIT_PATH`
     // first), so a shader variant there applies to both programs alike.
-    let relative = format!("shaders/passes/{}", d.shader);
+    let relative = if d.shader.contains('/') {
+        d.shader.to_owned()
+    } else {
+        format!("shaders/passes/{}", d.shader)
+    };
     let path = plait_assets::find_on_disk(&relative).unwrap_or_else(|| repo_root().join(&relative));
     let source = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let defines: Vec<(String, Define)> = d

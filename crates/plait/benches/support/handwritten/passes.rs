@@ -88,6 +88,8 @@ pub type ColorTarget = (
 /// What one hand-written pass is.
 pub struct PassDesc {
     pub name: &'static str,
+    /// A pass type's shader in `shaders/passes/`, or a technique's own
+    /// (a path from the repository root, as the search path holds it).
     pub shader: &'static str,
     pub defines: &'static [&'static str],
     pub geometry: Geometry,
@@ -176,7 +178,7 @@ pub fn passes() -> Vec<PassDesc> {
     let mut passes = vec![PassDesc {
         name: "opaque_shadow",
         shader: "shadow_map.wgsl",
-        defines: light,
+        defines: &["LIGHT_VIEW", "DRAW_OPAQUE"],
         geometry: Geometry::Opaque,
         binds: vec![],
         colors: vec![],
@@ -214,7 +216,7 @@ pub fn passes() -> Vec<PassDesc> {
     passes.push(PassDesc {
         name: "opaque",
         shader: "opaque_shade.wgsl",
-        defines: &["SELF_SHADOW_OCCUPANCY"],
+        defines: &["SELF_SHADOW_OCCUPANCY", "DRAW_OPAQUE"],
         geometry: Geometry::Opaque,
         binds: opaque_binds,
         colors: vec![(
@@ -274,17 +276,18 @@ pub fn passes() -> Vec<PassDesc> {
     let mut hair_binds = vec![depth_texture(0, "opaque_shadow")];
     hair_binds.extend(light_maps());
     hair_binds.extend([
-        float_texture(16, "camera_range"),
-        storage(17, true, "camera_bits"),
-        storage(18, true, "camera_slabs"),
-        float_texture(19, "camera_alpha"),
+        float_texture(60, "camera_range"),
+        storage(61, true, "camera_bits"),
+        storage(62, true, "camera_slabs"),
+        float_texture(63, "camera_alpha"),
     ]);
+    // The transparency technique's own hair pass (its slots start at 60).
     passes.push(PassDesc {
         name: "hair",
-        shader: "hair_shade.wgsl",
+        shader: "techniques/transparency/occupancy_order/hair.wgsl",
         defines: &[
             "SELF_SHADOW_OCCUPANCY",
-            "BLEND_OCCUPANCY_ORDER",
+            "SHADING_SPACE_FRAGMENT",
             "SHADING_KAJIYA_KAY",
             "LIGHTING_AMBIENT",
             "AMBIENT_OCCLUSION_NONE",
