@@ -346,40 +346,32 @@ fn compute_raster_fails_a_frame_whose_tiles_could_not_finish() {
 /// The exact reference of A/B runs must not blend part of a list silently:
 /// lavapipe gives each 4x2 block of fragments one budget of 65,535 loop
 /// iterations, and the built-in groom at 80x60 puts thousands of fragments
-/// in a pixel, so the resolve's walk and insertion sort stop early in some
-/// blocks. The resolve counts those pixels in `list_counter`'s `incomplete`
-/// word and the frame fails; the small scene's short lists count none.
-/// A driver without the limit renders both.
+/// in a pixel. The resolve writes `list_counter` last (its `incomplete`
+/// word counts pixels it could not resolve); the small scene counts none,
+/// and since the nearest 256 are kept in a heap (~2 laps a fragment, the
+/// insertion sort before it cut 104 pixels here) neither does the built-in
+/// groom at 80x60. A list past the budget: tests/loop_budget.rs.
 #[test]
-fn linked_list_fails_a_frame_whose_lists_could_not_be_resolved() {
+fn linked_list_resolves_long_lists_within_the_loop_budget() {
     let json = render_json("pipelines/linked_list.toml", &[]);
     let c = counter(&json);
     assert_eq!(c["last_pass"], "list_resolve", "{c}");
     assert_eq!(count(c, "incomplete"), 0, "{c}");
-    let llvmpipe = json["adapter"]["name"]
-        .as_str()
-        .expect("adapter name")
-        .contains("llvmpipe");
 
     let dir = tempfile::tempdir().expect("tempdir");
-    let cut = dir.path().join("cut.png");
+    let out = dir.path().join("long.png");
     let o = plait(&[
         "render",
         "pipelines/linked_list.toml",
         "--size",
         "80x60",
+        "--json",
         "--out",
-        cut.to_str().expect("utf-8"),
+        out.to_str().expect("utf-8"),
     ]);
-    let err = text(&o.stderr);
-    if llvmpipe {
-        assert_eq!(o.status.code(), Some(2), "{err}");
-        assert!(
-            err.contains("shader invocations of pass `list_resolve` could not finish"),
-            "{err}"
-        );
-        assert!(!cut.exists(), "no image from a frame that lacks fragments");
-    } else {
-        assert!(o.status.success(), "{err}");
-    }
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
+    let c = counter(&json);
+    assert_eq!(count(c, "incomplete"), 0, "{c}");
+    assert!(out.exists());
 }
