@@ -381,8 +381,9 @@ fn cylinders_sum_every_caster_past_the_loop_budget() {
 /// A sum still cut short fails the frame: one dispatch of a million
 /// iterations (`ao_chunk_iterations`) runs past lavapipe's budget, and the
 /// shader counts the vertices it could not finish in `ao_status`, the
-/// `incomplete` word of its overflow declaration. The default chunks count
-/// none.
+/// `incomplete` word of its overflow declaration. (The default chunks count
+/// none on the same scene: `vertex_ao` checks every frame, and
+/// `cylinders_sum_every_caster_past_the_loop_budget` renders it.)
 #[test]
 fn cylinders_count_the_vertices_a_cut_sum_left_unfinished() {
     let (_lock, gpu) = open_gpu();
@@ -396,9 +397,6 @@ fn cylinders_count_the_vertices_a_cut_sum_left_unfinished() {
             .unwrap_or_else(|| panic!("ao_status is read back: {:?}", report.overflow));
         (status.incomplete, plait::overflow::check_frame(&report))
     };
-    let (count, check) = incomplete(&[]);
-    assert_eq!(count, 0, "the default chunks fit the budget");
-    check.expect("a complete frame passes");
     let (count, check) = incomplete(&["params.ao_chunk_iterations=1000000".into()]);
     let adapter = &gpu.info.name;
     eprintln!("one chunk on {adapter}: {count} vertices unfinished");

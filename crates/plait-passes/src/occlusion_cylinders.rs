@@ -142,64 +142,74 @@ impl PassType for OcclusionCylinders {
         let bounds = kernel(Some("CYLINDER_BOUNDS"), 1)?;
         let shadow = kernel(None, vertices)?;
         let visibility = kernel(Some("CYLINDER_VISIBILITY"), vertices)?;
-        let error = |message: String| GpuError::Pass {
-            pass: pass.name.clone(),
-            message,
-        };
-        // Bound, so checked to exist; their sizes are the shader's concern.
-        let box_id = bound(pass, "hair_box")?.id();
-        if let ResourceDesc::Buffer { size } = ctx.schedule.resources[box_id].desc
-            && size < HAIR_BOX_BYTES
-        {
-            return Err(error(format!(
-                "`hair_box` holds {size} bytes; it needs {HAIR_BOX_BYTES}"
-            )));
-        }
-        let status_id = bound(pass, "ao_status")?.id();
-        if let ResourceDesc::Buffer { size } = ctx.schedule.resources[status_id].desc
-            && size < 4
-        {
-            return Err(error(format!("`ao_status` holds {size} bytes; it needs 4")));
-        }
-        let stride = crate::occlusion_directions::int_param(pass, "caster_stride").max(1) as u32;
-        let triangles = match &ctx.geometry.opaque {
-            Some(opaque) if pass.params.get("scalp_discs") != Some(&Value::Bool(false)) => {
-                opaque.index_count / 3
-            }
-            _ => 0,
-        };
-        let per_chunk = crate::occlusion_directions::int_param(pass, "chunk_iterations")
-            .clamp(1, u32::MAX as i64) as u32;
-        let chunks = chunks(vertices, stride, triangles, per_chunk);
-        let bytes: Vec<u8> = chunks
-            .iter()
-            .flat_map(|c| c.iter().flat_map(|w| w.to_le_bytes()))
-            .collect();
-        let chunk_buffer = wgpu::util::DeviceExt::create_buffer_init(
-            ctx.device,
-            &wgpu::util::BufferInitDescriptor {
-                label: Some(&format!("{} chunks", pass.name)),
-                contents: &bytes,
-                usage: wgpu::BufferUsages::COPY_SRC,
-            },
-        );
+        check_scratch(pass, ctx)?;
+        let (chunk_buffer, chunks) = chunk_buffer(pass, ctx, vertices);
         Ok(Box::new(Prepared {
             bounds,
             shadow,
             visibility,
             chunk_buffer,
-            chunks: chunks.len() as u64,
+            chunks,
             vertex_ao: bound(pass, "vertex_ao")?.id(),
-            hair_box: box_id,
+            hair_box: bound(pass, "hair_box")?.id(),
         }))
     }
+}
+
+/// The scratch buffers the shader indexes: `hair_box` holds the box and the
+/// chunk, `ao_status` its one word.
+fn check_scratch(pass: &ScheduledPass, ctx: &BuildContext<'_>) -> Result<(), GpuError> {
+    for (slot, need) in [("hair_box", HAIR_BOX_BYTES), ("ao_status", 4)] {
+        let id = bound(pass, slot)?.id();
+        if let ResourceDesc::Buffer { size } = ctx.schedule.resources[id].desc
+            && size < need
+        {
+            return Err(GpuError::Pass {
+                pass: pass.name.clone(),
+                message: format!("`{slot}` holds {size} bytes; it needs {need}"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Every chunk's bounds ([`chunks`]) in a buffer the pass copies from, and
+/// how many there are.
+fn chunk_buffer(
+    pass: &ScheduledPass,
+    ctx: &BuildContext<'_>,
+    vertices: u32,
+) -> (wgpu::Buffer, u64) {
+    let int = |name| crate::occlusion_directions::int_param(pass, name);
+    let stride = int("caster_stride").clamp(1, u32::MAX as i64) as u32;
+    let per_chunk = int("chunk_iterations").clamp(1, u32::MAX as i64) as u32;
+    let triangles = match &ctx.geometry.opaque {
+        Some(opaque) if pass.params.get("scalp_discs") != Some(&Value::Bool(false)) => {
+            opaque.index_count / 3
+        }
+        _ => 0,
+    };
+    let chunks = chunks(vertices, stride, triangles, per_chunk);
+    // One empty chunk when there is nothing: a buffer is never 0 bytes.
+    let bytes: Vec<u8> = chunks
+        .iter()
+        .chain(chunks.is_empty().then_some(&[0u32; 4]))
+        .flat_map(|c| c.iter().flat_map(|w| w.to_le_bytes()))
+        .collect();
+    let buffer = wgpu::util::DeviceExt::create_buffer_init(
+        ctx.device,
+        &wgpu::util::BufferInitDescriptor {
+            label: Some(&format!("{} chunks", pass.name)),
+            contents: &bytes,
+            usage: wgpu::BufferUsages::COPY_SRC,
+        },
+    );
+    (buffer, chunks.len() as u64)
 }
 
 /// The shadow dispatches' bounds, `[caster_first, caster_end, triangle_first,
 /// triangle_end]` each: the casters `0, k, 2k, … < vertices` (k = `stride`)
 /// and then the `triangles`, at most `per_chunk` loop iterations a dispatch.
-/// Always at least one chunk, so the sums start from zero even without
-/// casters.
 pub fn chunks(vertices: u32, stride: u32, triangles: u32, per_chunk: u32) -> Vec<[u32; 4]> {
     let stride = stride.max(1);
     let per_chunk = per_chunk.max(1);
@@ -207,7 +217,7 @@ pub fn chunks(vertices: u32, stride: u32, triangles: u32, per_chunk: u32) -> Vec
     let mut out = Vec::new();
     let mut first = 0;
     while first < casters {
-        let end = (first + per_chunk).min(casters);
+        let end = first.saturating_add(per_chunk).min(casters);
         out.push([
             first * stride,
             (end as u64 * stride as u64).min(vertices as u64) as u32,
@@ -218,12 +228,9 @@ pub fn chunks(vertices: u32, stride: u32, triangles: u32, per_chunk: u32) -> Vec
     }
     let mut first = 0;
     while first < triangles {
-        let end = (first + per_chunk).min(triangles);
+        let end = first.saturating_add(per_chunk).min(triangles);
         out.push([0, 0, first, end]);
         first = end;
-    }
-    if out.is_empty() {
-        out.push([0; 4]);
     }
     out
 }
@@ -284,7 +291,12 @@ mod tests {
                 [0, 0, 4, 5]
             ]
         );
-        assert_eq!(chunks(0, 1, 0, 16), vec![[0; 4]]);
+        assert!(chunks(0, 1, 0, 16).is_empty());
+        // One chunk of everything, whatever the param allows.
+        assert_eq!(
+            chunks(10, 1, 3, u32::MAX),
+            vec![[0, 10, 0, 0], [0, 0, 0, 3]]
+        );
         // The built-in groom: 330,000 casters in 21 chunks, the head in 1.
         assert_eq!(chunks(330_000, 1, 3_970, 16_384).len(), 22);
     }
