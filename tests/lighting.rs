@@ -312,3 +312,55 @@ fn map_lookups_are_within_measured_bounds_of_brute_force() {
         "the specular error should fall as M grows: {mean_specular:?}"
     );
 }
+
+/// The environment sums run past lavapipe's loop budget (65,535 iterations
+/// per group of 8 invocations) for large params, and the frame then fails
+/// instead of showing cut maps: sh_project at 14 bands (its texel laps with
+/// sh_basis's loops: ~67,600 passes at environment_size 16), the direct maps
+/// at 32 intervals and environment_size 18 (~68,100). The defaults count
+/// nothing. A driver without the limit counts nothing either.
+#[test]
+fn environment_sums_past_the_loop_budget_fail_the_frame() {
+    let (_lock, gpu) = open_gpu();
+    let scene = small_scene();
+    let pipeline = repo_root().join("tests/fixtures/lighting_maps.toml");
+    let incomplete = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let prepared = prepare(&gpu, &pipeline, &sets, &scene, (64, 48)).expect("prepare");
+        let report = prepared.renderer.render().expect("render");
+        let count = |counter: &str| {
+            report
+                .overflow
+                .iter()
+                .find(|o| o.counter == counter)
+                .unwrap_or_else(|| panic!("{counter} is read back: {:?}", report.overflow))
+                .incomplete
+        };
+        let check = plait::overflow::check_frame(&report).map_err(|e| e.to_string());
+        (count("sh_project_status"), count("direct_status"), check)
+    };
+    let (sh, direct, check) = incomplete(&[]);
+    assert_eq!((sh, direct), (0, 0), "the defaults fit the budget");
+    check.expect("a complete frame passes");
+    let llvmpipe = gpu.info.name.contains("llvmpipe");
+
+    let (sh, direct, check) = incomplete(&["params.sh_bands=14"]);
+    eprintln!("14 bands: {sh} sh_project threads cut, {direct} direct");
+    assert_eq!(direct, 0);
+    if llvmpipe {
+        assert!(sh > 0, "14 bands are past the budget on lavapipe");
+        let e = check.expect_err("a cut frame fails");
+        assert!(e.contains("pass `sh_project` could not finish"), "{e}");
+    }
+    let (sh, direct, check) = incomplete(&[
+        "params.environment_size=18",
+        "params.intervals=32",
+        "params.map_size=4",
+    ]);
+    eprintln!("size 18, 32 intervals: {direct} irradiance_maps threads cut, {sh} sh_project");
+    if llvmpipe {
+        assert!(direct > 0, "past the budget on lavapipe");
+        let e = check.expect_err("a cut frame fails");
+        assert!(e.contains("pass `direct` could not finish"), "{e}");
+    }
+}

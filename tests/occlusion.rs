@@ -26,22 +26,35 @@ const CYLINDERS: &str = "cylinders";
 /// Per-vertex ambient visibility by the `ambient_occlusion` technique
 /// `technique` with `sets`, one value per hair vertex.
 fn vertex_ao(gpu: &Gpu, scene: &SceneData, technique: &str, sets: &[String]) -> Vec<f32> {
+    let (ao, report) = vertex_ao_report(gpu, scene, technique, sets);
+    plait::overflow::check_frame(&report).unwrap_or_else(|e| panic!("{technique} {sets:?}: {e}"));
+    ao
+}
+
+/// [`vertex_ao`] and the frame's report (its overflow counters).
+fn vertex_ao_report(
+    gpu: &Gpu,
+    scene: &SceneData,
+    technique: &str,
+    sets: &[String],
+) -> (Vec<f32>, plait_gpu::FrameReport) {
     let pipeline = repo_root().join("tests/fixtures/ambient_occlusion.toml");
     let mut all = vec![format!("techniques.ambient_occlusion={technique}")];
     all.extend(sets.iter().cloned());
     let prepared = prepare(gpu, &pipeline, &all, scene, SIZE)
         .unwrap_or_else(|e| panic!("{technique} {sets:?}: {e}"));
-    prepared.renderer.render().expect("renders");
+    let report = prepared.renderer.render().expect("renders");
     let bytes = prepared
         .renderer
         .read_buffer("ao_vertex")
         .expect("ao_vertex");
     let n = scene.strands.points.len();
-    bytes
+    let ao = bytes
         .chunks_exact(4)
         .take(n)
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect()
+        .collect();
+    (ao, report)
 }
 
 fn directions(n: u32) -> Vec<String> {
@@ -289,4 +302,135 @@ fn occlusion_is_computed_once_and_kept_across_frames() {
             "{technique}: same image"
         );
     }
+}
+
+/// The small scene with its head tessellated into `stacks × slices` and
+/// listed `copies` times (no ground): the scalp discs' sum over more
+/// triangles than one loop of lavapipe's may run.
+fn scene_with_heads(copies: usize, stacks: u32, slices: u32) -> SceneData {
+    let mut scene = small_scene();
+    let head = scene
+        .scene
+        .head
+        .as_ref()
+        .expect("the small scene has a head");
+    let mesh =
+        plait_hair::mesh::Mesh::ellipsoid(head.center.into(), head.radii.into(), stacks, slices)
+            .with_name("head")
+            .as_head();
+    scene.meshes = vec![mesh; copies];
+    scene
+}
+
+/// The summed shadow S = -ln(visibility) (the default `combine = "exp"`).
+fn shadow(ao: &[f32]) -> Vec<f64> {
+    ao.iter().map(|&v| -(v as f64).ln()).collect()
+}
+
+/// The sum over casters is linear: with the head listed twice each vertex's
+/// scalp shadow doubles, S₂ - S₁ = S₁ - S₀ (S₀ without scalp discs). Twice
+/// ~39,600 triangles plus 6,800 hair casters is ~86,000 loop iterations, past
+/// lavapipe's 65,535 per group of 8 invocations: one long loop stops after
+/// ~58,700 triangles (the old shader), the chunked sum takes them all.
+#[test]
+fn cylinders_sum_every_caster_past_the_loop_budget() {
+    let (_lock, gpu) = open_gpu();
+    let once = scene_with_heads(1, 100, 200);
+    let twice = scene_with_heads(2, 100, 200);
+    let triangles: usize = twice.meshes.iter().map(|m| m.indices.len() / 3).sum();
+    let casters = twice.strands.points.len();
+    assert!(
+        casters + triangles > 65_535 + 15_000,
+        "the scene must be well past the budget: {casters} casters + {triangles} triangles"
+    );
+    let s0 = shadow(&vertex_ao(
+        &gpu,
+        &once,
+        CYLINDERS,
+        &["params.ao_scalp_discs=false".into()],
+    ));
+    let s1 = shadow(&vertex_ao(&gpu, &once, CYLINDERS, &[]));
+    let s2 = shadow(&vertex_ao(&gpu, &twice, CYLINDERS, &[]));
+    let scalp: Vec<f64> = s1.iter().zip(&s0).map(|(a, b)| a - b).collect();
+    let most = scalp.iter().cloned().fold(0.0, f64::max);
+    let mean = scalp.iter().sum::<f64>() / scalp.len() as f64;
+    let (worst, at) = s2
+        .iter()
+        .zip(&s1)
+        .zip(&scalp)
+        .map(|((two, one), head)| (two - one - head).abs())
+        .zip(0..)
+        .fold((0.0, 0), |m, (e, i)| if e > m.0 { (e, i) } else { m });
+    eprintln!(
+        "cylinders past the budget: {casters} casters + {triangles} triangles; scalp shadow mean {mean:.4}, max {most:.4}; worst |S2 - S1 - (S1 - S0)| {worst:.2e} at vertex {at}"
+    );
+    // The head must matter, or the check below could not fail.
+    assert!(
+        most > 0.2 && mean > 0.01,
+        "the scalp discs should shadow the roots: mean {mean}, max {most}"
+    );
+    assert!(
+        worst < 1e-3 * most,
+        "the second head's shadow differs from the first's by {worst} at vertex {at} (S0 {}, S1 {}, S2 {}): the sum was cut short",
+        s0[at],
+        s1[at],
+        s2[at]
+    );
+}
+
+/// A sum still cut short fails the frame: one dispatch of a million
+/// iterations (`ao_chunk_iterations`) runs past lavapipe's budget, and the
+/// shader counts the vertices it could not finish in `ao_status`, the
+/// `incomplete` word of its overflow declaration. (The default chunks count
+/// none on the same scene: `vertex_ao` checks every frame, and
+/// `cylinders_sum_every_caster_past_the_loop_budget` renders it.)
+#[test]
+fn cylinders_count_the_vertices_a_cut_sum_left_unfinished() {
+    let (_lock, gpu) = open_gpu();
+    let scene = scene_with_heads(2, 100, 200);
+    let incomplete = |sets: &[String]| {
+        let (_, report) = vertex_ao_report(&gpu, &scene, CYLINDERS, sets);
+        let status = report
+            .overflow
+            .iter()
+            .find(|o| o.counter == "ao_status")
+            .unwrap_or_else(|| panic!("ao_status is read back: {:?}", report.overflow));
+        (status.incomplete, plait::overflow::check_frame(&report))
+    };
+    let (count, check) = incomplete(&["params.ao_chunk_iterations=1000000".into()]);
+    let adapter = &gpu.info.name;
+    eprintln!("one chunk on {adapter}: {count} vertices unfinished");
+    if adapter.contains("llvmpipe") {
+        let n = scene.strands.points.len() as u64;
+        assert!(
+            count > n / 2,
+            "most of the {n} vertices should be cut on lavapipe: {count}"
+        );
+        let e = check.expect_err("a cut frame fails").to_string();
+        assert!(
+            e.contains("shader invocations of pass `ambient_occlusion` could not finish"),
+            "{e}"
+        );
+    }
+}
+
+/// The chunks add the casters in the order one loop over them all would, so
+/// their size changes nothing: 7 chunks of 1,000 casters give the bits one
+/// chunk gives (scalp discs off: each chunk of triangles adds its own sum,
+/// which rounds differently).
+#[test]
+fn cylinders_chunk_size_does_not_change_the_sum() {
+    let (_lock, gpu) = open_gpu();
+    let scene = small_scene();
+    let off = "params.ao_scalp_discs=false".to_string();
+    let one = vertex_ao(&gpu, &scene, CYLINDERS, std::slice::from_ref(&off));
+    let seven = vertex_ao(
+        &gpu,
+        &scene,
+        CYLINDERS,
+        &[off, "params.ao_chunk_iterations=1000".into()],
+    );
+    let differ = one.iter().zip(&seven).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "{differ} of {} vertices differ", one.len());
+    assert!(one.iter().any(|&v| v < 0.9), "the hair occludes itself");
 }

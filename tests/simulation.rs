@@ -421,6 +421,30 @@ fn runaway_lengths_are_reported() {
     assert!(err.contains("frame 1"), "{err}");
 }
 
+/// 64 substeps of 64 constraint sweeps over 9-point guides run ~150,000 loop
+/// iterations per guide, past lavapipe's 65,535 per group of 8 invocations:
+/// the kernel's loops stop early, silently, unless the kernel tells — and it
+/// does (the canary loop of `plait::loop_budget`), so the frame fails.
+/// The defaults (~3,500) finish. A driver without the limit finishes both.
+#[test]
+fn a_simulation_cut_short_by_the_loop_budget_fails_the_frame() {
+    let (_lock, gpu) = open_gpu();
+    let scene = groom(6, None);
+    let p = prepare(&gpu, &pipeline(), &sets(&[]), &scene, SIZE).expect("pipeline builds");
+    p.renderer.render().expect("the defaults finish");
+    let long = sets(&["params.sim_substeps=64", "params.sim_iterations=64"]);
+    let p = prepare(&gpu, &pipeline(), &long, &scene, SIZE).expect("pipeline builds");
+    let result = p.renderer.render();
+    if gpu.info.name.contains("llvmpipe") {
+        let err = result.expect_err("a cut frame must fail").to_string();
+        assert!(err.contains("pass `simulate`"), "{err}");
+        assert!(err.contains("could not finish frame 1"), "{err}");
+        assert!(err.contains("65,535"), "{err}");
+    } else {
+        result.expect("no loop budget: the frame finishes");
+    }
+}
+
 #[test]
 fn a_head_turn_renders_60_frames_with_the_hair_outside_the_turning_head() {
     // The Done line on examples/scenes/head_turn.toml (400 strands,

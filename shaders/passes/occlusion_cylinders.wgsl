@@ -6,12 +6,28 @@
 // - CYLINDER_BOUNDS: one workgroup writes the hair's bounding box to
 //   `hair_box`; the scalp is the opaque triangles whose centroid lies in it
 //   (the head under the hair, not the ground);
-// - otherwise: one thread per receiving hair vertex sums the shadow S of
-//   §3.3.1 over the casters and stores the ambient visibility: exp(-S) by
-//   default (`combine = "exp"`: the casters as independent occluders, equal
-//   to 1 - S while S is small), or the thesis's 1 - S clamped to [0, 1]
-//   (`combine = "sum"`), which counts overlapping casters twice and reaches 0
-//   wherever a dense groom's casters add up past one.
+// - otherwise (the shadow kernel): one thread per receiving hair vertex adds
+//   the shadow S of §3.3.1 of one chunk of the casters and of the scalp
+//   triangles (`hair_box.chunk`) to its running sum in `vertex_ao`;
+// - CYLINDER_VISIBILITY: one thread per vertex turns the sum into the
+//   ambient visibility: exp(-S) by default (`combine = "exp"`: the casters as
+//   independent occluders, equal to 1 - S while S is small), or the thesis's
+//   1 - S clamped to [0, 1] (`combine = "sum"`), which counts overlapping
+//   casters twice and reaches 0 wherever a dense groom's casters add up past
+//   one.
+//
+// Why chunks: lavapipe gives each group of 8 invocations one budget of 65,535
+// loop iterations, shared by all its loops, and silently ends every loop once
+// it is spent. A thread summing every caster of the built-in groom (330,000
+// vertices) would stop after the first ~65,000. The pass records the shadow
+// kernel once per chunk (at most `chunk_iterations` loop iterations, 16,384
+// by default), copying the chunk's bounds into `hair_box` before each
+// dispatch. The sums go through `vertex_ao`, one thread per vertex, in the
+// order of dispatch: no float atomics, deterministic. The casters are added
+// in the order one long loop would add them (the chunking does not change
+// their sum); each chunk of scalp triangles adds its sum as one term. A loop that still stops early (a driver with a
+// smaller budget) adds 1 to `ao_status[0]`, the `incomplete` word of its
+// overflow declaration, and the frame fails instead of showing a wrong AO.
 //
 // A caster cylinder of radius r (half the strand thickness) and length l (the
 // strand segment at the vertex) at distance d along d̄ is seen as a disc of
@@ -43,6 +59,19 @@ struct HairVertex {
     strand_id: u32,
 }
 
+// The bounding box (written by CYLINDER_BOUNDS) and the current chunk
+// (copied in by the pass before each shadow dispatch): hair vertices
+// `caster_first, caster_first + stride, … < caster_end` and scalp triangles
+// `triangle_first … < triangle_end`.
+struct HairBox {
+    lo: vec4<f32>,
+    hi: vec4<f32>,
+    caster_first: u32,
+    caster_end: u32,
+    triangle_first: u32,
+    triangle_end: u32,
+}
+
 struct CylinderParams {
     caster_stride: u32,
     // 1: the scalp casts (the scene has opaque geometry).
@@ -56,8 +85,9 @@ const OPAQUE_STRIDE: u32 = 10u;
 
 @group(1) @binding(0) var<storage, read> hair_vertices: array<HairVertex>;
 @group(1) @binding(1) var<storage, read_write> vertex_ao: array<f32>;
-@group(1) @binding(2) var<storage, read_write> hair_box: array<vec4<f32>, 2>;
+@group(1) @binding(2) var<storage, read_write> hair_box: HairBox;
 @group(1) @binding(3) var<uniform> cylinder_params: CylinderParams;
+@group(1) @binding(6) var<storage, read_write> ao_status: array<atomic<u32>>;
 #ifndef NO_SCALP
 @group(1) @binding(4) var<storage, read> opaque_vertices: array<f32>;
 @group(1) @binding(5) var<storage, read> opaque_indices: array<u32>;
@@ -76,8 +106,8 @@ fn main(@builtin(local_invocation_index) t: u32) {
     }
     let box = workgroup_bounds(t, a, z);
     if (t == 0u) {
-        hair_box[0] = vec4<f32>(box.lo, 0.0);
-        hair_box[1] = vec4<f32>(box.hi, 0.0);
+        hair_box.lo = vec4<f32>(box.lo, 0.0);
+        hair_box.hi = vec4<f32>(box.hi, 0.0);
     }
 }
 #else
@@ -105,13 +135,20 @@ fn opaque_position(k: u32) -> vec3<f32> {
     return vec3<f32>(opaque_vertices[at], opaque_vertices[at + 1u], opaque_vertices[at + 2u]);
 }
 
-// Shadow of the scalp discs on a receiver at `p` with tangent `tr`.
-fn scalp_shadow(p: vec3<f32>, tr: vec3<f32>) -> f32 {
-    let lo = hair_box[0].xyz;
-    let hi = hair_box[1].xyz;
+// Shadow of the scalp discs of this chunk's triangles on a receiver at `p`
+// with tangent `tr`; `complete` is false when the loop was cut short.
+struct ScalpSum {
+    shadow: f32,
+    complete: bool,
+}
+
+fn scalp_shadow(p: vec3<f32>, tr: vec3<f32>) -> ScalpSum {
+    let lo = hair_box.lo.xyz;
+    let hi = hair_box.hi.xyz;
     var shadow = 0.0;
-    let triangles = arrayLength(&opaque_indices) / 3u;
-    for (var t = 0u; t < triangles; t++) {
+    let end = min(hair_box.triangle_end, arrayLength(&opaque_indices) / 3u);
+    var t = hair_box.triangle_first;
+    for (; t < end; t++) {
         let a = opaque_position(3u * t);
         let b = opaque_position(3u * t + 1u);
         let c = opaque_position(3u * t + 2u);
@@ -147,10 +184,25 @@ fn scalp_shadow(p: vec3<f32>, tr: vec3<f32>) -> f32 {
             shadow += disc_fraction(area * facing / PI, d) * sin_r;
         }
     }
-    return shadow;
+    return ScalpSum(shadow, t >= end);
 }
 #endif
 
+#ifdef CYLINDER_VISIBILITY
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if (i >= arrayLength(&hair_vertices) || i >= arrayLength(&vertex_ao)) {
+        return;
+    }
+    let shadow = vertex_ao[i];
+#ifdef COMBINE_SUM
+    vertex_ao[i] = clamp(1.0 - shadow, 0.0, 1.0);
+#else
+    vertex_ao[i] = exp(-shadow);
+#endif
+}
+#else
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = arrayLength(&hair_vertices);
@@ -163,8 +215,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let tr = normalize(receiver.tangent);
     let stride = max(cylinder_params.caster_stride, 1u);
     let opacity = clamp(frame.hair_color.a, 0.0, 1.0);
-    var shadow = 0.0;
-    for (var j = 0u; j < n; j += stride) {
+    // The sum so far (zeroed before the first chunk): the casters are added
+    // in the order one loop over all of them would add them.
+    var shadow = vertex_ao[i];
+    let end = min(hair_box.caster_end, n);
+    var j = hair_box.caster_first;
+    for (; j < end; j += stride) {
         if (j == i) {
             continue;
         }
@@ -184,15 +240,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let sigma = clamp(caster.alpha * opacity, 0.0, 1.0);
         shadow += disc_fraction(r2, d) * sin_r * sigma;
     }
+    var complete = j >= end;
 #ifndef NO_SCALP
     if (cylinder_params.scalp_discs != 0u) {
-        shadow += scalp_shadow(p, tr);
+        let scalp = scalp_shadow(p, tr);
+        shadow += scalp.shadow;
+        complete = complete && scalp.complete;
     }
 #endif
-#ifdef COMBINE_SUM
-    vertex_ao[i] = clamp(1.0 - shadow, 0.0, 1.0);
-#else
-    vertex_ao[i] = exp(-shadow);
-#endif
+    vertex_ao[i] = shadow;
+    if (!complete) {
+        atomicAdd(&ao_status[0], 1u);
+    }
 }
+#endif
 #endif

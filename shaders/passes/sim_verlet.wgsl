@@ -19,6 +19,7 @@
 //    `max_stretch` × its rest length sets a flag and the strand's index in
 //    `status` (read back by the pass after the frame).
 #import plait::frame::frame
+#import plait::loop_budget::loop_budget_spent
 
 struct SimParams {
     time_step: f32,
@@ -45,7 +46,9 @@ struct Collider {
 @group(1) @binding(3) var<storage, read> head_colliders: array<Collider>;
 @group(1) @binding(4) var<storage, read_write> guide_positions: array<vec4<f32>>;
 @group(1) @binding(5) var<storage, read_write> guide_previous: array<vec4<f32>>;
-// [0]: fault flags (1 non-finite, 2 stretched); [1]: 0xffffffff − the first
+// [0]: fault flags (1 non-finite, 2 stretched, 4 cut short: lavapipe's loop
+// budget, 65,535 iterations per group of 8 invocations for all their loops,
+// ran out — substeps × iterations × points is past it); [1]: 0xffffffff − the first
 // faulty strand (atomicMax of a zeroed buffer finds the smallest index);
 // [2]: the stretch of that kind in thousandths.
 @group(1) @binding(6) var<storage, read_write> status: array<atomic<u32>>;
@@ -253,10 +256,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (flags == 0u && length_now > p.max_stretch * length_rest) {
         flags |= 2u;
     }
+    // Last: did every loop above run to its end? (`substeps` ≥ 1 is a
+    // uniform, so the canary loop cannot be unrolled away.)
+    if (loop_budget_spent(p.substeps + 1u)) {
+        flags |= 4u;
+    }
     if (flags != 0u) {
         atomicOr(&status[0], flags);
         atomicMax(&status[1], 0xffffffffu - s);
-        if (flags == 2u) {
+        if ((flags & 3u) == 2u) {
             atomicMax(&status[2], u32(min(length_now / max(length_rest, 1e-20), 4e6) * 1000.0));
         }
     }

@@ -122,3 +122,44 @@ fn map_params_out_of_range_name_the_flag() {
         );
     }
 }
+
+/// The brute-force reference sums every cube texel in every fragment, a
+/// loop lavapipe would cut past its budget: its cube is capped at load
+/// (docs/design.md, "Loop budgets"), and the maps, which sum once, are not.
+#[test]
+fn the_reference_refuses_an_environment_past_the_loop_budget() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("out.png");
+    let small = "examples/scenes/small.toml";
+    let reference = "techniques.lighting=environment_reference";
+    fails(
+        &[
+            "--scene",
+            small,
+            "--set",
+            reference,
+            "--set",
+            "params.environment_size=65",
+        ],
+        &out,
+        &[
+            "environment_reference",
+            "65,535",
+            "--set params.environment_size=64",
+        ],
+    );
+    let check = |sets: &[&str]| {
+        let mut args = vec!["check", "pipelines/occupancy.toml"];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        plait(&args)
+    };
+    let at_cap = check(&[reference, "params.environment_size=64"]);
+    assert!(at_cap.status.success(), "{}", text(&at_cap.stderr));
+    let maps = check(&[
+        "techniques.lighting=irradiance_maps",
+        "params.environment_size=65",
+    ]);
+    assert!(maps.status.success(), "{}", text(&maps.stderr));
+}

@@ -342,3 +342,36 @@ fn compute_raster_fails_a_frame_whose_tiles_could_not_finish() {
         assert!(o.status.success(), "{err}");
     }
 }
+
+/// The exact reference of A/B runs must not blend part of a list silently:
+/// lavapipe gives each 4x2 block of fragments one budget of 65,535 loop
+/// iterations, and the built-in groom at 80x60 puts thousands of fragments
+/// in a pixel. The resolve writes `list_counter` last (its `incomplete`
+/// word counts pixels it could not resolve); the small scene counts none,
+/// and since the nearest 256 are kept in a heap (~2 laps a fragment, the
+/// insertion sort before it cut 104 pixels here) neither does the built-in
+/// groom at 80x60. A list past the budget: tests/loop_budget.rs.
+#[test]
+fn linked_list_resolves_long_lists_within_the_loop_budget() {
+    let json = render_json("pipelines/linked_list.toml", &[]);
+    let c = counter(&json);
+    assert_eq!(c["last_pass"], "list_resolve", "{c}");
+    assert_eq!(count(c, "incomplete"), 0, "{c}");
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("long.png");
+    let o = plait(&[
+        "render",
+        "pipelines/linked_list.toml",
+        "--size",
+        "80x60",
+        "--json",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
+    let c = counter(&json);
+    assert_eq!(count(c, "incomplete"), 0, "{c}");
+    assert!(out.exists());
+}

@@ -131,12 +131,12 @@ impl OverflowReadback {
                         .map_or(0, |w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as u64)
                 };
                 let c = &e.counter;
-                let needed = word(c.needed_word);
+                let needed = c.needed_word.map_or(0, word);
                 Ok(Overflow {
                     pass: schedule.passes[e.first].name.clone(),
                     counter: c.counter_name.clone(),
                     of: c.of.clone(),
-                    dropped: word(c.dropped_word),
+                    dropped: c.dropped_word.map_or(0, word),
                     needed,
                     capacity: c.capacity(),
                     param: c.param.clone(),

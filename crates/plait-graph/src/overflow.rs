@@ -20,6 +20,8 @@
 //! check can see (lavapipe stops every loop of an invocation once the
 //! invocation has run 65,535 loop iterations in total). Any non-zero count
 //! fails the frame: its output is missing data, and no param holds it.
+//! A counter that only counts such invocations (no bounded buffer behind it)
+//! declares `incomplete` alone: `overflow = { incomplete = 0 }`.
 //!
 //! Why the param's origin matters: a param the user set (a `--set` flag or a
 //! pipeline file) is a cap to respect and report; one that still has its
@@ -39,16 +41,27 @@ const MAX_WORD: i64 = 63;
 /// An `overflow = {…}` table as written (see the module docs).
 #[derive(Clone, Debug)]
 pub struct OverflowDecl {
+    /// What the counter counts for a bounded buffer; `None` for a counter of
+    /// `incomplete` invocations only.
+    pub bounded: Option<BoundedDecl>,
+    /// The word counting invocations that could not finish (module docs).
+    pub incomplete: Option<Spanned<u32>>,
+    pub location: Location,
+}
+
+/// The bounded-buffer part of an `overflow = {…}` table.
+#[derive(Clone, Debug)]
+pub struct BoundedDecl {
     pub of: Spanned<String>,
     pub dropped: Spanned<u32>,
     pub needed: Spanned<u32>,
-    /// The word counting invocations that could not finish (module docs).
-    pub incomplete: Option<Spanned<u32>>,
     pub param: Spanned<String>,
     /// Items of `of` per unit of `param`: an integer or an expression.
     pub per: Spanned<Value>,
-    pub location: Location,
 }
+
+/// The keys of the bounded-buffer part.
+const BOUNDED_KEYS: &[&str] = &["of", "dropped", "needed", "param", "per"];
 
 /// Reads `resources.NAME.overflow`, each problem a schema error at its key.
 pub(crate) fn parse(
@@ -60,6 +73,31 @@ pub(crate) fn parse(
     let mut r = Reader { errors };
     let t: &Table = r.table(node, &context)?;
     r.keys(t, KEYS, &context);
+    let word = |r: &mut Reader, e: &crate::load::Entry, key: &str| {
+        let n = r.int(&e.value, &format!("{context}.{key}"))?;
+        if !(0..=MAX_WORD).contains(&n) {
+            r.schema(
+                &e.value.location,
+                format!(
+                    "{context}.{key} is a u32 word index of the counter, 0 … {MAX_WORD}; found {n}"
+                ),
+            );
+            return None;
+        }
+        Some(Spanned::new(n as u32, e.value.location.clone()))
+    };
+    let incomplete = match t.get("incomplete") {
+        Some(e) => Some(word(&mut r, e, "incomplete")?),
+        None => None,
+    };
+    // A pure counter of incomplete invocations: no bounded buffer behind it.
+    if incomplete.is_some() && BOUNDED_KEYS.iter().all(|k| t.get(*k).is_none()) {
+        return Some(OverflowDecl {
+            bounded: None,
+            incomplete,
+            location: node.location.clone(),
+        });
+    }
     let mut missing = Vec::new();
     let mut get = |key: &str| {
         let e = t.get(key);
@@ -84,19 +122,6 @@ pub(crate) fn parse(
         r.string(&e.value, &format!("{context}.{key}"))
             .map(|s| Spanned::new(s, e.value.location.clone()))
     };
-    let word = |r: &mut Reader, e: &crate::load::Entry, key: &str| {
-        let n = r.int(&e.value, &format!("{context}.{key}"))?;
-        if !(0..=MAX_WORD).contains(&n) {
-            r.schema(
-                &e.value.location,
-                format!(
-                    "{context}.{key} is a u32 word index of the counter, 0 … {MAX_WORD}; found {n}"
-                ),
-            );
-            return None;
-        }
-        Some(Spanned::new(n as u32, e.value.location.clone()))
-    };
     let per = match t.get("per") {
         None => Spanned::new(Value::Int(1), node.location.clone()),
         Some(e) => match &e.value.value {
@@ -113,17 +138,16 @@ pub(crate) fn parse(
         },
     };
     let (of, dropped, needed, param) = (of?, dropped?, needed?, param?);
-    let incomplete = match t.get("incomplete") {
-        Some(e) => Some(word(&mut r, e, "incomplete")?),
-        None => None,
-    };
-    Some(OverflowDecl {
+    let bounded = BoundedDecl {
         of: string(&mut r, of, "of")?,
         dropped: word(&mut r, dropped, "dropped")?,
         needed: word(&mut r, needed, "needed")?,
-        incomplete,
         param: string(&mut r, param, "param")?,
         per,
+    };
+    Some(OverflowDecl {
+        bounded: Some(bounded),
+        incomplete,
         location: node.location.clone(),
     })
 }
@@ -152,16 +176,33 @@ pub(crate) fn counters(
         .filter_map(|r| {
             let d = r.overflow.as_ref()?;
             let counter = resources.iter().position(|x| x.name == r.name)?;
-            let (value, per) = resolve_one(pipeline, &r.name, d, opts, &mut ignored)?;
-            let location = pipeline.params.get(&d.param.value)?.location.clone();
+            let resolved = resolve_one(pipeline, &r.name, d, opts, &mut ignored)?;
+            let incomplete_word = d.incomplete.as_ref().map(|w| w.value);
+            let (Some(b), Some((value, per))) = (&d.bounded, resolved) else {
+                // Only incomplete invocations: nothing to size or grow.
+                return Some(OverflowCounter {
+                    counter,
+                    counter_name: r.name.clone(),
+                    of: String::new(),
+                    dropped_word: None,
+                    needed_word: None,
+                    incomplete_word,
+                    param: String::new(),
+                    value: 0,
+                    per: 1,
+                    grows: false,
+                    param_location: d.location.clone(),
+                });
+            };
+            let location = pipeline.params.get(&b.param.value)?.location.clone();
             Some(OverflowCounter {
                 counter,
                 counter_name: r.name.clone(),
-                of: d.of.value.clone(),
-                dropped_word: d.dropped.value,
-                needed_word: d.needed.value,
-                incomplete_word: d.incomplete.as_ref().map(|w| w.value),
-                param: d.param.value.clone(),
+                of: b.of.value.clone(),
+                dropped_word: Some(b.dropped.value),
+                needed_word: Some(b.needed.value),
+                incomplete_word,
+                param: b.param.value.clone(),
                 value,
                 per,
                 grows: is_technique_default(pipeline, &location),
@@ -180,14 +221,15 @@ fn is_technique_default(pipeline: &Pipeline, location: &Location) -> bool {
     }
 }
 
-/// (param value, per) of one declaration, or the errors that stop it.
+/// (param value, per) of one declaration (`Some(None)` for a counter of
+/// incomplete invocations only), or the errors that stop it.
 fn resolve_one(
     pipeline: &Pipeline,
     counter: &str,
     d: &OverflowDecl,
     opts: &CompileOptions,
     errors: &mut Vec<Error>,
-) -> Option<(i64, u64)> {
+) -> Option<Option<(i64, u64)>> {
     let bad = |location: &Location, reason: String| {
         Error::new(
             location.clone(),
@@ -198,6 +240,30 @@ fn resolve_one(
         )
     };
     let mut ok = true;
+    if let Some(r) = pipeline.resources.get(counter)
+        && let Some(Ok(bytes)) = match &r.size {
+            crate::load::SizeDecl::Bytes(v) => Some(crate::compile::int_of(v, opts)),
+            _ => None,
+        }
+    {
+        let bounded = d.bounded.iter().flat_map(|b| [&b.dropped, &b.needed]);
+        for w in bounded.chain(d.incomplete.as_ref()) {
+            if (w.value as i64 + 1) * 4 > bytes {
+                errors.push(bad(
+                    &w.location,
+                    format!(
+                        "word {} is past the end of the counter ({bytes} bytes = {} words)",
+                        w.value,
+                        bytes / 4
+                    ),
+                ));
+                ok = false;
+            }
+        }
+    }
+    let Some(d) = &d.bounded else {
+        return ok.then_some(None);
+    };
     match pipeline.resources.get(&d.of.value) {
         Some(r) if r.kind.value == crate::spec::ResourceKind::Buffer => {}
         Some(_) => {
@@ -223,29 +289,6 @@ fn resolve_one(
                 ),
             ));
             ok = false;
-        }
-    }
-    if let Some(r) = pipeline.resources.get(counter)
-        && let Some(Ok(bytes)) = match &r.size {
-            crate::load::SizeDecl::Bytes(v) => Some(crate::compile::int_of(v, opts)),
-            _ => None,
-        }
-    {
-        for w in [Some(&d.dropped), Some(&d.needed), d.incomplete.as_ref()]
-            .into_iter()
-            .flatten()
-        {
-            if (w.value as i64 + 1) * 4 > bytes {
-                errors.push(bad(
-                    &w.location,
-                    format!(
-                        "word {} is past the end of the counter ({bytes} bytes = {} words)",
-                        w.value,
-                        bytes / 4
-                    ),
-                ));
-                ok = false;
-            }
         }
     }
     let value = match pipeline.params.get(&d.param.value) {
@@ -286,7 +329,7 @@ fn resolve_one(
         }
     };
     match (ok, value, per) {
-        (true, Some(v), Some(p)) => Some((v, p)),
+        (true, Some(v), Some(p)) => Some(Some((v, p))),
         _ => None,
     }
 }

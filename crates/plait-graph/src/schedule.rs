@@ -294,8 +294,10 @@ pub struct OverflowCounter {
     pub counter_name: String,
     /// The bounded buffer.
     pub of: String,
-    pub dropped_word: u32,
-    pub needed_word: u32,
+    /// `None` for a counter of incomplete invocations only (no `of`; `of`
+    /// and `param` are then empty).
+    pub dropped_word: Option<u32>,
+    pub needed_word: Option<u32>,
     /// The word counting shader invocations that could not finish their
     /// work (`incomplete`, [`crate::overflow`]); any count fails the frame.
     pub incomplete_word: Option<u32>,

@@ -153,7 +153,7 @@ fn the_schedule_carries_the_counter_and_who_sized_it() {
     assert_eq!(s.resources[c.counter].name, "counter");
     assert_eq!(
         (c.of.as_str(), c.dropped_word, c.needed_word),
-        ("pool", 1, 0)
+        ("pool", Some(1), Some(0))
     );
     assert_eq!((c.param.as_str(), c.value, c.per), ("slots", 3, 200));
     assert_eq!(c.capacity(), 600);
@@ -164,4 +164,33 @@ fn the_schedule_carries_the_counter_and_who_sized_it() {
     let flagged = schedule(&["params.slots=5"]);
     assert_eq!(flagged.overflow[0].value, 5);
     assert!(!flagged.overflow[0].grows);
+}
+
+/// A counter of incomplete invocations only (no bounded buffer behind it):
+/// `incomplete` alone; its word is still checked, and a table with some of
+/// the bounded keys still needs them all.
+#[test]
+fn an_incomplete_word_alone_is_a_counter_without_a_bounded_buffer() {
+    let text = pipeline("incomplete = 1")
+        + "\n[passes.fill]\ntype = \"fill\"\nwrites = { pool = \"pool\", counter = \"counter\" }\n";
+    let p = load_str(PATH.as_ref(), &text, &[]).expect("loads");
+    let s = compile(&p, &registry(), &CompileOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let [c] = s.overflow.as_slice() else {
+        panic!("one counter expected: {:?}", s.overflow)
+    };
+    assert_eq!(s.resources[c.counter].name, "counter");
+    assert_eq!(c.incomplete_word, Some(1));
+    assert_eq!((c.dropped_word, c.needed_word), (None, None));
+    assert!(!c.grows, "nothing to grow");
+
+    let past = pipeline("incomplete = 2");
+    let e = errors(&past, &[]);
+    assert!(
+        e.contains("resource `counter`: word 2 is past the end of the counter (8 bytes = 2 words)"),
+        "{e}"
+    );
+    let e = errors(&pipeline(r#"of = "pool", incomplete = 1"#), &[]);
+    assert!(e.contains("needs dropped, needed, param"), "{e}");
+    let e = errors(&pipeline(""), &[]);
+    assert!(e.contains("needs of, dropped, needed, param"), "{e}");
 }

@@ -99,6 +99,8 @@ fn read_library() -> PassLibrary {
         // geometry provider's in every pass that draws hair.
         shared_params: [hair_fragment::shading_params(), geometry::params()].concat(),
         shared_slots: geometry::slots(),
+        // A provider's loop bounded by a texture size, wherever it is chosen.
+        shared_checks: vec![lighting::check_environment_size],
         ..PassLibrary::default()
     };
     // Single-draw passes declared in TOML + WGSL (shaders/passes/*.toml),

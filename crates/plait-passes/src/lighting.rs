@@ -5,7 +5,10 @@
 //! `lighting_params` (binding 30), its resources bind at 31–39 through the
 //! optional slots below.
 
-use plait_graph::{Access, Format, Formats, ParamSpec, ResourceKind, SlotSpec};
+use plait_graph::{
+    Access, Format, Formats, ParamSpec, ResolvedResource, ResourceDesc, ResourceKind,
+    ScheduledPass, SlotSpec, Value,
+};
 
 use crate::spec_util::choice;
 
@@ -48,4 +51,38 @@ pub fn params() -> Vec<ParamSpec> {
         &providers().iter().map(String::as_str).collect::<Vec<_>>(),
         "light from everything but the key light (lighting provider), darkened by occlusion",
     )]
+}
+
+/// The largest environment cube face `environment_reference` sums per
+/// fragment: s · (6s + 1) + s + 1 loop laps (24,705 at 64). lavapipe ends
+/// every loop of a group of 8 fragments after 65,535 laps in all (docs/
+/// design.md, "Loop budgets"; measured: s = 105 cut), and the fragment's
+/// other providers loop too, so the cap leaves them ~40,000.
+pub const MAX_REFERENCE_ENVIRONMENT: u32 = 64;
+
+/// `lighting = "environment_reference"` on a pass whose `light_environment`
+/// cube is larger than [`MAX_REFERENCE_ENVIRONMENT`]: refused at load, since
+/// the brute-force sum would stop early, silently, on lavapipe.
+pub fn check_environment_size(
+    pass: &ScheduledPass,
+    resources: &[ResolvedResource],
+) -> Result<(), String> {
+    if pass.params.get("lighting") != Some(&Value::Str("environment_reference".into())) {
+        return Ok(());
+    }
+    let cube = pass
+        .reads
+        .iter()
+        .find(|b| b.slot == "light_environment")
+        .and_then(|b| b.resolved(resources));
+    match cube.map(|r| &r.desc) {
+        Some(ResourceDesc::Texture { height, .. }) if *height > MAX_REFERENCE_ENVIRONMENT => {
+            let s = *height as u64;
+            let laps = s * (6 * s + 1) + s + 1;
+            Err(format!(
+                "lighting = \"environment_reference\" sums all 6 · {s}² texels of `light_environment` in every fragment ({laps} loop laps), and lavapipe ends every loop of a group of 8 fragments after 65,535 laps, shared with the other providers; with this lighting environment_size is at most {MAX_REFERENCE_ENVIRONMENT} (--set params.environment_size={MAX_REFERENCE_ENVIRONMENT})"
+            ))
+        }
+        _ => Ok(()),
+    }
 }

@@ -10,8 +10,12 @@
 //! starts at rest. Each frame takes `substeps` fixed steps of `time_step`
 //! ("this works best with a fixed time step", §4).
 //!
-//! Faults: the kernel flags non-finite nodes and strands stretched past
-//! `max_stretch` × their rest length in a small status buffer, which this
+//! Faults: the kernel flags non-finite nodes, strands stretched past
+//! `max_stretch` × their rest length, and strands whose loops the driver's
+//! loop budget cut short (lavapipe: 65,535 iterations per group of 8
+//! invocations, ≈ (substeps + 1) · (iterations + 1) · points · (colliders +
+//! 3); a canary loop at the kernel's end, `plait::loop_budget`, tells) in a
+//! small status buffer, which this
 //! pass reads back after every frame ([`PreparedPass::finish`]) and turns into
 //! an error naming the strand, so the frame is never returned.
 //!
@@ -304,6 +308,12 @@ impl PreparedPass for Simulation {
             |i: usize| u32::from_le_bytes(bytes[i * 4..i * 4 + 4].try_into().unwrap_or([0; 4]));
         let (flags, strand, stretch) = (word(0), u32::MAX - word(1), word(2));
         let frame = self.frames.get();
+        // First: a cut-short step explains whatever else went wrong.
+        if flags & 4 != 0 {
+            return Err(format!(
+                "the simulation could not finish frame {frame}: guide strand {strand}'s substeps × iterations × points ran past the driver's loop budget (lavapipe ends every loop of a group of 8 invocations after 65,535 iterations in all); lower substeps or iterations"
+            ));
+        }
         if flags & 1 != 0 {
             return Err(format!(
                 "the simulation went unstable in frame {frame}: guide strand {strand} has a non-finite position (NaN or Inf); lower time_step or spring, or raise damping"

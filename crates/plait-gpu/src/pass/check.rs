@@ -90,7 +90,19 @@ impl PassChecker for ShaderChecker<'_> {
             .iter()
             .map(|p| p.name.as_str())
             .collect();
-        check_pass(t, pass, resources, &shared, &self.caps)
+        let mut check = check_pass(t, pass, resources, &shared, &self.caps);
+        for shared_check in &self.library.shared_checks {
+            if let Err(message) = shared_check(pass, resources) {
+                check.errors.push(GraphError::new(
+                    pass.location.clone(),
+                    ErrorKind::Pass {
+                        pass: pass.name.clone(),
+                        message,
+                    },
+                ));
+            }
+        }
+        check
     }
 }
 

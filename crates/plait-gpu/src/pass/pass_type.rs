@@ -146,7 +146,16 @@ pub struct PassLibrary {
     /// Pass-type files found but not loadable (file:line:col each): every
     /// compile with this library reports them.
     pub problems: Vec<plait_graph::Error>,
+    /// Checks of what a shared provider needs, run on every pass like
+    /// [`PassType::check_sizes`] (a provider's loop bounded by a texture's
+    /// size, whichever pass imports it).
+    pub shared_checks: Vec<SharedCheck>,
 }
+
+/// A check [`PassLibrary::shared_checks`] runs on every pass: the message
+/// names what to change.
+pub type SharedCheck =
+    fn(&plait_graph::ScheduledPass, &[plait_graph::ResolvedResource]) -> Result<(), String>;
 
 impl PassLibrary {
     pub fn add(&mut self, t: impl PassType + 'static) {

@@ -74,10 +74,13 @@ impl Samples {
             .collect()
     }
 
-    /// The counters in the report's shape.
+    /// The counters of bounded buffers in the report's shape (a counter of
+    /// incomplete invocations alone has no buffer to show, and any count
+    /// failed its frame).
     pub(super) fn overflow(&self) -> Vec<Overflow> {
         self.overflow
             .iter()
+            .filter(|o| !o.of.is_empty())
             .map(|o| Overflow {
                 pass: o.pass.clone(),
                 counter: o.counter.clone(),
