@@ -96,3 +96,43 @@ fn hand_built_strands_in_front_of_the_head() {
     assert!((ratio - 1.0).abs() < 0.02, "Σα {compute} against {raster}");
     assert!(shift < 0.3, "the hair moved by {shift} px");
 }
+
+/// A strand that runs past the camera: its segment across the eye plane is
+/// clipped at the near plane, as the rasterizer clips the line, not dropped
+/// (the part in front of the camera is drawn by both).
+#[test]
+fn a_strand_reaching_behind_the_eye_is_clipped_not_dropped() {
+    let (_lock, gpu) = open_gpu();
+    let mut scene = scene(|_| false);
+    let mut strands = plait_hair::Strands::new();
+    // Along the small scene's view (eye (2, 0.5, 7.6) toward (0, -0.6, 0)),
+    // 0.15 beside the axis, from 4 in front of the eye to 2 behind it: the
+    // segment across the eye plane is seen from its front end (on screen,
+    // near the middle) out to the image's edge.
+    let eye = Vec3::new(2.0, 0.5, 7.6);
+    let ahead = (Vec3::new(0.0, -0.6, 0.0) - eye).normalize();
+    // (And a little up, so the line does not run along a pixel row's edge,
+    // where aliased and anti-aliased lines differ by half a pixel.)
+    let aside = ahead.cross(Vec3::Y).normalize() * 0.15 + Vec3::Y * 0.03;
+    let points: Vec<Vec3> = [4.0, 2.5, 1.0, -2.0]
+        .iter()
+        .map(|&depth| eye + ahead * depth + aside)
+        .collect();
+    strands.push_strand(&points, |_| 0.01, |_| 0.8, Vec3::new(0.9, 0.2, 0.1));
+    scene.strands = strands;
+    let (raster, raster_at) = hair_alpha(&gpu, "pipelines/linked_list.toml", &[], &scene);
+    let (compute, compute_at) = hair_alpha(
+        &gpu,
+        "pipelines/compute_raster.toml",
+        &["params.shading_points=4"],
+        &scene,
+    );
+    let ratio = compute / raster;
+    let shift =
+        ((compute_at[0] - raster_at[0]).powi(2) + (compute_at[1] - raster_at[1]).powi(2)).sqrt();
+    println!(
+        "past the eye: Σα raster {raster:.3}, compute {compute:.3} (× {ratio:.4}); centroid {raster_at:?} → {compute_at:?}"
+    );
+    assert!((ratio - 1.0).abs() < 0.03, "Σα {compute} against {raster}");
+    assert!(shift < 0.5, "the hair moved by {shift} px");
+}

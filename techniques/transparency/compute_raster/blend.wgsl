@@ -35,7 +35,7 @@
 #import plait::shading_space::strand_space_radiance
 #import plait::strand_coverage::strand_coverage
 #import plait::strand_lod::{strand_lod_weight, strand_lod_alpha}
-#import plait::hair_point::{HairPoint, screen_project}
+#import plait::hair_point::{HairPoint, camera_segment}
 
 
 struct Params {
@@ -81,6 +81,9 @@ var<workgroup> chunk_segment: array<u32, CHUNK>;
 var<workgroup> chunk_strand: array<u32, CHUNK>;
 // The fragment alpha at the segment's first and second vertex (vertex_alpha).
 var<workgroup> chunk_alpha: array<vec2<f32>, CHUNK>;
+// The part of the segment drawn: its parameters at the near-plane clip (0, 1
+// when it is not clipped).
+var<workgroup> chunk_range: array<vec2<f32>, CHUNK>;
 // Per pixel of the tile, the chunk's segments that may cover it (bit k:
 // segment k of the chunk), set by each segment's thread for the few pixels
 // it reaches (cover_pixels). A pixel then visits only those, in chunk order
@@ -89,11 +92,16 @@ var<workgroup> chunk_alpha: array<vec2<f32>, CHUNK>;
 // waits for the lanes beside it: the loop's trip count is what costs.
 var<workgroup> pixel_segments: array<atomic<u32>, THREADS * WORDS>;
 
-// The sort key: camera depth (clip w, > 0 for every binned segment) of the
-// segment's midpoint.
+// The sort key: camera depth (clip w) of the segment's midpoint — of the
+// part in front of the near plane when the segment is clipped there.
 fn segment_key(s: u32) -> f32 {
-    let p = 0.5 * (hair_vertices[s].position + hair_vertices[s + 1u].position);
-    return max((frame.camera_view_proj * vec4<f32>(p, 1.0)).w, 0.0);
+    let p0 = hair_vertices[s].position;
+    let p1 = hair_vertices[s + 1u].position;
+    let seg = camera_segment(p0, p1);
+    if (seg.t_start > 0.0 || seg.t_stop < 1.0) {
+        return 0.5 * (seg.a.w + seg.b.w);
+    }
+    return max((frame.camera_view_proj * vec4<f32>(0.5 * (p0 + p1), 1.0)).w, 0.0);
 }
 
 // The word of slot `slot`'s (segment, key bits) pair in tile_segments.
@@ -185,8 +193,10 @@ fn vertex_alpha(v: HairPoint) -> f32 {
 // weighed by `weight`. The fragment alphas at the segment's two vertices
 // (chunk_alpha) are the chunk loader's, once per segment, not once per pixel.
 fn shade_segment(k: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec4<f32> {
-    // Perspective-correct fraction along the segment (1/w is linear on screen).
-    let along = (t / b.w) / ((1.0 - t) / a.w + t / b.w);
+    // Perspective-correct fraction along the drawn (clipped) part (1/w is
+    // linear on screen), then along the whole segment.
+    let clipped = chunk_range[k];
+    let along = mix(clipped.x, clipped.y, (t / b.w) / ((1.0 - t) / a.w + t / b.w));
     let i0 = chunk_segment[k];
     let i1 = i0 + 1u;
     let ends = chunk_alpha[k];
@@ -321,8 +331,11 @@ fn main(
             let s = tile_segments[base + j];
             let v0 = hair_vertices[s];
             let v1 = hair_vertices[s + 1u];
-            let a = screen_project(v0.position);
-            let e = screen_project(v1.position);
+            // Clipped at the near plane as in strand_bin (tiles.wgsl).
+            let seg = camera_segment(v0.position, v1.position);
+            let a = seg.a;
+            let e = seg.b;
+            chunk_range[lid] = vec2<f32>(seg.t_start, seg.t_stop);
             chunk_segment[lid] = s;
             chunk_strand[lid] = v0.strand;
             chunk_alpha[lid] = vec2<f32>(vertex_alpha(v0), vertex_alpha(v1));

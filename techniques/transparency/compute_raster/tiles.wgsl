@@ -19,7 +19,7 @@
 
 #import plait::frame::frame
 #import plait::strand_lod::strand_lod_weight
-#import plait::hair_point::{HairPoint, screen_project}
+#import plait::hair_point::{HairPoint, camera_segment}
 
 @group(1) @binding(1) var<storage, read> hair_vertices: array<HairPoint>;
 @group(1) @binding(2) var<storage, read> hair_indices: array<u32>;
@@ -64,13 +64,14 @@ fn segment_span(s: u32, t: i32) -> Span {
     if (strand_lod_weight(v0.strand) <= 0.0) {
         return span;
     }
-    span.a = screen_project(v0.position);
-    span.b = screen_project(v1.position);
-    // Segments reaching behind the eye are not drawn (the hair is in front
-    // of the camera in every scene plait renders; the raster path clips).
-    if (span.a.w <= 0.0 || span.b.w <= 0.0) {
+    // Clipped at the near plane, as the rasterizer clips a line (a segment
+    // reaching behind the eye keeps its part in front).
+    let seg = camera_segment(v0.position, v1.position);
+    if (!seg.kept) {
         return span;
     }
+    span.a = seg.a;
+    span.b = seg.b;
     span.near_z = min(span.a.z, span.b.z);
     if (span.near_z >= 1.0 || max(span.a.z, span.b.z) < 0.0) {
         return span;
