@@ -136,3 +136,41 @@ fn a_strand_reaching_behind_the_eye_is_clipped_not_dropped() {
     assert!((ratio - 1.0).abs() < 0.03, "Σα {compute} against {raster}");
     assert!(shift < 0.5, "the hair moved by {shift} px");
 }
+
+/// One segment across the whole screen, binned into 2-px tiles at 640x480:
+/// its walk over the 320 × 240 tiles of its box runs past lavapipe's loop
+/// budget (65,535 iterations per 8 invocations), and the binning passes
+/// count the invocations that could not finish (`bin_status`), so the frame
+/// is known to lack hair; with 16-px tiles the same walk finishes.
+#[test]
+fn a_binning_walk_cut_short_is_counted() {
+    let (_lock, gpu) = open_gpu();
+    let mut scene = scene(|_| false);
+    let mut strands = plait_hair::Strands::new();
+    let ends = [Vec3::new(-3.0, 2.5, 2.0), Vec3::new(3.0, -2.5, 2.0)];
+    strands.push_strand(&ends, |_| 0.01, |_| 0.8, Vec3::new(0.9, 0.2, 0.1));
+    scene.strands = strands;
+    // The session's first frame (the bounded buffers' sizing frame) fails
+    // with the count; else the frame's own report holds it.
+    let unfinished = |tile_size: &str| -> Result<u64, String> {
+        let sets = [
+            format!("params.tile_size={tile_size}"),
+            "params.shading_points=2".to_string(),
+        ];
+        let path = repo_root().join("pipelines/compute_raster.toml");
+        let prepared =
+            prepare(&gpu, &path, &sets, &scene, (640, 480)).map_err(|e| e.to_string())?;
+        let report = prepared.renderer.render().expect("renders");
+        let status = report.overflow.iter().find(|o| o.counter == "bin_status");
+        Ok(status.expect("bin_status is read back").incomplete)
+    };
+    assert_eq!(unfinished("16"), Ok(0), "16-px tiles: the walk finishes");
+    if gpu.adapter_name().contains("llvmpipe") {
+        let e = unfinished("2").expect_err("2-px tiles: the cut walk was not counted");
+        assert!(
+            e.contains("invocations of pass `strand_bin` could not finish")
+                && e.contains("bin_status"),
+            "{e}"
+        );
+    }
+}

@@ -103,6 +103,17 @@ impl PassType for StrandBin {
     fn spec(&self) -> PassTypeSpec {
         PassTypeSpec {
             source: SOURCE.into(),
+            // tile_count and strand_bin both count their unfinished
+            // invocations in it: the second keeps the first's count.
+            outputs: vec![
+                buffer(
+                    "bin_status",
+                    Access::StorageWrite,
+                    "the invocations whose walk over a segment's tiles could not finish",
+                )
+                .loads()
+                .optional(),
+            ],
             ..PassTypeSpec::data_only(
                 "strand_bin",
                 PassShape::Compute,

@@ -6,6 +6,7 @@
 // tile_blend blends only the slots the pool holds.
 
 #import plait::compute_raster::tiles::{segment_span, lands_in, tiles_across}
+#import plait::loop_budget::loop_budget_spent
 
 struct Params {
     tile_size: u32,
@@ -19,9 +20,12 @@ struct Params {
 @group(1) @binding(5) var<storage, read_write> tile_segments: array<u32>;
 // Per tile: the slots filled so far.
 @group(1) @binding(6) var<storage, read_write> tile_fill: array<atomic<u32>>;
+// [0] invocations whose walk lavapipe's loop budget cut short (count.wgsl).
+@group(1) @binding(8) var<storage, read_write> bin_status: array<atomic<u32>>;
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    atomicAdd(&bin_status[0], 1u);
     let t = i32(params.tile_size);
     let span = segment_span(id.x, t);
     let across = tiles_across(t);
@@ -35,5 +39,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 }
             }
         }
+    }
+    if (!loop_budget_spent(params.tile_size)) {
+        atomicSub(&bin_status[0], 1u);
     }
 }

@@ -36,6 +36,7 @@
 #import plait::strand_coverage::strand_coverage
 #import plait::strand_lod::{strand_lod_weight, strand_lod_alpha}
 #import plait::hair_point::{HairPoint, camera_segment}
+#import plait::loop_budget::loop_budget_spent
 
 
 struct Params {
@@ -380,18 +381,14 @@ fn main(
     if (inside) {
         textureStore(hair, pixel, vec4<f32>(color, alpha));
     }
-    // lavapipe gives an invocation 65,535 loop iterations in all, then ends
+    // lavapipe gives 8 invocations 65,535 loop iterations in all, then ends
     // every loop after its current iteration — silently, and with barriers
-    // in the loops the rest of the workgroup may never write. A last loop of
-    // tile_size laps (≥ 2, a uniform the compiler cannot unroll) runs once
-    // when the budget is spent: only an invocation that completes it takes
-    // itself off the count, so raster_counter[2] counts every invocation
-    // that was cut short or never got here, and the engine fails the frame.
-    var laps = 0u;
-    for (var q = 0u; q < params.tile_size; q++) {
-        laps += 1u;
-    }
-    if (laps == params.tile_size) {
+    // in the loops the rest of the workgroup may never write. Only an
+    // invocation that gets here with budget left (plait::loop_budget, a last
+    // loop of tile_size laps) takes itself off the count, so
+    // raster_counter[2] counts every invocation that was cut short or never
+    // got here, and the engine fails the frame.
+    if (!loop_budget_spent(params.tile_size)) {
         atomicSub(&raster_counter[2], 1u);
     }
 }
