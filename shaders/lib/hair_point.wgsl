@@ -25,7 +25,7 @@ fn screen_project(p: vec3<f32>) -> vec4<f32> {
 // to the near plane (clip z ≥ 0, where the rasterizer clips a line), its
 // ends projected as screen_project does (`a`, `b`), at parameters t_start ≤ t_stop
 // of the segment from p0 to p1 (clip space is linear in it). `kept` is
-// false when the whole segment lies in front of the near plane.
+// false when the whole segment lies on the eye's side of the near plane.
 struct CameraSegment {
     a: vec4<f32>,
     b: vec4<f32>,
