@@ -36,6 +36,14 @@ fn counter(json: &serde_json::Value) -> &serde_json::Value {
     &list[0]
 }
 
+/// The overflow counter `name` of a report (a pipeline may declare several).
+fn named_counter<'j>(json: &'j serde_json::Value, name: &str) -> &'j serde_json::Value {
+    let list = json["overflow"].as_array().expect("an overflow list");
+    list.iter()
+        .find(|c| c["counter"] == name)
+        .unwrap_or_else(|| panic!("no counter {name}: {list:?}"))
+}
+
 fn count(v: &serde_json::Value, key: &str) -> u64 {
     v[key]
         .as_u64()
@@ -207,7 +215,7 @@ fn a_capped_compute_raster_tile_reports_its_drops() {
         "pipelines/compute_raster.toml",
         &["params.binned_segments=2"],
     );
-    let c = counter(&json);
+    let c = named_counter(&json, "raster_counter");
     assert_eq!(c["of"], "tile_segments");
     assert_eq!(c["pass"], "tile_scan");
     assert_eq!(c["grows"], false, "a --set is the user's cap");
@@ -244,7 +252,7 @@ fn a_capped_compute_raster_tile_reports_its_drops() {
     assert!(line.contains("--set params.binned_segments="), "{line}");
 
     let held = render_json("pipelines/compute_raster.toml", &[]);
-    let c = counter(&held);
+    let c = named_counter(&held, "raster_counter");
     assert_eq!(c["grows"], true, "{c}");
     assert_eq!(count(c, "dropped"), 0, "{held}");
 }
@@ -318,10 +326,12 @@ fn compute_raster_fails_a_frame_whose_tiles_could_not_finish() {
     let o = render_four_tiles(&[], &fine);
     assert!(o.status.success(), "{}", text(&o.stderr));
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
-    let c = counter(&json);
+    let c = named_counter(&json, "raster_counter");
     assert_eq!(c["last_pass"], "tile_blend", "{c}");
     assert_eq!(count(c, "incomplete"), 0, "{c}");
     assert_eq!(count(c, "dropped"), 0, "{c}");
+    let walk = named_counter(&json, "bin_status");
+    assert_eq!(count(walk, "incomplete"), 0, "{walk}");
     let llvmpipe = json["adapter"]["name"]
         .as_str()
         .expect("adapter name")
