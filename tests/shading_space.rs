@@ -146,3 +146,130 @@ fn shading_points_out_of_range_are_errors_naming_the_param_and_flag() {
     let ok = prepare(&gpu, &pipeline, &strand(SMALL_POINTS), &scene, (64, 48));
     assert!(ok.is_ok(), "{:?}", ok.err().map(|e| e.to_string()));
 }
+
+/// One straight strand of 9 points in front of the head, from its root on
+/// the left to its tip on the right, nothing else: hair to measure the tip
+/// fading on, where no strand hides another.
+fn one_strand() -> SceneData {
+    let mut scene = small();
+    let mut strands = plait_hair::Strands::new();
+    let (root, step) = (
+        glam::Vec3::new(-1.2, 1.3, 2.5),
+        glam::Vec3::new(0.3, 0.0, 0.0),
+    );
+    let points: Vec<glam::Vec3> = (0..9).map(|k| root + step * k as f32).collect();
+    strands.push_strand(&points, |_| 0.01, |_| 0.8, glam::Vec3::new(0.9, 0.2, 0.1));
+    scene.strands = strands;
+    scene.guides = plait_hair::guides::Guides::default();
+    scene
+}
+
+/// Per image column, the alpha `resource` (channel `channel`) holds after a
+/// frame of `pipeline` with strand-space shading and `sets`.
+fn column_alpha(
+    gpu: &Gpu,
+    pipeline: &str,
+    resource: &str,
+    channel: usize,
+    sets: &[&str],
+    scene: &SceneData,
+) -> Vec<f64> {
+    let mut all: Vec<String> = strand(9);
+    all.extend(sets.iter().map(|s| s.to_string()));
+    all.push(format!("pipeline.outputs=[\"final\", \"{resource}\"]"));
+    let prepared = prepare(gpu, &repo_root().join(pipeline), &all, scene, (160, 120))
+        .unwrap_or_else(|e| panic!("{pipeline} {all:?}: {e}"));
+    prepared.renderer.render().expect("render");
+    let texels = prepared
+        .renderer
+        .read_resource(resource)
+        .expect("read back");
+    let width = texels.width as usize;
+    let mut columns = vec![0.0; width];
+    for i in 0..width * texels.height as usize {
+        columns[i % width] += f64::from(texels.texel(i)[channel]);
+    }
+    columns
+}
+
+/// Tip fading (`tip_scale`, `tip_scale_offset`; the taper of Unity's hair
+/// package) scales the coverage of every hair draw alike: the hardware lines
+/// of linked_list, the compute rasterizer's segments, occupancy order's hair
+/// pass and its per-pixel mean alpha (alpha_sum). With the taper from half
+/// the strand (vertex 4 of 8) to 0 at the tip, the root's third of the
+/// strand on screen keeps its alpha (within 2 %), the last tenth keeps at
+/// most a quarter, and the total falls to 0.70–0.80 of the unfaded
+/// strand's (measured 0.72: a linear taper over half the strand leaves 3/4
+/// of an evenly drawn strand, a little less here, where the tip is nearer
+/// the eye and drawn longer) — the same fraction, within 0.01, in every
+/// draw, so the shaded image and the mean alpha that weighs it agree. The
+/// wrong answers fail: no fading leaves 1.0, a taper from the root fades
+/// the root's third.
+#[test]
+fn tip_fading_scales_the_coverage_of_every_hair_draw_alike() {
+    let (_lock, gpu) = gpu();
+    let scene = one_strand();
+    let faded = ["params.tip_scale=0", "params.tip_scale_offset=0.5"];
+    let draws = [
+        ("pipelines/linked_list.toml", "hair", 3),
+        ("pipelines/compute_raster.toml", "hair", 3),
+        ("pipelines/occupancy.toml", "hair", 3),
+        ("pipelines/occupancy.toml", "camera_alpha", 0),
+    ];
+    let mut totals = Vec::new();
+    for (pipeline, resource, channel) in draws {
+        let whole = column_alpha(&gpu, pipeline, resource, channel, &[], &scene);
+        let thin = column_alpha(&gpu, pipeline, resource, channel, &faded, &scene);
+        let drawn: Vec<usize> = (0..whole.len()).filter(|&x| whole[x] > 1e-3).collect();
+        let (first, last) = (drawn[0], *drawn.last().expect("the strand is drawn"));
+        let span = (last - first) as f64;
+        let sum = |v: &[f64], from: f64, to: f64| -> f64 {
+            (first..=last)
+                .filter(|&x| (x - first) as f64 >= from * span && (x - first) as f64 <= to * span)
+                .map(|x| v[x])
+                .sum()
+        };
+        let root = sum(&thin, 0.0, 1.0 / 3.0) / sum(&whole, 0.0, 1.0 / 3.0);
+        let tip = sum(&thin, 0.9, 1.0) / sum(&whole, 0.9, 1.0);
+        let total = sum(&thin, 0.0, 1.0) / sum(&whole, 0.0, 1.0);
+        println!(
+            "{pipeline} {resource}: columns {first}..={last}; faded / whole: root third {root:.4}, last tenth {tip:.4}, all {total:.4}"
+        );
+        assert!(
+            (root - 1.0).abs() < 0.02,
+            "{pipeline} {resource}: the root's third × {root}"
+        );
+        assert!(tip < 0.25, "{pipeline} {resource}: the tip keeps × {tip}");
+        assert!(
+            (0.70..=0.80).contains(&total),
+            "{pipeline} {resource}: × {total}"
+        );
+        totals.push(total);
+    }
+    let spread = totals.iter().cloned().fold(f64::MIN, f64::max)
+        - totals.iter().cloned().fold(f64::MAX, f64::min);
+    assert!(spread < 0.01, "the draws fade differently: {totals:?}");
+}
+
+/// Tip fading's params out of 0 … 1: an error naming the param and the
+/// flag, before any frame.
+#[test]
+fn tip_fading_out_of_range_is_an_error_naming_the_param_and_flag() {
+    let (_lock, gpu) = gpu();
+    let scene = small();
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    for set in ["params.tip_scale=1.5", "params.tip_scale_offset=-0.1"] {
+        let mut sets = strand(16);
+        sets.push(set.into());
+        let message = match prepare(&gpu, &pipeline, &sets, &scene, (64, 48)) {
+            Ok(_) => panic!("{set} was accepted"),
+            Err(e) => e.to_string(),
+        };
+        println!("{message}");
+        let param = set.trim_start_matches("params.").split('=').next().unwrap();
+        assert!(
+            message.contains(&format!("--set {set}")) && message.contains(&format!("`{param}`")),
+            "{set}: {message}"
+        );
+    }
+}

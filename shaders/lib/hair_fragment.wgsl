@@ -28,7 +28,7 @@
 #import plait::hair_radiance::hair_radiance
 #import plait::ambient_occlusion::occlusion_at
 #import plait::shading_space::strand_space_radiance
-#import plait::strand_coverage::strand_coverage
+#import plait::strand_coverage::{strand_coverage, strand_tip_scale}
 #import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_alpha, strand_lod_vertex, strand_lod_wisps, strand_lod_fraction, strand_lod_texel}
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
@@ -89,7 +89,8 @@ fn hair_vertex(v: HairVertex) -> HairVaryings {
     // weighs its alpha in every blending technique (and sets the sample mask
     // of alpha to coverage). A wisp's coverage is its texture's alpha.
     let coverage = select(strand_coverage(v.position, v.tangent, v.thickness), 1.0, strand_lod_wisps());
-    out.alpha = strand_lod_alpha(p.alpha * coverage, p.weight);
+    let tip = strand_tip_scale(p.strand, p.segment, strand_lod_fraction(p.segment, p.along));
+    out.alpha = strand_lod_alpha(p.alpha * coverage * tip, p.weight);
     out.wisp = p.texture;
     out.occlusion = occlusion_at(strand_lod_vertex(v.index, v.strand_id));
     out.strand = p.strand;
@@ -101,14 +102,15 @@ fn hair_vertex(v: HairVertex) -> HairVaryings {
 fn shade_hair(in: HairVaryings) -> HairFragment {
     let texel = strand_lod_texel(in.wisp);
     // Strand space: the radiance a compute pass shaded along the strand this
-    // frame, interpolated; w = 0 when the colour is shaded here. A wisp
+    // frame, interpolated; w < 0 when the colour is shaded here (w ≥ 0 is
+    // the tip fading, already in the vertex alpha: strand_tip_scale). A wisp
     // fragment reads it where the hair vertex it stands for lies (the strand
     // the wisp follows), scaled by the strand texture's brightness — which
     // the per-fragment path puts into the albedo instead: the two agree on
     // every term linear in the albedo (Kajiya-Kay's diffuse; its specular,
     // untinted by the albedo, the texture dims here and not there).
     let shaded = strand_space_radiance(in.strand, in.segment, segment_fraction(in));
-    if (shaded.w > 0.0) {
+    if (shaded.w >= 0.0) {
         return HairFragment(shaded.rgb * texel.rgb, fragment_alpha(in));
     }
     let rgb = hair_radiance(shadow_map, in.world, in.tangent, in.color * texel.rgb, in.occlusion);

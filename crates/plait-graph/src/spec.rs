@@ -311,7 +311,9 @@ pub struct Registry {
     pub shared_params: Vec<ParamSpec>,
     /// Optional input slots every pass drawing hair takes whatever its type:
     /// the `geometry` providers' (`wisp_texture`), given to every hair draw
-    /// by the point's `draws`; a pass whose shader binds none leaves it unbound.
+    /// by the point's `draws`, and the `shading_space` providers' (the tip
+    /// fading every hair draw's coverage reads); a pass whose shader binds
+    /// none leaves it unbound.
     pub shared_slots: Vec<SlotSpec>,
 }
 

@@ -98,7 +98,10 @@ fn read_library() -> PassLibrary {
         // imports plait::hair_fragment as in the Rust pass types; the
         // geometry provider's in every pass that draws hair.
         shared_params: [hair_fragment::shading_params(), geometry::params()].concat(),
-        shared_slots: geometry::slots(),
+        // Every hair draw scales its coverage by the shading_space
+        // provider's tip fading (plait::strand_coverage), so its buffers
+        // reach the unshaded draws (alpha_sum) too.
+        shared_slots: [geometry::slots(), shading_space::slots()].concat(),
         // A provider's loop bounded by a texture size, wherever it is chosen.
         shared_checks: vec![lighting::check_environment_size],
         ..PassLibrary::default()

@@ -1,7 +1,8 @@
 //! Shading-space providers: every `shading_space` technique answers
 //! `strand_radiance(strand, segment, along) -> vec4` in the hair fragment
-//! stage: a radiance shaded elsewhere this frame (w = 1) or "shade this
-//! fragment" (w = 0; `fragment`, the default). Its uniform is
+//! stage: a radiance shaded elsewhere this frame (w ≥ 0, the strand's tip
+//! fading there, which every hair draw's vertex coverage takes) or "shade
+//! this fragment" (w < 0; `fragment`, the default). Its uniform is
 //! `shading_space_params` (binding 50), its resources bind at 51–54 through
 //! the optional slots below.
 //!
@@ -16,7 +17,7 @@ use plait_graph::{
 };
 
 use crate::occlusion_directions::{bound, int_param};
-use crate::spec_util::{SlotExt, buffer, choice, int};
+use crate::spec_util::{SlotExt, buffer, choice, float, int};
 
 /// The largest `shading_points` a pass takes (frostbitten-hair-webgpu shades 64).
 pub const MAX_SHADING_POINTS: i64 = 256;
@@ -62,6 +63,20 @@ pub fn params() -> Vec<ParamSpec> {
             1,
             MAX_SHADING_POINTS,
             "strand: shading points per strand, evenly spread from root to tip (at most the points of the scene's shortest strand)",
+        ),
+        float(
+            "tip_scale",
+            1.0,
+            0.0,
+            1.0,
+            "strand: the strand's width (coverage) at its tip, as a fraction of its own (Unity's hair package tapering; 1 = no tip fading)",
+        ),
+        float(
+            "tip_scale_offset",
+            0.75,
+            0.0,
+            1.0,
+            "strand: the fraction of the strand's length where the taper toward tip_scale begins (over at least the last segment)",
         ),
     ]
 }

@@ -4,14 +4,28 @@
 // either side of the fragment. A strand's points are indexed 0 … n-1 from the
 // root; shading point k of K lies at point index k·(n-1)/(K-1) (the middle
 // when K = 1), so a fragment at point index p reads s = p·(K-1)/(n-1).
+//
+// w is the strand's tip fading there (`tip_scale`, `tip_scale_offset`; the
+// tapering of Unity's hair package, com.unity.demoteam.hair, HairVertex.hlsl:
+// a strand's width scaled from 1 where the taper begins, at fraction
+// tip_scale_offset of its length, linearly to tip_scale at its tip, over at
+// least its last segment). A strand thinner than a pixel covers the pixel in
+// proportion to its width (plait::strand_coverage), so the scale multiplies
+// the coverage of every hair draw's vertex. frostbitten-hair-webgpu's "thin
+// tip" (the last shading point transparent) is tip_scale = 0 with the taper
+// over the last shading interval.
 #define_import_path plait::shading_space::strand
 
 struct ShadingSpaceParams {
     // Shading points per strand (K).
     shading_points: u32,
+    // The width (coverage) scale at the tip, and the fraction of the
+    // strand's length where the taper toward it begins.
+    tip_scale: f32,
+    tip_scale_offset: f32,
 }
 @group(1) @binding(50) var<uniform> shading_space_params: ShadingSpaceParams;
-// Radiance per shading point, strand after strand: rgb, w = 1.
+// Radiance per shading point, strand after strand: rgb, w = 1 (unused).
 @group(1) @binding(51) var<storage, read> shading_radiance: array<vec4<f32>>;
 
 // One drawn strand as the scene's `strand_guides` holds it (48 B): ids.w is
@@ -35,5 +49,16 @@ fn strand_radiance(strand: u32, segment: u32, along: f32) -> vec4<f32> {
     let base = strand * k;
     let a = shading_radiance[base + k0];
     let b = shading_radiance[base + k1];
-    return vec4<f32>(mix(a.rgb, b.rgb, clamp(at - f32(k0), 0.0, 1.0)), 1.0);
+    return vec4<f32>(mix(a.rgb, b.rgb, clamp(at - f32(k0), 0.0, 1.0)), tip_scale(p, last));
+}
+
+// The taper's scale at point index `p` of a strand whose last point is
+// `last`: 1 up to tip_scale_offset of its length, then linearly to
+// tip_scale at the tip, over at least one segment (as Unity's lower bound on
+// the taper interval, so an offset of 1 still fades the last segment).
+fn tip_scale(p: f32, last: u32) -> f32 {
+    let segments = f32(max(last, 1u));
+    let offset = shading_space_params.tip_scale_offset;
+    let t = clamp((p / segments - offset) / max(1.0 / segments, 1.0 - offset), 0.0, 1.0);
+    return mix(1.0, shading_space_params.tip_scale, t);
 }

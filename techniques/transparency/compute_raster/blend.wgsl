@@ -13,7 +13,8 @@
 //    cover (cover_pixels); each pixel blends its marked segments front to
 //    back,
 //    C += (1 - A) · α · rgb, A += (1 - A) · α, with α the segment's
-//    fragment alpha (strand alpha × plait::strand_coverage × material
+//    fragment alpha (strand alpha × plait::strand_coverage × its tip
+//    fading, plait::strand_coverage::strand_tip_scale, × material
 //    alpha, widened by plait::strand_lod, interpolated between its two
 //    vertices as the rasterizer interpolates it) times the pixel's
 //    analytic coverage of the one-pixel-wide line: 1 − |distance across
@@ -33,7 +34,7 @@
 #import plait::hair_radiance::hair_radiance
 #import plait::ambient_occlusion::occlusion_at
 #import plait::shading_space::strand_space_radiance
-#import plait::strand_coverage::strand_coverage
+#import plait::strand_coverage::{strand_coverage, strand_tip_scale}
 #import plait::strand_lod::{strand_lod_weight, strand_lod_alpha}
 #import plait::hair_point::{HairPoint, camera_segment}
 #import plait::loop_budget::loop_budget_spent
@@ -184,10 +185,11 @@ fn cover_pixels(k: u32, a: vec2<f32>, b: vec2<f32>, origin: vec2<f32>) {
     }
 }
 
-// The fragment alpha at a vertex (before the material alpha), as
+// The fragment alpha at hair vertex `index` (before the material alpha), as
 // plait::hair_fragment's vertex stage computes it.
-fn vertex_alpha(v: HairPoint) -> f32 {
-    return strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness), strand_lod_weight(v.strand));
+fn vertex_alpha(v: HairPoint, index: u32) -> f32 {
+    let tip = strand_tip_scale(v.strand, index, 0.0);
+    return strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness) * tip, strand_lod_weight(v.strand));
 }
 
 // Straight colour and alpha of chunk segment k at screen fraction t,
@@ -202,8 +204,9 @@ fn shade_segment(k: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec
     let i1 = i0 + 1u;
     let ends = chunk_alpha[k];
     let alpha = clamp(mix(ends.x, ends.y, along) * frame.hair_color.a, 0.0, 1.0) * weight;
+    // w ≥ 0: shaded in strand space (its tip fading is in chunk_alpha).
     let shaded = strand_space_radiance(chunk_strand[k], i0, along);
-    if (shaded.w > 0.0) {
+    if (shaded.w >= 0.0) {
         return vec4<f32>(shaded.rgb, alpha);
     }
     let v0 = hair_vertices[i0];
@@ -339,7 +342,7 @@ fn main(
             chunk_range[lid] = vec2<f32>(seg.t_start, seg.t_stop);
             chunk_segment[lid] = s;
             chunk_strand[lid] = v0.strand;
-            chunk_alpha[lid] = vec2<f32>(vertex_alpha(v0), vertex_alpha(v1));
+            chunk_alpha[lid] = vec2<f32>(vertex_alpha(v0, s), vertex_alpha(v1, s + 1u));
             chunk_a[lid] = a;
             chunk_b[lid] = e;
             cover_pixels(lid, a.xy, e.xy, vec2<f32>(group.xy * TILE));
