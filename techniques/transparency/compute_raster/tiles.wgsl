@@ -14,7 +14,11 @@
 // that tile_blend would draw it in — so hair hidden behind the head takes
 // no slot, is never counted, and the image is the same as without it. The
 // `geometry` point's answer is honoured as every hair draw honours it
-// (plait::strand_lod): a strand of weight 0 lands nowhere.
+// (plait::strand_lod): a strand of weight 0 lands nowhere. With `geometry =
+// wisps` the segments are the quads of the wisps' strips
+// (plait::compute_raster::wisp_quad), wide segments: the tiles of their
+// corners' box where their triangles cover a pixel centre in front of the
+// opaque depth (quad_visible_in_tile).
 #define_import_path plait::compute_raster::tiles
 
 #import plait::frame::frame
