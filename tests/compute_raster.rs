@@ -219,7 +219,10 @@ fn wisps_close(label: &str, compute: &[[f32; 4]], raster: &[[f32; 4]]) -> (bool,
         "{label}: Σα {compute_sum:.2} against linked_list's {raster_sum:.2} (× {ratio:.4}), Σ|Δ hair| / Σα {difference:.4}"
     );
     println!("{figures}");
-    ((ratio - 1.0).abs() < 0.02 && difference < WISP_TOLERANCE, figures)
+    (
+        (ratio - 1.0).abs() < 0.02 && difference < WISP_TOLERANCE,
+        figures,
+    )
 }
 
 /// Saves `image` four times as large under $PLAIT_TEST_IMAGES, to be looked at.
@@ -264,8 +267,22 @@ fn wisps_are_drawn_as_the_hardware_draws_their_triangles() {
     // each about three times as wide.
     let lod = "params.wisp_lod_screen_fraction=1.0";
     let cases = [
-        ("small_fragment", &small, SIZE, with(&[fragment]), "strands", vec![fragment]),
-        ("small_strand", &small, SIZE, with(&[strand, points]), "strands", vec![strand, points]),
+        (
+            "small_fragment",
+            &small,
+            SIZE,
+            with(&[fragment]),
+            "strands",
+            vec![fragment],
+        ),
+        (
+            "small_strand",
+            &small,
+            SIZE,
+            with(&[strand, points]),
+            "strands",
+            vec![strand, points],
+        ),
         (
             "far",
             &far,
@@ -284,7 +301,10 @@ fn wisps_are_drawn_as_the_hardware_draws_their_triangles() {
         let (wrong_image, wrong) = final_and_hair(&gpu, pipeline, wrong_sets, scene, size);
         save_for_viewing(&format!("{label}_wisps_linked_list"), &raster_image);
         save_for_viewing(&format!("{label}_wisps_compute_raster"), &compute_image);
-        save_for_viewing(&format!("{label}_{wrong_label}_compute_raster"), &wrong_image);
+        save_for_viewing(
+            &format!("{label}_{wrong_label}_compute_raster"),
+            &wrong_image,
+        );
         let (close, figures) = wisps_close(&format!("{label}: compute_raster"), &compute, &raster);
         if !close {
             failures.push(format!("{figures} (tolerance: 2 %, {WISP_TOLERANCE})"));
@@ -302,4 +322,44 @@ fn wisps_are_drawn_as_the_hardware_draws_their_triangles() {
     // × 1.88, 1.74 (far); tile_blend's opaque depth test left out × 1.03,
     // 0.057 (small) and × 1.05, 0.093 (far).
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A wisp's quad is a wide segment: it takes a slot in every tile its
+/// triangles reach, and the pool's counters count them as they count
+/// strands' — a pool set too small reports what it dropped and what would
+/// hold everything (which is what the default pool grows to), and no
+/// invocation of the binning walk or of tile_blend is cut short.
+#[test]
+fn wisps_fill_the_pool_and_its_counters() {
+    let (_lock, gpu) = open_gpu();
+    let scene = scene(|_| true);
+    let counters = |extra: &[&str]| {
+        let mut sets: Vec<String> = WISPS.iter().chain(extra).map(|s| s.to_string()).collect();
+        sets.push("techniques.shading_space=fragment".into());
+        let path = repo_root().join("pipelines/compute_raster.toml");
+        let prepared = prepare(&gpu, &path, &sets, &scene, SIZE).expect("prepares");
+        let report = prepared.renderer.render().expect("renders");
+        let find = |name: &str| {
+            report
+                .overflow
+                .iter()
+                .find(|o| o.counter == name)
+                .unwrap_or_else(|| panic!("{name} is read back"))
+                .clone()
+        };
+        (find("raster_counter"), find("bin_status"))
+    };
+    let (grown, status) = counters(&[]);
+    assert_eq!(
+        (grown.dropped, grown.incomplete, status.incomplete),
+        (0, 0, 0),
+        "{grown:?} {status:?}"
+    );
+    let (capped, status) = counters(&["params.binned_segments=200"]);
+    println!("wisps at 200 slots: {capped:?}");
+    assert_eq!((capped.incomplete, status.incomplete), (0, 0));
+    assert!(
+        capped.dropped > 0 && capped.needed == capped.dropped + 200,
+        "the capped pool's drops are counted: {capped:?}"
+    );
 }
