@@ -99,6 +99,11 @@ var<workgroup> chunk_c: array<vec4<f32>, CHUNK>;
 var<workgroup> chunk_d: array<vec4<f32>, CHUNK>;
 var<workgroup> chunk_along: array<vec4<f32>, CHUNK>;
 var<workgroup> chunk_texture: array<vec4<f32>, CHUNK>;
+// Where the quad lies along the strand its wisp follows, for strand-space
+// shading: that strand's first hair vertex, and its spine points' indices
+// along it — the loader's, so a strand-space pixel places no wisp vertex.
+var<workgroup> chunk_first: array<u32, CHUNK>;
+var<workgroup> chunk_point: array<vec2<f32>, CHUNK>;
 #endif
 // Per pixel of the tile, the chunk's segments that may cover it (bit k:
 // segment k of the chunk), set by each segment's thread for the few pixels
@@ -254,14 +259,15 @@ fn shade_wisp(k: u32, u: f32, along: f32) -> vec4<f32> {
     if (alpha <= 0.0) {
         return vec4<f32>(0.0);
     }
-    let first = chunk_segment[k];
-    let a = wisp_vertex(first);
-    let c = wisp_vertex(first + 2u);
-    let shaded = strand_space_radiance(chunk_strand[k], a.first, mix(a.point, c.point, along));
+    let points = chunk_point[k];
+    let shaded = strand_space_radiance(chunk_strand[k], chunk_first[k], mix(points.x, points.y, along));
     if (shaded.w > 0.0) {
         return vec4<f32>(shaded.rgb * texel.rgb, alpha);
     }
+    let first = chunk_segment[k];
+    let a = wisp_vertex(first);
     let b = wisp_vertex(first + 1u);
+    let c = wisp_vertex(first + 2u);
     let d = wisp_vertex(first + 3u);
     // The strip's point there (the quad is a flat parallelogram but for the
     // spine's turn: bilinear across its two triangles).
@@ -421,6 +427,8 @@ fn main(
             chunk_strand[lid] = a.strand;
             chunk_alpha[lid] = vec2<f32>(a.alpha, c.alpha);
             chunk_texture[lid] = vec4<f32>(a.texture.y, c.texture.y, a.texture.z, c.texture.z);
+            chunk_first[lid] = a.first;
+            chunk_point[lid] = vec2<f32>(a.point, c.point);
             chunk_a[lid] = q.corner[0];
             chunk_b[lid] = q.corner[1];
             chunk_c[lid] = q.corner[2];
