@@ -25,6 +25,13 @@
 //    the tile has, the tile stops (the early out of Unity HDRP's High
 //    Quality Lines and Frostbite).
 //
+// Wisps (`geometry = wisps`): a segment is a quad of a wisp's strip
+// (plait::compute_raster::wisp_quad); its coverage at a pixel centre is
+// its two triangles' (inside one of them) × the strand texture's alpha at
+// the perspective-correct (u, v, mip level) there, its depth the
+// triangle's there, its colour the texel's rgb × the hair's colour as
+// plait::hair_fragment shades a wisp fragment (cover_quad, shade_wisp).
+//
 // Colour: where the fragment stage gets it (plait::shading_space) —
 // strand space interpolates the strand_shading pass's radiance; with
 // fragment shading the pixel is shaded here through plait::hair_radiance
