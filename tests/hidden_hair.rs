@@ -310,6 +310,7 @@ fn hair_hidden_in_a_mesh_head_is_not_counted() {
 /// above see only its image: hair entirely behind the head must not be
 /// binned into any tile either (tile_depth's conservative cull), so it takes
 /// no tile capacity and is never counted as overflow — and is not drawn.
+/// The same for the quads of wisps (narrow ones, inside the head too).
 #[test]
 fn compute_raster_bins_no_hidden_hair() {
     let (_lock, gpu) = open_gpu();
@@ -317,17 +318,33 @@ fn compute_raster_bins_no_hidden_hair() {
     let mut scene = small_scene();
     scene.strands = plait_hair::Strands::new();
     add_hidden_strands(&mut scene.strands, 200);
-    let set = "pipeline.outputs=[\"final\", \"tile_ranges\", \"raster_counter\", \"hair\"]";
-    let prepared = prepare(&gpu, &pipeline, &[set.into()], &scene, SIZE)
-        .unwrap_or_else(|e| panic!("preparing compute_raster: {e}"));
-    prepared.renderer.render().expect("renders");
-    // Every word: each tile's count and first slot; what was dropped or
-    // needed and tile_blend's unfinished invocations.
-    for name in ["tile_ranges", "raster_counter"] {
-        let bytes = prepared.renderer.read_buffer(name).expect(name);
-        let binned = bytes.chunks_exact(4).filter(|w| w != &[0; 4]).count();
-        assert_eq!(binned, 0, "`{name}`: hidden hair was binned");
+    scene.guides = plait_hair::guides::Guides::default();
+    let wisps = [
+        "techniques.geometry=wisps",
+        "params.wisp_width=0.02",
+        "params.wisp_count=50",
+        "params.wisp_texture_size=32",
+    ];
+    for (label, extra) in [("strands", &[][..]), ("wisps", &wisps[..])] {
+        let mut sets = vec![
+            "pipeline.outputs=[\"final\", \"tile_ranges\", \"raster_counter\", \"hair\"]"
+                .to_string(),
+        ];
+        sets.extend(extra.iter().map(|s| s.to_string()));
+        let prepared = prepare(&gpu, &pipeline, &sets, &scene, SIZE)
+            .unwrap_or_else(|e| panic!("preparing compute_raster ({label}): {e}"));
+        prepared.renderer.render().expect("renders");
+        // Every word: each tile's count and first slot; what was dropped or
+        // needed and tile_blend's unfinished invocations.
+        for name in ["tile_ranges", "raster_counter"] {
+            let bytes = prepared.renderer.read_buffer(name).expect(name);
+            let binned = bytes.chunks_exact(4).filter(|w| w != &[0; 4]).count();
+            assert_eq!(binned, 0, "{label}: `{name}`: hidden hair was binned");
+        }
+        let hair = prepared.renderer.read_resource("hair").expect("hair").bytes;
+        assert!(
+            hair.iter().all(|&b| b == 0),
+            "{label}: hidden hair was drawn"
+        );
     }
-    let hair = prepared.renderer.read_resource("hair").expect("hair").bytes;
-    assert!(hair.iter().all(|&b| b == 0), "hidden hair was drawn");
 }

@@ -160,14 +160,6 @@ fn tiny_scene() -> SceneData {
     data
 }
 
-/// Pairs of choices that cannot compose, each refused at load with an error
-/// naming both: the compute rasterizer draws strand segments, not the
-/// triangle strips of wisps (crates/plait-passes/src/compute_raster.rs).
-const REFUSED: &[(&str, &str)] = &[(
-    "techniques.transparency=compute_raster",
-    "techniques.geometry=wisps",
-)];
-
 #[test]
 fn every_combination_of_techniques_checks_and_renders() {
     let combos = combinations();
@@ -186,31 +178,8 @@ fn every_combination_of_techniques_checks_and_renders() {
             Ok(p.image()?)
         })
     };
-    let mut refused = 0;
     for sets in &combos {
-        let mut sets = sets.clone();
-        if let Some(pair) = REFUSED
-            .iter()
-            .find(|(a, b)| sets.iter().any(|s| s == a) && sets.iter().any(|s| s == b))
-        {
-            // The pair must be refused at load, naming both choices; the
-            // row's other pairs are then rendered with the second point at
-            // its default.
-            refused += 1;
-            match render(&sets) {
-                Ok(_) => failures.push(format!("{sets:?}: {pair:?} rendered, but must be refused")),
-                Err(e) => {
-                    let e = e.to_string();
-                    let named = |s: &str| e.contains(&s.replace('=', " = "));
-                    if !(named(pair.0) && named(pair.1)) {
-                        failures.push(format!("{sets:?}: the refusal does not name {pair:?}: {e}"));
-                    }
-                }
-            }
-            let point = pair.1.split('=').next().unwrap_or_default();
-            sets.retain(|s| !s.starts_with(&format!("{point}=")));
-        }
-        let result = render(&sets);
+        let result = render(sets);
         match result {
             Ok(image) => {
                 // Hair and head cover part of the frame: not one flat colour.
@@ -222,10 +191,6 @@ fn every_combination_of_techniques_checks_and_renders() {
             Err(e) => failures.push(format!("{sets:?}: {e}")),
         }
     }
-    assert!(
-        refused > 0,
-        "no combination met a refused pair: {REFUSED:?}"
-    );
     assert!(
         failures.is_empty(),
         "{} of {} combinations failed:\n{}",

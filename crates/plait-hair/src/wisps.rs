@@ -67,7 +67,9 @@ pub fn relaxation_dart_throwing(candidates: &[Vec3], count: usize, seed: u64) ->
     let mut rng = SplitMix64::new(seed);
     let mut failures = 0;
     let mut accepted_radius = radius;
-    while chosen.len() < count && !candidates.is_empty() && radius > floor {
+    // The first dart is always accepted, also when every candidate is one
+    // point (radius 0 = floor): a groom of one strand gets its one wisp.
+    while chosen.len() < count && !candidates.is_empty() && (radius > floor || chosen.is_empty()) {
         let i = (rng.next_u64() % candidates.len() as u64) as usize;
         let p = candidates[i];
         let r2 = radius * radius;
@@ -237,6 +239,16 @@ mod tests {
         (0..n)
             .map(|_| Vec3::new(rng.signed(), rng.signed(), 0.0))
             .collect()
+    }
+
+    #[test]
+    fn one_candidate_gets_its_dart() {
+        // All candidates one point: the radius starts at 0. No dart was
+        // thrown, so a one-strand groom had no wisps at all.
+        let darts = relaxation_dart_throwing(&[Vec3::ONE], 3, 1);
+        assert_eq!(darts.chosen, vec![0]);
+        let darts = relaxation_dart_throwing(&[Vec3::ONE, Vec3::ONE], 3, 1);
+        assert_eq!(darts.chosen.len(), 1);
     }
 
     #[test]

@@ -30,23 +30,9 @@ pub const MAX_BINNED_SEGMENTS: i64 = (u32::MAX / 3) as i64;
 /// tile_scan runs as one workgroup of this many threads (scan.wgsl).
 const SCAN_THREADS: u32 = 256;
 
-/// The tiling params a pass sets (`param` looks one up), each checked, and
-/// the geometry it is asked to draw; the
+/// The tiling params a pass sets (`param` looks one up), each checked; the
 /// message names the param.
 fn check_params<'v>(param: impl Fn(&str) -> Option<&'v Value>) -> Result<(), String> {
-    // A line rasterizer bins strand segments; the wisps of `geometry = wisps`
-    // are triangle strips it cannot draw. Refused here rather than drawn as
-    // strands, which would compare another geometry than the one chosen.
-    if let Some(Value::Str(g)) = param("geometry")
-        && g == "wisps"
-    {
-        return Err(
-            "techniques.transparency = compute_raster rasterizes strand segments, but \
-             techniques.geometry = wisps draws triangle strips: choose geometry strands or lod \
-             with compute_raster, or another transparency technique with wisps"
-                .into(),
-        );
-    }
     let int = |name: &str| param(name).and_then(Value::as_i64);
     if let Some(t) = int("tile_size")
         && (!(2..=MAX_TILE_SIZE).contains(&t) || (t & (t - 1)) != 0)
@@ -117,7 +103,7 @@ impl PassType for StrandBin {
             ..PassTypeSpec::data_only(
                 "strand_bin",
                 PassShape::Compute,
-                "A WGSL compute shader run once per hair segment (the scene's segment count of threads): bins segments into screen tiles; slots are the shader's bindings; tile_size, depth_bins, binned_segments checked at load.",
+                "A WGSL compute shader run once per hair segment (the scene's segment count of threads; with geometry = wisps, once per quad of the wisps' strips): bins segments into screen tiles; slots are the shader's bindings; tile_size, depth_bins, binned_segments checked at load.",
             )
         }
     }
@@ -136,7 +122,15 @@ impl PassType for StrandBin {
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
         let mut draw = ShaderDraw::of(self, pass, ctx)?;
-        draw.threads = [ctx.geometry.segment_count.max(1), 1, 1];
+        // With `geometry = wisps` a "segment" is one quad of a wisp's strip
+        // (two consecutive spine points, two triangles of the wisp mesh):
+        // tiles.wgsl bins it as a wide segment.
+        let wisps = matches!(pass.params.get("geometry"), Some(Value::Str(g)) if g == "wisps");
+        let segments = match (&ctx.geometry.wisps, wisps) {
+            (Some(mesh), true) => mesh.index_count / 6,
+            _ => ctx.geometry.segment_count,
+        };
+        draw.threads = [segments.max(1), 1, 1];
         Ok(Box::new(build_draw(&draw, pass, ctx)?))
     }
 }

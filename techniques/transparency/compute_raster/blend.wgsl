@@ -26,6 +26,13 @@
 //    the tile has, the tile stops (the early out of Unity HDRP's High
 //    Quality Lines and Frostbite).
 //
+// Wisps (`geometry = wisps`): a segment is a quad of a wisp's strip
+// (plait::compute_raster::wisp_quad); its coverage at a pixel centre is
+// its two triangles' (inside one of them) × the strand texture's alpha at
+// the perspective-correct (u, v, mip level) there, its depth the
+// triangle's there, its colour the texel's rgb × the hair's colour as
+// plait::hair_fragment shades a wisp fragment (cover_quad, shade_wisp).
+//
 // Colour: where the fragment stage gets it (plait::shading_space) —
 // strand space interpolates the strand_shading pass's radiance; with
 // fragment shading the pixel is shaded here through plait::hair_radiance
@@ -38,7 +45,10 @@
 #import plait::strand_lod::{strand_lod_weight, strand_lod_alpha}
 #import plait::hair_point::{HairPoint, camera_segment}
 #import plait::loop_budget::loop_budget_spent
-
+#ifdef GEOMETRY_WISPS
+#import plait::compute_raster::wisp_quad::{wisp_quad, wisp_quad_hit, wisp_vertex, wisp_hair_vertex}
+#import plait::geometry::wisps::wisp_texel
+#endif
 
 struct Params {
     tile_size: u32,
@@ -49,7 +59,9 @@ struct Params {
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(60) var<uniform> params: Params;
+#ifndef GEOMETRY_WISPS
 @group(1) @binding(61) var<storage, read> hair_vertices: array<HairPoint>;
+#endif
 // [0] dropped and [1] needed (tile_scan's), [2] this pass's invocations
 // that did not finish.
 @group(1) @binding(63) var<storage, read_write> raster_counter: array<atomic<u32>>;
@@ -86,6 +98,21 @@ var<workgroup> chunk_alpha: array<vec2<f32>, CHUNK>;
 // The part of the segment drawn: its parameters at the near-plane clip (0, 1
 // when it is not clipped).
 var<workgroup> chunk_range: array<vec2<f32>, CHUNK>;
+#ifdef GEOMETRY_WISPS
+// A wisp quad's (plait::compute_raster::wisp_quad) other two corners (a, b
+// in chunk_a, chunk_b), its corners' places between its spine points, and
+// per spine point the strand texture's v and mip level (x, y: v; z, w:
+// level); chunk_alpha holds the spine points' hair alpha.
+var<workgroup> chunk_c: array<vec4<f32>, CHUNK>;
+var<workgroup> chunk_d: array<vec4<f32>, CHUNK>;
+var<workgroup> chunk_along: array<vec4<f32>, CHUNK>;
+var<workgroup> chunk_texture: array<vec4<f32>, CHUNK>;
+// Where the quad lies along the strand its wisp follows, for strand-space
+// shading: that strand's first hair vertex, and its spine points' indices
+// along it — the loader's, so a strand-space pixel places no wisp vertex.
+var<workgroup> chunk_first: array<u32, CHUNK>;
+var<workgroup> chunk_point: array<vec2<f32>, CHUNK>;
+#endif
 // Per pixel of the tile, the chunk's segments that may cover it (bit k:
 // segment k of the chunk), set by each segment's thread for the few pixels
 // it reaches (cover_pixels). A pixel then visits only those, in chunk order
@@ -95,8 +122,13 @@ var<workgroup> chunk_range: array<vec2<f32>, CHUNK>;
 var<workgroup> pixel_segments: array<atomic<u32>, THREADS * WORDS>;
 
 // The sort key: camera depth (clip w) of the segment's midpoint — of the
-// part in front of the near plane when the segment is clipped there.
+// part in front of the near plane when the segment is clipped there; of a
+// wisp's quad (s: its first vertex), the mean of its corners'.
 fn segment_key(s: u32) -> f32 {
+#ifdef GEOMETRY_WISPS
+    let q = wisp_quad(s);
+    return max(0.25 * (q.corner[0].w + q.corner[1].w + q.corner[2].w + q.corner[3].w), 0.0);
+#else
     let p0 = hair_vertices[s].position;
     let p1 = hair_vertices[s + 1u].position;
     let seg = camera_segment(p0, p1);
@@ -104,6 +136,7 @@ fn segment_key(s: u32) -> f32 {
         return 0.5 * (seg.a.w + seg.b.w);
     }
     return max((frame.camera_view_proj * vec4<f32>(0.5 * (p0 + p1), 1.0)).w, 0.0);
+#endif
 }
 
 // The word of slot `slot`'s (segment, key bits) pair in tile_segments.
@@ -192,6 +225,68 @@ fn vertex_alpha(v: HairPoint, index: u32) -> f32 {
     return strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness) * tip, strand_lod_weight(v.strand));
 }
 
+#ifdef GEOMETRY_WISPS
+// Marks chunk quad `k` (plait::compute_raster::wisp_quad, its corners in
+// chunk_a … chunk_d) at every pixel of the tile at `origin` whose centre it
+// covers (wisp_quad_hit, the test the pixel repeats): the pixels of its
+// corners' box within the tile.
+fn cover_quad(k: u32, origin: vec2<f32>) {
+    let a = chunk_a[k];
+    let b = chunk_b[k];
+    let c = chunk_c[k];
+    let d = chunk_d[k];
+    let along = chunk_along[k];
+    let box_lo = min(min(a.xy, b.xy), min(c.xy, d.xy)) - origin;
+    let box_hi = max(max(a.xy, b.xy), max(c.xy, d.xy)) - origin;
+    // Pixel centres x + 0.5 within the box, clamped to the tile before the
+    // conversion (a corner can project far off the screen).
+    let lo = max(ceil(box_lo - 0.5), vec2<f32>(0.0));
+    let hi = min(floor(box_hi - 0.5), vec2<f32>(f32(TILE) - 1.0));
+    let word = k / 32u;
+    let bit = 1u << (k % 32u);
+    for (var y = lo.y; y <= hi.y; y += 1.0) {
+        for (var x = lo.x; x <= hi.x; x += 1.0) {
+            if (wisp_quad_hit(origin + vec2<f32>(x, y) + 0.5, a, b, c, d, along).x > 0.0) {
+                let pixel = u32(y) * TILE + u32(x);
+                atomicOr(&pixel_segments[pixel * WORDS + word], bit);
+            }
+        }
+    }
+}
+
+// Straight colour and alpha of chunk quad k at (u across, `along` between
+// its spine points), as plait::hair_fragment shades a wisp fragment there:
+// the strand texture's texel at (u, v, level) gives the alpha (× the hair
+// alpha and the material's) and multiplies the colour — the strand-space
+// radiance at the fragment's place along the strand the wisp follows, or
+// plait::hair_radiance of the hair's colour at the interpolated point.
+fn shade_wisp(k: u32, u: f32, along: f32) -> vec4<f32> {
+    let tex = chunk_texture[k];
+    let texel = wisp_texel(u, mix(tex.x, tex.y, along), mix(tex.z, tex.w, along));
+    let ends = chunk_alpha[k];
+    let alpha = clamp(mix(ends.x, ends.y, along) * texel.a * frame.hair_color.a, 0.0, 1.0);
+    if (alpha <= 0.0) {
+        return vec4<f32>(0.0);
+    }
+    let points = chunk_point[k];
+    let shaded = strand_space_radiance(chunk_strand[k], chunk_first[k], mix(points.x, points.y, along));
+    if (shaded.w > 0.0) {
+        return vec4<f32>(shaded.rgb * texel.rgb, alpha);
+    }
+    let first = chunk_segment[k];
+    let a = wisp_vertex(first);
+    let b = wisp_vertex(first + 1u);
+    let c = wisp_vertex(first + 2u);
+    let d = wisp_vertex(first + 3u);
+    // The strip's point there (the quad is a flat parallelogram but for the
+    // spine's turn: bilinear across its two triangles).
+    let world = mix(mix(a.corner, b.corner, u), mix(c.corner, d.corner, u), along);
+    let tangent = mix(a.tangent, c.tangent, along);
+    let color = mix(a.color, c.color, along) * texel.rgb;
+    let occlusion = mix(occlusion_at(wisp_hair_vertex(first)), occlusion_at(wisp_hair_vertex(first + 2u)), along);
+    return vec4<f32>(hair_radiance(shadow_map, world, tangent, color, occlusion), alpha);
+}
+#else
 // Straight colour and alpha of chunk segment k at screen fraction t,
 // weighed by `weight`. The fragment alphas at the segment's two vertices
 // (chunk_alpha) are the chunk loader's, once per segment, not once per pixel.
@@ -217,6 +312,7 @@ fn shade_segment(k: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec
     let occlusion = mix(occlusion_at(i0), occlusion_at(i1), along);
     return vec4<f32>(hair_radiance(shadow_map, world, tangent, color, occlusion), alpha);
 }
+#endif
 
 @compute @workgroup_size(TILE, TILE)
 fn main(
@@ -333,6 +429,26 @@ fn main(
         let j = c + lid;
         if (lid < CHUNK && j < end) {
             let s = tile_segments[base + j];
+#ifdef GEOMETRY_WISPS
+            let q = wisp_quad(s);
+            let a = wisp_vertex(s);
+            let c = wisp_vertex(s + 2u);
+            chunk_segment[lid] = s;
+            chunk_strand[lid] = a.strand;
+            chunk_alpha[lid] = vec2<f32>(a.alpha, c.alpha);
+            chunk_texture[lid] = vec4<f32>(a.texture.y, c.texture.y, a.texture.z, c.texture.z);
+            chunk_first[lid] = a.first;
+            chunk_point[lid] = vec2<f32>(a.point, c.point);
+            chunk_a[lid] = q.corner[0];
+            chunk_b[lid] = q.corner[1];
+            chunk_c[lid] = q.corner[2];
+            chunk_d[lid] = q.corner[3];
+            chunk_along[lid] = q.along;
+            // A binned quad is always kept (the same computation binned it).
+            if (q.kept) {
+                cover_quad(lid, vec2<f32>(group.xy * TILE));
+            }
+#else
             let v0 = hair_vertices[s];
             let v1 = hair_vertices[s + 1u];
             // Clipped at the near plane as in strand_bin (tiles.wgsl).
@@ -346,6 +462,7 @@ fn main(
             chunk_a[lid] = a;
             chunk_b[lid] = e;
             cover_pixels(lid, a.xy, e.xy, vec2<f32>(group.xy * TILE));
+#endif
         }
         workgroupBarrier();
         for (var w = 0u; w < WORDS; w++) {
@@ -356,6 +473,14 @@ fn main(
                 }
                 let k = w * 32u + firstTrailingBit(bits);
                 bits &= bits - 1u;
+#ifdef GEOMETRY_WISPS
+                // x: covered, y: NDC z, z: u across, w: along.
+                let hit = wisp_quad_hit(centre, chunk_a[k], chunk_b[k], chunk_c[k], chunk_d[k], chunk_along[k]);
+                if (hit.x <= 0.0 || hit.y < 0.0 || hit.y >= opaque) {
+                    continue;
+                }
+                let f = shade_wisp(k, hit.z, hit.w);
+#else
                 let a = chunk_a[k];
                 let e = chunk_b[k];
                 let cover = line_coverage(centre, a.xy, e.xy);
@@ -364,6 +489,7 @@ fn main(
                     continue;
                 }
                 let f = shade_segment(k, cover.y, a, e, cover.x);
+#endif
                 color += (1.0 - alpha) * f.a * f.rgb;
                 alpha += (1.0 - alpha) * f.a;
                 if (alpha >= params.opacity_threshold) {

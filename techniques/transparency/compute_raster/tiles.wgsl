@@ -14,21 +14,31 @@
 // that tile_blend would draw it in — so hair hidden behind the head takes
 // no slot, is never counted, and the image is the same as without it. The
 // `geometry` point's answer is honoured as every hair draw honours it
-// (plait::strand_lod): a strand of weight 0 lands nowhere.
+// (plait::strand_lod): a strand of weight 0 lands nowhere. With `geometry =
+// wisps` the segments are the quads of the wisps' strips
+// (plait::compute_raster::wisp_quad), wide segments: the tiles of their
+// corners' box where their triangles cover a pixel centre in front of the
+// opaque depth (quad_visible_in_tile).
 #define_import_path plait::compute_raster::tiles
 
 #import plait::frame::frame
 #import plait::strand_lod::strand_lod_weight
 #import plait::hair_point::{HairPoint, camera_segment}
-
+#ifdef GEOMETRY_WISPS
+#import plait::compute_raster::wisp_quad::{WispQuad, wisp_quad, wisp_quad_first, wisp_quad_meets, wisp_quad_hit, NO_QUAD}
+#else
 @group(1) @binding(1) var<storage, read> hair_vertices: array<HairPoint>;
 @group(1) @binding(2) var<storage, read> hair_indices: array<u32>;
+#endif
 @group(1) @binding(3) var<storage, read> tile_far: array<u32>;
 @group(1) @binding(7) var opaque_depth: texture_depth_2d;
 
 // A segment on the screen: its ends (screen xy, NDC z, clip w), the tiles
 // its grown bounding box covers (inclusive; none when first > last), the
-// line's unit normal, its nearest depth, and the vertex a tile stores.
+// line's unit normal, its nearest depth, and the vertex a tile stores. With
+// `geometry = wisps` a segment is one quad of a wisp's strip
+// (plait::compute_raster::wisp_quad), a wide segment: `quad` is its
+// corners, `vertex` its first wisp vertex, and a and b are unused.
 struct Span {
     a: vec4<f32>,
     b: vec4<f32>,
@@ -37,6 +47,9 @@ struct Span {
     normal: vec2<f32>,
     near_z: f32,
     vertex: u32,
+#ifdef GEOMETRY_WISPS
+    quad: WispQuad,
+#endif
 }
 
 // Tiles across the screen (the row length of every per-tile buffer).
@@ -51,10 +64,13 @@ fn no_tiles(span: Span) -> Span {
     return none;
 }
 
-// Segment `s` of the line list with tiles of side `t`.
+// Segment `s` of the line list (of the wisps' quads) with tiles of side `t`.
 fn segment_span(s: u32, t: i32) -> Span {
     var span: Span;
     span = no_tiles(span);
+#ifdef GEOMETRY_WISPS
+    return wisp_span(span, s, t);
+#else
     if (2u * s + 1u >= arrayLength(&hair_indices)) {
         return span;
     }
@@ -88,23 +104,70 @@ fn segment_span(s: u32, t: i32) -> Span {
     span.first_tile = lo / t;
     span.last_tile = hi / t;
     return span;
+#endif
 }
+
+#ifdef GEOMETRY_WISPS
+// Quad `s` of the wisps (`none`: a span of no tiles): the tiles its corners'
+// bounding box, grown by a pixel, covers — the box of its two triangles —,
+// unless the level of detail drops it or it lies wholly before the near
+// plane or beyond the far one.
+fn wisp_span(none: Span, s: u32, t: i32) -> Span {
+    var span = none;
+    let first = wisp_quad_first(s);
+    if (first == NO_QUAD) {
+        return span;
+    }
+    let q = wisp_quad(first);
+    if (!q.kept) {
+        return span;
+    }
+    span.vertex = first;
+    span.quad = q;
+    let c = q.corner;
+    span.near_z = min(min(c[0].z, c[1].z), min(c[2].z, c[3].z));
+    let far_z = max(max(c[0].z, c[1].z), max(c[2].z, c[3].z));
+    if (span.near_z >= 1.0 || far_z < 0.0) {
+        return span;
+    }
+    // Clamped before the conversion: a corner just in front of the near
+    // plane can project far off the screen.
+    let size = vec2<i32>(frame.screen_size.xy);
+    let bound = vec2<f32>(size) + 2.0;
+    let box_lo = clamp(min(min(c[0].xy, c[1].xy), min(c[2].xy, c[3].xy)), vec2<f32>(-2.0), bound);
+    let box_hi = clamp(max(max(c[0].xy, c[1].xy), max(c[2].xy, c[3].xy)), vec2<f32>(-2.0), bound);
+    let lo = max(vec2<i32>(floor(box_lo - 1.0)), vec2<i32>(0));
+    let hi = min(vec2<i32>(floor(box_hi + 1.0)), size - vec2<i32>(1));
+    if (any(lo > hi)) {
+        return span;
+    }
+    span.first_tile = lo / t;
+    span.last_tile = hi / t;
+    return span;
+}
+#endif
 
 // Whether the segment lands in tile (tx, ty) (the header's rules).
 fn lands_in(span: Span, tx: i32, ty: i32, t: i32) -> bool {
+#ifndef GEOMETRY_WISPS
     // Half the tile's diagonal plus the one pixel the coverage reaches.
     let reach = f32(t) * 0.70710678 + 1.5;
     let centre = (vec2<f32>(f32(tx), f32(ty)) + 0.5) * f32(t);
     if (abs(dot(centre - span.a.xy, span.normal)) > reach) {
         return false;
     }
+#endif
     if (span.near_z >= bitcast<f32>(tile_far[u32(ty * tiles_across(t) + tx)])) {
         return false;
     }
     let size = vec2<i32>(frame.screen_size.xy);
     let tile_lo = vec2<i32>(tx, ty) * t;
     let tile_hi = min(tile_lo + vec2<i32>(t - 1), size - vec2<i32>(1));
+#ifdef GEOMETRY_WISPS
+    return quad_visible_in_tile(span.quad, tile_lo, tile_hi);
+#else
     return visible_in_tile(span.a, span.b, tile_lo, tile_hi);
+#endif
 }
 
 // Whether segment a → b (screen xy, NDC z) is in front of the opaque depth
@@ -150,3 +213,31 @@ fn visible_in_tile(a: vec4<f32>, b: vec4<f32>, lo: vec2<i32>, hi: vec2<i32>) -> 
     }
     return false;
 }
+
+#ifdef GEOMETRY_WISPS
+// Whether wisp quad `q` covers a pixel centre of the tile from `lo` to `hi`
+// (inclusive) in front of the opaque depth there: the pixels tile_blend
+// draws it in (wisp_quad_hit, the same test), as visible_in_tile asks of a
+// strand's segment. A quick rejection first: its triangles miss the tile.
+fn quad_visible_in_tile(q: WispQuad, lo: vec2<i32>, hi: vec2<i32>) -> bool {
+    if (!wisp_quad_meets(q, vec2<f32>(lo) + 0.5, vec2<f32>(hi) + 0.5)) {
+        return false;
+    }
+    let c = q.corner;
+    // The pixels of the tile whose centres lie in the corners' box (clamped
+    // to the tile before the conversion).
+    let box_lo = min(min(c[0].xy, c[1].xy), min(c[2].xy, c[3].xy));
+    let box_hi = max(max(c[0].xy, c[1].xy), max(c[2].xy, c[3].xy));
+    let first = vec2<i32>(max(ceil(box_lo - 0.5), vec2<f32>(lo)));
+    let last = vec2<i32>(min(floor(box_hi - 0.5), vec2<f32>(hi)));
+    for (var y = first.y; y <= last.y; y++) {
+        for (var x = first.x; x <= last.x; x++) {
+            let hit = wisp_quad_hit(vec2<f32>(f32(x), f32(y)) + 0.5, c[0], c[1], c[2], c[3], q.along);
+            if (hit.x > 0.0 && hit.y >= 0.0 && hit.y < textureLoad(opaque_depth, vec2<i32>(x, y), 0)) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+#endif

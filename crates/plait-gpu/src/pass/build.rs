@@ -307,9 +307,12 @@ fn bind_group<'a>(
                 scene.push((b.binding, wgpu::BindingResource::TextureView(view)));
             }
             BindingSource::Scene(name) => {
-                let (geometry, what) = match name.strip_prefix("opaque_") {
-                    Some(_) => (ctx.geometry.opaque.as_ref(), "opaque geometry"),
-                    None => (ctx.geometry.hair.as_ref(), "hair"),
+                let (geometry, what) = if name.starts_with("opaque_") {
+                    (ctx.geometry.opaque.as_ref(), "opaque geometry")
+                } else if name.starts_with("wisp_") {
+                    (ctx.geometry.wisps.as_ref(), "wisps (geometry = wisps)")
+                } else {
+                    (ctx.geometry.hair.as_ref(), "hair")
                 };
                 let buffers = geometry.ok_or_else(|| {
                     pass_error(pass, format!("the scene has no {what} to bind as `{name}`"))

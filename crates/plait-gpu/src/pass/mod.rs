@@ -10,8 +10,8 @@
 //! - group 0: the frame's standard inputs (`#import plait::frame`);
 //! - group 1: one binding per slot, the variable named like the slot, plus an
 //!   optional `params` uniform whose members are filled from the pass params by
-//!   name, plus the scene's `hair_vertices` / `hair_indices` / `opaque_vertices` /
-//!   `opaque_indices` storage buffers;
+//!   name, plus the scene's `hair_vertices` / `hair_indices` / `wisp_vertices` /
+//!   `wisp_indices` / `opaque_vertices` / `opaque_indices` storage buffers;
 //! - colour and depth targets are attachments, not bindings.
 //!
 //! By concern: [`pass_type`] (the trait, its contexts, the library),

@@ -16,12 +16,15 @@ use crate::shader::Define;
 use crate::{Capabilities, GpuError};
 
 /// Names of scene inputs a shader can bind in group 1 without a slot: the
-/// hair's and the opaque geometry's storage buffers, and the scene's
-/// environment image (`texture_2d<f32>`, rgba32float, equirectangular, see
+/// hair's, the wisps' (`geometry = wisps`: `plait_hair::wisps::WispMesh`'s
+/// vertices and triangle-list indices) and the opaque geometry's storage
+/// buffers, and the scene's environment image (`texture_2d<f32>`, rgba32float, equirectangular, see
 /// `plait_hair::environment`).
 pub const SCENE_BINDINGS: &[&str] = &[
     "hair_vertices",
     "hair_indices",
+    "wisp_vertices",
+    "wisp_indices",
     "opaque_vertices",
     "opaque_indices",
     "environment_source",

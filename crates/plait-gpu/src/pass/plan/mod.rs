@@ -31,7 +31,7 @@ pub enum BindingSource {
     },
     /// A `*params` uniform filled from the pass params by member name.
     Params(Vec<u8>),
-    /// A scene buffer (`hair_vertices`, `hair_indices`).
+    /// A scene buffer (`hair_vertices`, `wisp_indices`, …: `SCENE_BINDINGS`).
     Scene(String),
 }
 
