@@ -102,7 +102,7 @@ var<workgroup> chunk_range: array<vec2<f32>, CHUNK>;
 // A wisp quad's (plait::compute_raster::wisp_quad) other two corners (a, b
 // in chunk_a, chunk_b), its corners' places between its spine points, and
 // per spine point the strand texture's v and mip level (x, y: v; z, w:
-// level); chunk_alpha holds the spine points' hair alpha.
+// level); chunk_alpha holds the spine points' hair alpha × tip fading.
 var<workgroup> chunk_c: array<vec4<f32>, CHUNK>;
 var<workgroup> chunk_d: array<vec4<f32>, CHUNK>;
 var<workgroup> chunk_along: array<vec4<f32>, CHUNK>;
@@ -269,8 +269,9 @@ fn shade_wisp(k: u32, u: f32, along: f32) -> vec4<f32> {
         return vec4<f32>(0.0);
     }
     let points = chunk_point[k];
+    // w ≥ 0: shaded in strand space (its tip fading is in chunk_alpha).
     let shaded = strand_space_radiance(chunk_strand[k], chunk_first[k], mix(points.x, points.y, along));
-    if (shaded.w > 0.0) {
+    if (shaded.w >= 0.0) {
         return vec4<f32>(shaded.rgb * texel.rgb, alpha);
     }
     let first = chunk_segment[k];
@@ -435,7 +436,10 @@ fn main(
             let c = wisp_vertex(s + 2u);
             chunk_segment[lid] = s;
             chunk_strand[lid] = a.strand;
-            chunk_alpha[lid] = vec2<f32>(a.alpha, c.alpha);
+            // The hair alpha × the tip fading at each spine point, as the
+            // hair draws' vertex stage (plait::hair_fragment) weighs it.
+            let tips = vec2<f32>(strand_tip_scale(a.strand, a.first, a.point), strand_tip_scale(c.strand, c.first, c.point));
+            chunk_alpha[lid] = vec2<f32>(a.alpha, c.alpha) * tips;
             chunk_texture[lid] = vec4<f32>(a.texture.y, c.texture.y, a.texture.z, c.texture.z);
             chunk_first[lid] = a.first;
             chunk_point[lid] = vec2<f32>(a.point, c.point);
