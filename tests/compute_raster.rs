@@ -93,22 +93,17 @@ fn hand_built_strands_in_front_of_the_head() {
     assert!(shift < 0.3, "the hair moved by {shift} px");
 }
 
-/// A strand that runs past the camera: its segment across the eye plane is
-/// clipped at the near plane, as the rasterizer clips the line, not dropped
-/// (the part in front of the camera is drawn by both).
-#[test]
-fn a_strand_reaching_behind_the_eye_is_clipped_not_dropped() {
-    let (_lock, gpu) = open_gpu();
+/// The small scene with one strand only, running past its camera: along
+/// the view (eye (2, 0.5, 7.6) toward (0, -0.6, 0)), 0.15 beside the axis,
+/// from 4 in front of the eye to 2 behind it: the segment across the eye
+/// plane is seen from its front end (on screen, near the middle) out to the
+/// image's edge. (And a little up, so the line does not run along a pixel
+/// row's edge, where aliased and anti-aliased lines differ by half a pixel.)
+fn past_the_eye() -> SceneData {
     let mut scene = scene(|_| false);
     let mut strands = plait_hair::Strands::new();
-    // Along the small scene's view (eye (2, 0.5, 7.6) toward (0, -0.6, 0)),
-    // 0.15 beside the axis, from 4 in front of the eye to 2 behind it: the
-    // segment across the eye plane is seen from its front end (on screen,
-    // near the middle) out to the image's edge.
     let eye = Vec3::new(2.0, 0.5, 7.6);
     let ahead = (Vec3::new(0.0, -0.6, 0.0) - eye).normalize();
-    // (And a little up, so the line does not run along a pixel row's edge,
-    // where aliased and anti-aliased lines differ by half a pixel.)
     let aside = ahead.cross(Vec3::Y).normalize() * 0.15 + Vec3::Y * 0.03;
     let points: Vec<Vec3> = [4.0, 2.5, 1.0, -2.0]
         .iter()
@@ -116,6 +111,16 @@ fn a_strand_reaching_behind_the_eye_is_clipped_not_dropped() {
         .collect();
     strands.push_strand(&points, |_| 0.01, |_| 0.8, Vec3::new(0.9, 0.2, 0.1));
     scene.strands = strands;
+    scene
+}
+
+/// A strand that runs past the camera: its segment across the eye plane is
+/// clipped at the near plane, as the rasterizer clips the line, not dropped
+/// (the part in front of the camera is drawn by both).
+#[test]
+fn a_strand_reaching_behind_the_eye_is_clipped_not_dropped() {
+    let (_lock, gpu) = open_gpu();
+    let scene = past_the_eye();
     let (ratio, shift) = against_raster(&gpu, &scene, &["params.shading_points=4"], "past the eye");
     // Dropping the segment across the eye plane gave × 0.23 here.
     assert!((ratio - 1.0).abs() < 0.03, "Σα × {ratio}");
@@ -372,17 +377,7 @@ fn wisps_fill_the_pool_and_its_counters() {
 #[test]
 fn a_wisp_reaching_behind_the_eye_is_clipped_not_dropped() {
     let (_lock, gpu) = open_gpu();
-    let mut scene = scene(|_| false);
-    let mut strands = plait_hair::Strands::new();
-    let eye = Vec3::new(2.0, 0.5, 7.6);
-    let ahead = (Vec3::new(0.0, -0.6, 0.0) - eye).normalize();
-    let aside = ahead.cross(Vec3::Y).normalize() * 0.15 + Vec3::Y * 0.03;
-    let points: Vec<Vec3> = [4.0, 2.5, 1.0, -2.0]
-        .iter()
-        .map(|&depth| eye + ahead * depth + aside)
-        .collect();
-    strands.push_strand(&points, |_| 0.01, |_| 0.8, Vec3::new(0.9, 0.2, 0.1));
-    scene.strands = strands;
+    let mut scene = past_the_eye();
     // No guides: the one wisp follows the strand.
     scene.guides = plait_hair::guides::Guides::default();
     let sets = [
