@@ -18,13 +18,12 @@
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{
-    BuildContext, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw, ShaderPass,
-    build_draw, default_defines,
+    BuildContext, PassType, PreparedPass, RecordContext, ShaderPass, default_defines,
 };
 use plait_gpu::shader::Define;
 use plait_graph::{Access, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, Value};
 
-use crate::occlusion_directions::{bound, kernel_pass};
+use crate::occlusion_directions::{bound, compute_kernel, kernel_pass};
 use crate::spec_util::{buffer, choice, int};
 
 pub struct OcclusionCylinders;
@@ -129,15 +128,7 @@ impl PassType for OcclusionCylinders {
             if let Some(name) = extra {
                 defines.push((name.into(), Define::Bool(true)));
             }
-            let mut draw = ShaderDraw::library(
-                SHADER,
-                pass,
-                PassShape::Compute,
-                defines,
-                RasterState::default(),
-            )?;
-            draw.threads = [threads, 1, 1];
-            build_draw(&draw, &kernels, ctx)
+            compute_kernel(SHADER, pass, defines, threads, &kernels, ctx)
         };
         let bounds = kernel(Some("CYLINDER_BOUNDS"), 1)?;
         let shadow = kernel(None, vertices)?;

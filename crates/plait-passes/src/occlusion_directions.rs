@@ -169,6 +169,27 @@ pub(crate) fn kernel_pass(
     Ok(sub)
 }
 
+/// Library compute shader `shader` of `pass` built with `defines` for
+/// `threads` threads, its slots those of `kernels` (a [`kernel_pass`]).
+pub(crate) fn compute_kernel(
+    shader: &str,
+    pass: &ScheduledPass,
+    defines: Vec<(String, Define)>,
+    threads: u32,
+    kernels: &ScheduledPass,
+    ctx: &BuildContext<'_>,
+) -> Result<ShaderPass, GpuError> {
+    let mut draw = ShaderDraw::library(
+        shader,
+        pass,
+        PassShape::Compute,
+        defines,
+        RasterState::default(),
+    )?;
+    draw.threads = [threads, 1, 1];
+    build_draw(&draw, kernels, ctx)
+}
+
 pub(crate) fn int_param(pass: &ScheduledPass, name: &str) -> i64 {
     pass.params.get(name).and_then(|v| v.as_i64()).unwrap_or(0)
 }
@@ -251,15 +272,7 @@ impl PassType for OcclusionDirections {
         )?;
         let mut defines = default_defines(pass);
         defines.push(("AO_FRAMES".into(), Define::Bool(true)));
-        let mut frames_draw = ShaderDraw::library(
-            SHADER,
-            pass,
-            PassShape::Compute,
-            defines,
-            RasterState::default(),
-        )?;
-        frames_draw.threads = [1, 1, 1];
-        let frames = build_draw(&frames_draw, &frames_pass, ctx)?;
+        let frames = compute_kernel(SHADER, pass, defines, 1, &frames_pass, ctx)?;
 
         let gather_pass = kernel_pass(
             pass,
@@ -273,15 +286,14 @@ impl PassType for OcclusionDirections {
                 ("vertex_ao", "vertex_ao", Access::StorageWrite),
             ],
         )?;
-        let mut gather_draw = ShaderDraw::library(
+        let gather = compute_kernel(
             SHADER,
             pass,
-            PassShape::Compute,
             default_defines(pass),
-            RasterState::default(),
+            vertices,
+            &gather_pass,
+            ctx,
         )?;
-        gather_draw.threads = [vertices, 1, 1];
-        let gather = build_draw(&gather_draw, &gather_pass, ctx)?;
 
         // Self-shadowing's own kernels, from each direction's frame.
         let range_pass = kernel_pass(
