@@ -8,6 +8,10 @@
 # Writes three `plait ab` reports under OUT (default target/transparency_ab)
 # and prints their Markdown tables. Every number is measured here; the GPU
 # times want an otherwise idle machine. About 20 minutes on lavapipe.
+# The README's table is not this script's: it is the published figure
+# `transparency-480` (docs/figures.toml), the default-scene run below with 3
+# repeats, written by `target/debug/plait-figures write transparency-480` and
+# re-measured by `bash scripts/bench.sh --check transparency-480`.
 #
 #   scripts/transparency_ab.sh [OUT]    SIZE=256x192 DEFAULT_SIZE=480x360 REPEATS=2
 set -euo pipefail

@@ -20,6 +20,7 @@ pub mod measured;
 mod params;
 mod pipeline_page;
 mod plait_cmd;
+pub mod published;
 pub mod runnable;
 mod stage;
 mod technique_page;
@@ -120,6 +121,7 @@ pub fn build(opts: &Options) -> Result<Built, BookError> {
         });
     }
     fill_summary(&src, &technique_toc, &pipeline_toc)?;
+    write_published(&opts.repo, &src)?;
     fill_default_frame(&src, &opts.stage, &plait)?;
     run_mdbook(&opts.stage, &opts.out)?;
     Ok(Built {
@@ -173,6 +175,28 @@ fn fill_summary(src: &Path, techniques: &str, pipelines: &str) -> Result<(), Boo
     }
     write(&path, &out)
 }
+
+/// The generated page of published figures (`published::stale::page`); the
+/// stale ones are said on stderr too, so whoever builds the book sees them.
+fn write_published(repo: &Path, src: &Path) -> Result<(), BookError> {
+    for f in published::stale::freshness(repo)? {
+        if f.is_stale() {
+            eprintln!(
+                "book: figure `{}` ({}) was measured at {} before {} later commit(s) to what it \
+                 measures; re-check it with `bash scripts/bench.sh --check {}`",
+                f.id,
+                f.page,
+                &f.commit[..f.commit.len().min(10)],
+                f.changed_since.len(),
+                f.id
+            );
+        }
+    }
+    write(&src.join(PUBLISHED_PAGE), &published::stale::page(repo)?)
+}
+
+/// The generated page listing every published figure and its freshness.
+pub const PUBLISHED_PAGE: &str = "guide/published.md";
 
 /// The guide page that shows the default render's per-pass table, and its
 /// marker.

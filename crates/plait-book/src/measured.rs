@@ -1,5 +1,6 @@
 //! The last measurement run: the `plait ab` tables `scripts/gallery.sh`
-//! writes between `<!-- gallery:NAME -->` markers of the gallery page. A
+//! writes (as the published figures `gallery-NAME`, `published`) between
+//! `<!-- figure:gallery-NAME -->` markers of the gallery page. A
 //! technique's or pipeline's page shows its rows from them, so no figure on a
 //! generated page is typed by hand.
 
@@ -48,7 +49,7 @@ pub fn read(page: &Path) -> Result<Vec<Run>, BookError> {
     let mut scene = String::new();
     for line in text.lines() {
         let line = line.trim();
-        if let Some(name) = marker(line, "<!-- gallery:") {
+        if let Some(name) = marker(line, "<!-- figure:gallery-") {
             current = Some(Run {
                 name: name.to_string(),
                 provenance: String::new(),
@@ -59,7 +60,7 @@ pub fn read(page: &Path) -> Result<Vec<Run>, BookError> {
         let Some(run) = current.as_mut() else {
             continue;
         };
-        if marker(line, "<!-- /gallery:").is_some() {
+        if marker(line, "<!-- /figure:gallery-").is_some() {
             let run = current.take().expect("inside a run");
             if run.scenes.iter().all(|s| s.rows.is_empty()) {
                 return Err(BookError::content(
@@ -71,8 +72,17 @@ pub fn read(page: &Path) -> Result<Vec<Run>, BookError> {
                 ));
             }
             runs.push(run);
+        } else if let Some(p) = line.strip_prefix("*Measured by ") {
+            // The figure's own provenance line: command, commit, date, adapter.
+            let p = p.trim_end_matches('*');
+            run.provenance = format!(
+                "measured by {}",
+                p.split("; re-measured").next().unwrap_or(p)
+            );
         } else if let Some(p) = line.strip_prefix("<!-- made by ") {
-            run.provenance = format!("made by {}", p.trim_end_matches("-->").trim());
+            if run.provenance.is_empty() {
+                run.provenance = format!("made by {}", p.trim_end_matches("-->").trim());
+            }
         } else if let Some(s) = line.strip_prefix("**").and_then(|l| l.strip_suffix("**")) {
             scene = s.to_string();
         } else if line.starts_with('|') {
@@ -96,7 +106,7 @@ pub fn read(page: &Path) -> Result<Vec<Run>, BookError> {
     if let Some(run) = current {
         return Err(BookError::content(
             page,
-            format!("`<!-- gallery:{} -->` is never closed", run.name),
+            format!("`<!-- figure:gallery-{} -->` is never closed", run.name),
         ));
     }
     Ok(runs)
@@ -164,9 +174,9 @@ mod tests {
         let page = dir.path().join("gallery.md");
         std::fs::write(
             &page,
-            "<!-- gallery:t -->\n<!-- made by plait ab (1 repeat) -->\n\n**small**\n\n\
+            "<!-- figure:gallery-t -->\n<!-- made by plait ab (1 repeat) -->\n\n**small**\n\n\
              | variant | ms | \\|ΔV\\| |\n|---|---:|---:|\n| a | 1 | 0.5 / 1 |\n| b (reference) | 2 | 0 |\n\n\
-             **stray**\n\n| variant | ms | \\|ΔV\\| |\n|---|---:|---:|\n| a | 3 | 0.1 |\n<!-- /gallery:t -->\n",
+             **stray**\n\n| variant | ms | \\|ΔV\\| |\n|---|---:|---:|\n| a | 3 | 0.1 |\n<!-- /figure:gallery-t -->\n",
         )
         .unwrap();
         let runs = read(&page).unwrap();
@@ -178,7 +188,11 @@ mod tests {
         assert!(md.contains("made by plait ab (1 repeat)"), "{md}");
         assert_eq!(rows_markdown(&runs, "c"), "");
 
-        std::fs::write(&page, "<!-- gallery:t -->\n<!-- /gallery:t -->\n").unwrap();
+        std::fs::write(
+            &page,
+            "<!-- figure:gallery-t -->\n<!-- /figure:gallery-t -->\n",
+        )
+        .unwrap();
         let err = read(&page).unwrap_err().to_string();
         assert!(err.contains("`t` measurement run has no table"), "{err}");
     }
