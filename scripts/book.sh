@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds plait's book into target/book/index.html: the guide (book/src/), a
+# Builds plait's book into target/book/index.html ($CARGO_TARGET_DIR/book when set): the guide (book/src/), a
 # page per technique and per gallery pipeline generated from their files, the
 # pictures rendered by `plait` on the small and stray scenes, and the design
 # notes; then checks every link and image. No network is needed.
@@ -16,4 +16,7 @@ if [[ " $* " == *" --browser "* || " $* " == *" --screenshots "* ]]; then
 fi
 cargo build --locked -p plait-cli -p plait-book
 target="${CARGO_TARGET_DIR:-$root/target}"
-exec "$target/debug/plait-book" --plait "$target/debug/plait" "$@"
+# The book goes under the build folder, wherever CARGO_TARGET_DIR puts it
+# (later flags win, so --out and --stage still choose).
+exec "$target/debug/plait-book" --plait "$target/debug/plait" \
+    --out "$target/book" --stage "$target/book-src" "$@"

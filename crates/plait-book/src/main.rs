@@ -14,11 +14,12 @@ struct Args {
     /// The `plait` binary that makes the pictures.
     #[arg(long)]
     plait: PathBuf,
-    /// Where the HTML goes.
-    #[arg(long, default_value = "target/book")]
+    /// Where the HTML goes (given twice, the last wins: scripts/book.sh passes
+    /// the build folder's first).
+    #[arg(long, default_value = "target/book", overrides_with = "out")]
     out: PathBuf,
     /// The staged book (a copy of book/ plus the generated pages).
-    #[arg(long, default_value = "target/book-src")]
+    #[arg(long, default_value = "target/book-src", overrides_with = "stage")]
     stage: PathBuf,
     /// Size of the pictures, WIDTHxHEIGHT.
     #[arg(long, default_value = "256x192")]

@@ -18,6 +18,11 @@ impl Plait {
     /// Runs `plait ARGS…` and returns its stdout; a failure carries stderr.
     pub fn run(&self, args: &[String]) -> Result<String, BookError> {
         let shown = format!("plait {}", args.join(" "));
+        // Renders take minutes in all on a software rasterizer: say each one,
+        // so the build is never silent for long.
+        if args.first().is_some_and(|a| a == "render") {
+            eprintln!("book: {shown}");
+        }
         let out = Command::new(&self.exe)
             .args(args)
             .current_dir(&self.repo)

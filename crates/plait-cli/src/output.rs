@@ -161,11 +161,24 @@ impl PendingFile {
 /// the system's reason, without the name of the temporary file (tempfile
 /// appends `at path "/proc/.plait-…"`, which the user never named).
 fn cannot_write(flag: &str, path: &Path, error: &std::io::Error) -> anyhow::Error {
-    anyhow::anyhow!(
-        "{flag} {}: cannot write the file: {}",
-        path.display(),
+    // The folder was checked to exist, so "not found" here means a folder
+    // that takes no new files (a virtual file system such as /proc or /sys);
+    // the system's bare "No such file or directory" would send the user
+    // looking for a missing folder.
+    let why = if error.kind() == std::io::ErrorKind::NotFound {
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        format!(
+            "the folder {} exists but takes no new files ({})",
+            dir.display(),
+            os_reason(error)
+        )
+    } else {
         os_reason(error)
-    )
+    };
+    anyhow::anyhow!("{flag} {}: cannot write the file: {why}", path.display())
 }
 
 /// The system's reason alone (`No such file or directory (os error 2)`).

@@ -1,6 +1,6 @@
 //! `plait check`, `plait graph`, `plait passes`: everything that needs no GPU.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
@@ -75,7 +75,7 @@ pub fn check(args: CheckArgs) -> Result<()> {
     }
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum GraphFormat {
     Dot,
     Svg,
@@ -87,8 +87,9 @@ pub struct GraphArgs {
     /// Pipeline file.
     pipeline: PathBuf,
     /// dot (Graphviz source), svg (a picture; no Graphviz needed), or text (the snapshot form).
-    #[arg(long, value_enum, default_value = "dot")]
-    format: GraphFormat,
+    /// Default: from --out's extension (.dot/.gv, .svg, .txt), else dot.
+    #[arg(long, value_enum)]
+    format: Option<GraphFormat>,
     /// Write to this file instead of standard output.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -99,7 +100,57 @@ pub struct GraphArgs {
     set: SetArgs,
 }
 
+/// The format `--format` names, or the one `--out`'s extension names; the
+/// two must agree, so `--out g.svg` never holds DOT.
+fn graph_format(format: Option<GraphFormat>, out: Option<&Path>) -> Result<GraphFormat> {
+    let ext = out
+        .and_then(|p| p.extension())
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let by_ext = match ext.as_deref() {
+        None => None,
+        Some("dot" | "gv") => Some(GraphFormat::Dot),
+        Some("svg") => Some(GraphFormat::Svg),
+        Some("txt" | "text") => Some(GraphFormat::Text),
+        Some(other) if format.is_none() => anyhow::bail!(
+            "--out {}: `.{other}` names no graph format; use .dot, .svg or .txt, or give --format dot|svg|text",
+            out.map_or(String::new(), |p| p.display().to_string())
+        ),
+        Some(_) => None,
+    };
+    match (format, by_ext) {
+        (Some(f), Some(e)) if f != e => anyhow::bail!(
+            "--format {} but --out {} names {} file; drop one or make them agree",
+            f.name(),
+            out.map_or(String::new(), |p| p.display().to_string()),
+            e.file_kind()
+        ),
+        (Some(f), _) => Ok(f),
+        (None, Some(e)) => Ok(e),
+        (None, None) => Ok(GraphFormat::Dot),
+    }
+}
+
+impl GraphFormat {
+    fn name(self) -> &'static str {
+        match self {
+            GraphFormat::Dot => "dot",
+            GraphFormat::Svg => "svg",
+            GraphFormat::Text => "text",
+        }
+    }
+
+    /// The kind of file, for a sentence.
+    fn file_kind(self) -> &'static str {
+        match self {
+            GraphFormat::Dot => "a DOT",
+            GraphFormat::Svg => "an SVG",
+            GraphFormat::Text => "a text",
+        }
+    }
+}
+
 pub fn graph(args: GraphArgs) -> Result<()> {
+    let format = graph_format(args.format, args.out.as_deref())?;
     let out = args
         .out
         .as_deref()
@@ -118,7 +169,7 @@ pub fn graph(args: GraphArgs) -> Result<()> {
             return Err(errors.into());
         }
     };
-    let text = match args.format {
+    let text = match format {
         GraphFormat::Dot => plait_graph::to_dot(&schedule),
         GraphFormat::Svg => plait_graph::to_svg(&schedule),
         GraphFormat::Text => plait_graph::schedule_text(&schedule),

@@ -235,10 +235,15 @@ fn render_once(args: &RenderArgs) -> Result<()> {
     if args.json {
         outln!(
             "{}",
-            serde_json::to_string_pretty(&report_json(&pipeline, &r, &out_path))?
+            serde_json::to_string_pretty(&report_json(
+                &pipeline,
+                args.scene.as_deref(),
+                &r,
+                &out_path
+            ))?
         )?;
     } else {
-        print_table(&pipeline, &r, &out_path, "frame")?;
+        print_table(&pipeline, args.scene.as_deref(), &r, &out_path, "frame")?;
     }
     Ok(())
 }
@@ -254,7 +259,12 @@ fn names(schedule: &Schedule, bindings: &[plait_graph::Binding]) -> Vec<String> 
         .collect()
 }
 
-pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Value {
+pub fn report_json(
+    pipeline: &Path,
+    scene: Option<&Path>,
+    r: &Rendered,
+    out: &Path,
+) -> serde_json::Value {
     let s = &r.schedule;
     let mut passes: Vec<serde_json::Value> = s
         .passes
@@ -294,6 +304,8 @@ pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Val
         .collect();
     serde_json::json!({
         "pipeline": pipeline.display().to_string(),
+        // `null` for the built-in default scene.
+        "scene": scene.map(|p| p.display().to_string()),
         "adapter": { "name": r.adapter, "backend": r.backend },
         "size": [r.image.width(), r.image.height()],
         "passes": passes,
@@ -307,6 +319,14 @@ pub fn report_json(pipeline: &Path, r: &Rendered, out: &Path) -> serde_json::Val
     })
 }
 
+/// The scene file as found on the search path, or the built-in one.
+pub fn scene_words(scene: Option<&Path>) -> String {
+    scene.map_or_else(
+        || "the built-in default (no --scene)".to_string(),
+        |p| p.display().to_string(),
+    )
+}
+
 fn ms(v: Option<f64>) -> String {
     v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "n/a".into())
 }
@@ -314,7 +334,13 @@ fn ms(v: Option<f64>) -> String {
 /// The per-pass table; `total` names the last row (`frame`, `median frame`).
 /// Its columns are as wide as their content ([`Table`]); a new section is a
 /// line before or after it.
-pub fn print_table(pipeline: &Path, r: &Rendered, out: &Path, total: &str) -> std::io::Result<()> {
+pub fn print_table(
+    pipeline: &Path,
+    scene: Option<&Path>,
+    r: &Rendered,
+    out: &Path,
+    total: &str,
+) -> std::io::Result<()> {
     let s = &r.schedule;
     outln!(
         "{} on {} ({}), {}x{}",
@@ -324,6 +350,7 @@ pub fn print_table(pipeline: &Path, r: &Rendered, out: &Path, total: &str) -> st
         r.image.width(),
         r.image.height()
     )?;
+    outln!("scene: {}", scene_words(scene))?;
     // The techniques in effect, `--set techniques.…` swaps included: the
     // file named above says only what it chooses itself.
     if !s.techniques.is_empty() {

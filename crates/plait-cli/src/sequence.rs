@@ -195,7 +195,13 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&json)?)?;
     } else {
-        crate::render_cmd::print_table(args.pipeline, &rendered, args.out, "median frame")?;
+        crate::render_cmd::print_table(
+            args.pipeline,
+            args.scene_path,
+            &rendered,
+            args.out,
+            "median frame",
+        )?;
         outln!(
             "GPU times are medians over {} frames at {} fps; {} … {} and animation.png in {}",
             args.frames,
@@ -215,7 +221,7 @@ fn sequence_json(
     median: &Rendered,
     reports: &[FrameReport],
 ) -> serde_json::Value {
-    let mut json = crate::render_cmd::report_json(args.pipeline, median, args.out);
+    let mut json = crate::render_cmd::report_json(args.pipeline, args.scene_path, median, args.out);
     let per_frame: Vec<serde_json::Value> = reports
         .iter()
         .enumerate()

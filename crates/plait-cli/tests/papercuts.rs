@@ -27,7 +27,12 @@ fn utf8(p: &Path) -> &str {
 #[test]
 fn an_unwritable_out_names_the_path_given() {
     let o = plait(&["render", "--out", "/proc/x.png"]);
-    let stderr = fails_with(&o, &["--out /proc/x.png: cannot write the file: "]);
+    let stderr = fails_with(
+        &o,
+        &[
+            "--out /proc/x.png: cannot write the file: the folder /proc exists but takes no new files",
+        ],
+    );
     assert!(!stderr.contains(".plait-"), "the temporary name: {stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     let o = plait(&["render", "--out", "/nonexistent-folder/x.png"]);
@@ -35,6 +40,43 @@ fn an_unwritable_out_names_the_path_given() {
         &o,
         &["--out /nonexistent-folder/x.png: no folder /nonexistent-folder"],
     );
+}
+
+/// `plait graph X --out g.svg` without `--format` wrote DOT into `g.svg`:
+/// the extension now picks the format, an extension naming none is an
+/// error at the flag, and a `--format` the extension contradicts too.
+#[test]
+fn graph_takes_its_format_from_out() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let svg = dir.path().join("g.svg");
+    let o = plait(&["graph", "pipelines/forward.toml", "--out", utf8(&svg)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&svg).expect("g.svg");
+    assert!(text.starts_with("<svg"), "{}", &text[..text.len().min(80)]);
+    let dot = dir.path().join("g.gv");
+    let o = plait(&["graph", "pipelines/forward.toml", "--out", utf8(&dot)]);
+    assert!(o.status.success());
+    assert!(
+        std::fs::read_to_string(&dot)
+            .expect("g.gv")
+            .starts_with("digraph")
+    );
+    let png = dir.path().join("g.png");
+    let o = plait(&["graph", "pipelines/forward.toml", "--out", utf8(&png)]);
+    fails_with(
+        &o,
+        &["`.png` names no graph format", "--format dot|svg|text"],
+    );
+    let o = plait(&[
+        "graph",
+        "pipelines/forward.toml",
+        "--format",
+        "dot",
+        "--out",
+        utf8(&svg),
+    ]);
+    fails_with(&o, &["--format dot but --out", "names an SVG file"]);
+    assert!(!png.exists(), "no file is written on an error");
 }
 
 /// One form for every input file that cannot be read: `PATH: cannot read file: …`.
@@ -193,6 +235,13 @@ fn the_render_table_holds_its_content_and_names_the_techniques() {
     assert!(o.status.success(), "{}", text(&o.stderr));
     assert!(
         stdout.contains("techniques: self_shadow/occupancy, transparency/weighted_average"),
+        "{stdout}"
+    );
+    // The table says which scene file it rendered (issue 41: it never did).
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.starts_with("scene: ") && l.ends_with("examples/scenes/small.toml")),
         "{stdout}"
     );
     let lines: Vec<&str> = stdout.lines().collect();
