@@ -236,6 +236,59 @@ size = [2, 2]
     );
 }
 
+/// Technique params share the pipeline's one `[params]` table: a second
+/// technique defining `flat_strength` would silently retune the first
+/// (issue 41: a new technique's `slabs = 9` changed occupancy's slab count,
+/// exit 0). Refused at the second definition, naming the first technique.
+#[test]
+fn two_techniques_defining_one_param_is_an_error() {
+    let pipeline = PIPELINE.replace(
+        "shading = \"flat\"",
+        "shading = \"flat\"\nlighting = \"sky\"",
+    );
+    let sky = r#"[technique]
+point = "lighting"
+description = "sky"
+
+[params]
+flat_strength = 9
+"#;
+    let t = Tree::new(&[
+        ("pipelines/p.toml", &pipeline),
+        ("techniques/shading/flat/technique.toml", FLAT),
+        ("techniques/lighting/sky/technique.toml", sky),
+    ]);
+    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
+    let text = e
+        .iter()
+        .map(|e| e.to_string())
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(
+        text.contains("params.flat_strength is defined by technique `shading/flat` too")
+            && text.contains("give this one a name of its own (e.g. `sky_flat_strength`)"),
+        "{text}"
+    );
+    assert!(
+        e.iter().any(|e| at(e) == ("technique.toml".into(), 6, 1)),
+        "{text}"
+    );
+    // The pipeline's own [params] still tunes a technique's param.
+    let tuned = PIPELINE.replace(
+        "[resources.out]",
+        "[params]\nflat_strength = 0.25\n\n[resources.out]",
+    );
+    let t = Tree::new(&[
+        ("pipelines/p.toml", &tuned),
+        ("techniques/shading/flat/technique.toml", FLAT),
+    ]);
+    let p = load(&t.path("pipelines/p.toml"), &[]).expect("loads");
+    assert_eq!(
+        p.passes["draw"].params["strength"].value.to_string(),
+        "0.25"
+    );
+}
+
 #[test]
 fn a_technique_in_the_wrong_folder_or_with_unknown_keys_is_an_error() {
     let wrong_point = FLAT.replace("point = \"shading\"", "point = \"lighting\"");

@@ -477,11 +477,15 @@ impl Chooser<'_> {
         (reads, params)
     }
 
-    /// Records the resources and passes technique `point/name` defines,
-    /// reporting any another technique defined first.
+    /// Records the params, resources and passes technique `point/name`
+    /// defines, reporting any another technique defined first.
     fn claim_names(&mut self, tree: &Spanned<Node>, point: &str, name: &str) {
-        // Two techniques may not define the same resource or pass.
-        for section in ["resources", "passes"] {
+        // Two techniques may not define the same param, resource or pass:
+        // they share the pipeline's one table of each, so the second would
+        // silently retune the first (a new technique's `slabs = 9` once
+        // changed occupancy's slab count, exit 0). The pipeline's own keys
+        // still tune any technique's.
+        for section in ["params", "resources", "passes"] {
             let Some(t) = table(tree, section) else {
                 continue;
             };
@@ -491,10 +495,17 @@ impl Chooser<'_> {
                     .iter()
                     .find(|(s, _, i)| s == section && i == item)
                 {
+                    let hint = if section == "params" {
+                        format!(
+                            "; technique params share the pipeline's [params] table, so give this one a name of its own (e.g. `{name}_{item}`)"
+                        )
+                    } else {
+                        String::new()
+                    };
                     self.errors.push(schema(
                         &e.key,
                         format!(
-                            "{section}.{item} is defined by technique `{other}` too: two techniques cannot define the same name"
+                            "{section}.{item} is defined by technique `{other}` too: two techniques cannot define the same name{hint}"
                         ),
                     ));
                 } else {
