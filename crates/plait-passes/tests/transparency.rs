@@ -2,10 +2,11 @@
 //! Sintorn & Assarsson 2009 §2.2, §3.4, Fig. 2), on the GPU at a small size:
 //!
 //! - `linked_list.toml` (fragment lists sorted exactly) equals
-//!   `depth_peeling.toml` within a mean absolute error of 0.03/255 and a 99th
-//!   percentile of 1/255 per channel of the 8-bit sRGB output — differences
-//!   come only from 16-bit colours in the list nodes vs. the rgba16float layer
-//!   target, and from fragments at exactly equal depth (peeling keeps one);
+//!   `depth_peeling.toml` within the agreement measured on the 8-bit sRGB
+//!   output (mean absolute error, values that differ, p99 ≤ 1/255), which
+//!   occupancy-order blending must not reach — differences come only from
+//!   16-bit colours in the list nodes vs. the rgba16float layer target, and
+//!   from fragments at exactly equal depth (peeling keeps one);
 //! - occupancy-order blending (`occupancy.toml`) is closer to depth peeling
 //!   than weighted average and no transparency (`opaque.toml`) — Fig. 2's
 //!   ordering — for translucent strands (strand alpha 0.4; `tests/claims.rs`
@@ -91,6 +92,47 @@ fn render_with(
     }
 }
 
+/// How closely the fragment lists sorted exactly match depth peeling, as
+/// measured on lavapipe (8-bit sRGB, 160×120, strand alpha 0.4): the mean
+/// absolute difference (of 255) and the number of channel values that
+/// differ at all; and p99 ≤ 1. They differ only in 16-bit list colours and
+/// fragments at exactly equal depth (peeling keeps one).
+struct Agreement {
+    mean: f64,
+    differing: usize,
+}
+
+impl Agreement {
+    /// Each limit reaches from the lists' measured value a third of the way
+    /// to occupancy-order blending's, the nearest other method — with
+    /// coverage the alphas are ~0.05 and order barely matters, so the two
+    /// are close: lists mean 0.0047 with 232 values differing, occupancy
+    /// 0.0072 with 375; without coverage lists 0.0093 / 402, occupancy
+    /// 0.0340 / 1505 (`cargo test -p plait-passes --test transparency --
+    /// --nocapture`). lavapipe renders bit for bit the same every run.
+    fn exact_blend(coverage: bool) -> Agreement {
+        if coverage {
+            Agreement {
+                mean: 0.0055,
+                differing: 280,
+            }
+        } else {
+            Agreement {
+                mean: 0.0175,
+                differing: 770,
+            }
+        }
+    }
+
+    fn holds(&self, d: &[u8]) -> bool {
+        mean(d) <= self.mean && differing(d) <= self.differing && percentile(d, 0.99) <= 1
+    }
+}
+
+fn differing(d: &[u8]) -> usize {
+    d.iter().filter(|&&x| x > 0).count()
+}
+
 /// Per-channel absolute differences of the RGB channels, sorted.
 fn differences(a: &Render, b: &Render) -> Vec<u8> {
     assert_eq!(a.pixels.len(), b.pixels.len());
@@ -151,18 +193,38 @@ fn methods_against_depth_peeling(gpu: &Gpu, alpha: f32, coverage: bool) {
         "the occlusion query should stop peeling before the cap"
     );
 
-    let lists = render(gpu, "linked_list.toml", alpha, coverage);
-    let d = differences(&lists, &peeled);
-    let (m, p99, max) = (mean(&d), percentile(&d, 0.99), d[d.len() - 1]);
-    eprintln!("linked_list vs depth_peeling: mean {m:.3}, p99 {p99}, max {max} (of 255)");
+    let lists = differences(&render(gpu, "linked_list.toml", alpha, coverage), &peeled);
+    let occupancy = differences(&render(gpu, "occupancy.toml", alpha, coverage), &peeled);
+    // The lists match peeling: within the measured agreement, which
+    // occupancy-order blending (the nearest other method) must not reach.
+    let same = Agreement::exact_blend(coverage);
+    for (name, d) in [("linked_list", &lists), ("occupancy", &occupancy)] {
+        eprintln!(
+            "coverage {coverage}: {name} vs depth_peeling: mean {:.4}, {} of {} channel values differ, p99 {}, max {} (of 255); as the lists: {}",
+            mean(d),
+            differing(d),
+            d.len(),
+            percentile(d, 0.99),
+            d[d.len() - 1],
+            same.holds(d)
+        );
+    }
     assert!(
-        // Measured: mean 0.009, p99 0, max 38 (a few pixels with fragments at
-        // equal depth, of which peeling keeps one): 3× the measured mean.
-        m <= 0.03 && p99 <= 1,
-        "fragment lists must match depth peeling: mean {m:.3}, p99 {p99}"
+        same.holds(&lists),
+        "fragment lists must match depth peeling (coverage {coverage}): mean {:.4} (≤ {}), {} values differ (≤ {}), p99 {}",
+        mean(&lists),
+        same.mean,
+        differing(&lists),
+        same.differing,
+        percentile(&lists, 0.99)
+    );
+    assert!(
+        !same.holds(&occupancy),
+        "occupancy-order blending passes as the fragment lists (coverage {coverage}): mean {:.4}, {} values differ",
+        mean(&occupancy),
+        differing(&occupancy)
     );
 
-    let occupancy = differences(&render(gpu, "occupancy.toml", alpha, coverage), &peeled);
     let opaque = differences(&render(gpu, "opaque.toml", alpha, coverage), &peeled);
     let weighted = differences(
         &render(gpu, "weighted_average.toml", alpha, coverage),
