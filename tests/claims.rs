@@ -11,7 +11,8 @@
 //! bit, `tests/determinism.rs`), and `scripts/test.sh` runs the GPU tests on
 //! lavapipe unless asked otherwise. Each band reaches from the measured
 //! value at most a third of the way to its nearest neighbour's, and at most
-//! 25% of the value.
+//! 25% of the value; the bands of the exact methods (occupancy's visibility
+//! on `small`, the fragment lists) start at 0.
 //!
 //! Like with like (docs/design.md, "In front of"): every provider and the
 //! reference are probed at the same points with the same light-map lookup
@@ -344,7 +345,7 @@ const BLENDING_CASES: [BlendingCase; 4] = [
         size: (128, 96),
         paper_strands: false,
         rmse: [
-            ("occupancy", 0.000845, (0.00063, 0.00106)),
+            ("occupancy", 0.000845, (0.00064, 0.00105)),
             ("weighted_average", 0.01196, (0.009, 0.0149)),
             ("opaque", 0.1660, (0.125, 0.207)),
         ],
@@ -358,7 +359,7 @@ const BLENDING_CASES: [BlendingCase; 4] = [
         rmse: [
             ("occupancy", 0.001700, (0.0014, 0.0021)),
             ("weighted_average", 0.02063, (0.0193, 0.0258)),
-            ("opaque", 0.04463, (0.0335, 0.0463)),
+            ("opaque", 0.04463, (0.0366, 0.0463)),
         ],
         ratios: [12.14, 26.25, 135.93, 163.90],
     },
@@ -368,7 +369,7 @@ const BLENDING_CASES: [BlendingCase; 4] = [
         size: (128, 96),
         paper_strands: true,
         rmse: [
-            ("occupancy", 0.003663, (0.0027, 0.0046)),
+            ("occupancy", 0.003663, (0.0028, 0.0045)),
             ("weighted_average", 0.04357, (0.0327, 0.0463)),
             ("opaque", 0.05187, (0.0491, 0.0648)),
         ],
@@ -392,8 +393,8 @@ fn every_transparency_technique_keeps_its_measured_error() {
         ("occupancy", 0.00170, (0.0014, 0.0021)),
         ("weighted_average", 0.02063, (0.0193, 0.0258)),
         ("alpha_to_coverage", 0.04979, (0.0481, 0.0622)),
-        ("opaque", 0.04463, (0.0335, 0.0463)),
-        ("linked_list", 0.000_740_7, (0.0, 0.001)),
+        ("opaque", 0.04463, (0.0366, 0.0463)),
+        ("linked_list", 0.000_740_7, (0.0, 0.00092)),
         // The 3 nearest fragments' colour, unordered (see the ShortCut test).
         ("shortcut", 0.01649, (0.0124, 0.0178)),
     ];
@@ -433,11 +434,11 @@ fn transparency_with_strand_coverage_keeps_its_measured_error() {
         ("occupancy", 0.00068, (0.00062, 0.00085)),
         ("weighted_average", 0.00340, (0.0026, 0.0042)),
         ("alpha_to_coverage", 0.05327, (0.040, 0.066)),
-        ("opaque", 0.12371, (0.093, 0.154)),
+        ("opaque", 0.12371, (0.101, 0.154)),
         ("linked_list", 0.000_497_5, (0.0, 0.00055)),
         // Behind weighted average here: with alphas ~0.1 the fragments behind
         // the 3rd carry most of the colour, and ShortCut drops it.
-        ("shortcut", 0.00841, (0.0063, 0.0105)),
+        ("shortcut", 0.00841, (0.0068, 0.0105)),
     ];
     let names: Vec<&str> = expected.iter().map(|e| e.0).collect();
     let errors = image_errors(
