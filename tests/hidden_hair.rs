@@ -6,6 +6,10 @@
 //! every map every pipeline builds, from the light and from the camera, and on
 //! both of the engine's paths (early depth test, and the in-shader test used
 //! where the adapter lacks `SHADER_EARLY_DEPTH_TEST`).
+//!
+//! Positive controls: the same strands moved out from behind the head change
+//! every map these tests compare, and compute_raster bins and draws them — so
+//! a depth test that let hidden hair through would be caught.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
