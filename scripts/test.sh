@@ -13,14 +13,41 @@ bash scripts/ensure-xvfb.sh
 # Headless Chromium for the book's browser check (crates/plait-cli/tests/book.rs).
 bash scripts/ensure-chromium.sh
 
-# Pin the tests to lavapipe when it is installed, as blade's CI does: the
-# golden images were made with it, and other ICDs on a GPU-less machine only
-# fail to enumerate. Set VK_ICD_FILENAMES yourself to test another driver.
-if [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}" ]; then
-    lvp=$(compgen -G "/usr/share/vulkan/icd.d/lvp_icd*.json" | head -n 1 || true)
-    if [ -n "$lvp" ]; then
-        export VK_ICD_FILENAMES="$lvp"
-    fi
+# The GPU tests run on lavapipe: the golden images, the claims' measured
+# bands and the loop budgets were made with it, and on another driver they
+# measure something else (the loop-budget tests assert nothing). So lavapipe
+# is pinned, and without it the tests are refused, unless you ask for another
+# driver: your own VK_ICD_FILENAMES / VK_DRIVER_FILES, or PLAIT_DRIVER=any
+# (whatever the Vulkan loader finds). PLAIT_ICD_DIRS replaces the ICD
+# directories searched (for testing this script).
+icd_dirs=${PLAIT_ICD_DIRS:-/usr/share/vulkan/icd.d /etc/vulkan/icd.d /usr/local/share/vulkan/icd.d}
+icds() { # every ICD file in the searched directories
+    local d
+    for d in $icd_dirs; do compgen -G "$d/*.json" || true; done
+}
+lvp=$(icds | grep '/lvp_icd[^/]*\.json$' | head -n 1 || true)
+if [ -n "${VK_ICD_FILENAMES:-}${VK_DRIVER_FILES:-}" ]; then
+    driver="${VK_ICD_FILENAMES:-${VK_DRIVER_FILES:-}} (set by VK_ICD_FILENAMES / VK_DRIVER_FILES)"
+elif [ -n "$lvp" ]; then
+    export VK_ICD_FILENAMES="$lvp"
+    driver="lavapipe, $lvp"
+elif [ "${PLAIT_DRIVER:-}" = any ]; then
+    driver="any (PLAIT_DRIVER=any), the loader picks from: $(icds | paste -sd ' ' -)"
+else
+    found=$(icds | paste -sd ' ' -)
+    echo "scripts/test.sh: lavapipe's Vulkan driver (lvp_icd*.json) is not installed;" \
+        "found: ${found:-no Vulkan driver} (in $icd_dirs)." >&2
+    echo "The GPU tests' goldens, bands and loop budgets are lavapipe's: install it" \
+        "(apt-get install -y mesa-vulkan-drivers), or ask for another driver with" \
+        "PLAIT_DRIVER=any or VK_ICD_FILENAMES=<icd.json>." >&2
+    exit 2
+fi
+echo "scripts/test.sh: Vulkan driver: $driver" >&2
+
+# A blessing run rewrites every golden image and snapshot it compares, and
+# passes: say so (CI clears PLAIT_BLESS, .ci/run).
+if [ -n "${PLAIT_BLESS:-}" ] && [ "${PLAIT_BLESS}" != 0 ]; then
+    echo "scripts/test.sh: PLAIT_BLESS=$PLAIT_BLESS: golden and snapshot tests rewrite their files instead of comparing" >&2
 fi
 
 # Without XDG_RUNTIME_DIR there is no Wayland display, yet Mesa's device-select

@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
+pub mod bands;
 pub mod golden_images;
 
 static GPU_LOCK: Mutex<()> = Mutex::new(());

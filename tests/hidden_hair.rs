@@ -6,6 +6,10 @@
 //! every map every pipeline builds, from the light and from the camera, and on
 //! both of the engine's paths (early depth test, and the in-shader test used
 //! where the adapter lacks `SHADER_EARLY_DEPTH_TEST`).
+//!
+//! Positive controls: the same strands moved out from behind the head change
+//! every map these tests compare, and compute_raster bins and draws them — so
+//! a depth test that let hidden hair through would be caught.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -47,14 +51,20 @@ fn small_mesh_head_scene() -> SceneData {
 /// origin): every fragment of them is behind the head's surface, from the
 /// light and from the camera.
 fn add_hidden_strands(strands: &mut plait_hair::Strands, count: usize) {
+    add_strands(strands, count, Vec3::ZERO);
+}
+
+/// [`add_hidden_strands`]'s strands, moved by `offset`.
+fn add_strands(strands: &mut plait_hair::Strands, count: usize, offset: Vec3) {
     for i in 0..count {
         let a = i as f32 * 2.399_963; // golden angle: spread without randomness
         let r = 0.15 + 0.3 * ((i * 7 % count) as f32 / count as f32);
-        let start = Vec3::new(
-            r * a.cos(),
-            0.4 * (i as f32 / count as f32) - 0.2,
-            r * a.sin(),
-        );
+        let start = offset
+            + Vec3::new(
+                r * a.cos(),
+                0.4 * (i as f32 / count as f32) - 0.2,
+                r * a.sin(),
+            );
         let points: Vec<Vec3> = (0..8)
             .map(|k| start + Vec3::new(0.03 * k as f32, -0.04 * k as f32, 0.02 * k as f32))
             .collect();
@@ -240,6 +250,66 @@ fn hidden_hair_leaves_every_map_as_if_it_were_absent() {
     );
 }
 
+/// The hidden strands moved out of the head: below it, inside the hanging
+/// groom's box (so the light and camera frame the same maps), where the head
+/// hides them neither from the light nor from the camera.
+const BELOW_THE_HEAD: Vec3 = Vec3::new(0.0, -1.5, 0.0);
+
+/// Maps that no hair changes at this size, by design: (pipeline, map).
+/// The exact reference's overflow counter stays 0 while its lists hold
+/// every fragment; depth peeling's layer target holds its last layer, which
+/// is empty when the occlusion query stops peeling.
+const UNCHANGED_BY_DESIGN: [(&str, &str); 2] = [
+    ("depth_peeling", "peel_layer"),
+    ("exact_shadow", "light_overflow"),
+];
+
+/// Positive control for the tests above: the same strands, placed where the
+/// head does not hide them, change every map those tests compare, on every
+/// hair pass any pipeline has — so each map would catch them if the depth
+/// test let hidden hair through.
+#[test]
+fn the_hidden_strands_register_when_nothing_hides_them() {
+    let (_lock, gpu) = open_gpu();
+    let visible = small_scene();
+    let mut shown = small_scene();
+    add_strands(
+        &mut shown.strands,
+        visible.strands.strand_count(),
+        BELOW_THE_HEAD,
+    );
+    assert_eq!(visible.strands.bounds(), shown.strands.bounds());
+    let mut unchanged = Vec::new();
+    let mut compared = 0;
+    for pipeline in pipelines_covering_every_hair_pass(&gpu) {
+        let a = render_maps(&gpu, &pipeline, &visible);
+        let b = render_maps(&gpu, &pipeline, &shown);
+        for ((name, wa), (_, wb)) in a.iter().zip(&b) {
+            compared += 1;
+            let differing = wa.iter().zip(wb).filter(|(x, y)| x != y).count();
+            println!(
+                "{}: `{name}`: {differing} of {} words change",
+                rel(&pipeline),
+                wa.len()
+            );
+            if wa == wb {
+                unchanged.push(format!("{}: `{name}`", rel(&pipeline)));
+            }
+        }
+    }
+    assert!(compared > 0, "no maps were compared");
+    // Either list out of date fails: a map that stopped registering hair, or
+    // an exception that now does.
+    let expected: Vec<String> = UNCHANGED_BY_DESIGN
+        .iter()
+        .map(|(pipeline, map)| format!("pipelines/{pipeline}.toml: `{map}`"))
+        .collect();
+    assert_eq!(
+        unchanged, expected,
+        "maps the visible strands leave unchanged (they cannot catch hidden hair)"
+    );
+}
+
 /// Hair that lies entirely behind the head leaves every storage map at zero.
 #[test]
 fn hair_entirely_behind_the_head_writes_no_map() {
@@ -311,6 +381,7 @@ fn hair_hidden_in_a_mesh_head_is_not_counted() {
 /// binned into any tile either (tile_depth's conservative cull), so it takes
 /// no tile capacity and is never counted as overflow — and is not drawn.
 /// The same for the quads of wisps (narrow ones, inside the head too).
+/// Positive control: the same strands below the head are binned and drawn.
 #[test]
 fn compute_raster_bins_no_hidden_hair() {
     let (_lock, gpu) = open_gpu();
@@ -319,6 +390,9 @@ fn compute_raster_bins_no_hidden_hair() {
     scene.strands = plait_hair::Strands::new();
     add_hidden_strands(&mut scene.strands, 200);
     scene.guides = plait_hair::guides::Guides::default();
+    let mut shown = scene.clone();
+    shown.strands = plait_hair::Strands::new();
+    add_strands(&mut shown.strands, 200, BELOW_THE_HEAD);
     let wisps = [
         "techniques.geometry=wisps",
         "params.wisp_width=0.02",
@@ -331,20 +405,35 @@ fn compute_raster_bins_no_hidden_hair() {
                 .to_string(),
         ];
         sets.extend(extra.iter().map(|s| s.to_string()));
-        let prepared = prepare(&gpu, &pipeline, &sets, &scene, SIZE)
-            .unwrap_or_else(|e| panic!("preparing compute_raster ({label}): {e}"));
-        prepared.renderer.render().expect("renders");
-        // Every word: each tile's count and first slot; what was dropped or
-        // needed and tile_blend's unfinished invocations.
-        for name in ["tile_ranges", "raster_counter"] {
-            let bytes = prepared.renderer.read_buffer(name).expect(name);
-            let binned = bytes.chunks_exact(4).filter(|w| w != &[0; 4]).count();
-            assert_eq!(binned, 0, "{label}: `{name}`: hidden hair was binned");
-        }
-        let hair = prepared.renderer.read_resource("hair").expect("hair").bytes;
+        let render = |scene: &SceneData| {
+            let prepared = prepare(&gpu, &pipeline, &sets, scene, SIZE)
+                .unwrap_or_else(|e| panic!("preparing compute_raster ({label}): {e}"));
+            prepared.renderer.render().expect("renders");
+            // Every word: each tile's count and first slot; what was dropped
+            // or needed and tile_blend's unfinished invocations.
+            let words = |name: &str| {
+                let bytes = prepared.renderer.read_buffer(name).expect(name);
+                bytes.chunks_exact(4).filter(|w| w != &[0; 4]).count()
+            };
+            let hair = prepared.renderer.read_resource("hair").expect("hair").bytes;
+            let drawn = hair.iter().filter(|&&b| b != 0).count();
+            (words("tile_ranges"), words("raster_counter"), drawn)
+        };
+        let (tiles, counter, drawn) = render(&scene);
+        assert_eq!(tiles, 0, "{label}: `tile_ranges`: hidden hair was binned");
+        assert_eq!(
+            counter, 0,
+            "{label}: `raster_counter`: hidden hair was binned"
+        );
+        assert_eq!(drawn, 0, "{label}: hidden hair was drawn");
+        let (tiles, counter, drawn) = render(&shown);
+        println!(
+            "{label} below the head: {tiles} tile_ranges words, {counter} raster_counter words, \
+             {drawn} hair bytes non-zero"
+        );
         assert!(
-            hair.iter().all(|&b| b == 0),
-            "{label}: hidden hair was drawn"
+            tiles > 0 && drawn > 0,
+            "{label}: the strands below the head were not binned ({tiles}) or drawn ({drawn})"
         );
     }
 }

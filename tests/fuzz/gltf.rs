@@ -38,11 +38,14 @@ fn fuzz_gltf_reader() {
         seeds.push(write::to_glb(&m));
     }
     let limits = Limits::DEFAULT;
-    // Measured: 7% accepted.
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 907 of 78,667 mutated inputs accepted (1.15%); 6,204 of
+    // 21,333 unmutated seeds. The floor is half the mutated fraction.
     fuzz(
         "gltf",
         100_000,
-        0.035,
+        0.0055,
+        &seeds,
         mutated(&seeds, GLTF_TOKENS),
         |bytes| {
             let Ok(mesh) = gltf::read_bytes(bytes, Path::new("x.glb"), &limits) else {

@@ -25,20 +25,29 @@ fn fuzz_hair_reader() {
     );
     varied.push_strand(&[glam::Vec3::ZERO; 3], |_| 2.0, |t| t, glam::Vec3::Z);
     seeds.push(varied.to_hair_file().expect("hair").to_bytes());
-    // Measured: 33% accepted.
-    fuzz("hair", 100_000, 0.16, mutated(&seeds, &[]), |bytes| {
-        if let Ok((file, _)) = HairFile::from_bytes(bytes) {
-            let written = file.to_bytes();
-            let again = HairFile::from_bytes(&written).map_err(|e| {
-                TestCaseError::fail(format!("written file does not read back: {e}"))
-            })?;
-            // Bytes, not values: NaN thickness is kept, and NaN != NaN.
-            prop_assert_eq!(again.0.to_bytes(), written);
-            let strands = Strands::from_hair_file(&file);
-            let _ = strands.to_hair_file();
-            let _ = TfxFile::from_strands(&strands, None);
-            return Ok(true);
-        }
-        Ok(false)
-    });
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 24,333 of 73,794 mutated inputs accepted (32.97%); 8,920
+    // of 26,206 unmutated seeds. The floor is half the mutated fraction.
+    fuzz(
+        "hair",
+        100_000,
+        0.16,
+        &seeds,
+        mutated(&seeds, &[]),
+        |bytes| {
+            if let Ok((file, _)) = HairFile::from_bytes(bytes) {
+                let written = file.to_bytes();
+                let again = HairFile::from_bytes(&written).map_err(|e| {
+                    TestCaseError::fail(format!("written file does not read back: {e}"))
+                })?;
+                // Bytes, not values: NaN thickness is kept, and NaN != NaN.
+                prop_assert_eq!(again.0.to_bytes(), written);
+                let strands = Strands::from_hair_file(&file);
+                let _ = strands.to_hair_file();
+                let _ = TfxFile::from_strands(&strands, None);
+                return Ok(true);
+            }
+            Ok(false)
+        },
+    );
 }

@@ -67,8 +67,10 @@ fn fuzz_pipeline_loader() {
         ..plait_graph::CompileOptions::default()
     };
     let mut checked = 0u32;
-    // Measured: 7.7% accepted.
-    fuzz("pipeline", 5_000, 0.035, strategy, |input| {
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 173 of 4,769 mutated inputs accepted (3.63%); 231 of 231
+    // unmutated seeds. The floor is half the mutated fraction.
+    fuzz("pipeline", 5_000, 0.018, &seeds, strategy, |input| {
         let mut parts = input.split(|&b| b == 0);
         let Ok(text) = std::str::from_utf8(parts.next().unwrap_or_default()) else {
             return Ok(false);

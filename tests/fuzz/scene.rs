@@ -24,11 +24,14 @@ fn fuzz_scene_loader() {
         guides.push_strand(&pts, |_| 1.0, |_| 1.0, glam::Vec3::ONE);
     }
     let path = repo_root().join("examples/scenes/fuzz.toml");
-    // Measured: 15.6% accepted.
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 1,450 of 35,118 mutated inputs accepted (4.13%); 4,882 of
+    // 4,882 unmutated seeds. The floor is half the mutated fraction.
     fuzz(
         "scene",
         40_000,
-        0.07,
+        0.02,
+        &seeds,
         mutated(&seeds, TOML_TOKENS),
         |bytes| {
             let Ok(text) = std::str::from_utf8(bytes) else {

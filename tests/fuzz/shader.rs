@@ -65,11 +65,14 @@ fn fuzz_shader_composer() {
         ("N".to_string(), plait_gpu::shader::Define::Int(3)),
     ];
     let path = PathBuf::from("shaders/fuzz.wgsl");
-    // Measured: 15.2% accepted.
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 102 of 2,637 mutated inputs accepted (3.87%); 337 of 363
+    // unmutated seeds. The floor is half the mutated fraction.
     fuzz(
         "shader",
         3_000,
-        0.07,
+        0.019,
+        &seeds,
         mutated(&seeds, WGSL_TOKENS),
         |bytes| {
             let Ok(source) = std::str::from_utf8(bytes) else {

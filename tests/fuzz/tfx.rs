@@ -38,28 +38,37 @@ fn fuzz_tfx_reader() {
         }
     }
     seeds.push(v3);
-    // Measured: 35% accepted.
-    fuzz("tfx", 100_000, 0.17, mutated(&seeds, &[]), |bytes| {
-        let mut accepted = false;
-        if let Ok((file, _)) = TfxFile::from_bytes(bytes) {
-            accepted = true;
-            let written = file
-                .to_bytes()
-                .map_err(|e| TestCaseError::fail(format!("read but not writable: {e}")))?;
-            let (again, _) = TfxFile::from_bytes(&written).map_err(|e| {
-                TestCaseError::fail(format!("written file does not read back: {e}"))
-            })?;
-            prop_assert_eq!(&again.positions, &file.positions);
-            prop_assert_eq!(&again.strand_thickness, &file.strand_thickness);
-            let strands = Strands::from(&file);
-            let _ = strands.to_hair_file();
-        }
-        // The same bytes under both names go through format detection.
-        for name in ["x.tfx", "x.hair", "x.bin"] {
-            if let Ok((asset, _)) = Asset::from_bytes(Path::new(name), bytes) {
-                let _ = asset.strands();
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 25,906 of 73,677 mutated inputs accepted (35.16%); 8,871
+    // of 26,323 unmutated seeds. The floor is half the mutated fraction.
+    fuzz(
+        "tfx",
+        100_000,
+        0.17,
+        &seeds,
+        mutated(&seeds, &[]),
+        |bytes| {
+            let mut accepted = false;
+            if let Ok((file, _)) = TfxFile::from_bytes(bytes) {
+                accepted = true;
+                let written = file
+                    .to_bytes()
+                    .map_err(|e| TestCaseError::fail(format!("read but not writable: {e}")))?;
+                let (again, _) = TfxFile::from_bytes(&written).map_err(|e| {
+                    TestCaseError::fail(format!("written file does not read back: {e}"))
+                })?;
+                prop_assert_eq!(&again.positions, &file.positions);
+                prop_assert_eq!(&again.strand_thickness, &file.strand_thickness);
+                let strands = Strands::from(&file);
+                let _ = strands.to_hair_file();
             }
-        }
-        Ok(accepted)
-    });
+            // The same bytes under both names go through format detection.
+            for name in ["x.tfx", "x.hair", "x.bin"] {
+                if let Ok((asset, _)) = Asset::from_bytes(Path::new(name), bytes) {
+                    let _ = asset.strands();
+                }
+            }
+            Ok(accepted)
+        },
+    );
 }

@@ -82,8 +82,10 @@ fn fuzz_usd_reader() {
     let mut seeds: Vec<Vec<u8>> = texts.iter().map(|t| t.clone().into_bytes()).collect();
     seeds.push(Vec::new());
     let strategy = mutated(&seeds, USDA_TOKENS);
-    // Measured: 9.7% accepted.
-    fuzz("usd", 40_000, 0.045, strategy, |input| {
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 276 of 32,677 mutated inputs accepted (0.84%); 3,910 of
+    // 7,323 unmutated seeds. The floor is half the mutated fraction.
+    fuzz("usd", 40_000, 0.004, &seeds, strategy, |input| {
         read_stage(input, "usda")
     });
 }

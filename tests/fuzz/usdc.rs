@@ -115,10 +115,13 @@ fn fuzz_usdc_reader() {
             "seed {i} reads"
         );
     }
+    let originals = seeds.clone();
     let strategy = (0..seeds.len(), vec(binary(), 1..6))
         .prop_map(move |(i, ms)| apply_binary(seeds[i].clone(), &ms));
-    // Measured: 5.0% accepted.
-    fuzz("usdc", 20_000, 0.025, strategy, |input| {
+    // Measured at the default seed (`cargo test -p plait-tests --test fuzz --
+    // --nocapture`): 786 of 19,764 mutated inputs accepted (3.98%); 236 of 236
+    // unmutated seeds. The floor is half the mutated fraction.
+    fuzz("usdc", 20_000, 0.019, &originals, strategy, |input| {
         read_stage(input, "usdc")
     });
 }
