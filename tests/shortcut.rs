@@ -113,7 +113,11 @@ const MIN_ALPHA: f32 = 0.02;
 /// (every fragment at the k-th depth counts: the depth test lets them all
 /// through), at the coverage 1 - Π(1-α) of every fragment. And that Σα.
 fn analytic(list: &[Fragment], k: usize) -> ([f64; 4], f64) {
-    let coverage = 1.0 - list.iter().map(|f| 1.0 - f64::from(f.alpha)).product::<f64>();
+    let coverage = 1.0
+        - list
+            .iter()
+            .map(|f| 1.0 - f64::from(f.alpha))
+            .product::<f64>();
     let kept: Vec<&Fragment> = list.iter().filter(|f| f.alpha >= MIN_ALPHA).collect();
     let Some(kth) = kept.get(k.min(kept.len()).wrapping_sub(1)) else {
         return ([0.0; 4], 0.0);
@@ -133,7 +137,9 @@ fn analytic(list: &[Fragment], k: usize) -> ([f64; 4], f64) {
 fn texels(bytes: &[u8]) -> Vec<[f64; 4]> {
     bytes
         .chunks_exact(8)
-        .map(|t| std::array::from_fn(|c| f64::from(half(u16::from_le_bytes([t[2 * c], t[2 * c + 1]])))))
+        .map(|t| {
+            std::array::from_fn(|c| f64::from(half(u16::from_le_bytes([t[2 * c], t[2 * c + 1]]))))
+        })
         .collect()
 }
 
@@ -233,8 +239,12 @@ color = [0.0, 0.0, 0.0]
     data.strands = plait_hair::Strands::new();
     for &(distance, half, alpha, color) in &STACK {
         let z = 5.0 - distance;
-        let ends = [glam::Vec3::new(-half, 0.0, z), glam::Vec3::new(half, 0.0, z)];
-        data.strands.push_strand(&ends, |_| 0.01, |_| alpha, glam::Vec3::from(color));
+        let ends = [
+            glam::Vec3::new(-half, 0.0, z),
+            glam::Vec3::new(half, 0.0, z),
+        ];
+        data.strands
+            .push_strand(&ends, |_| 0.01, |_| alpha, glam::Vec3::from(color));
     }
     data
 }
@@ -257,7 +267,11 @@ fn shortcut_is_the_k_nearest_average_on_a_hand_built_stack() {
         if list.is_empty() {
             continue;
         }
-        assert_eq!(p / STACK_SIZE.0 as usize, row, "a fragment off the middle row at pixel {p}");
+        assert_eq!(
+            p / STACK_SIZE.0 as usize,
+            row,
+            "a fragment off the middle row at pixel {p}"
+        );
         depths_seen.insert(list.len());
         // The farthest n strands (sorted: two of them share a depth).
         let mut want: Vec<f32> = STACK.iter().map(|s| s.2).rev().take(list.len()).collect();
@@ -265,7 +279,10 @@ fn shortcut_is_the_k_nearest_average_on_a_hand_built_stack() {
         want.sort_by(f32::total_cmp);
         got.sort_by(f32::total_cmp);
         for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).abs() < 1e-3, "pixel {p}: alphas {got:?}, built {want:?}");
+            assert!(
+                (g - w).abs() < 1e-3,
+                "pixel {p}: alphas {got:?}, built {want:?}"
+            );
         }
     }
     assert!(
@@ -275,7 +292,8 @@ fn shortcut_is_the_k_nearest_average_on_a_hand_built_stack() {
     const TOLERANCE: f64 = 0.01;
     let mut failures = Vec::new();
     for k in 1..=8 {
-        let (err, p, n, got, want) = worst_pixel(&lists, &shortcut_hair(&gpu, &scene, STACK_SIZE, k, &off), k);
+        let (err, p, n, got, want) =
+            worst_pixel(&lists, &shortcut_hair(&gpu, &scene, STACK_SIZE, k, &off), k);
         let line = format!(
             "k={k}: worst pixel ({}, {}) n={n}: error {err:.5}; rgb·c, c, Σα {got:.4?}, analytic {want:.4?}",
             p % STACK_SIZE.0 as usize,
@@ -286,7 +304,11 @@ fn shortcut_is_the_k_nearest_average_on_a_hand_built_stack() {
             failures.push(line);
         }
     }
-    assert!(failures.is_empty(), "beyond {TOLERANCE}:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "beyond {TOLERANCE}:\n{}",
+        failures.join("\n")
+    );
 }
 
 /// Premultiplied hair colour of a sorted list blended front to back.
@@ -312,12 +334,22 @@ fn weighted_average(list: &[Fragment]) -> [f64; 4] {
         return [0.0; 4];
     }
     let coverage = 1.0 - (1.0 - sum / n).powf(n);
-    let s = |c: usize| list.iter().map(|f| f64::from(f.alpha * f.rgb[c])).sum::<f64>() / sum * coverage;
+    let s = |c: usize| {
+        list.iter()
+            .map(|f| f64::from(f.alpha * f.rgb[c]))
+            .sum::<f64>()
+            / sum
+            * coverage
+    };
     [s(0), s(1), s(2), coverage]
 }
 
 /// RMSE over `pixels` of a blend's premultiplied rgb against the exact one.
-fn rmse_to_exact(lists: &[Vec<Fragment>], pixels: &[usize], blend: impl Fn(&[Fragment]) -> [f64; 4]) -> f64 {
+fn rmse_to_exact(
+    lists: &[Vec<Fragment>],
+    pixels: &[usize],
+    blend: impl Fn(&[Fragment]) -> [f64; 4],
+) -> f64 {
     let sum: f64 = pixels
         .iter()
         .map(|&p| {
@@ -346,20 +378,32 @@ fn on_small_shortcut_is_its_definition_and_the_definition_is_behind_weighted_ave
         p % size.0 as usize,
         p / size.0 as usize
     );
-    assert!(err < 0.01, "ShortCut differs from its definition by {err:.5}");
+    assert!(
+        err < 0.01,
+        "ShortCut differs from its definition by {err:.5}"
+    );
 
     // Sides: the quarter of the hair's width at either edge.
     let hair: Vec<usize> = (0..lists.len()).filter(|&p| !lists[p].is_empty()).collect();
     let x = |p: usize| p as u32 % size.0;
-    let (x0, x1) = (hair.iter().map(|&p| x(p)).min().unwrap(), hair.iter().map(|&p| x(p)).max().unwrap());
+    let (x0, x1) = (
+        hair.iter().map(|&p| x(p)).min().unwrap(),
+        hair.iter().map(|&p| x(p)).max().unwrap(),
+    );
     let quarter = (x1 - x0) / 4;
-    let (sides, middle): (Vec<usize>, Vec<usize>) =
-        hair.iter().partition(|&&p| x(p) < x0 + quarter || x(p) > x1 - quarter);
+    let (sides, middle): (Vec<usize>, Vec<usize>) = hair
+        .iter()
+        .partition(|&&p| x(p) < x0 + quarter || x(p) > x1 - quarter);
     let mut rows = Vec::new();
     for (label, pixels) in [("all", &hair), ("sides", &sides), ("middle", &middle)] {
         let wa = rmse_to_exact(&lists, pixels, weighted_average);
-        let sc: Vec<f64> = (1..=8).map(|k| rmse_to_exact(&lists, pixels, |l| analytic(l, k).0)).collect();
-        eprintln!("{label} ({} px): RMSE to exact, weighted average {wa:.5}, ShortCut k=1…8 {sc:.5?}", pixels.len());
+        let sc: Vec<f64> = (1..=8)
+            .map(|k| rmse_to_exact(&lists, pixels, |l| analytic(l, k).0))
+            .collect();
+        eprintln!(
+            "{label} ({} px): RMSE to exact, weighted average {wa:.5}, ShortCut k=1…8 {sc:.5?}",
+            pixels.len()
+        );
         rows.push((wa, sc));
     }
     // Why, where n > 3 at the sides: each method gives fragment i a share
@@ -367,7 +411,11 @@ fn on_small_shortcut_is_its_definition_and_the_definition_is_behind_weighted_ave
     // ShortCut α_i for the 3 nearest and 0 behind (each normalised to sum
     // to 1) — and its error is the colour's variation along the stack
     // seen through the distance of its shares from exact's.
-    let deep: Vec<&Vec<Fragment>> = sides.iter().map(|&p| &lists[p]).filter(|l| l.len() > 3).collect();
+    let deep: Vec<&Vec<Fragment>> = sides
+        .iter()
+        .map(|&p| &lists[p])
+        .filter(|l| l.len() > 3)
+        .collect();
     let shares = |l: &[Fragment], method: usize| -> Vec<f64> {
         let mut t = 1.0f64;
         let w: Vec<f64> = l
@@ -378,7 +426,13 @@ fn on_small_shortcut_is_its_definition_and_the_definition_is_behind_weighted_ave
                 let w = match method {
                     0 => t * a,
                     1 => a,
-                    _ => if i < 3 { a } else { 0.0 },
+                    _ => {
+                        if i < 3 {
+                            a
+                        } else {
+                            0.0
+                        }
+                    }
                 };
                 t *= 1.0 - a;
                 w
@@ -391,14 +445,26 @@ fn on_small_shortcut_is_its_definition_and_the_definition_is_behind_weighted_ave
         deep.iter()
             .map(|l| {
                 let (e, m) = (shares(l, 0), shares(l, method));
-                e.iter().zip(&m).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt()
+                e.iter()
+                    .zip(&m)
+                    .map(|(a, b)| (a - b).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
             })
             .sum::<f64>()
             / deep.len() as f64
     };
-    let front_share = deep.iter().map(|l| shares(l, 0)[..3].iter().sum::<f64>()).sum::<f64>() / deep.len() as f64;
+    let front_share = deep
+        .iter()
+        .map(|l| shares(l, 0)[..3].iter().sum::<f64>())
+        .sum::<f64>()
+        / deep.len() as f64;
     let mean_n = deep.iter().map(|l| l.len()).sum::<usize>() as f64 / deep.len() as f64;
-    let mean_alpha = deep.iter().flat_map(|l| l.iter()).map(|f| f64::from(f.alpha)).sum::<f64>()
+    let mean_alpha = deep
+        .iter()
+        .flat_map(|l| l.iter())
+        .map(|f| f64::from(f.alpha))
+        .sum::<f64>()
         / deep.iter().map(|l| l.len()).sum::<usize>() as f64;
     eprintln!(
         "sides, {} pixels with n > 3 (mean n {mean_n:.2}, mean α {mean_alpha:.3}): the 3 nearest carry \
@@ -409,5 +475,34 @@ fn on_small_shortcut_is_its_definition_and_the_definition_is_behind_weighted_ave
         distance(2)
     );
     let (wa, sc) = &rows[0];
-    assert!(sc[2] > *wa, "ShortCut k=3 ({:.5}) is no longer behind weighted average ({wa:.5})", sc[2]);
+    assert!(
+        sc[2] > *wa,
+        "ShortCut k=3 ({:.5}) is no longer behind weighted average ({wa:.5})",
+        sc[2]
+    );
+}
+
+/// A measurement for the book (`cargo test -p plait-tests --test shortcut
+/// fragments_shaded -- --ignored --nocapture`), not a check: per scene at
+/// 160×120, the hair fragments both ShortCut draws rasterize (every visible
+/// one, n per pixel) and the share its second draw shades (min(n, 3)).
+#[test]
+#[ignore = "a measurement: run it by name with --ignored"]
+fn fragments_shaded_by_the_fill_pass() {
+    let (_lock, gpu) = open_gpu();
+    for name in ["small", "stray", "dense"] {
+        let scene = SceneData::load(Some(
+            &repo_root().join(format!("examples/scenes/{name}.toml")),
+        ))
+        .expect("the scene loads");
+        let lists = fragment_lists(&gpu, &scene, (160, 120), &[]);
+        let all: usize = lists.iter().map(Vec::len).sum();
+        let shaded: usize = lists.iter().map(|l| l.len().min(3)).sum();
+        let pixels = lists.iter().filter(|l| !l.is_empty()).count();
+        eprintln!(
+            "{name}: {all} fragments over {pixels} hair pixels (mean n {:.2}); the fill pass shades {shaded} ({:.1}%)",
+            all as f64 / pixels as f64,
+            100.0 * shaded as f64 / all as f64
+        );
+    }
 }
