@@ -476,6 +476,21 @@ fn on_small_shortcut_is_its_definition_and_the_definition_is_behind_weighted_ave
         share_distance(&deep, Shares::WeightedAverage),
         share_distance(&deep, Shares::ShortCut)
     );
+    // Every fragment's colour at the exact coverage (k = ∞: weighted
+    // average's colour, ShortCut's coverage), and weighted average's colour
+    // less the exact blend's (mean luma over every hair pixel): whether its
+    // coverage, too low by Jensen, hides a colour error.
+    let every = rmse_to_exact(&lists, &all, |l| analytic(l, usize::MAX).0);
+    let luma = |c: [f64; 4]| (c[0] + c[1] + c[2]) / 3.0 / c[3].max(1e-9);
+    let bias = all
+        .iter()
+        .map(|&p| luma(analytic(&lists[p], usize::MAX).0) - luma(exact(&lists[p])))
+        .sum::<f64>()
+        / all.len() as f64;
+    eprintln!(
+        "all: every fragment's colour at the exact coverage {every:.5}; weighted average's colour \
+         less the exact blend's, mean luma {bias:.4}"
+    );
     let (wa, sc) = &rows[0];
     assert!(
         sc[2] > *wa,
