@@ -309,13 +309,13 @@ fn is_constant(f: &naga::Function, e: naga::Handle<naga::Expression>) -> bool {
     }
 }
 
-/// Whether the last component (w) of the vec4 expression `e` is constant.
-fn w_is_constant(f: &naga::Function, e: naga::Handle<naga::Expression>) -> bool {
+/// The expression of the last component (w) of the vec4 expression `e`.
+fn w_of(f: &naga::Function, e: naga::Handle<naga::Expression>) -> naga::Handle<naga::Expression> {
     match &f.expressions[e] {
-        naga::Expression::Compose { components, .. } => components
-            .last()
-            .is_some_and(|&last| w_is_constant(f, last)),
-        _ => is_constant(f, e),
+        naga::Expression::Compose { components, .. } if !components.is_empty() => {
+            w_of(f, components[components.len() - 1])
+        }
+        _ => e,
     }
 }
 
@@ -381,10 +381,11 @@ fn every_shading_space_providers_w_is_a_constant() {
         );
         for value in values {
             let value = value.unwrap_or_else(|| panic!("{name}: a return without a value"));
+            let w = w_of(f, value);
             assert!(
-                w_is_constant(f, value),
-                "shading_space provider `{name}`: strand_radiance's w is computed ({:?}); it must be a constant",
-                f.expressions[value]
+                is_constant(f, w),
+                "shading_space provider `{name}`: strand_radiance's w is computed at run time ({:?}); it must be a constant",
+                f.expressions[w]
             );
         }
     }
