@@ -1,13 +1,14 @@
 //! Strand-space shading (`techniques.shading_space = "strand"`, Tafuri 2019):
 //! a golden image on the small scene that the per-fragment image cannot pass
 //! for, the limit case K = the strand's points held close to per-fragment
-//! shading, and the shading-point count checked against the scene.
+//! shading, the shading-point count checked against the scene, tip fading,
+//! and every provider's w a constant (what keeps strand space a saving).
 
 use std::sync::MutexGuard;
 
 use image::RgbaImage;
 use plait::session::{SceneData, prepare};
-use plait_gpu::Gpu;
+use plait_gpu::{Gpu, ShaderLibrary};
 use plait_tests::golden_images::{check_golden, check_no_hair, compare};
 use plait_tests::{open_gpu, repo_root};
 
@@ -294,5 +295,98 @@ fn tip_fading_out_of_range_is_an_error_naming_the_param_and_flag() {
             message.contains(&format!("--set {set}")) && message.contains(&format!("`{param}`")),
             "{set}: {message}"
         );
+    }
+}
+
+/// Whether expression `e` of `f` is known when the shader is compiled.
+fn is_constant(f: &naga::Function, e: naga::Handle<naga::Expression>) -> bool {
+    use naga::Expression as E;
+    match &f.expressions[e] {
+        E::Literal(_) | E::Constant(_) | E::ZeroValue(_) => true,
+        E::Compose { components, .. } => components.iter().all(|&c| is_constant(f, c)),
+        E::Splat { value, .. } | E::Unary { expr: value, .. } => is_constant(f, *value),
+        _ => false,
+    }
+}
+
+/// The expression of the last component (w) of the vec4 expression `e`.
+fn w_of(f: &naga::Function, e: naga::Handle<naga::Expression>) -> naga::Handle<naga::Expression> {
+    match &f.expressions[e] {
+        naga::Expression::Compose { components, .. } if !components.is_empty() => {
+            w_of(f, components[components.len() - 1])
+        }
+        _ => e,
+    }
+}
+
+/// Every value a block of `f` returns, nested blocks included.
+fn returns(block: &naga::Block, out: &mut Vec<Option<naga::Handle<naga::Expression>>>) {
+    for statement in block.iter() {
+        match statement {
+            naga::Statement::Return { value } => out.push(*value),
+            naga::Statement::Block(b) => returns(b, out),
+            naga::Statement::If { accept, reject, .. } => {
+                returns(accept, out);
+                returns(reject, out);
+            }
+            naga::Statement::Loop {
+                body, continuing, ..
+            } => {
+                returns(body, out);
+                returns(continuing, out);
+            }
+            naga::Statement::Switch { cases, .. } => {
+                cases.iter().for_each(|c| returns(&c.body, out))
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Every shading_space provider returns a constant w. The hair draws branch
+/// on it (shade here when w < 0, else take the provider's rgb), and only a
+/// branch the compiler decides drops the path not taken: llvmpipe runs both
+/// sides of any other, so when w carried the tip fading, strand space cost
+/// per-fragment shading plus its interpolation — slower than per-fragment
+/// shading instead of a saving (measured side by side with `plait ab`,
+/// docs/design.md "The fragment stage asks first"). A provider computing w
+/// fails here, naming it.
+#[test]
+fn every_shading_space_providers_w_is_a_constant() {
+    let mut library = ShaderLibrary::new().unwrap_or_else(|e| panic!("{}", e.message));
+    let providers = plait_passes::shading_space::providers();
+    assert!(providers.len() >= 2, "providers found: {providers:?}");
+    for name in &providers {
+        let probe = format!(
+            "#import plait::shading_space::{name}::strand_radiance\n\
+             fn probe(s: u32, g: u32, a: f32) -> vec4<f32> {{ return strand_radiance(s, g, a); }}\n"
+        );
+        let module = library
+            .compose(std::path::Path::new("probe.wgsl"), &probe, &[])
+            .unwrap_or_else(|e| panic!("{name}: {}", e.message));
+        let (_, f) = module
+            .functions
+            .iter()
+            .find(|(_, f)| {
+                f.name
+                    .as_deref()
+                    .is_some_and(|n| n.starts_with("strand_radiance"))
+            })
+            .unwrap_or_else(|| panic!("{name}: no strand_radiance in the composed module"));
+        let mut values = Vec::new();
+        returns(&f.body, &mut values);
+        assert!(
+            !values.is_empty(),
+            "{name}: strand_radiance returns nothing"
+        );
+        for value in values {
+            let value = value.unwrap_or_else(|| panic!("{name}: a return without a value"));
+            let w = w_of(f, value);
+            assert!(
+                is_constant(f, w),
+                "shading_space provider `{name}`: strand_radiance's w is computed at run time ({:?}); it must be a constant",
+                f.expressions[w]
+            );
+        }
     }
 }

@@ -102,8 +102,9 @@ fn hair_vertex(v: HairVertex) -> HairVaryings {
 fn shade_hair(in: HairVaryings) -> HairFragment {
     let texel = strand_lod_texel(in.wisp);
     // Strand space: the radiance a compute pass shaded along the strand this
-    // frame, interpolated; w < 0 when the colour is shaded here (w ≥ 0 is
-    // the tip fading, already in the vertex alpha: strand_tip_scale). A wisp
+    // frame, interpolated; w < 0 when the colour is shaded here. w is a
+    // constant of the provider, so this branch is compiled out (a computed
+    // w kept both paths, and llvmpipe runs both sides of a branch). A wisp
     // fragment reads it where the hair vertex it stands for lies (the strand
     // the wisp follows), scaled by the strand texture's brightness — which
     // the per-fragment path puts into the albedo instead: the two agree on

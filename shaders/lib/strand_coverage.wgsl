@@ -6,7 +6,12 @@
 #define_import_path plait::strand_coverage
 
 #import plait::frame::frame
-#import plait::shading_space::strand_space_radiance
+// Tip fading is strand space's own (as the wisps' texture is geometry =
+// wisps', plait::strand_lod): the shading_space contract answers where the
+// colour is shaded with a constant w, so the fading cannot ride on it.
+#ifdef SHADING_SPACE_STRAND
+#import plait::shading_space::strand::strand_tip
+#endif
 
 // The fraction of a pixel's width a strand of `thickness` (world units, its
 // diameter) at `world` along `tangent` covers: its width across the view,
@@ -35,12 +40,14 @@ fn strand_coverage(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 
 
 // The strand's tip fading at a place along it (strand `strand`, hair vertex
 // `segment`, `along` past it): the scale on its width, hence on its
-// coverage, that the shading_space provider gives there (w ≥ 0; strand
-// space's `tip_scale`), 1 where the provider shades per fragment (w < 0).
-// Every hair draw scales its vertices' coverage by it — the shaded draws,
-// the mean alpha (alpha_sum) and the compute rasterizer — so a faded tip
-// hides what it shows.
+// coverage — strand space's `tip_scale` there, 1 for every other
+// shading_space. Every hair draw scales its vertices' coverage by it — the
+// shaded draws, the mean alpha (alpha_sum) and the compute rasterizer — so a
+// faded tip hides what it shows.
 fn strand_tip_scale(strand: u32, segment: u32, along: f32) -> f32 {
-    let w = strand_space_radiance(strand, segment, along).w;
-    return select(1.0, w, w >= 0.0);
+#ifdef SHADING_SPACE_STRAND
+    return strand_tip(strand, segment, along);
+#else
+    return 1.0;
+#endif
 }

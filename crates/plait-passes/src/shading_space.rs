@@ -1,8 +1,10 @@
 //! Shading-space providers: every `shading_space` technique answers
 //! `strand_radiance(strand, segment, along) -> vec4` in the hair fragment
-//! stage: a radiance shaded elsewhere this frame (w ≥ 0, the strand's tip
-//! fading there, which every hair draw's vertex coverage takes) or "shade
-//! this fragment" (w < 0; `fragment`, the default). Its uniform is
+//! stage: a radiance shaded elsewhere this frame (w ≥ 0) or "shade this
+//! fragment" (w < 0; `fragment`, the default), w a constant of the provider
+//! so the hair draws' branch on it is compiled out. Strand space's tip
+//! fading, which every hair draw's vertex coverage takes, is its own
+//! `strand_tip` (`plait::strand_coverage`). Its uniform is
 //! `shading_space_params` (binding 50), its resources bind at 51–54 through
 //! the optional slots below.
 //!

@@ -269,7 +269,8 @@ fn shade_wisp(k: u32, u: f32, along: f32) -> vec4<f32> {
         return vec4<f32>(0.0);
     }
     let points = chunk_point[k];
-    // w ≥ 0: shaded in strand space (its tip fading is in chunk_alpha).
+    // w ≥ 0: shaded in strand space (its tip fading is in chunk_alpha); a
+    // constant of the provider, so the other path is compiled out.
     let shaded = strand_space_radiance(chunk_strand[k], chunk_first[k], mix(points.x, points.y, along));
     if (shaded.w >= 0.0) {
         return vec4<f32>(shaded.rgb * texel.rgb, alpha);
@@ -300,7 +301,8 @@ fn shade_segment(k: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec
     let i1 = i0 + 1u;
     let ends = chunk_alpha[k];
     let alpha = clamp(mix(ends.x, ends.y, along) * frame.hair_color.a, 0.0, 1.0) * weight;
-    // w ≥ 0: shaded in strand space (its tip fading is in chunk_alpha).
+    // w ≥ 0: shaded in strand space (its tip fading is in chunk_alpha); a
+    // constant of the provider, so the other path is compiled out.
     let shaded = strand_space_radiance(chunk_strand[k], i0, along);
     if (shaded.w >= 0.0) {
         return vec4<f32>(shaded.rgb, alpha);
