@@ -121,6 +121,7 @@ pub fn build(opts: &Options) -> Result<Built, BookError> {
         });
     }
     fill_summary(&src, &technique_toc, &pipeline_toc)?;
+    fill_choice_points(&src, &catalog)?;
     write_published(&opts.repo, &src)?;
     fill_default_frame(&src, &opts.stage, &plait)?;
     run_mdbook(&opts.stage, &opts.out)?;
@@ -174,6 +175,48 @@ fn fill_summary(src: &Path, techniques: &str, pipelines: &str) -> Result<(), Boo
         out = out.replace(marker, toc.trim_end());
     }
     write(&path, &out)
+}
+
+/// The guide page whose list of choice points and techniques is generated.
+pub const CHOICE_POINTS_PAGE: &str = "guide/techniques.md";
+const CHOICE_POINTS_MARKER: &str = "<!-- generated:choice-points -->";
+
+/// Puts the table of every choice point and its techniques at its marker,
+/// from the catalog: a hand-kept list drifted (it once left out
+/// `compute_raster`).
+fn fill_choice_points(
+    src: &Path,
+    catalog: &[plait_graph::techniques::TechniqueInfo],
+) -> Result<(), BookError> {
+    let path = src.join(CHOICE_POINTS_PAGE);
+    let text = std::fs::read_to_string(&path).map_err(BookError::io(&path))?;
+    if !text.contains(CHOICE_POINTS_MARKER) {
+        return Err(BookError::content(
+            &path,
+            format!("no `{CHOICE_POINTS_MARKER}` line"),
+        ));
+    }
+    let mut table = String::from("| choice point | techniques |\n|---|---|\n");
+    let mut points: Vec<&str> = catalog.iter().map(|t| t.point.as_str()).collect();
+    points.dedup();
+    for point in points {
+        let names: Vec<String> = catalog
+            .iter()
+            .filter(|t| t.point == point)
+            .map(|t| {
+                format!(
+                    "[`{}`](../{})",
+                    t.name,
+                    technique_page::page_path(point, &t.name)
+                )
+            })
+            .collect();
+        table.push_str(&format!(
+            "| [`{point}`](../techniques/{point}.md) | {} |\n",
+            names.join(" · ")
+        ));
+    }
+    write(&path, &text.replace(CHOICE_POINTS_MARKER, table.trim_end()))
 }
 
 /// The generated page of published figures (`published::stale::page`); the

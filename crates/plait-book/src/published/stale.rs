@@ -112,13 +112,14 @@ pub fn page(repo: &Path) -> Result<String, BookError> {
                     + if n > 3 { ", …" } else { "" }
             ),
         };
+        let at = if f.commit.is_empty() {
+            "—".to_string()
+        } else {
+            format!("`{}`", &f.commit[..f.commit.len().min(10)])
+        };
         md.push_str(&format!(
-            "| `{}` | {} | `{}` | {} | {} |\n",
-            f.id,
-            f.page,
-            &f.commit[..f.commit.len().min(10)],
-            f.date,
-            changed
+            "| `{}` | {} | {at} | {} | {} |\n",
+            f.id, f.page, f.date, changed
         ));
     }
     md.push_str("\nThe commands, one per figure:\n\n");
