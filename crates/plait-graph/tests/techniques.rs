@@ -200,25 +200,18 @@ fn using_a_point_nobody_chose_is_an_error() {
     assert!(e[0].to_string().contains("chosen: shading"), "{}", e[0]);
 }
 
-#[test]
-fn two_techniques_defining_one_name_is_an_error() {
+/// The errors of choosing `flat` for shading beside a lighting technique
+/// `sky` whose file ends with `sky_data`, and their text joined.
+fn beside_a_sky(sky_data: &str) -> (Vec<Error>, String) {
     let pipeline = PIPELINE.replace(
         "shading = \"flat\"",
         "shading = \"flat\"\nlighting = \"sky\"",
     );
-    let sky = r#"[technique]
-point = "lighting"
-description = "sky"
-
-[resources.flat_lut]
-kind = "texture"
-format = "rgba8unorm"
-size = [2, 2]
-"#;
+    let sky = format!("[technique]\npoint = \"lighting\"\ndescription = \"sky\"\n\n{sky_data}");
     let t = Tree::new(&[
         ("pipelines/p.toml", &pipeline),
         ("techniques/shading/flat/technique.toml", FLAT),
-        ("techniques/lighting/sky/technique.toml", sky),
+        ("techniques/lighting/sky/technique.toml", &sky),
     ]);
     let e = errors_of(&t.path("pipelines/p.toml"), &[]);
     let text = e
@@ -226,6 +219,14 @@ size = [2, 2]
         .map(|e| e.to_string())
         .collect::<Vec<_>>()
         .join("\n");
+    (e, text)
+}
+
+#[test]
+fn two_techniques_defining_one_name_is_an_error() {
+    let (e, text) = beside_a_sky(
+        "[resources.flat_lut]\nkind = \"texture\"\nformat = \"rgba8unorm\"\nsize = [2, 2]\n",
+    );
     assert!(
         text.contains("resources.flat_lut is defined by technique `shading/flat` too"),
         "{text}"
@@ -242,28 +243,7 @@ size = [2, 2]
 /// exit 0). Refused at the second definition, naming the first technique.
 #[test]
 fn two_techniques_defining_one_param_is_an_error() {
-    let pipeline = PIPELINE.replace(
-        "shading = \"flat\"",
-        "shading = \"flat\"\nlighting = \"sky\"",
-    );
-    let sky = r#"[technique]
-point = "lighting"
-description = "sky"
-
-[params]
-flat_strength = 9
-"#;
-    let t = Tree::new(&[
-        ("pipelines/p.toml", &pipeline),
-        ("techniques/shading/flat/technique.toml", FLAT),
-        ("techniques/lighting/sky/technique.toml", sky),
-    ]);
-    let e = errors_of(&t.path("pipelines/p.toml"), &[]);
-    let text = e
-        .iter()
-        .map(|e| e.to_string())
-        .collect::<Vec<_>>()
-        .join("\n");
+    let (e, text) = beside_a_sky("[params]\nflat_strength = 9\n");
     assert!(
         text.contains("params.flat_strength is defined by technique `shading/flat` too")
             && text.contains("give this one a name of its own (e.g. `sky_flat_strength`)"),
