@@ -72,15 +72,18 @@ fn main() -> Result<()> {
         seed: args.seed,
         only: &args.only,
     };
+    let header = report::Header::now(&root, &args.techniques, args.max, args.seed)?;
     let mut all = Vec::new();
     for n in &names {
         eprintln!("plait-mutate: {n}");
         let results = technique::run(&o, n, &plan.techniques[n]);
         run::restore()?;
         all.push((n.clone(), results?));
+        // After each technique, so an interrupted run keeps what it measured.
+        report::write(&work, &header, &all)?;
     }
-    let header = report::Header::now(&root, &args.techniques, args.max, args.seed)?;
-    report::write(&work, &header, &all)
+    print!("{}", report::table(&header, &all));
+    Ok(())
 }
 
 fn list(root: &std::path::Path, plan: &plan::Plan, names: &[String]) -> Result<()> {

@@ -27,6 +27,12 @@ pub struct Technique {
     /// The tests that guard it, cheapest first: a mutant is killed by the
     /// first that fails.
     pub tests: Vec<TestRun>,
+    /// Mutants shown equivalent (id → why): not scored. Still run — one a
+    /// test kills is reported, since it was not equivalent after all.
+    #[serde(default)]
+    pub equivalent: IndexMap<String, String>,
+    /// A lower cap than `--max` for a technique whose tests are slow.
+    pub max: Option<usize>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -50,6 +56,11 @@ pub struct TestRun {
     /// Environment for the run (e.g. `PLAIT_GOLDENS`).
     #[serde(default)]
     pub env: IndexMap<String, String>,
+    /// Written to kill survivors of an earlier run: the table's "before"
+    /// column is the score without the kills of these (they run last, so a
+    /// mutant they kill passed every other test).
+    #[serde(default)]
+    pub added_for_mutants: bool,
 }
 
 fn default_package() -> String {

@@ -43,58 +43,84 @@ impl Header {
 
 #[derive(Debug, Default, serde::Serialize)]
 struct Counts {
+    /// Killed or hung.
     killed: usize,
     hung: usize,
+    /// Killed by a test written for survivors (`added_for_mutants`).
+    killed_by_added: usize,
+    /// Survived and not shown equivalent.
     survived: usize,
+    /// Survived and shown equivalent in `tests/mutation.toml`: not scored.
+    equivalent: usize,
     invalid: usize,
 }
 
 fn counts(results: &[Result1]) -> Counts {
     let mut c = Counts::default();
     for r in results {
-        match r.outcome {
-            Outcome::Killed { .. } => c.killed += 1,
-            Outcome::Hung { .. } => c.hung += 1,
-            Outcome::Survived { .. } => c.survived += 1,
-            Outcome::Invalid { .. } => c.invalid += 1,
+        match (&r.outcome, &r.equivalent) {
+            (Outcome::Killed { added, .. } | Outcome::Hung { added, .. }, _) => {
+                c.killed += 1;
+                c.hung += usize::from(matches!(r.outcome, Outcome::Hung { .. }));
+                c.killed_by_added += usize::from(*added);
+            }
+            (Outcome::Survived { .. }, Some(_)) => c.equivalent += 1,
+            (Outcome::Survived { .. }, None) => c.survived += 1,
+            (Outcome::Invalid { .. }, _) => c.invalid += 1,
         }
     }
     c
 }
 
+fn percent(part: usize, whole: usize) -> String {
+    if whole == 0 {
+        "–".to_owned()
+    } else {
+        format!("{:.0} %", 100.0 * part as f64 / whole as f64)
+    }
+}
+
 pub fn table(header: &Header, all: &[(String, Vec<Result1>)]) -> String {
     let mut md = format!(
         "Measured at commit `{}` with `{}`.\n\n\
-         | technique | mutants | killed | of which hung | survived | invalid WGSL | score |\n\
-         |---|---:|---:|---:|---:|---:|---:|\n",
+         | technique | mutants | invalid WGSL | killed (hung) | equivalent | survived | score | score without the added tests |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|\n",
         header.commit, header.command
     );
     for (name, results) in all {
         let c = counts(results);
-        let scored = c.killed + c.hung + c.survived;
-        let score = if scored == 0 {
-            "–".to_owned()
-        } else {
-            format!(
-                "{:.0} %",
-                100.0 * (c.killed + c.hung) as f64 / scored as f64
-            )
-        };
+        let scored = c.killed + c.survived;
         md += &format!(
-            "| `{name}` | {} | {} | {} | {} | {} | {score} |\n",
+            "| `{name}` | {} | {} | {} ({}) | {} | {} | {} | {} |\n",
             results.len(),
-            c.killed + c.hung,
+            c.invalid,
+            c.killed,
             c.hung,
+            c.equivalent,
             c.survived,
-            c.invalid
+            percent(c.killed, scored),
+            percent(c.killed - c.killed_by_added, scored),
         );
     }
-    md += "\nSurvivors:\n\n";
-    for (_, results) in all {
-        for r in results {
-            if matches!(r.outcome, Outcome::Survived { .. }) {
-                md += &format!("- `{}`\n\n```diff\n{}```\n\n", r.id, r.diff);
-            }
+    let survivors = |equivalent: bool| {
+        all.iter().flat_map(|(_, rs)| rs).filter(move |r| {
+            matches!(r.outcome, Outcome::Survived { .. }) && r.equivalent.is_some() == equivalent
+        })
+    };
+    md += "\nSurvivors (not shown equivalent):\n\n";
+    for r in survivors(false) {
+        md += &format!("- `{}`\n\n```diff\n{}```\n\n", r.id, r.diff);
+    }
+    md += "Equivalent mutants (`tests/mutation.toml` says why):\n\n";
+    for r in survivors(true) {
+        let why = r.equivalent.as_deref().unwrap_or_default();
+        md += &format!("- `{}`: {why}\n", r.id);
+    }
+    for r in all.iter().flat_map(|(_, rs)| rs) {
+        if r.equivalent.is_some()
+            && matches!(r.outcome, Outcome::Killed { .. } | Outcome::Hung { .. })
+        {
+            md += &format!("\n**Claimed equivalent but killed:** `{}`\n", r.id);
         }
     }
     md
@@ -114,7 +140,6 @@ pub fn write(work: &Path, header: &Header, all: &[(String, Vec<Result1>)]) -> Re
         work.join("mutation.json"),
         serde_json::to_string_pretty(&json)?,
     )?;
-    print!("{md}");
     eprintln!(
         "plait-mutate: wrote {} and {}",
         work.join("mutation.md").display(),

@@ -15,14 +15,17 @@ use crate::run::{Ended, check, restore, run_test, write_mutant};
 #[derive(Debug, serde::Serialize)]
 #[serde(tag = "outcome", rename_all = "snake_case")]
 pub enum Outcome {
-    /// A test failed: the first one that did.
+    /// A test failed: the first one that did (`added`: a test written for
+    /// survivors, `added_for_mutants`).
     Killed {
         by: String,
+        added: bool,
         secs: f64,
     },
     /// A test ran past its timeout (counted as killed).
     Hung {
         by: String,
+        added: bool,
         secs: f64,
     },
     Survived {
@@ -42,6 +45,9 @@ pub struct Result1 {
     pub diff: String,
     #[serde(flatten)]
     pub outcome: Outcome,
+    /// Why it is equivalent, when `tests/mutation.toml` says it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equivalent: Option<String>,
 }
 
 /// Options shared by every technique of a run.
@@ -63,6 +69,12 @@ pub fn candidates(o: &Options, name: &str, t: &Technique) -> Result<Vec<(Mutant,
         let src = std::fs::read_to_string(o.root.join(&f))?;
         for m in mutants(&f, &src) {
             all.push((m, src.clone()));
+        }
+    }
+    // An equivalence claimed for no mutant is a stale or misspelt id.
+    for id in t.equivalent.keys() {
+        if !all.iter().any(|(m, _)| m.id() == *id) {
+            bail!("tests/mutation.toml: {name}: `{id}` is claimed equivalent but is no mutant");
         }
     }
     if !o.only.is_empty() {
@@ -122,7 +134,7 @@ pub fn run(o: &Options, name: &str, t: &Technique) -> Result<Vec<Result1>> {
     let mut results = Vec::new();
     let mut valid = 0;
     for (m, src) in candidates(o, name, t)? {
-        if o.only.is_empty() && valid >= o.max {
+        if o.only.is_empty() && valid >= t.max.map_or(o.max, |m| m.min(o.max)) {
             break;
         }
         let path = o.root.join(&m.file);
@@ -131,12 +143,13 @@ pub fn run(o: &Options, name: &str, t: &Technique) -> Result<Vec<Result1>> {
             Err(message) => Outcome::Invalid { message },
             Ok(()) => {
                 valid += 1;
-                tests(o, t, &timeouts)?
+                tests(o, t, &timeouts, &m.id())?
             }
         };
         restore()?;
         eprintln!("  {:<60} {}", m.id(), short(&outcome));
         results.push(Result1 {
+            equivalent: t.equivalent.get(&m.id()).cloned(),
             id: m.id(),
             diff: m.diff(&src),
             mutant: m,
@@ -146,21 +159,27 @@ pub fn run(o: &Options, name: &str, t: &Technique) -> Result<Vec<Result1>> {
     Ok(results)
 }
 
-fn tests(o: &Options, t: &Technique, timeouts: &[Duration]) -> Result<Outcome> {
+/// The tests against the mutant in place; each run's output kept in
+/// `<work>/logs/<id>.log` (the last one: what killed it, with its numbers).
+fn tests(o: &Options, t: &Technique, timeouts: &[Duration], id: &str) -> Result<Outcome> {
+    let logs = o.work.join("logs");
+    std::fs::create_dir_all(&logs)?;
+    let log = logs.join(format!("{}.log", id.replace(['/', ':'], "_")));
     let mut total = 0.0;
     for (r, &timeout) in t.tests.iter().zip(timeouts) {
-        let log = o.work.join("mutant.log");
         match run_test(o.bins, r, timeout, &log)? {
             Ended::Passed { secs, .. } => total += secs,
             Ended::Failed { secs } => {
                 return Ok(Outcome::Killed {
                     by: r.label(),
+                    added: r.added_for_mutants,
                     secs: total + secs,
                 });
             }
             Ended::TimedOut { secs } => {
                 return Ok(Outcome::Hung {
                     by: r.label(),
+                    added: r.added_for_mutants,
                     secs: total + secs,
                 });
             }
@@ -171,8 +190,8 @@ fn tests(o: &Options, t: &Technique, timeouts: &[Duration]) -> Result<Outcome> {
 
 fn short(o: &Outcome) -> String {
     match o {
-        Outcome::Killed { by, secs } => format!("killed by {by} ({secs:.0} s)"),
-        Outcome::Hung { by, secs } => format!("hung in {by} ({secs:.0} s)"),
+        Outcome::Killed { by, secs, .. } => format!("killed by {by} ({secs:.0} s)"),
+        Outcome::Hung { by, secs, .. } => format!("hung in {by} ({secs:.0} s)"),
         Outcome::Survived { secs } => format!("SURVIVED ({secs:.0} s)"),
         Outcome::Invalid { message } => {
             format!("invalid: {}", message.chars().take(80).collect::<String>())
