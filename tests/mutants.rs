@@ -114,3 +114,49 @@ fn kajiya_kay_matches_its_closed_form_where_the_tangent_meets_the_eye() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The scene's hair colour (`[hair] color`, the frame's `hair_color`) tints
+/// every strand's own colour: the default pipeline renders a tint of
+/// (0.5, 0.7, 0.9) on the material as it renders the same tint baked into
+/// every strand's colour, within 1/255. The gallery's scenes leave the tint
+/// at 1, where multiplying and dividing by it agree. Kills, in
+/// `shaders/lib/hair_radiance.wgsl`, `color * frame.hair_color.rgb` → `/`.
+#[test]
+fn the_hair_colour_tints_the_strands_as_their_own_colour_would() {
+    let (_lock, gpu) = open_gpu();
+    let path = repo_root().join("examples/scenes/small.toml");
+    let tint = glam::Vec3::new(0.5, 0.7, 0.9);
+    let render = |scene: &SceneData| {
+        let pipeline = repo_root().join("pipelines/occupancy.toml");
+        let prepared = prepare(&gpu, &pipeline, &[], scene, (96, 72)).expect("prepares");
+        prepared.renderer.render().expect("renders");
+        prepared.image().expect("reads back")
+    };
+    let mut on_material = SceneData::load(Some(&path)).expect("the small scene loads");
+    let m = &mut on_material.scene.material;
+    m.color = (glam::Vec3::from(m.color) * tint).into();
+    let mut on_strands = SceneData::load(Some(&path)).expect("the small scene loads");
+    for c in &mut on_strands.strands.color {
+        *c *= tint;
+    }
+    let (a, b) = (render(&on_material), render(&on_strands));
+    let worst = a
+        .pixels()
+        .zip(b.pixels())
+        .flat_map(|(p, q)| p.0.iter().zip(q.0).map(|(&x, y)| x.abs_diff(y)))
+        .max()
+        .expect("pixels");
+    let changed = b
+        .pixels()
+        .zip(render(&SceneData::load(Some(&path)).expect("loads")).pixels())
+        .filter(|(p, q)| p != q)
+        .count();
+    assert!(
+        changed > 100,
+        "the tint must change the hair: {changed} pixels differ"
+    );
+    assert!(
+        worst <= 1,
+        "tint on the material vs on the strands: a channel differs by {worst}/255"
+    );
+}
