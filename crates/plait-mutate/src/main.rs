@@ -72,7 +72,7 @@ fn main() -> Result<()> {
         seed: args.seed,
         only: &args.only,
     };
-    let header = report::Header::now(&root, &args.techniques, args.max, args.seed)?;
+    let header = report::Header::now(&root, &args.techniques, &args.only, args.max, args.seed)?;
     let mut all = Vec::new();
     for n in &names {
         eprintln!("plait-mutate: {n}");
@@ -83,6 +83,20 @@ fn main() -> Result<()> {
         report::write(&work, &header, &all)?;
     }
     print!("{}", report::table(&header, &all));
+    // A misspelt `--only` id runs nothing: say so rather than report success.
+    let ran: Vec<&str> = all
+        .iter()
+        .flat_map(|(_, rs)| rs)
+        .map(|r| r.id.as_str())
+        .collect();
+    let missing: Vec<&String> = args
+        .only
+        .iter()
+        .filter(|id| !ran.contains(&id.as_str()))
+        .collect();
+    if !missing.is_empty() {
+        bail!("--only names no mutant of these techniques: {missing:?}");
+    }
     Ok(())
 }
 

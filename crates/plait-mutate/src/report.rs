@@ -18,7 +18,13 @@ pub struct Header {
 }
 
 impl Header {
-    pub fn now(root: &Path, techniques: &[String], max: usize, seed: u64) -> Result<Header> {
+    pub fn now(
+        root: &Path,
+        techniques: &[String],
+        only: &[String],
+        max: usize,
+        seed: u64,
+    ) -> Result<Header> {
         let git = |args: &[&str]| -> Result<String> {
             let out = Command::new("git").args(args).current_dir(root).output()?;
             Ok(String::from_utf8_lossy(&out.stdout).trim().to_owned())
@@ -32,6 +38,8 @@ impl Header {
             techniques.join(" ")
         )
         .replace("  ", " ");
+        let only: String = only.iter().map(|id| format!(" --only {id}")).collect();
+        let command = command + &only;
         Ok(Header {
             commit,
             command,
