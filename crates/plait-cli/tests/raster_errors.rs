@@ -69,3 +69,16 @@ fn a_storage_output_the_depth_guarantee_cannot_honour() {
         "writes its depth target",
     );
 }
+
+#[test]
+fn a_load_of_a_target_nothing_wrote_without_a_clear_value() {
+    bad_raster_pass(
+        "loads_unwritten.toml",
+        "no earlier pass in the frame writes `revealage`",
+    );
+}
+
+#[test]
+fn a_clear_value_with_the_wrong_number_of_channels() {
+    bad_raster_pass("clear_channels.toml", "a list of 4 numbers");
+}
