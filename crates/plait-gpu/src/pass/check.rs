@@ -155,8 +155,10 @@ pub fn check_pass(
     errors.extend(plan_errors);
     // Only where the generic recorder draws with exactly the plan's colour
     // targets: a type written in Rust may record its own passes with other
-    // targets (depth peeling's layer and blend draws).
-    if spec.state_from_data && spec.shape != PassShape::Compute {
+    // targets (depth peeling's layer and blend draws). A culled pass whose
+    // targets were dropped with it has no colour targets left to check.
+    let dropped = pass.writes.iter().any(|b| b.resource.is_none());
+    if spec.state_from_data && spec.shape != PassShape::Compute && !dropped {
         let source = shader_source(t, pass).ok();
         let source = source.as_ref().map(|(p, s)| (p.as_path(), s.as_ref()));
         let outputs = super::outputs::check(&module, &plan, pass, source);
