@@ -4,8 +4,9 @@
 //!
 //! Without it, a pass that `loads` a target nothing wrote earlier would read
 //! the engine's default clear (zeros) silently; Weighted Blended OIT's
-//! revealage must start at 1 (McGuire and Bavoil, "Weighted Blended
-//! Order-Independent Transparency", JCGT 2013, §3), which a zero start turns
+//! revealage (McGuire and Bavoil, "Weighted Blended Order-Independent
+//! Transparency", Journal of Computer Graphics Techniques 2(2), 2013) is a
+//! product of (1 - alpha) that must start at 1, which a zero start turns
 //! into a black image with exit 0.
 
 use crate::error::{Error, ErrorKind, Location, Spanned};

@@ -5,9 +5,9 @@
 //! errors at the WGSL's `@location(n)` here, before any GPU work.
 //!
 //! A target the shader does not write is an error too: Vulkan leaves such
-//! an attachment undefined wherever a fragment is drawn (Vulkan 1.3 spec,
-//! §28.2 "Fragment Output Interface"), so the image would depend on the
-//! driver, though wgpu creates the pipeline.
+//! an attachment undefined wherever a fragment is drawn (the Vulkan
+//! specification, "Fragment Output Interface"), so the image would depend
+//! on the driver, though wgpu creates the pipeline.
 
 use std::path::Path;
 
