@@ -237,3 +237,30 @@ fn timestamps_time_every_pass() {
         }
     }
 }
+
+#[test]
+fn a_loaded_target_starts_from_its_clear_value() {
+    // `mark` loads `revealage` (clear = [1, 1, 1, 1]) and draws 0.25 with
+    // `min` on the right half only: the left half must read 1, the right
+    // 0.25. Without the clear value both halves would be 0 (zeros, min).
+    let path = repo_root().join("tests/fixtures/clear_revealage.toml");
+    let (_lock, gpu) = gpu();
+    let (image, _) = render(&gpu, &path, &scene());
+    let (w, h) = SIZE;
+    let mut bad = Vec::new();
+    for (x, y, px) in image.enumerate_pixels() {
+        let left = (x as f32 + 0.5) / (w as f32) < 0.5;
+        let want = if left { 255 } else { 64 };
+        // RGB only: the read-back image is opaque.
+        if px.0[..3].iter().any(|&c| c.abs_diff(want) > 1) {
+            bad.push(format!("({x},{y}) = {:?}, expected {want}", px.0));
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "{} of {} pixels are wrong, e.g. {}",
+        bad.len(),
+        w * h,
+        bad[..bad.len().min(5)].join("; ")
+    );
+}

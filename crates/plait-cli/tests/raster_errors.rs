@@ -1,20 +1,27 @@
 //! `plait check` and `plait render` on a bad data-only raster pass
 //! (`type = "raster"`): exit code 2, the error at the marked line of the
 //! pipeline file (file:line:column), no panic, no output file.
-//! Fixtures: `tests/fixtures/bad/raster_*.toml`.
+//! Fixtures: `tests/fixtures/bad/raster_*.toml`, `loads_unwritten.toml`,
+//! `clear_channels.toml`, `fragment_*_output.{toml,wgsl}`.
 
 mod common;
 use common::{plait, root, text};
 
 fn bad_raster_pass(name: &str, message: &str) {
+    bad_pass_marked_in(name, name, message);
+}
+
+/// `bad_raster_pass` with the `<- error` marker in fixture `marked` (the
+/// pipeline file or its WGSL).
+fn bad_pass_marked_in(name: &str, marked: &str, message: &str) {
     let path = root().join("tests/fixtures/bad").join(name);
-    let source = std::fs::read_to_string(&path).expect("fixture");
+    let source = std::fs::read_to_string(path.with_file_name(marked)).expect("fixture");
     let line = source
         .lines()
         .position(|l| l.contains("<- error"))
         .expect("an `<- error` marker")
         + 1;
-    let at = format!("{name}:{line}:");
+    let at = format!("{marked}:{line}:");
     let dir = tempfile::tempdir().expect("tempdir");
     let png = dir.path().join("out.png");
     let scene = root().join("examples/scenes/small.toml");
@@ -67,5 +74,44 @@ fn a_storage_output_the_depth_guarantee_cannot_honour() {
     bad_raster_pass(
         "raster_storage_written_depth.toml",
         "writes its depth target",
+    );
+}
+
+#[test]
+fn a_load_of_a_target_nothing_wrote_without_a_clear_value() {
+    bad_raster_pass(
+        "loads_unwritten.toml",
+        "no earlier pass in the frame writes `revealage`",
+    );
+}
+
+#[test]
+fn a_clear_value_with_the_wrong_number_of_channels() {
+    bad_raster_pass("clear_channels.toml", "a list of 4 numbers");
+}
+
+#[test]
+fn a_fragment_output_past_the_colour_targets() {
+    bad_pass_marked_in(
+        "fragment_extra_output.toml",
+        "fragment_extra_output.wgsl",
+        "@location(1) has no colour target",
+    );
+}
+
+#[test]
+fn a_uint_fragment_output_into_a_float_target() {
+    bad_pass_marked_in(
+        "fragment_uint_output.toml",
+        "fragment_uint_output.wgsl",
+        "is u32, but its target `out` is rgba16float",
+    );
+}
+
+#[test]
+fn a_colour_target_the_fragment_shader_does_not_write() {
+    bad_raster_pass(
+        "fragment_missing_output.toml",
+        "colour target `more` (rgba16float) is at @location(1)",
     );
 }

@@ -16,6 +16,7 @@
 //! # Ok(()) }
 //! ```
 
+pub mod clear;
 pub mod compile;
 pub mod counters;
 pub mod dot;

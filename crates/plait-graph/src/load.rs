@@ -20,7 +20,7 @@
 
 mod params;
 mod schema;
-mod tree;
+pub(crate) mod tree;
 
 use indexmap::IndexMap;
 use std::path::{Path, PathBuf};
@@ -101,6 +101,9 @@ pub struct ResourceDecl {
     /// Buffers only: `overflow = {…}` makes this buffer the counter of what
     /// another, bounded buffer could not hold ([`crate::overflow`]).
     pub overflow: Option<crate::overflow::OverflowDecl>,
+    /// Textures only: `clear = …`, the value it holds before its first
+    /// pass in the frame ([`crate::clear`]).
+    pub clear: Option<Spanned<crate::clear::ClearValue>>,
 }
 
 /// What a `NAME.previous…` resource holds: `resource` as it was `frames_ago`

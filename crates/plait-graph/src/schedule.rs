@@ -200,6 +200,10 @@ pub struct ResolvedResource {
     /// it lives from the first pass to the last and shares no allocation.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub kept: bool,
+    /// `clear = …`: every clear of this texture (its first pass in the
+    /// frame, or a plain write) fills it with this value, not zeros.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub clear: Option<crate::clear::ClearValue>,
     #[serde(skip)]
     pub location: Location,
 }

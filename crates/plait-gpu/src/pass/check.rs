@@ -153,6 +153,17 @@ pub fn check_pass(
         &binding_aliases(&spec),
     );
     errors.extend(plan_errors);
+    // Only where the generic recorder draws with exactly the plan's colour
+    // targets: a type written in Rust may record its own passes with other
+    // targets (depth peeling's layer and blend draws). A culled pass whose
+    // targets were dropped with it has no colour targets left to check.
+    let dropped = pass.writes.iter().any(|b| b.resource.is_none());
+    if spec.state_from_data && spec.shape != PassShape::Compute && !dropped {
+        let source = shader_source(t, pass).ok();
+        let source = source.as_ref().map(|(p, s)| (p.as_path(), s.as_ref()));
+        let outputs = super::outputs::check(&module, &plan, pass, source);
+        errors.extend(outputs.into_iter().map(|(loc, m)| err(&loc, m)));
+    }
     // The state is read from the pass as it will be: accesses settled.
     let mut settled_pass = pass.clone();
     plait_graph::apply_settled(&mut settled_pass, &plan.settled);

@@ -25,6 +25,7 @@ pub mod build;
 pub mod check;
 pub mod defaults;
 pub mod layout;
+mod outputs;
 pub mod param_use;
 pub mod pass_type;
 mod pipeline;

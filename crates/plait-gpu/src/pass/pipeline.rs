@@ -223,6 +223,7 @@ fn color_attachments(plan: &BindingPlan, state: &RasterState) -> Vec<ColorAttach
         .map(|c| ColorAttachment {
             resource: c.resource,
             loads: c.loads || state.load_colors,
+            clear: c.clear.map(|[r, g, b, a]| wgpu::Color { r, g, b, a }),
             resolve: c.resolve,
         })
         .collect()
@@ -234,6 +235,7 @@ fn depth_attachment(plan: &BindingPlan, state: &RasterState) -> Option<DepthAtta
     Some(DepthAttachment {
         resource: d.resource,
         loads: d.loads || !d.written,
+        clear: d.clear.map(|c| c[0] as f32),
         writes: depth_write_compare(state, d.written).0,
     })
 }

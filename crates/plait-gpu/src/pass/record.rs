@@ -27,21 +27,25 @@ pub enum ShaderPassKind {
 }
 
 /// A colour target as the render pass attaches it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ColorAttachment {
     pub resource: plait_graph::ResourceId,
-    /// Keep the contents, else clear to the state's clear colour.
+    /// Keep the contents, else clear to `clear` (the resource's), or
+    /// the state's clear colour.
     pub loads: bool,
+    pub clear: Option<wgpu::Color>,
     /// The single-sampled texture the samples resolve into.
     pub resolve: Option<plait_graph::ResourceId>,
 }
 
 /// The depth target as the render pass attaches it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthAttachment {
     pub resource: plait_graph::ResourceId,
-    /// Keep the contents, else clear to the state's clear depth.
+    /// Keep the contents, else clear to `clear` (the resource's), or
+    /// the state's clear depth.
     pub loads: bool,
+    pub clear: Option<f32>,
     /// The pipeline writes depth.
     pub writes: bool,
 }
@@ -105,6 +109,7 @@ impl ShaderPass {
                         |&ColorAttachment {
                              resource,
                              loads,
+                             clear,
                              resolve,
                          }| {
                             let view = ctx
@@ -122,7 +127,7 @@ impl ShaderPass {
                                     load: if loads {
                                         wgpu::LoadOp::Load
                                     } else {
-                                        wgpu::LoadOp::Clear(state.clear_color)
+                                        wgpu::LoadOp::Clear(clear.unwrap_or(state.clear_color))
                                     },
                                     store: wgpu::StoreOp::Store,
                                 },
@@ -134,6 +139,7 @@ impl ShaderPass {
                     |DepthAttachment {
                          resource,
                          loads,
+                         clear,
                          writes,
                      }| {
                         let view = ctx
@@ -149,7 +155,7 @@ impl ShaderPass {
                                 load: if loads {
                                     wgpu::LoadOp::Load
                                 } else {
-                                    wgpu::LoadOp::Clear(state.clear_depth)
+                                    wgpu::LoadOp::Clear(clear.unwrap_or(state.clear_depth))
                                 },
                                 store: wgpu::StoreOp::Store,
                             }),

@@ -30,7 +30,7 @@ pub(super) fn build_schedule(
     } = renumber_resources(pipeline, &mut passes, &live, &descs);
     let history = crate::history::copies(&resources);
     let (mut scheduled, mut culled) = split_culled(passes, &order, &live);
-    settle_clears(&mut scheduled, &resources);
+    let clear_errors = settle_clears(&mut scheduled, &resources);
     let output_ids: Vec<ResourceId> = outputs.iter().filter_map(|&o| new_id[o]).collect();
     set_spans(&scheduled, &mut resources, &output_ids);
 
@@ -43,6 +43,7 @@ pub(super) fn build_schedule(
             .chain(culled.iter_mut().map(|c: &mut CulledPass| &mut c.pass)),
         &resources,
     );
+    let errors: Vec<Error> = clear_errors.into_iter().chain(errors).collect();
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -168,6 +169,7 @@ fn renumber_resources(
                     // order, so `of` is already renumbered.
                     lifetime: crate::history::declared_lifetime(decl, pipeline, &new_id),
                     kept: false,
+                    clear: decl.clear.as_ref().map(|c| c.value),
                     location: decl.location.clone(),
                 });
             }
@@ -188,6 +190,7 @@ fn renumber_resources(
                 // The scene's buffers outlive every frame, like `persistent`.
                 lifetime: Lifetime::Persistent,
                 kept: false,
+                clear: None,
                 location: Location::Builtin,
             });
         }
@@ -231,17 +234,40 @@ fn split_culled(
     (scheduled, culled)
 }
 
-/// Decides which writes clear and which load.
-fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]) {
-    // The first writer of a resource has nothing to load: it clears. A
-    // persistent resource is never cleared by the engine: every writer loads.
+/// Decides which writes clear and which load; reports a `loads` entry that
+/// would keep what no earlier pass wrote and no `clear` declares.
+fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]) -> Vec<Error> {
+    // The first writer of a resource has nothing to load: it clears (to the
+    // resource's `clear`, else zeros). A persistent resource is never
+    // cleared by the engine: every writer loads.
+    let mut errors = Vec::new();
     let mut written = vec![false; resources.len()];
     for pass in scheduled.iter_mut() {
         for b in &mut pass.writes {
-            if resources[b.id()].lifetime == Lifetime::Persistent {
+            let r = &resources[b.id()];
+            if r.lifetime == Lifetime::Persistent {
                 b.loads = true;
             } else if !written[b.id()] {
-                let also_read = pass.reads.iter().any(|r| r.resource == b.resource);
+                let also_read = pass.reads.iter().any(|x| x.resource == b.resource);
+                // A pass-type slot that accumulates means "clear, then
+                // accumulate"; a `loads` entry in the file asks for what
+                // is there, which must have been written or declared.
+                let entry = pass.raster.loads.iter().find(|l| l.value == b.slot);
+                if let Some(entry) = entry.filter(|_| !also_read && r.clear.is_none()) {
+                    errors.push(crate::clear::load_before_write(
+                        &pass.name,
+                        &b.slot,
+                        &r.name,
+                        &entry.location,
+                    ));
+                }
+                if also_read && r.clear.is_some() {
+                    errors.push(crate::clear::cleared_but_read(
+                        &pass.name,
+                        &r.name,
+                        &b.location,
+                    ));
+                }
                 if !also_read {
                     b.loads = false;
                 }
@@ -251,6 +277,7 @@ fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]
             written[b.id()] = true;
         }
     }
+    errors
 }
 
 /// Sets each resource's span of use over the scheduled passes: outputs and

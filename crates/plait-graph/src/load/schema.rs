@@ -22,6 +22,7 @@ pub(crate) const TEXTURE_KEYS: &[&str] = &[
     "samples",
     "history",
     "persistent",
+    "clear",
 ];
 pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size", "history", "persistent", "overflow"];
 /// The most frames of history a resource may keep (one copy per frame each).
@@ -297,6 +298,7 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
     };
     let history = resource_history(b, name, t);
     let persistent = resource_persistent(b, name, t);
+    let clear = resource_clear(b, name, t, format.as_ref(), persistent.as_ref());
     Some(ResourceDecl {
         name: name.to_owned(),
         format,
@@ -312,7 +314,28 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
             _ => None,
         },
         kind,
+        clear,
     })
+}
+
+/// `clear = …` of a texture, checked against its format. A persistent
+/// texture keeps its contents across frames, so it is never cleared.
+fn resource_clear(
+    b: &mut Builder<'_>,
+    name: &str,
+    t: &Table,
+    format: Option<&Spanned<Format>>,
+    persistent: Option<&Location>,
+) -> Option<Spanned<crate::clear::ClearValue>> {
+    let e = t.get("clear")?;
+    if persistent.is_some() {
+        b.schema(
+            &e.value.location,
+            format!("resources.{name} is `persistent`, kept between frames and never cleared, so it cannot declare `clear`"),
+        );
+        return None;
+    }
+    crate::clear::parse(&e.value, name, format?.value, b.errors)
 }
 
 /// The resource's `kind`, where it is written.
@@ -487,6 +510,8 @@ fn previous_versions(r: &ResourceDecl) -> Vec<ResourceDecl> {
             history: None,
             persistent: None,
             overflow: None,
+            // A past frame's version is read-only: what it holds was written.
+            clear: None,
             previous_of: Some(PreviousOf {
                 resource: r.name.clone(),
                 frames_ago,

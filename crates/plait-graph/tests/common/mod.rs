@@ -119,6 +119,8 @@ pub fn registry() -> Registry {
     let mut data_only = pass_type("fullscreen", PassShape::Fullscreen, vec![], vec![], vec![]);
     data_only.dynamic_slots = true;
     data_only.needs_shader = true;
+    // Like the real `fullscreen`: blend, loads and depth come from the file.
+    data_only.state_from_data = true;
     r.register(data_only);
     r
 }

@@ -35,6 +35,14 @@ impl<'a> Planner<'a> {
                 Access::StorageWrite if !b.loads && self.texture(b.resource).is_none() => {
                     self.plan.clears.extend(b.resource)
                 }
+                // Nothing would fill a storage texture with its `clear`.
+                Access::StorageWrite if !b.loads && self.clear_of(b.resource).is_some() => {
+                    let message = format!(
+                        "slot `{}` writes `{}` as a storage texture first in the frame, but `clear = …` applies only where a colour or depth target is cleared; write it from a raster pass first or drop `clear`",
+                        b.slot, b.resource_name
+                    );
+                    self.error(&b.location, message);
+                }
                 _ => {}
             }
         }
@@ -52,6 +60,7 @@ impl<'a> Planner<'a> {
                 samples,
                 written: slot.is_write(),
                 loads: b.loads,
+                clear: self.clear_of(b.resource),
             })
         });
     }
@@ -79,6 +88,7 @@ impl<'a> Planner<'a> {
             format,
             samples,
             loads: b.loads,
+            clear: self.clear_of(b.resource),
             resolve: resolve.and_then(|r| r.resource),
         });
     }

@@ -64,6 +64,8 @@ pub struct ColorTarget {
     pub samples: u32,
     /// Keep the contents (`loads`), else clear.
     pub loads: bool,
+    /// The resource's `clear = …`, used instead of the state's clear colour.
+    pub clear: Option<[f64; 4]>,
     /// The single-sampled texture the samples resolve into (`X_resolve`).
     pub resolve: Option<ResourceId>,
 }
@@ -78,6 +80,8 @@ pub struct DepthTarget {
     /// Bound under `writes` (may be written), else only tested.
     pub written: bool,
     pub loads: bool,
+    /// The resource's `clear = …` (its first channel is the depth).
+    pub clear: Option<[f64; 4]>,
 }
 
 /// Everything about a pass's bindings that does not need a GPU.
@@ -195,6 +199,11 @@ impl<'a> Planner<'a> {
             }) => Some((*format, *samples)),
             _ => None,
         }
+    }
+
+    /// The `clear = …` the resource declares.
+    fn clear_of(&self, id: Option<ResourceId>) -> Option<[f64; 4]> {
+        id.and_then(|id| self.resources.get(id))?.clear
     }
 
     /// The access of `slot` as settled, else as the file declared it.
