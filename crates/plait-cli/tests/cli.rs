@@ -658,9 +658,10 @@ fn check_rejects_what_rendering_would() {
         (
             "pipelines/occupancy.toml",
             "params.light_size=8192",
+            // Used inside the size expression `${light_size} * … / 8`:
+            // the flag is what to fix, so the error names it (issue 41).
             &[
-                "occupancy/technique.toml:",
-                "light_bits",
+                "--set params.light_size=8192: resource `light_bits`",
                 "1 GiB",
                 "128.0 MiB",
             ],
@@ -675,7 +676,9 @@ fn check_rejects_what_rendering_would() {
         (
             "pipelines/occupancy.toml",
             "params.light_size=16384",
-            &["occupancy.toml:", "16384", "8192"],
+            // `size = ["${light_size}", "${light_size}"]`: a list made of
+            // the flag's value is reported at the flag (issue 41).
+            &["--set params.light_size=16384: texture", "16384", "8192"],
         ),
         (
             // depth_range tests the opaque depth texel for texel.

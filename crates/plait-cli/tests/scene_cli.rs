@@ -209,3 +209,48 @@ fn scenes_are_found_by_name_from_any_directory() {
         "the local scene was not used"
     );
 }
+
+/// A `.hair` file a scene names that is missing or cut short (plait issue
+/// 41): the error names the scene file, line and column of the `file`
+/// value, then the hair file's own problem; exit 2, no image.
+#[test]
+fn a_bad_hair_file_is_reported_where_the_scene_names_it() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // A header shorter than the format's 128 bytes, starting as one should.
+    std::fs::write(dir.path().join("short.hair"), b"HAIR\x05\x00\x00\x00").expect("write");
+    for (name, scene_text, at, problem) in [
+        (
+            "missing",
+            "# no such groom\n[hair]\nfile = \"nope.hair\"\n",
+            ":3:8: hair.file: ",
+            "nope.hair: cannot read file",
+        ),
+        (
+            "truncated",
+            "hair = { file = \"short.hair\" }\n",
+            ":1:17: hair.file: ",
+            "short.hair: file is 8 bytes, shorter than the 128-byte .hair header",
+        ),
+    ] {
+        let scene = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&scene, scene_text).expect("write scene");
+        let png = dir.path().join(format!("{name}.png"));
+        let o = plait(&[
+            "render",
+            "--scene",
+            scene.to_str().expect("utf-8 path"),
+            "--size",
+            "64x48",
+            "--out",
+            png.to_str().expect("utf-8 path"),
+        ]);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        let want = format!("error: {}{at}", scene.display());
+        assert!(
+            err.contains(&want) && err.contains(problem),
+            "{name}: wanted `{want}` … `{problem}`:\n{err}"
+        );
+        assert!(!png.exists(), "{name}: wrote an image");
+    }
+}

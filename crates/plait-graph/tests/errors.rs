@@ -235,8 +235,15 @@ fn malformed_set_flags_are_reported_on_the_flag() {
 
 #[test]
 fn texture_too_large_names_the_limit_at_the_size() {
+    // The size list is made of the flag's value: the flag is what to fix
+    // (plait issue 41), as for a value used alone.
     let e = only_error(GOOD, &["params.size=10000"]);
-    assert_eq!(e.location, at(11, 8));
+    assert_eq!(
+        e.location,
+        Location::Flag {
+            flag: "params.size=10000".into()
+        }
+    );
     assert_eq!(
         e.kind,
         ErrorKind::TextureSize {
@@ -502,5 +509,45 @@ fn misspelt_names_in_a_file_suggest_the_nearest() {
                 && e.to_string().contains("did you mean `format`?")),
         "{}",
         Errors(errors.clone())
+    );
+}
+
+/// A flag's value used inside a longer expression keeps the flag's
+/// location (plait issue 41: `--set params.slices=0` blamed the technique
+/// line); the same value written in the file keeps the file's; a string
+/// that is no expression (a path) keeps its file, against which it resolves.
+#[test]
+fn a_flag_used_inside_an_expression_is_named_by_its_error() {
+    let text = edit(
+        GOOD,
+        r#"size = ["${size}", "${size}"]"#,
+        r#"size = ["${size} * 2", "${size} * 2"]"#,
+    );
+    let e = only_error(&text, &["params.size=0"]);
+    assert_eq!(
+        e.location,
+        Location::Flag {
+            flag: "params.size=0".into()
+        },
+        "{e}"
+    );
+    let in_file = edit(&text, "size = 256", "size = 0");
+    assert_eq!(only_error(&in_file, &[]).location, at(11, 8));
+
+    let path = edit(GOOD, "size = 256", "size = 256\ndir = \"a\"");
+    let path = edit(
+        &path,
+        "type = \"shade\"",
+        "type = \"shade\"\nshader = \"${dir}/s.wgsl\"",
+    );
+    let pipeline = load_text(&path, &["params.dir=b"]).expect("loads");
+    let shade = &pipeline.passes["shade"];
+    assert!(
+        matches!(
+            shade.shader.as_ref().map(|s| &s.location),
+            Some(Location::File { .. })
+        ),
+        "{:?}",
+        shade.shader
     );
 }

@@ -48,6 +48,9 @@ pub struct Hair {
     pub transform: Option<Transform>,
     /// What to read from a USD file (`prim`, `segments_per_span`).
     pub usd: UsdOptions,
+    /// Where a scene file names `file` (`scene.toml:LINE:COL`), which an
+    /// error reading that file names too.
+    pub declared_at: Option<String>,
 }
 
 impl From<HairSource> for Hair {
@@ -57,6 +60,7 @@ impl From<HairSource> for Hair {
             follow: None,
             transform: None,
             usd: UsdOptions::default(),
+            declared_at: None,
         }
     }
 }
@@ -122,6 +126,8 @@ impl TryFrom<HairToml> for Hair {
                 prim: t.prim,
                 segments_per_span: t.segments_per_span.unwrap_or(DEFAULT_SEGMENTS_PER_SPAN),
             },
+            // Set by the scene parser, which has the text.
+            declared_at: None,
         })
     }
 }

@@ -22,6 +22,7 @@ pub mod adapter;
 pub mod frames;
 pub mod overflow;
 pub mod probe;
+pub mod scene_fit;
 pub mod session;
 pub mod source;
 pub mod strand_lod;

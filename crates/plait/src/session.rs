@@ -306,57 +306,22 @@ pub fn prepare_compiled<'g>(
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
     let _one_library = plait_gpu::modules::LibrarySnapshot::take();
-    check_scene_fit(&schedule, source, scene)?;
+    let fit = crate::scene_fit::fit_to_scene(&schedule, source, scene)?;
     let opts = gpu_options(gpu, size);
     // A grown buffer changes only sizes, which the executor checks again
-    // against the adapter before it allocates anything.
-    let recompile = |extra: &[String]| source.compile(extra, &opts);
+    // against the adapter before it allocates anything. Every compile keeps
+    // the values fitted to the scene and says so.
+    let recompile = |extra: &[String]| {
+        let mut schedule = source.compile(&[fit.sets.as_slice(), extra].concat(), &opts)?;
+        schedule.notes.extend(fit.notes.iter().cloned());
+        Ok(schedule)
+    };
+    let schedule = if fit.sets.is_empty() {
+        schedule
+    } else {
+        recompile(&[])?
+    };
     crate::overflow::prepare_holding(gpu, schedule, &recompile, &source.path, scene, size)
-}
-
-/// Params that only the scene can check, checked before any GPU work:
-/// strand-space shading's `shading_points` (K shading points evenly spread
-/// along a strand need K ≤ its points — more would shade between the same
-/// two vertices twice, and the contract is one shading point per strand
-/// point at most, as Frostbite's).
-pub fn check_scene_fit(
-    schedule: &Schedule,
-    source: &crate::source::PipelineSource,
-    scene: &SceneData,
-) -> Result<(), SessionError> {
-    let shortest = scene
-        .strands
-        .ranges()
-        .enumerate()
-        .min_by_key(|(_, r)| r.len());
-    for pass in schedule
-        .passes
-        .iter()
-        .filter(|p| p.type_name == "strand_shading")
-    {
-        let Some(points) = pass.params.get("shading_points").and_then(|v| v.as_i64()) else {
-            continue;
-        };
-        let Some((strand, range)) = shortest.clone() else {
-            continue;
-        };
-        if points > range.len() as i64 {
-            let flag = source
-                .sets
-                .iter()
-                .rev()
-                .find(|s| s.starts_with("params.shading_points="))
-                .map(|s| format!("--set {s}: "))
-                .unwrap_or_default();
-            return Err(SessionError::SceneFit(format!(
-                "{flag}param `shading_points` of pass `{}`: {points} shading points per strand, but strand {strand} of the scene has {} points; shading_points must be at most {} for this scene",
-                pass.name,
-                range.len(),
-                range.len()
-            )));
-        }
-    }
-    Ok(())
 }
 
 /// Standard inputs for frame `index` of `scene` at `size` as `schedule`

@@ -85,11 +85,29 @@ impl Substituter {
                         None => node.value.clone(),
                     }
                 } else {
-                    Node::Scalar(Value::Str(self.interpolate(s, location)))
+                    let (text, flag) = self.interpolate(s, location);
+                    // An expression built from a flag's value (`"screen_width
+                    // * ${slices} / 8"` with `--set params.slices=0`) is the
+                    // flag's to fix, as a whole reference is. Not a path
+                    // (`"${dir}/a.wgsl"`): that resolves against its file.
+                    match flag.filter(|_| is_expression(&text)) {
+                        Some(flag) => return Spanned::new(Node::Scalar(Value::Str(text)), flag),
+                        None => Node::Scalar(Value::Str(text)),
+                    }
                 }
             }
             Node::Scalar(v) => Node::Scalar(v.clone()),
-            Node::List(items) => Node::List(items.iter().map(|i| self.node(i)).collect()),
+            Node::List(items) => {
+                let items: Vec<Spanned<Node>> = items.iter().map(|i| self.node(i)).collect();
+                // A list is checked as a whole (`size = ["${light_size}",
+                // "${light_size}"]` is 0x0): one made from a flag's value
+                // names the flag.
+                if let Some(flag) = items.iter().map(|i| &i.location).find(|l| is_flag(l)) {
+                    let flag = flag.clone();
+                    return Spanned::new(Node::List(items), flag);
+                }
+                Node::List(items)
+            }
             Node::Table(t) => Node::Table(
                 t.iter()
                     .map(|(k, e)| {
@@ -107,9 +125,11 @@ impl Substituter {
         Spanned::new(value, location.clone())
     }
 
-    /// Replaces each `${x}` inside a longer string by x's text.
-    fn interpolate(&mut self, text: &str, location: &Location) -> String {
+    /// Replaces each `${x}` inside a longer string by x's text; also the
+    /// flag that gave the first x a `--set` flag gave, if any.
+    fn interpolate(&mut self, text: &str, location: &Location) -> (String, Option<Location>) {
         let mut out = String::new();
+        let mut flag = None;
         let mut rest = text;
         while let Some(start) = rest.find("${") {
             let Some(len) = rest[start + 2..].find('}') else {
@@ -117,7 +137,14 @@ impl Substituter {
             };
             out.push_str(&rest[..start]);
             let name = &rest[start + 2..start + 2 + len];
-            match self.param(name, location).map(|v| v.value) {
+            let value = self.param(name, location);
+            if let Some(v) = &value
+                && flag.is_none()
+                && is_flag(&v.location)
+            {
+                flag = Some(v.location.clone());
+            }
+            match value.map(|v| v.value) {
                 Some(Node::Scalar(Value::Str(s))) => out.push_str(&s),
                 Some(Node::Scalar(v)) => out.push_str(&v.to_string()),
                 Some(_) => self.errors.push(Error::new(
@@ -131,8 +158,17 @@ impl Substituter {
             rest = &rest[start + 3 + len..];
         }
         out.push_str(rest);
-        out
+        (out, flag)
     }
+}
+
+fn is_flag(location: &Location) -> bool {
+    matches!(location, Location::Flag { .. })
+}
+
+/// Whether `text` is arithmetic (`crate::expr`), whatever its names stand for.
+fn is_expression(text: &str) -> bool {
+    crate::expr::eval(text, &|_| Some(1.0)).is_ok()
 }
 
 fn whole_reference(s: &str) -> Option<&str> {

@@ -18,7 +18,8 @@ impl Scene {
     pub fn strands(&self) -> Result<Strands, SceneError> {
         let (mut strands, origin, missing) = match &self.hair.source {
             HairSource::File(path) => {
-                let (asset, _warnings) = Asset::read_with(path, &self.hair.usd)?;
+                let (asset, _warnings) = Asset::read_with(path, &self.hair.usd)
+                    .map_err(|e| self.hair.named_here(e.into()))?;
                 (asset.strands(), path.clone(), missing_look(&asset))
             }
             HairSource::Procedural(spec) => (
@@ -72,6 +73,20 @@ impl Scene {
         if self.framing.light {
             let fitted = Light::fitted(&self.camera, self.light.intensity);
             self.light.kind = fitted.kind;
+        }
+    }
+}
+
+impl super::Hair {
+    /// `error` (reading the hair file) prefixed with where the scene names
+    /// the file, when a scene file did.
+    fn named_here(&self, error: SceneError) -> SceneError {
+        match &self.declared_at {
+            Some(at) => SceneError::HairFile {
+                at: at.clone(),
+                error: Box::new(error),
+            },
+            None => error,
         }
     }
 }

@@ -67,6 +67,15 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
+    /// The hair file a scene names could not be read: where the scene
+    /// names it (`scene.toml:LINE:COL`), then the file's own error.
+    #[error("{at}: hair.file: {error}")]
+    HairFile {
+        /// The scene file, line and column of the `file = "…"` value.
+        at: String,
+        /// The error reading the hair file (it names the file).
+        error: Box<SceneError>,
+    },
     /// The hair file could not be read (the error names it).
     #[error(transparent)]
     Hair(#[from] HairError),

@@ -113,6 +113,21 @@ fn with_suggestion(message: &str) -> String {
     )
 }
 
+/// Where `[hair] file = "…"` is written in scene text that parsed: read
+/// apart from `Hair`, which serde builds without the text.
+fn hair_file_span(text: &str) -> Option<std::ops::Range<usize>> {
+    #[derive(Deserialize)]
+    struct Root {
+        hair: Option<HairFile>,
+    }
+    #[derive(Deserialize)]
+    struct HairFile {
+        file: Option<toml::Spanned<toml::Value>>,
+    }
+    let root: Root = toml::from_str(text).ok()?;
+    Some(root.hair?.file?.span())
+}
+
 impl Scene {
     /// Parses scene text; `path` is used in messages and to resolve relative
     /// paths (against its directory).
@@ -142,6 +157,10 @@ impl Scene {
         let mesh_entries = std::mem::take(&mut parsed.meshes);
         let mut scene = Scene::from(parsed);
         scene.environment.declared_at = environment_at;
+        scene.hair.declared_at = hair_file_span(text).map(|span| {
+            let (line, column) = line_col(text, span.start);
+            format!("{}:{line}:{column}", path.display())
+        });
         let invalid = |message| SceneError::Invalid {
             path: path.to_path_buf(),
             message,
