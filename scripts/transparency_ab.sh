@@ -11,7 +11,8 @@
 # The README's table is not this script's: it is the published figure
 # `transparency-480` (docs/figures.toml), the default-scene run below with 3
 # repeats, written by `target/debug/plait-figures write transparency-480` and
-# re-measured by `bash scripts/bench.sh --check transparency-480`.
+# re-measured by `bash scripts/bench.sh --check transparency-480`; the 960x720
+# goal table there is the figure `transparency-960` (3 repeats).
 #
 #   scripts/transparency_ab.sh [OUT]    SIZE=256x192 DEFAULT_SIZE=480x360 REPEATS=2
 set -euo pipefail

@@ -95,7 +95,7 @@ fn run() -> Result<ExitCode> {
             for figure in figures {
                 let published = Record::load(&published::record_path(&repo, &figure.id))?;
                 let dir = measure(&plait, figure, &args.runs)?;
-                let today = Record::from_run(figure, &dir, made(&repo)?)?;
+                let today = Record::from_run(figure, &dir, made(&repo, figure)?)?;
                 let rows = check::compare(figure, &published, &today);
                 moved += rows.iter().filter(|r| r.moved).count();
                 println!("{}", check::table(figure, &published, &rows));
@@ -160,7 +160,7 @@ fn measure(plait: &Path, figure: &Figure, runs: &Path) -> Result<PathBuf> {
 
 /// Writes the record, then the page's block from it.
 fn publish(repo: &Path, figure: &Figure, dir: &Path) -> Result<()> {
-    let record = Record::from_run(figure, dir, made(repo)?)?;
+    let record = Record::from_run(figure, dir, made(repo, figure)?)?;
     let page = repo.join(&figure.page);
     let text = std::fs::read_to_string(&page).with_context(|| page.display().to_string())?;
     let new = published::replace_block(&text, &figure.id, &record.block(figure))
@@ -177,8 +177,10 @@ fn publish(repo: &Path, figure: &Figure, dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The commit and date a measurement made now belongs to.
-fn made(repo: &Path) -> Result<published::Made> {
+/// The commit and date a measurement of `figure` made now belongs to; dirty
+/// when a file it measures has uncommitted changes (a page the same run
+/// already rewrote is not measured, so it does not count).
+fn made(repo: &Path, figure: &Figure) -> Result<published::Made> {
     let git = |args: &[&str]| -> Result<String> {
         let o = Command::new("git").args(args).current_dir(repo).output()?;
         if !o.status.success() {
@@ -192,7 +194,11 @@ fn made(repo: &Path) -> Result<published::Made> {
     };
     Ok(published::Made {
         commit: git(&["rev-parse", "HEAD"])?,
-        dirty: !git(&["status", "--porcelain", "--untracked-files=no"])?.is_empty(),
+        dirty: {
+            let mut args = vec!["status", "--porcelain", "--untracked-files=no", "--"];
+            args.extend(figure.measures.iter().map(String::as_str));
+            !git(&args)?.is_empty()
+        },
         date: published::today(),
     })
 }

@@ -15,8 +15,8 @@ pub struct Record {
     pub id: String,
     /// `git rev-parse HEAD` when it was measured.
     pub commit: String,
-    /// Whether the work tree had uncommitted changes then (the figure then
-    /// measures more than its commit).
+    /// Whether a file it measures had uncommitted changes then (the figure
+    /// then measures more than its commit).
     pub dirty: bool,
     /// UTC, `YYYY-MM-DD`.
     pub date: String,
