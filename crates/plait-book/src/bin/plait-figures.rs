@@ -6,12 +6,23 @@
 //!   plait-figures write ID… [--from DIR]   measure (or take a finished run) and publish: record + page block
 //!   plait-figures stale              which figures were measured before a change to what they measure
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
 use plait_book::published::{self, Figure, Record, Registry, check, stale};
+
+/// `println!` that ends the program quietly when standard output is gone
+/// (`plait-figures stale | head`), instead of panicking on the broken pipe.
+macro_rules! say {
+    ($($t:tt)*) => {
+        if writeln!(std::io::stdout(), $($t)*).is_err() {
+            std::process::exit(0)
+        }
+    };
+}
 
 #[derive(Parser)]
 #[command(about = "Re-measure and rewrite plait's published figures (docs/figures.toml)")]
@@ -61,11 +72,11 @@ fn run() -> Result<ExitCode> {
             let mut stale_count = 0;
             for f in stale::freshness(&repo)? {
                 match (&f.unknown, f.is_stale()) {
-                    (Some(why), _) => println!("{}: unknown ({why})", f.id),
-                    (None, false) => println!("{}: fresh (measured at {})", f.id, short(&f.commit)),
+                    (Some(why), _) => say!("{}: unknown ({why})", f.id),
+                    (None, false) => say!("{}: fresh (measured at {})", f.id, short(&f.commit)),
                     (None, true) => {
                         stale_count += 1;
-                        println!(
+                        say!(
                             "{}: STALE — measured at {}; changed since by:\n    {}",
                             f.id,
                             short(&f.commit),
@@ -74,16 +85,19 @@ fn run() -> Result<ExitCode> {
                     }
                 }
             }
-            println!("{stale_count} stale");
+            say!("{stale_count} stale");
             let rest = stale::unregistered(&repo)?;
-            println!(
+            say!(
                 "{} tables of measurements are not registered figures (not re-checkable):",
                 rest.len()
             );
             for u in rest {
-                println!(
+                say!(
                     "  {}:{}  {}  (last written at {})",
-                    u.page, u.line, u.header, u.written_at
+                    u.page,
+                    u.line,
+                    u.header,
+                    u.written_at
                 );
             }
             Ok(ExitCode::SUCCESS)
@@ -98,16 +112,16 @@ fn run() -> Result<ExitCode> {
                 let today = Record::from_run(figure, &dir, made(&repo, figure)?)?;
                 let rows = check::compare(figure, &published, &today);
                 moved += rows.iter().filter(|r| r.moved).count();
-                println!("{}", check::table(figure, &published, &rows));
+                say!("{}", check::table(figure, &published, &rows));
             }
             if moved > 0 {
-                println!(
+                say!(
                     "{moved} published values moved beyond their spread: regenerate them with \
                      `plait-figures write ID` (after finding why they moved)"
                 );
                 return Ok(ExitCode::from(1));
             }
-            println!("every published value holds");
+            say!("every published value holds");
             Ok(ExitCode::SUCCESS)
         }
         Cmd::Write { ids, from } => {
@@ -169,7 +183,7 @@ fn publish(repo: &Path, figure: &Figure, dir: &Path) -> Result<()> {
     let tmp = page.with_extension("md.tmp");
     std::fs::write(&tmp, new)?;
     std::fs::rename(&tmp, &page)?;
-    println!(
+    say!(
         "wrote {} and its block in {}",
         published::record_path(repo, &figure.id).display(),
         figure.page
