@@ -32,7 +32,9 @@ impl Sphere {
         let texels = read
             .bytes
             .chunks_exact(16)
-            .map(|t| std::array::from_fn(|c| f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap())))
+            .map(|t| {
+                std::array::from_fn(|c| f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()))
+            })
             .collect();
         Sphere { texels }
     }
@@ -70,7 +72,11 @@ fn phi_o(i: usize) -> f64 {
 
 /// A direction of longitudinal angle θ and azimuth φ about the fibre (+x).
 fn direction(theta: f64, phi: f64) -> [f64; 3] {
-    [theta.sin(), theta.cos() * phi.cos(), theta.cos() * phi.sin()]
+    [
+        theta.sin(),
+        theta.cos() * phi.cos(),
+        theta.cos() * phi.sin(),
+    ]
 }
 
 /// ∫_{-π/2}^{π/2} cos^p x dx by Simpson's rule (20000 steps), independent of
@@ -79,7 +85,9 @@ fn cos_power_integral(p: f64) -> f64 {
     let n = 20000;
     let h = PI / n as f64;
     let f = |k: usize| (-0.5 * PI + k as f64 * h).cos().max(0.0).powf(p);
-    let inner: f64 = (1..n).map(|k| if k % 2 == 1 { 4.0 } else { 2.0 } * f(k)).sum();
+    let inner: f64 = (1..n)
+        .map(|k| if k % 2 == 1 { 4.0 } else { 2.0 } * f(k))
+        .sum();
     (f(0) + inner + f(n)) * h / 3.0
 }
 
@@ -164,7 +172,9 @@ fn marschner_tt(theta_i: f64, theta_o: f64, phi: f64) -> f64 {
     let f_in = fresnel(1.0 / s.eta_perp, 1.0 / s.eta_par, cos_gt);
     let a = (1.0 - f) * (1.0 - f_in) * (-2.0 * 0.1 * cos_gt / s.cos_t).exp();
     let slope = 2.0 / (s.eta_perp * s.eta_perp - h * h).sqrt() - 2.0 / (1.0 - h * h).sqrt();
-    theta_i.cos() * longitudinal(theta_h, 3.75, 3.75) * a / (2.0 * slope).abs() / theta_d.cos().powi(2)
+    theta_i.cos() * longitudinal(theta_h, 3.75, 3.75) * a
+        / (2.0 * slope).abs()
+        / theta_d.cos().powi(2)
 }
 
 /// The mean over entry heights of path p's attenuation at zero absorption,
@@ -208,7 +218,9 @@ fn a_white_fibre_reflects_no_more_than_it_receives() {
     for (k, degrees) in LIGHT_DEGREES.iter().enumerate() {
         let [kk_d, kk_s, marschner, clear] = sphere.albedo(0, k);
         let [_, _, _, hw_diffuse] = sphere.albedo(1, k);
-        let own: f64 = (0..3).map(|p| mean_attenuation(degrees.to_radians(), p)).sum();
+        let own: f64 = (0..3)
+            .map(|p| mean_attenuation(degrees.to_radians(), p))
+            .sum();
         println!(
             "θi {degrees:>2}°: Kajiya-Kay diffuse {kk_d:.4}, specular {kk_s:.4}; Marschner {marschner:.4}, \
              clear {clear:.4} (model's own {own:.4}, ratio {:.3}); H&W diffuse {hw_diffuse:.4}",
@@ -222,7 +234,9 @@ fn a_white_fibre_reflects_no_more_than_it_receives() {
             ("clear Marschner / own energy", clear / own, 0.75, 1.12),
         ] {
             if !(low..=high).contains(&value) {
-                failures.push(format!("θi {degrees}°: {name} {value:.4} outside [{low}, {high}]"));
+                failures.push(format!(
+                    "θi {degrees}°: {name} {value:.4} outside [{low}, {high}]"
+                ));
             }
         }
     }
@@ -249,19 +263,48 @@ fn one_fibre_reads_its_model_closed_form() {
         let l = direction(ti, 0.0);
         // Rows: the peak of the shifted cone, a flank, the lobes' region.
         let peak = ((ti + 0.05 + 0.5 * PI) / PI * ANGLES as f64) as usize;
-        for j in [peak.min(ANGLES - 1), ANGLES / 2, ANGLES / 3, ANGLES / 2 - 2 * k - 3] {
+        for j in [
+            peak.min(ANGLES - 1),
+            ANGLES / 2,
+            ANGLES / 3,
+            ANGLES / 2 - 2 * k - 3,
+        ] {
             for i in [0, AZIMUTHS / 8, AZIMUTHS / 3, AZIMUTHS / 2] {
                 let (to, po) = (theta_o(j), phi_o(i));
                 let e = direction(to, po);
                 let [d, s, _, _] = sphere.at(0, k, j, i);
                 let [r, tt, _, hw] = sphere.at(1, k, j, i);
-                let at = format!("θi {degrees}°, θo {:.1}°, φo {:.1}°", to.to_degrees(), po.to_degrees());
-                check(format!("{at}: Kajiya-Kay diffuse"), d, kajiya_kay(l, e, 1.0, 0.0, 60.0, -0.05), 1e-3);
-                check(format!("{at}: Kajiya-Kay specular"), s, kajiya_kay(l, e, 0.0, 1.0, 60.0, -0.05), 1e-3);
+                let at = format!(
+                    "θi {degrees}°, θo {:.1}°, φo {:.1}°",
+                    to.to_degrees(),
+                    po.to_degrees()
+                );
+                check(
+                    format!("{at}: Kajiya-Kay diffuse"),
+                    d,
+                    kajiya_kay(l, e, 1.0, 0.0, 60.0, -0.05),
+                    1e-3,
+                );
+                check(
+                    format!("{at}: Kajiya-Kay specular"),
+                    s,
+                    kajiya_kay(l, e, 0.0, 1.0, 60.0, -0.05),
+                    1e-3,
+                );
                 check(format!("{at}: H&W diffuse"), hw, ti.cos() / (PI * PI), 1e-3);
                 let phi = po.cos().clamp(-1.0, 1.0).acos();
-                check(format!("{at}: Marschner R"), r, marschner_r(ti, to, phi), 2e-2);
-                check(format!("{at}: Marschner TT"), tt, marschner_tt(ti, to, phi), 2e-2);
+                check(
+                    format!("{at}: Marschner R"),
+                    r,
+                    marschner_r(ti, to, phi),
+                    2e-2,
+                );
+                check(
+                    format!("{at}: Marschner TT"),
+                    tt,
+                    marschner_tt(ti, to, phi),
+                    2e-2,
+                );
             }
         }
     }

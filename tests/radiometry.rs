@@ -46,7 +46,11 @@ fn scene_target(gpu: &Gpu, data: &SceneData) -> Linear {
     let prepared = prepare(gpu, &pipeline, &[], data, SIZE).expect("opaque.toml prepares");
     prepared.renderer.render().expect("renders");
     let read = prepared.renderer.read_resource("scene").expect("scene");
-    assert_eq!(read.bytes.len(), (SIZE.0 * SIZE.1 * 8) as usize, "rgba16float");
+    assert_eq!(
+        read.bytes.len(),
+        (SIZE.0 * SIZE.1 * 8) as usize,
+        "rgba16float"
+    );
     let texels = read
         .bytes
         .chunks_exact(8)

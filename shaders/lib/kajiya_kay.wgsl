@@ -61,3 +61,12 @@ fn kajiya_kay_radiance(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32
     let specular = ks * kk.y * kk_specular_normalization(exponent);
     return kk.x * (diffuse + vec3<f32>(specular));
 }
+
+// Xing et al. 2012's specular irradiance maps hold
+// 1/π² Σ cos^p(π − θ − θ′) L dω (eq. 8); the key light's normalized cone
+// above is ks/(2π∫cos^p) · cos^p · cos θi. This factor turns the first into
+// the second: π²/(2π∫cos^p), and cos θi taken at the cone, sin θ′ (the
+// narrow-cone limit: the maps keep no per-light cos θi).
+fn kk_environment_specular_units(exponent: f32, theta_eye: f32) -> f32 {
+    return KK_PI * KK_PI * kk_specular_normalization(exponent) * sin(theta_eye);
+}
