@@ -211,7 +211,7 @@ fn default_scene_ground_and_hair_radiance() {
 #[test]
 fn a_spot_light_falls_off_with_the_squared_distance() {
     let (_lock, gpu) = open_gpu();
-    let intensity = 50.0;
+    let intensity: f64 = 50.0;
     let foot = Vec3::new(7.5, -2.7, 6.0);
     let light = foot + Vec3::new(0.0, 5.0, 0.0);
     let data = furnace_lit_by(
@@ -228,7 +228,7 @@ fn a_spot_light_falls_off_with_the_squared_distance() {
         let point = foot + Vec3::new(aside, 0.0, 0.0);
         let (x, y) = pixel_of(&data, point);
         let d = (light - point).length() as f64;
-        let want = intensity as f64 * (5.0 / d) / (PI * d * d);
+        let want = intensity * (5.0 / d) / (PI * d * d);
         let got = image.at(x, y)[0] as f64;
         println!("{aside} aside (pixel {x}, {y}): {got:.5}, expected {want:.5}");
         if (got - want).abs() > 0.01 * want {
