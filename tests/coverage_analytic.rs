@@ -266,3 +266,131 @@ fn a_strand_wider_than_a_pixel_covers_one_pixel_known_limit() {
         }
     }
 }
+
+/// Issue 47's groom (`plait hair generate --style wavy --strands 3000
+/// --segments 24 --seed 5`, alpha 1) at 160×120, no head or ground, the light
+/// off and a uniform ambient: the image's hair coverage per technique (Σα
+/// over the image, in pixels), the share of hair pixels that are solid
+/// (α > 0.9), against Σ width × length of the strands in pixels (no overlap:
+/// an upper bound of Σα). A measurement (`--ignored`), printed.
+#[test]
+#[ignore]
+fn issue_47_groom_coverage_per_technique() {
+    let (_lock, gpu) = open_gpu();
+    let text = r#"
+ambient = 0.5
+[hair.procedural]
+style = "wavy"
+strands = 3000
+segments = 24
+seed = 5
+alpha = 1.0
+alpha_variation = 0.0
+color_variation = 0.0
+[camera]
+eye = [2.0, 0.5, 7.6]
+target = [0.0, -0.6, 0.0]
+fov_y_degrees = 35.0
+[light]
+type = "directional"
+direction = [-0.5, -1.0, -0.6]
+intensity = 0.0
+[background]
+color = [0.0, 0.0, 0.0]
+"#;
+    let path = repo_root().join("tests/issue_47_groom.toml");
+    let scene = plait_hair::Scene::from_toml_str(text, &path).expect("parses");
+    let data = SceneData::new(scene).expect("loads");
+    let size = (160u32, 120u32);
+    let frame = data.frame(size, 0);
+    let view_proj = glam::Mat4::from_cols_array_2d(&frame.camera_view_proj);
+    let eye = glam::Vec3::from_slice(&frame.camera_position[..3]);
+    let half = glam::Vec2::new(size.0 as f32, size.1 as f32) * 0.5;
+    let project = |p: glam::Vec3| {
+        let c = view_proj * p.extend(1.0);
+        glam::Vec2::new(c.x / c.w, c.y / c.w) * half
+    };
+    let mut area = 0.0f64;
+    // The true coverage: 8 × 8 samples per pixel, a sample covered when it
+    // lies within half the projected width of a projected segment (pixel
+    // coordinates, y down as the image's rows).
+    let mut masks = vec![0u64; (size.0 * size.1) as usize];
+    let s = &data.strands;
+    let to_pixel = |p: glam::Vec2| glam::Vec2::new(p.x + half.x, half.y - p.y);
+    for w in s.offsets.windows(2) {
+        for i in w[0] as usize..w[1] as usize - 1 {
+            let (a, b) = (s.points[i], s.points[i + 1]);
+            let mid = (a + b) * 0.5;
+            let side = (b - a).cross(eye - mid).normalize_or_zero();
+            let thick = 0.5 * (s.thickness[i] + s.thickness[i + 1]);
+            let width = (project(mid + side * thick) - project(mid)).length();
+            area += (width * (project(b) - project(a)).length()) as f64;
+            let (pa, pb) = (to_pixel(project(a)), to_pixel(project(b)));
+            let r = width * 0.5;
+            let lo = pa.min(pb) - glam::Vec2::splat(r + 1.0);
+            let hi = pa.max(pb) + glam::Vec2::splat(r + 1.0);
+            let d = pb - pa;
+            let len2 = d.length_squared().max(1e-12);
+            for y in lo.y.max(0.0) as u32..(hi.y.max(0.0) as u32).min(size.1) {
+                for x in lo.x.max(0.0) as u32..(hi.x.max(0.0) as u32).min(size.0) {
+                    let mut mask = 0u64;
+                    for k in 0..64u32 {
+                        let q = glam::Vec2::new(
+                            x as f32 + ((k % 8) as f32 + 0.5) / 8.0,
+                            y as f32 + ((k / 8) as f32 + 0.5) / 8.0,
+                        );
+                        let t = ((q - pa).dot(d) / len2).clamp(0.0, 1.0);
+                        if (pa + d * t - q).length_squared() <= r * r {
+                            mask |= 1 << k;
+                        }
+                    }
+                    masks[(y * size.0 + x) as usize] |= mask;
+                }
+            }
+        }
+    }
+    let truth: f64 = masks.iter().map(|m| m.count_ones() as f64 / 64.0).sum();
+    let truth_pixels = masks.iter().filter(|&&m| m != 0).count();
+    let truth_solid = masks.iter().filter(|&&m| m.count_ones() > 57).count();
+    eprintln!(
+        "true coverage (8×8 samples): Σα {truth:.1} px, {truth_pixels} hair pixels, {truth_solid} solid, mean α over hair pixels {:.3}",
+        truth / truth_pixels.max(1) as f64
+    );
+    let render_at = |sets: &[String]| -> Vec<f64> {
+        let pipeline = repo_root().join("pipelines/occupancy.toml");
+        let prepared = prepare(&gpu, &pipeline, sets, &data, size).expect("prepares");
+        prepared.renderer.render().expect("renders");
+        let image = prepared.image().expect("reads back");
+        image.pixels().map(|p| linear(p.0[1])).collect()
+    };
+    let off = render_at(&[
+        "techniques.self_shadow=none".to_owned(),
+        "params.strand_coverage=false".to_owned(),
+    ]);
+    let full = off.iter().cloned().fold(0.0, f64::max);
+    let hair_pixels_off = off.iter().filter(|&&v| v > 0.0).count();
+    eprintln!(
+        "Σ width × length {area:.1} px; coverage off: {hair_pixels_off} hair pixels, all solid"
+    );
+    for transparency in [
+        "occupancy_order",
+        "depth_peeling",
+        "linked_list",
+        "alpha_to_coverage",
+        "compute_raster",
+        "opaque",
+    ] {
+        let image = render_at(&technique_sets(transparency));
+        let alphas: Vec<f64> = image.iter().map(|v| v / full).collect();
+        let sum: f64 = alphas.iter().sum();
+        let hair = alphas.iter().filter(|&&a| a > 0.0).count();
+        let solid = alphas.iter().filter(|&&a| a > 0.9).count();
+        eprintln!(
+            "{transparency}: Σα {sum:.1} px ({:.3} of the true, {:.3} of Σ w·L), {hair} hair pixels, {solid} solid ({:.3}), mean α over hair pixels {:.3}",
+            sum / truth,
+            sum / area,
+            solid as f64 / hair.max(1) as f64,
+            sum / hair.max(1) as f64
+        );
+    }
+}
