@@ -12,8 +12,12 @@
 //!
 //! T per pixel is the ground's radiance with the technique over the same
 //! frame with `self_shadow = none` (no ambient: radiance ∝ visibility). The
-//! strand's alpha is 0 so the camera sees only the ground (the maps do not
-//! read alpha: κ is the technique's per-fragment opacity, `shadow_weight`).
+//! strand (alpha 1; the maps do not read alpha: κ is the technique's
+//! per-fragment opacity, `shadow_weight`) is seen too, away from its shadow,
+//! and lit alike in both renders: a lone strand does not shadow itself (the
+//! self-shadow bias), so its pixels' ratio is 1 and adds nothing.
+//! `PLAIT_SHADOW_DUMP=<dir>` saves the renders; `PLAIT_SHADOW_T` and
+//! `PLAIT_SHADOW_ONLY` pick one thickness or technique.
 
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
