@@ -85,7 +85,9 @@ pub fn sigma_a_from_color(color: Vec3, beta_n: f32) -> Result<Vec3, ExportError>
     let d = 5.969 - 0.215 * b + 2.532 * b.powi(2) - 10.73 * b.powi(3)
         + 5.574 * b.powi(4)
         + 0.245 * b.powi(5);
-    Ok(Vec3::from_array(color.to_array().map(|c| (c.ln() / d).powi(2))))
+    Ok(Vec3::from_array(
+        color.to_array().map(|c| (c.ln() / d).powi(2)),
+    ))
 }
 
 /// Strands of one colour and opacity: one Mitsuba shape and BSDF.

@@ -40,8 +40,19 @@ fn two_strands() -> SceneData {
     let scene = Scene::from_toml_str(SCENE, Path::new("two.toml")).expect("scene parses");
     let mut data = SceneData::new(scene).expect("scene loads");
     let mut s = Strands::new();
-    let line = |x: f32| [Vec3::new(x, 0.0, 0.0), Vec3::new(x, -1.0, 0.0), Vec3::new(x, -2.0, 0.5)];
-    s.push_strand(&line(-0.5), |t| 0.02 * (1.0 - 0.5 * t), |_| 1.0, Vec3::new(0.5, 0.5, 0.1));
+    let line = |x: f32| {
+        [
+            Vec3::new(x, 0.0, 0.0),
+            Vec3::new(x, -1.0, 0.0),
+            Vec3::new(x, -2.0, 0.5),
+        ]
+    };
+    s.push_strand(
+        &line(-0.5),
+        |t| 0.02 * (1.0 - 0.5 * t),
+        |_| 1.0,
+        Vec3::new(0.5, 0.5, 0.1),
+    );
     s.push_strand(&line(0.5), |_| 0.01, |_| 0.5, Vec3::new(0.8, 0.6, 0.4));
     data.strands = s;
     data
@@ -62,14 +73,23 @@ fn radii_are_half_the_thickness_and_colours_make_groups() {
     // Chiang et al. 2016 §4.2 at β_n = 0.3: the denominator is
     // 5.969 − 0.215·0.3 + 2.532·0.09 − 10.73·0.027 + 5.574·0.0081 + 0.245·0.00243.
     let d = 5.888_414_75_f32;
-    let want = Vec3::new(0.5f32, 0.25, 0.1).to_array().map(|c| (c.ln() / d).powi(2));
+    let want = Vec3::new(0.5f32, 0.25, 0.1)
+        .to_array()
+        .map(|c| (c.ln() / d).powi(2));
     for (got, want) in g0.sigma_a.to_array().iter().zip(want) {
         assert!((got - want).abs() < 1e-6 * want, "σ_a {got} vs {want}");
     }
     let xml = m.xml();
     assert!(xml.contains("<rgb name=\"sigma_a\""), "{xml}");
-    assert!(xml.contains("<bsdf type=\"mask\">\n    <float name=\"opacity\" value=\"0.5\"/>"), "{xml}");
-    assert_eq!(xml.matches("<bsdf type=\"mask\">").count(), 1, "only the half-opaque group is masked");
+    assert!(
+        xml.contains("<bsdf type=\"mask\">\n    <float name=\"opacity\" value=\"0.5\"/>"),
+        "{xml}"
+    );
+    assert_eq!(
+        xml.matches("<bsdf type=\"mask\">").count(),
+        1,
+        "only the half-opaque group is masked"
+    );
 }
 
 #[test]
@@ -93,9 +113,16 @@ fn camera_light_ambient_and_background_in_plaits_units() {
         assert!(xml.contains(want), "missing {want} in\n{xml}");
     }
     let d = m.light_direction;
-    assert!((d - Vec3::new(0.0, -1.0, -1.0).normalize()).length() < 1e-6, "travel direction {d}");
+    assert!(
+        (d - Vec3::new(0.0, -1.0, -1.0).normalize()).length() < 1e-6,
+        "travel direction {d}"
+    );
     assert_eq!(m.background, Vec3::new(0.1, 0.2, 0.3));
-    assert!(m.notes.iter().any(|n| n.contains("Kajiya-Kay")), "{:?}", m.notes);
+    assert!(
+        m.notes.iter().any(|n| n.contains("Kajiya-Kay")),
+        "{:?}",
+        m.notes
+    );
 }
 
 #[test]
@@ -110,12 +137,28 @@ fn the_folder_holds_every_file_the_xml_names() {
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
         .collect();
-    assert_eq!(names, ["scene.xml", "hair_0.txt", "hair_1.txt", "mesh_0.obj", "plait.json"]);
+    assert_eq!(
+        names,
+        [
+            "scene.xml",
+            "hair_0.txt",
+            "hair_1.txt",
+            "mesh_0.obj",
+            "plait.json"
+        ]
+    );
     let curve = std::fs::read_to_string(dir.path().join("hair_0.txt")).unwrap();
-    assert_eq!(curve, "-0.5 0 0 0.01\n-0.5 -1 0 0.0075\n-0.5 -2 0.5 0.005\n");
+    assert_eq!(
+        curve,
+        "-0.5 0 0 0.01\n-0.5 -1 0 0.0075\n-0.5 -2 0.5 0.005\n"
+    );
     let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("plait.json")).unwrap()).unwrap();
-    assert_eq!(json["background"], serde_json::json!([0.1f32, 0.2f32, 0.3f32]));
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("plait.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        json["background"],
+        serde_json::json!([0.1f32, 0.2f32, 0.3f32])
+    );
     assert_eq!(json["hair_groups"][1]["strands"], 1);
 }
 
@@ -123,7 +166,9 @@ fn the_folder_holds_every_file_the_xml_names() {
 fn what_mitsuba_cannot_express_is_an_error() {
     let mut data = two_strands();
     data.scene.background = plait_hair::Background::Image("sky.png".into());
-    let e = plan(&data, (8, 8), Fibre::default()).unwrap_err().to_string();
+    let e = plan(&data, (8, 8), Fibre::default())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("background image (sky.png)"), "{e}");
 
     let mut data = two_strands();
@@ -132,12 +177,16 @@ fn what_mitsuba_cannot_express_is_an_error() {
         direction: [0.0, -1.0, 0.0],
         cone_degrees: 30.0,
     };
-    let e = plan(&data, (8, 8), Fibre::default()).unwrap_err().to_string();
+    let e = plan(&data, (8, 8), Fibre::default())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("spot light"), "{e}");
 
     let mut data = two_strands();
     data.scene.material.color = [1.0, 0.0, 1.0];
-    let e = plan(&data, (8, 8), Fibre::default()).unwrap_err().to_string();
+    let e = plan(&data, (8, 8), Fibre::default())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("no") || e.contains("absorption"), "{e}");
 }
 
@@ -147,7 +196,9 @@ fn a_colour_changing_along_a_strand_is_noted() {
     data.strands.color[1] = Vec3::new(0.2, 0.2, 0.2);
     let m = plan(&data, (8, 8), Fibre::default()).expect("exports");
     assert!(
-        m.notes.iter().any(|n| n.starts_with("1 strand(s) change colour")),
+        m.notes
+            .iter()
+            .any(|n| n.starts_with("1 strand(s) change colour")),
         "{:?}",
         m.notes
     );
