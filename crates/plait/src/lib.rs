@@ -10,6 +10,7 @@
 //! - [`passes`]: the pass library;
 //! - [`overflow`]: bounded buffers sized to hold every frame's data;
 //! - [`frames`]: sequences of frames (time, head animation, medians);
+//! - [`linear`]: the linear radiance image before the display transform, as OpenEXR;
 //! - [`ab`]: A/B runs, several pipelines against a reference, as one report.
 
 pub use plait_gpu as gpu;
@@ -20,6 +21,7 @@ pub use plait_passes as passes;
 pub mod ab;
 pub mod adapter;
 pub mod frames;
+pub mod linear;
 pub mod overflow;
 pub mod probe;
 pub mod scene_fit;
