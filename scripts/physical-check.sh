@@ -9,7 +9,8 @@
 #     depth (16), each Mitsuba image at two seeds for its noise.
 # Usage: bash scripts/physical-check.sh [OUT_DIR]   (default target/physical-check)
 # Env: SPP_D2 (default 64), SPP_FULL (default 256), PLAIT_SETS (extra --set
-# flags for both plait renders).
+# flags for both plait renders), MITSUBA_REUSE=1 (keep Mitsuba images already
+# in OUT_DIR: measure another plait build against the same references).
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -39,12 +40,16 @@ for c in blond dark_brown black; do
     sed "s/HAIR_COLOR/${colours[$c]}/" "$root/scripts/mitsuba/hair-check.toml" >"$scene"
     "$plait" export mitsuba "$scene" --size "$size" --out "$out/$c" >/dev/null
     start=$SECONDS
-    "$py" "$render" "$out/$c" "$out/${c}_mitsuba_d2_s0.exr" --spp "$spp_d2" --max-depth 2 --seed 0 \
-        --coverage "$out/${c}_mask.exr"
-    "$py" "$render" "$out/$c" "$out/${c}_mitsuba_d2_s1.exr" --spp "$spp_d2" --max-depth 2 --seed 1
-    "$py" "$render" "$out/$c" "$out/${c}_mitsuba_full_s0.exr" --spp "$spp_full" --max-depth 16 --seed 0
-    "$py" "$render" "$out/$c" "$out/${c}_mitsuba_full_s1.exr" --spp "$spp_full" --max-depth 16 --seed 1
-    echo "$c: Mitsuba renders (2 x ${spp_d2} spp depth 2 + coverage, 2 x ${spp_full} spp depth 16) took $((SECONDS - start)) s" >&2
+    if [ "${MITSUBA_REUSE:-0}" = 1 ] && [ -f "$out/${c}_mitsuba_full_s1.exr" ]; then
+        echo "$c: Mitsuba images reused from $out" >&2
+    else
+        "$py" "$render" "$out/$c" "$out/${c}_mitsuba_d2_s0.exr" --spp "$spp_d2" --max-depth 2 --seed 0 \
+            --coverage "$out/${c}_mask.exr"
+        "$py" "$render" "$out/$c" "$out/${c}_mitsuba_d2_s1.exr" --spp "$spp_d2" --max-depth 2 --seed 1
+        "$py" "$render" "$out/$c" "$out/${c}_mitsuba_full_s0.exr" --spp "$spp_full" --max-depth 16 --seed 0
+        "$py" "$render" "$out/$c" "$out/${c}_mitsuba_full_s1.exr" --spp "$spp_full" --max-depth 16 --seed 1
+    fi
+    echo "$c: Mitsuba (2 x ${spp_d2} spp depth 2 + coverage, 2 x ${spp_full} spp depth 16) took $((SECONDS - start)) s" >&2
     for shading in default marschner; do
         sets=()
         [ "$shading" = marschner ] && sets=(--set techniques.shading=marschner_reference)
