@@ -152,12 +152,16 @@ fn render_lighting(gpu: &plait_gpu::Gpu, scene: &SceneData, lighting: &str) -> i
 // Image RMSE (8-bit sRGB, 0..1) against the brute-force reference on
 // env.toml at 128×96 (a third of its strands, strand coverage off),
 // measured on lavapipe:
-// irradiance maps 0.0021, SH maps 0.0021, the constant ambient light 0.0208
-// (most pixels are background, equal in all). The bounds leave 2× headroom;
-// ambient must stay far outside them, so the test fails if the maps stop
-// following the environment.
-const MAPS_RMSE_BOUND: f64 = 0.004;
-const SH_RMSE_BOUND: f64 = 0.004;
+// irradiance maps 0.0063, SH maps 0.0065, the constant ambient light 0.0368
+// (most pixels are background, equal in all). Before the environment's
+// specular was put in the units of the key light's energy-normalized cone
+// (plait::kajiya_kay::kk_environment_specular_units, π/(2∫cos^p)·sin θ′ ≈
+// 4.9·sin θ′ at p = 60) they were 0.0020, 0.0020 and 0.0280: the maps'
+// interpolation error over θ′ grew with the specular it interpolates. The
+// bounds leave 1.6× headroom; ambient must stay far outside them, so the
+// test fails if the maps stop following the environment.
+const MAPS_RMSE_BOUND: f64 = 0.010;
+const SH_RMSE_BOUND: f64 = 0.010;
 
 #[test]
 fn maps_render_close_to_brute_force_and_match_their_goldens() {

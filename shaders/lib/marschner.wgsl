@@ -25,6 +25,8 @@
 #define_import_path plait::marschner
 
 const PI: f32 = 3.14159265358979;
+// 1/π²: the normalization of an isotropic fibre's scattering (plait::kajiya_kay).
+const INV_PI2: f32 = 0.10132118364;
 const DEGREES: f32 = 0.0174532925199433;
 // Bisection steps per monotonic interval of φ(p, h): 2⁻²⁴ of the interval,
 // f32's precision.
@@ -229,13 +231,26 @@ fn table_value(i: u32, lo: f32, hi: f32, size: u32) -> f32 {
     return lo + (hi - lo) * f32(i) / f32(max(size, 2u) - 1u);
 }
 
-// Radiance towards the eye per unit light colour from the lobes' M_p · N_p,
-// as the thesis assembles it (§5.8): Kajiya-Kay's diffuse kd · base, plus
-// the lobes over cos²θd — R white, TT and TRT in the hair colour — times a
-// specular gain; all times cos θi, the light's incidence on the fibre.
+// Radiance towards the eye per unit irradiance from the light,
+// S(ωi, ωo)·cos θi (docs/formats.md, "Light and units"), from the lobes'
+// M_p · N_p as the thesis assembles it (§5.8), energy-normalized:
+// - the lobes: Marschner et al. 2003's S_p = M_p(θh) · N_p / cos²θd with
+//   M_p read as a density over θr: M_p is a unit Gaussian in θh = (θi + θr)/2,
+//   and dθr = 2 dθh, so over θr it is g(θh − α_p) / 2. With that factor a
+//   lobe's reflected energy ∫ S_p cos θi cos θo dωo / cos θi is close to
+//   N_p's integral over φ, the mean attenuation of path p (1/cos²θd undoes
+//   the cos²θo of the outgoing measure at the lobe's peak θo = −θi); the
+//   fibre furnace of tests/fibre.rs measures it. R white, TT and TRT in the
+//   hair colour, times the specular gain (1: the model; §5.8's thesis used a
+//   free gain, which breaks energy conservation);
+// - Halén & Wester's Kajiya-Kay diffuse term kd · base, normalized as
+//   Kajiya-Kay's (plait::kajiya_kay): kd · base / π², an isotropic fibre of
+//   albedo kd · base.
+// All times cos θi, the light's incidence on the fibre. The caustic clamp of
+// N_TRT (`azimuthal`) only removes energy.
 fn combine(lobes: vec3<f32>, cos_td: f32, sin_i: f32, base: vec3<f32>, kd: f32, specular_gain: f32) -> vec3<f32> {
     let cos_i = sqrt(max(0.0, 1.0 - sin_i * sin_i));
-    let s = lobes / max(cos_td * cos_td, 1e-4);
+    let s = 0.5 * lobes / max(cos_td * cos_td, 1e-4);
     let specular = vec3<f32>(s.x) + base * (s.y + s.z);
-    return cos_i * (kd * base + specular_gain * specular);
+    return cos_i * (kd * INV_PI2 * base + specular_gain * specular);
 }

@@ -254,3 +254,62 @@ fn a_bad_hair_file_is_reported_where_the_scene_names_it() {
         assert!(!png.exists(), "{name}: wrote an image");
     }
 }
+
+/// Issue 47's bad input: light, ambient and albedo out of the ranges of
+/// docs/formats.md ("Light and units") are refused at their file:line:col
+/// with exit 2, no image, and before any GPU work — shown by running with
+/// no Vulkan driver at all, where a good scene fails for want of an adapter.
+#[test]
+fn light_and_albedo_out_of_range_exit_2_before_gpu_work() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cwd = dir.path();
+    for (body, at, needle) in [
+        ("ambient = -0.1\n", "1:11", "ambient must be ≥ 0"),
+        (
+            "[light]\ntype = \"directional\"\ndirection = [0, -1, 0]\nintensity = nan\n",
+            "4:13",
+            "light.intensity must be finite",
+        ),
+        (
+            "[ground]\nheight = -2\nhalf_size = 3\nalbedo = [0.5, 1.5, 0.5]\n",
+            "4:10",
+            "ground.albedo must be in [0, 1]",
+        ),
+        (
+            "[head]\ncenter = [0, 0, 0]\nradii = [0.9, 1.05, 1.0]\nalbedo = [-0.1, 0.5, 0.5]\n",
+            "4:10",
+            "head.albedo must be in [0, 1]",
+        ),
+        (
+            "[material]\ncolor = [1.0, 2.0, 1.0]\n",
+            "2:9",
+            "material.color must be in [0, 1]",
+        ),
+    ] {
+        std::fs::write(
+            cwd.join("bad.toml"),
+            format!("{body}[hair.procedural]\nstrands = 10\n"),
+        )
+        .expect("write");
+        let o = Command::new(env!("CARGO_BIN_EXE_plait"))
+            .current_dir(cwd)
+            .env("VK_ICD_FILENAMES", cwd.join("no-driver.json"))
+            .env("WGPU_BACKEND", "vulkan")
+            .args([
+                "render", "--scene", "bad.toml", "--size", "32x24", "--out", "bad.png",
+            ])
+            .output()
+            .expect("run plait");
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{body}: {err}");
+        assert!(
+            err.contains(&format!("bad.toml:{at}: {needle}")),
+            "{body}: {err}"
+        );
+        assert!(
+            !err.contains("adapter") && !err.contains("panicked"),
+            "{body}: {err}"
+        );
+        assert!(!cwd.join("bad.png").exists(), "{body}: no output");
+    }
+}

@@ -2,13 +2,15 @@
 // (Xing et al. 2012 Fig. 3a, 3c): every texel of the environment cube is a
 // directional light, summed per fragment with the same Kajiya-Kay responses
 // the irradiance maps store (eq. 5 and 7, normalized by 1/π²), at the
-// fragment's own tangent and θ′. The ground truth of the maps; its cost is
+// fragment's own tangent and θ′, in the maps' units (plait::kajiya_kay::kk_environment_specular_units).
+// The ground truth of the maps; its cost is
 // one loop over the 6·16² texels per fragment.
 #define_import_path plait::lighting::environment_reference
 
 #import plait::frame::frame
 #import plait::cube::{cube_texel_direction, PI}
 #import plait::sh::{kk_diffuse, kk_specular, KK_NORMALIZATION}
+#import plait::kajiya_kay::kk_environment_specular_units
 
 @group(1) @binding(32) var light_environment: texture_2d<f32>;
 
@@ -28,5 +30,5 @@ fn hair_environment(world: vec3<f32>, tangent: vec3<f32>, to_eye: vec3<f32>, bas
             specular += kk_specular(c, theta_eye, exponent) * light;
         }
     }
-    return (base * frame.hair_shading.x * diffuse + frame.hair_shading.y * specular) * KK_NORMALIZATION;
+    return (base * frame.hair_shading.x * diffuse + frame.hair_shading.y * specular * kk_environment_specular_units(exponent, theta_eye)) * KK_NORMALIZATION;
 }

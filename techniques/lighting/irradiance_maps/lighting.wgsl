@@ -2,7 +2,8 @@
 // irradiance maps (Xing et al. 2012 §3): the diffuse map and the two
 // specular maps around θ′ (the angle between the tangent and the eye,
 // shifted by the scene's specular shift as the key light's highlight is)
-// looked up by the tangent and interpolated linearly. The maps come from
+// looked up by the tangent and interpolated linearly, in the units of the
+// key light's normalized Kajiya-Kay (docs/formats.md, "Light and units"). The maps come from
 // `techniques/lighting/irradiance_maps/technique.toml` (summed directly) or
 // `sh_irradiance_maps.toml` (rebuilt from SH, §5): one atlas, diffuse map
 // then M + 1 specular maps, M read from its height.
@@ -10,6 +11,7 @@
 
 #import plait::frame::frame
 #import plait::cube::{cube_atlas_sample, PI}
+#import plait::kajiya_kay::kk_environment_specular_units
 
 @group(1) @binding(31) var light_maps: texture_2d<f32>;
 
@@ -24,5 +26,5 @@ fn hair_environment(world: vec3<f32>, tangent: vec3<f32>, to_eye: vec3<f32>, bas
     let a = f - f32(m0);
     let diffuse = cube_atlas_sample(light_maps, 0u, t).rgb;
     let specular = mix(cube_atlas_sample(light_maps, 1u + m0, t).rgb, cube_atlas_sample(light_maps, 1u + m1, t).rgb, a);
-    return base * frame.hair_shading.x * diffuse + frame.hair_shading.y * specular;
+    return base * frame.hair_shading.x * diffuse + frame.hair_shading.y * specular * kk_environment_specular_units(frame.hair_shading.z, theta_eye);
 }

@@ -84,6 +84,13 @@ impl MeshToml {
         {
             return Err(format!("{field}.albedo must be finite"));
         }
+        if let Some(a) = self.albedo
+            && a.iter().any(|c| !(0.0..=1.0).contains(c))
+        {
+            return Err(format!(
+                "{field}.albedo must be in [0, 1] (an albedo: the fraction of the light reflected), got {a:?}"
+            ));
+        }
         self.transform
             .validate_named(&format!("{field}.transform"))?;
         if let Some(p) = &self.prim

@@ -193,8 +193,11 @@ impl Default for HairMaterial {
         HairMaterial {
             color: [1.0, 1.0, 1.0],
             alpha: 1.0,
+            // kd + ks ≤ 1: the fibre reflects no more than it receives
+            // (docs/formats.md, "Light and units"); 0.3 before the
+            // shading was energy-normalized.
             diffuse: 0.8,
-            specular: 0.3,
+            specular: 0.2,
             specular_exponent: 60.0,
             specular_shift: -0.05,
         }

@@ -83,6 +83,45 @@ fn default_ambient() -> f32 {
     0.15
 }
 
+/// A range error of `Scene::validate`, whose message starts with the field's
+/// dotted name (`light.intensity must be ≥ 0`), placed at the field's value
+/// in the text when it is written there; a default out of range (or a field
+/// the text does not hold) has no place: the file alone.
+fn located(text: &str, path: &Path, message: String) -> SceneError {
+    let field = message.split(' ').next().unwrap_or_default();
+    match key_line_col(text, field) {
+        Some((line, column)) => SceneError::Parse {
+            path: path.to_path_buf(),
+            line,
+            column,
+            message,
+        },
+        None => SceneError::Invalid {
+            path: path.to_path_buf(),
+            message,
+        },
+    }
+}
+
+/// 1-based (line, column) of the value of a dotted key (`head.albedo`) in
+/// scene text that parsed.
+fn key_line_col(text: &str, dotted: &str) -> Option<(usize, usize)> {
+    let table = toml::de::DeTable::parse(text).ok()?;
+    let mut table = table.get_ref();
+    let mut parts = dotted.split('.').peekable();
+    while let Some(part) = parts.next() {
+        let (_, value) = table.iter().find(|(k, _)| k.get_ref() == part)?;
+        if parts.peek().is_none() {
+            return Some(line_col(text, value.span().start));
+        }
+        match value.get_ref() {
+            toml::de::DeValue::Table(inner) => table = inner,
+            _ => return None,
+        }
+    }
+    None
+}
+
 /// 1-based (line, column) of a byte offset.
 fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
@@ -165,7 +204,9 @@ impl Scene {
             path: path.to_path_buf(),
             message,
         };
-        scene.validate().map_err(invalid)?;
+        scene
+            .validate()
+            .map_err(|message| located(text, path, message))?;
         for (i, m) in mesh_entries.iter().enumerate() {
             m.validate(i).map_err(invalid)?;
         }

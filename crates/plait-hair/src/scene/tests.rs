@@ -480,3 +480,81 @@ fn an_open_head_mesh_is_refused() {
     );
     scene_with_meshes(&text("static")).expect("an open static mesh is fine");
 }
+
+/// Light, radiance and albedo out of the ranges of docs/formats.md ("Light
+/// and units") are refused at the value's line and column: negative or
+/// non-finite light intensity, colour, ambient; an albedo (head, ground,
+/// hair material colour) below 0 or above 1; kd + ks above 1.
+#[test]
+fn light_and_albedo_out_of_range_are_refused_where_written() {
+    let p = Path::new("s.toml");
+    // The body is appended after MINIMAL (7 lines): its first line is 8.
+    for (body, line, column, needle) in [
+        ("intensity = -1.0", 8, 13, "light.intensity must be ≥ 0"),
+        ("intensity = nan", 8, 13, "light.intensity must be finite"),
+        ("intensity = inf", 8, 13, "light.intensity must be finite"),
+        ("color = [1.0, -0.1, 1.0]", 8, 9, "light.color must be ≥ 0"),
+        (
+            "[material]\ncolor = [1.2, 0.5, 0.5]",
+            9,
+            9,
+            "material.color must be in [0, 1]",
+        ),
+        (
+            "[material]\ncolor = [-0.2, 0.5, 0.5]",
+            9,
+            9,
+            "material.color must be in [0, 1]",
+        ),
+        (
+            "[material]\ndiffuse = -0.5",
+            9,
+            11,
+            "material.diffuse must be ≥ 0",
+        ),
+        (
+            "[material]\ndiffuse = 0.8\nspecular = 0.3",
+            9,
+            11,
+            "material.diffuse + material.specular must be ≤ 1",
+        ),
+        (
+            "[head]\ncenter = [0, 0, 0]\nradii = [1, 1, 1]\nalbedo = [0.5, 1.5, 0.5]",
+            11,
+            10,
+            "head.albedo must be in [0, 1]",
+        ),
+        (
+            "[ground]\nheight = -2\nhalf_size = 3\nalbedo = [0.5, -0.5, 0.5]",
+            11,
+            10,
+            "ground.albedo must be in [0, 1]",
+        ),
+        (
+            "[ground]\nheight = -2\nhalf_size = 3\nalbedo = [0.5, nan, 0.5]",
+            11,
+            10,
+            "ground.albedo must be finite",
+        ),
+    ] {
+        let text = format!("[hair.procedural]\n{MINIMAL}{body}\n");
+        // MINIMAL's [light] is open: a bare key belongs to it; the hair table
+        // adds one line before it.
+        let e = Scene::from_toml_str(&text, p).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!("s.toml:{}:{column}: ", line + 1)) && e.contains(needle),
+            "{body}: {e}"
+        );
+    }
+    for (top, needle) in [
+        ("ambient = -0.1", "ambient must be ≥ 0"),
+        ("ambient = inf", "ambient must be finite"),
+    ] {
+        let text = format!("{top}\n[hair.procedural]\n{MINIMAL}");
+        let e = Scene::from_toml_str(&text, p).unwrap_err().to_string();
+        assert!(
+            e.starts_with("s.toml:1:11: ") && e.contains(needle),
+            "{top}: {e}"
+        );
+    }
+}

@@ -86,6 +86,55 @@ impl Scene {
         {
             return Err("ground.half_size must be > 0".into());
         }
+        self.validate_radiometry()
+    }
+
+    /// The ranges the units of docs/formats.md ("Light and units") allow:
+    /// light and radiance are not negative, and an albedo is a fraction of
+    /// the light received (0 to 1), so no surface or fibre reflects more
+    /// than it receives. Numbers are finite here (`validate`).
+    fn validate_radiometry(&self) -> Result<(), String> {
+        let l = &self.light;
+        let m = &self.material;
+        let mut not_negative: Vec<(&str, &[f32])> = vec![
+            ("light.intensity", std::slice::from_ref(&l.intensity)),
+            ("light.color", &l.color),
+            ("ambient", std::slice::from_ref(&self.ambient)),
+            ("material.diffuse", std::slice::from_ref(&m.diffuse)),
+            ("material.specular", std::slice::from_ref(&m.specular)),
+        ];
+        if let Background::Color(color) = &self.background {
+            not_negative.push(("background.color", color));
+        }
+        if let Some((name, v)) = not_negative
+            .iter()
+            .find(|(_, v)| v.iter().any(|x| *x < 0.0))
+        {
+            return Err(format!(
+                "{name} must be ≥ 0 (light and radiance are not negative), got {v:?}"
+            ));
+        }
+        let mut albedos: Vec<(&str, &[f32])> = vec![("material.color", &m.color)];
+        if let Some(h) = &self.head {
+            albedos.push(("head.albedo", &h.albedo));
+        }
+        if let Some(g) = &self.ground {
+            albedos.push(("ground.albedo", &g.albedo));
+        }
+        if let Some((name, v)) = albedos
+            .iter()
+            .find(|(_, v)| v.iter().any(|x| !(0.0..=1.0).contains(x)))
+        {
+            return Err(format!(
+                "{name} must be in [0, 1] (an albedo: the fraction of the light reflected), got {v:?}"
+            ));
+        }
+        if m.diffuse + m.specular > 1.0 {
+            return Err(format!(
+                "material.diffuse + material.specular must be ≤ 1 (a white fibre reflecting no more than it receives), got {} + {}",
+                m.diffuse, m.specular
+            ));
+        }
         Ok(())
     }
 }
