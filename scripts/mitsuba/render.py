@@ -10,7 +10,7 @@ Mitsuba's emitters hidden from camera rays so the ambient that lights the scene
 need not be the background seen. --max-depth 2 is single scattering (one
 scattering event between camera and light, with shadow rays).
 
-COV.exr: per pixel, the fraction of camera rays (jittered over the pixel's
+COV.exr (RGB, three equal channels): per pixel, the fraction of camera rays (jittered over the pixel's
 square, as the box filter integrates) whose first hit is hair, i.e. a curve
 shape; head and ground are meshes.
 
@@ -97,7 +97,8 @@ def main():
         write_exr(mi, np, rgb, a.out)
         if a.coverage:
             cov = hair_coverage(mi, dr, np, scene, a.coverage_spp, a.seed)
-            write_exr(mi, np, cov[..., None], a.coverage)
+            # RGB, each channel the coverage: any EXR reader takes it.
+            write_exr(mi, np, np.repeat(cov[..., None], 3, axis=2), a.coverage)
     except (RuntimeError, OSError, ValueError, KeyError) as e:
         fail(f"{a.scene_dir}: mitsuba: {e}")
 
