@@ -72,11 +72,10 @@ fn radii_are_half_the_thickness_and_colours_make_groups() {
     assert_eq!(m.hair[1].strands[0][2].0, Vec3::new(0.5, -2.0, 0.5));
     // Chiang et al. 2016 §4.2 at β_n = 0.3: the denominator is
     // 5.969 − 0.215·0.3 + 2.532·0.09 − 10.73·0.027 + 5.574·0.0081 + 0.245·0.00243.
-    let d = 5.888_414_75_f32;
-    let want = Vec3::new(0.5f32, 0.25, 0.1)
-        .to_array()
-        .map(|c| (c.ln() / d).powi(2));
+    let d = 5.888_414_75_f64;
+    let want = [0.5f64, 0.25, 0.1].map(|c| (c.ln() / d).powi(2));
     for (got, want) in g0.sigma_a.to_array().iter().zip(want) {
+        let got = f64::from(*got);
         assert!((got - want).abs() < 1e-6 * want, "σ_a {got} vs {want}");
     }
     let xml = m.xml();
