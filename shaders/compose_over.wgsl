@@ -1,5 +1,6 @@
 // compose_over: a data-only fullscreen pass (no Rust). The premultiplied scene
-// colour goes over the background colour; the sRGB target encodes the output.
+// colour goes over the background colour, in linear radiance (a float target:
+// nothing clips; the display transform, techniques/tone_mapping/, follows).
 // Bindings are matched by name to the pass's `reads`; the output is the pass's
 // one colour target in `writes`.
 #import plait::frame::{frame, fullscreen_position, background_at}

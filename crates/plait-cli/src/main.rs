@@ -11,6 +11,7 @@
 mod output;
 mod ab_cmd;
 mod args;
+mod export_cmd;
 mod hair_cmd;
 mod pipeline_cmd;
 mod render_cmd;
@@ -52,6 +53,8 @@ enum Command {
     Hair(hair_cmd::HairArgs),
     /// Run several pipelines on the same scene(s) and write one report
     Ab(ab_cmd::AbArgs),
+    /// Write a scene for another renderer (Mitsuba 3, the path-traced reference).
+    Export(export_cmd::ExportArgs),
     /// Open a window that renders a pipeline live and reloads it on every save.
     View(view_cmd::ViewArgs),
 }
@@ -73,6 +76,7 @@ fn main() {
         Command::Techniques(args) => techniques_cmd::run(args),
         Command::Hair(args) => hair_cmd::run(args),
         Command::Ab(args) => ab_cmd::run(args),
+        Command::Export(args) => export_cmd::run(args),
         Command::View(args) => view_cmd::run(args),
     };
     let result = result.and_then(|()| Ok(std::io::stdout().flush()?));

@@ -316,8 +316,9 @@ impl PendingDir {
     }
 }
 
-/// The image format an output path asks for by its extension: `.png`, or
-/// `.jpg`/`.jpeg` (8-bit RGB, the alpha channel dropped). Anything else is
+/// The image format an output path asks for by its extension: `.png`,
+/// `.jpg`/`.jpeg` (8-bit RGB, the alpha channel dropped), or `.exr` (OpenEXR,
+/// 32-bit float: the linear radiance, not the displayed image). Anything else is
 /// refused before any work, rather than writing PNG bytes under another name.
 pub fn image_format(path: &Path, flag: &str) -> Result<image::ImageFormat> {
     let extension = path
@@ -326,12 +327,13 @@ pub fn image_format(path: &Path, flag: &str) -> Result<image::ImageFormat> {
     match extension.as_deref() {
         Some("png") => Ok(image::ImageFormat::Png),
         Some("jpg" | "jpeg") => Ok(image::ImageFormat::Jpeg),
+        Some("exr") => Ok(image::ImageFormat::OpenExr),
         Some(other) => anyhow::bail!(
-            "{flag} {}: cannot write `.{other}` images; use a .png or .jpg/.jpeg file name",
+            "{flag} {}: cannot write `.{other}` images; use a .png, .jpg/.jpeg or .exr file name",
             path.display()
         ),
         None => anyhow::bail!(
-            "{flag} {}: the file name needs an extension, .png or .jpg/.jpeg",
+            "{flag} {}: the file name needs an extension, .png, .jpg/.jpeg or .exr",
             path.display()
         ),
     }

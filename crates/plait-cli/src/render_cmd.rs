@@ -23,7 +23,10 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_scene)]
     scene: Option<PathBuf>,
     /// Where to write the image: a .png, or a .jpg/.jpeg file (default
-    /// plait.png). With --frames, a folder (default frames/).
+    /// plait.png): the displayed image, after exposure and tone mapping. An
+    /// .exr file (OpenEXR, 32-bit float) holds the linear radiance before
+    /// them (the pipeline's `radiance` texture; with --show, that texture's
+    /// values). With --frames, a folder (default frames/).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Render size, `WIDTHxHEIGHT` (a lowercase or capital x).
@@ -64,6 +67,8 @@ pub struct Rendered {
     pub backend: String,
     /// What the renderer adapted to the adapter (format downgrades…).
     pub notes: Vec<String>,
+    /// The linear image as stored, when asked for (`--out x.exr`).
+    pub linear: Option<image::Rgba32FImage>,
 }
 
 pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
@@ -73,24 +78,41 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene> {
     }
 }
 
+/// Which float texture a render also reads back as 32-bit floats.
+pub struct LinearOut<'a> {
+    /// The flag that asked for it (`--out x.exr`), where an error points.
+    pub flag: &'a str,
+}
+
 /// Render `pipeline` on `scene` at `size`: load it (the texture `show`
 /// names checked there), read the scene, open the device, compile once with
 /// the adapter's capabilities and limits, build, render, read the first
-/// output (or `show`'s texture).
+/// output (or `show`'s texture); with `linear`, also the float values of
+/// `show`'s texture or of the radiance (checked before the GPU opens).
 pub fn render(
     pipeline: &Path,
     sets: &[String],
     scene: &Scene,
     size: (u32, u32),
     show: Option<&str>,
+    linear: Option<LinearOut>,
 ) -> Result<Rendered> {
     let mut source = PipelineSource::new(pipeline, sets);
     if let Some(name) = show {
         source = source.with_output(name, &format!("--show {name}"));
     }
+    let linear_name = linear
+        .as_ref()
+        .map(|_| show.unwrap_or(plait::linear::RADIANCE));
+    if let (Some(l), None) = (&linear, show) {
+        source = source.with_output(plait::linear::RADIANCE, l.flag);
+    }
     let loaded = source.load(&[])?;
     if let Some(name) = show {
         crate::show::check_name(&loaded, name)?;
+    }
+    if let (Some(l), None) = (&linear, show) {
+        plait::linear::check_radiance(&loaded, l.flag)?;
     }
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
@@ -121,6 +143,12 @@ pub fn render(
         }
         None => prepared.image()?,
     };
+    let linear = match linear_name {
+        Some(name) => Some(plait::linear::to_f32_image(
+            &prepared.renderer.read_resource(name)?,
+        )),
+        None => None,
+    };
     Ok(Rendered {
         schedule: prepared.schedule().clone(),
         report,
@@ -128,6 +156,7 @@ pub fn render(
         adapter: gpu.adapter_name().to_owned(),
         backend: gpu.backend_name(),
         notes,
+        linear,
     })
 }
 
@@ -221,14 +250,21 @@ fn render_once(args: &RenderArgs) -> Result<()> {
     let out = PendingFile::create(&out_path, "--out")?;
     let pipeline = resolve_pipeline(args.pipeline.as_deref());
     let scene = load_scene(args.scene.as_deref())?;
+    let exr = format == image::ImageFormat::OpenExr;
+    let flag = format!("--out {}", out_path.display());
     let r = render(
         &pipeline,
         &args.set.sets,
         &scene,
         args.size,
         args.show.as_deref(),
+        exr.then_some(LinearOut { flag: &flag }),
     )?;
-    out.commit(&crate::output::encode_image(&r.image, format)?)?;
+    let bytes = match &r.linear {
+        Some(linear) => plait::linear::encode_exr(linear)?,
+        None => crate::output::encode_image(&r.image, format)?,
+    };
+    out.commit(&bytes)?;
     for note in &r.notes {
         eprintln!("note: {note}");
     }

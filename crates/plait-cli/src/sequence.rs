@@ -181,6 +181,7 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
         adapter: gpu.adapter_name().to_owned(),
         backend: gpu.backend_name(),
         notes: prepared.renderer.notes().to_vec(),
+        linear: None,
     };
     let json = sequence_json(args, &rendered, &reports);
     std::fs::write(

@@ -12,6 +12,7 @@ pub mod data_pass;
 pub mod density_clustering;
 pub mod depth_peeling;
 pub mod depth_range;
+pub mod display;
 pub mod geometry;
 pub mod hair_fragment;
 pub mod hair_shade;
@@ -97,7 +98,12 @@ fn read_library() -> PassLibrary {
         // The providers' params mean the same in a data-only pass that
         // imports plait::hair_fragment as in the Rust pass types; the
         // geometry provider's in every pass that draws hair.
-        shared_params: [hair_fragment::shading_params(), geometry::params()].concat(),
+        shared_params: [
+            hair_fragment::shading_params(),
+            geometry::params(),
+            display::params(),
+        ]
+        .concat(),
         // Every hair draw scales its coverage by the shading_space
         // provider's tip fading (plait::strand_coverage), so its buffers
         // reach the unshaded draws (alpha_sum) too.

@@ -10,6 +10,8 @@
 //! - [`passes`]: the pass library;
 //! - [`overflow`]: bounded buffers sized to hold every frame's data;
 //! - [`frames`]: sequences of frames (time, head animation, medians);
+//! - [`mitsuba`]: a scene exported for the Mitsuba 3 path tracer;
+//! - [`linear`]: the linear radiance image before the display transform, as OpenEXR;
 //! - [`ab`]: A/B runs, several pipelines against a reference, as one report.
 
 pub use plait_gpu as gpu;
@@ -20,6 +22,8 @@ pub use plait_passes as passes;
 pub mod ab;
 pub mod adapter;
 pub mod frames;
+pub mod linear;
+pub mod mitsuba;
 pub mod overflow;
 pub mod probe;
 pub mod scene_fit;

@@ -1,0 +1,204 @@
+//! The exporter on a hand-built two-strand scene: radii, colour groups,
+//! camera, light, and the errors for what Mitsuba cannot express.
+
+use std::path::Path;
+
+use glam::Vec3;
+
+use super::*;
+use plait_hair::{Scene, Strands};
+
+const SCENE: &str = r#"
+ambient = 0.25
+[hair.procedural]
+strands = 1
+segments = 2
+[ground]
+height = -2.0
+half_size = 3.0
+albedo = [0.6, 0.5, 0.4]
+[camera]
+eye = [0.0, 1.0, 6.0]
+target = [0.0, 0.0, 0.0]
+fov_y_degrees = 30.0
+near = 0.5
+far = 50.0
+[light]
+type = "directional"
+direction = [0.0, -1.0, -1.0]
+color = [1.0, 0.5, 0.25]
+intensity = 4.0
+[background]
+color = [0.1, 0.2, 0.3]
+[material]
+color = [1.0, 0.5, 1.0]
+"#;
+
+/// The scene above with two hand-built strands of different colours and
+/// thickness profiles in place of its groom.
+fn two_strands() -> SceneData {
+    let scene = Scene::from_toml_str(SCENE, Path::new("two.toml")).expect("scene parses");
+    let mut data = SceneData::new(scene).expect("scene loads");
+    let mut s = Strands::new();
+    let line = |x: f32| {
+        [
+            Vec3::new(x, 0.0, 0.0),
+            Vec3::new(x, -1.0, 0.0),
+            Vec3::new(x, -2.0, 0.5),
+        ]
+    };
+    s.push_strand(
+        &line(-0.5),
+        |t| 0.02 * (1.0 - 0.5 * t),
+        |_| 1.0,
+        Vec3::new(0.5, 0.5, 0.1),
+    );
+    s.push_strand(&line(0.5), |_| 0.01, |_| 0.5, Vec3::new(0.8, 0.6, 0.4));
+    data.strands = s;
+    data
+}
+
+#[test]
+fn radii_are_half_the_thickness_and_colours_make_groups() {
+    let m = plan(&two_strands(), (32, 24), Fibre::default()).expect("exports");
+    assert_eq!(m.hair.len(), 2, "two colours, two shapes");
+    let g0 = &m.hair[0];
+    // material.color (1, 0.5, 1) tints the strand's colour.
+    assert_eq!(g0.color, Vec3::new(0.5, 0.25, 0.1));
+    assert_eq!(g0.alpha, 1.0);
+    let radii: Vec<f32> = g0.strands[0].iter().map(|p| p.1).collect();
+    assert_eq!(radii, vec![0.01, 0.0075, 0.005], "radius = thickness / 2");
+    assert_eq!(m.hair[1].alpha, 0.5);
+    assert_eq!(m.hair[1].strands[0][2].0, Vec3::new(0.5, -2.0, 0.5));
+    // Chiang et al. 2016 §4.2 at β_n = 0.3: the denominator is
+    // 5.969 − 0.215·0.3 + 2.532·0.09 − 10.73·0.027 + 5.574·0.0081 + 0.245·0.00243.
+    let d = 5.888_414_75_f64;
+    let want = [0.5f64, 0.25, 0.1].map(|c| (c.ln() / d).powi(2));
+    for (got, want) in g0.sigma_a.to_array().iter().zip(want) {
+        let got = f64::from(*got);
+        assert!((got - want).abs() < 1e-6 * want, "σ_a {got} vs {want}");
+    }
+    let xml = m.xml();
+    assert!(xml.contains("<rgb name=\"sigma_a\""), "{xml}");
+    assert!(
+        xml.contains("<bsdf type=\"mask\">\n    <float name=\"opacity\" value=\"0.5\"/>"),
+        "{xml}"
+    );
+    assert_eq!(
+        xml.matches("<bsdf type=\"mask\">").count(),
+        1,
+        "only the half-opaque group is masked"
+    );
+}
+
+#[test]
+fn camera_light_ambient_and_background_in_plaits_units() {
+    let m = plan(&two_strands(), (32, 24), Fibre::default()).expect("exports");
+    let xml = m.xml();
+    for want in [
+        "<lookat origin=\"0, 1, 6\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>",
+        "<float name=\"fov\" value=\"30\"/>",
+        "<string name=\"fov_axis\" value=\"y\"/>",
+        "<float name=\"near_clip\" value=\"0.5\"/>",
+        "<float name=\"far_clip\" value=\"50\"/>",
+        "<integer name=\"width\" value=\"32\"/>",
+        "<integer name=\"height\" value=\"24\"/>",
+        "<rfilter type=\"box\"/>",
+        // irradiance = intensity × colour
+        "<rgb name=\"irradiance\" value=\"4, 2, 1\"/>",
+        "<rgb name=\"radiance\" value=\"0.25, 0.25, 0.25\"/>",
+        "<rgb name=\"reflectance\" value=\"0.6, 0.5, 0.4\"/>",
+    ] {
+        assert!(xml.contains(want), "missing {want} in\n{xml}");
+    }
+    let d = m.light_direction;
+    assert!(
+        (d - Vec3::new(0.0, -1.0, -1.0).normalize()).length() < 1e-6,
+        "travel direction {d}"
+    );
+    assert_eq!(m.background, Vec3::new(0.1, 0.2, 0.3));
+    assert!(
+        m.notes.iter().any(|n| n.contains("Kajiya-Kay")),
+        "{:?}",
+        m.notes
+    );
+}
+
+#[test]
+fn the_folder_holds_every_file_the_xml_names() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let written = plan(&two_strands(), (32, 24), Fibre::default())
+        .expect("exports")
+        .write(dir.path())
+        .expect("writes");
+    let names: Vec<String> = written
+        .files
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "scene.xml",
+            "hair_0.txt",
+            "hair_1.txt",
+            "mesh_0.obj",
+            "plait.json"
+        ]
+    );
+    let curve = std::fs::read_to_string(dir.path().join("hair_0.txt")).unwrap();
+    assert_eq!(
+        curve,
+        "-0.5 0 0 0.01\n-0.5 -1 0 0.0075\n-0.5 -2 0.5 0.005\n"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("plait.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        json["background"],
+        serde_json::json!([0.1f32, 0.2f32, 0.3f32])
+    );
+    assert_eq!(json["hair_groups"][1]["strands"], 1);
+}
+
+#[test]
+fn what_mitsuba_cannot_express_is_an_error() {
+    let mut data = two_strands();
+    data.scene.background = plait_hair::Background::Image("sky.png".into());
+    let e = plan(&data, (8, 8), Fibre::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("background image (sky.png)"), "{e}");
+
+    let mut data = two_strands();
+    data.scene.light.kind = plait_hair::LightKind::Spot {
+        position: [0.0, 3.0, 0.0],
+        direction: [0.0, -1.0, 0.0],
+        cone_degrees: 30.0,
+    };
+    let e = plan(&data, (8, 8), Fibre::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("spot light"), "{e}");
+
+    let mut data = two_strands();
+    data.scene.material.color = [1.0, 0.0, 1.0];
+    let e = plan(&data, (8, 8), Fibre::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no") || e.contains("absorption"), "{e}");
+}
+
+#[test]
+fn a_colour_changing_along_a_strand_is_noted() {
+    let mut data = two_strands();
+    data.strands.color[1] = Vec3::new(0.2, 0.2, 0.2);
+    let m = plan(&data, (8, 8), Fibre::default()).expect("exports");
+    assert!(
+        m.notes
+            .iter()
+            .any(|n| n.starts_with("1 strand(s) change colour")),
+        "{:?}",
+        m.notes
+    );
+}

@@ -1,0 +1,212 @@
+//! Writing a [`MitsubaScene`] as a folder: `scene.xml` (Mitsuba 3's scene
+//! format, version 3.0.0), `hair_K.txt` (Mitsuba's curve files: one control
+//! point `x y z radius` a line, strands separated by an empty line),
+//! `mesh_K.obj` and `plait.json`.
+//!
+//! The XML leaves samples per pixel, maximum path depth and seed as
+//! `$spp`, `$max_depth` and `$seed` with defaults, so `render.py` sets them
+//! when it loads the file and the folder is the same for every render.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+
+use super::{ExportError, HairGroup, MitsubaMesh, MitsubaScene};
+
+/// What [`MitsubaScene::write`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    /// `DIR/scene.xml`.
+    pub scene_xml: PathBuf,
+    /// Every file, `scene.xml` first.
+    pub files: Vec<PathBuf>,
+}
+
+impl MitsubaScene {
+    /// Writes the folder `dir` (created if missing; files of an earlier
+    /// export with the same names are replaced).
+    pub fn write(&self, dir: &Path) -> Result<Written, ExportError> {
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |error| ExportError::Io { path, error }
+        };
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let mut files = vec![dir.join("scene.xml")];
+        for (k, g) in self.hair.iter().enumerate() {
+            let path = dir.join(format!("hair_{k}.txt"));
+            std::fs::write(&path, curve_file(g)).map_err(io(&path))?;
+            files.push(path);
+        }
+        for (k, m) in self.meshes.iter().enumerate() {
+            let path = dir.join(format!("mesh_{k}.obj"));
+            std::fs::write(&path, obj_file(m)).map_err(io(&path))?;
+            files.push(path);
+        }
+        let json = dir.join("plait.json");
+        std::fs::write(&json, self.sidecar()).map_err(io(&json))?;
+        files.push(json);
+        std::fs::write(&files[0], self.xml()).map_err(io(&files[0]))?;
+        Ok(Written {
+            scene_xml: files[0].clone(),
+            files,
+        })
+    }
+
+    /// `scene.xml`.
+    pub fn xml(&self) -> String {
+        let mut x = String::from("<scene version=\"3.0.0\">\n");
+        x += "  <default name=\"spp\" value=\"64\"/>\n";
+        x += "  <default name=\"max_depth\" value=\"16\"/>\n";
+        x += "  <default name=\"seed\" value=\"0\"/>\n";
+        // hide_emitters: a ray that hits nothing returns 0 and alpha 0;
+        // render.py adds the background (radiance) where alpha < 1, so the
+        // background seen and the ambient that lights can differ, as in plait.
+        x += "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"$max_depth\"/>\n";
+        x += "    <boolean name=\"hide_emitters\" value=\"true\"/>\n  </integrator>\n";
+        x += &self.sensor_xml();
+        let _ = writeln!(
+            x,
+            "  <emitter type=\"directional\">\n    <vector name=\"direction\" value=\"{}\"/>\n    {}\n  </emitter>",
+            v3(self.light_direction),
+            rgb("irradiance", self.irradiance)
+        );
+        if self.ambient != Vec3::ZERO {
+            let _ = writeln!(
+                x,
+                "  <emitter type=\"constant\">\n    {}\n  </emitter>",
+                rgb("radiance", self.ambient)
+            );
+        }
+        for (k, g) in self.hair.iter().enumerate() {
+            x += &self.hair_xml(k, g);
+        }
+        for (k, m) in self.meshes.iter().enumerate() {
+            let _ = writeln!(
+                x,
+                "  <shape type=\"obj\" id=\"mesh_{k}\">\n    <string name=\"filename\" value=\"mesh_{k}.obj\"/>\n    <!-- plait mesh \"{}\" -->\n    <bsdf type=\"twosided\"><bsdf type=\"diffuse\">{}</bsdf></bsdf>\n  </shape>",
+                xml_text(&m.name),
+                rgb("reflectance", m.albedo)
+            );
+        }
+        x + "</scene>\n"
+    }
+
+    /// The camera: Mitsuba's `look_at` frame, the same vertical field of
+    /// view and clip planes; the box filter makes a pixel the mean over its
+    /// square, centred where plait's rasterizer samples it (x + ½, y + ½).
+    fn sensor_xml(&self) -> String {
+        let c = &self.camera;
+        format!(
+            "  <sensor type=\"perspective\">\n    <string name=\"fov_axis\" value=\"y\"/>\n    <float name=\"fov\" value=\"{}\"/>\n    <float name=\"near_clip\" value=\"{}\"/>\n    <float name=\"far_clip\" value=\"{}\"/>\n    <transform name=\"to_world\">\n      <lookat origin=\"{}\" target=\"{}\" up=\"{}\"/>\n    </transform>\n    <sampler type=\"independent\">\n      <integer name=\"sample_count\" value=\"$spp\"/>\n      <integer name=\"seed\" value=\"$seed\"/>\n    </sampler>\n    <film type=\"hdrfilm\">\n      <integer name=\"width\" value=\"{}\"/>\n      <integer name=\"height\" value=\"{}\"/>\n      <string name=\"pixel_format\" value=\"rgba\"/>\n      <string name=\"component_format\" value=\"float32\"/>\n      <rfilter type=\"box\"/>\n    </film>\n  </sensor>\n",
+            c.fov_y_degrees,
+            c.near,
+            c.far,
+            v3(c.eye),
+            v3(c.target),
+            v3(c.up),
+            c.size.0,
+            c.size.1
+        )
+    }
+
+    fn hair_xml(&self, k: usize, g: &HairGroup) -> String {
+        let f = &self.fibre;
+        let hair = format!(
+            "<bsdf type=\"hair\">\n      <float name=\"longitudinal_roughness\" value=\"{}\"/>\n      <float name=\"azimuthal_roughness\" value=\"{}\"/>\n      <float name=\"scale_tilt\" value=\"{}\"/>\n      <float name=\"int_ior\" value=\"{}\"/>\n      <float name=\"ext_ior\" value=\"1\"/>\n      {}\n    </bsdf>",
+            f.longitudinal_roughness,
+            f.azimuthal_roughness,
+            f.scale_tilt_degrees,
+            f.eta,
+            rgb("sigma_a", g.sigma_a)
+        );
+        let bsdf = if g.alpha < 1.0 {
+            format!(
+                "<bsdf type=\"mask\">\n    <float name=\"opacity\" value=\"{}\"/>\n    {hair}\n    </bsdf>",
+                g.alpha
+            )
+        } else {
+            hair
+        };
+        format!(
+            "  <shape type=\"linearcurve\" id=\"hair_{k}\">\n    <!-- colour {} alpha {}: {} strands -->\n    <string name=\"filename\" value=\"hair_{k}.txt\"/>\n    {bsdf}\n  </shape>\n",
+            v3(g.color),
+            g.alpha,
+            g.strands.len()
+        )
+    }
+
+    /// `plait.json`: the background (render.py adds it where camera rays
+    /// miss), the image size, the hair groups and the notes.
+    fn sidecar(&self) -> String {
+        let groups: Vec<_> = self
+            .hair
+            .iter()
+            .enumerate()
+            .map(|(k, g)| {
+                serde_json::json!({
+                    "shape": format!("hair_{k}"),
+                    "color": g.color.to_array(),
+                    "alpha": g.alpha,
+                    "sigma_a": g.sigma_a.to_array(),
+                    "strands": g.strands.len(),
+                })
+            })
+            .collect();
+        let json = serde_json::json!({
+            "background": self.background.to_array(),
+            "size": [self.camera.size.0, self.camera.size.1],
+            "hair_groups": groups,
+            "notes": self.notes,
+        });
+        serde_json::to_string_pretty(&json).unwrap_or_default() + "\n"
+    }
+}
+
+/// A curve file: `x y z radius` per control point (`{}` prints an f32 so
+/// that it reads back to the same f32).
+fn curve_file(g: &HairGroup) -> String {
+    let mut s = String::new();
+    for (i, strand) in g.strands.iter().enumerate() {
+        if i > 0 {
+            s.push('\n');
+        }
+        for (p, r) in strand {
+            let _ = writeln!(s, "{} {} {} {}", p.x, p.y, p.z, r);
+        }
+    }
+    s
+}
+
+/// A Wavefront OBJ with per-vertex normals (1-based indices).
+fn obj_file(m: &MitsubaMesh) -> String {
+    let mut s = format!("# plait mesh {}\n", m.name);
+    for p in &m.positions {
+        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+    }
+    for n in &m.normals {
+        let _ = writeln!(s, "vn {} {} {}", n.x, n.y, n.z);
+    }
+    for t in m.indices.chunks_exact(3) {
+        let [a, b, c] = [t[0] + 1, t[1] + 1, t[2] + 1];
+        let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
+    }
+    s
+}
+
+fn v3(v: Vec3) -> String {
+    format!("{}, {}, {}", v.x, v.y, v.z)
+}
+
+fn rgb(name: &str, v: Vec3) -> String {
+    format!("<rgb name=\"{name}\" value=\"{}\"/>", v3(v))
+}
+
+/// Text safe inside an XML comment or attribute.
+fn xml_text(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+        .replace("--", "- -")
+}

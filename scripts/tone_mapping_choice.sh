@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The evidence behind the default tone-mapping operator: runs
+# tests/display.rs's tone_mapping_choice (every operator on the default and
+# mesh-head scenes, at exposure 0 and +2) and writes its table into the
+# comment block of techniques/tone_mapping/point.toml between the
+# `measured:` markers, so the numbers there are this command's output.
+# Run it again after anything changes the radiance (light units, shading).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+out=$(cargo test -p plait-tests --test display --locked -- --test-threads=1 --nocapture --exact tone_mapping_choice)
+table=$(printf '%s\n' "$out" | sed -n 's/^test tone_mapping_choice \.\.\. //; /^|/p')
+adapter=$(printf '%s\n' "$out" | sed -n 's/^.*adapter: //p' | head -1)
+python3 - "$table" "$adapter" <<'PY'
+import sys, pathlib
+table, adapter = sys.argv[1], sys.argv[2]
+path = pathlib.Path("techniques/tone_mapping/point.toml")
+text = path.read_text()
+begin, end = "# measured: begin\n", "# measured: end\n"
+head, rest = text.split(begin)
+_, tail = rest.split(end)
+body = "".join(f"# {line}\n" for line in [
+    f"bash scripts/tone_mapping_choice.sh on {adapter}, 320x240:",
+    *table.splitlines()])
+path.write_text(head + begin + body + end + tail)
+PY
+printf '%s\n' "$table"
