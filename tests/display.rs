@@ -54,9 +54,8 @@ fn aces_fitted(c: Rgb) -> Rgb {
         [-0.10208, 1.10813, -0.00605],
         [-0.00327, -0.07276, 1.07602],
     ];
-    let fit = rows(input, c).map(|v| {
-        (v * (v + 0.0245786) - 0.000090537) / (v * (0.983729 * v + 0.4329510) + 0.238081)
-    });
+    let fit = rows(input, c)
+        .map(|v| (v * (v + 0.0245786) - 0.000090537) / (v * (0.983729 * v + 0.4329510) + 0.238081));
     rows(output, fit).map(|x| x.clamp(0.0, 1.0))
 }
 
@@ -78,9 +77,21 @@ fn agx(c: Rgb) -> Rgb {
         [0.0482516061458583, 0.101439036467562, 0.811302368396859],
     ];
     let outset = [
-        [1.1271005818144368, -0.1413297634984383, -0.14132976349843826],
-        [-0.11060664309660323, 1.157823702216272, -0.11060664309660294],
-        [-0.016493938717834573, -0.016493938717834257, 1.2519364065950405],
+        [
+            1.1271005818144368,
+            -0.1413297634984383,
+            -0.14132976349843826,
+        ],
+        [
+            -0.11060664309660323,
+            1.157823702216272,
+            -0.11060664309660294,
+        ],
+        [
+            -0.016493938717834573,
+            -0.016493938717834257,
+            1.2519364065950405,
+        ],
     ];
     let (min_ev, max_ev) = (-12.47393, 4.026069);
     let v = cols(inset, cols(to_2020, c)).map(|x| {
@@ -153,14 +164,22 @@ fn every_operator_matches_its_formula_at_every_exposure() {
                     }
                 }
             }
-            println!("{op:12} exposure {exposure:+}: largest |GPU - formula| {:.2e}", worst.0);
+            println!(
+                "{op:12} exposure {exposure:+}: largest |GPU - formula| {:.2e}",
+                worst.0
+            );
             if worst.0 > 2e-4 {
                 let i = worst.1;
                 failures.push(format!(
                     "{op} at exposure {exposure}: pixel {i} radiance {:?} shows {:?}, formula {:?}",
                     radiance[i],
                     shown[i],
-                    operator(op, radiance[i].map(|v| v as f64 * exposure.exp2())[..3].try_into().unwrap())
+                    operator(
+                        op,
+                        radiance[i].map(|v| v as f64 * exposure.exp2())[..3]
+                            .try_into()
+                            .unwrap()
+                    )
                 ));
             }
         }
@@ -253,11 +272,16 @@ fn tone_mapping_choice() {
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let scenes = [
         ("default", None),
-        ("mesh_head", Some(repo_root().join("examples/scenes/mesh_head.toml"))),
+        (
+            "mesh_head",
+            Some(repo_root().join("examples/scenes/mesh_head.toml")),
+        ),
     ];
     let default_op = default_operator(&pipeline);
     println!("adapter: {}", gpu.adapter_name());
-    println!("| scene | exposure | operator | hair px at 255 | all px at 255 | mean shown hair (sRGB) |");
+    println!(
+        "| scene | exposure | operator | hair px at 255 | all px at 255 | mean shown hair (sRGB) |"
+    );
     println!("|---|---|---|---|---|---|");
     let mut default_worst = 0.0f64;
     for (label, path) in &scenes {

@@ -101,7 +101,9 @@ pub fn render(
     if let Some(name) = show {
         source = source.with_output(name, &format!("--show {name}"));
     }
-    let linear_name = linear.as_ref().map(|_| show.unwrap_or(plait::linear::RADIANCE));
+    let linear_name = linear
+        .as_ref()
+        .map(|_| show.unwrap_or(plait::linear::RADIANCE));
     if let (Some(l), None) = (&linear, show) {
         source = source.with_output(plait::linear::RADIANCE, l.flag);
     }

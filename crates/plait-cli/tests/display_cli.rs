@@ -57,7 +57,11 @@ fn exr_out_of_a_pipeline_without_float_radiance_is_refused_at_the_flag() {
     // kk.toml writes an rgba8unorm `final` and has no `radiance`; occupancy
     // with its radiance made 8-bit has one, but not floating point.
     let cases: [(&str, &[&str], &str); 2] = [
-        ("tests/fixtures/kk.toml", &[], "has no floating-point `radiance` texture"),
+        (
+            "tests/fixtures/kk.toml",
+            &[],
+            "has no floating-point `radiance` texture",
+        ),
         (
             "pipelines/occupancy.toml",
             &["--set", "resources.radiance.format=\"rgba8unorm\""],
