@@ -227,6 +227,7 @@ fn print_summary(report: &Report) -> std::io::Result<()> {
         for line in table.lines() {
             outln!("{line}")?;
         }
+        outln!("{}", scene.metrics_note())?;
     }
     Ok(())
 }

@@ -2,9 +2,15 @@
 //! plait's A/B reports (`plait ab`).
 //!
 //! # Conventions
-//! All metrics compare the **RGB channels of 8-bit sRGB images** (alpha is
-//! ignored), with values normalized to `0..=1` by dividing by 255: no
-//! linearization. This is what a viewer sees in the PNG.
+//! SSIM and FLIP compare the **RGB channels of the displayed 8-bit sRGB
+//! images** (after exposure and tone mapping; alpha is ignored), values
+//! normalized to `0..=1` by dividing by 255: what a viewer sees in the PNG,
+//! and what both metrics were designed for. RMSE, PSNR and the difference
+//! map compare the **linear radiance** (the pipelines' float `radiance`, as
+//! saved in the .exr files) when both images have one ([`compare_linear`],
+//! [`ErrorSpace::LinearRadiance`]): a difference in light, not in how a tone
+//! curve displays it. Without linear images they fall back to the displayed
+//! values ([`ErrorSpace::Displayed`]); [`Metrics::error_space`] says which.
 //!
 //! - [`rmse`]: root mean square error over every pixel and R, G, B channel.
 //! - [`psnr`]: `10·log10(1 / MSE)` dB with peak 1; `None` (infinite) for identical images.
@@ -25,11 +31,15 @@
 //! measures flicker over animated sequences against the reference's own change.
 
 pub mod heatmap;
+pub mod linear;
 pub mod plot;
 pub mod report;
 pub mod temporal;
 
-use image::RgbaImage;
+use image::{Rgba32FImage, RgbaImage};
+
+use linear::check_linear;
+pub use linear::{mse_linear, rmse_linear};
 
 /// Why two images could not be compared.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -207,43 +217,106 @@ pub fn flip(reference: &RgbaImage, test: &RgbaImage) -> Result<FlipResult, Compa
     Ok(FlipResult { map: values, mean })
 }
 
+/// What RMSE, PSNR and the difference map were computed on.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorSpace {
+    /// The displayed 8-bit sRGB values, 0..1.
+    #[default]
+    Displayed,
+    /// Linear radiance before exposure and tone mapping (unbounded).
+    LinearRadiance,
+}
+
+impl ErrorSpace {
+    /// How a report names it.
+    pub fn words(self) -> &'static str {
+        match self {
+            ErrorSpace::Displayed => "displayed sRGB 0..1",
+            ErrorSpace::LinearRadiance => "linear radiance",
+        }
+    }
+}
+
 /// Every metric of one image against a reference.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct Metrics {
+    /// In [`Metrics::error_space`].
     pub rmse: f64,
-    /// dB, peak 1; `null` when the images are identical (infinite).
+    /// dB, peak 1 (in [`Metrics::error_space`]); `null` when the images are
+    /// identical (infinite).
     pub psnr_db: Option<f64>,
     pub ssim: f64,
     /// Mean of the LDR-ꟻLIP error map.
     pub flip_mean: f64,
-    /// Largest per-pixel mean |RGB difference| (0..1), the scale of the difference heat map.
+    /// Largest per-pixel mean |RGB difference| (in [`Metrics::error_space`]),
+    /// the scale of the difference heat map.
     pub max_abs_diff: f64,
+    /// What RMSE, PSNR and the difference map compare; SSIM and FLIP always
+    /// compare the displayed images.
+    pub error_space: ErrorSpace,
 }
 
 /// Metrics plus the per-pixel maps behind the heat maps.
 #[derive(Clone, Debug)]
 pub struct Comparison {
     pub metrics: Metrics,
-    /// Mean |RGB difference| per pixel, 0..1, row-major.
+    /// Mean |RGB difference| per pixel, row-major (in the metrics' error space).
     pub abs_diff: Vec<f32>,
     pub flip_map: Vec<f32>,
     pub width: u32,
     pub height: u32,
 }
 
-/// Compare `test` with `reference`: every metric and both per-pixel maps.
+/// Compare `test` with `reference`: every metric and both per-pixel maps,
+/// all on the displayed images.
 pub fn compare(reference: &RgbaImage, test: &RgbaImage) -> Result<Comparison, CompareError> {
-    let m = mse(reference, test)?;
-    let abs_diff: Vec<f32> = reference
-        .pixels()
-        .zip(test.pixels())
-        .map(|(a, b)| {
-            (0..3)
-                .map(|c| (a.0[c] as f32 - b.0[c] as f32).abs())
-                .sum::<f32>()
-                / (3.0 * 255.0)
-        })
-        .collect();
+    compare_linear(reference, test, None)
+}
+
+/// [`compare`], with RMSE, PSNR and the difference map on the linear
+/// radiance `linear` = (reference's, test's) when given (see the crate docs).
+pub fn compare_linear(
+    reference: &RgbaImage,
+    test: &RgbaImage,
+    linear: Option<(&Rgba32FImage, &Rgba32FImage)>,
+) -> Result<Comparison, CompareError> {
+    check(reference, test)?;
+    let (m, abs_diff, error_space) = match linear {
+        Some((r, t)) => {
+            check_linear(r, t)?;
+            if r.dimensions() != reference.dimensions() {
+                return Err(CompareError::SizeMismatch {
+                    a_w: r.width(),
+                    a_h: r.height(),
+                    b_w: reference.width(),
+                    b_h: reference.height(),
+                });
+            }
+            let diff = r
+                .pixels()
+                .zip(t.pixels())
+                .map(|(a, b)| (0..3).map(|c| (a.0[c] - b.0[c]).abs()).sum::<f32>() / 3.0);
+            (
+                mse_linear(r, t)?,
+                diff.collect(),
+                ErrorSpace::LinearRadiance,
+            )
+        }
+        None => {
+            let diff = reference.pixels().zip(test.pixels()).map(|(a, b)| {
+                (0..3)
+                    .map(|c| (a.0[c] as f32 - b.0[c] as f32).abs())
+                    .sum::<f32>()
+                    / (3.0 * 255.0)
+            });
+            (
+                mse(reference, test)?,
+                diff.collect::<Vec<f32>>(),
+                ErrorSpace::Displayed,
+            )
+        }
+    };
     let f = flip(reference, test)?;
     let metrics = Metrics {
         rmse: m.sqrt(),
@@ -255,6 +328,7 @@ pub fn compare(reference: &RgbaImage, test: &RgbaImage) -> Result<Comparison, Co
         ssim: ssim(reference, test)?,
         flip_mean: f.mean,
         max_abs_diff: abs_diff.iter().fold(0.0f32, |a, &b| a.max(b)) as f64,
+        error_space,
     };
     Ok(Comparison {
         metrics,

@@ -160,13 +160,14 @@ pub fn scene_charts(report: &Report, scene: &SceneResult) -> Vec<String> {
             format!("{} (index: {})", sw.key, sw.values.join(", "))
         };
         let lines = groups(report, scene, 1);
+        let rmse_label = format!("RMSE ({})", scene.error_space().words());
         for (title, y_label, y) in [
             (
                 "ꟻLIP mean",
                 "ꟻLIP mean vs reference",
                 &(|r: &Run| r.metrics.flip_mean) as &dyn Fn(&Run) -> f64,
             ),
-            ("RMSE", "RMSE (sRGB 0..1)", &|r: &Run| r.metrics.rmse),
+            ("RMSE", rmse_label.as_str(), &|r: &Run| r.metrics.rmse),
             ("cost", cost_label(report), &|r: &Run| cost_ms(&r.timing)),
         ] {
             charts.push(svg(&Chart {

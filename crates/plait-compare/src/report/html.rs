@@ -90,7 +90,12 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     h.push_str(&super::distance::distance_html(report));
 
     for scene in &report.scenes {
-        let _ = write!(h, "<h2>Scene {}</h2>", escape(&scene.name));
+        let _ = write!(
+            h,
+            "<h2>Scene {}</h2><p class=note>{}</p>",
+            escape(&scene.name),
+            escape(&scene.metrics_note())
+        );
         // Summary table.
         h.push_str("<table><tr><th class=l>variant</th><th class=l>sweep</th><th>frame ms (median)</th><th class=l>spread min–max (IQR)</th><th>wall ms</th><th>peak MiB</th><th>unpooled MiB</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>ꟻLIP</th></tr>");
         for run in &scene.runs {
@@ -143,9 +148,10 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
             );
             let _ = write!(
                 h,
-                "<figure><img class=img src=\"{}\" alt=\"difference\"><div class=legend><span>0</span><span>|Δ| mean RGB</span><span>{}</span></div><figcaption>absolute difference (max {:.4})</figcaption></figure>",
+                "<figure><img class=img src=\"{}\" alt=\"difference\"><div class=legend><span>0</span><span>|Δ| mean RGB</span><span>{}</span></div><figcaption>absolute difference, {} (max {:.4})</figcaption></figure>",
                 escape(&run.diff_image),
                 run.diff_scale,
+                run.metrics.error_space.words(),
                 run.metrics.max_abs_diff
             );
             let _ = write!(

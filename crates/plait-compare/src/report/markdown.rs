@@ -44,7 +44,7 @@ pub fn markdown(report: &Report) -> String {
             .iter()
             .find(|r| report.variant(&r.variant).is_some_and(|v| v.is_reference))
             .map(|r| cost_ms(&r.timing));
-        let _ = writeln!(out, "\n**{}**\n", scene.name);
+        let _ = writeln!(out, "\n**{}**\n\n{}\n", scene.name, scene.metrics_note());
         let _ = write!(
             out,
             "| variant | {timing} | × faster than the reference | peak MiB |"

@@ -179,7 +179,32 @@ pub struct SceneResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub distance: Option<CameraDistance>,
     pub reference_image: String,
+    /// The reference's linear radiance (OpenEXR), when its pipeline has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference_linear_image: Option<String>,
     pub runs: Vec<Run>,
+}
+
+impl SceneResult {
+    /// What the scene's RMSE and difference maps compare (the runs share it).
+    pub fn error_space(&self) -> crate::ErrorSpace {
+        self.runs
+            .first()
+            .map(|r| r.metrics.error_space)
+            .unwrap_or_default()
+    }
+
+    /// The sentence a report prints under the scene's table.
+    pub fn metrics_note(&self) -> String {
+        format!(
+            "RMSE, PSNR and the difference maps compare {}; SSIM and ꟻLIP compare the displayed images (after exposure and tone mapping).",
+            match self.error_space() {
+                crate::ErrorSpace::LinearRadiance => "linear radiance (the .exr beside each image)",
+                crate::ErrorSpace::Displayed =>
+                    "the displayed sRGB values (a pipeline without a float radiance target)",
+            }
+        )
+    }
 }
 
 /// A scene seen from a camera moved along its view ray.
@@ -196,7 +221,10 @@ pub struct CameraDistance {
 pub struct Run {
     pub variant: String,
     pub image: String,
-    /// |RGB difference| heat map, 0 → `diff_scale`.
+    /// The variant's linear radiance (OpenEXR), when its pipeline has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub linear_image: Option<String>,
+    /// |RGB difference| heat map (in `metrics.error_space`), 0 → `diff_scale`.
     pub diff_image: String,
     pub diff_scale: f64,
     /// ꟻLIP error map, 0 → 1.

@@ -27,6 +27,7 @@ fn sample() -> Report {
     let run = |id: &str, flip: f64| Run {
         variant: id.into(),
         image: format!("{id}.png"),
+        linear_image: None,
         diff_image: "d.png".into(),
         diff_scale: 1.0,
         flip_image: "f.png".into(),
@@ -88,6 +89,7 @@ fn sample() -> Report {
             path: None,
             distance: None,
             reference_image: "r.png".into(),
+            reference_linear_image: None,
             runs: vec![run("reference", 0.0), run("a@1", 0.2), run("a@2", 0.1)],
         }],
     }

@@ -65,6 +65,16 @@ impl Files<'_> {
         })
     }
 
+    /// A linear radiance image as OpenEXR (32-bit float).
+    fn write_exr(&self, name: &str, img: &image::Rgba32FImage) -> Result<(), AbError> {
+        image::DynamicImage::ImageRgba32F(img.clone())
+            .save_with_format(self.dir.join(name), image::ImageFormat::OpenExr)
+            .map_err(|source| AbError::WriteImage {
+                name: name.to_string(),
+                source,
+            })
+    }
+
     fn write_png(&self, name: &str, img: impl Into<image::DynamicImage>) -> Result<(), AbError> {
         let img: image::DynamicImage = img.into();
         img.save_with_format(self.dir.join(name), image::ImageFormat::Png)
@@ -80,8 +90,9 @@ fn render_error(what: String) -> impl FnOnce(SessionError) -> AbError {
 }
 
 /// Run `plan` on `gpu`, writing the report's files into `dir` (which must
-/// exist): `report.json`, `report.html`, `report.md`, each variant's image, difference
-/// and ꟻLIP maps per scene, the reference's image, and each variant's
+/// exist): `report.json`, `report.html`, `report.md`, each variant's image
+/// (and its linear radiance as .exr, when its pipeline has one), difference
+/// and ꟻLIP maps per scene, the reference's images, and each variant's
 /// schedule as SVG. `progress` hears of every step.
 pub fn run(
     plan: &Plan,
@@ -148,7 +159,8 @@ pub fn run(
                     })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let comparisons = compare_all(plan, scene, &images, &mut ticker)?;
+        let linears = read_linears(plan, scene, &prepared)?;
+        let comparisons = compare_all(plan, scene, &images, &linears, &mut ticker)?;
         let visibilities = probe_all(plan, gpu, scene, &mut ticker)?;
         let temporals = match plan.options.sequence {
             Some(sequence) => super::temporal::measure(
@@ -167,7 +179,7 @@ pub fn run(
             &files,
             &prepared,
             &samples,
-            &images,
+            (&images, &linears),
             comparisons,
             visibilities,
             temporals,
@@ -303,22 +315,69 @@ fn time_interleaved(
     Ok(samples)
 }
 
-/// Every variant's image against the reference's.
+/// Each variant's linear radiance (its pipeline's float `radiance` output,
+/// averaged down like its image when supersampled); `None` for a pipeline
+/// without one.
+fn read_linears(
+    plan: &Plan,
+    scene: &ScenePlan,
+    prepared: &[Prepared<'_>],
+) -> Result<Vec<Option<image::Rgba32FImage>>, AbError> {
+    plan.variants
+        .iter()
+        .zip(prepared)
+        .map(|(v, p)| {
+            let schedule = p.schedule();
+            let kept = schedule.resource(crate::linear::RADIANCE).filter(|&id| {
+                schedule.outputs.contains(&id)
+                    && matches!(schedule.resources[id].desc,
+                        plait_graph::ResourceDesc::Texture { format, .. }
+                            if crate::linear::is_float_colour(format))
+            });
+            let Some(_) = kept else { return Ok(None) };
+            let k = plan.options.render_size(v.is_reference).0 / plan.options.size.0.max(1);
+            p.renderer
+                .read_resource(crate::linear::RADIANCE)
+                .map(|t| {
+                    Some(super::supersample::box_filter_linear(
+                        &crate::linear::to_f32_image(&t),
+                        k,
+                    ))
+                })
+                .map_err(|e| AbError::Render {
+                    what: format!(
+                        "reading the radiance of {} on scene {}",
+                        v.label, scene.name
+                    ),
+                    source: e.into(),
+                })
+        })
+        .collect()
+}
+
+/// Every variant's image against the reference's: RMSE and the difference
+/// map on the linear radiance when both have one, SSIM and ꟻLIP on the
+/// displayed images.
 fn compare_all(
     plan: &Plan,
     scene: &ScenePlan,
     images: &[image::RgbaImage],
+    linears: &[Option<image::Rgba32FImage>],
     ticker: &mut Ticker<'_>,
 ) -> Result<Vec<Comparison>, AbError> {
     let reference = &images[plan.reference_index()];
+    let reference_linear = linears[plan.reference_index()].as_ref();
     let mut comparisons = Vec::new();
-    for (v, img) in plan.variants.iter().zip(images) {
-        let c = plait_compare::compare(reference, img).map_err(|source| AbError::Compare {
-            what: format!(
-                "comparing {} with the reference on scene {}",
-                v.label, scene.name
-            ),
-            source,
+    for ((v, img), linear) in plan.variants.iter().zip(images).zip(linears) {
+        let both = reference_linear.zip(linear.as_ref());
+        let c = plait_compare::compare_linear(reference, img, both).map_err(|source| {
+            AbError::Compare {
+                what: format!(
+                    "comparing {} with the reference on scene {}",
+                    v.label, scene.name
+                ),
+                source,
+            }
         })?;
         ticker.step(format!("{}: compared {}", scene.name, v.label))?;
         comparisons.push(c);
@@ -372,13 +431,21 @@ fn scene_result(
     files: &Files<'_>,
     prepared: &[Prepared<'_>],
     samples: &[Samples],
-    images: &[image::RgbaImage],
+    (images, linears): (&[image::RgbaImage], &[Option<image::Rgba32FImage>]),
     comparisons: Vec<Comparison>,
     visibilities: Vec<Option<Visibility>>,
     temporals: Vec<Option<plait_compare::temporal::Temporal>>,
 ) -> Result<SceneResult, AbError> {
     let reference_image = format!("{}-reference.png", scene.name);
     files.write_png(&reference_image, images[plan.reference_index()].clone())?;
+    let reference_linear_image = match &linears[plan.reference_index()] {
+        Some(linear) => {
+            let name = format!("{}-reference.exr", scene.name);
+            files.write_exr(&name, linear)?;
+            Some(name)
+        }
+        None => None,
+    };
     // One difference scale per scene, so the heat maps compare.
     let max_diff = comparisons
         .iter()
@@ -397,6 +464,14 @@ fn scene_result(
         let diff_image = format!("{}-{}-diff.png", scene.name, v.id);
         let flip_image = format!("{}-{}-flip.png", scene.name, v.id);
         files.write_png(&image, images[i].clone())?;
+        let linear_image = match &linears[i] {
+            Some(linear) => {
+                let name = format!("{}-{}.exr", scene.name, v.id);
+                files.write_exr(&name, linear)?;
+                Some(name)
+            }
+            None => None,
+        };
         files.write_png(
             &diff_image,
             heatmap::heatmap(&c.abs_diff, c.width, c.height, scale as f32),
@@ -408,6 +483,7 @@ fn scene_result(
         runs.push(Run {
             variant: v.id.clone(),
             image,
+            linear_image,
             diff_image,
             diff_scale: scale,
             flip_image,
@@ -429,6 +505,7 @@ fn scene_result(
                 factor: *factor,
             }),
         reference_image,
+        reference_linear_image,
         runs,
     })
 }

@@ -38,6 +38,27 @@ pub fn box_filter(image: &image::RgbaImage, k: u32) -> image::RgbaImage {
     })
 }
 
+/// A linear radiance image averaged over k × k blocks (every channel as
+/// is: it is already linear); `k` ≤ 1 returns it unchanged.
+pub fn box_filter_linear(image: &image::Rgba32FImage, k: u32) -> image::Rgba32FImage {
+    if k <= 1 {
+        return image.clone();
+    }
+    let n = (k * k) as f32;
+    image::Rgba32FImage::from_fn(image.width() / k, image.height() / k, |x, y| {
+        let mut sum = [0.0f32; 4];
+        for dy in 0..k {
+            for dx in 0..k {
+                let p = image.get_pixel(x * k + dx, y * k + dy).0;
+                for c in 0..4 {
+                    sum[c] += p[c];
+                }
+            }
+        }
+        image::Rgba(sum.map(|v| v / n))
+    })
+}
+
 fn srgb_to_linear(v: f32) -> f32 {
     if v <= 0.04045 {
         v / 12.92
