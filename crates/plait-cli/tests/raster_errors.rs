@@ -1,7 +1,7 @@
 //! `plait check` and `plait render` on a bad data-only raster pass
 //! (`type = "raster"`): exit code 2, the error at the marked line of the
 //! pipeline file (file:line:column), no panic, no output file.
-//! Fixtures: `tests/fixtures/bad/raster_*.toml`, `loads_unwritten.toml`,
+//! Fixtures: `tests/fixtures/bad/raster_*.toml`, `loads_unwritten*.toml`,
 //! `clear_channels.toml`, `fragment_*_output.{toml,wgsl}`.
 
 mod common;
@@ -81,6 +81,16 @@ fn a_storage_output_the_depth_guarantee_cannot_honour() {
 fn a_load_of_a_target_nothing_wrote_without_a_clear_value() {
     bad_raster_pass(
         "loads_unwritten.toml",
+        "no earlier pass in the frame writes `revealage`",
+    );
+}
+
+/// The error points at the `loads` entry at fault (its own line in a list
+/// written over several lines), not at the start of the list.
+#[test]
+fn a_load_error_points_at_the_entry() {
+    bad_raster_pass(
+        "loads_unwritten_entry.toml",
         "no earlier pass in the frame writes `revealage`",
     );
 }
