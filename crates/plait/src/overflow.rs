@@ -158,14 +158,23 @@ fn fitting_values(schedule: &Schedule, limit: u64) -> (Vec<(String, i64)>, Vec<S
     (fits, notes)
 }
 
-/// A frame's drops from buffers the user did not size: an error (a later
-/// frame of a sequence asking for more than the first; the user's caps are
-/// reported, not failed).
-pub fn check_frame(report: &FrameReport) -> Result<(), SessionError> {
+/// The checks every front end runs after every frame (`plait render`,
+/// frames, `ab`, the probes, the viewer), so none forgets one: drops from
+/// buffers the user did not size and invocations cut short are an error (a
+/// later frame asking for more than the first); drops from a size the user
+/// capped are returned, one line each, for the front end to show.
+pub fn check_frame(report: &FrameReport) -> Result<Vec<String>, SessionError> {
     check_complete(report)?;
     let short: Vec<Overflow> = growable_drops(report).cloned().collect();
     if short.is_empty() {
-        return Ok(());
+        return Ok(report
+            .dropped()
+            .map(|o| {
+                format!(
+                    "dropped: {o} (a size set by --set or the pipeline file is a cap; left unset, it grows to hold everything)"
+                )
+            })
+            .collect());
     }
     Err(SessionError::Dropped {
         message: "this frame asked for more than the first, which sized the buffer; set its size with the --set above".into(),
@@ -291,8 +300,14 @@ mod tests {
     /// count and the flag; the user's cap only reports.
     #[test]
     fn only_drops_from_sizes_nobody_chose_fail_a_frame() {
-        assert!(check_frame(&frame(vec![counter(0, true)])).is_ok());
-        assert!(check_frame(&frame(vec![counter(5, false)])).is_ok());
+        assert_eq!(
+            check_frame(&frame(vec![counter(0, true)])).ok(),
+            Some(Vec::new())
+        );
+        let capped = check_frame(&frame(vec![counter(5, false)])).expect("a cap reports");
+        assert_eq!(capped.len(), 1);
+        assert!(capped[0].starts_with("dropped: "), "{capped:?}");
+        assert!(capped[0].contains("dropped 5"), "{capped:?}");
         let e = check_frame(&frame(vec![counter(5, true)]))
             .expect_err("a grown buffer that drops")
             .to_string();
