@@ -55,6 +55,11 @@ pub fn check(args: CheckArgs) -> Result<()> {
                     s.passes.len(),
                     s.resources.len()
                 )?;
+                // Notes are not failures, but nothing is accepted silently
+                // (a param of a technique the pipeline does not choose).
+                for note in &s.notes {
+                    outln!("    note: {note}")?;
+                }
             }
             Err(e) => {
                 let text = format!("{e:#}");

@@ -437,12 +437,12 @@ pub fn print_table(
 }
 
 /// One line per bounded buffer that dropped data (only a size the user set
-/// can: the session grows the defaults until they hold everything).
+/// can: the session grows the defaults until they hold everything), as
+/// every front end words it ([`plait::overflow::check_frame`], which passed
+/// for this frame before it was printed).
 fn print_dropped(report: &FrameReport) -> std::io::Result<()> {
-    for o in report.dropped() {
-        outln!(
-            "dropped: {o} (a size set by --set or the pipeline file is a cap; left unset, it grows to hold everything)"
-        )?;
+    for line in plait::overflow::check_frame(report).unwrap_or_default() {
+        outln!("{line}")?;
     }
     Ok(())
 }

@@ -135,6 +135,40 @@ fn unknown_param() {
     );
 }
 
+/// A typo in the pipeline's own `[params]` key is refused at the user's
+/// line, with the nearest name in use (issue 41).
+#[test]
+fn pipeline_param_typo() {
+    bad_pipeline(
+        "pipeline_param_typo.toml",
+        "unknown param `shadow_wieght`: no chosen technique defines it and nothing uses `${shadow_wieght}`; did you mean `shadow_weight`?",
+        "pipeline_param_typo.toml",
+    );
+}
+
+/// A param of a technique the pipeline does not choose (the base file's
+/// `shadow_weight` after `--set techniques.self_shadow=none`) is a note
+/// naming the technique, not an error: a one-key swap must not fail on the
+/// base file's tuning of the technique it swapped out.
+#[test]
+fn a_param_of_a_technique_not_chosen_is_a_note() {
+    let o = plait(&[
+        "check",
+        "pipelines/occupancy.toml",
+        "--set",
+        "techniques.self_shadow=none",
+    ]);
+    let stdout = text(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}{}", text(&o.stderr));
+    assert!(
+        stdout.contains("note: pipelines/occupancy.toml:")
+            && stdout.contains(
+                "param `shadow_weight` is for self_shadow technique deep_opacity, which this pipeline does not choose"
+            ),
+        "{stdout}"
+    );
+}
+
 #[test]
 fn resource_read_but_never_written() {
     bad_pipeline(

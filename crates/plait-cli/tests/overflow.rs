@@ -106,6 +106,54 @@ fn by_default_the_pool_grows_and_drops_nothing() {
     assert!(count(c, "capacity") >= count(c, "needed"), "{c}");
 }
 
+/// `plait render pipelines/linked_list.toml --size 1280x720` (issue 41):
+/// the default 11 nodes per pixel is 154.7 MiB, past lavapipe's 128 MiB
+/// storage binding, yet the frame needs far fewer. A default starts at the
+/// largest value that fits (a note says so) and grows if needed; nothing is
+/// dropped. The same value set by the user is refused, naming the flag.
+#[test]
+fn a_default_pool_too_large_for_the_adapter_starts_at_what_fits() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("out.png");
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "render",
+            "pipelines/linked_list.toml",
+            "--size",
+            "1280x720",
+            "--json",
+            "--out",
+            out.to_str().expect("utf-8"),
+        ];
+        a.extend_from_slice(extra);
+        a
+    };
+    let o = plait(&args(&[]));
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let c = counter(&json);
+    assert_eq!(c["grows"], true, "{c}");
+    assert_eq!(count(c, "dropped"), 0, "{c}");
+    assert!(count(c, "capacity") >= count(c, "needed"), "{c}");
+    // On an adapter binding less than the default's 154.7 MiB, the pool
+    // started lower, and the note says so.
+    if count(c, "value") < 11 {
+        let notes = json["notes"].to_string();
+        assert!(
+            notes.contains("`nodes_per_pixel` = 11 (its default) makes it 154.7 MiB"),
+            "{notes}"
+        );
+    }
+    let set = "params.nodes_per_pixel=11";
+    let o = plait(&args(&["--set", set]));
+    let stderr = text(&o.stderr);
+    if count(c, "value") < 11 {
+        assert_eq!(o.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(&format!("--set {set}")), "{stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
+
 #[test]
 fn a_capped_exact_shadow_reports_its_drops() {
     let json = render_json("pipelines/exact_shadow.toml", &["params.exact_capacity=4"]);

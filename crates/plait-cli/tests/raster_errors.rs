@@ -1,8 +1,9 @@
 //! `plait check` and `plait render` on a bad data-only raster pass
 //! (`type = "raster"`): exit code 2, the error at the marked line of the
 //! pipeline file (file:line:column), no panic, no output file.
-//! Fixtures: `tests/fixtures/bad/raster_*.toml`, `loads_unwritten.toml`,
-//! `clear_channels.toml`, `fragment_*_output.{toml,wgsl}`.
+//! Fixtures: `tests/fixtures/bad/raster_*.toml`, `loads_unwritten*.toml`,
+//! `clear_channels.toml`, `fragment_*_output.{toml,wgsl}`,
+//! `storage_format.{toml,wgsl}`.
 
 mod common;
 use common::{plait, root, text};
@@ -85,6 +86,16 @@ fn a_load_of_a_target_nothing_wrote_without_a_clear_value() {
     );
 }
 
+/// The error points at the `loads` entry at fault (its own line in a list
+/// written over several lines), not at the start of the list.
+#[test]
+fn a_load_error_points_at_the_entry() {
+    bad_raster_pass(
+        "loads_unwritten_entry.toml",
+        "no earlier pass in the frame writes `revealage`",
+    );
+}
+
 #[test]
 fn a_clear_value_with_the_wrong_number_of_channels() {
     bad_raster_pass("clear_channels.toml", "a list of 4 numbers");
@@ -113,5 +124,17 @@ fn a_colour_target_the_fragment_shader_does_not_write() {
     bad_raster_pass(
         "fragment_missing_output.toml",
         "colour target `more` (rgba16float) is at @location(1)",
+    );
+}
+
+/// A storage texture whose WGSL format differs from its resource's: the
+/// error is at the WGSL declaration, and names the pipeline's slot with its
+/// own file:line:column.
+#[test]
+fn a_storage_format_the_resource_does_not_have() {
+    bad_pass_marked_in(
+        "storage_format.toml",
+        "storage_format.wgsl",
+        "storage texture `counts` is declared r32float here, but slot `counts` binds resource `counts`, which is r32uint (",
     );
 }

@@ -93,7 +93,7 @@ impl ShaderBinding {
             }
             BindingKind::StorageTexture {
                 format: Some(want), ..
-            } if *want != format => Err(format!("the shader declares storage format {want}")),
+            } if *want != format => Err(format!("{}{want}", crate::pass::storage_format::STORAGE)),
             BindingKind::StorageTexture { format: None, .. } => {
                 Err("the shader's storage texture format is not one plait supports".into())
             }

@@ -59,6 +59,9 @@ pub struct Pipeline {
     pub passes: IndexMap<String, PassDecl>,
     /// Where `outputs` was set (or the `[pipeline]` table), for output errors.
     pub outputs_location: Location,
+    /// What loading noticed that is not an error (a param of a technique the
+    /// pipeline does not choose); compile passes them on to the schedule.
+    pub notes: Vec<String>,
 }
 
 impl Pipeline {
@@ -243,9 +246,18 @@ pub fn load_str(
     if !errors.is_empty() {
         return Err(Errors(errors));
     }
+    let mut notes = Vec::new();
+    crate::techniques::check_param_names(
+        &root,
+        &techniques,
+        path_for_messages,
+        &mut errors,
+        &mut notes,
+    );
     let root = substitute_params(root, &mut errors);
     let mut pipeline = build_pipeline(root, files, path_for_messages, &mut errors);
     pipeline.techniques = techniques;
+    pipeline.notes = notes;
     if errors.is_empty() {
         Ok(pipeline)
     } else {

@@ -103,6 +103,31 @@ impl Reader<'_> {
         }
     }
 
+    /// A list of strings, each kept with its own location so an error
+    /// about one entry points at that entry, not at the list.
+    pub(crate) fn spanned_strings(
+        &mut self,
+        node: &Spanned<Node>,
+        context: &str,
+    ) -> Option<Vec<Spanned<String>>> {
+        match &node.value {
+            Node::List(items) => items
+                .iter()
+                .map(|i| {
+                    self.string(i, &format!("{context}[…]"))
+                        .map(|s| Spanned::new(s, i.location.clone()))
+                })
+                .collect(),
+            _ => {
+                self.schema(
+                    &node.location,
+                    format!("{context} must be a list of strings"),
+                );
+                None
+            }
+        }
+    }
+
     /// A string that must be one of `accepted`.
     pub(crate) fn named(
         &mut self,

@@ -312,13 +312,11 @@ pub(crate) fn parse(table: &Table, context: &str, errors: &mut Vec<Error>) -> Ra
             .map(|b| Spanned::new(b, e.value.location.clone()));
     }
     if let Some(e) = table.get("loads")
-        && let Some(slots) = p.strings(&e.value, &format!("{context}.loads"))
+        && let Some(slots) = p.spanned_strings(&e.value, &format!("{context}.loads"))
     {
-        // One location for the list: its items are not spanned one by one.
-        out.loads = slots
-            .into_iter()
-            .map(|s| Spanned::new(s, e.value.location.clone()))
-            .collect();
+        // Each entry keeps its own location: an error about one slot points
+        // at that slot, not at the start of the list.
+        out.loads = slots;
     }
     out
 }

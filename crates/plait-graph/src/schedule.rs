@@ -124,6 +124,8 @@ pub struct ChosenTechnique {
     pub point: String,
     pub name: String,
     pub path: PathBuf,
+    /// The params its file defines (its `[params]` keys).
+    pub params: Vec<String>,
 }
 
 impl ChosenTechnique {

@@ -104,6 +104,9 @@ struct Engine<'g> {
     frame_times: VecDeque<f64>,
     frames_since_build: u64,
     builds: u32,
+    /// The drop lines last logged, so a frame loop logs a change, not
+    /// every frame.
+    dropped_logged: Vec<String>,
 }
 
 fn median(values: &VecDeque<f64>) -> Option<f64> {
@@ -327,6 +330,24 @@ impl<'g> Engine<'g> {
                 return;
             }
         };
+        // The same after-frame checks as `plait render`: a bounded buffer
+        // that drops while you watch is shown and logged, never silent.
+        let dropped = match plait::overflow::check_frame(&report) {
+            Ok(dropped) => dropped,
+            Err(e) => {
+                live.failed = true;
+                let text = error_text(&e);
+                eprintln!("{text}");
+                self.update(|s| s.error = Some(text));
+                return;
+            }
+        };
+        if dropped != self.dropped_logged {
+            for line in &dropped {
+                eprintln!("plait view: {line}");
+            }
+            self.dropped_logged = dropped.clone();
+        }
         let schedule = live.prepared.schedule();
         let output_view = Arc::new(inspect::texture(
             &live.prepared.output,
@@ -383,6 +404,7 @@ impl<'g> Engine<'g> {
             }
             s.frames = frames;
             s.total_frames += 1;
+            s.dropped = dropped;
         });
         if let Some(image) = screenshot {
             self.write_screenshot(&image.image);
@@ -614,6 +636,7 @@ pub fn run(
         timings: HashMap::new(),
         frame_times: VecDeque::new(),
         frames_since_build: 0,
+        dropped_logged: Vec::new(),
         builds: 0,
     };
     engine.run(&commands);

@@ -50,6 +50,9 @@ pub struct Shared {
     pub frame_median_ms: Option<f64>,
     pub peak_bytes: u64,
     pub notes: Vec<String>,
+    /// The last frame's drops from bounded buffers the user capped
+    /// ([`plait::overflow::check_frame`]); a failed check is in `error`.
+    pub dropped: Vec<String>,
     /// The last good frame's output.
     pub output: Option<Arc<Inspected>>,
     /// The inspected resource (when not the output).

@@ -358,6 +358,9 @@ fn pass_table(ui: &mut egui::Ui, s: &Shared) {
     for note in &s.notes {
         ui.small(format!("note: {note}"));
     }
+    for line in &s.dropped {
+        ui.colored_label(egui::Color32::from_rgb(230, 160, 60), line);
+    }
 }
 
 fn viewport(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Command)) {

@@ -61,13 +61,21 @@ impl Running {
 }
 
 fn start(inspect: Option<&str>) -> Running {
+    start_with(
+        "pipelines/occupancy.toml",
+        &["params.light_size=128"],
+        inspect,
+    )
+}
+
+fn start_with(pipeline: &str, sets: &[&str], inspect: Option<&str>) -> Running {
     let (tx, rx) = channel();
     let shared = Arc::new(Mutex::new(Shared::default()));
     let opts = EngineOptions {
-        pipeline: root().join("pipelines/occupancy.toml"),
+        pipeline: root().join(pipeline),
         scene: Some(root().join("examples/scenes/small.toml")),
         size: (64, 48),
-        sets: vec!["params.light_size=128".into()],
+        sets: sets.iter().map(|s| (*s).to_owned()).collect(),
         inspect: inspect.map(str::to_owned),
         screenshot: None,
     };
@@ -253,4 +261,30 @@ fn wisps_are_a_live_choice_of_the_geometry_point() {
     let e = start(None);
     e.until("the first frame", |s| s.frames >= 1);
     choose_geometry_live(&e, "wisps");
+}
+
+/// A fragment pool the user capped below what the frame needs (linked_list
+/// with one node per pixel): the viewer's frames drop fragments, and the
+/// engine publishes it (the UI shows it, the log says it) through the same
+/// after-frame check as `plait render`, instead of dropping silently.
+#[test]
+fn a_capped_pool_that_overflows_is_reported_by_the_viewer() {
+    let e = start_with(
+        "pipelines/linked_list.toml",
+        &["params.nodes_per_pixel=1"],
+        None,
+    );
+    e.until("a frame that reports its drops", |s| {
+        s.frames >= 1 && !s.dropped.is_empty()
+    });
+    let s = e.shared.lock().expect("state");
+    let line = &s.dropped[0];
+    assert!(line.starts_with("dropped: "), "{line}");
+    assert!(line.contains("list_nodes"), "{line}");
+    assert!(line.contains("--set params.nodes_per_pixel="), "{line}");
+    assert!(
+        s.error.is_none(),
+        "a user's cap reports, not fails: {:?}",
+        s.error
+    );
 }

@@ -31,7 +31,16 @@ pub fn compile_on(
     source: &PipelineSource,
     size: (u32, u32),
 ) -> Result<Schedule, SessionError> {
-    let schedule = check_pipeline(loaded, &gpu_options(gpu, size))?;
+    // The loaded pipeline as is; with extra flags (a default lowered to
+    // fit the adapter), loaded again from its source.
+    let compile = |extra: &[String], opts: &plait_graph::CompileOptions| {
+        if extra.is_empty() {
+            check_pipeline(loaded, opts)
+        } else {
+            source.compile(extra, opts)
+        }
+    };
+    let schedule = crate::overflow::compile_fitting(&compile, &[], &gpu_options(gpu, size))?;
     check_schedule_on(gpu, &schedule, source, size)?;
     Ok(schedule)
 }

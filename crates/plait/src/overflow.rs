@@ -19,13 +19,20 @@
 //! work (`incomplete`, [`plait_graph::overflow`]): such a frame fails
 //! whoever sized what, since no param restores the missing data.
 //!
+//! A default whose buffer does not even fit the adapter's storage-binding
+//! limit (linked_list's 11 nodes per pixel at 1280x720: 154.7 MiB against
+//! 128 MiB) is only a starting size too: [`compile_fitting`] starts it at the
+//! largest value that fits, and the sizing frame raises it if the frame needs
+//! more. A value the user set is never changed: it fails, naming its flag or
+//! line.
+//!
 //! The sizing frame is thrown away and the pipeline built anew, so the
 //! caller's first frame is the renderer's first (histories, `run = "once"`).
 
 use std::path::Path;
 
 use plait_gpu::{FrameReport, Gpu, Overflow};
-use plait_graph::{Errors, Schedule};
+use plait_graph::{CompileOptions, Errors, ResourceDesc, Schedule};
 
 use crate::session::{Prepared, SceneData, SessionError, build};
 
@@ -72,14 +79,102 @@ pub fn prepare_holding<'g>(
     build(gpu, grown, pipeline, scene, size)
 }
 
-/// A frame's drops from buffers the user did not size: an error (a later
-/// frame of a sequence asking for more than the first; the user's caps are
-/// reported, not failed).
-pub fn check_frame(report: &FrameReport) -> Result<(), SessionError> {
+/// Compiles with extra `--set` flags and the given options.
+pub type CompileWith<'a> = dyn Fn(&[String], &CompileOptions) -> Result<Schedule, Errors> + 'a;
+
+/// `compile(extra, opts)`; when that fails and a bounded buffer whose size
+/// is still its technique's default is larger than `opts` lets a pass bind,
+/// the same with that param lowered to the largest value that fits (a
+/// starting size the sizing frame raises if the frame needs more; a note
+/// says so). Any other failure, or one a user-set size causes, stands.
+pub fn compile_fitting(
+    compile: &CompileWith<'_>,
+    extra: &[String],
+    opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
+    let error = match compile(extra, opts) {
+        Ok(schedule) => return Ok(schedule),
+        Err(e) => e,
+    };
+    let unbounded = CompileOptions {
+        max_buffer_binding_size: u64::MAX,
+        ..opts.clone()
+    };
+    let Ok(wide) = compile(extra, &unbounded) else {
+        return Err(error);
+    };
+    let (fits, notes) = fitting_values(&wide, opts.max_buffer_binding_size);
+    if fits.is_empty() {
+        return Err(error);
+    }
+    let sets: Vec<String> = fits
+        .iter()
+        .map(|(p, v)| format!("params.{p}={v}"))
+        .collect();
+    let mut fitted = compile(&[extra, sets.as_slice()].concat(), opts).map_err(|_| error)?;
+    // The session chose these values, not the user: they stay growable.
+    for c in &mut fitted.overflow {
+        if fits.iter().any(|(p, _)| *p == c.param) {
+            c.grows = true;
+        }
+    }
+    fitted.notes.extend(notes);
+    Ok(fitted)
+}
+
+/// For each growable bounded buffer of `schedule` larger than `limit`: its
+/// param and the largest value that fits (sizes are linear in it), and a
+/// note. Empty when one cannot fit even at 1.
+fn fitting_values(schedule: &Schedule, limit: u64) -> (Vec<(String, i64)>, Vec<String>) {
+    let mut fits = Vec::new();
+    let mut notes = Vec::new();
+    for c in schedule.overflow.iter().filter(|c| c.grows && c.value > 0) {
+        let Some(ResourceDesc::Buffer { size }) = schedule
+            .resources
+            .iter()
+            .find(|r| r.name == c.of)
+            .map(|r| &r.desc)
+        else {
+            continue;
+        };
+        if *size <= limit {
+            continue;
+        }
+        let fit = (u128::from(limit) * c.value as u128 / u128::from(*size)) as i64;
+        if fit < 1 {
+            return (Vec::new(), Vec::new());
+        }
+        let mib = |b: u64| b as f64 / f64::from(1 << 20);
+        notes.push(format!(
+            "`{}`: `{}` = {} (its default) makes it {:.1} MiB, more than a pass can bind here ({:.1} MiB); starting from {fit}, raised if a frame needs more",
+            c.of,
+            c.param,
+            c.value,
+            mib(*size),
+            mib(limit)
+        ));
+        fits.push((c.param.clone(), fit));
+    }
+    (fits, notes)
+}
+
+/// The checks every front end runs after every frame (`plait render`,
+/// frames, `ab`, the probes, the viewer), so none forgets one: drops from
+/// buffers the user did not size and invocations cut short are an error (a
+/// later frame asking for more than the first); drops from a size the user
+/// capped are returned, one line each, for the front end to show.
+pub fn check_frame(report: &FrameReport) -> Result<Vec<String>, SessionError> {
     check_complete(report)?;
     let short: Vec<Overflow> = growable_drops(report).cloned().collect();
     if short.is_empty() {
-        return Ok(());
+        return Ok(report
+            .dropped()
+            .map(|o| {
+                format!(
+                    "dropped: {o} (a size set by --set or the pipeline file is a cap; left unset, it grows to hold everything)"
+                )
+            })
+            .collect());
     }
     Err(SessionError::Dropped {
         message: "this frame asked for more than the first, which sized the buffer; set its size with the --set above".into(),
@@ -205,8 +300,14 @@ mod tests {
     /// count and the flag; the user's cap only reports.
     #[test]
     fn only_drops_from_sizes_nobody_chose_fail_a_frame() {
-        assert!(check_frame(&frame(vec![counter(0, true)])).is_ok());
-        assert!(check_frame(&frame(vec![counter(5, false)])).is_ok());
+        assert_eq!(
+            check_frame(&frame(vec![counter(0, true)])).ok(),
+            Some(Vec::new())
+        );
+        let capped = check_frame(&frame(vec![counter(5, false)])).expect("a cap reports");
+        assert_eq!(capped.len(), 1);
+        assert!(capped[0].starts_with("dropped: "), "{capped:?}");
+        assert!(capped[0].contains("dropped 5"), "{capped:?}");
         let e = check_frame(&frame(vec![counter(5, true)]))
             .expect_err("a grown buffer that drops")
             .to_string();

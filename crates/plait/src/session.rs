@@ -311,8 +311,11 @@ pub fn prepare_compiled<'g>(
     // A grown buffer changes only sizes, which the executor checks again
     // against the adapter before it allocates anything. Every compile keeps
     // the values fitted to the scene and says so.
+    let compile = |extra: &[String], opts: &CompileOptions| {
+        source.compile(&[fit.sets.as_slice(), extra].concat(), opts)
+    };
     let recompile = |extra: &[String]| {
-        let mut schedule = source.compile(&[fit.sets.as_slice(), extra].concat(), &opts)?;
+        let mut schedule = crate::overflow::compile_fitting(&compile, extra, &opts)?;
         schedule.notes.extend(fit.notes.iter().cloned());
         Ok(schedule)
     };

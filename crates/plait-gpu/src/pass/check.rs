@@ -144,23 +144,29 @@ pub fn check_pass(
                 .map(|m| err(&pass.location, m)),
         );
     }
+    let aliases = binding_aliases(&spec);
     let (plan, plan_errors) = BindingPlan::new(
         &module,
         pass,
         resources,
         spec.shape,
         spec.dynamic_slots,
-        &binding_aliases(&spec),
+        &aliases,
     );
-    errors.extend(plan_errors);
+    let source = shader_source(t, pass).ok();
+    let source = source.as_ref().map(|(p, s)| (p.as_path(), s.as_ref()));
+    errors.extend(super::storage_format::at_wgsl(
+        plan_errors,
+        pass,
+        &aliases,
+        source,
+    ));
     // Only where the generic recorder draws with exactly the plan's colour
     // targets: a type written in Rust may record its own passes with other
     // targets (depth peeling's layer and blend draws). A culled pass whose
     // targets were dropped with it has no colour targets left to check.
     let dropped = pass.writes.iter().any(|b| b.resource.is_none());
     if spec.state_from_data && spec.shape != PassShape::Compute && !dropped {
-        let source = shader_source(t, pass).ok();
-        let source = source.as_ref().map(|(p, s)| (p.as_path(), s.as_ref()));
         let outputs = super::outputs::check(&module, &plan, pass, source);
         errors.extend(outputs.into_iter().map(|(loc, m)| err(&loc, m)));
     }

@@ -32,6 +32,7 @@ mod pipeline;
 pub mod plan;
 pub mod record;
 pub mod state;
+pub(crate) mod storage_format;
 
 pub use build::{ShaderDraw, build_draw, build_shader_pass, raster_state_of};
 pub use check::ShaderChecker;

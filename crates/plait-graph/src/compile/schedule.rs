@@ -47,7 +47,8 @@ pub(super) fn build_schedule(
     if !errors.is_empty() {
         return Err(errors);
     }
-    let notes = fit_formats(&mut resources, &blended, &history, caps);
+    let mut notes = pipeline.notes.clone();
+    notes.extend(fit_formats(&mut resources, &blended, &history, caps));
 
     let (physical, memory) = plan_memory(&mut resources);
     Ok(Schedule {

@@ -166,6 +166,7 @@ pub(super) fn build_pipeline(
         resources: IndexMap::new(),
         passes: IndexMap::new(),
         outputs_location: root_location.clone(),
+        notes: Vec::new(),
     };
     let Node::Table(top) = &root.value else {
         return pipeline;

@@ -58,11 +58,14 @@ const EXPORT_KEYS: &[&str] = &["reads", "params"];
 
 mod catalog;
 mod exports;
+mod param_scope;
 pub mod point_file;
 mod roots;
 
 pub use catalog::{TechniqueInfo, catalog};
 use exports::{PointExports, give_exports};
+pub use param_scope::ENGINE_PARAMS;
+pub(crate) use param_scope::check_param_names;
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 
@@ -125,7 +128,7 @@ fn technique_table(node: &Spanned<Node>) -> Option<&Table> {
 }
 
 /// A technique file with its `includes` (and theirs) merged under it.
-fn read_technique(path: &Path) -> Result<Spanned<Node>, Vec<Error>> {
+pub(crate) fn read_technique(path: &Path) -> Result<Spanned<Node>, Vec<Error>> {
     read_with_includes(path, &mut Vec::new())
 }
 
@@ -340,6 +343,9 @@ impl Chooser<'_> {
             point: point.to_owned(),
             name: name.clone(),
             path: path.clone(),
+            params: table(&tree, "params")
+                .map(|t| t.keys().cloned().collect())
+                .unwrap_or_default(),
         });
         let Some(technique) = technique_table(&tree) else {
             return;
