@@ -80,30 +80,21 @@ color = [0.0, 0.0, 0.0]
     data
 }
 
-fn linear(byte: u8) -> f64 {
-    let c = byte as f64 / 255.0;
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
 fn render(gpu: &Gpu, scene: &SceneData, sets: &[String]) -> Vec<f64> {
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let prepared =
         prepare(gpu, &pipeline, sets, scene, SIZE).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
     prepared.renderer.render().expect("renders");
-    let image = prepared.image().expect("reads back");
+    let image = prepared.radiance().expect("reads back");
     if let Ok(dir) = std::env::var("PLAIT_SHADOW_DUMP") {
         image
             .save(format!(
-                "{dir}/{}.png",
+                "{dir}/{}.exr",
                 sets.join("_").replace(['/', '"', ' '], "")
             ))
             .expect("saves");
     }
-    image.pixels().map(|p| linear(p.0[1])).collect()
+    image.pixels().map(|p| f64::from(p.0[1])).collect()
 }
 
 /// ∫ −ln T dA over the ground (world units²), and the darkest T.
@@ -153,7 +144,7 @@ fn thicknesses() -> Vec<f32> {
 }
 
 /// Every counting map: ∫ −ln T dA = κ · width × length ÷ cos i within 6 %
-/// (the light lines' ends, the half-texel jitter's speckle, 8-bit images;
+/// (the light lines' ends, the half-texel jitter's speckle, f16 radiance;
 /// measured 0.959–1.028); without coverage (`params.strand_coverage=false`)
 /// the same maps shadow a whole texel per strand, 2.5× (0.004) to 20×
 /// (0.0005) too much — that must stay so, or the switch is broken.

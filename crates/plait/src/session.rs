@@ -276,6 +276,14 @@ impl Prepared<'_> {
     pub fn image(&self) -> Result<image::RgbaImage, GpuError> {
         Ok(self.renderer.read_resource(&self.output)?.to_image())
     }
+
+    /// Read the linear radiance (before the display transform) back as
+    /// 32-bit floats: what a measurement in physical units reads, since the
+    /// 8-bit output is tone-mapped ([`crate::linear`]).
+    pub fn radiance(&self) -> Result<image::Rgba32FImage, GpuError> {
+        let texels = self.renderer.read_resource(crate::linear::RADIANCE)?;
+        Ok(crate::linear::to_f32_image(&texels))
+    }
 }
 
 /// Compile, check (against the adapter too) and build `pipeline` for
