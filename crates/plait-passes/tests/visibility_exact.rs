@@ -65,7 +65,9 @@ direction = [0.0, -1.0, 0.0]
 
 fn frame_for(scene: &Scene, strands: &Strands) -> FrameUniforms {
     let bounds = scene.opaque_bounds().union(&strands.bounds());
-    FrameUniforms::new(scene, strands, bounds, (MAP, MAP), 0)
+    // Whole strands: the layers are counted in strands, not in shares of a
+    // light texel (shares have their own test, tests/shadow_coverage.rs).
+    FrameUniforms::new(scene, strands, bounds, (MAP, MAP), 0).with_strand_coverage(false)
 }
 
 fn push(strands: &mut Strands, a: Vec3, b: Vec3) {
