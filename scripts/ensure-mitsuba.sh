@@ -11,6 +11,7 @@ set -euo pipefail
 
 MITSUBA_VERSION=3.9.1
 DRJIT_VERSION=1.5.0 # the drjit that mitsuba 3.9.1 requires (its Requires-Dist)
+NUMPY_VERSION=2.4.6 # render.py reads the image through numpy
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 target="${CARGO_TARGET_DIR:-$root/target}"
@@ -39,19 +40,27 @@ fi
 
 py="$venv/bin/python"
 installed() {
-    [ -x "$py" ] && "$py" - "$MITSUBA_VERSION" "$DRJIT_VERSION" <<'PY' 2>/dev/null
+    [ -x "$py" ] && "$py" - "$MITSUBA_VERSION" "$DRJIT_VERSION" "$NUMPY_VERSION" <<'PY' 2>/dev/null
 import sys
 from importlib.metadata import version
-sys.exit(0 if (version("mitsuba"), version("drjit")) == tuple(sys.argv[1:3]) else 1)
+want = tuple(sys.argv[1:4])
+sys.exit(0 if (version("mitsuba"), version("drjit"), version("numpy")) == want else 1)
 PY
 }
 
+# Tests run in parallel and each makes sure of Mitsuba: one installs while
+# the others wait (flock), and an install cut short is started afresh
+# (`--clear`), never half-used.
+mkdir -p "$target"
+exec 9>"$target/mitsuba-venv.lock"
+flock 9
 if ! installed; then
     echo "plait: installing mitsuba==$MITSUBA_VERSION drjit==$DRJIT_VERSION into $venv" >&2
-    python3 -m venv "$venv"
+    python3 -m venv --clear "$venv"
     "$py" -m pip install -q --disable-pip-version-check \
-        "mitsuba==$MITSUBA_VERSION" "drjit==$DRJIT_VERSION" numpy >&2
+        "mitsuba==$MITSUBA_VERSION" "drjit==$DRJIT_VERSION" "numpy==$NUMPY_VERSION" >&2
 fi
+flock -u 9
 
 echo "export PLAIT_MITSUBA_PYTHON='$py'"
 echo "export DRJIT_LIBLLVM_PATH='$llvm'"

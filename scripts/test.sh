@@ -12,6 +12,10 @@ bash scripts/ensure-vulkan.sh
 bash scripts/ensure-xvfb.sh
 # Headless Chromium for the book's browser check (crates/plait-cli/tests/book.rs).
 bash scripts/ensure-chromium.sh
+# Mitsuba 3 (pinned, in the build folder) for the path-traced reference's
+# tests (crates/plait-cli/tests/mitsuba_cli.rs); its exports are for callers
+# that render, not needed here.
+bash scripts/ensure-mitsuba.sh >/dev/null
 
 # The GPU tests run on lavapipe: the golden images, the claims' measured
 # bands and the loop budgets were made with it, and on another driver they

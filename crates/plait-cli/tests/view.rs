@@ -420,6 +420,10 @@ fn an_edited_library_module_reaches_the_gpu_without_a_restart() {
         "96x72",
         "--set",
         "params.light_size=256",
+        // The display transform passes radiance in [0, 1] through unchanged,
+        // so the edited red is the screenshot's.
+        "--set",
+        "techniques.tone_mapping=clip",
     ];
     let (_server, display) = xvfb();
     let mut child = Killed(
