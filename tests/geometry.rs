@@ -414,21 +414,31 @@ fn strand_space_shading_reaches_the_wisps() {
         sets.extend_from_slice(extra);
         let prepared = prepare_small(&gpu, &sets, &scene, SMALL);
         prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
-        prepared.image().unwrap_or_else(|e| panic!("{e}"))
+        prepared.radiance().unwrap_or_else(|e| panic!("{e}"))
     };
     let every = format!("params.shading_points={points}");
     let fragment = image(&[]);
     let one = image(&["techniques.shading_space=strand", "params.shading_points=1"]);
     let gouraud = image(&["techniques.shading_space=strand", &every]);
-    let far = mean_difference(&one, &fragment);
-    let near = mean_difference(&gouraud, &fragment);
+    let far = mean_radiance_difference(&one, &fragment);
+    let near = mean_radiance_difference(&gouraud, &fragment);
     eprintln!(
-        "wisps, strand space vs per fragment: 1 point {far:.3}, {points} points {near:.3} (mean |Δ| / 255)"
+        "wisps, strand space vs per fragment: 1 point {far:.3e}, {points} points {near:.3e} (mean |Δ radiance|)"
     );
     assert!(
-        far > 0.5 && far > 3.0 * near,
-        "one shading point per strand must change the wisps ({far:.3}) far more than one per hair vertex ({near:.3})"
+        far > 1e-3 && far > 3.0 * near,
+        "one shading point per strand must change the wisps ({far:.3e}) far more than one per hair vertex ({near:.3e})"
     );
+}
+
+/// Mean absolute difference of two linear radiance images' RGB.
+fn mean_radiance_difference(a: &image::Rgba32FImage, b: &image::Rgba32FImage) -> f64 {
+    let sum: f64 = a
+        .pixels()
+        .zip(b.pixels())
+        .flat_map(|(p, q)| (0..3).map(move |c| f64::from((p[c] - q[c]).abs())))
+        .sum();
+    sum / (3 * a.width() * a.height()) as f64
 }
 
 /// The wisps' own level of detail (Halén & Wester 2007 §2.4: "reducing the
