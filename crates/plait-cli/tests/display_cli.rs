@@ -95,4 +95,24 @@ fn exr_out_holds_float_linear_radiance() {
     assert_eq!(img.dimensions(), (40, 30));
     assert!(img.pixels().all(|p| p.0.iter().all(|v| v.is_finite())));
     assert!(img.pixels().any(|p| p.0[0] > 0.0), "all black");
+    // The file itself stores 32-bit floats (pixel type 2 of OpenEXR's
+    // chlist), not halves widened by the decoder.
+    let bytes = std::fs::read(&out).expect("reads");
+    let key = b"channels\0chlist\0";
+    let at = bytes
+        .windows(key.len())
+        .position(|w| w == key)
+        .expect("a chlist")
+        + key.len()
+        + 4;
+    let mut i = at;
+    let mut channels = Vec::new();
+    while bytes[i] != 0 {
+        let end = i + bytes[i..].iter().position(|&b| b == 0).expect("a name");
+        let kind = u32::from_le_bytes(bytes[end + 1..end + 5].try_into().unwrap());
+        channels.push((String::from_utf8_lossy(&bytes[i..end]).into_owned(), kind));
+        i = end + 1 + 16;
+    }
+    assert_eq!(channels.len(), 4, "{channels:?}");
+    assert!(channels.iter().all(|(_, kind)| *kind == 2), "{channels:?}");
 }
