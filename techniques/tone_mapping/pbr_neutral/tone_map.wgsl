@@ -1,14 +1,7 @@
 // tone_mapping/pbr_neutral: the display transform — Khronos PBR Neutral (see technique.toml).
-// The radiance (linear, float) times 2^exposure, mapped by the operator;
-// the rgba8unorm-srgb target encodes the result to sRGB. Bindings by name.
+// The pass: plait::display's exposed radiance through this operator.
 #import plait::frame::fullscreen_position
-
-struct DisplayParams {
-    exposure: f32,
-}
-
-@group(1) @binding(0) var radiance: texture_2d<f32>;
-@group(1) @binding(1) var<uniform> display_params: DisplayParams;
+#import plait::display::exposed_radiance
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
@@ -17,8 +10,7 @@ fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
 
 @fragment
 fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
-    let c = textureLoad(radiance, vec2<i32>(pixel.xy), 0).rgb;
-    return vec4<f32>(tone_map(c * exp2(display_params.exposure)), 1.0);
+    return vec4<f32>(tone_map(exposed_radiance(pixel)), 1.0);
 }
 
 const START_COMPRESSION: f32 = 0.8 - 0.04;
