@@ -38,7 +38,6 @@ pub mod temporal;
 
 use image::{Rgba32FImage, RgbaImage};
 
-use linear::check_linear;
 pub use linear::{mse_linear, rmse_linear};
 
 /// Why two images could not be compared.
@@ -57,7 +56,12 @@ pub enum CompareError {
     FrameCount { variant: usize, reference: usize },
 }
 
-pub(crate) fn check(a: &RgbaImage, b: &RgbaImage) -> Result<(), CompareError> {
+/// Two images of one size, not empty: what every metric compares (8-bit
+/// displayed images and linear radiance alike).
+pub(crate) fn check<P: image::Pixel>(
+    a: &image::ImageBuffer<P, Vec<P::Subpixel>>,
+    b: &image::ImageBuffer<P, Vec<P::Subpixel>>,
+) -> Result<(), CompareError> {
     if a.dimensions() != b.dimensions() {
         return Err(CompareError::SizeMismatch {
             a_w: a.width(),
@@ -284,7 +288,7 @@ pub fn compare_linear(
     check(reference, test)?;
     let (m, abs_diff, error_space) = match linear {
         Some((r, t)) => {
-            check_linear(r, t)?;
+            check(r, t)?;
             if r.dimensions() != reference.dimensions() {
                 return Err(CompareError::SizeMismatch {
                     a_w: r.width(),

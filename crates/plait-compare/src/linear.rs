@@ -6,25 +6,10 @@ use image::Rgba32FImage;
 
 use crate::CompareError;
 
-pub(crate) fn check_linear(a: &Rgba32FImage, b: &Rgba32FImage) -> Result<(), CompareError> {
-    if a.dimensions() != b.dimensions() {
-        return Err(CompareError::SizeMismatch {
-            a_w: a.width(),
-            a_h: a.height(),
-            b_w: b.width(),
-            b_h: b.height(),
-        });
-    }
-    if a.width() == 0 || a.height() == 0 {
-        return Err(CompareError::Empty);
-    }
-    Ok(())
-}
-
 /// Mean squared error over R, G, B of two linear radiance images (values
 /// as stored, unbounded: no clipping, no encoding).
 pub fn mse_linear(a: &Rgba32FImage, b: &Rgba32FImage) -> Result<f64, CompareError> {
-    check_linear(a, b)?;
+    crate::check(a, b)?;
     let mut sum = 0.0f64;
     for (pa, pb) in a.pixels().zip(b.pixels()) {
         for c in 0..3 {
