@@ -169,6 +169,27 @@ fn a_param_of_a_technique_not_chosen_is_a_note() {
     );
 }
 
+/// `--set params.X` for a param of a technique not chosen fails naming the
+/// flag, the technique and the flag that would choose it.
+#[test]
+fn a_set_for_a_technique_not_chosen_names_it() {
+    let o = plait(&[
+        "check",
+        "pipelines/linked_list.toml",
+        "--set",
+        "params.order_slices=3",
+    ]);
+    assert_fails(
+        "--set params.order_slices on linked_list",
+        &o,
+        &[
+            "--set params.order_slices=3: there is no param `order_slices`",
+            "`order_slices` is for transparency technique occupancy_order, which this pipeline does not choose (choose it with --set techniques.transparency=occupancy_order)",
+        ],
+        None,
+    );
+}
+
 #[test]
 fn resource_read_but_never_written() {
     bad_pipeline(

@@ -244,6 +244,7 @@ pub fn load_str(
         apply_override(&mut root, flag, &[], &mut errors);
     }
     if !errors.is_empty() {
+        crate::techniques::explain_unchosen_sets(&mut errors, &techniques, path_for_messages);
         return Err(Errors(errors));
     }
     let mut notes = Vec::new();

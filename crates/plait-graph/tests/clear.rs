@@ -53,8 +53,9 @@ fn a_load_before_any_write_is_an_error_at_the_loads_entry() {
     let errors = errors_of(LOADS_FIRST, &[]);
     assert_eq!(errors.len(), 1, "{}", Errors(errors.clone()));
     let e = &errors[0];
-    // The `loads` list on line 19.
-    assert_eq!(e.location, at(19, 9), "{e}");
+    // The entry `"out"` of the `loads` list on line 19 (the list starts at
+    // column 9, the entry at 10).
+    assert_eq!(e.location, at(19, 10), "{e}");
     let message = e.to_string();
     for part in ["pass `blend_in`", "`accum`", "earlier pass", "clear = "] {
         assert!(message.contains(part), "lacks {part}: {message}");

@@ -145,6 +145,13 @@ fn params_substitute_typed_and_textually_and_sizes_take_expressions() {
         "size = \"screen\"",
         "size = [\"screen_width / 2\", \"screen_height/2 + ${size}\"]",
     );
+    // A param nothing uses is an error (issue 41): the description uses the
+    // two this test only inspects.
+    let text = edit(
+        &text,
+        "name = \"good\"",
+        "name = \"good\"\ndescription = \"${name_suffix} ${slices}\"",
+    );
     let pipeline = load_text(&text, &[]).unwrap();
     assert_eq!(
         pipeline.params["name_suffix"].value,

@@ -65,7 +65,7 @@ mod roots;
 pub use catalog::{TechniqueInfo, catalog};
 use exports::{PointExports, give_exports};
 pub use param_scope::ENGINE_PARAMS;
-pub(crate) use param_scope::check_param_names;
+pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 

@@ -54,10 +54,35 @@ pub(crate) fn check_param_names(
     let roots = TechniqueRoots::for_pipeline(pipeline_path);
     for (name, at) in unused {
         match owner_not_chosen(&roots, chosen, name) {
-            Some(owner) => notes.push(format!(
-                "{at}: param `{name}` is for {owner}, which this pipeline does not choose: it has no effect here"
+            Some((point, technique)) => notes.push(format!(
+                "{at}: param `{name}` is for {point} technique {technique}, which this pipeline does not choose: it has no effect here"
             )),
             None => errors.push(unknown_param(name, at, &valid)),
+        }
+    }
+}
+
+/// A `--set params.X=…` naming no param (an error already) whose `X` is a
+/// param of a technique not chosen: the reason says which, and the flag
+/// that chooses it. An error, not a note as in a file: the flag was typed
+/// for this run and would change nothing.
+pub(crate) fn explain_unchosen_sets(
+    errors: &mut [Error],
+    chosen: &[ChosenTechnique],
+    pipeline_path: &Path,
+) {
+    let roots = TechniqueRoots::for_pipeline(pipeline_path);
+    for e in errors.iter_mut() {
+        let ErrorKind::UnknownSetKey { key, reason } = &mut e.kind else {
+            continue;
+        };
+        let Some(name) = key.strip_prefix("params.") else {
+            continue;
+        };
+        if let Some((point, technique)) = owner_not_chosen(&roots, chosen, name) {
+            reason.push_str(&format!(
+                "; `{name}` is for {point} technique {technique}, which this pipeline does not choose (choose it with --set techniques.{point}={technique})"
+            ));
         }
     }
 }
@@ -105,14 +130,14 @@ fn collect_table(t: &Table, out: &mut Vec<String>) {
     }
 }
 
-/// `transparency technique occupancy_order` when a technique not chosen
+/// `("transparency", "occupancy_order")` when a technique not chosen
 /// defines param `name` in its `[params]` or uses `${name}` (a pipeline
 /// param such as `shadow_weight` that self-shadowing techniques export).
 fn owner_not_chosen(
     roots: &TechniqueRoots,
     chosen: &[ChosenTechnique],
     name: &str,
-) -> Option<String> {
+) -> Option<(String, String)> {
     for point in roots.points() {
         for technique in roots.choices(&point) {
             if chosen
@@ -132,7 +157,7 @@ fn owner_not_chosen(
             if table(&tree, "params").is_some_and(|p| p.contains_key(name))
                 || used.iter().any(|u| u == name)
             {
-                return Some(format!("{point} technique {technique}"));
+                return Some((point, technique));
             }
         }
     }
