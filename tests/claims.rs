@@ -469,7 +469,11 @@ fn transparency_with_strand_coverage_keeps_its_measured_error() {
         // 11% below occupancy order. `plait ab`'s diff map shows one pixel
         // (largest |Δ| 0.045 of radiance; that in 3 channels of one pixel
         // alone is RMSE 0.00032 at 160×120); the tone curve shrank it in the
-        // 8-bit images (0.00024 there). Its cause is not isolated yet.
+        // 8-bit images (0.00024 there). That pixel, (55, 77) on the ground
+        // under a stray strand, is darker with the lists (displayed 169 vs
+        // 173): likely a fragment at the same depth as another, which the
+        // lists keep and peeling drops (peel.wgsl discards clip.z <= the
+        // previous layer's); not yet checked fragment by fragment.
         ("linked_list", 0.000_333_3, (0.0, 0.000346)),
         // Behind weighted average here, yet equal to its own definition at
         // every pixel (tests/shortcut.rs): with alphas ~0.13 the exact
