@@ -17,7 +17,9 @@ struct Frame {
     light_direction: vec4<f32>,
     // xyz: position of a spot light.
     light_position: vec4<f32>,
-    // rgb: light colour times intensity.
+    // rgb: light colour times intensity: the irradiance on a surface facing a
+    // directional light, the radiant intensity of a spot light
+    // (docs/formats.md, "Light and units"; `light_irradiance`).
     light_color: vec4<f32>,
     // rgb: hair base colour; a: strand alpha scale.
     hair_color: vec4<f32>,
@@ -26,7 +28,7 @@ struct Frame {
     // rgb: background colour; w = 1 when the scene's background is an image
     // (`background_image`), 0 for the flat colour.
     background: vec4<f32>,
-    // rgb: ambient light.
+    // rgb: ambient light, the radiance of a uniform environment.
     ambient: vec4<f32>,
     // xy: render size in pixels; zw: 1 / size.
     screen_size: vec4<f32>,
@@ -144,6 +146,17 @@ fn to_light(world: vec3<f32>) -> vec3<f32> {
         return normalize(frame.light_position.xyz - world);
     }
     return frame.light_direction.xyz;
+}
+
+// The irradiance the key light brings to a surface at `world` facing it:
+// the light's colour × intensity for a directional light; for a spot light,
+// whose intensity is radiant intensity, that over the squared distance.
+fn light_irradiance(world: vec3<f32>) -> vec3<f32> {
+    if (frame.light_direction.w > 0.5) {
+        let d = frame.light_position.xyz - world;
+        return frame.light_color.rgb / max(dot(d, d), 1e-8);
+    }
+    return frame.light_color.rgb;
 }
 
 // The vertex of a triangle covering the whole target (draw 3 vertices).

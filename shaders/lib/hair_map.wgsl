@@ -7,8 +7,9 @@
 // (on a software rasterizer both are per-fragment work).
 #define_import_path plait::hair_map
 
-#import plait::frame::{view_proj, view_linear_depth}
-#import plait::strand_lod::{strand_lod_place, strand_lod_clip}
+#import plait::frame::{frame, view_proj, view_linear_depth}
+#import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_wisps}
+#import plait::map_share::MAP_SHARE_SCALE
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
@@ -26,14 +27,46 @@ struct MapFragment {
     @builtin(position) clip: vec4<f32>,
     // Linear depth in the pass's view (`view_linear_depth`).
     @location(0) depth: f32,
+    // The strand's width across the light in map coordinates (0..1 over
+    // the map); a negative value: it blocks whole texels (see map_share).
+    @location(1) width: f32,
 }
+
 
 fn map_vertex(v: MapVertex) -> MapFragment {
     var out: MapFragment;
     let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
     out.clip = strand_lod_clip(view_proj() * vec4<f32>(p.world, 1.0), p.weight);
     out.depth = view_linear_depth(p.world);
+    out.width = map_width(v.position, v.tangent, v.thickness);
     return out;
+}
+
+// The strand's width across the light, in light-map coordinates, for light
+// views with strand coverage on; −1 (whole texels) for camera views (their
+// counts are fragment orders, weighed by the fragments' own alpha where they
+// are used), for wisps (a strip's texels are its own) and with coverage off.
+fn map_width(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
+#ifdef LIGHT_VIEW
+    if (frame.conventions.z < 0.5 || strand_lod_wisps()) {
+        return -1.0;
+    }
+    // Towards the light: a directional light's direction, or a spot's position.
+    let to_light = select(frame.light_direction.xyz, normalize(frame.light_position.xyz - world), frame.light_direction.w > 0.5);
+    var side = cross(tangent, to_light);
+    if (dot(side, side) < 1e-12) {
+        side = cross(select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), abs(to_light.y) > 0.9), to_light);
+    }
+    side = normalize(side);
+    let a = frame.light_view_proj * vec4<f32>(world, 1.0);
+    let b = frame.light_view_proj * vec4<f32>(world + side * thickness, 1.0);
+    if (a.w <= 0.0 || b.w <= 0.0) {
+        return -1.0;
+    }
+    return length((b.xy / b.w - a.xy / a.w) * 0.5);
+#else
+    return -1.0;
+#endif
 }
 
 // Where a map fragment lands: its texel of a per-texel map as big as the
@@ -50,6 +83,11 @@ struct MapTexel {
     // linear depth in the pass's view (`view_linear_depth`)
     depth: f32,
     rel: f32,
+    // The part of the texel the strand covers: its width in texels, at most
+    // 1 (1 for camera views, wisps and with strand coverage off). A light
+    // texel is blocked by the strand's share of it (issue 47): every map
+    // that counts weighs the fragment by it (map_weight).
+    share: f32,
 }
 
 fn map_texel(in: MapFragment, range: texture_2d<f32>) -> MapTexel {
@@ -62,7 +100,30 @@ fn map_texel(in: MapFragment, range: texture_2d<f32>) -> MapTexel {
     m.far = r.y;
     m.depth = in.depth;
     m.rel = (m.depth - r.x) / max(r.y - r.x, 1e-9);
+    m.share = select(min(in.width * f32(m.size.x), 1.0), 1.0, in.width < 0.0);
     return m;
+}
+
+// What the fragment adds to a map's count: in a light view its share of the
+// texel in units of 1 / MAP_SHARE_SCALE (at least one unit: a strand
+// thinner than 1/4096 texel still counts, a little too much, never
+// nothing), which the self-shadow providers divide out; in a camera view 1,
+// a fragment count (occupancy order's slabs).
+// One whole-texel fragment in map_weight's units.
+fn map_unit() -> f32 {
+#ifdef LIGHT_VIEW
+    return MAP_SHARE_SCALE;
+#else
+    return 1.0;
+#endif
+}
+
+fn map_weight(m: MapTexel) -> u32 {
+#ifdef LIGHT_VIEW
+    return max(u32(round(m.share * MAP_SHARE_SCALE)), 1u);
+#else
+    return 1u;
+#endif
 }
 
 // u32 words per texel of a per-texel buffer of `words_total` words.

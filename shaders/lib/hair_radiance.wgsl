@@ -1,6 +1,7 @@
-// plait::hair_radiance — the light a hair point sends towards the eye: the key
-// light's reflection (`shading`), shadowed by opaque objects (Sintorn &
-// Assarsson 2009 §3.5) and by the hair itself (`self_shadow`), plus the rest
+// plait::hair_radiance — the radiance a hair point sends towards the eye:
+// the key light's irradiance times its reflection per unit irradiance
+// (`shading`), shadowed by opaque objects (Sintorn & Assarsson 2009 §3.5)
+// and by the hair itself (`self_shadow`), plus the rest
 // of the environment's light (`lighting`) darkened by the point's ambient
 // occlusion. One function, so the per-fragment path (`plait::hair_fragment`)
 // and the strand-space compute pass (`techniques/shading_space/strand/`)
@@ -11,7 +12,7 @@
 // shading (ShortCut's depth pass) binds no shadow map.
 #define_import_path plait::hair_radiance
 
-#import plait::frame::{frame, to_light}
+#import plait::frame::{frame, to_light, light_irradiance}
 #import plait::shading::shade_direct
 #import plait::lighting::shade_environment
 #import plait::shadow::opaque_shadow
@@ -28,5 +29,5 @@ fn hair_radiance(shadow_map: texture_depth_2d, world: vec3<f32>, tangent_in: vec
     let base = color * frame.hair_color.rgb;
     let direct = shade_direct(tangent, l, e, base);
     let environment = shade_environment(world, tangent, e, base) * occlusion;
-    return frame.light_color.rgb * direct * visibility + environment;
+    return light_irradiance(world) * direct * visibility + environment;
 }

@@ -6,7 +6,7 @@
 // exact counts, the paper's additive blending). K = the `layers` buffer's u32
 // words per texel.
 #import plait::frame::frame
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, map_weight, words_per_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> layers: array<atomic<u32>>;
@@ -38,5 +38,6 @@ fn fs_main(in: MapFragment) {
         }
         k++;
     }
-    atomicAdd(&layers[m.index * count + k], 1u);
+    // Weighted by the strand's share of the texel (plait::hair_map::map_weight).
+    atomicAdd(&layers[m.index * count + k], map_weight(m));
 }

@@ -5,7 +5,7 @@
 // assigns each to the nearest mean of stage s - 1. Each stage accumulates, per
 // cluster, (count, Σz, Σz²) of z = depth relative to the texel range, fixed
 // point × 2^18, with atomicAdd. Layout: [stage][texel][cluster][3] u32.
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, map_weight, map_unit}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> clusters: array<atomic<u32>>;
@@ -32,7 +32,7 @@ fn fs_main(in: MapFragment) {
     for (var k = 0u; k < K; k++) {
         let n = atomicLoad(&clusters[prev + k * 3u]);
         if (n > 0u) {
-            let mean = f32(atomicLoad(&clusters[prev + k * 3u + 1u])) / (SCALE * f32(n));
+            let mean = f32(atomicLoad(&clusters[prev + k * 3u + 1u])) / (SCALE * f32(n) / map_unit());
             let d = abs(z - mean);
             if (d < best_d) {
                 best_d = d;
@@ -42,7 +42,11 @@ fn fs_main(in: MapFragment) {
     }
 #endif
     let base = (#{STAGE}u * texels + texel_index) * K * 3u + best * 3u;
-    atomicAdd(&clusters[base], 1u);
-    atomicAdd(&clusters[base + 1u], u32(round(z * SCALE)));
-    atomicAdd(&clusters[base + 2u], u32(round(z * z * SCALE)));
+    // Weighted by the strand's share of the texel: the count in units of
+    // map_unit(), the depth sums by the share (a weighted mean).
+    let weight = map_weight(m);
+    let share = f32(weight) / map_unit();
+    atomicAdd(&clusters[base], weight);
+    atomicAdd(&clusters[base + 1u], u32(round(z * share * SCALE)));
+    atomicAdd(&clusters[base + 2u], u32(round(z * z * share * SCALE)));
 }

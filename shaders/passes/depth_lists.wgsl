@@ -4,6 +4,7 @@
 // buffer's words per texel) the fragment is dropped and counted in `overflow`:
 // [0] dropped fragments, [1] overflowing texels, [2] the longest list asked for.
 #import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
+#import plait::map_share::pack_depth_share
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> lists: array<u32>;
@@ -21,7 +22,7 @@ fn fs_main(in: MapFragment) {
     let capacity = words_per_texel(arrayLength(&lists), m);
     let slot = atomicAdd(&counts[m.index], 1u);
     if (slot < capacity) {
-        lists[m.index * capacity + slot] = bitcast<u32>(m.depth);
+        lists[m.index * capacity + slot] = pack_depth_share(m.depth, m.share);
     } else {
         atomicAdd(&overflow[0], 1u);
         if (slot == capacity) {

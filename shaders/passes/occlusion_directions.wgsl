@@ -106,8 +106,13 @@ fn direction_frame(b: vec3<f32>, center: vec3<f32>, radius: f32) -> Frame {
     f.light_direction = vec4<f32>(b, 0.0);
     f.light_position = vec4<f32>(eye, 0.0);
     f.near_far = vec4<f32>(frame.near_far.xy, near, far);
-    // No lookup jitter: every vertex reads the texel it falls in.
-    f.conventions = vec4<f32>(bias_world / span, 0.0, frame.conventions.zw);
+    // No lookup jitter: every vertex reads the texel it falls in. Whole
+    // texels (z = 0): the self-shadow maps weigh a strand by its share of a
+    // texel (plait::hair_map), which this pass's maps would take from z = 1;
+    // ambient occlusion keeps Xing et al.'s counts until its own tests say
+    // what shares do to it (measured with shares: small's inner / outer
+    // fifth 0.902 / 0.948, tests/occlusion.rs wants 0.05 between them).
+    f.conventions = vec4<f32>(bias_world / span, 0.0, 0.0, frame.conventions.w);
     return f;
 }
 

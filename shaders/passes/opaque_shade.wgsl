@@ -3,12 +3,12 @@
 // (Sintorn & Assarsson 2009 §3.5: hair shadows on opaque objects come from the
 // same light maps the hair uses for itself).
 //
-// Units (docs/formats.md, "Light and units"): `light_color` is the
+// Units (docs/formats.md, "Light and units"): `light_irradiance` is the
 // irradiance E on a surface facing the light and `ambient` the radiance L_a
 // of a uniform environment, so a Lambertian surface of albedo ρ reflects the
 // radiance ρ/π·E·cos θ + ρ·L_a (the BRDF ρ/π integrated against a uniform
 // L_a over the hemisphere's projected solid angle π gives ρ·L_a).
-#import plait::frame::{frame, view_proj, to_light, opaque_world, opaque_world_normal}
+#import plait::frame::{frame, view_proj, to_light, light_irradiance, opaque_world, opaque_world_normal}
 #import plait::shadow::opaque_shadow
 #import plait::self_shadow::self_shadow
 
@@ -50,6 +50,6 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Slope-scaled bias against acne on surfaces grazing the light.
     let bias = 0.001 + 0.004 * (1.0 - lambert);
     let visibility = opaque_shadow(shadow_map, in.world, bias) * self_shadow(in.world);
-    let rgb = in.albedo * (frame.light_color.rgb * (lambert * visibility / PI) + frame.ambient.rgb);
+    let rgb = in.albedo * (light_irradiance(in.world) * (lambert * visibility / PI) + frame.ambient.rgb);
     return vec4<f32>(rgb, 1.0);
 }

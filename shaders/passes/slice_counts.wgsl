@@ -9,7 +9,7 @@
 // precision past 2048 fragments in 16-bit floats. Slices per texel = the
 // `counts` buffer's u32 words per texel (each pass type binds its own slot,
 // `slabs` or `slices`, to `counts`).
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, words_per_texel}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_texel, map_weight, words_per_texel}
 
 @group(1) @binding(0) var range: texture_2d<f32>;
 @group(1) @binding(1) var<storage, read_write> counts: array<atomic<u32>>;
@@ -24,5 +24,6 @@ fn fs_main(in: MapFragment) {
     let m = map_texel(in, range);
     let n = words_per_texel(arrayLength(&counts), m);
     let slice = min(u32(clamp(m.rel, 0.0, 1.0) * f32(n)), n - 1u);
-    atomicAdd(&counts[m.index * n + slice], 1u);
+    // Weighted by the strand's share of the texel (plait::hair_map::map_weight).
+    atomicAdd(&counts[m.index * n + slice], map_weight(m));
 }

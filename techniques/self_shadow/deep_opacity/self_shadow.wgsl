@@ -9,6 +9,7 @@
 #define_import_path plait::self_shadow::deep_opacity
 
 #import plait::frame::{frame, light_lookup}
+#import plait::map_share::MAP_SHARE_SCALE
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
 @group(1) @binding(10) var<storage, read> vis_layers: array<u32>;
@@ -37,7 +38,8 @@ fn deep_opacity_count(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
     var start = 0.0;
     for (var k = 0u; k < count; k++) {
         let end = visibility_params.layer_size * f32((k + 1u) * (k + 2u)) * 0.5;
-        let n = f32(vis_layers[base + k]);
+        // Layers count strands' shares of the texel (plait::map_share).
+        let n = f32(vis_layers[base + k]) / MAP_SHARE_SCALE;
         if (behind < end) {
             return before + n * (behind - start) / (end - start);
         }

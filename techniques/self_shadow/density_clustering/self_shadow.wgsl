@@ -10,6 +10,7 @@
 #define_import_path plait::self_shadow::density_clustering
 
 #import plait::frame::light_lookup
+#import plait::map_share::MAP_SHARE_SCALE
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
 @group(1) @binding(10) var<storage, read> vis_clusters: array<u32>;
@@ -35,7 +36,9 @@ fn cluster_count(texel: vec2<u32>, size: vec2<u32>, depth: f32) -> f32 {
     let z = (depth - range.x) / max(range.y - range.x, 1e-9);
     var total = 0.0;
     for (var k = 0u; k < DC_K; k++) {
-        let n = f32(vis_clusters[base + k * 3u]);
+        // Clusters count strands' shares of the texel (plait::map_share);
+        // their depth sums are share-weighted.
+        let n = f32(vis_clusters[base + k * 3u]) / MAP_SHARE_SCALE;
         if (n > 0.0) {
             let mean = f32(vis_clusters[base + k * 3u + 1u]) / (DC_SCALE * n);
             let mean_sq = f32(vis_clusters[base + k * 3u + 2u]) / (DC_SCALE * n);

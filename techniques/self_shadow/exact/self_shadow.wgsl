@@ -10,6 +10,7 @@
 #define_import_path plait::self_shadow::exact
 
 #import plait::frame::light_lookup
+#import plait::map_share::{list_depth, list_share}
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
 @group(1) @binding(10) var<storage, read> vis_lists: array<u32>;
@@ -27,16 +28,19 @@ fn exact_count(texel: vec2<u32>, size: vec2<u32>, below: f32) -> f32 {
     let capacity = arrayLength(&vis_lists) / (size.x * size.y);
     let total = vis_counts[index];
     let stored = min(total, capacity);
-    var n = 0u;
+    // Each fragment counts its strand's share of the texel (1 for whole
+    // texels, coverage off): the depth_lists pass stores it with the depth.
+    var n = 0.0;
     for (var i = 0u; i < stored; i++) {
-        if (bitcast<f32>(vis_lists[index * capacity + i]) < below) {
-            n++;
+        let entry = vis_lists[index * capacity + i];
+        if (list_depth(entry) < below) {
+            n += list_share(entry);
         }
     }
     if (stored == 0u) {
         return 0.0;
     }
-    return f32(n) * f32(total) / f32(stored);
+    return n * f32(total) / f32(stored);
 }
 
 fn hair_visibility(world: vec3<f32>) -> f32 {

@@ -9,6 +9,7 @@
 #define_import_path plait::self_shadow::occupancy
 
 #import plait::frame::light_lookup
+#import plait::map_share::MAP_SHARE_SCALE
 #import plait::occupancy::{MAX_WORDS, relative_depth_in, slab_position, word_bits, order_in_slab}
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
@@ -61,6 +62,8 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     if (!lookup.inside) {
         return 1.0;
     }
-    let order = light_order(lookup.texel, size, lookup.in_front_below);
+    // Slabs count strands' shares of the texel (plait::map_share); the bits
+    // only place them, so the order is in shares too.
+    let order = light_order(lookup.texel, size, lookup.in_front_below) / MAP_SHARE_SCALE;
     return exp(-order * visibility_params.shadow_weight);
 }

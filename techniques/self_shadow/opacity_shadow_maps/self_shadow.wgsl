@@ -9,6 +9,7 @@
 #define_import_path plait::self_shadow::opacity_shadow_maps
 
 #import plait::frame::light_lookup
+#import plait::map_share::MAP_SHARE_SCALE
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
 @group(1) @binding(10) var<storage, read> vis_slices: array<u32>;
@@ -46,5 +47,7 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     if (!lookup.inside) {
         return 1.0;
     }
-    return exp(-visibility_params.shadow_weight * opacity_thickness(lookup.texel, size, lookup.in_front_below));
+    // Slices count strands' shares of the texel (plait::map_share).
+    let sigma = opacity_thickness(lookup.texel, size, lookup.in_front_below) / MAP_SHARE_SCALE;
+    return exp(-visibility_params.shadow_weight * sigma);
 }
