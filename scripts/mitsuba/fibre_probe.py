@@ -84,3 +84,8 @@ print("-- energy: integral of L/E over eye directions, sigma_a 0, no caustic cla
 for t in (0,20,60):
     pe=plait_energy(t*D)
     print(f"θi {t}: plait R {pe[0]:.4f} TT {pe[1]:.4f} TRT {pe[2]:.4f} sum {pe.sum():.4f} | mitsuba R only {energy(t*D,[1e4]*3):.4f} all {energy(t*D,[0.0]*3):.4f}")
+print("-- scene-like points, Mitsuba's roughness varied (sigma_a 0): (beta_m, beta_n)")
+def mb(bm,bn): return mi.load_dict({'type':'hair','longitudinal_roughness':bm,'azimuthal_roughness':bn,'scale_tilt':2.0,'int_ior':1.55,'sigma_a':mi.ScalarColor3f(0.0,0.0,0.0)})
+for ti,tr,phi in [(52,5,20),(52,-5,20),(-52,5,20)]:
+    r=[mitsuba_mean(mb(bm,bn),tr*D,ti*D,phi*D)[0] for bm,bn in [(0.3,0.3),(0.3,0.02),(0.1,0.3),(0.1,0.02)]]
+    print(f"θi {ti} θr {tr} φ {phi}: (.3,.3) {r[0]:.5f} (.3,.02) {r[1]:.5f} (.1,.3) {r[2]:.5f} (.1,.02) {r[3]:.5f}")
