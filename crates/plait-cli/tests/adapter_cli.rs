@@ -184,6 +184,54 @@ fn a_shader_sample_mask_is_refused_on_gl_before_any_gpu_work() {
     assert!(!err.contains("GPU validation error"), "{err}");
 }
 
+/// Hair drawn into multisampled targets renders on GL: alpha_to_coverage's
+/// passes with the hardware's alpha to coverage and a shader without
+/// `@builtin(sample_mask)`, as a pipeline of a temporary folder.
+#[test]
+fn multisampled_hair_renders_on_gl() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let technique = tmp.path().join("techniques/transparency/msaa_hw");
+    std::fs::create_dir_all(&technique).expect("mkdir");
+    let toml = std::fs::read_to_string(
+        root().join("techniques/transparency/alpha_to_coverage/technique.toml"),
+    )
+    .expect("read the technique");
+    let depth = "depth = { compare = \"less\", write = true }";
+    assert!(toml.contains(depth), "the hair pass's depth line moved");
+    let toml = toml.replacen(depth, &format!("{depth}\nalpha_to_coverage = true"), 1);
+    let shader = "#import plait::hair_fragment::{HairVertex, HairVaryings, hair_vertex, shade_hair}
+@vertex fn vs_main(v: HairVertex) -> HairVaryings { return hair_vertex(v); }
+@fragment fn fs_main(in: HairVaryings) -> @location(0) vec4<f32> {
+    let f = shade_hair(in);
+    return vec4<f32>(f.rgb, f.alpha);
+}";
+    let pipeline = "[pipeline]\nextends = \"occupancy.toml\"\nname = \"msaa_hw\"\n\
+        [techniques]\nself_shadow = \"none\"\ntransparency = \"msaa_hw\"\n";
+    let write = |path: std::path::PathBuf, text: &str| std::fs::write(path, text).expect("write");
+    write(technique.join("technique.toml"), &toml);
+    write(technique.join("hair.wgsl"), shader);
+    write(tmp.path().join("msaa.toml"), pipeline);
+    let png = tmp.path().join("gl.png");
+    let o = plait_without_vulkan(&[
+        "render",
+        tmp.path().join("msaa.toml").to_str().expect("utf-8"),
+        "--size",
+        "96x72",
+        "--out",
+        png.to_str().expect("utf-8"),
+    ]);
+    assert!(o.status.success(), "stderr: {}", text(&o.stderr));
+    // Not blank: llvmpipe's GL drew nothing into multisample textures while
+    // the pool made every multisampled target sampleable.
+    let image = image::open(&png).expect("the render wrote a PNG").to_rgb8();
+    let first = image.get_pixel(0, 0);
+    let differing = image.pixels().filter(|p| *p != first).count();
+    assert!(
+        differing > image.pixels().len() / 10,
+        "only {differing} pixels differ from the background"
+    );
+}
+
 #[test]
 fn check_adapter_accepts_the_default_pipeline_on_vulkan() {
     // As the test environment gives it (scripts/test.sh: lavapipe).

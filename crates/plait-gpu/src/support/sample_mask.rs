@@ -36,3 +36,23 @@ fn binds(module: &Module, ty: Handle<Type>, binding: Option<&Binding>) -> bool {
         _ => false,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::uses_sample_mask;
+
+    fn uses(wgsl: &str) -> bool {
+        uses_sample_mask(&naga::front::wgsl::parse_str(wgsl).expect("valid WGSL"))
+    }
+
+    #[test]
+    fn the_mask_read_or_written_is_found_and_its_absence_is_not() {
+        let read = "@fragment fn f(@builtin(sample_mask) m: u32) -> @location(0) vec4<f32> { return vec4<f32>(f32(m)); }";
+        let written = "struct O { @location(0) c: vec4<f32>, @builtin(sample_mask) m: u32 }
+            @fragment fn f() -> O { return O(vec4<f32>(1.0), 1u); }";
+        let neither = "@fragment fn f(@builtin(sample_index) i: u32) -> @location(0) vec4<f32> { return vec4<f32>(f32(i)); }";
+        assert!(uses(read));
+        assert!(uses(written));
+        assert!(!uses(neither));
+    }
+}
