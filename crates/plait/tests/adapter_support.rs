@@ -30,6 +30,7 @@ fn complete() -> AdapterSupport {
         downlevel: D::all(),
         limits: wgpu::Limits::default(),
         depth_values_readable: true,
+        sample_mask: true,
     }
 }
 
@@ -288,4 +289,31 @@ fn the_message_says_what_to_do() {
     // Already on Vulkan: installing it is no advice.
     u.backend = wgpu::Backend::Vulkan;
     assert!(!u.to_string().contains("mesa-vulkan-drivers"));
+}
+
+#[test]
+fn a_shader_sample_mask_is_refused_where_the_backend_cannot() {
+    let mut gl = complete();
+    gl.sample_mask = false;
+    let a2c = schedule(
+        "pipelines/occupancy.toml",
+        &[
+            "techniques.self_shadow=none",
+            "techniques.transparency=alpha_to_coverage",
+        ],
+    );
+    let found = problems(&a2c, &gl, &caps());
+    let named: Vec<_> = found
+        .iter()
+        .map(|p| (p.pass.as_deref().unwrap_or("-"), p.missing.as_str()))
+        .collect();
+    assert_eq!(named.len(), 1, "{found:#?}");
+    assert_eq!(named[0].0, "hair_coverage", "{found:#?}");
+    assert!(named[0].1.contains("gl_SampleMask"), "{found:#?}");
+    assert!(
+        file_of(&found[0]).ends_with("techniques/transparency/alpha_to_coverage/technique.toml"),
+        "{found:#?}"
+    );
+    // Where the builtin compiles, the same schedule has no problem.
+    assert_eq!(problems(&a2c, &complete(), &caps()), []);
 }

@@ -140,6 +140,19 @@ fn pass_problems(
             ));
         }
     }
+    if !support.sample_mask && super::sample_mask::uses_sample_mask(&module) {
+        ctx.add(
+            out,
+            &pass.location,
+            None,
+            "uses `@builtin(sample_mask)` in its fragment shader (it picks the samples it covers)"
+                .into(),
+            format!(
+                "the {} backend cannot: naga's GLSL output treats gl_SampleMaskIn and gl_SampleMask, int arrays in GLSL, as a uint",
+                support.backend.to_str()
+            ),
+        );
+    }
     if is_compute {
         ctx.workgroup(&module, out);
         ctx.stage_limits(&plan, false, true, out);

@@ -14,6 +14,7 @@
 mod check;
 mod depth_values;
 mod message;
+mod sample_mask;
 mod textures;
 
 pub use check::{check_schedule, problems};
@@ -40,6 +41,12 @@ pub struct AdapterSupport {
     /// GLSL output declares every depth texture a `sampler2DShadow`, and
     /// GLSL has no such call on one, so the pipeline fails to compile.
     pub depth_values_readable: bool,
+    /// Whether fragment shaders can use `@builtin(sample_mask)`. wgpu's GL
+    /// backend cannot: naga's GLSL output (naga 30) reads `gl_SampleMaskIn`
+    /// and writes `gl_SampleMask` as a `uint`, where GLSL declares both
+    /// `int[]`, so the shader fails to compile (gfx-rs/wgpu issue 6085,
+    /// open).
+    pub sample_mask: bool,
 }
 
 impl AdapterSupport {
@@ -86,6 +93,7 @@ impl AdapterSupport {
             downlevel,
             limits: device.limits(),
             depth_values_readable: info.backend != wgpu::Backend::Gl,
+            sample_mask: info.backend != wgpu::Backend::Gl,
         }
     }
 
