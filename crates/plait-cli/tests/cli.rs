@@ -751,7 +751,7 @@ fn check_rejects_what_rendering_would() {
             "pipelines/alpha_to_coverage.toml",
             "params.samples=1",
             &[
-                "alpha_to_coverage/technique.toml:44:45",
+                "alpha_to_coverage/technique.toml:46:45",
                 "`scene`",
                 "1 sample(s)",
                 "cannot be resolved into `scene_resolved`",
