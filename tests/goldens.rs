@@ -15,7 +15,7 @@ use image::RgbaImage;
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
 use plait_tests::golden_images::{
-    MAX_HAIR_MEAN, MAX_OUTLIERS, check_golden, check_no_hair, compare, load_golden,
+    MAX_HAIR_MEAN, check_golden, check_no_hair, compare, load_golden,
 };
 use plait_tests::{open_gpu, pipeline_files, rel, repo_root, strands_subset};
 
@@ -163,7 +163,7 @@ fn ambient_occlusion_techniques_match_their_golden_images() {
 }
 
 /// The comparison must be able to fail for a small change: a single strand
-/// that disappears from the stray scene is caught by the outliers, and so
+/// that disappears from the stray scene is caught (by the changed pixels), and so
 /// is the golden scene's hair 1% brighter or darker, by the hair mean
 /// (the background, head and ground unchanged).
 #[test]
@@ -195,8 +195,12 @@ fn golden_comparison_catches_a_missing_strand_and_a_one_percent_change_of_the_ha
         one_less.strands = strands;
         let c = compare(&render(&gpu, &pipeline, &one_less), &golden, &mask);
         report.push(format!("stray strand {missing}: {}", c.summary()));
+        // Since coverage comes from width in every map and light has units
+        // (issue 47), a stray is a faint sub-pixel line and no longer stands
+        // out of its neighbourhood (outliers 0): it is caught by the count
+        // of changed hair pixels instead.
         assert!(
-            c.outliers > MAX_OUTLIERS && !c.passes(),
+            !c.passes(),
             "the golden comparison must fail when stray strand {missing} is missing: {}",
             c.summary()
         );
