@@ -20,7 +20,14 @@ impl Scene {
             HairSource::File(path) => {
                 let (asset, _warnings) = Asset::read_with(path, &self.hair.usd)
                     .map_err(|e| self.hair.named_here(e.into()))?;
-                (asset.strands(), path.clone(), missing_look(&asset))
+                let strands = asset.strands();
+                check_albedo(&strands).map_err(|message| {
+                    self.hair.named_here(SceneError::Invalid {
+                        path: path.clone(),
+                        message,
+                    })
+                })?;
+                (strands, path.clone(), missing_look(&asset))
             }
             HairSource::Procedural(spec) => (
                 crate::groom::generate(spec),
@@ -89,6 +96,26 @@ impl super::Hair {
             None => error,
         }
     }
+}
+
+/// A strand's colour is its fibre's albedo (`docs/formats.md`, "Light and
+/// units"): a channel outside [0, 1] would reflect more light than it
+/// receives, so a file's colours are refused as the scene's albedos are,
+/// naming the first strand and point at fault.
+fn check_albedo(strands: &Strands) -> Result<(), String> {
+    for (strand, range) in strands.ranges().enumerate() {
+        for point in range.clone() {
+            let c = strands.color[point];
+            if !c.is_finite() || c.min_element() < 0.0 || c.max_element() > 1.0 {
+                return Err(format!(
+                    "strand {strand}, point {}: colour {:?} is not an albedo; every channel must be finite and within [0, 1] (docs/formats.md, \"Light and units\")",
+                    point - range.start,
+                    c.to_array()
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// What a file leaves out of the look (`crate::groom::dress`): a `.tfx`

@@ -558,3 +558,40 @@ fn light_and_albedo_out_of_range_are_refused_where_written() {
         );
     }
 }
+
+/// A hair file's strand colours are albedos too: a channel above 1, below 0
+/// or not finite is refused naming the scene's `file =` value (line and
+/// column), the file, and the strand and point; a colour within [0, 1] loads.
+#[test]
+fn hair_file_colours_outside_the_albedo_range_are_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("s.toml");
+    std::fs::write(&path, format!("hair = {{ file = \"x.hair\" }}\n{MINIMAL}")).expect("write");
+    let s = Scene::load(&path).expect("loads");
+    let write = |color: Vec3| {
+        let mut hs = Strands::new();
+        hs.push_strand(&[Vec3::ZERO, Vec3::Y], |_| 0.1, |_| 1.0, Vec3::splat(0.5));
+        hs.push_strand(&[Vec3::X, Vec3::ONE], |_| 0.1, |_| 1.0, color);
+        hs.to_hair_file()
+            .expect("file")
+            .write(dir.path().join("x.hair"))
+            .expect("write");
+    };
+    for bad in [
+        Vec3::new(0.5, 1.2, 0.5),
+        Vec3::new(-0.1, 0.5, 0.5),
+        Vec3::new(0.5, 0.5, f32::NAN),
+    ] {
+        write(bad);
+        let e = s.strands().unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!("{}:1:", path.display()))
+                && e.contains("x.hair")
+                && e.contains("strand 1, point 0")
+                && e.contains("within [0, 1]"),
+            "{bad}: {e}"
+        );
+    }
+    write(Vec3::new(1.0, 0.0, 0.25));
+    assert_eq!(s.strands().expect("an albedo in range").strand_count(), 2);
+}
