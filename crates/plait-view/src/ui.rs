@@ -150,6 +150,10 @@ fn controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
             }
         });
     ui.small("The gallery (pipelines/*.toml on the search path).");
+    // Light and camera before the techniques and params, whose lists grow
+    // with the pipeline: the default window shows them without scrolling.
+    light_controls(ui, c, s, send);
+    camera_controls(ui, c, send);
 
     if !s.techniques.is_empty() {
         ui.separator();
@@ -210,40 +214,6 @@ fn controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
         if ui.button("reset edits").clicked() {
             send(Command::ResetParams);
         }
-    }
-
-    ui.separator();
-    ui.heading("Light");
-    if let Some(light) = &mut c.light {
-        // No step_by: snapping would move the scene's own light on first show.
-        let a = ui.add(
-            egui::Slider::new(&mut light.azimuth, -180.0..=180.0)
-                .text("azimuth °")
-                .max_decimals(1),
-        );
-        let e = ui.add(
-            egui::Slider::new(&mut light.elevation, -89.9..=89.9)
-                .text("elevation °")
-                .max_decimals(1),
-        );
-        if (a.changed() && by_user(&a)) || (e.changed() && by_user(&e)) {
-            send(Command::Light(Some(light.direction())));
-        }
-    }
-    if ui.button("scene light").clicked() {
-        c.light = s.scene_light.map(LightAngles::from_direction);
-        send(Command::Light(None));
-    }
-
-    ui.separator();
-    ui.heading("Camera");
-    ui.small("drag: orbit · right/shift-drag: pan · scroll: zoom");
-    if ui.button("scene camera").clicked() {
-        c.orbit = c.base_camera.as_ref().map(Orbit::from_camera);
-        send(Command::Camera(None));
-    }
-    if ui.checkbox(&mut c.paused, "pause rendering").changed() {
-        send(Command::Pause(c.paused));
     }
 
     ui.separator();
@@ -315,6 +285,44 @@ fn controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Comma
             c.display = Some(d);
             send(Command::Inspect(c.inspected.clone(), Some(d)));
         }
+    }
+}
+
+fn light_controls(ui: &mut egui::Ui, c: &mut Controls, s: &Shared, send: &dyn Fn(Command)) {
+    ui.separator();
+    ui.heading("Light");
+    if let Some(light) = &mut c.light {
+        // No step_by: snapping would move the scene's own light on first show.
+        let a = ui.add(
+            egui::Slider::new(&mut light.azimuth, -180.0..=180.0)
+                .text("azimuth °")
+                .max_decimals(1),
+        );
+        let e = ui.add(
+            egui::Slider::new(&mut light.elevation, -89.9..=89.9)
+                .text("elevation °")
+                .max_decimals(1),
+        );
+        if (a.changed() && by_user(&a)) || (e.changed() && by_user(&e)) {
+            send(Command::Light(Some(light.direction())));
+        }
+    }
+    if ui.button("scene light").clicked() {
+        c.light = s.scene_light.map(LightAngles::from_direction);
+        send(Command::Light(None));
+    }
+}
+
+fn camera_controls(ui: &mut egui::Ui, c: &mut Controls, send: &dyn Fn(Command)) {
+    ui.separator();
+    ui.heading("Camera");
+    ui.small("drag: orbit · right/shift-drag: pan · scroll: zoom");
+    if ui.button("scene camera").clicked() {
+        c.orbit = c.base_camera.as_ref().map(Orbit::from_camera);
+        send(Command::Camera(None));
+    }
+    if ui.checkbox(&mut c.paused, "pause rendering").changed() {
+        send(Command::Pause(c.paused));
     }
 }
 
