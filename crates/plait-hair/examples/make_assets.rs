@@ -1,5 +1,8 @@
 //! Writes the files the example scenes read that the repository makes
-//! itself: `examples/scenes/head.glb`, the head of `mesh_head.toml`, and
+//! itself: `examples/scenes/head.glb` (the ellipsoid as a mesh, which the
+//! tests hold against the built-in head), `examples/scenes/sculpted_head.glb`,
+//! the head of `mesh_head.toml` (the same skull with a face, ears and a neck:
+//! `plait_hair::sculpted_head`), and
 //! `examples/scenes/groom.usda`, its groom (`plait_hair::usd::example_groom_usda`:
 //! the procedural groom grown over the same ellipsoid, written as USD).
 //!
@@ -21,6 +24,10 @@ fn main() -> std::io::Result<()> {
     std::fs::create_dir_all(&dir)?;
     let path = dir.join("head.glb");
     let bytes = plait_hair::mesh_file::write::example_head_glb();
+    std::fs::write(&path, &bytes)?;
+    println!("{}: {} bytes", path.display(), bytes.len());
+    let path = dir.join("sculpted_head.glb");
+    let bytes = plait_hair::mesh_file::write::example_sculpted_head_glb();
     std::fs::write(&path, &bytes)?;
     println!("{}: {} bytes", path.display(), bytes.len());
     let path = dir.join("groom.usda");

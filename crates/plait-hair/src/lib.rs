@@ -39,6 +39,7 @@ pub mod mesh;
 pub mod mesh_file;
 pub mod rng;
 pub mod scene;
+pub mod sculpted_head;
 pub mod sdf;
 mod strands;
 pub mod tfx;

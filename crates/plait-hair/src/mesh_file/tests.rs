@@ -86,6 +86,12 @@ fn the_committed_example_head_is_what_make_assets_writes() {
         committed == super::write::example_head_glb(),
         "examples/scenes/head.glb differs from what `cargo run --example make_assets` writes; run it"
     );
+    let path = path.with_file_name("sculpted_head.glb");
+    let committed = std::fs::read(&path).expect("examples/scenes/sculpted_head.glb is committed");
+    assert!(
+        committed == super::write::example_sculpted_head_glb(),
+        "examples/scenes/sculpted_head.glb differs from what `cargo run --example make_assets` writes; run it"
+    );
 }
 
 #[test]

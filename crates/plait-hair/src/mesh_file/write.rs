@@ -93,3 +93,10 @@ pub fn example_head_glb() -> Vec<u8> {
             .with_albedo([0.75, 0.55, 0.45]);
     to_glb(&head)
 }
+
+/// The sculpted example head (`examples/scenes/sculpted_head.glb`, the head
+/// of `mesh_head.toml`): the same ellipsoid with a face, ears, a jaw and a
+/// neck (`crate::sculpted_head`), its scalp unchanged.
+pub fn example_sculpted_head_glb() -> Vec<u8> {
+    to_glb(&crate::sculpted_head::sculpted_head(96, 128))
+}
