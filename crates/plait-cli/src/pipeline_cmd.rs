@@ -167,10 +167,13 @@ pub fn graph(args: GraphArgs) -> Result<()> {
     };
     let pipeline = resolve_pipeline(Some(&args.pipeline));
     let loaded = plait_graph::load(&pipeline, &args.set.sets)?;
-    let schedule = match plait::session::check_pipeline(&loaded, &opts) {
+    // A default capacity lowered to fit, as the render would (the graph
+    // shows the schedule that runs).
+    let schedule = match compile_checked(&pipeline, &args.set.sets, &opts) {
         Ok(schedule) => schedule,
         Err(errors) => {
-            crate::size_limit::explain_default_limits(&loaded, &pipeline, args.size)?;
+            let source = plait::source::PipelineSource::new(&pipeline, &args.set.sets);
+            crate::size_limit::explain_default_limits(&loaded, &source, args.size)?;
             return Err(errors.into());
         }
     };

@@ -22,7 +22,7 @@ pub fn check(pipeline: &Path, sets: &[String], size: (u32, u32), gpu: &Gpu) -> R
     let Ok(loaded) = plait_graph::load(pipeline, sets) else {
         return Ok(());
     };
-    explain_on(&loaded, pipeline, size, gpu)
+    explain_on(&loaded, &PipelineSource::new(pipeline, sets), size, gpu)
 }
 
 /// [`plait::adapter::compile_on`], the compile of a render; when it fails
@@ -36,7 +36,7 @@ pub fn compile_on(
     match plait::adapter::compile_on(gpu, loaded, source, size) {
         Ok(schedule) => Ok(schedule),
         Err(e @ SessionError::Pipeline(_)) => {
-            explain_on(loaded, &source.path, size, gpu)?;
+            explain_on(loaded, source, size, gpu)?;
             Err(e.into())
         }
         Err(e) => Err(e.into()),
@@ -45,9 +45,14 @@ pub fn compile_on(
 
 /// After `loaded` failed to compile for `gpu` at `size`: the `--size` error
 /// when the size is at fault, `Ok` (the compile's own errors stand) when not.
-pub fn explain_on(loaded: &Pipeline, pipeline: &Path, size: (u32, u32), gpu: &Gpu) -> Result<()> {
+pub fn explain_on(
+    loaded: &Pipeline,
+    source: &PipelineSource,
+    size: (u32, u32),
+    gpu: &Gpu,
+) -> Result<()> {
     let on = format!("on {}", gpu.adapter_name());
-    explain(loaded, pipeline, size, &on, &|s| {
+    explain(loaded, source, size, &on, &|s| {
         plait::session::gpu_options(gpu, s)
     })
 }
@@ -57,14 +62,18 @@ pub fn check_default_limits(pipeline: &Path, sets: &[String], size: (u32, u32)) 
     let Ok(loaded) = plait_graph::load(pipeline, sets) else {
         return Ok(());
     };
-    explain_default_limits(&loaded, pipeline, size)
+    explain_default_limits(&loaded, &PipelineSource::new(pipeline, sets), size)
 }
 
 /// [`explain_on`] against WebGPU's default limits (`plait graph`).
-pub fn explain_default_limits(loaded: &Pipeline, pipeline: &Path, size: (u32, u32)) -> Result<()> {
+pub fn explain_default_limits(
+    loaded: &Pipeline,
+    source: &PipelineSource,
+    size: (u32, u32),
+) -> Result<()> {
     explain(
         loaded,
-        pipeline,
+        source,
         size,
         "within WebGPU's default limits",
         &|s| CompileOptions {
@@ -76,18 +85,29 @@ pub fn explain_default_limits(loaded: &Pipeline, pipeline: &Path, size: (u32, u3
 
 /// `options(size)` gives the limits; `on` names them in the message
 /// (`on llvmpipe`, `within WebGPU's default limits`). Only the pipeline
-/// files are compiled here (no shaders): limits are theirs.
+/// files are compiled here (no shaders): limits are theirs. A bounded
+/// buffer still at its technique's default is lowered to fit, as the render
+/// does (`plait::overflow::compile_fitting`): only what the user set, or
+/// what cannot fit at all, is the flag's fault.
 fn explain(
     loaded: &Pipeline,
-    pipeline: &Path,
+    source: &PipelineSource,
     size: (u32, u32),
     on: &str,
     options: &dyn Fn((u32, u32)) -> CompileOptions,
 ) -> Result<()> {
     let registry = plait_passes::library().registry();
-    let compile = |s: (u32, u32)| -> Result<(), Errors> {
-        plait_graph::compile(loaded, &registry, &options(s)).map(|_| ())
+    let with = |extra: &[String], opts: &CompileOptions| -> Result<Schedule, Errors> {
+        if extra.is_empty() {
+            plait_graph::compile(loaded, &registry, opts)
+        } else {
+            plait_graph::compile(&source.load(extra)?, &registry, opts)
+        }
     };
+    let compile = |s: (u32, u32)| -> Result<(), Errors> {
+        plait::overflow::compile_fitting(&with, &[], &options(s)).map(|_| ())
+    };
+    let pipeline = &source.path;
     let Err(errors) = compile(size) else {
         return Ok(());
     };

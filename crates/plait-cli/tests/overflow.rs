@@ -185,6 +185,53 @@ fn ab(args: &[&str], out: &std::path::Path) -> std::process::Output {
     plait(&all)
 }
 
+/// The same default pool in `plait ab` and `plait graph` (issue 41: "ab's
+/// pre-GPU size check blames `--size`"): their checks before any GPU work
+/// lower a default capacity to fit as the render does, so linked lists at
+/// 1280x720 run there too, and drop nothing; the value set by the user is
+/// still refused naming the flag.
+#[test]
+fn ab_and_graph_fit_a_default_pool_as_the_render_does() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("report");
+    let run = |extra: &[&str]| {
+        let mut a = vec![
+            "ab",
+            "pipelines/linked_list.toml",
+            "--reference",
+            "pipelines/linked_list.toml",
+            "--scene",
+            "examples/scenes/small.toml",
+            "--size",
+            "1280x720",
+            "--repeats",
+            "1",
+            "--out",
+            out.to_str().expect("utf-8"),
+        ];
+        a.extend_from_slice(extra);
+        plait(&a)
+    };
+    let o = run(&[]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).expect("report.json"))
+            .expect("JSON");
+    for r in json["scenes"][0]["runs"].as_array().expect("runs") {
+        let o = &r["overflow"][0];
+        assert_eq!(o["dropped"].as_u64(), Some(0), "{r}");
+    }
+    let graph = plait(&["graph", "pipelines/linked_list.toml", "--size", "1280x720"]);
+    assert!(graph.status.success(), "{}", text(&graph.stderr));
+    let o = run(&["--set", "params.nodes_per_pixel=11"]);
+    let stderr = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--set params.nodes_per_pixel=11") && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+}
+
 #[test]
 fn a_reference_that_drops_fails_ab_with_the_count() {
     let dir = tempfile::tempdir().expect("tempdir");

@@ -182,6 +182,17 @@ fn build_probe<'g>(
 ) -> Result<Option<(String, crate::session::Prepared<'g>)>, SessionError> {
     let opts = gpu_options(gpu, size);
     let variant = crate::session::compile_checked(pipeline, sets, &opts)?;
+    // Capacities the session lowered to fit the adapter, kept: the probe
+    // pipeline draws no pass that counts into them (its one output is
+    // `probe_out`), so it could not lower them itself, yet their resources
+    // are still declared and checked against the limits.
+    let fitted: Vec<String> = variant
+        .overflow
+        .iter()
+        .filter(|c| c.grows)
+        .map(|c| format!("params.{}={}", c.param, c.value))
+        .collect();
+    let sets = &[sets, fitted.as_slice()].concat();
     let shading = variant
         .passes
         .iter()
@@ -248,7 +259,14 @@ fn build_probe<'g>(
         let loaded = plait_graph::load_str(&probe_path, &text, &[sets, extra].concat())?;
         check_pipeline(&loaded, &opts)
     };
-    let schedule = compile(&[])?;
+    let mut schedule = compile(&[])?;
+    // The session chose the carried values, not the user: they stay growable.
+    for c in &mut schedule.overflow {
+        c.grows |= variant
+            .overflow
+            .iter()
+            .any(|v| v.grows && v.param == c.param);
+    }
     // The reference's bounded buffers hold everything, as when it renders.
     let prepared =
         crate::overflow::prepare_holding(gpu, schedule, &compile, &probe_path, scene, size)?;

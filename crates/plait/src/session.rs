@@ -149,13 +149,24 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
 }
 
 /// Load, compile and check a pipeline against the pass library, shaders
-/// included (naga), without a GPU.
+/// included (naga), without a GPU. A bounded buffer still at its
+/// technique's default is lowered to fit `opts`' binding limit, as a render
+/// does ([`crate::overflow::compile_fitting`]), so `plait check` and `plait
+/// ab`'s checks before any GPU work accept what the render would.
 pub fn compile_checked(
     path: &Path,
     sets: &[String],
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
-    check_pipeline(&plait_graph::load(path, sets)?, opts)
+    let loaded = plait_graph::load(path, sets)?;
+    let compile = |extra: &[String], opts: &CompileOptions| {
+        if extra.is_empty() {
+            check_pipeline(&loaded, opts)
+        } else {
+            check_pipeline(&plait_graph::load(path, &[sets, extra].concat())?, opts)
+        }
+    };
+    crate::overflow::compile_fitting(&compile, &[], opts)
 }
 
 /// Compile and check a loaded pipeline (see [`compile_checked`]).
