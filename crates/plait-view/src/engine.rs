@@ -7,8 +7,7 @@
 //! meanwhile (its own device paints the UI; frames cross as CPU images).
 //! A failed reload keeps the last good pipeline and frame.
 
-use std::collections::{HashMap, VecDeque};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -16,15 +15,14 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use plait::session::{self, Prepared, SceneData};
 use plait_gpu::Gpu;
-use plait_graph::{ResourceDesc, Schedule};
 use plait_hair::scene::{Background, Camera, HairSource, LightKind};
 
-use crate::inspect::{self, Display, Inspected};
-use crate::published::{Shared, describe_schedule, texture_sizes};
+use crate::inspect::{self, Display};
+use crate::published::{Shared, describe_schedule};
+use crate::screenshot::write_png;
+use crate::timings::Timings;
 use crate::watch::FileWatcher;
 
-/// Frames a pass's median GPU time is taken over.
-const TIMING_WINDOW: usize = 15;
 /// At most ~30 frames a second: a fast pipeline need not keep every core busy.
 const MIN_FRAME_INTERVAL: Duration = Duration::from_millis(33);
 
@@ -79,6 +77,13 @@ struct Live<'g> {
     failed: bool,
 }
 
+/// A frame rendered and checked, not yet published.
+struct Frame {
+    report: plait_gpu::FrameReport,
+    output: plait_gpu::readback::TexelData,
+    dropped: Vec<String>,
+}
+
 struct Engine<'g> {
     opts: EngineOptions,
     gpu: &'g Gpu,
@@ -100,8 +105,7 @@ struct Engine<'g> {
     live: Option<Live<'g>>,
     /// The scene's animation plays in real time from here, looping.
     clock: Instant,
-    timings: HashMap<String, VecDeque<f64>>,
-    frame_times: VecDeque<f64>,
+    timings: Timings,
     frames_since_build: u64,
     builds: u32,
     /// The drop lines last logged, so a frame loop logs a change, not
@@ -109,17 +113,8 @@ struct Engine<'g> {
     dropped_logged: Vec<String>,
 }
 
-fn median(values: &VecDeque<f64>) -> Option<f64> {
-    let mut v: Vec<f64> = values.iter().copied().collect();
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    Some(v[v.len() / 2])
-}
-
 /// An error as printed: every line starting `error:`.
-fn error_text(e: &dyn std::fmt::Display) -> String {
+pub(crate) fn error_text(e: &dyn std::fmt::Display) -> String {
     let text = e.to_string();
     if text.starts_with("error:") {
         text
@@ -255,8 +250,7 @@ impl<'g> Engine<'g> {
                     prepared,
                     failed: false,
                 });
-                self.timings.clear();
-                self.frame_times.clear();
+                self.timings = Timings::default();
                 self.frames_since_build = 0;
                 self.apply_view();
                 let edits = sets[self.opts.sets.len()..].to_vec();
@@ -287,10 +281,29 @@ impl<'g> Engine<'g> {
     }
 
     fn render(&mut self) {
-        let Some(live) = &mut self.live else {
-            return;
-        };
         let started = Instant::now();
+        match self.frame() {
+            Ok(Some(frame)) => self.show(frame, started),
+            Ok(None) => {}
+            Err(text) => {
+                // Kept until the next rebuild: the last good frame stays shown.
+                if let Some(live) = &mut self.live {
+                    live.failed = true;
+                }
+                eprintln!("{text}");
+                self.update(|s| s.error = Some(text));
+            }
+        }
+    }
+
+    /// One frame of the live pipeline: posed at the animation's time,
+    /// rendered, read back and put through the same after-frame checks as
+    /// `plait render` (a bounded buffer that drops while you watch is shown
+    /// and logged, never silent). `None` with nothing built.
+    fn frame(&mut self) -> Result<Option<Frame>, String> {
+        let Some(live) = &mut self.live else {
+            return Ok(None);
+        };
         // An animated scene plays in real time at 30 frames a second, looping
         // over its keys (`plait::frames`, as `plait render --frames` does).
         if let Some(scene) = &self.scene
@@ -299,91 +312,54 @@ impl<'g> Engine<'g> {
             const FPS: f32 = 30.0;
             let frames = (animation.duration() * FPS) as u64 + 1;
             let index = (self.clock.elapsed().as_secs_f32() * FPS) as u64 % frames;
-            match live
+            let frame = live
                 .prepared
                 .pose_frame(scene, self.opts.size, index as u32, FPS)
-            {
-                Ok(frame) => live.prepared.renderer.set_frame(&frame),
-                Err(e) => {
-                    live.failed = true;
-                    let text = error_text(&e);
-                    eprintln!("{text}");
-                    self.update(|s| s.error = Some(text));
-                    return;
-                }
-            }
+                .map_err(|e| error_text(&e))?;
+            live.prepared.renderer.set_frame(&frame);
         }
-        let frame = live.prepared.renderer.render().and_then(|report| {
-            let output = live
-                .prepared
-                .renderer
-                .read_resource(&live.prepared.output)?;
-            Ok((report, output))
-        });
-        let (report, output) = match frame {
-            Ok(f) => f,
-            Err(e) => {
-                live.failed = true;
-                let text = error_text(&e);
-                eprintln!("{text}");
-                self.update(|s| s.error = Some(text));
-                return;
-            }
+        let renderer = &live.prepared.renderer;
+        let report = renderer.render().map_err(|e| error_text(&e))?;
+        let output = renderer
+            .read_resource(&live.prepared.output)
+            .map_err(|e| error_text(&e))?;
+        let dropped = plait::overflow::check_frame(&report).map_err(|e| error_text(&e))?;
+        Ok(Some(Frame {
+            report,
+            output,
+            dropped,
+        }))
+    }
+
+    /// Publishes a rendered frame: the output, the inspected resource, the
+    /// pass timings' medians, the drops; and the screenshot when it is due.
+    fn show(&mut self, frame: Frame, started: Instant) {
+        let Some(live) = &self.live else {
+            return;
         };
-        // The same after-frame checks as `plait render`: a bounded buffer
-        // that drops while you watch is shown and logged, never silent.
-        let dropped = match plait::overflow::check_frame(&report) {
-            Ok(dropped) => dropped,
-            Err(e) => {
-                live.failed = true;
-                let text = error_text(&e);
-                eprintln!("{text}");
-                self.update(|s| s.error = Some(text));
-                return;
-            }
-        };
-        if dropped != self.dropped_logged {
-            for line in &dropped {
+        if frame.dropped != self.dropped_logged {
+            for line in &frame.dropped {
                 eprintln!("plait view: {line}");
             }
-            self.dropped_logged = dropped.clone();
+            self.dropped_logged = frame.dropped.clone();
         }
         let schedule = live.prepared.schedule();
         let output_view = Arc::new(inspect::texture(
             &live.prepared.output,
-            &output,
+            &frame.output,
             Display::Color,
         ));
         let inspected = match &self.inspect {
             (None, None) => Ok(None),
             (name, display) => {
                 let name = name.clone().unwrap_or_else(|| live.prepared.output.clone());
-                inspect_resource(&live.prepared, schedule, &name, *display).map(Some)
+                inspect::resource(&live.prepared, schedule, &name, *display).map(Some)
             }
         };
-        for t in &report.passes {
-            if let Some(ms) = t.gpu_ms {
-                let q = self.timings.entry(t.name.clone()).or_default();
-                q.push_back(ms);
-                if q.len() > TIMING_WINDOW {
-                    q.pop_front();
-                }
-            }
-        }
-        let total = report
-            .total_gpu_ms
-            .unwrap_or_else(|| started.elapsed().as_secs_f64() * 1e3);
-        self.frame_times.push_back(total);
-        if self.frame_times.len() > TIMING_WINDOW {
-            self.frame_times.pop_front();
-        }
+        self.timings.record(&frame.report, started);
+        let medians = self.timings.pass_medians(schedule);
+        let frame_median = self.timings.frame_median();
         self.frames_since_build += 1;
-        let medians: Vec<Option<f64>> = schedule
-            .passes
-            .iter()
-            .map(|p| self.timings.get(&p.name).and_then(median))
-            .collect();
-        let frame_median = median(&self.frame_times);
         let frames = self.frames_since_build;
         let screenshot = self.screenshot_due().then(|| output_view.clone());
         self.update(|s| {
@@ -404,7 +380,7 @@ impl<'g> Engine<'g> {
             }
             s.frames = frames;
             s.total_frames += 1;
-            s.dropped = dropped;
+            s.dropped = frame.dropped;
         });
         if let Some(image) = screenshot {
             self.write_screenshot(&image.image);
@@ -528,64 +504,6 @@ impl<'g> Engine<'g> {
     }
 }
 
-fn inspect_resource(
-    prepared: &Prepared<'_>,
-    schedule: &Schedule,
-    name: &str,
-    display: Option<Display>,
-) -> Result<Inspected, String> {
-    let id = schedule.resource(name).ok_or_else(|| {
-        let names: Vec<&str> = schedule.resources.iter().map(|r| r.name.as_str()).collect();
-        format!(
-            "error: --inspect: no resource `{name}` in this pipeline{} (it has {})",
-            plait_graph::suggest::did_you_mean(name, names.iter().copied()),
-            names.join(", ")
-        )
-    })?;
-    let desc = &schedule.resources[id].desc;
-    let display = display.unwrap_or_else(|| inspect::default_display(desc));
-    let r = &prepared.renderer;
-    match desc {
-        ResourceDesc::Texture { .. } => r
-            .read_resource(name)
-            .map(|t| inspect::texture(name, &t, display))
-            .map_err(|e| error_text(&e)),
-        ResourceDesc::Buffer { size } => {
-            let layout = inspect::buffer_layout(*size, &texture_sizes(schedule));
-            r.read_buffer(name)
-                .map(|b| inspect::buffer(name, &b, layout, display))
-                .map_err(|e| error_text(&e))
-        }
-    }
-}
-
-/// Write a PNG whole or not at all (a temporary file renamed into place).
-pub fn write_png(path: &Path, image: &image::RgbaImage) -> Result<(), String> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let mut png = Vec::new();
-    image
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .map_err(|e| e.to_string())?;
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".plait-");
-    // An ordinary file's permissions (0666 less the umask, as `plait render`
-    // writes): tempfile's default, 0600, would stay on the renamed screenshot.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let mut tmp = builder
-        .tempfile_in(&dir)
-        .map_err(|e| format!("cannot write in {}: {e}", dir.display()))?;
-    std::io::Write::write_all(&mut tmp, &png).map_err(|e| e.to_string())?;
-    tmp.persist(path).map_err(|e| e.error.to_string())?;
-    Ok(())
-}
-
 /// Run the engine on this thread until `Quit`, the screenshot, or the
 /// window going away. `wake` asks the window to repaint.
 pub fn run(
@@ -633,8 +551,7 @@ pub fn run(
         paused: false,
         live: None,
         clock: Instant::now(),
-        timings: HashMap::new(),
-        frame_times: VecDeque::new(),
+        timings: Timings::default(),
         frames_since_build: 0,
         dropped_logged: Vec::new(),
         builds: 0,

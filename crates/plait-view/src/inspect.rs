@@ -9,8 +9,11 @@
 //! bits (occupied slices) or one bit (one slice).
 
 use image::{Rgba, RgbaImage};
+use plait::session::Prepared;
 use plait_gpu::readback::TexelData;
-use plait_graph::{Format, ResourceDesc};
+use plait_graph::{Format, ResourceDesc, Schedule};
+
+use crate::published::texture_sizes;
 
 /// How a resource is turned into a picture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -358,6 +361,39 @@ impl Inspected {
                 format!("({x}, {y}): [{}{more}]", shown.join(", "))
             }
         })
+    }
+}
+
+/// The resource `name` of a built pipeline read back and shown `display`
+/// (its default display when `None`); an unknown name suggests the nearest.
+pub fn resource(
+    prepared: &Prepared<'_>,
+    schedule: &Schedule,
+    name: &str,
+    display: Option<Display>,
+) -> Result<Inspected, String> {
+    let id = schedule.resource(name).ok_or_else(|| {
+        let names: Vec<&str> = schedule.resources.iter().map(|r| r.name.as_str()).collect();
+        format!(
+            "error: --inspect: no resource `{name}` in this pipeline{} (it has {})",
+            plait_graph::suggest::did_you_mean(name, names.iter().copied()),
+            names.join(", ")
+        )
+    })?;
+    let desc = &schedule.resources[id].desc;
+    let display = display.unwrap_or_else(|| default_display(desc));
+    let r = &prepared.renderer;
+    match desc {
+        ResourceDesc::Texture { .. } => r
+            .read_resource(name)
+            .map(|t| texture(name, &t, display))
+            .map_err(|e| crate::engine::error_text(&e)),
+        ResourceDesc::Buffer { size } => {
+            let layout = buffer_layout(*size, &texture_sizes(schedule));
+            r.read_buffer(name)
+                .map(|b| buffer(name, &b, layout, display))
+                .map_err(|e| crate::engine::error_text(&e))
+        }
     }
 }
 

@@ -17,6 +17,8 @@ pub mod engine;
 pub mod inspect;
 pub mod orbit;
 pub mod published;
+mod screenshot;
+mod timings;
 mod ui;
 pub mod watch;
 
