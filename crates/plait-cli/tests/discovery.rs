@@ -4,22 +4,10 @@
 //! it is an error at its file, line and column with exit code 2.
 
 mod common;
-use common::{root, text};
+use common::{root, text, with_library};
 
 use std::path::Path;
-use std::process::{Command, Output};
-
-/// `plait ARGS` from the checkout with `PLAIT_PATH` = `library`, then the
-/// checkout (so only what `library` adds or replaces differs).
-fn with_library(library: &Path, args: &[&str]) -> Output {
-    let path = std::env::join_paths([library.to_path_buf(), root()]).expect("join paths");
-    Command::new(env!("CARGO_BIN_EXE_plait"))
-        .current_dir(root())
-        .env("PLAIT_PATH", path)
-        .args(args)
-        .output()
-        .expect("run plait")
-}
+use std::process::Output;
 
 fn write(base: &Path, relative: &str, text: &str) {
     let path = base.join(relative);

@@ -7,10 +7,9 @@
 //! file, line and column.
 
 mod common;
-use common::{root, text};
+use common::{root, text, with_library};
 
-use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 const PAGE: &str = "book/src/guide/writing-a-technique.md";
 const FOLDER: &str = "techniques/transparency/wboit";
@@ -47,16 +46,6 @@ fn library(edit: impl Fn(&str, &str) -> String) -> tempfile::TempDir {
         std::fs::write(file, edit(&path, &body)).expect("write");
     }
     dir
-}
-
-fn with_library(library: &Path, args: &[&str]) -> Output {
-    let path = std::env::join_paths([library.to_path_buf(), root()]).expect("join paths");
-    Command::new(env!("CARGO_BIN_EXE_plait"))
-        .current_dir(root())
-        .env("PLAIT_PATH", path)
-        .args(args)
-        .output()
-        .expect("run plait")
 }
 
 const CHOOSE: [&str; 4] = [

@@ -57,22 +57,7 @@ impl Mesh {
                 });
             }
         }
-        let row = slices + 1;
-        let mut indices = Vec::with_capacity((stacks * slices * 6) as usize);
-        for i in 0..stacks {
-            for j in 0..slices {
-                let a = i * row + j; // upper-left
-                let b = a + row; // lower-left
-                let c = b + 1; // lower-right
-                let d = a + 1; // upper-right
-                if i != 0 {
-                    indices.extend_from_slice(&[a, b, d]);
-                }
-                if i != stacks - 1 {
-                    indices.extend_from_slice(&[d, b, c]);
-                }
-            }
-        }
+        let indices = grid_indices(stacks, slices);
         Mesh {
             name: "ellipsoid".into(),
             vertices,
@@ -124,6 +109,30 @@ impl Mesh {
         self.albedo = albedo;
         self
     }
+}
+
+/// The triangles of a pole-to-pole grid of (`stacks` + 1) × (`slices` + 1)
+/// vertices, row by row from the top pole (each pole a row of coincident
+/// vertices, the seam a column twice): counter-clockwise seen from outside,
+/// one triangle per quad at the poles, where the other would be degenerate.
+pub(crate) fn grid_indices(stacks: u32, slices: u32) -> Vec<u32> {
+    let row = slices + 1;
+    let mut indices = Vec::with_capacity((stacks * slices * 6) as usize);
+    for i in 0..stacks {
+        for j in 0..slices {
+            let a = i * row + j; // upper-left
+            let b = a + row; // lower-left
+            let c = b + 1; // lower-right
+            let d = a + 1; // upper-right
+            if i != 0 {
+                indices.extend_from_slice(&[a, b, d]);
+            }
+            if i != stacks - 1 {
+                indices.extend_from_slice(&[d, b, c]);
+            }
+        }
+    }
+    indices
 }
 
 #[cfg(test)]

@@ -150,20 +150,7 @@ pub fn sculpted_head(stacks: u32, slices: u32) -> Mesh {
             });
         }
     }
-    let row = slices + 1;
-    let mut indices = Vec::with_capacity((stacks * slices * 6) as usize);
-    for i in 0..stacks {
-        for j in 0..slices {
-            let (a, d) = (i * row + j, i * row + j + 1);
-            let (b, c) = (a + row, a + row + 1);
-            if i != 0 {
-                indices.extend_from_slice(&[a, b, d]);
-            }
-            if i != stacks - 1 {
-                indices.extend_from_slice(&[d, b, c]);
-            }
-        }
-    }
+    let indices = crate::mesh::grid_indices(stacks, slices);
     Mesh {
         name: "head".into(),
         vertices,

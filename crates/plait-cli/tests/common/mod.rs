@@ -24,3 +24,15 @@ pub fn plait(args: &[&str]) -> Output {
 pub fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
 }
+
+/// `plait ARGS` from the checkout with `PLAIT_PATH` = `library`, then the
+/// checkout (so only what `library` adds or replaces differs).
+pub fn with_library(library: &Path, args: &[&str]) -> Output {
+    let path = std::env::join_paths([library.to_path_buf(), root()]).expect("join paths");
+    Command::new(env!("CARGO_BIN_EXE_plait"))
+        .current_dir(root())
+        .env("PLAIT_PATH", path)
+        .args(args)
+        .output()
+        .expect("run plait")
+}
