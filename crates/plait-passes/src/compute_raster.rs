@@ -122,13 +122,13 @@ impl PassType for StrandBin {
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
         let mut draw = ShaderDraw::of(self, pass, ctx)?;
-        // With `geometry = wisps` a "segment" is one quad of a wisp's strip
-        // (two consecutive spine points, two triangles of the wisp mesh):
-        // tiles.wgsl bins it as a wide segment.
-        let wisps = matches!(pass.params.get("geometry"), Some(Value::Str(g)) if g == "wisps");
-        let segments = match (&ctx.geometry.wisps, wisps) {
-            (Some(mesh), true) => mesh.index_count / 6,
-            _ => ctx.geometry.segment_count,
+        // When the geometry choice draws a triangle mesh for the hair (the
+        // wisps' strips: the session builds one only for a technique that
+        // asks for it), a "segment" is one quad of a strip (two consecutive
+        // spine points, two triangles): tiles.wgsl bins it as a wide segment.
+        let segments = match &ctx.geometry.wisps {
+            Some(mesh) => mesh.index_count / 6,
+            None => ctx.geometry.segment_count,
         };
         draw.threads = [segments.max(1), 1, 1];
         Ok(Box::new(build_draw(&draw, pass, ctx)?))
