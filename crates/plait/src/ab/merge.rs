@@ -194,12 +194,13 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Report, MergeError> {
     }
     let mut report = first.report.clone();
     report.shards = parts.iter().map(|p| p.marker.shard.clone()).collect();
-    report.scenes = Vec::new();
     let mut taken: Vec<String> = Vec::new();
-    for name in &first.marker.scenes {
-        let scene = join_scene(&parts, name, out, &mut taken)?;
-        report.scenes.push(scene);
-    }
+    let joined = first
+        .marker
+        .scenes
+        .iter()
+        .map(|name| join_scene(&parts, name, &mut taken))
+        .collect::<Result<Vec<_>, _>>()?;
     // Every unit exactly once: a shard that rendered what it did not claim,
     // or two that rendered the same, is caught before anything is written.
     let mut expected = first.marker.units.clone();
@@ -213,6 +214,11 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Report, MergeError> {
                 "the shards' rows {got:?} are not the plan's units {expected:?} each once"
             ),
         });
+    }
+    report.scenes = Vec::new();
+    for (mut scene, home, sources) in joined {
+        write_scene_files(&mut scene, home, &sources, out)?;
+        report.scenes.push(scene);
     }
     for v in &report.variants {
         if let Some(svg) = &v.graph_svg {
@@ -245,15 +251,15 @@ fn copy(dir: &Path, name: &str, out: &Path) -> Result<(), MergeError> {
         })
 }
 
-/// Scene `name`'s rows from every shard, in the plan's variant order, their
-/// files copied to `out` and their difference maps redrawn at the scene's
-/// scale; `taken` gains each row's unit id.
-fn join_scene(
-    parts: &[Part],
+/// Scene `name`'s rows from every shard, in the plan's variant order, with
+/// the shard holding its reference and each row's shard; `taken` gains
+/// each row's unit id. The shards' references must agree byte for byte.
+#[allow(clippy::type_complexity)]
+fn join_scene<'p>(
+    parts: &'p [Part],
     name: &str,
-    out: &Path,
     taken: &mut Vec<String>,
-) -> Result<SceneResult, MergeError> {
+) -> Result<(SceneResult, &'p Part, Vec<&'p Part>), MergeError> {
     let holding: Vec<(&Part, &SceneResult)> = parts
         .iter()
         .filter_map(|p| Some((p, p.report.scenes.iter().find(|s| s.name == name)?)))
@@ -265,10 +271,9 @@ fn join_scene(
         });
     };
     // Every shard measured against the same reference, byte for byte.
-    let reference_files: Vec<&String> = std::iter::once(&template.reference_image)
-        .chain(&template.reference_linear_image)
-        .collect();
-    for file in &reference_files {
+    let reference_files =
+        std::iter::once(&template.reference_image).chain(&template.reference_linear_image);
+    for file in reference_files {
         let bytes = std::fs::read(home.dir.join(file)).map_err(|source| MergeError::Read {
             dir: home.dir.clone(),
             name: file.to_string(),
@@ -284,7 +289,6 @@ fn join_scene(
                 });
             }
         }
-        copy(&home.dir, file, out)?;
     }
     let mut scene = template.clone();
     scene.runs = Vec::new();
@@ -298,6 +302,22 @@ fn join_scene(
             }
         }
     }
+    Ok((scene, home, sources))
+}
+
+/// A joined scene's files into `out`: the reference's (from `home`), each
+/// row's from its shard, the difference maps redrawn at the scene's scale
+/// (the largest difference over all its rows, as one run takes it).
+fn write_scene_files(
+    scene: &mut SceneResult,
+    home: &Part,
+    sources: &[&Part],
+    out: &Path,
+) -> Result<(), MergeError> {
+    for file in std::iter::once(&scene.reference_image).chain(&scene.reference_linear_image) {
+        copy(&home.dir, file, out)?;
+    }
+    let references = scene_refs(scene);
     let max_diff = scene
         .runs
         .iter()
@@ -314,10 +334,10 @@ fn join_scene(
         if run.diff_scale == scale {
             copy(&p.dir, &run.diff_image, out)?;
         } else {
-            redraw_diff(&p.dir, &scene_refs(template), run, scale, out)?;
+            redraw_diff(&p.dir, &references, run, scale, out)?;
         }
     }
-    Ok(scene)
+    Ok(())
 }
 
 /// The reference's display and linear image names of a scene.
