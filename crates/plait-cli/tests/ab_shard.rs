@@ -93,6 +93,30 @@ fn comparable(dir: &Path) -> Value {
     r
 }
 
+/// Where `a` and `b` first differ (a JSON path and both values, cut short),
+/// or `None`: a failure names the field instead of printing two reports.
+fn first_difference(a: &Value, b: &Value, path: &str) -> Option<String> {
+    match (a, b) {
+        (Value::Object(x), Value::Object(y)) => {
+            let keys: std::collections::BTreeSet<&String> = x.keys().chain(y.keys()).collect();
+            keys.into_iter().find_map(|k| match (x.get(k), y.get(k)) {
+                (Some(u), Some(v)) => first_difference(u, v, &format!("{path}.{k}")),
+                _ => Some(format!("{path}.{k}: present in only one")),
+            })
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => x
+            .iter()
+            .zip(y)
+            .enumerate()
+            .find_map(|(i, (u, v))| first_difference(u, v, &format!("{path}[{i}]"))),
+        _ if a == b => None,
+        _ => {
+            let cut = |v: &Value| v.to_string().chars().take(200).collect::<String>();
+            Some(format!("{path}: {} vs {}", cut(a), cut(b)))
+        }
+    }
+}
+
 fn files(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
         .expect("dir")
