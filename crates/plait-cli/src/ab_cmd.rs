@@ -249,6 +249,10 @@ pub fn run(args: AbArgs) -> Result<()> {
 fn print_summary(report: &Report) -> std::io::Result<()> {
     for scene in &report.scenes {
         outln!("scene {}:", scene.name)?;
+        let apart = report.timed_apart(scene);
+        if let Some(note) = report.timed_apart_note(scene) {
+            outln!("{note}")?;
+        }
         // A provider probed against itself says nothing (as in report.md).
         let probed = scene.runs.iter().any(|r| {
             r.visibility
@@ -275,9 +279,13 @@ fn print_summary(report: &Report) -> std::io::Result<()> {
                 continue;
             };
             let m = &run.metrics;
+            let mut ms = format!("{:.3}", plait_compare::report::cost_ms(&run.timing));
+            if let Some(on) = report.timed_on(run).filter(|_| apart) {
+                ms = format!("{ms} ({on})");
+            }
             let mut cells = vec![
                 v.label.clone(),
-                format!("{:.3}", plait_compare::report::cost_ms(&run.timing)),
+                ms,
                 format!("{:.2}", v.memory.peak_bytes as f64 / 1048576.0),
             ];
             if probed {
