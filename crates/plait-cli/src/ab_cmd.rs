@@ -3,6 +3,11 @@
 //! (`report.html`, `report.json`, PNGs, schedule SVGs). The run itself is
 //! `plait::ab`; this is its flags, its output directory and its printing.
 //!
+//! `--shard I/N` (or a Slurm array task / Kubernetes Indexed Job index from
+//! the environment) writes one shard's share instead; `plait ab merge`
+//! joins the shards' directories into the report (`plait::ab::shard`,
+//! `plait::ab::merge`).
+//!
 //! Everything is written into a temporary directory beside `--out` and
 //! renamed into place at the end, so a failure or an interrupt never leaves
 //! a half-written report; an interrupt removes the temporary directory.

@@ -300,3 +300,56 @@ fn bad_shard_indices_name_the_flag() {
     fails_naming(&o, &["SLURM_ARRAY_TASK_ID=7"]);
     assert!(!out.exists());
 }
+
+/// Two scenes at two camera distances (four scenes in the report), a swept
+/// variant, a supersampled reference and `--frames`: four shards, some
+/// holding only a scene's reference row, merge into the one run's report.
+#[test]
+fn scenes_distances_and_frames_merge_too() {
+    let args = [
+        "ab",
+        "pipelines/forward.toml",
+        "--sweep",
+        "techniques.geometry=strands,lod",
+        "--reference",
+        "pipelines/forward.toml",
+        "--supersample",
+        "2",
+        "--camera-distance",
+        "1,4",
+        "--frames",
+        "2",
+        "--scene",
+        "examples/scenes/small.toml",
+        "--scene",
+        "examples/scenes/stray.toml",
+        "--size",
+        "64x48",
+        "--repeats",
+        "1",
+    ];
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let run = |extra: &[&str]| {
+        let mut all = args.to_vec();
+        all.extend_from_slice(extra);
+        ok(&plait(&all));
+    };
+    let one = tmp.path().join("one");
+    run(&["--out", s(&one)]);
+    let shards: Vec<PathBuf> = (0..4).map(|i| tmp.path().join(format!("s{i}"))).collect();
+    for (i, dir) in shards.iter().enumerate() {
+        run(&["--shard", &format!("{i}/4"), "--out", s(dir)]);
+    }
+    let merged = tmp.path().join("merged");
+    let mut merge = vec!["ab", "merge"];
+    merge.extend(shards.iter().map(|p| s(p)));
+    merge.extend(["--out", s(&merged)]);
+    ok(&plait(&merge));
+    let difference = first_difference(&comparable(&merged), &comparable(&one), "report");
+    assert_eq!(difference, None, "merged shards ≠ one run");
+    assert_eq!(files(&merged), files(&one));
+    for name in files(&one) {
+        let same = std::fs::read(one.join(&name)).ok() == std::fs::read(merged.join(&name)).ok();
+        assert!(same, "{name} differs between one run and the merged shards");
+    }
+}

@@ -37,6 +37,12 @@
 //! The HTML and Markdown add error (ꟻLIP mean) and frame time against the
 //! distance, one series per variant, and a table (`distance_table`).
 //!
+//! A report merged from shards (`plait ab --shard I/N`, then `plait ab
+//! merge`) also holds `shards: [ {index, count, machine, adapter,
+//! unix_time} ]` and each run its `shard`: the process (and machine) that
+//! rendered and timed it. Rows of different shards were not timed side by
+//! side, and the HTML, Markdown and terminal tables say so beside each time.
+//!
 //! `visibility` is the self-shadowing error (Sintorn & Assarsson 2009
 //! Fig. 5): for variants whose pipeline has a visibility provider, curves of
 //! visibility against depth along probe rays from the light (the
