@@ -353,3 +353,62 @@ fn scenes_distances_and_frames_merge_too() {
         assert!(same, "{name} differs between one run and the merged shards");
     }
 }
+
+/// The `plait ab` command of a file in examples/cluster/, as words: the
+/// Slurm script's (lines joined at `\`) or the Kubernetes manifest's
+/// folded `args` block (no YAML crate is a dependency; the manifest was
+/// checked with Python's yaml.safe_load when written).
+fn example_command(name: &str) -> (String, Vec<String>) {
+    let text = std::fs::read_to_string(root().join("examples/cluster").join(name)).expect(name);
+    let joined = text.replace("\\\n", " ");
+    let words: Vec<String> = if name.ends_with(".sh") {
+        let line = joined
+            .lines()
+            .find(|l| l.trim_start().starts_with("plait ab "));
+        let line = line.expect("a plait ab line");
+        line.split_whitespace().map(String::from).collect()
+    } else {
+        let block: Vec<&str> = text
+            .lines()
+            .skip_while(|l| l.trim() != "- >-")
+            .skip(1)
+            .take_while(|l| !l.trim_start().starts_with("resources:"))
+            .collect();
+        let block = block.join(" ");
+        block.split_whitespace().map(String::from).collect()
+    };
+    (text, words)
+}
+
+/// The examples of the book's "Runs that outgrow one machine" run as
+/// written (at 64×48, one repeat), and agree with each other: the same
+/// command, and as many shards in the Slurm array as Kubernetes completions
+/// and PLAIT_SHARD_COUNT.
+#[test]
+fn the_cluster_examples_run_as_written() {
+    let (slurm_text, slurm) = example_command("slurm-ab.sh");
+    let (k8s_text, k8s) = example_command("plait-ab-job.yaml");
+    let without_out = |w: &[String]| -> Vec<String> {
+        let at = w.iter().position(|x| x == "--out").expect("--out");
+        w[..at].to_vec()
+    };
+    assert_eq!(without_out(&slurm), without_out(&k8s));
+    let shards = 5;
+    assert!(slurm_text.contains(&format!("#SBATCH --array=0-{}", shards - 1)));
+    assert!(k8s_text.contains(&format!("completions: {shards}\n")));
+    assert!(k8s_text.contains(&format!("value: \"{shards}\"")));
+    assert!(k8s_text.contains("completionMode: Indexed"));
+
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let out = tmp.path().join("shard");
+    let mut args: Vec<String> = without_out(&slurm)[1..].to_vec();
+    for (flag, value) in [("--size", "64x48"), ("--repeats", "1")] {
+        let at = args.iter().position(|x| x == flag).expect(flag);
+        args[at + 1] = value.into();
+    }
+    let last = format!("{}/{shards}", shards - 1);
+    args.extend(["--shard".into(), last, "--out".into(), s(&out).into()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    ok(&plait(&args));
+    assert!(out.join("shard.json").is_file());
+}

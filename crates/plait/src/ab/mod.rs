@@ -15,6 +15,7 @@
 //! - [`shard`]: a share of the run (`--shard I/N`) for one machine of
 //!   many; [`merge()`] joins the shares into the report one run writes.
 
+mod describe;
 mod measure;
 pub mod merge;
 pub mod plan;

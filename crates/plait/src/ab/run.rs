@@ -6,15 +6,13 @@
 use std::path::Path;
 use std::time::Instant;
 
-use plait_compare::report::{
-    CameraDistance, PipelineProvenance, Report, Run, SCHEMA, SceneResult, Sweep, Variant,
-    Visibility,
-};
+use plait_compare::report::{CameraDistance, Report, Run, SCHEMA, SceneResult, Sweep, Visibility};
 use plait_compare::{Comparison, heatmap};
 use plait_gpu::Gpu;
 
-use super::measure::{Samples, memory};
-use super::provenance::{pipeline_provenance, provenance};
+use super::describe::describe;
+use super::measure::Samples;
+use super::provenance::provenance;
 use super::shard::Shard;
 use super::{AbError, Plan, ScenePlan, VariantPlan};
 use crate::probe::{ProbeGrid, probe_visibility, visibility_error};
@@ -54,12 +52,12 @@ impl Ticker<'_> {
 }
 
 /// Where the report's files go.
-struct Files<'d> {
-    dir: &'d Path,
+pub(super) struct Files<'d> {
+    pub(super) dir: &'d Path,
 }
 
 impl Files<'_> {
-    fn write(&self, name: &str, bytes: &[u8]) -> Result<(), AbError> {
+    pub(super) fn write(&self, name: &str, bytes: &[u8]) -> Result<(), AbError> {
         std::fs::write(self.dir.join(name), bytes).map_err(|source| AbError::Write {
             name: name.to_string(),
             source,
@@ -222,40 +220,6 @@ pub(super) fn render(
     Ok((report, graphs))
 }
 
-/// The variants as the report lists them, their schedule pictures (also
-/// written as `graph-<id>.svg`) and the pipelines' provenance, from their
-/// builds (every variant of `plan`, in order) on the first scene.
-#[allow(clippy::type_complexity)]
-fn describe(
-    plan: &Plan,
-    prepared: &[Prepared<'_>],
-    files: &Files<'_>,
-) -> Result<(Vec<Variant>, Vec<(String, String)>, Vec<PipelineProvenance>), AbError> {
-    let mut variants = Vec::new();
-    let mut graphs = Vec::new();
-    let mut pipelines: Vec<PipelineProvenance> = Vec::new();
-    for (v, p) in plan.variants.iter().zip(prepared) {
-        let schedule = p.schedule();
-        let svg = plait_graph::to_svg(schedule);
-        let graph_file = format!("graph-{}.svg", v.id);
-        files.write(&graph_file, svg.as_bytes())?;
-        graphs.push((v.id.clone(), svg));
-        merge_provenance(&mut pipelines, pipeline_provenance(&v.pipeline, schedule)?);
-        variants.push(Variant {
-            id: v.id.clone(),
-            label: v.label.clone(),
-            pipeline: v.pipeline.display().to_string(),
-            is_reference: v.is_reference,
-            sweep_values: v.sweep_values.clone(),
-            sets: v.sets.clone(),
-            schedule_name: schedule.name.clone(),
-            memory: memory(schedule),
-            graph_svg: Some(graph_file),
-        });
-    }
-    Ok((variants, graphs, pipelines))
-}
-
 /// Every variant of `plan` on `scene`, built: timed, read, compared,
 /// probed, (with `--frames`) its sequence measured, its files written.
 fn measure_scene(
@@ -303,26 +267,6 @@ fn measure_scene(
         visibilities,
         temporals,
     )
-}
-
-/// Add a variant's files to the provenance: one entry per pipeline file,
-/// holding the files of every sweep point of it (a swept `--set` can name
-/// other shaders or technique files than the first point does).
-fn merge_provenance(pipelines: &mut Vec<PipelineProvenance>, new: PipelineProvenance) {
-    let Some(known) = pipelines.iter_mut().find(|p| p.path == new.path) else {
-        pipelines.push(new);
-        return;
-    };
-    for file in new.files {
-        if !known.files.contains(&file) {
-            known.files.push(file);
-        }
-    }
-    for shader in new.shaders {
-        if !known.shaders.contains(&shader) {
-            known.shaders.push(shader);
-        }
-    }
 }
 
 /// Every variant built for `scene`.
@@ -600,44 +544,4 @@ fn scene_result(
         reference_linear_image,
         runs,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use plait_compare::report::FileHash;
-
-    fn file(path: &str) -> FileHash {
-        FileHash {
-            path: path.into(),
-            sha256: format!("sha-of-{path}"),
-            bytes: 1,
-        }
-    }
-
-    /// Sweep points of one pipeline that use different shaders: every
-    /// shader listed, each once, under the one pipeline.
-    #[test]
-    fn sweep_points_add_their_files_to_their_pipeline() {
-        let point = |shader: &str| PipelineProvenance {
-            path: "pipelines/occupancy.toml".into(),
-            files: vec![file("pipelines/occupancy.toml")],
-            shaders: vec![file("shaders/compose_over.wgsl"), file(shader)],
-        };
-        let mut all = Vec::new();
-        merge_provenance(&mut all, point("shaders/a.wgsl"));
-        merge_provenance(&mut all, point("shaders/b.wgsl"));
-        merge_provenance(&mut all, point("shaders/a.wgsl"));
-        assert_eq!(all.len(), 1);
-        let shaders: Vec<&str> = all[0].shaders.iter().map(|f| f.path.as_str()).collect();
-        assert_eq!(
-            shaders,
-            [
-                "shaders/compose_over.wgsl",
-                "shaders/a.wgsl",
-                "shaders/b.wgsl"
-            ]
-        );
-        assert_eq!(all[0].files.len(), 1);
-    }
 }
