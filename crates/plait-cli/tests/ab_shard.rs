@@ -261,6 +261,28 @@ fn bad_merges(tmp: &Path, shards: &[PathBuf]) {
         .insert(0, stolen);
     std::fs::write(greedy.join("report.json"), report.to_string()).expect("write");
     fails_naming(&merge(&[a, b, &greedy]), &["small/forward", "each once"]);
+    // Shards whose references differ (another GPU or driver): the rows
+    // would be measured against different truths.
+    let elsewhere = tmp.join("elsewhere");
+    std::fs::create_dir(&elsewhere).expect("mkdir");
+    for entry in std::fs::read_dir(b).expect("dir") {
+        let entry = entry.expect("entry");
+        std::fs::copy(entry.path(), elsewhere.join(entry.file_name())).expect("copy");
+    }
+    let image = elsewhere.join("small-reference.exr");
+    let mut bytes = std::fs::read(&image).expect("reference");
+    let last = bytes.len() - 1;
+    bytes[last] ^= 1;
+    std::fs::write(&image, bytes).expect("write");
+    fails_naming(
+        &merge(&[a, &elsewhere, c]),
+        &[
+            "scene small",
+            "small-reference.exr",
+            s(&elsewhere),
+            "different truths",
+        ],
+    );
     assert!(!out.exists(), "a failed merge left {}", out.display());
 }
 
