@@ -3,6 +3,11 @@
 //! (`report.html`, `report.json`, PNGs, schedule SVGs). The run itself is
 //! `plait::ab`; this is its flags, its output directory and its printing.
 //!
+//! `--shard I/N` (or a Slurm array task / Kubernetes Indexed Job index from
+//! the environment) writes one shard's share instead; `plait ab merge`
+//! joins the shards' directories into the report (`plait::ab::shard`,
+//! `plait::ab::merge`).
+//!
 //! Everything is written into a temporary directory beside `--out` and
 //! renamed into place at the end, so a failure or an interrupt never leaves
 //! a half-written report; an interrupt removes the temporary directory.
@@ -12,7 +17,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use plait::ab::{AbError, AbOptions, CameraDistances, Plan, Step, SweepSpec};
+use plait::ab::{AbError, AbOptions, CameraDistances, Plan, Shard, Step, SweepSpec};
 use plait_compare::report::Report;
 use plait_gpu::Gpu;
 
@@ -20,14 +25,17 @@ use crate::args::{SetArgs, parse_scene, parse_size};
 use crate::table::{Align, Table};
 
 #[derive(Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct AbArgs {
+    #[command(subcommand)]
+    merge: Option<AbCommand>,
     /// Pipeline files to compare (the variants).
     #[arg(required = true, value_name = "PIPELINE")]
     pipelines: Vec<PathBuf>,
     /// The pipeline every variant's image is compared with (ground truth);
     /// rendered with the `--set` flags but never swept.
-    #[arg(long, value_name = "PIPELINE")]
-    reference: PathBuf,
+    #[arg(long, value_name = "PIPELINE", required = true)]
+    reference: Option<PathBuf>,
     /// Scene file (repeatable; default: the built-in scene).
     #[arg(long = "scene", value_name = "FILE", value_parser = parse_scene)]
     scenes: Vec<PathBuf>,
@@ -64,6 +72,34 @@ pub struct AbArgs {
     /// anti-aliasing, e.g. strand coverage against `--supersample 4`.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
     supersample: u32,
+    /// Render only shard I of N (0 ≤ I < N) of the run's rows (scene ×
+    /// variant, round-robin in the plan's order) with the references they
+    /// need, into a partial directory for `plait ab merge`. Without it, a
+    /// Slurm array task (SLURM_ARRAY_TASK_ID) or a Kubernetes Indexed Job
+    /// (JOB_COMPLETION_INDEX) is a shard of its own.
+    #[arg(long, value_name = "I/N", value_parser = Shard::parse)]
+    shard: Option<Shard>,
+    /// The number of shards of a Kubernetes Indexed Job (its completions),
+    /// which the pod is not told; or set PLAIT_SHARD_COUNT.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    shard_count: Option<u32>,
+    /// Report directory (replaced if it holds an earlier report).
+    #[arg(long, value_name = "DIR", required = true)]
+    out: Option<PathBuf>,
+}
+
+#[derive(clap::Subcommand)]
+enum AbCommand {
+    /// Join the directories of `plait ab --shard` runs (every shard of one
+    /// plan, each once) into one report.
+    Merge(MergeArgs),
+}
+
+#[derive(Args)]
+struct MergeArgs {
+    /// The shards' output directories.
+    #[arg(required = true, value_name = "DIR")]
+    shards: Vec<PathBuf>,
     /// Report directory (replaced if it holds an earlier report).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
@@ -106,9 +142,37 @@ impl Progress {
     }
 }
 
-pub fn run(args: AbArgs) -> Result<()> {
-    // Everything a user can get wrong fails before the GPU is opened.
+/// `plait ab merge`: the shards joined into one report directory.
+fn merge(args: MergeArgs) -> Result<()> {
     let pending = crate::output::PendingDir::create(&args.out, "report.json", "`plait ab` report")?;
+    let report = plait::ab::merge(&args.shards, pending.dir())?;
+    pending.commit()?;
+    print_summary(&report)?;
+    outln!("wrote {}", args.out.join("report.html").display())?;
+    Ok(())
+}
+
+/// `--shard`, else the batch system's index from the environment.
+fn shard_of(args: &AbArgs) -> Result<Option<Shard>> {
+    if args.shard.is_some() {
+        return Ok(args.shard);
+    }
+    let count = args.shard_count.map(|n| n as usize);
+    Shard::from_env(&|name| std::env::var(name).ok(), count)
+        .map_err(|e| anyhow::anyhow!("--shard (from the environment): {e}"))
+}
+
+pub fn run(args: AbArgs) -> Result<()> {
+    if let Some(AbCommand::Merge(merge_args)) = args.merge {
+        return merge(merge_args);
+    }
+    // Required by clap unless `merge` is given.
+    let (Some(reference), Some(out)) = (args.reference.clone(), args.out.clone()) else {
+        anyhow::bail!("--reference and --out are required");
+    };
+    let shard = shard_of(&args)?;
+    // Everything a user can get wrong fails before the GPU is opened.
+    let pending = crate::output::PendingDir::create(&out, "report.json", "`plait ab` report")?;
     // A --size past WebGPU's limits (what the plan checks against) names the
     // flag, not a resource of some technique file.
     let reference_size = (
@@ -119,14 +183,14 @@ pub fn run(args: AbArgs) -> Result<()> {
         .pipelines
         .iter()
         .map(|p| (p, args.size))
-        .chain([(&args.reference, reference_size)])
+        .chain([(&reference, reference_size)])
     {
         let path = plait::session::resolve_pipeline(Some(pipeline));
         crate::size_limit::check_default_limits(&path, &args.set.sets, size)?;
     }
     let plan = Plan::new(AbOptions {
         pipelines: args.pipelines,
-        reference: args.reference,
+        reference,
         scenes: args.scenes,
         sets: args.set.sets,
         sweeps: args.sweep,
@@ -156,19 +220,31 @@ pub fn run(args: AbArgs) -> Result<()> {
             }
         })?;
     }
-    let progress = Progress::new(plan.step_count());
-    let report = plait::ab::run(&plan, &gpu, pending.dir(), &mut |step| progress.show(step))
-        .map_err(|e| match e {
-            // A file of the report: name the directory the user gave.
-            AbError::Write { .. } | AbError::WriteImage { .. } | AbError::Json(_) => {
-                anyhow::Error::new(e).context(format!("--out {}", args.out.display()))
-            }
-            e => e.into(),
-        })?;
+    let progress = Progress::new(shard.map_or_else(|| plan.step_count(), |s| s.step_count(&plan)));
+    let mut show = |step: Step<'_>| progress.show(step);
+    let report = match shard {
+        None => plait::ab::run(&plan, &gpu, pending.dir(), &mut show),
+        Some(s) => plait::ab::run_shard(&plan, s, &gpu, pending.dir(), &mut show).map(|(r, _)| r),
+    }
+    .map_err(|e| match e {
+        // A file of the report: name the directory the user gave.
+        AbError::Write { .. } | AbError::WriteImage { .. } | AbError::Json(_) => {
+            anyhow::Error::new(e).context(format!("--out {}", out.display()))
+        }
+        e => e.into(),
+    })?;
     progress.finish();
     pending.commit()?;
     print_summary(&report)?;
-    outln!("wrote {}", args.out.join("report.html").display())?;
+    match shard {
+        None => outln!("wrote {}", out.join("report.html").display())?,
+        Some(s) => outln!(
+            "wrote shard {}/{} to {} (join the shards with `plait ab merge`)",
+            s.index,
+            s.count,
+            out.display()
+        )?,
+    }
     Ok(())
 }
 
@@ -178,6 +254,10 @@ pub fn run(args: AbArgs) -> Result<()> {
 fn print_summary(report: &Report) -> std::io::Result<()> {
     for scene in &report.scenes {
         outln!("scene {}:", scene.name)?;
+        let apart = report.timed_apart(scene);
+        if let Some(note) = report.timed_apart_note(scene) {
+            outln!("{note}")?;
+        }
         // A provider probed against itself says nothing (as in report.md).
         let probed = scene.runs.iter().any(|r| {
             r.visibility
@@ -204,9 +284,13 @@ fn print_summary(report: &Report) -> std::io::Result<()> {
                 continue;
             };
             let m = &run.metrics;
+            let mut ms = format!("{:.3}", plait_compare::report::cost_ms(&run.timing));
+            if let Some(on) = report.timed_on(run).filter(|_| apart) {
+                ms = format!("{ms} ({on})");
+            }
             let mut cells = vec![
                 v.label.clone(),
-                format!("{:.3}", plait_compare::report::cost_ms(&run.timing)),
+                ms,
                 format!("{:.2}", v.memory.peak_bytes as f64 / 1048576.0),
             ];
             if probed {

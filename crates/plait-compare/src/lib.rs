@@ -222,7 +222,7 @@ pub fn flip(reference: &RgbaImage, test: &RgbaImage) -> Result<FlipResult, Compa
 }
 
 /// What RMSE, PSNR and the difference map were computed on.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ErrorSpace {
     /// The displayed 8-bit sRGB values, 0..1.
@@ -243,7 +243,7 @@ impl ErrorSpace {
 }
 
 /// Every metric of one image against a reference.
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Metrics {
     /// In [`Metrics::error_space`].
     pub rmse: f64,
@@ -344,7 +344,7 @@ pub fn compare_linear(
 }
 
 /// Median and spread of a sample.
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Stats {
     pub median: f64,
     pub min: f64,

@@ -98,7 +98,7 @@ pub fn frame_change(frames: &[RgbaImage]) -> Result<Vec<f64>, CompareError> {
 }
 
 /// A variant's temporal stability over one animated sequence.
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize, PartialEq)]
 pub struct Temporal {
     pub frames: usize,
     pub fps: f64,

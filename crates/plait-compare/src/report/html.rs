@@ -85,6 +85,19 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
         escape(&p.adapter.backend),
         escape(&p.metrics)
     );
+    if !report.shards.is_empty() {
+        let list: Vec<String> = report
+            .shards
+            .iter()
+            .map(|s| format!("shard {} on {} ({})", s.index, s.machine, s.adapter.name))
+            .collect();
+        let _ = write!(
+            h,
+            "<p class=note>Merged from {} shards (<code>plait ab --shard</code>): {}. Each row was rendered and timed by its shard.</p>",
+            report.shards.len(),
+            escape(&list.join("; "))
+        );
+    }
     h.push_str("<p class=\"note\">Click an image (or press <b>f</b> for all) to flip between the variant and the reference. Zoom: <a href=\"#\" onclick=\"zoom(1);return false\">1×</a> <a href=\"#\" onclick=\"zoom(2);return false\">2×</a> <a href=\"#\" onclick=\"zoom(3);return false\">3×</a></p>");
 
     h.push_str(&super::distance::distance_html(report));
@@ -96,6 +109,10 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
             escape(&scene.name),
             escape(&scene.metrics_note())
         );
+        if let Some(note) = report.timed_apart_note(scene) {
+            let _ = write!(h, "<p class=note><b>{}</b></p>", escape(&note));
+        }
+        let apart = report.timed_apart(scene);
         // Summary table.
         h.push_str("<table><tr><th class=l>variant</th><th class=l>sweep</th><th>frame ms (median)</th><th class=l>spread min–max (IQR)</th><th>wall ms</th><th>peak MiB</th><th>unpooled MiB</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>ꟻLIP</th></tr>");
         for run in &scene.runs {
@@ -109,7 +126,14 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
                 if v.is_reference { " class=ref" } else { "" },
                 escape(&v.label),
                 escape(&v.sweep_label().unwrap_or_default()),
-                ms(&run.timing.total_gpu_ms),
+                match report.timed_on(run).filter(|_| apart) {
+                    Some(on) => format!(
+                        "{} <small>({})</small>",
+                        ms(&run.timing.total_gpu_ms),
+                        escape(&on)
+                    ),
+                    None => ms(&run.timing.total_gpu_ms),
+                },
                 spread(&run.timing.total_gpu_ms),
                 run.timing.wall_ms.median,
                 mib(v.memory.peak_bytes),

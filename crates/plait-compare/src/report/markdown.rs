@@ -45,6 +45,15 @@ pub fn markdown(report: &Report) -> String {
             .find(|r| report.variant(&r.variant).is_some_and(|v| v.is_reference))
             .map(|r| cost_ms(&r.timing));
         let _ = writeln!(out, "\n**{}**\n\n{}\n", scene.name, scene.metrics_note());
+        let apart = report.timed_apart(scene);
+        if let Some(note) = report.timed_apart_note(scene) {
+            let _ = writeln!(out, "{note}\n");
+        }
+        let reference_shard = scene
+            .runs
+            .iter()
+            .find(|r| report.variant(&r.variant).is_some_and(|v| v.is_reference))
+            .and_then(|r| r.shard);
         let _ = write!(
             out,
             "| variant | {timing} | × faster than the reference | peak MiB |"
@@ -82,17 +91,24 @@ pub fn markdown(report: &Report) -> String {
                 continue;
             };
             let ms = cost_ms(&run.timing);
-            let speedup = reference_ms.map_or(String::new(), |r| format!("{:.1}", r / ms));
+            let mut speedup = reference_ms.map_or(String::new(), |r| format!("{:.1}", r / ms));
+            let mut ms_cell = format!("{ms:.0}");
+            if apart && let Some(on) = report.timed_on(run) {
+                ms_cell = format!("{ms_cell} ({on})");
+                if run.shard != reference_shard {
+                    speedup = format!("{speedup} (across shards)");
+                }
+            }
             let _ = write!(
                 out,
-                "| {}{} | {:.0} | {} | {:.1} |",
+                "| {}{} | {} | {} | {:.1} |",
                 variant.label,
                 if variant.is_reference && !variant.label.contains("reference") {
                     " (reference)"
                 } else {
                     ""
                 },
-                ms,
+                ms_cell,
                 speedup,
                 variant.memory.peak_bytes as f64 / (1u64 << 20) as f64
             );

@@ -37,6 +37,12 @@
 //! The HTML and Markdown add error (ꟻLIP mean) and frame time against the
 //! distance, one series per variant, and a table (`distance_table`).
 //!
+//! A report merged from shards (`plait ab --shard I/N`, then `plait ab
+//! merge`) also holds `shards: [ {index, count, machine, adapter,
+//! unix_time} ]` and each run its `shard`: the process (and machine) that
+//! rendered and timed it. Rows of different shards were not timed side by
+//! side, and the HTML, Markdown and terminal tables say so beside each time.
+//!
 //! `visibility` is the self-shadowing error (Sintorn & Assarsson 2009
 //! Fig. 5): for variants whose pipeline has a visibility provider, curves of
 //! visibility against depth along probe rays from the light (the
@@ -56,13 +62,13 @@ pub use html::html;
 pub use markdown::markdown;
 
 use indexmap::IndexMap;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::{Metrics, Stats};
 
 pub const SCHEMA: &str = "plait-ab/2";
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Report {
     pub schema: String,
     pub provenance: Provenance,
@@ -70,14 +76,61 @@ pub struct Report {
     pub sweeps: Vec<Sweep>,
     /// `--camera-distance`: the factors every scene was seen from, in order
     /// (left out without it).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub camera_distances: Vec<f64>,
     pub variants: Vec<Variant>,
     pub scenes: Vec<SceneResult>,
+    /// `plait ab merge`: the shards the report was joined from, each with
+    /// the machine that timed its runs (left out for a run on one machine).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub shards: Vec<ShardInfo>,
+}
+
+/// One shard of a merged run: its index, and where its times were measured.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
+pub struct ShardInfo {
+    pub index: usize,
+    pub count: usize,
+    /// The host name of the machine that ran it.
+    pub machine: String,
+    pub adapter: Adapter,
+    pub unix_time: u64,
+}
+
+impl Report {
+    /// For a merged report: "shard k on M", the shard a run's times came
+    /// from; `None` for a run on one machine.
+    pub fn timed_on(&self, run: &Run) -> Option<String> {
+        let k = run.shard?;
+        let machine = self
+            .shards
+            .iter()
+            .find(|s| s.index == k)
+            .map_or("?", |s| s.machine.as_str());
+        Some(format!("shard {k} on {machine}"))
+    }
+
+    /// Whether the runs of `scene` were timed in more than one process, so
+    /// their times are not ratios measured side by side.
+    pub fn timed_apart(&self, scene: &SceneResult) -> bool {
+        let mut shards = scene.runs.iter().map(|r| r.shard);
+        let first = shards.next().flatten();
+        shards.any(|s| s != first)
+    }
+
+    /// The note above a scene's table whose times came from several shards.
+    pub fn timed_apart_note(&self, scene: &SceneResult) -> Option<String> {
+        self.timed_apart(scene).then(|| {
+            "Times from different shards (machines), each row's shard beside its time: \
+             not ratios measured side by side in one run; compare times only \
+             between rows of the same shard."
+                .to_string()
+        })
+    }
 }
 
 /// Where the numbers came from.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Provenance {
     pub plait_version: String,
     pub adapter: Adapter,
@@ -103,7 +156,7 @@ pub struct Provenance {
     pub unix_time: u64,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
 pub struct Adapter {
     pub name: String,
     pub backend: String,
@@ -111,7 +164,7 @@ pub struct Adapter {
     pub driver_info: String,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PipelineProvenance {
     pub path: String,
     /// The pipeline file and every file it extends.
@@ -120,21 +173,21 @@ pub struct PipelineProvenance {
     pub shaders: Vec<FileHash>,
 }
 
-#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
 pub struct FileHash {
     pub path: String,
     pub sha256: String,
     pub bytes: u64,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Sweep {
     pub key: String,
     pub values: Vec<String>,
 }
 
 /// One pipeline (at one point of the sweeps), or the reference.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Variant {
     pub id: String,
     pub label: String,
@@ -151,7 +204,7 @@ pub struct Variant {
     pub graph_svg: Option<String>,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Memory {
     /// Bytes of all allocations, with sharing.
     pub peak_bytes: u64,
@@ -161,7 +214,7 @@ pub struct Memory {
     pub resources: Vec<ResourceMemory>,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ResourceMemory {
     pub name: String,
     pub desc: String,
@@ -169,7 +222,7 @@ pub struct ResourceMemory {
     pub shares_memory_with: Vec<String>,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct SceneResult {
     pub name: String,
     /// `null` for the built-in default scene.
@@ -208,7 +261,7 @@ impl SceneResult {
 }
 
 /// A scene seen from a camera moved along its view ray.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CameraDistance {
     /// The scene's name without the distance (`small` for `small@d2`).
     pub scene: String,
@@ -217,7 +270,7 @@ pub struct CameraDistance {
 }
 
 /// One variant on one scene.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Run {
     pub variant: String,
     pub image: String,
@@ -237,11 +290,15 @@ pub struct Run {
     /// Flicker over the animated sequence (`plait ab --frames`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub temporal: Option<crate::temporal::Temporal>,
+    /// `plait ab merge`: the shard whose process rendered and timed this run
+    /// (see [`Report::shards`]); left out for a run on one machine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shard: Option<usize>,
 }
 
 /// What one bounded buffer of a variant could not hold, at the run's worst
 /// frame (`plait_gpu::Overflow` in the report's shape).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Overflow {
     /// The pass appending to the buffer.
     pub pass: String,
@@ -261,7 +318,7 @@ pub struct Overflow {
     pub value_needed: u64,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Timing {
     /// First timestamp to last, over the repeats; `null` without timestamp queries.
     pub total_gpu_ms: Option<Stats>,
@@ -270,7 +327,7 @@ pub struct Timing {
     pub passes: Vec<PassStats>,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PassStats {
     pub name: String,
     pub type_name: String,
@@ -279,7 +336,7 @@ pub struct PassStats {
 
 /// Self-shadowing error of one variant: its visibility provider probed along
 /// rays from the light through the hair, against the reference's.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Visibility {
     /// The variant's provider (`occupancy`, `deep_opacity`, …).
     pub provider: String,
@@ -294,7 +351,7 @@ pub struct Visibility {
 }
 
 /// Visibility against light depth along one ray from the light.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct VisibilityCurve {
     /// Where the ray crosses the light map (0..1, y down).
     pub light_uv: [f32; 2],

@@ -47,6 +47,7 @@ fn sample() -> Report {
         visibility: None,
         overflow: vec![],
         temporal: None,
+        shard: None,
     };
     Report {
         schema: SCHEMA.into(),
@@ -92,6 +93,7 @@ fn sample() -> Report {
             reference_linear_image: None,
             runs: vec![run("reference", 0.0), run("a@1", 0.2), run("a@2", 0.1)],
         }],
+        shards: vec![],
     }
 }
 

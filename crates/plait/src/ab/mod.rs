@@ -12,19 +12,26 @@
 //!   one and renames it into place) and reports progress through a callback.
 //! - `measure`: timings and memory in the report's shapes.
 //! - `provenance`: hashes of every file the numbers depend on.
+//! - [`shard`]: a share of the run (`--shard I/N`) for one machine of
+//!   many; [`merge()`] joins the shares into the report one run writes.
 
+mod describe;
 mod measure;
+pub mod merge;
 pub mod plan;
 mod provenance;
 mod run;
+pub mod shard;
 mod supersample;
 mod temporal;
 
 use std::path::PathBuf;
 
+pub use merge::{MergeError, merge};
 pub use plan::{AbOptions, CameraDistances, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
+pub use shard::{Shard, ShardSyntaxError, run_shard};
 pub use supersample::box_filter;
 
 use crate::session::SessionError;

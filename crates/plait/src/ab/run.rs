@@ -6,15 +6,14 @@
 use std::path::Path;
 use std::time::Instant;
 
-use plait_compare::report::{
-    CameraDistance, PipelineProvenance, Report, Run, SCHEMA, SceneResult, Sweep, Variant,
-    Visibility,
-};
+use plait_compare::report::{CameraDistance, Report, Run, SCHEMA, SceneResult, Sweep, Visibility};
 use plait_compare::{Comparison, heatmap};
 use plait_gpu::Gpu;
 
-use super::measure::{Samples, memory};
-use super::provenance::{pipeline_provenance, provenance};
+use super::describe::describe;
+use super::measure::Samples;
+use super::provenance::provenance;
+use super::shard::Shard;
 use super::{AbError, Plan, ScenePlan, VariantPlan};
 use crate::probe::{ProbeGrid, probe_visibility, visibility_error};
 use crate::session::{Prepared, SessionError, prepare_compiled};
@@ -53,12 +52,12 @@ impl Ticker<'_> {
 }
 
 /// Where the report's files go.
-struct Files<'d> {
-    dir: &'d Path,
+pub(super) struct Files<'d> {
+    pub(super) dir: &'d Path,
 }
 
 impl Files<'_> {
-    fn write(&self, name: &str, bytes: &[u8]) -> Result<(), AbError> {
+    pub(super) fn write(&self, name: &str, bytes: &[u8]) -> Result<(), AbError> {
         std::fs::write(self.dir.join(name), bytes).map_err(|source| AbError::Write {
             name: name.to_string(),
             source,
@@ -100,9 +99,44 @@ pub fn run(
     dir: &Path,
     progress: &mut dyn FnMut(Step<'_>) -> std::io::Result<()>,
 ) -> Result<Report, AbError> {
+    let (report, graphs) = render(plan, gpu, dir, None, progress)?;
+    write_report(dir, &report, &graphs)?;
+    Ok(report)
+}
+
+/// `report.json`, `report.html` and `report.md` of `report` into `dir`;
+/// `graphs` are the variants' schedule pictures (id, SVG) for the HTML.
+pub(super) fn write_report(
+    dir: &Path,
+    report: &Report,
+    graphs: &[(String, String)],
+) -> Result<(), AbError> {
+    let files = Files { dir };
+    let json = serde_json::to_string_pretty(report).map_err(AbError::Json)?;
+    files.write("report.json", json.as_bytes())?;
+    files.write(
+        "report.html",
+        plait_compare::report::html(report, graphs).as_bytes(),
+    )?;
+    files.write(
+        "report.md",
+        plait_compare::report::markdown(report).as_bytes(),
+    )
+}
+
+/// What [`run`] measures, without writing the report itself: every unit of
+/// `plan`, or only `shard`'s (its rows, rendered with the references they
+/// need; the variants described on the first scene as in a whole run).
+pub(super) fn render(
+    plan: &Plan,
+    gpu: &Gpu,
+    dir: &Path,
+    shard: Option<Shard>,
+    progress: &mut dyn FnMut(Step<'_>) -> std::io::Result<()>,
+) -> Result<(Report, Vec<(String, String)>), AbError> {
     let mut ticker = Ticker {
         done: 0,
-        total: plan.step_count(),
+        total: shard.map_or_else(|| plan.step_count(), |s| s.step_count(plan)),
         callback: progress,
     };
     let files = Files { dir };
@@ -115,76 +149,57 @@ pub fn run(
             .map_err(render_error(format!("pipeline {}", v.label)))?;
         schedules.push(schedule);
     }
-    let mut variants = Vec::new();
-    let mut graphs = Vec::new();
-    let mut pipelines: Vec<PipelineProvenance> = Vec::new();
+    let mut described = None;
+    if shard.is_some() {
+        // A variant's schedule (its memory) is fitted to the first scene: a
+        // shard describes every variant from there, as a whole run does,
+        // whichever units it renders.
+        let mut silent = |_: Step<'_>| Ok(());
+        let mut quiet = Ticker {
+            done: 0,
+            total: 0,
+            callback: &mut silent,
+        };
+        let prepared = build_all(plan, &schedules, gpu, &plan.scenes[0], &mut quiet)?;
+        described = Some(describe(plan, &prepared, &files)?);
+    }
     let mut scenes = Vec::new();
     for (index, scene) in plan.scenes.iter().enumerate() {
-        let mut prepared = build_all(plan, &schedules, gpu, scene, &mut ticker)?;
-        if index == 0 {
+        let chosen: Vec<usize> = match shard {
+            None => (0..plan.variants.len()).collect(),
+            Some(s) => s.variants_of(plan, index),
+        };
+        if chosen.is_empty() {
+            continue;
+        }
+        // The helpers below run every variant of the plan they are given.
+        let sub = Plan {
+            options: plan.options.clone(),
+            reference: plan.reference.clone(),
+            variants: chosen.iter().map(|&i| plan.variants[i].clone()).collect(),
+            scenes: Vec::new(),
+        };
+        let sub_schedules: Vec<Schedule> = chosen.iter().map(|&i| schedules[i].clone()).collect();
+        let mut prepared = build_all(&sub, &sub_schedules, gpu, scene, &mut ticker)?;
+        if described.is_none() {
             // Schedules do not depend on the scene: describe them once.
-            for (v, p) in plan.variants.iter().zip(&prepared) {
-                let schedule = p.schedule();
-                let svg = plait_graph::to_svg(schedule);
-                let graph_file = format!("graph-{}.svg", v.id);
-                files.write(&graph_file, svg.as_bytes())?;
-                graphs.push((v.id.clone(), svg));
-                let path = v.pipeline.display().to_string();
-                merge_provenance(&mut pipelines, pipeline_provenance(&v.pipeline, schedule)?);
-                variants.push(Variant {
-                    id: v.id.clone(),
-                    label: v.label.clone(),
-                    pipeline: path,
-                    is_reference: v.is_reference,
-                    sweep_values: v.sweep_values.clone(),
-                    sets: v.sets.clone(),
-                    schedule_name: schedule.name.clone(),
-                    memory: memory(schedule),
-                    graph_svg: Some(graph_file),
-                });
+            described = Some(describe(plan, &prepared, &files)?);
+        }
+        let mut result = measure_scene(&sub, gpu, scene, &files, &mut prepared, &mut ticker)?;
+        if let Some(s) = shard {
+            // The reference rendered only as the truth of this shard's
+            // units is not a row of it.
+            let mut rows = chosen.iter();
+            result
+                .runs
+                .retain(|_| rows.next().is_some_and(|&v| s.owns_unit(plan, index, v)));
+            for run in &mut result.runs {
+                run.shard = Some(s.index);
             }
         }
-        let samples = time_interleaved(plan, scene, &prepared, &mut ticker)?;
-        let images = plan
-            .variants
-            .iter()
-            .zip(&prepared)
-            .map(|(v, p)| {
-                let k = plan.options.render_size(v.is_reference).0 / plan.options.size.0.max(1);
-                p.image()
-                    .map(|image| super::supersample::box_filter(&image, k))
-                    .map_err(|e| AbError::Render {
-                        what: format!("reading the image of {} on scene {}", v.label, scene.name),
-                        source: e.into(),
-                    })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let linears = read_linears(plan, scene, &prepared)?;
-        let comparisons = compare_all(plan, scene, &images, &linears, &mut ticker)?;
-        let visibilities = probe_all(plan, gpu, scene, &mut ticker)?;
-        let temporals = match plan.options.sequence {
-            Some(sequence) => super::temporal::measure(
-                plan,
-                gpu,
-                scene,
-                &mut prepared,
-                sequence,
-                &mut |message| ticker.step(message),
-            )?,
-            None => vec![None; plan.variants.len()],
-        };
-        scenes.push(scene_result(
-            plan,
-            scene,
-            &files,
-            &prepared,
-            &samples,
-            (&images, &linears),
-            comparisons,
-            visibilities,
-            temporals,
-        )?);
+        scenes.push(result);
     }
+    let (variants, graphs, pipelines) = described.unwrap_or_default();
     let report = Report {
         schema: SCHEMA.into(),
         provenance: provenance(plan, gpu, pipelines)?,
@@ -200,38 +215,58 @@ pub fn run(
         camera_distances: plan.options.camera_distances.clone(),
         variants,
         scenes,
+        shards: Vec::new(),
     };
-    let json = serde_json::to_string_pretty(&report).map_err(AbError::Json)?;
-    files.write("report.json", json.as_bytes())?;
-    files.write(
-        "report.html",
-        plait_compare::report::html(&report, &graphs).as_bytes(),
-    )?;
-    files.write(
-        "report.md",
-        plait_compare::report::markdown(&report).as_bytes(),
-    )?;
-    Ok(report)
+    Ok((report, graphs))
 }
 
-/// Add a variant's files to the provenance: one entry per pipeline file,
-/// holding the files of every sweep point of it (a swept `--set` can name
-/// other shaders or technique files than the first point does).
-fn merge_provenance(pipelines: &mut Vec<PipelineProvenance>, new: PipelineProvenance) {
-    let Some(known) = pipelines.iter_mut().find(|p| p.path == new.path) else {
-        pipelines.push(new);
-        return;
+/// Every variant of `plan` on `scene`, built: timed, read, compared,
+/// probed, (with `--frames`) its sequence measured, its files written.
+fn measure_scene(
+    plan: &Plan,
+    gpu: &Gpu,
+    scene: &ScenePlan,
+    files: &Files<'_>,
+    prepared: &mut [Prepared<'_>],
+    ticker: &mut Ticker<'_>,
+) -> Result<SceneResult, AbError> {
+    let samples = time_interleaved(plan, scene, prepared, ticker)?;
+    let images = plan
+        .variants
+        .iter()
+        .zip(prepared.iter())
+        .map(|(v, p)| {
+            let k = plan.options.render_size(v.is_reference).0 / plan.options.size.0.max(1);
+            p.image()
+                .map(|image| super::supersample::box_filter(&image, k))
+                .map_err(|e| AbError::Render {
+                    what: format!("reading the image of {} on scene {}", v.label, scene.name),
+                    source: e.into(),
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let linears = read_linears(plan, scene, prepared)?;
+    let comparisons = compare_all(plan, scene, &images, &linears, ticker)?;
+    let visibilities = probe_all(plan, gpu, scene, ticker)?;
+    let temporals = match plan.options.sequence {
+        Some(sequence) => {
+            super::temporal::measure(plan, gpu, scene, prepared, sequence, &mut |message| {
+                ticker.step(message)
+            })?
+        }
+        None => vec![None; plan.variants.len()],
     };
-    for file in new.files {
-        if !known.files.contains(&file) {
-            known.files.push(file);
-        }
-    }
-    for shader in new.shaders {
-        if !known.shaders.contains(&shader) {
-            known.shaders.push(shader);
-        }
-    }
+    scene_result(
+        plan,
+        scene,
+        files,
+        prepared,
+        &samples,
+        (&images, &linears),
+        comparisons,
+        visibilities,
+        temporals,
+    )
 }
 
 /// Every variant built for `scene`.
@@ -492,6 +527,7 @@ fn scene_result(
             visibility,
             overflow: samples[i].overflow(),
             temporal,
+            shard: None,
         });
     }
     Ok(SceneResult {
@@ -508,44 +544,4 @@ fn scene_result(
         reference_linear_image,
         runs,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use plait_compare::report::FileHash;
-
-    fn file(path: &str) -> FileHash {
-        FileHash {
-            path: path.into(),
-            sha256: format!("sha-of-{path}"),
-            bytes: 1,
-        }
-    }
-
-    /// Sweep points of one pipeline that use different shaders: every
-    /// shader listed, each once, under the one pipeline.
-    #[test]
-    fn sweep_points_add_their_files_to_their_pipeline() {
-        let point = |shader: &str| PipelineProvenance {
-            path: "pipelines/occupancy.toml".into(),
-            files: vec![file("pipelines/occupancy.toml")],
-            shaders: vec![file("shaders/compose_over.wgsl"), file(shader)],
-        };
-        let mut all = Vec::new();
-        merge_provenance(&mut all, point("shaders/a.wgsl"));
-        merge_provenance(&mut all, point("shaders/b.wgsl"));
-        merge_provenance(&mut all, point("shaders/a.wgsl"));
-        assert_eq!(all.len(), 1);
-        let shaders: Vec<&str> = all[0].shaders.iter().map(|f| f.path.as_str()).collect();
-        assert_eq!(
-            shaders,
-            [
-                "shaders/compose_over.wgsl",
-                "shaders/a.wgsl",
-                "shaders/b.wgsl"
-            ]
-        );
-        assert_eq!(all[0].files.len(), 1);
-    }
 }
