@@ -12,8 +12,14 @@
 //!   one and renames it into place) and reports progress through a callback.
 //! - `measure`: timings and memory in the report's shapes.
 //! - `provenance`: hashes of every file the numbers depend on.
+//! - [`path_traced`], `cache`, `agx`: a reference rendered by Mitsuba 3
+//!   instead of a pipeline, cached, shown through the CPU twin of the
+//!   default display transform.
 
+mod agx;
+mod cache;
 mod measure;
+pub mod path_traced;
 pub mod plan;
 mod provenance;
 mod run;
@@ -23,6 +29,9 @@ mod temporal;
 use std::path::PathBuf;
 
 pub use plan::{AbOptions, CameraDistances, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
+pub use agx::display as display_agx;
+pub use cache::default_cache;
+pub use path_traced::{PathTraced, PathTracedError, render_references};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
 pub use supersample::box_filter;
@@ -104,6 +113,10 @@ pub enum AbError {
     },
     #[error("writing report.json")]
     Json(#[source] serde_json::Error),
+    /// A path-traced reference (`references/path_traced.toml`): its file,
+    /// Mitsuba, the export of a scene, the cache, its noise.
+    #[error(transparent)]
+    PathTraced(#[from] PathTracedError),
     /// The progress callback failed (e.g. its output was closed).
     #[error("reporting progress")]
     Progress(#[source] std::io::Error),

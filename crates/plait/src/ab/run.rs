@@ -85,6 +85,14 @@ impl Files<'_> {
     }
 }
 
+/// Where `scene` is in the plan.
+fn scene_index(plan: &Plan, scene: &ScenePlan) -> usize {
+    plan.scenes
+        .iter()
+        .position(|s| std::ptr::eq(s, scene))
+        .unwrap_or(0)
+}
+
 fn render_error(what: String) -> impl FnOnce(SessionError) -> AbError {
     move |source| AbError::Render { what, source }
 }
@@ -109,7 +117,7 @@ pub fn run(
     // Every variant and the reference must run on this adapter before any
     // is built; the schedules compiled for it serve every scene.
     let mut schedules = Vec::new();
-    for v in &plan.variants {
+    for v in plan.gpu_variants() {
         let size = plan.options.render_size(v.is_reference);
         let schedule = crate::adapter::check_on_adapter(gpu, &v.pipeline, &v.sets, size)
             .map_err(render_error(format!("pipeline {}", v.label)))?;
@@ -143,6 +151,9 @@ pub fn run(
                     graph_svg: Some(graph_file),
                 });
             }
+            if let Some(v) = super::path_traced::report_variant(plan) {
+                variants.push(v);
+            }
         }
         let samples = time_interleaved(plan, scene, &prepared, &mut ticker)?;
         let images = plan
@@ -158,8 +169,13 @@ pub fn run(
                         source: e.into(),
                     })
             })
+            .chain(plan.path_traced_images.get(index).map(|r| Ok(r.display.clone())))
             .collect::<Result<Vec<_>, _>>()?;
-        let linears = read_linears(plan, scene, &prepared)?;
+        let mut linears = read_linears(plan, scene, &prepared)?;
+        // A path-traced reference: its images join the GPU variants' last.
+        if let Some(r) = plan.path_traced_images.get(index) {
+            linears.push(Some(r.linear.clone()));
+        }
         let comparisons = compare_all(plan, scene, &images, &linears, &mut ticker)?;
         let visibilities = probe_all(plan, gpu, scene, &mut ticker)?;
         let temporals = match plan.options.sequence {
@@ -281,7 +297,7 @@ fn time_interleaved(
     // The reference is the truth the others are measured against: one
     // that dropped data (a size capped with --set) measures nothing.
     let reference = plan.reference_index();
-    let dropped = samples[reference].dropped();
+    let dropped = samples.get(reference).map(Samples::dropped).unwrap_or_default();
     if !dropped.is_empty() {
         return Err(AbError::ReferenceDropped {
             label: plan.variants[reference].label.clone(),
@@ -395,6 +411,13 @@ fn probe_all(
     scene: &ScenePlan,
     ticker: &mut Ticker<'_>,
 ) -> Result<Vec<Option<Visibility>>, AbError> {
+    if plan.path_traced.is_some() {
+        // A path tracer has no visibility provider to probe.
+        for v in &plan.variants {
+            ticker.step(format!("{}: probed {}", scene.name, v.label))?;
+        }
+        return Ok(vec![None; plan.variants.len()]);
+    }
     let grid = ProbeGrid::through_hair(&scene.data, (16, 16), 48);
     let probe = |v: &VariantPlan| {
         probe_visibility(
@@ -487,10 +510,13 @@ fn scene_result(
             diff_image,
             diff_scale: scale,
             flip_image,
-            timing: samples[i].timing(prepared[i].schedule()),
+            timing: match (samples.get(i), prepared.get(i)) {
+                (Some(s), Some(p)) => s.timing(p.schedule()),
+                _ => super::path_traced::timing(plan, scene_index(plan, scene)),
+            },
             metrics: c.metrics,
             visibility,
-            overflow: samples[i].overflow(),
+            overflow: samples.get(i).map(Samples::overflow).unwrap_or_default(),
             temporal,
         });
     }
