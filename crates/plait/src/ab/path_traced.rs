@@ -201,7 +201,7 @@ impl PathTraced {
     /// How the report names it: renderer, version, samples, depth.
     pub fn describe(&self) -> String {
         format!(
-            "path-traced: Mitsuba {} `hair` BSDF (Chiang et al. 2016), {} seeds × {} spp, max_depth {}",
+            "path-traced, Mitsuba {} hair BSDF, {} × {} spp, max_depth {}",
             super::cache::mitsuba_version(),
             self.seeds.len(),
             self.spp,
@@ -313,11 +313,11 @@ pub fn render_references(
         .scenes
         .iter()
         .zip(&rendered)
-        .map(|(s, r)| format!("{} noise RMSE {:.5}", s.name, r.noise_rmse))
+        .map(|(s, r)| format!("noise RMSE {:.4} on {}", r.noise_rmse, s.name))
         .collect();
     let index = plan.reference_index();
     plan.variants[index].label = format!(
-        "{} (reference, {}; {}; time = Mitsuba's render)",
+        "{} (reference: {}, {})",
         stem(&spec.file),
         spec.describe(),
         notes.join(", ")
