@@ -75,7 +75,10 @@ fn path_traced_reference_cached_and_compared() {
     let first = ab(&pt4, &cache, &out, &env);
     let stdout = text(&first.stdout);
     assert!(first.status.success(), "{stdout}\n{}", text(&first.stderr));
-    assert!(stdout.contains("Mitsuba seed 0") && stdout.contains("Mitsuba seed 1"), "{stdout}");
+    assert!(
+        stdout.contains("Mitsuba seed 0") && stdout.contains("Mitsuba seed 1"),
+        "{stdout}"
+    );
     assert!(!stdout.contains("cache hit"), "{stdout}");
 
     let report: serde_json::Value =
@@ -83,20 +86,35 @@ fn path_traced_reference_cached_and_compared() {
     let variants = report["variants"].as_array().unwrap();
     let pt = variants.iter().find(|v| v["is_reference"] == true).unwrap();
     let label = pt["label"].as_str().unwrap();
-    assert!(label.contains("Mitsuba 3.9.1") && label.contains("2 × 4 spp"), "{label}");
-    assert!(label.contains("max_depth 8") && label.contains("noise RMSE"), "{label}");
+    assert!(
+        label.contains("Mitsuba 3.9.1") && label.contains("2 × 4 spp"),
+        "{label}"
+    );
+    assert!(
+        label.contains("max_depth 8") && label.contains("noise RMSE"),
+        "{label}"
+    );
     assert_eq!(pt["schedule_name"], "mitsuba 3.9.1");
     let run = &report["scenes"][0]["runs"][0];
     let rmse = run["metrics"]["rmse"].as_f64().unwrap();
-    assert!(rmse > 0.0 && rmse.is_finite(), "forward against the path tracer: {rmse}");
-    let reference = image::open(out.join("small-reference.exr")).unwrap().into_rgba32f();
+    assert!(
+        rmse > 0.0 && rmse.is_finite(),
+        "forward against the path tracer: {rmse}"
+    );
+    let reference = image::open(out.join("small-reference.exr"))
+        .unwrap()
+        .into_rgba32f();
     assert_eq!(reference.dimensions(), (32, 24));
     assert!(reference.pixels().any(|p| p.0[0] > 0.0));
 
     // The CPU display transform against the GPU's, on the forward variant's
     // own radiance: within one 8-bit level everywhere.
-    let radiance = image::open(out.join("small-forward.exr")).unwrap().into_rgba32f();
-    let gpu = image::open(out.join("small-forward.png")).unwrap().into_rgba8();
+    let radiance = image::open(out.join("small-forward.exr"))
+        .unwrap()
+        .into_rgba32f();
+    let gpu = image::open(out.join("small-forward.png"))
+        .unwrap()
+        .into_rgba8();
     let cpu = plait::ab::display_agx(&radiance, 0.0);
     let worst = cpu
         .pixels()
@@ -104,7 +122,10 @@ fn path_traced_reference_cached_and_compared() {
         .flat_map(|(a, b)| (0..3).map(move |c| (a.0[c] as i32 - b.0[c] as i32).abs()))
         .max()
         .unwrap();
-    assert!(worst <= 1, "CPU AgX differs from the GPU pass by {worst} levels");
+    assert!(
+        worst <= 1,
+        "CPU AgX differs from the GPU pass by {worst} levels"
+    );
 
     // Second run: every reference from the cache, no Python started.
     let mut no_python = env.clone();
@@ -112,9 +133,18 @@ fn path_traced_reference_cached_and_compared() {
     no_python.push(("PLAIT_MITSUBA_PYTHON".into(), "/nonexistent/python".into()));
     let second = ab(&pt4, &cache, &tmp.path().join("r2"), &no_python);
     let stdout = text(&second.stdout);
-    assert!(second.status.success(), "{stdout}\n{}", text(&second.stderr));
-    assert!(stdout.contains("cache hit") && !stdout.contains("Mitsuba seed"), "{stdout}");
-    let again = image::open(tmp.path().join("r2/small-reference.exr")).unwrap().into_rgba32f();
+    assert!(
+        second.status.success(),
+        "{stdout}\n{}",
+        text(&second.stderr)
+    );
+    assert!(
+        stdout.contains("cache hit") && !stdout.contains("Mitsuba seed"),
+        "{stdout}"
+    );
+    let again = image::open(tmp.path().join("r2/small-reference.exr"))
+        .unwrap()
+        .into_rgba32f();
     assert_eq!(again, reference);
 
     // A changed spp is another key: it must render, so without Mitsuba it
@@ -123,7 +153,10 @@ fn path_traced_reference_cached_and_compared() {
     let third = ab(&pt5, &cache, &tmp.path().join("r3"), &no_python);
     let stderr = text(&third.stderr);
     assert_eq!(third.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("bash scripts/ensure-mitsuba.sh"), "{stderr}");
+    assert!(
+        stderr.contains("bash scripts/ensure-mitsuba.sh"),
+        "{stderr}"
+    );
     assert!(!text(&third.stdout).contains("built"), "GPU work started");
     assert!(!tmp.path().join("r3").exists());
 }
@@ -140,7 +173,10 @@ fn bad_reference_files_exit_2_at_file_line_col() {
     let out = ab(&bad, &tmp.path().join("c"), &tmp.path().join("r"), &[]);
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("bad.toml:4:1") && stderr.contains("max_depht"), "{stderr}");
+    assert!(
+        stderr.contains("bad.toml:4:1") && stderr.contains("max_depht"),
+        "{stderr}"
+    );
     // A spot light has no Mitsuba emitter: named, with its scene, before
     // any GPU work or Mitsuba.
     let good = reference_file(tmp.path(), 4);
@@ -153,6 +189,9 @@ fn bad_reference_files_exit_2_at_file_line_col() {
     );
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("scene stray") && stderr.contains("spot light"), "{stderr}");
+    assert!(
+        stderr.contains("scene stray") && stderr.contains("spot light"),
+        "{stderr}"
+    );
     assert!(text(&out.stdout).is_empty(), "{}", text(&out.stdout));
 }

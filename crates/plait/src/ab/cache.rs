@@ -145,7 +145,14 @@ pub(super) fn reference(
             p(&line).map_err(super::AbError::Progress)
         };
         if entry.join("entry.json").exists() {
-            say(progress, format!("{}: path-traced reference: cache hit {}", scene.name, entry.display()))?;
+            say(
+                progress,
+                format!(
+                    "{}: path-traced reference: cache hit {}",
+                    scene.name,
+                    entry.display()
+                ),
+            )?;
         } else {
             render(spec, scene, size, &export, &entry, progress)?;
         }
@@ -248,7 +255,11 @@ fn read(spec: &PathTraced, scene: &ScenePlan, entry: &Path) -> Result<Reference,
                 source,
             })?
             .into_rgba32f();
-        let count = img.pixels().flat_map(|p| &p.0[..3]).filter(|v| !v.is_finite()).count();
+        let count = img
+            .pixels()
+            .flat_map(|p| &p.0[..3])
+            .filter(|v| !v.is_finite())
+            .count();
         if count > 0 {
             return Err(PathTracedError::NotFinite {
                 scene: scene.name.clone(),
@@ -262,7 +273,12 @@ fn read(spec: &PathTraced, scene: &ScenePlan, entry: &Path) -> Result<Reference,
     let (a, b) = (&images[0], &images[1]);
     let mean = image::Rgba32FImage::from_fn(a.width(), a.height(), |x, y| {
         let (p, q) = (a.get_pixel(x, y).0, b.get_pixel(x, y).0);
-        image::Rgba([0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]), 1.0])
+        image::Rgba([
+            0.5 * (p[0] + q[0]),
+            0.5 * (p[1] + q[1]),
+            0.5 * (p[2] + q[2]),
+            1.0,
+        ])
     });
     let noise_rmse = noise_of_mean(a, b);
     if noise_rmse > spec.max_noise_rmse {
@@ -312,10 +328,16 @@ mod tests {
     fn noise_of_mean_recovers_a_known_sigma() {
         let mut state = 12345u64;
         let mut next = || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((state >> 33) as f64 / (1u64 << 31) as f64) as f32 * 0.2 - 0.1
         };
-        let mut img = || image::Rgba32FImage::from_fn(200, 200, |_, _| image::Rgba([0.5 + next(), 0.5 + next(), 0.5 + next(), 1.0]));
+        let mut img = || {
+            image::Rgba32FImage::from_fn(200, 200, |_, _| {
+                image::Rgba([0.5 + next(), 0.5 + next(), 0.5 + next(), 1.0])
+            })
+        };
         let (a, b) = (img(), img());
         let expected = (0.1f64 / 3f64.sqrt()) / 2f64.sqrt();
         let got = noise_of_mean(&a, &b);

@@ -28,10 +28,10 @@ mod temporal;
 
 use std::path::PathBuf;
 
-pub use plan::{AbOptions, CameraDistances, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use agx::display as display_agx;
 pub use cache::default_cache;
 pub use path_traced::{PathTraced, PathTracedError, render_references};
+pub use plan::{AbOptions, CameraDistances, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
 pub use supersample::box_filter;

@@ -158,7 +158,10 @@ impl PathTraced {
         if s.renderer.get_ref() != "mitsuba" {
             return Err(at(
                 Some(s.renderer.span()),
-                format!("renderer `{}`: the only one is \"mitsuba\"", s.renderer.get_ref()),
+                format!(
+                    "renderer `{}`: the only one is \"mitsuba\"",
+                    s.renderer.get_ref()
+                ),
             ));
         }
         if *s.spp.get_ref() == 0 {
@@ -238,7 +241,12 @@ fn fibre(
             |x| x.abs() <= 45.0,
             "scale_tilt_degrees must be within ±45",
         ),
-        (f.eta, &mut fibre.eta, |x| x > 1.0 && x < 4.0, "eta must be in (1, 4)"),
+        (
+            f.eta,
+            &mut fibre.eta,
+            |x| x > 1.0 && x < 4.0,
+            "eta must be in (1, 4)",
+        ),
     ];
     for (value, slot, ok, message) in fields {
         if let Some(v) = value {
@@ -428,7 +436,7 @@ mod tests {
             (format!("{GOOD}[fibre]\neta = 0.5\n"), 8, "eta"),
         ];
         for (text, line, word) in cases {
-            let e = load(&text).err().expect("error").to_string();
+            let e = load(&text).expect_err("error").to_string();
             assert!(e.contains(&format!(".toml:{line}:")), "{e}");
             assert!(e.contains(word), "{e}");
         }
@@ -436,7 +444,10 @@ mod tests {
 
     #[test]
     fn display_follows_the_exposure_and_refuses_other_operators() {
-        assert_eq!(display_exposure(&["params.exposure=-1.5".into()]).unwrap(), -1.5);
+        assert_eq!(
+            display_exposure(&["params.exposure=-1.5".into()]).unwrap(),
+            -1.5
+        );
         assert!(display_exposure(&["techniques.tone_mapping=agx".into()]).is_ok());
         assert!(display_exposure(&["techniques.tone_mapping=clip".into()]).is_err());
     }

@@ -283,7 +283,10 @@ impl Plan {
             screen: options.size,
             ..CompileOptions::default()
         };
-        for v in variants.iter().filter(|v| !(v.is_reference && path_traced.is_some())) {
+        for v in variants
+            .iter()
+            .filter(|v| !(v.is_reference && path_traced.is_some()))
+        {
             let compile = CompileOptions {
                 screen: options.render_size(v.is_reference),
                 ..compile.clone()

@@ -169,7 +169,11 @@ pub fn run(
                         source: e.into(),
                     })
             })
-            .chain(plan.path_traced_images.get(index).map(|r| Ok(r.display.clone())))
+            .chain(
+                plan.path_traced_images
+                    .get(index)
+                    .map(|r| Ok(r.display.clone())),
+            )
             .collect::<Result<Vec<_>, _>>()?;
         let mut linears = read_linears(plan, scene, &prepared)?;
         // A path-traced reference: its images join the GPU variants' last.
@@ -297,7 +301,10 @@ fn time_interleaved(
     // The reference is the truth the others are measured against: one
     // that dropped data (a size capped with --set) measures nothing.
     let reference = plan.reference_index();
-    let dropped = samples.get(reference).map(Samples::dropped).unwrap_or_default();
+    let dropped = samples
+        .get(reference)
+        .map(Samples::dropped)
+        .unwrap_or_default();
     if !dropped.is_empty() {
         return Err(AbError::ReferenceDropped {
             label: plan.variants[reference].label.clone(),
