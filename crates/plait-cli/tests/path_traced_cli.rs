@@ -147,6 +147,42 @@ fn path_traced_reference_cached_and_compared() {
         .into_rgba32f();
     assert_eq!(again, reference);
 
+    // The noise bound is not part of the key (it decides no pixel): the
+    // same cached images, held to a bound they miss, fail the run.
+    let strict = tmp.path().join("strict.toml");
+    let text4 = std::fs::read_to_string(&pt4).unwrap();
+    std::fs::write(
+        &strict,
+        text4.replace("max_noise_rmse = 1.0", "max_noise_rmse = 0.000001"),
+    )
+    .unwrap();
+    let noisy = ab(&strict, &cache, &tmp.path().join("r4"), &no_python);
+    let stderr = text(&noisy.stderr);
+    assert_eq!(noisy.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("too noisy") && stderr.contains("max_noise_rmse = 0.000001"),
+        "{stderr}"
+    );
+
+    // A NaN in a cached image fails the run, naming the file.
+    let entry = std::fs::read_dir(&cache)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.join("entry.json").exists())
+        .unwrap();
+    let mut poisoned = image::open(entry.join("seed1.exr")).unwrap().into_rgba32f();
+    poisoned.get_pixel_mut(3, 4).0[1] = f32::NAN;
+    image::DynamicImage::ImageRgba32F(poisoned)
+        .save_with_format(entry.join("seed1.exr"), image::ImageFormat::OpenExr)
+        .unwrap();
+    let nan = ab(&pt4, &cache, &tmp.path().join("r5"), &no_python);
+    let stderr = text(&nan.stderr);
+    assert_eq!(nan.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("1 NaN or Inf") && stderr.contains("seed1.exr"),
+        "{stderr}"
+    );
+
     // A changed spp is another key: it must render, so without Mitsuba it
     // fails, naming the install script, with exit 2, before any GPU work.
     let pt5 = reference_file(tmp.path(), 5);
