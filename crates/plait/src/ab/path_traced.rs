@@ -267,6 +267,42 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// The path-traced reference `reference` is, if it is one; refused with
+/// `--frames` (one still per scene) or a display it cannot follow.
+pub(super) fn load_if_path_traced(
+    reference: &Path,
+    options: &super::AbOptions,
+) -> Result<Option<PathTraced>, PathTracedError> {
+    if !is_path_traced(reference) {
+        return Ok(None);
+    }
+    let spec = PathTraced::load(reference)?;
+    if options.sequence.is_some() {
+        return Err(PathTracedError::Frames);
+    }
+    display_exposure(&options.sets)?;
+    Ok(Some(spec))
+}
+
+/// Every scene exports (no spot light, no background image…), checked
+/// before any GPU work or rendering.
+pub(super) fn check_scenes(
+    spec: &PathTraced,
+    options: &super::AbOptions,
+    scenes: &[super::ScenePlan],
+) -> Result<(), PathTracedError> {
+    let size = options.render_size(true);
+    for scene in scenes {
+        crate::mitsuba::plan(&scene.data, size, spec.fibre).map_err(|source| {
+            PathTracedError::Export {
+                scene: scene.name.clone(),
+                source,
+            }
+        })?;
+    }
+    Ok(())
+}
+
 /// The exposure (`--set params.exposure`) the reference is shown at; a
 /// `--set techniques.tone_mapping` other than agx cannot be followed.
 pub(super) fn display_exposure(sets: &[String]) -> Result<f32, PathTracedError> {

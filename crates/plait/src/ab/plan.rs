@@ -256,12 +256,7 @@ impl Plan {
         if !reference.exists() {
             return Err(AbError::MissingReference(options.reference.clone()));
         }
-        let path_traced = super::path_traced::is_path_traced(&reference)
-            .then(|| super::PathTraced::load(&reference))
-            .transpose()?;
-        if path_traced.is_some() && options.sequence.is_some() {
-            return Err(super::PathTracedError::Frames.into());
-        }
+        let path_traced = super::path_traced::load_if_path_traced(&reference, &options)?;
         variants.push(VariantPlan {
             id: unique("reference".into(), &mut taken),
             label: if options.supersample > 1 {
@@ -343,18 +338,7 @@ impl Plan {
             }
         }
         if let Some(spec) = &path_traced {
-            super::path_traced::display_exposure(&options.sets)?;
-            // Every scene must export (a spot light, a background image…)
-            // before any GPU work or rendering.
-            for scene in &scenes {
-                let size = options.render_size(true);
-                crate::mitsuba::plan(&scene.data, size, spec.fibre).map_err(|source| {
-                    super::PathTracedError::Export {
-                        scene: scene.name.clone(),
-                        source,
-                    }
-                })?;
-            }
+            super::path_traced::check_scenes(spec, &options, &scenes)?;
         }
         Ok(Plan {
             options,
