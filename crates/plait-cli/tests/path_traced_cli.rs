@@ -40,6 +40,10 @@ fn reference_file(dir: &Path, spp: u32) -> PathBuf {
     path
 }
 
+fn good_file(dir: &Path) -> PathBuf {
+    reference_file(dir, 4)
+}
+
 fn ab(reference: &Path, cache: &Path, out: &Path, env: &[(String, String)]) -> Output {
     ab_on("examples/scenes/small.toml", reference, cache, out, env)
 }
@@ -213,9 +217,45 @@ fn bad_reference_files_exit_2_at_file_line_col() {
         stderr.contains("bad.toml:4:1") && stderr.contains("max_depht"),
         "{stderr}"
     );
+    // Mitsuba failing: its message, the scene, exit 2, before GPU work
+    // (a stand-in "python" that fails as render.py does).
+    let failing = tmp.path().join("failing-python");
+    std::fs::write(
+        &failing,
+        "#!/bin/sh\necho 'mitsuba: out of cheese' >&2\nexit 2\n",
+    )
+    .unwrap();
+    use std::os::unix::fs::PermissionsExt as _;
+    std::fs::set_permissions(&failing, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let env = [(
+        "PLAIT_MITSUBA_PYTHON".to_string(),
+        failing.display().to_string(),
+    )];
+    let out = ab(
+        &good_file(tmp.path()),
+        &tmp.path().join("c"),
+        &tmp.path().join("r"),
+        &env,
+    );
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("Mitsuba failed on scene small")
+            && stderr.contains("out of cheese")
+            && stderr.contains("failed-small"),
+        "{stderr}"
+    );
+    assert!(!text(&out.stdout).contains("built"), "GPU work started");
+    assert!(
+        std::fs::read_dir(tmp.path().join("c"))
+            .unwrap()
+            .all(|e| { !e.unwrap().path().join("entry.json").exists() }),
+        "a failed render left a cache entry"
+    );
+
     // A spot light has no Mitsuba emitter: named, with its scene, before
     // any GPU work or Mitsuba.
-    let good = reference_file(tmp.path(), 4);
+    let good = good_file(tmp.path());
     let out = ab_on(
         "examples/scenes/stray.toml",
         &good,

@@ -211,9 +211,18 @@ fn render(
             tried: format!("{}: {e}", python.display()),
         })?;
         if !out.status.success() {
+            // Keep the exported scene for the user to look at or re-run;
+            // drop the partial entry.
+            let _ = std::fs::remove_dir_all(&tmp);
+            let kept = entry.with_file_name(format!("failed-{}", scene.name));
+            let _ = std::fs::remove_dir_all(&kept);
+            let dir = match std::fs::rename(export, &kept) {
+                Ok(()) => kept,
+                Err(_) => export.to_path_buf(),
+            };
             return Err(PathTracedError::Mitsuba {
                 scene: scene.name.clone(),
-                dir: export.to_path_buf(),
+                dir,
                 stderr: String::from_utf8_lossy(&out.stderr).trim().to_string(),
             }
             .into());
