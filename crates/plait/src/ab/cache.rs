@@ -16,7 +16,7 @@ use super::ScenePlan;
 use super::path_traced::{PathTraced, PathTracedError};
 use crate::session::repo_root;
 
-/// Both seeds' mean and what the run needs to know of it.
+/// Both seeds' mean at the run's `--size` and what the run needs to know of it.
 pub(super) struct Reference {
     pub mean: image::Rgba32FImage,
     pub noise_rmse: f64,
@@ -119,12 +119,13 @@ fn key(spec: &PathTraced, dir: &Path) -> Result<String, PathTracedError> {
     Ok(hex[..32].to_string())
 }
 
-/// The reference of `scene` at `size` pixels: from `cache` when it holds
-/// it, else rendered by Mitsuba (one process per seed) and stored there.
+/// The reference of `scene` rendered at `size` pixels (`--size` ×
+/// `supersample`) and filtered down: from `cache` when it holds it, else
+/// rendered by Mitsuba (one process per seed) and stored there.
 pub(super) fn reference(
     spec: &PathTraced,
     scene: &ScenePlan,
-    size: (u32, u32),
+    (size, supersample): ((u32, u32), u32),
     cache: &Path,
     progress: &mut dyn FnMut(&str) -> std::io::Result<()>,
 ) -> Result<Reference, super::AbError> {
@@ -156,7 +157,7 @@ pub(super) fn reference(
         } else {
             render(spec, scene, size, &export, &entry, progress)?;
         }
-        read(spec, scene, &entry)
+        read(spec, scene, &entry, supersample)
     })();
     let _ = std::fs::remove_dir_all(&export);
     result
@@ -253,8 +254,15 @@ fn render(
     Ok(())
 }
 
-/// An entry's seeds read back, checked finite, averaged, their noise estimated.
-fn read(spec: &PathTraced, scene: &ScenePlan, entry: &Path) -> Result<Reference, super::AbError> {
+/// An entry's seeds read back, checked finite, each box-filtered down by
+/// `supersample` (so the noise is the compared image's), averaged, their
+/// noise estimated and held to the bound.
+fn read(
+    spec: &PathTraced,
+    scene: &ScenePlan,
+    entry: &Path,
+    supersample: u32,
+) -> Result<Reference, super::AbError> {
     let mut images = Vec::new();
     for seed in spec.seeds {
         let path = entry.join(format!("seed{seed}.exr"));
@@ -277,7 +285,7 @@ fn read(spec: &PathTraced, scene: &ScenePlan, entry: &Path) -> Result<Reference,
             }
             .into());
         }
-        images.push(img);
+        images.push(super::supersample::box_filter_linear(&img, supersample));
     }
     let (a, b) = (&images[0], &images[1]);
     let mean = image::Rgba32FImage::from_fn(a.width(), a.height(), |x, y| {

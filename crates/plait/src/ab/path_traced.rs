@@ -343,8 +343,8 @@ pub fn render_references(
     let k = plan.options.supersample.max(1);
     let mut rendered = Vec::new();
     for scene in &plan.scenes {
-        let r = super::cache::reference(&spec, scene, size, cache, progress)?;
-        let linear = super::supersample::box_filter_linear(&r.mean, k);
+        let r = super::cache::reference(&spec, scene, (size, k), cache, progress)?;
+        let linear = r.mean;
         let display = super::agx::display(&linear, exposure);
         rendered.push(Rendered {
             linear,
