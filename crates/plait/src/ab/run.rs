@@ -153,6 +153,10 @@ pub fn run(
             }
             if let Some(v) = super::path_traced::report_variant(plan) {
                 variants.push(v);
+                merge_provenance(
+                    &mut pipelines,
+                    super::provenance::path_traced_provenance(&plan.reference)?,
+                );
             }
         }
         let samples = time_interleaved(plan, scene, &prepared, &mut ticker)?;
