@@ -181,10 +181,11 @@ fn render(
     let _ = std::fs::remove_dir_all(&tmp);
     std::fs::create_dir_all(&tmp).map_err(io(&tmp))?;
     let mut seconds = Vec::new();
+    let last = entry.with_file_name("last-seed.json");
     for seed in spec.seeds {
         let estimate = match seconds.first() {
             Some(s) => format!("estimate {s:.0} s (as seed {})", spec.seeds[0]),
-            None => "estimate: after this seed".into(),
+            None => last_seed(&last),
         };
         progress(&format!(
             "{}: path-traced reference: Mitsuba seed {seed}, {} spp, max_depth {}, {}x{}, {estimate}",
@@ -229,6 +230,12 @@ fn render(
             .into());
         }
         seconds.push(start.elapsed().as_secs_f64());
+        let record = serde_json::json!({
+            "seconds": seconds[seconds.len() - 1],
+            "spp": spec.spp, "max_depth": spec.max_depth, "size": [size.0, size.1],
+        });
+        // Only a hint for the next run's first estimate: a failed write costs nothing.
+        let _ = std::fs::write(&last, record.to_string());
     }
     let meta = serde_json::json!({
         "renderer": spec.renderer,
@@ -252,6 +259,25 @@ fn render(
         .into());
     }
     Ok(())
+}
+
+/// The first seed's estimate: the cache's last seed (Mitsuba's start-up
+/// dominates small images, so its time is a fair first guess), or none.
+fn last_seed(path: &Path) -> String {
+    let value = std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok());
+    match value {
+        Some(v) if v["seconds"].is_f64() => format!(
+            "estimate ~{:.0} s (the last seed rendered here: {}x{}, {} spp, max_depth {})",
+            v["seconds"].as_f64().unwrap_or(0.0),
+            v["size"][0],
+            v["size"][1],
+            v["spp"],
+            v["max_depth"]
+        ),
+        _ => "estimate: after this seed".into(),
+    }
 }
 
 /// An entry's seeds read back, checked finite, each box-filtered down by
