@@ -3,6 +3,7 @@
 
     render.py DIR OUT.exr [--spp N] [--max-depth D] [--seed S] [--variant V]
                           [--coverage COV.exr] [--coverage-spp N]
+                          [--expect-version X.Y.Z]
 
 OUT.exr: linear radiance (RGB, 32-bit float), the background (plait.json's
 radiance) added where camera rays miss: rgb + (1 - alpha) * background, with
@@ -39,6 +40,8 @@ def parse_args():
     p.add_argument("--variant", default="llvm_ad_rgb")
     p.add_argument("--coverage", metavar="COV.exr")
     p.add_argument("--coverage-spp", type=int, default=64)
+    p.add_argument("--expect-version", metavar="X.Y.Z",
+                   help="fail unless Mitsuba is this version (plait's cache keys on it)")
     a = p.parse_args()
     if a.spp < 1 or a.coverage_spp < 1:
         p.error("--spp and --coverage-spp must be at least 1")
@@ -79,6 +82,9 @@ def main():
         import numpy as np
     except ImportError as e:
         fail(f"{e}: install Mitsuba with `bash scripts/ensure-mitsuba.sh` and run this with its python")
+    if a.expect_version and mi.__version__ != a.expect_version:
+        fail(f"Mitsuba {mi.__version__} is installed, plait expects {a.expect_version}: "
+             "run `bash scripts/ensure-mitsuba.sh`")
     try:
         with open(os.path.join(a.scene_dir, "plait.json")) as f:
             side = json.load(f)

@@ -33,9 +33,14 @@ pub struct AbArgs {
     #[arg(required = true, value_name = "PIPELINE")]
     pipelines: Vec<PathBuf>,
     /// The pipeline every variant's image is compared with (ground truth);
-    /// rendered with the `--set` flags but never swept.
+    /// rendered with the `--set` flags but never swept. Or a path-traced
+    /// reference (`references/path_traced.toml`): rendered by Mitsuba 3.
     #[arg(long, value_name = "PIPELINE", required = true)]
     reference: Option<PathBuf>,
+    /// Where path-traced references are cached (default:
+    /// `$CARGO_TARGET_DIR/plait-references`, or `target/plait-references`).
+    #[arg(long, value_name = "DIR")]
+    cache: Option<PathBuf>,
     /// Scene file (repeatable; default: the built-in scene).
     #[arg(long = "scene", value_name = "FILE", value_parser = parse_scene)]
     scenes: Vec<PathBuf>,
@@ -186,6 +191,9 @@ pub fn run(args: AbArgs) -> Result<()> {
         .chain([(&reference, reference_size)])
     {
         let path = plait::session::resolve_pipeline(Some(pipeline));
+        if plait::ab::path_traced::is_path_traced(&path) {
+            continue;
+        }
         crate::size_limit::check_default_limits(&path, &args.set.sets, size)?;
     }
     let plan = Plan::new(AbOptions {
@@ -204,10 +212,15 @@ pub fn run(args: AbArgs) -> Result<()> {
         }),
         camera_distances: args.camera_distance.map_or_else(Vec::new, |d| d.0),
     })?;
+    let mut plan = plan;
+    // A path-traced reference is rendered (or found in the cache) before
+    // the GPU is opened: Mitsuba missing or failing stops the run here.
+    let cache = args.cache.unwrap_or_else(plait::ab::default_cache);
+    plait::ab::render_references(&mut plan, &cache, &mut |line| outln!("{line}"))?;
     let gpu = Gpu::new()?;
     // A --size past the adapter's limits names the flag, not a resource of
     // some technique file (as `plait render` does).
-    for v in &plan.variants {
+    for v in plan.gpu_variants() {
         let size = plan.options.render_size(v.is_reference);
         crate::size_limit::check(&v.pipeline, &v.sets, size, &gpu).map_err(|e| {
             if v.is_reference && plan.options.supersample > 1 {

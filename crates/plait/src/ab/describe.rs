@@ -41,6 +41,14 @@ pub(super) fn describe(
             graph_svg: Some(graph_file),
         });
     }
+    // A path-traced reference is no schedule: the report names its renderer.
+    if let Some(v) = super::path_traced::report_variant(plan) {
+        variants.push(v);
+        merge_provenance(
+            &mut pipelines,
+            super::provenance::path_traced_provenance(&plan.reference)?,
+        );
+    }
     Ok((variants, graphs, pipelines))
 }
 

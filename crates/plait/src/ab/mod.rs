@@ -14,10 +14,16 @@
 //! - `provenance`: hashes of every file the numbers depend on.
 //! - [`shard`]: a share of the run (`--shard I/N`) for one machine of
 //!   many; [`merge()`] joins the shares into the report one run writes.
+//! - [`path_traced`], `cache`, `agx`: a reference rendered by Mitsuba 3
+//!   instead of a pipeline, cached, shown through the CPU twin of the
+//!   default display transform.
 
+mod agx;
+mod cache;
 mod describe;
 mod measure;
 pub mod merge;
+pub mod path_traced;
 pub mod plan;
 mod provenance;
 mod run;
@@ -27,7 +33,10 @@ mod temporal;
 
 use std::path::PathBuf;
 
+pub use agx::display as display_agx;
+pub use cache::default_cache;
 pub use merge::{MergeError, merge};
+pub use path_traced::{PathTraced, PathTracedError, render_references};
 pub use plan::{AbOptions, CameraDistances, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
@@ -111,6 +120,10 @@ pub enum AbError {
     },
     #[error("writing report.json")]
     Json(#[source] serde_json::Error),
+    /// A path-traced reference (`references/path_traced.toml`): its file,
+    /// Mitsuba, the export of a scene, the cache, its noise.
+    #[error(transparent)]
+    PathTraced(#[from] PathTracedError),
     /// The progress callback failed (e.g. its output was closed).
     #[error("reporting progress")]
     Progress(#[source] std::io::Error),

@@ -190,6 +190,11 @@ pub struct Plan {
     /// The variants, the reference last.
     pub variants: Vec<VariantPlan>,
     pub scenes: Vec<ScenePlan>,
+    /// A path-traced reference instead of a pipeline (its file has a
+    /// `[path_traced]` table); its images, one per scene, are filled in by
+    /// [`render_references`](super::render_references) before the run.
+    pub path_traced: Option<super::PathTraced>,
+    pub path_traced_images: Vec<super::path_traced::Rendered>,
 }
 
 impl Plan {
@@ -251,6 +256,7 @@ impl Plan {
         if !reference.exists() {
             return Err(AbError::MissingReference(options.reference.clone()));
         }
+        let path_traced = super::path_traced::load_if_path_traced(&reference, &options)?;
         variants.push(VariantPlan {
             id: unique("reference".into(), &mut taken),
             label: if options.supersample > 1 {
@@ -272,7 +278,10 @@ impl Plan {
             screen: options.size,
             ..CompileOptions::default()
         };
-        for v in &variants {
+        for v in variants
+            .iter()
+            .filter(|v| !(v.is_reference && path_traced.is_some()))
+        {
             let compile = CompileOptions {
                 screen: options.render_size(v.is_reference),
                 ..compile.clone()
@@ -328,12 +337,25 @@ impl Plan {
                 });
             }
         }
+        if let Some(spec) = &path_traced {
+            super::path_traced::check_scenes(spec, &options, &scenes)?;
+        }
         Ok(Plan {
             options,
             reference,
             variants,
             scenes,
+            path_traced,
+            path_traced_images: Vec::new(),
         })
+    }
+
+    /// The variants rendered on the GPU: all of them, but a path-traced reference.
+    pub fn gpu_variants(&self) -> impl Iterator<Item = &VariantPlan> {
+        let path_traced = self.path_traced.is_some();
+        self.variants
+            .iter()
+            .filter(move |v| !(v.is_reference && path_traced))
     }
 
     /// Where the reference is in [`Plan::variants`].
@@ -348,7 +370,12 @@ impl Plan {
     /// variant, build, warm-up, each repeat, compare and probe.
     pub fn step_count(&self) -> u64 {
         let per_variant = 4 + self.options.repeats as u64 + self.options.sequence.map_or(0, |_| 1);
-        self.scenes.len() as u64 * self.variants.len() as u64 * per_variant
+        // A path-traced reference is only compared and probed on the run.
+        let (on_gpu, path_traced) = match self.path_traced {
+            Some(_) => (self.variants.len() as u64 - 1, 2),
+            None => (self.variants.len() as u64, 0),
+        };
+        self.scenes.len() as u64 * (on_gpu * per_variant + path_traced)
     }
 }
 

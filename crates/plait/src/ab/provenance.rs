@@ -39,6 +39,22 @@ fn hash_file(path: &Path) -> Result<FileHash, AbError> {
     })
 }
 
+/// A path-traced reference's files: its TOML, the script that renders it
+/// and the script that pins Mitsuba's version.
+pub(super) fn path_traced_provenance(file: &Path) -> Result<PipelineProvenance, AbError> {
+    let root = crate::session::repo_root();
+    let root = root.canonicalize().unwrap_or(root);
+    Ok(PipelineProvenance {
+        path: file.display().to_string(),
+        files: vec![
+            hash_file(file)?,
+            hash_file(&root.join("scripts/mitsuba/render.py"))?,
+            hash_file(&root.join("scripts/ensure-mitsuba.sh"))?,
+        ],
+        shaders: Vec::new(),
+    })
+}
+
 fn hash_text(name: &str, text: &str) -> FileHash {
     FileHash {
         path: name.to_string(),

@@ -84,6 +84,14 @@ impl Files<'_> {
     }
 }
 
+/// Where `scene` is in the plan.
+fn scene_index(plan: &Plan, scene: &ScenePlan) -> usize {
+    plan.scenes
+        .iter()
+        .position(|s| std::ptr::eq(s, scene))
+        .unwrap_or(0)
+}
+
 fn render_error(what: String) -> impl FnOnce(SessionError) -> AbError {
     move |source| AbError::Render { what, source }
 }
@@ -143,7 +151,7 @@ pub(super) fn render(
     // Every variant and the reference must run on this adapter before any
     // is built; the schedules compiled for it serve every scene.
     let mut schedules = Vec::new();
-    for v in &plan.variants {
+    for v in plan.gpu_variants() {
         let size = plan.options.render_size(v.is_reference);
         let schedule = crate::adapter::check_on_adapter(gpu, &v.pipeline, &v.sets, size)
             .map_err(render_error(format!("pipeline {}", v.label)))?;
@@ -178,6 +186,10 @@ pub(super) fn render(
             reference: plan.reference.clone(),
             variants: chosen.iter().map(|&i| plan.variants[i].clone()).collect(),
             scenes: Vec::new(),
+            // Its one scene's path-traced image (sub-plans have no scenes:
+            // the helpers' scene index is 0).
+            path_traced: plan.path_traced.clone(),
+            path_traced_images: plan.path_traced_images.get(index).cloned().into_iter().collect(),
         };
         let sub_schedules: Vec<Schedule> = chosen.iter().map(|&i| schedules[i].clone()).collect();
         let mut prepared = build_all(&sub, &sub_schedules, gpu, scene, &mut ticker)?;
@@ -231,6 +243,7 @@ fn measure_scene(
     ticker: &mut Ticker<'_>,
 ) -> Result<SceneResult, AbError> {
     let samples = time_interleaved(plan, scene, prepared, ticker)?;
+    let index = scene_index(plan, scene);
     let images = plan
         .variants
         .iter()
@@ -244,8 +257,17 @@ fn measure_scene(
                     source: e.into(),
                 })
         })
+        .chain(
+            plan.path_traced_images
+                .get(index)
+                .map(|r| Ok(r.display.clone())),
+        )
         .collect::<Result<Vec<_>, _>>()?;
-    let linears = read_linears(plan, scene, prepared)?;
+    let mut linears = read_linears(plan, scene, prepared)?;
+    // A path-traced reference: its images join the GPU variants' last.
+    if let Some(r) = plan.path_traced_images.get(index) {
+        linears.push(Some(r.linear.clone()));
+    }
     let comparisons = compare_all(plan, scene, &images, &linears, ticker)?;
     let visibilities = probe_all(plan, gpu, scene, ticker)?;
     let temporals = match plan.options.sequence {
@@ -316,7 +338,10 @@ fn time_interleaved(
     // The reference is the truth the others are measured against: one
     // that dropped data (a size capped with --set) measures nothing.
     let reference = plan.reference_index();
-    let dropped = samples[reference].dropped();
+    let dropped = samples
+        .get(reference)
+        .map(Samples::dropped)
+        .unwrap_or_default();
     if !dropped.is_empty() {
         return Err(AbError::ReferenceDropped {
             label: plan.variants[reference].label.clone(),
@@ -430,6 +455,13 @@ fn probe_all(
     scene: &ScenePlan,
     ticker: &mut Ticker<'_>,
 ) -> Result<Vec<Option<Visibility>>, AbError> {
+    if plan.path_traced.is_some() {
+        // A path tracer has no visibility provider to probe.
+        for v in &plan.variants {
+            ticker.step(format!("{}: probed {}", scene.name, v.label))?;
+        }
+        return Ok(vec![None; plan.variants.len()]);
+    }
     let grid = ProbeGrid::through_hair(&scene.data, (16, 16), 48);
     let probe = |v: &VariantPlan| {
         probe_visibility(
@@ -522,10 +554,13 @@ fn scene_result(
             diff_image,
             diff_scale: scale,
             flip_image,
-            timing: samples[i].timing(prepared[i].schedule()),
+            timing: match (samples.get(i), prepared.get(i)) {
+                (Some(s), Some(p)) => s.timing(p.schedule()),
+                _ => super::path_traced::timing(plan, scene_index(plan, scene)),
+            },
             metrics: c.metrics,
             visibility,
-            overflow: samples[i].overflow(),
+            overflow: samples.get(i).map(Samples::overflow).unwrap_or_default(),
             temporal,
             shard: None,
         });

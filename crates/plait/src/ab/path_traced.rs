@@ -1,0 +1,490 @@
+//! A path-traced reference for `plait ab`: a file a user reads and edits
+//! (`references/path_traced.toml`) naming the renderer (Mitsuba 3), its
+//! samples, depth and seeds, the noise it must stay under, and the fibre
+//! parameters of Mitsuba's `hair` BSDF. [`PathTraced::load`] reads it;
+//! [`render_references`] renders it for every scene of a plan (through the
+//! cache, `super::cache`), before any GPU work; `run` then compares the
+//! variants with those images as with a reference pipeline's.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::Plan;
+use crate::mitsuba::{ExportError, Fibre};
+
+/// Why a path-traced reference could not be read or rendered.
+#[derive(Debug, thiserror::Error)]
+pub enum PathTracedError {
+    #[error("{}: cannot read: {source}", path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    /// A bad key or value, at its place in the file.
+    #[error("{}:{line}:{col}: {message}", path.display())]
+    Syntax {
+        path: PathBuf,
+        line: usize,
+        col: usize,
+        message: String,
+    },
+    #[error(
+        "Mitsuba is not installed ({tried}): run `bash scripts/ensure-mitsuba.sh` (or `eval \"$(bash scripts/ensure-mitsuba.sh)\"` to set PLAIT_MITSUBA_PYTHON)"
+    )]
+    NoMitsuba { tried: String },
+    #[error("scene {scene}: {source}")]
+    Export {
+        scene: String,
+        #[source]
+        source: ExportError,
+    },
+    #[error("Mitsuba failed on scene {scene} (exported to {}): {stderr}", dir.display())]
+    Mitsuba {
+        scene: String,
+        dir: PathBuf,
+        stderr: String,
+    },
+    #[error("the path-traced reference of scene {scene} has {count} NaN or Inf values ({})", path.display())]
+    NotFinite {
+        scene: String,
+        path: PathBuf,
+        count: usize,
+    },
+    #[error(
+        "the path-traced reference of scene {scene} is too noisy: RMSE {noise:.6} between its two seeds' mean and the truth (estimated), above max_noise_rmse = {bound} in {}: raise spp",
+        file.display()
+    )]
+    TooNoisy {
+        scene: String,
+        noise: f64,
+        bound: f64,
+        file: PathBuf,
+    },
+    #[error("{}: {source}", path.display())]
+    Cache {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}: {source}", path.display())]
+    Image {
+        path: PathBuf,
+        source: image::ImageError,
+    },
+    /// A `--set` the reference cannot follow (its display is AgX).
+    #[error("--set {0}: a path-traced reference is shown through tone_mapping = agx only")]
+    Display(String),
+    #[error(
+        "--frames: a path-traced reference renders one still per scene, not an animation; drop --frames or use a pipeline reference"
+    )]
+    Frames,
+}
+
+/// `references/path_traced.toml`, checked.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathTraced {
+    pub file: PathBuf,
+    /// Always "mitsuba" (the only renderer plait drives).
+    pub renderer: String,
+    /// Samples per pixel of each seed's image.
+    pub spp: u32,
+    /// Mitsuba's `max_depth` (2: single scattering; -1: unbounded).
+    pub max_depth: i32,
+    /// Two distinct seeds: the reference is their images' mean, their
+    /// difference its noise estimate.
+    pub seeds: [u32; 2],
+    /// The run fails when the estimated RMSE of the reference (linear
+    /// radiance) exceeds this.
+    pub max_noise_rmse: f64,
+    pub fibre: Fibre,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileToml {
+    path_traced: Section,
+    fibre: Option<FibreToml>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Section {
+    renderer: Spanned<String>,
+    spp: Spanned<u32>,
+    max_depth: Spanned<i32>,
+    seeds: Spanned<Vec<u32>>,
+    max_noise_rmse: Spanned<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FibreToml {
+    longitudinal_roughness: Option<Spanned<f32>>,
+    azimuthal_roughness: Option<Spanned<f32>>,
+    scale_tilt_degrees: Option<Spanned<f32>>,
+    eta: Option<Spanned<f32>>,
+}
+
+/// Whether `path` is a path-traced reference (a TOML file with a top-level
+/// `[path_traced]` table) rather than a pipeline.
+pub fn is_path_traced(path: &Path) -> bool {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|text| text.parse::<toml::Table>().ok())
+        .is_some_and(|t| t.contains_key("path_traced"))
+}
+
+impl PathTraced {
+    /// Read and check `path`: every bad key or value at file:line:col.
+    pub fn load(path: &Path) -> Result<Self, PathTracedError> {
+        let text = std::fs::read_to_string(path).map_err(|source| PathTracedError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let at = |span: Option<Range<usize>>, message: String| {
+            let (line, col) = line_col(&text, span.map_or(0, |s| s.start));
+            PathTracedError::Syntax {
+                path: path.to_path_buf(),
+                line,
+                col,
+                message,
+            }
+        };
+        let file: FileToml =
+            toml::from_str(&text).map_err(|e| at(e.span(), e.message().trim().to_string()))?;
+        let s = file.path_traced;
+        if s.renderer.get_ref() != "mitsuba" {
+            return Err(at(
+                Some(s.renderer.span()),
+                format!(
+                    "renderer `{}`: the only one is \"mitsuba\"",
+                    s.renderer.get_ref()
+                ),
+            ));
+        }
+        if *s.spp.get_ref() == 0 {
+            return Err(at(Some(s.spp.span()), "spp must be at least 1".into()));
+        }
+        let depth = *s.max_depth.get_ref();
+        if depth < 1 && depth != -1 {
+            return Err(at(
+                Some(s.max_depth.span()),
+                "max_depth must be at least 1 (2: single scattering), or -1: unbounded".into(),
+            ));
+        }
+        let seeds: [u32; 2] = match s.seeds.get_ref().as_slice() {
+            &[a, b] if a != b => [a, b],
+            _ => {
+                return Err(at(
+                    Some(s.seeds.span()),
+                    "seeds must be two different numbers (their images' difference is the noise estimate)".into(),
+                ));
+            }
+        };
+        let bound = *s.max_noise_rmse.get_ref();
+        if !(bound.is_finite() && bound > 0.0) {
+            return Err(at(
+                Some(s.max_noise_rmse.span()),
+                "max_noise_rmse must be a finite number above 0".into(),
+            ));
+        }
+        Ok(PathTraced {
+            file: path.to_path_buf(),
+            renderer: s.renderer.into_inner(),
+            spp: *s.spp.get_ref(),
+            max_depth: depth,
+            seeds,
+            max_noise_rmse: bound,
+            fibre: fibre(file.fibre, &at)?,
+        })
+    }
+
+    /// How the report names it: renderer, version, samples, depth.
+    pub fn describe(&self) -> String {
+        format!(
+            "path-traced, Mitsuba {} hair BSDF, {} × {} spp, max_depth {}",
+            super::cache::mitsuba_version(),
+            self.seeds.len(),
+            self.spp,
+            self.max_depth
+        )
+    }
+}
+
+/// The `[fibre]` table over `Fibre::default()`; each value finite, the
+/// roughnesses in (0, 1], η above 1.
+fn fibre(
+    given: Option<FibreToml>,
+    at: &dyn Fn(Option<Range<usize>>, String) -> PathTracedError,
+) -> Result<Fibre, PathTracedError> {
+    let mut fibre = Fibre::default();
+    let Some(f) = given else { return Ok(fibre) };
+    type Check = fn(f32) -> bool;
+    let fields: [(Option<Spanned<f32>>, &mut f32, Check, &str); 4] = [
+        (
+            f.longitudinal_roughness,
+            &mut fibre.longitudinal_roughness,
+            |x| x > 0.0 && x <= 1.0,
+            "longitudinal_roughness must be in (0, 1]",
+        ),
+        (
+            f.azimuthal_roughness,
+            &mut fibre.azimuthal_roughness,
+            |x| x > 0.0 && x <= 1.0,
+            "azimuthal_roughness must be in (0, 1]",
+        ),
+        (
+            f.scale_tilt_degrees,
+            &mut fibre.scale_tilt_degrees,
+            |x| x.abs() <= 45.0,
+            "scale_tilt_degrees must be within ±45",
+        ),
+        (
+            f.eta,
+            &mut fibre.eta,
+            |x| x > 1.0 && x < 4.0,
+            "eta must be in (1, 4)",
+        ),
+    ];
+    for (value, slot, ok, message) in fields {
+        if let Some(v) = value {
+            if !(v.get_ref().is_finite() && ok(*v.get_ref())) {
+                return Err(at(Some(v.span()), message.to_string()));
+            }
+            *slot = *v.get_ref();
+        }
+    }
+    Ok(fibre)
+}
+
+/// 1-based line and column (in characters) of byte `offset` in `text`.
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// The path-traced reference `reference` is, if it is one; refused with
+/// `--frames` (one still per scene) or a display it cannot follow.
+pub(super) fn load_if_path_traced(
+    reference: &Path,
+    options: &super::AbOptions,
+) -> Result<Option<PathTraced>, PathTracedError> {
+    if !is_path_traced(reference) {
+        return Ok(None);
+    }
+    let spec = PathTraced::load(reference)?;
+    if options.sequence.is_some() {
+        return Err(PathTracedError::Frames);
+    }
+    display_exposure(&options.sets)?;
+    Ok(Some(spec))
+}
+
+/// Every scene exports (no spot light, no background image…), checked
+/// before any GPU work or rendering.
+pub(super) fn check_scenes(
+    spec: &PathTraced,
+    options: &super::AbOptions,
+    scenes: &[super::ScenePlan],
+) -> Result<(), PathTracedError> {
+    let size = options.render_size(true);
+    for scene in scenes {
+        crate::mitsuba::plan(&scene.data, size, spec.fibre).map_err(|source| {
+            PathTracedError::Export {
+                scene: scene.name.clone(),
+                source,
+            }
+        })?;
+    }
+    Ok(())
+}
+
+/// The exposure (`--set params.exposure`) the reference is shown at; a
+/// `--set techniques.tone_mapping` other than agx cannot be followed.
+pub(super) fn display_exposure(sets: &[String]) -> Result<f32, PathTracedError> {
+    let mut exposure = 0.0;
+    for set in sets {
+        let Some((key, value)) = set.split_once('=') else {
+            continue;
+        };
+        match key.trim() {
+            "params.exposure" => {
+                exposure = value
+                    .trim()
+                    .parse()
+                    .map_err(|_| PathTracedError::Display(set.clone()))?;
+            }
+            "techniques.tone_mapping" if value.trim() != "agx" => {
+                return Err(PathTracedError::Display(set.clone()));
+            }
+            _ => {}
+        }
+    }
+    Ok(exposure)
+}
+
+/// Render (or find in `cache`) the path-traced reference of every scene of
+/// `plan`, before any GPU work; `progress` hears a line per reference.
+/// Does nothing for a pipeline reference.
+pub fn render_references(
+    plan: &mut Plan,
+    cache: &Path,
+    progress: &mut dyn FnMut(&str) -> std::io::Result<()>,
+) -> Result<(), super::AbError> {
+    let Some(spec) = plan.path_traced.clone() else {
+        return Ok(());
+    };
+    let exposure = display_exposure(&plan.options.sets)?;
+    let size = plan.options.render_size(true);
+    let k = plan.options.supersample.max(1);
+    let mut rendered = Vec::new();
+    for scene in &plan.scenes {
+        let r = super::cache::reference(&spec, scene, (size, k), cache, progress)?;
+        let linear = r.mean;
+        let display = super::agx::display(&linear, exposure);
+        rendered.push(Rendered {
+            linear,
+            display,
+            noise_rmse: r.noise_rmse,
+            seconds: r.seconds,
+        });
+    }
+    let notes: Vec<String> = plan
+        .scenes
+        .iter()
+        .zip(&rendered)
+        .map(|(s, r)| format!("noise RMSE {:.4} on {}", r.noise_rmse, s.name))
+        .collect();
+    let index = plan.reference_index();
+    plan.variants[index].label = format!(
+        "{} (reference: {}, {})",
+        stem(&spec.file),
+        spec.describe(),
+        notes.join(", ")
+    );
+    plan.path_traced_images = rendered;
+    Ok(())
+}
+
+/// One scene's path-traced reference, at the run's `--size`.
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    pub linear: image::Rgba32FImage,
+    /// Through the default display (AgX at the run's exposure).
+    pub display: image::RgbaImage,
+    /// Estimated RMSE of `linear` against the converged image.
+    pub noise_rmse: f64,
+    /// Mitsuba's wall time for both seeds (as recorded when first rendered).
+    pub seconds: f64,
+}
+
+/// The report's entry for a path-traced reference: no schedule, no GPU
+/// memory; its "schedule" names the renderer.
+pub(super) fn report_variant(plan: &Plan) -> Option<plait_compare::report::Variant> {
+    let spec = plan.path_traced.as_ref()?;
+    let v = &plan.variants[plan.reference_index()];
+    Some(plait_compare::report::Variant {
+        id: v.id.clone(),
+        label: v.label.clone(),
+        pipeline: spec.file.display().to_string(),
+        is_reference: true,
+        sweep_values: v.sweep_values.clone(),
+        sets: v.sets.clone(),
+        schedule_name: format!("mitsuba {}", super::cache::mitsuba_version()),
+        memory: plait_compare::report::Memory {
+            peak_bytes: 0,
+            unpooled_bytes: 0,
+            allocations: 0,
+            resources: Vec::new(),
+        },
+        graph_svg: None,
+    })
+}
+
+/// A path-traced reference's "frame time": Mitsuba's wall time for the
+/// scene's reference (both seeds, when it was rendered; cached runs report
+/// the time of the run that rendered it), in ms, one sample.
+pub(super) fn timing(plan: &Plan, scene: usize) -> plait_compare::report::Timing {
+    let ms = plan
+        .path_traced_images
+        .get(scene)
+        .map_or(0.0, |r| r.seconds * 1e3);
+    plait_compare::report::Timing {
+        total_gpu_ms: None,
+        wall_ms: plait_compare::Stats {
+            median: ms,
+            min: ms,
+            max: ms,
+            q1: ms,
+            q3: ms,
+            samples: vec![ms],
+        },
+        passes: Vec::new(),
+    }
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "path_traced".into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn load(text: &str) -> Result<PathTraced, PathTracedError> {
+        let dir = std::env::temp_dir().join(format!("plait-pt-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(format!("{:x}.toml", text.len() * 31 + text.lines().count()));
+        std::fs::write(&path, text).unwrap();
+        PathTraced::load(&path)
+    }
+
+    const GOOD: &str = "[path_traced]\nrenderer = \"mitsuba\"\nspp = 8\nmax_depth = 16\nseeds = [0, 1]\nmax_noise_rmse = 0.01\n";
+
+    #[test]
+    fn the_shipped_reference_loads_with_the_default_fibre() {
+        let path = crate::session::repo_root().join("references/path_traced.toml");
+        assert!(is_path_traced(&path));
+        let p = PathTraced::load(&path).expect("loads");
+        assert_eq!(p.fibre, Fibre::default());
+        assert_eq!(p.renderer, "mitsuba");
+        assert!(!is_path_traced(
+            &crate::session::repo_root().join("pipelines/depth_peeling.toml")
+        ));
+    }
+
+    #[test]
+    fn bad_keys_and_values_are_named_at_their_place() {
+        let p = load(GOOD).expect("good");
+        assert_eq!((p.spp, p.max_depth, p.seeds), (8, 16, [0, 1]));
+        let cases = [
+            (GOOD.replace("spp = 8", "spq = 8"), 3, "spq"),
+            (GOOD.replace("spp = 8", "spp = 0"), 3, "spp"),
+            (GOOD.replace("[0, 1]", "[1, 1]"), 5, "seeds"),
+            (GOOD.replace("\"mitsuba\"", "\"pbrt\""), 2, "pbrt"),
+            (GOOD.replace("0.01", "-1.0"), 6, "max_noise_rmse"),
+            (format!("{GOOD}[fibre]\neta = 0.5\n"), 8, "eta"),
+        ];
+        for (text, line, word) in cases {
+            let e = load(&text).expect_err("error").to_string();
+            assert!(e.contains(&format!(".toml:{line}:")), "{e}");
+            assert!(e.contains(word), "{e}");
+        }
+    }
+
+    #[test]
+    fn display_follows_the_exposure_and_refuses_other_operators() {
+        assert_eq!(
+            display_exposure(&["params.exposure=-1.5".into()]).unwrap(),
+            -1.5
+        );
+        assert!(display_exposure(&["techniques.tone_mapping=agx".into()]).is_ok());
+        assert!(display_exposure(&["techniques.tone_mapping=clip".into()]).is_err());
+    }
+}
