@@ -189,9 +189,18 @@ pub(super) fn render(
             // Its one scene's path-traced image (sub-plans have no scenes:
             // the helpers' scene index is 0).
             path_traced: plan.path_traced.clone(),
-            path_traced_images: plan.path_traced_images.get(index).cloned().into_iter().collect(),
+            path_traced_images: plan
+                .path_traced_images
+                .get(index)
+                .cloned()
+                .into_iter()
+                .collect(),
         };
-        let sub_schedules: Vec<Schedule> = chosen.iter().map(|&i| schedules[i].clone()).collect();
+        // A path-traced reference (last) has no schedule: it is not built.
+        let sub_schedules: Vec<Schedule> = chosen
+            .iter()
+            .filter_map(|&i| schedules.get(i).cloned())
+            .collect();
         let mut prepared = build_all(&sub, &sub_schedules, gpu, scene, &mut ticker)?;
         if described.is_none() {
             // Schedules do not depend on the scene: describe them once.
