@@ -21,7 +21,7 @@
 //! `PLAIT_DAMAGE_SEED=S` another stream (default 41), for a longer hunt.
 
 mod common;
-use common::{root, text};
+use common::root;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -79,7 +79,18 @@ const NUMBERS: [&str; 12] = [
 ];
 
 const TOML_TOKENS: [&str; 12] = [
-    "=", "[", "]", "\"", "{", "}", ",", "'''", ".", "\n[x]\n", "\n[[y]]\n", "\nz = 1\n",
+    "=",
+    "[",
+    "]",
+    "\"",
+    "{",
+    "}",
+    ",",
+    "'''",
+    ".",
+    "\n[x]\n",
+    "\n[[y]]\n",
+    "\nz = 1\n",
 ];
 
 const WGSL_TOKENS: [&str; 14] = [
@@ -135,7 +146,11 @@ fn numbers(data: &[u8]) -> Vec<(usize, usize)> {
             i += 1;
             continue;
         }
-        let start = if i > 0 && data[i - 1] == b'-' { i - 1 } else { i };
+        let start = if i > 0 && data[i - 1] == b'-' {
+            i - 1
+        } else {
+            i
+        };
         while i < data.len() && (data[i].is_ascii_alphanumeric() || data[i] == b'.') {
             i += 1;
         }
@@ -215,7 +230,11 @@ fn mutate(mut data: Vec<u8>, rng: &mut Rng, wgsl: bool) -> Vec<u8> {
         4 => {
             let tokens: &[&str] = if wgsl { &WGSL_TOKENS } else { &TOML_TOKENS };
             let at = rng.below(data.len() + 1);
-            splice(&mut data, (at, at), tokens[rng.below(tokens.len())].as_bytes());
+            splice(
+                &mut data,
+                (at, at),
+                tokens[rng.below(tokens.len())].as_bytes(),
+            );
         }
         _ => {
             if !data.is_empty() {
@@ -378,8 +397,12 @@ fn located(stderr: &str) -> bool {
     stderr.split([' ', '\n']).any(|word| {
         let mut parts = word.trim_end_matches(':').rsplitn(3, ':');
         let (col, line, file) = (parts.next(), parts.next(), parts.next());
-        let number = |s: Option<&str>| s.is_some_and(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()));
-        number(col) && number(line) && file.is_some_and(|f| f.ends_with(".toml") || f.ends_with(".wgsl"))
+        let number = |s: Option<&str>| {
+            s.is_some_and(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()))
+        };
+        number(col)
+            && number(line)
+            && file.is_some_and(|f| f.ends_with(".toml") || f.ends_with(".wgsl"))
     })
 }
 
@@ -397,7 +420,10 @@ fn verdict(rel: &str, must_name: bool, ran: &Ran) -> Option<String> {
             Some("no error names a file:line:col or the damaged file".into())
         }
         Some(2) => None,
-        Some(code) => Some(format!("exit {code}{}", if panicked { ", a panic" } else { "" })),
+        Some(code) => Some(format!(
+            "exit {code}{}",
+            if panicked { ", a panic" } else { "" }
+        )),
         None => Some("killed (signal or hang)".into()),
     }
 }
@@ -453,7 +479,12 @@ fn run_jobs(jobs: &[Job], pipelines: &[String]) -> Tally {
             }
             tally.refused += usize::from(ran.code == Some(2));
             if let Some(why) = verdict(&job.rel, must_name, &ran) {
-                let tail: String = ran.stderr.lines().take(6).collect::<Vec<_>>().join("\n    ");
+                let tail: String = ran
+                    .stderr
+                    .lines()
+                    .take(6)
+                    .collect::<Vec<_>>()
+                    .join("\n    ");
                 tally.failures.push(format!(
                     "{} {:?}: `plait {}`: {why}\n    {tail}",
                     job.rel,
@@ -505,7 +536,13 @@ fn no_damaged_library_file_panics_check_or_render() {
         render_args(BASE),
     ] {
         let ran = run(clean.path(), &args);
-        assert_eq!(ran.code, Some(0), "plait {}: {}", args.join(" "), ran.stderr);
+        assert_eq!(
+            ran.code,
+            Some(0),
+            "plait {}: {}",
+            args.join(" "),
+            ran.stderr
+        );
     }
     let seed = env_number("PLAIT_DAMAGE_SEED", 41);
     let jobs = jobs(&files, seed, env_number("PLAIT_DAMAGE_MUTANTS", 2));
@@ -517,7 +554,10 @@ fn no_damaged_library_file_panics_check_or_render() {
             .chunks(half)
             .map(|chunk| s.spawn(|| run_jobs(chunk, &pipelines)))
             .collect();
-        workers.into_iter().map(|w| w.join().expect("worker")).collect()
+        workers
+            .into_iter()
+            .map(|w| w.join().expect("worker"))
+            .collect()
     });
     let sum = |f: fn(&Tally) -> usize| tallies.iter().map(f).sum::<usize>();
     let failures: Vec<&String> = tallies.iter().flat_map(|t| &t.failures).collect();
