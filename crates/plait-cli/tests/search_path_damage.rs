@@ -582,3 +582,25 @@ fn no_damaged_library_file_panics_check_or_render() {
             .join("\n")
     );
 }
+
+/// A chosen technique's file emptied (still valid TOML) is refused at that
+/// file: before, the choice was dropped without a word and the error
+/// surfaced elsewhere ("output `final` is not written by any pass").
+#[test]
+fn an_emptied_technique_file_is_an_error_at_that_file() {
+    let library = library_copy();
+    let rel = "techniques/tone_mapping/reinhard/technique.toml";
+    std::fs::write(library.path().join(rel), "").expect("empty it");
+    let args: Vec<String> = ["check", BASE, "--set", "techniques.tone_mapping=reinhard"]
+        .map(String::from)
+        .to_vec();
+    let ran = run(library.path(), &args);
+    assert_eq!(ran.code, Some(2), "{}", ran.stderr);
+    assert!(
+        ran.stderr.contains(&format!(
+            "{rel}:1:1: a technique file needs a [technique] table"
+        )),
+        "{}",
+        ran.stderr
+    );
+}
