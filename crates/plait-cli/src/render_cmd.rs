@@ -334,7 +334,7 @@ pub fn report_json(
             };
             serde_json::json!({
                 "name": res.name, "kind": kind, "format": format, "desc": res.desc.label(),
-                "bytes": res.desc.bytes(), "shares_memory_with": s.shares_memory_with(id),
+                "bytes": res.desc.bytes(), "shares_memory_with": s.shares_memory_with(plait_graph::ResourceId::new(id)),
             })
         })
         .collect();

@@ -61,7 +61,7 @@ impl ResourcePool {
         let mut sampled = vec![false; schedule.physical.len()];
         for pass in schedule.passes.iter() {
             for b in pass.reads.iter().chain(pass.writes.iter()) {
-                let p = schedule.resources[b.id()].physical;
+                let p = schedule.resources[b.id()].physical.index();
                 match b.access {
                     Access::Sampled => {
                         tex_usage[p] |= wgpu::TextureUsages::TEXTURE_BINDING;
@@ -158,12 +158,16 @@ impl ResourcePool {
                 }
             })
             .collect();
-        let map = schedule.resources.iter().map(|r| r.physical).collect();
+        let map = schedule
+            .resources
+            .iter()
+            .map(|r| r.physical.index())
+            .collect();
         ResourcePool { physical, map }
     }
 
     pub fn get(&self, id: ResourceId) -> &GpuResource {
-        &self.physical[self.map[id]]
+        &self.physical[self.map[id.index()]]
     }
 
     pub fn texture(&self, id: ResourceId) -> Option<(&wgpu::Texture, &wgpu::TextureView)> {

@@ -37,16 +37,25 @@ pub(crate) fn copies(resources: &[ResolvedResource]) -> Vec<HistoryCopy> {
             // Aged from the version one frame younger (the resource itself for 1).
             let younger = match frames_ago {
                 1 => Some(of),
-                k => resources.iter().position(|y| {
-                    y.lifetime
-                        == Lifetime::Previous {
-                            of,
-                            frames_ago: k - 1,
-                        }
-                }),
+                k => resources
+                    .iter()
+                    .position(|y| {
+                        y.lifetime
+                            == Lifetime::Previous {
+                                of,
+                                frames_ago: k - 1,
+                            }
+                    })
+                    .map(ResourceId::new),
             };
             if let Some(from) = younger {
-                history.push((frames_ago, HistoryCopy { from, to: r }));
+                history.push((
+                    frames_ago,
+                    HistoryCopy {
+                        from,
+                        to: ResourceId::new(r),
+                    },
+                ));
             }
         }
     }

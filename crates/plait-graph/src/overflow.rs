@@ -31,6 +31,7 @@
 use crate::error::{Error, ErrorKind, Location, Spanned};
 use crate::load::{Node, Pipeline, Table};
 use crate::node_reader::Reader;
+use crate::schedule::ResourceId;
 use crate::schedule::{CompileOptions, OverflowCounter, ResolvedResource};
 use crate::value::Value;
 
@@ -175,7 +176,7 @@ pub(crate) fn counters(
         .values()
         .filter_map(|r| {
             let d = r.overflow.as_ref()?;
-            let counter = resources.iter().position(|x| x.name == r.name)?;
+            let counter = ResourceId::new(resources.iter().position(|x| x.name == r.name)?);
             let resolved = resolve_one(pipeline, &r.name, d, opts, &mut ignored)?;
             let incomplete_word = d.incomplete.as_ref().map(|w| w.value);
             let (Some(b), Some((value, per))) = (&d.bounded, resolved) else {

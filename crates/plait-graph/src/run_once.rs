@@ -50,7 +50,7 @@ pub(crate) fn keep_across_frames(passes: &[ScheduledPass], resources: &mut [Reso
     let end = passes.len().saturating_sub(1);
     for pass in passes.iter().filter(|p| p.run_once) {
         for w in &pass.writes {
-            if let Some(r) = w.resource.and_then(|id| resources.get_mut(id)) {
+            if let Some(r) = w.resource.and_then(|id| resources.get_mut(id.index())) {
                 r.kept = true;
                 r.first_use = 0;
                 r.last_use = end;

@@ -9,10 +9,51 @@ use crate::format::Format;
 use crate::spec::{Access, Draw, PassShape, ResourceKind, View};
 use crate::value::Value;
 
-/// Index into [`Schedule::resources`].
-pub type ResourceId = usize;
-/// Index into [`Schedule::physical`].
-pub type PhysicalId = usize;
+/// Index into [`Schedule::resources`]. A type of its own, so a pass index,
+/// a physical allocation or a binding number cannot be passed for one; the
+/// index comes out through [`ResourceId::index`] only where a list is indexed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(transparent)]
+pub struct ResourceId(usize);
+
+/// Index into [`Schedule::physical`] (see [`ResourceId`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(transparent)]
+pub struct PhysicalId(usize);
+
+impl ResourceId {
+    /// The resource at `index` of [`Schedule::resources`].
+    pub const fn new(index: usize) -> Self {
+        ResourceId(index)
+    }
+    /// Its position in [`Schedule::resources`].
+    pub const fn index(self) -> usize {
+        self.0
+    }
+}
+
+impl PhysicalId {
+    /// The allocation at `index` of [`Schedule::physical`].
+    pub const fn new(index: usize) -> Self {
+        PhysicalId(index)
+    }
+    /// Its position in [`Schedule::physical`].
+    pub const fn index(self) -> usize {
+        self.0
+    }
+}
+
+impl std::fmt::Display for ResourceId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::fmt::Display for PhysicalId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
 
 /// A resource's size and format after every `${param}` and `screen` is resolved.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
@@ -86,7 +127,9 @@ impl ResourceDesc {
 pub struct Binding {
     pub slot: String,
     /// `None` only in a culled pass, when its resource was dropped because
-    /// only culled passes use it (see [`Binding::resource_name`]).
+    /// only culled passes use it (see [`Binding::resource_name`]). While
+    /// compile runs it is the declared index (`[resources]`, then the
+    /// scene's); the schedule renumbers it into [`Schedule::resources`].
     pub resource: Option<ResourceId>,
     /// The resource's name as written in the file.
     pub resource_name: String,
@@ -114,7 +157,7 @@ impl Binding {
 
     /// Its resource among `resources`, `None` if it was dropped.
     pub fn resolved<'r>(&self, resources: &'r [ResolvedResource]) -> Option<&'r ResolvedResource> {
-        self.resource.and_then(|id| resources.get(id))
+        self.resource.and_then(|id| resources.get(id.index()))
     }
 }
 
@@ -334,17 +377,25 @@ impl OverflowCounter {
 
 impl Schedule {
     pub fn resource(&self, name: &str) -> Option<ResourceId> {
-        self.resources.iter().position(|r| r.name == name)
+        self.resources
+            .iter()
+            .position(|r| r.name == name)
+            .map(ResourceId::new)
     }
 
     /// Names of other resources sharing `id`'s physical allocation.
     pub fn shares_memory_with(&self, id: ResourceId) -> Vec<&str> {
-        let phys = &self.physical[self.resources[id].physical];
+        let phys = &self.physical[self.resource_at(id).physical.index()];
         phys.users
             .iter()
             .filter(|&&u| u != id)
-            .map(|&u| self.resources[u].name.as_str())
+            .map(|&u| self.resource_at(u).name.as_str())
             .collect()
+    }
+
+    /// The resource `id` names.
+    pub fn resource_at(&self, id: ResourceId) -> &ResolvedResource {
+        &self.resources[id.index()]
     }
 }
 
@@ -379,3 +430,35 @@ impl Default for CompileOptions {
         }
     }
 }
+
+/// `resources[id]`: a list of resources is indexed by a [`ResourceId`] only,
+/// so an id of another list (a pass index, an allocation) does not compile.
+macro_rules! typed_index {
+    ($id:ty => $item:ty) => {
+        impl std::ops::Index<$id> for [$item] {
+            type Output = $item;
+            fn index(&self, id: $id) -> &$item {
+                &self[id.index()]
+            }
+        }
+        impl std::ops::IndexMut<$id> for [$item] {
+            fn index_mut(&mut self, id: $id) -> &mut $item {
+                &mut self[id.index()]
+            }
+        }
+        impl std::ops::Index<$id> for Vec<$item> {
+            type Output = $item;
+            fn index(&self, id: $id) -> &$item {
+                &self.as_slice()[id]
+            }
+        }
+        impl std::ops::IndexMut<$id> for Vec<$item> {
+            fn index_mut(&mut self, id: $id) -> &mut $item {
+                &mut self.as_mut_slice()[id]
+            }
+        }
+    };
+}
+
+typed_index!(ResourceId => ResolvedResource);
+typed_index!(PhysicalId => PhysicalResource);

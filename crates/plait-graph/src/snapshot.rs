@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, Lifetime, Schedule};
+use crate::schedule::{Binding, Lifetime, ResourceId, Schedule};
 
 /// The schedule as text: passes in order, culled passes with reasons,
 /// resources with descriptor, bytes, lifetime and physical slot, memory.
@@ -54,6 +54,7 @@ pub fn schedule_text(s: &Schedule) -> String {
 
     let _ = writeln!(out, "\nresources:");
     for (id, r) in s.resources.iter().enumerate() {
+        let id = ResourceId::new(id);
         let shared = s.shares_memory_with(id);
         let shared = if shared.is_empty() {
             String::new()
@@ -73,7 +74,7 @@ pub fn schedule_text(s: &Schedule) -> String {
             Lifetime::History { frames } => format!(", history {frames}"),
             Lifetime::Previous { of, frames_ago } => format!(
                 ", previous of {}, {frames_ago} frame{} ago",
-                s.resources.get(of).map_or("?", |r| r.name.as_str()),
+                s.resources.get(of.index()).map_or("?", |r| r.name.as_str()),
                 if frames_ago == 1 { "" } else { "s" }
             ),
         };

@@ -15,7 +15,7 @@
 
 use std::fmt::Write as _;
 
-use crate::schedule::{Binding, ResourceDesc, Schedule, ScheduledPass};
+use crate::schedule::{Binding, ResourceDesc, ResourceId, Schedule, ScheduledPass};
 use crate::spec::ResourceKind;
 
 mod measure;
@@ -129,7 +129,7 @@ enum Mark {
     Adds,
 }
 
-fn mark_of(pass: &ScheduledPass, resource: usize) -> Option<Mark> {
+fn mark_of(pass: &ScheduledPass, resource: ResourceId) -> Option<Mark> {
     let touches = |b: &&Binding| b.resource == Some(resource);
     let writes: Vec<&Binding> = pass.writes.iter().filter(touches).collect();
     if writes.iter().any(|b| b.loads) {
@@ -389,7 +389,7 @@ impl<'s> Layout<'s> {
         };
         let x = self.col_x(c);
         let output_y = self.output_y();
-        let is_output = self.schedule.outputs.contains(&r);
+        let is_output = self.schedule.outputs.contains(&ResourceId::new(r));
         let end = if is_output {
             output_y
         } else {
@@ -413,7 +413,7 @@ impl<'s> Layout<'s> {
             );
         }
         for (i, (pass, culled)) in self.rows.iter().enumerate() {
-            let Some(mark) = mark_of(pass, r) else {
+            let Some(mark) = mark_of(pass, ResourceId::new(r)) else {
                 continue;
             };
             let y = self.row_y(i);

@@ -14,10 +14,9 @@
 //! `marschner_` (the names of the technique's params), so their ranges and
 //! docs are written once.
 
-use std::sync::OnceLock;
+use std::sync::Mutex;
 
-use plait_gpu::pass::PassType;
-use plait_graph::{Access, Format, ParamSpec, SlotSpec};
+use plait_graph::{Access, Format, ParamSpec, SlotSpec, pass_type_file};
 
 use crate::spec_util::{SlotExt, choice, float, texture};
 
@@ -63,32 +62,53 @@ pub fn params() -> Vec<ParamSpec> {
             "marschner, marschner_reference: gain of the R, TT and TRT lobes against Kajiya-Kay's diffuse term",
         ),
     ];
-    p.extend(marschner_model_params().iter().cloned());
+    p.extend(marschner_model_params());
     p
 }
+
+/// The pass-type file whose params the Marschner model's are.
+const TABLES_FILE: &str = "shaders/passes/marschner_tables.toml";
 
 /// The Marschner model's params (lobe shifts and widths, index of
 /// refraction, absorption, caustic limit): those of the `marschner_tables`
 /// pass type but its table size.
-fn marschner_model_params() -> &'static [ParamSpec] {
-    static PARAMS: OnceLock<Vec<ParamSpec>> = OnceLock::new();
-    PARAMS.get_or_init(|| {
-        crate::data_pass::discover()
-            .0
-            .into_iter()
-            .map(|t| t.spec())
-            .find(|s| s.name == "marschner_tables")
-            .expect("shaders/passes/marschner_tables.toml is a built-in pass type")
-            .params
-            .into_iter()
-            .filter(|p| p.name != "table_size")
-            .map(|mut p| {
-                p.name = format!("marschner_{}", p.name);
-                p.doc = format!("marschner_reference: {}", p.doc);
-                p
-            })
-            .collect()
-    })
+///
+/// Parsed again whenever the file's text changes (the viewer reloads it on a
+/// save). A missing or broken file gives none here, never a panic: the pass
+/// library reads the same file and reports what is wrong at its file, line
+/// and column (`data_pass::discover`), so `plait check` fails there.
+fn marschner_model_params() -> Vec<ParamSpec> {
+    // Keyed on the text: a param spec is asked for on every pass's spec, and
+    // one small read is cheaper than parsing again.
+    static PARSED: Mutex<Option<(String, Vec<ParamSpec>)>> = Mutex::new(None);
+    let Some(path) = plait_assets::find(TABLES_FILE) else {
+        return Vec::new();
+    };
+    let Ok(text) = plait_assets::read_to_string(&path) else {
+        return Vec::new();
+    };
+    let mut parsed = PARSED.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some((seen, params)) = parsed.as_ref()
+        && **seen == *text
+    {
+        return params.clone();
+    }
+    let params: Vec<ParamSpec> = pass_type_file::parse(&path, &text)
+        .map(|file| {
+            file.spec
+                .params
+                .into_iter()
+                .filter(|p| p.name != "table_size")
+                .map(|mut p| {
+                    p.name = format!("marschner_{}", p.name);
+                    p.doc = format!("marschner_reference: {}", p.doc);
+                    p
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    *parsed = Some((text.into_owned(), params.clone()));
+    params
 }
 
 #[cfg(test)]

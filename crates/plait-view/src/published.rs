@@ -142,7 +142,7 @@ pub(crate) fn describe_schedule(s: &mut Shared, schedule: &Schedule) {
         .passes
         .iter()
         .map(|p| {
-            let mut written: Vec<usize> = p.writes.iter().map(plait_graph::Binding::id).collect();
+            let mut written: Vec<usize> = p.writes.iter().map(|b| b.id().index()).collect();
             written.sort_unstable();
             written.dedup();
             PassRow {

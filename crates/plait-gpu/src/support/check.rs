@@ -2,7 +2,7 @@
 //! rules wgpu applies to what the pool and the passes create, each problem
 //! named at the pass slot (or resource declaration) that asks for it.
 
-use plait_graph::{Location, PassShape, Schedule, ScheduledPass};
+use plait_graph::{Location, PassShape, ResourceId, Schedule, ScheduledPass};
 use wgpu::{DownlevelFlags as D, TextureFormatFeatureFlags as F};
 
 use super::{AdapterSupport, Problem, Unsupported};
@@ -391,7 +391,7 @@ impl PassCtx<'_> {
         out: &mut Vec<Problem>,
     ) {
         let flags = self.support.downlevel;
-        let location_of = |id: usize| {
+        let location_of = |id: ResourceId| {
             self.pass
                 .writes
                 .iter()
@@ -399,10 +399,10 @@ impl PassCtx<'_> {
                 .find(|b| b.resource == Some(id))
                 .map_or(self.pass.location.clone(), |b| b.location.clone())
         };
-        let name_of = |id: usize| {
+        let name_of = |id: ResourceId| {
             self.schedule
                 .resources
-                .get(id)
+                .get(id.index())
                 .map_or("?", |r| r.name.as_str())
         };
         for (i, c) in plan.colors.iter().enumerate() {

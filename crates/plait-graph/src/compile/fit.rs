@@ -155,7 +155,7 @@ pub(super) fn fit_formats(
         return notes;
     }
     for &id in blended {
-        let Some(r) = resources.get_mut(id) else {
+        let Some(r) = resources.get_mut(id.index()) else {
             continue;
         };
         if let ResourceDesc::Texture { format, .. } = &mut r.desc

@@ -1,7 +1,7 @@
 //! The memory plan: which resources share one physical allocation because
 //! their spans of use never overlap, and the peak bytes that leaves.
 
-use crate::schedule::{MemoryReport, PhysicalResource, ResolvedResource, ResourceId};
+use crate::schedule::{MemoryReport, PhysicalId, PhysicalResource, ResolvedResource, ResourceId};
 
 /// Greedy sharing: in order of first use, each resource takes the first
 /// physical allocation with an identical descriptor whose users all ended
@@ -9,7 +9,7 @@ use crate::schedule::{MemoryReport, PhysicalResource, ResolvedResource, Resource
 pub(super) fn plan_memory(
     resources: &mut [ResolvedResource],
 ) -> (Vec<PhysicalResource>, MemoryReport) {
-    let mut by_start: Vec<ResourceId> = (0..resources.len()).collect();
+    let mut by_start: Vec<ResourceId> = (0..resources.len()).map(ResourceId::new).collect();
     by_start.sort_by_key(|&r| (resources[r].first_use, r));
     let mut physical: Vec<PhysicalResource> = Vec::new();
     for r in by_start {
@@ -23,13 +23,13 @@ pub(super) fn plan_memory(
                     .all(|&u| !resources[u].scene && resources[u].last_use < first_use)
         });
         let id = match reusable {
-            Some(id) => id,
+            Some(id) => PhysicalId::new(id),
             None => {
                 physical.push(PhysicalResource {
                     desc,
                     users: Vec::new(),
                 });
-                physical.len() - 1
+                PhysicalId::new(physical.len() - 1)
             }
         };
         physical[id].users.push(r);

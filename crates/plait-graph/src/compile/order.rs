@@ -14,14 +14,18 @@ use std::collections::{BinaryHeap, HashSet};
 use crate::error::{Error, ErrorKind};
 use crate::load::Pipeline;
 use crate::scene_resources::{DRAWN_HAIR, SCENE_RESOURCES, scene_resource};
-use crate::schedule::{Binding, ScheduledPass};
+use crate::schedule::{Binding, ResourceId, ScheduledPass};
 
+/// `resource` is a declared index (`pipeline.resources`, then the scene's):
+/// compile's bindings hold those until the schedule renumbers them.
 pub(super) fn writes_to(pass: &ScheduledPass, resource: usize) -> Option<&Binding> {
-    pass.writes.iter().find(|b| b.resource == Some(resource))
+    let id = Some(ResourceId::new(resource));
+    pass.writes.iter().find(|b| b.resource == id)
 }
 
 fn reads_from(pass: &ScheduledPass, resource: usize) -> bool {
-    pass.reads.iter().any(|b| b.resource == Some(resource))
+    let id = Some(ResourceId::new(resource));
+    pass.reads.iter().any(|b| b.resource == id)
 }
 
 /// Scene resource ids (after the `declared` ones) a pass reads without naming
@@ -145,7 +149,7 @@ fn check_written(
         for b in passes[r]
             .reads
             .iter()
-            .filter(|b| b.resource == Some(resource))
+            .filter(|b| b.resource == Some(ResourceId::new(resource)))
         {
             let kind = match previous_of {
                 Some(of) => ErrorKind::HistoryNeverWritten {

@@ -443,7 +443,7 @@ impl Binder<'_> {
         }
         Some(Binding {
             slot: slot_name.clone(),
-            resource: Some(index),
+            resource: Some(ResourceId::new(index)),
             resource_name: resource.value.clone(),
             access,
             // The scene's contents are there before any pass: never cleared.

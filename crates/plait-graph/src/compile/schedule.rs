@@ -103,12 +103,23 @@ fn live_passes(
     loop {
         let before = needed.len();
         for &p in order.iter().rev() {
-            if !live[p] && passes[p].writes.iter().any(|b| needed.contains(&b.id())) {
+            if !live[p]
+                && passes[p]
+                    .writes
+                    .iter()
+                    .any(|b| needed.contains(&b.id().index()))
+            {
                 live[p] = true;
-                needed.extend(passes[p].reads.iter().map(Binding::id));
+                needed.extend(passes[p].reads.iter().map(|b| b.id().index()));
                 needed.extend(implicit_reads(&passes[p], declared));
                 // A load-writer keeps earlier contents: their writers are needed too.
-                needed.extend(passes[p].writes.iter().filter(|b| b.loads).map(Binding::id));
+                needed.extend(
+                    passes[p]
+                        .writes
+                        .iter()
+                        .filter(|b| b.loads)
+                        .map(|b| b.id().index()),
+                );
             }
         }
         let chained: Vec<usize> = needed
@@ -145,8 +156,8 @@ fn renumber_resources(
     for (p, pass) in passes.iter().enumerate() {
         if live[p] {
             for b in pass.reads.iter().chain(&pass.writes) {
-                used[b.id()] = true;
-                for r in history_chain(pipeline, b.id()) {
+                used[b.id().index()] = true;
+                for r in history_chain(pipeline, b.id().index()) {
                     used[r] = true;
                 }
             }
@@ -158,13 +169,13 @@ fn renumber_resources(
     for (i, decl) in pipeline.resources.values().enumerate() {
         match (&descs[i], used[i]) {
             (Some(desc), true) => {
-                new_id[i] = Some(resources.len());
+                new_id[i] = Some(ResourceId::new(resources.len()));
                 resources.push(ResolvedResource {
                     name: decl.name.clone(),
                     desc: desc.clone(),
                     first_use: usize::MAX,
                     last_use: 0,
-                    physical: 0,
+                    physical: PhysicalId::new(0),
                     scene: false,
                     // A history's versions come after it in declaration
                     // order, so `of` is already renumbered.
@@ -180,13 +191,13 @@ fn renumber_resources(
     // Scene resources a live pass names: after the declared ones, never dropped.
     for (i, scene) in SCENE_RESOURCES.iter().enumerate() {
         if used[declared + i] {
-            new_id[declared + i] = Some(resources.len());
+            new_id[declared + i] = Some(ResourceId::new(resources.len()));
             resources.push(ResolvedResource {
                 name: scene.name.to_owned(),
                 desc: ResourceDesc::Buffer { size: 0 },
                 first_use: usize::MAX,
                 last_use: 0,
-                physical: 0,
+                physical: PhysicalId::new(0),
                 scene: true,
                 // The scene's buffers outlive every frame, like `persistent`.
                 lifetime: Lifetime::Persistent,
@@ -198,7 +209,7 @@ fn renumber_resources(
     }
     for pass in passes.iter_mut() {
         for b in pass.reads.iter_mut().chain(pass.writes.iter_mut()) {
-            b.resource = new_id[b.id()];
+            b.resource = new_id[b.id().index()];
         }
     }
     Renumbered {
@@ -248,7 +259,7 @@ fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]
             let r = &resources[b.id()];
             if r.lifetime == Lifetime::Persistent {
                 b.loads = true;
-            } else if !written[b.id()] {
+            } else if !written[b.id().index()] {
                 let also_read = pass.reads.iter().any(|x| x.resource == b.resource);
                 // A pass-type slot that accumulates means "clear, then
                 // accumulate"; a `loads` entry in the file asks for what
@@ -275,7 +286,7 @@ fn settle_clears(scheduled: &mut [ScheduledPass], resources: &[ResolvedResource]
             }
         }
         for b in &pass.writes {
-            written[b.id()] = true;
+            written[b.id().index()] = true;
         }
     }
     errors

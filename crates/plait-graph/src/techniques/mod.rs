@@ -348,6 +348,15 @@ impl Chooser<'_> {
                 .unwrap_or_default(),
         });
         let Some(technique) = technique_table(&tree) else {
+            // Without it the choice would vanish: no exports, no check of
+            // what the point promises (an emptied file once turned into
+            // "output `final` is not written" at the pipeline).
+            self.errors.push(schema(
+                &tree.location,
+                format!(
+                    "a technique file needs a [technique] table (`point = \"{point}\"`, description, source, memory); this one has none"
+                ),
+            ));
             return;
         };
         self.check_point_key(technique, &tree, point);

@@ -20,7 +20,7 @@ pub(super) fn memory(s: &Schedule) -> Memory {
                 desc: r.desc.label(),
                 bytes: r.desc.bytes(),
                 shares_memory_with: s
-                    .shares_memory_with(id)
+                    .shares_memory_with(plait_graph::ResourceId::new(id))
                     .into_iter()
                     .map(str::to_string)
                     .collect(),

@@ -193,7 +193,10 @@ impl<'a> Planner<'a> {
     /// `(format, samples)` of a texture resource; `None` for a buffer or a
     /// resource the schedule dropped.
     fn texture(&self, id: Option<ResourceId>) -> Option<(Format, u32)> {
-        match id.and_then(|id| self.resources.get(id)).map(|r| &r.desc) {
+        match id
+            .and_then(|id| self.resources.get(id.index()))
+            .map(|r| &r.desc)
+        {
             Some(ResourceDesc::Texture {
                 format, samples, ..
             }) => Some((*format, *samples)),
@@ -203,7 +206,7 @@ impl<'a> Planner<'a> {
 
     /// The `clear = …` the resource declares.
     fn clear_of(&self, id: Option<ResourceId>) -> Option<[f64; 4]> {
-        id.and_then(|id| self.resources.get(id))?.clear
+        id.and_then(|id| self.resources.get(id.index()))?.clear
     }
 
     /// The access of `slot` as settled, else as the file declared it.
