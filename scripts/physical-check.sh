@@ -4,8 +4,9 @@
 # 160x120), for blond, dark brown and black hair.
 #   - the ground's radiance at a few lit pixels against rho/pi * E * cos(theta);
 #   - mean linear luminance over hair pixels: plait's pipelines/reference.toml
-#     (exact single scattering) with Marschner shading and with its default
-#     shading, against Mitsuba at max depth 2 (single scattering) and at full
+#     (exact single scattering) with Marschner shading, with Chiang et al.
+#     2016's fibre (`chiang`, the model Mitsuba's hair BSDF is) and with its
+#     default shading, against Mitsuba at max depth 2 (single scattering) and at full
 #     depth (16), each Mitsuba image at two seeds for its noise.
 # Usage: bash scripts/physical-check.sh [OUT_DIR]   (default target/physical-check)
 # Env: SPP_D2 (default 64), SPP_FULL (default 256), PLAIT_SETS (extra --set
@@ -50,9 +51,10 @@ for c in blond dark_brown black; do
         "$py" "$render" "$out/$c" "$out/${c}_mitsuba_full_s1.exr" --spp "$spp_full" --max-depth 16 --seed 1
     fi
     echo "$c: Mitsuba (2 x ${spp_d2} spp depth 2 + coverage, 2 x ${spp_full} spp depth 16) took $((SECONDS - start)) s" >&2
-    for shading in default marschner; do
+    for shading in default marschner chiang; do
         sets=()
         [ "$shading" = marschner ] && sets=(--set techniques.shading=marschner_reference)
+        [ "$shading" = chiang ] && sets=(--set techniques.shading=chiang)
         rm -f "$out/${c}_plait_$shading.exr"
         # shellcheck disable=SC2086
         if ! "$plait" render "$root/pipelines/reference.toml" --scene "$scene" --size "$size" \

@@ -310,3 +310,121 @@ fn one_fibre_reads_its_model_closed_form() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Chiang et al. 2016's fibre (`tests/fixtures/fibre_chiang_cases.wgsl`):
+/// four quarters of the grid above, `[quarter][light][row][column]`.
+struct ChiangSphere {
+    texels: Vec<[f32; 4]>,
+}
+
+impl ChiangSphere {
+    fn render() -> ChiangSphere {
+        let (_lock, gpu) = open_gpu();
+        let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+            .expect("the small scene loads");
+        let pipeline = repo_root().join("tests/fixtures/fibre_chiang.toml");
+        let size = ((4 * AZIMUTHS) as u32, (4 * ANGLES) as u32);
+        let prepared = prepare(&gpu, &pipeline, &[], &scene, size).expect("fibre_chiang.toml prepares");
+        prepared.renderer.render().expect("renders");
+        let read = prepared.renderer.read_resource("fibre").expect("fibre");
+        let texels = read
+            .bytes
+            .chunks_exact(16)
+            .map(|t| std::array::from_fn(|c| f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap())))
+            .collect();
+        ChiangSphere { texels }
+    }
+
+    fn at(&self, quarter: usize, k: usize, j: usize, i: usize) -> [f32; 4] {
+        let (x, y) = (quarter * AZIMUTHS + i, k * ANGLES + j);
+        self.texels[y * 4 * AZIMUTHS + x]
+    }
+
+    /// Channel `c` of a quarter under light k integrated over outgoing
+    /// directions, with cos θo^`cosines` dθo dφo: 1 is ∫ f dωo (pbrt's
+    /// furnace, Chiang's normalization), 2 is ∫ f cos θo dωo (plait's ρ·cos θi).
+    fn integral(&self, quarter: usize, c: usize, k: usize, cosines: i32) -> f64 {
+        let (d_theta, d_phi) = (PI / ANGLES as f64, 2.0 * PI / AZIMUTHS as f64);
+        let mut sum = 0.0;
+        for j in 0..ANGLES {
+            let w = theta_o(j).cos().powi(cosines) * d_theta * d_phi;
+            sum += (0..AZIMUTHS).map(|i| self.at(quarter, k, j, i)[c] as f64).sum::<f64>() * w;
+        }
+        sum
+    }
+}
+
+/// Chiang's white furnace (σ_a = 0): ∫ (S·cos θi) dωo, d'Eon's M_p being
+/// normalized over cos θo dθo, is 1 — pbrt-v3's test accepts [0.95, 1.05];
+/// measured 0.98–1.00. plait's ρ(θi) = ∫ (S·cos θi) cos θo dωo / cos θi
+/// (the other models' furnace above) is printed beside it: Chiang's fibre
+/// is normalized for a path tracer's measure, not for ρ, and differs
+/// from 1 where M_p is wide (β_m 0.3). The 64-point mean over h against
+/// 512 points: within 0.3 % of the energy at β_n 0.3 and 3 % at β_n 0.15
+/// (the param's lower bound).
+#[test]
+fn chiang_white_furnace() {
+    let sphere = ChiangSphere::render();
+    let mut failures = Vec::new();
+    for (k, degrees) in LIGHT_DEGREES.iter().enumerate() {
+        let [e64, e512, rough64, rough512] = [0, 1, 2, 3].map(|c| sphere.integral(0, c, k, 1));
+        let rho = sphere.integral(0, 0, k, 2) / degrees.to_radians().cos();
+        let lobes = [1, 2, 3].map(|q| sphere.integral(q, 3, k, 1));
+        println!(
+            "θi {degrees:>2}°: ∫f dωo {e64:.4} (512 points {e512:.4}; β_n 0.15: {rough64:.4} vs {rough512:.4}); \
+             ρ {rho:.4}; R {:.4} TT {:.4} TRT {:.4}, p ≥ 3 {:.4}",
+            lobes[0],
+            lobes[1],
+            lobes[2],
+            e64 - lobes.iter().sum::<f64>()
+        );
+        for (name, value, low, high) in [
+            ("∫f dωo", e64, 0.95, 1.05),
+            ("64 ÷ 512 points at β_n 0.3", e64 / e512, 0.997, 1.003),
+            ("64 ÷ 512 points at β_n 0.15", rough64 / rough512, 0.97, 1.03),
+        ] {
+            if !(low..=high).contains(&value) {
+                failures.push(format!("θi {degrees}°: {name} {value:.4} outside [{low}, {high}]"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The `chiang` technique's model against Mitsuba 3's `hair` BSDF at the
+/// points of `tests/fixtures/chiang_mitsuba.txt` (scripts/mitsuba/
+/// fibre_table.py: the BSDF's eval averaged over h, 400 points), white and
+/// three absorbing colours, every channel: within 2 % + 2·10⁻⁴ (the 64-point
+/// mean over h and f32; measured below).
+#[test]
+fn chiang_reads_mitsubas_hair_bsdf() {
+    let sphere = ChiangSphere::render();
+    let table = std::fs::read_to_string(repo_root().join("tests/fixtures/chiang_mitsuba.txt")).unwrap();
+    let (mut failures, mut worst, mut count) = (Vec::new(), 0.0f64, 0);
+    for line in table.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        let [k, j, i] = [1, 2, 3].map(|n| f[n].parse::<usize>().unwrap());
+        let want: Vec<f64> = f[7..10].iter().map(|v| v.parse().unwrap()).collect();
+        let (to, po) = (theta_o(j).to_degrees(), phi_o(i).to_degrees());
+        let stated: [f64; 2] = [f[5].parse().unwrap(), f[6].parse().unwrap()];
+        assert!((to - stated[0]).abs() < 1e-3 && (po - stated[1]).abs() < 1e-3, "grid: {line}");
+        let got = match f[0] {
+            "white" => [sphere.at(0, k, j, i)[0]; 3],
+            colour => {
+                let q = ["blond", "dark_brown", "black"].iter().position(|c| *c == colour).unwrap() + 1;
+                let v = sphere.at(q, k, j, i);
+                [v[0], v[1], v[2]]
+            }
+        };
+        for c in 0..3 {
+            let (g, w) = (got[c] as f64, want[c]);
+            worst = worst.max((g - w).abs() / (0.02 * w + 2e-4));
+            count += 1;
+            if (g - w).abs() > 0.02 * w + 2e-4 {
+                failures.push(format!("{} θi {} θo {to:.1}° φ {po:.1}° channel {c}: plait {g:.6}, Mitsuba {w:.6}", f[0], f[4]));
+            }
+        }
+    }
+    println!("{count} values, worst at {worst:.3} of the tolerance");
+    assert!(failures.is_empty(), "{} of {count} values:\n{}", failures.len(), failures.join("\n"));
+}

@@ -6,7 +6,8 @@
 DIR holds, per hair colour C (C_mask.exr is Mitsuba's hair coverage):
   C_mitsuba_d2_s0.exr, C_mitsuba_d2_s1.exr    Mitsuba, max depth 2, seeds 0, 1
   C_mitsuba_full_s0.exr, C_mitsuba_full_s1.exr Mitsuba, full depth, seeds 0, 1
-  C_plait_default.exr, C_plait_marschner.exr  plait (absent: "n/a")
+  C_plait_default.exr, C_plait_marschner.exr, C_plait_chiang.exr
+                                              plait (absent: "n/a")
 
 Hair mask, defined once: the pixels where at least T (default 0.9) of the
 camera rays through the pixel's square first hit a hair curve in Mitsuba's
@@ -60,7 +61,7 @@ def ratio(a, b):
 def ground_table(d, colour):
     cos = -LIGHT_DIRECTION[1] / np.linalg.norm(LIGHT_DIRECTION)
     want = GROUND_ALBEDO / math.pi * IRRADIANCE * cos
-    names = ["mitsuba_d2_s0", "mitsuba_full_s0", "plait_default", "plait_marschner"]
+    names = ["mitsuba_d2_s0", "mitsuba_full_s0", "plait_default", "plait_marschner", "plait_chiang"]
     imgs = {n: load(os.path.join(d, f"{colour}_{n}.exr")) for n in names}
     cov = load(os.path.join(d, f"{colour}_mask.exr"))[..., 0]
     print(f"Ground radiance (Y), analytic rho/pi*E*cos(theta) = {GROUND_ALBEDO}/pi*{IRRADIANCE}*{cos:.4f} = {want:.4f}")
@@ -83,18 +84,21 @@ def hair_row(d, colour, threshold):
         img = load(os.path.join(d, f"{colour}_{name}.exr"))
         return None if img is None else float(luminance(img)[mask].mean())
 
-    m = {n: mean(n) for n in ["mitsuba_d2_s0", "mitsuba_d2_s1", "mitsuba_full_s0", "mitsuba_full_s1", "plait_default", "plait_marschner"]}
+    m = {n: mean(n) for n in ["mitsuba_d2_s0", "mitsuba_d2_s1", "mitsuba_full_s0", "mitsuba_full_s1", "plait_default", "plait_marschner", "plait_chiang"]}
     noise = lambda a, b: abs(m[a] - m[b]) / m[a]
     d2, full = m["mitsuba_d2_s0"], m["mitsuba_full_s0"]
     return [
         colour,
         str(int(mask.sum())),
+        fmt(m["plait_chiang"]),
         fmt(m["plait_marschner"]),
         fmt(m["plait_default"]),
         fmt(d2),
         fmt(full),
+        fmt(ratio(m["plait_chiang"], d2), 3),
         fmt(ratio(m["plait_marschner"], d2), 3),
         fmt(ratio(m["plait_default"], d2), 3),
+        fmt(ratio(m["plait_chiang"], full), 3),
         fmt(ratio(m["plait_marschner"], full), 3),
         fmt(ratio(m["plait_default"], full), 3),
         fmt(ratio(d2, full), 3),
@@ -110,8 +114,8 @@ def main():
     a = p.parse_args()
     colours = a.colours.split(",")
     ground_table(a.dir, colours[0])
-    head = ["hair", "mask px", "plait Marschner", "plait default", "Mitsuba d2", "Mitsuba full",
-            "Marschner/d2", "default/d2", "Marschner/full", "default/full", "d2/full", "Mitsuba noise d2 / full"]
+    head = ["hair", "mask px", "plait Chiang", "plait Marschner", "plait default", "Mitsuba d2", "Mitsuba full",
+            "Chiang/d2", "Marschner/d2", "default/d2", "Chiang/full", "Marschner/full", "default/full", "d2/full", "Mitsuba noise d2 / full"]
     print(f"Mean linear luminance over hair pixels (Mitsuba hair coverage >= {a.threshold}); plait: pipelines/reference.toml")
     print("| " + " | ".join(head) + " |")
     print("|---" * len(head) + "|")
