@@ -323,7 +323,7 @@ impl ChiangSphere {
         let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
             .expect("the small scene loads");
         let pipeline = repo_root().join("tests/fixtures/fibre_chiang.toml");
-        let size = ((4 * AZIMUTHS) as u32, (4 * ANGLES) as u32);
+        let size = ((4 * AZIMUTHS) as u32, (5 * ANGLES) as u32);
         let prepared = prepare(&gpu, &pipeline, &[], &scene, size).expect("fibre_chiang.toml prepares");
         prepared.renderer.render().expect("renders");
         let read = prepared.renderer.read_resource("fibre").expect("fibre");
@@ -352,36 +352,65 @@ impl ChiangSphere {
         }
         sum
     }
+
+    /// The largest relative difference between channels `a` and `b` of
+    /// quarter 0 under light k, over the directions where `b` is at least 1 %
+    /// of its peak: the 64-point mean over h against 512 points.
+    fn quadrature_error(&self, k: usize, a: usize, b: usize) -> f64 {
+        let cells = || (0..ANGLES).flat_map(|j| (0..AZIMUTHS).map(move |i| (j, i)));
+        let peak = cells().map(|(j, i)| self.at(0, k, j, i)[b]).fold(0.0f32, f32::max) as f64;
+        cells()
+            .map(|(j, i)| self.at(0, k, j, i))
+            .filter(|v| v[b] as f64 >= 0.01 * peak)
+            .map(|v| ((v[a] - v[b]) / v[b]).abs() as f64)
+            .fold(0.0, f64::max)
+    }
 }
 
-/// Chiang's white furnace (σ_a = 0): ∫ (S·cos θi) dωo, d'Eon's M_p being
-/// normalized over cos θo dθo, is 1 — pbrt-v3's test accepts [0.95, 1.05];
-/// measured 0.98–1.00. plait's ρ(θi) = ∫ (S·cos θi) cos θo dωo / cos θi
-/// (the other models' furnace above) is printed beside it: Chiang's fibre
-/// is normalized for a path tracer's measure, not for ρ, and differs
-/// from 1 where M_p is wide (β_m 0.3). The 64-point mean over h against
-/// 512 points: within 0.3 % of the energy at β_n 0.3 and 3 % at β_n 0.15
-/// (the param's lower bound).
+/// Chiang's white furnace (σ_a = 0): ∫ (S·cos θi) dωo. d'Eon's M_p is
+/// normalized over cos θo dθo and the A_p sum to 1, so it is 1 but for the
+/// tilted lobes cut at the pole: within pbrt-v3's [0.95, 1.05] up to θi 30°,
+/// measured 1.013 / 0.992; at θi 60° 0.914, Mitsuba's own BSDF 0.914 there
+/// (scripts/mitsuba/fibre_table.py's furnace rows, held here within 1 %);
+/// at 80° 0.73 (Mitsuba 0.73). plait's ρ(θi) = ∫ (S·cos θi) cos θo dωo / cos θi,
+/// the other models' furnace above, is printed beside it: Chiang's fibre is
+/// normalized for a path tracer's measure, not for ρ (1.35 at θi 80°). The
+/// 64-point mean over h against 512 points, direction by direction where
+/// the lobe is above 1 % of its peak: measured below, held within 2 % at
+/// β_n 0.3 and 5 % at β_n 0.15 (the param's lower bound).
 #[test]
 fn chiang_white_furnace() {
     let sphere = ChiangSphere::render();
+    let table = std::fs::read_to_string(repo_root().join("tests/fixtures/chiang_mitsuba.txt")).unwrap();
+    let mitsuba: Vec<f64> = table
+        .lines()
+        .filter_map(|l| l.strip_prefix("furnace "))
+        .map(|l| l.split_whitespace().nth(2).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(mitsuba.len(), LIGHT_DEGREES.len(), "the fixture's furnace rows");
     let mut failures = Vec::new();
     for (k, degrees) in LIGHT_DEGREES.iter().enumerate() {
-        let [e64, e512, rough64, rough512] = [0, 1, 2, 3].map(|c| sphere.integral(0, c, k, 1));
+        let energy = sphere.integral(0, 0, k, 1);
         let rho = sphere.integral(0, 0, k, 2) / degrees.to_radians().cos();
         let lobes = [1, 2, 3].map(|q| sphere.integral(q, 3, k, 1));
+        let (q3, q15) = (sphere.quadrature_error(k, 0, 1), sphere.quadrature_error(k, 2, 3));
         println!(
-            "θi {degrees:>2}°: ∫f dωo {e64:.4} (512 points {e512:.4}; β_n 0.15: {rough64:.4} vs {rough512:.4}); \
-             ρ {rho:.4}; R {:.4} TT {:.4} TRT {:.4}, p ≥ 3 {:.4}",
+            "θi {degrees:>2}°: ∫f dωo {energy:.4} (Mitsuba {:.4}); ρ {rho:.4}; R {:.4} TT {:.4} TRT {:.4}, \
+             p ≥ 3 {:.4}; 64 vs 512 points: {:.2} % at β_n 0.3, {:.2} % at β_n 0.15",
+            mitsuba[k],
             lobes[0],
             lobes[1],
             lobes[2],
-            e64 - lobes.iter().sum::<f64>()
+            energy - lobes.iter().sum::<f64>(),
+            100.0 * q3,
+            100.0 * q15
         );
+        let pbrt = if *degrees <= 30.0 { (0.95, 1.05) } else { (0.0, 1.05) };
         for (name, value, low, high) in [
-            ("∫f dωo", e64, 0.95, 1.05),
-            ("64 ÷ 512 points at β_n 0.3", e64 / e512, 0.997, 1.003),
-            ("64 ÷ 512 points at β_n 0.15", rough64 / rough512, 0.97, 1.03),
+            ("∫f dωo", energy, pbrt.0, pbrt.1),
+            ("∫f dωo ÷ Mitsuba's", energy / mitsuba[k], 0.99, 1.01),
+            ("64 vs 512 points at β_n 0.3", q3, 0.0, 0.02),
+            ("64 vs 512 points at β_n 0.15", q15, 0.0, 0.05),
         ] {
             if !(low..=high).contains(&value) {
                 failures.push(format!("θi {degrees}°: {name} {value:.4} outside [{low}, {high}]"));
@@ -389,6 +418,25 @@ fn chiang_white_furnace() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// One convention for σ_a: the WGSL's mapping from colour (Chiang 2016
+/// §4.2, `plait::chiang::sigma_a_from_color`) and the Mitsuba export's
+/// (`plait::mitsuba::sigma_a_from_color`) agree within 10⁻⁵ relative on
+/// the fixture's blond, dark brown and black, at the default β_n.
+#[test]
+fn chiang_sigma_a_is_the_mitsuba_exports() {
+    let sphere = ChiangSphere::render();
+    let beta_n = plait::mitsuba::Fibre::default().azimuthal_roughness;
+    for (q, colour) in [[0.85, 0.65, 0.40], [0.32, 0.20, 0.11], [0.02; 3]].iter().enumerate() {
+        let want = plait::mitsuba::sigma_a_from_color(glam::Vec3::from_array(*colour), beta_n).unwrap();
+        let got = sphere.at(q + 1, LIGHT_DEGREES.len(), 0, 0);
+        for c in 0..3 {
+            let (g, w) = (got[c] as f64, want[c] as f64);
+            assert!((g - w).abs() <= 1e-5 * w, "{colour:?} channel {c}: WGSL σ_a {g}, Rust {w}");
+        }
+        println!("{colour:?}: σ_a {:?} (WGSL) {want:?} (Rust)", &got[..3]);
+    }
 }
 
 /// The `chiang` technique's model against Mitsuba 3's `hair` BSDF at the
@@ -401,7 +449,7 @@ fn chiang_reads_mitsubas_hair_bsdf() {
     let sphere = ChiangSphere::render();
     let table = std::fs::read_to_string(repo_root().join("tests/fixtures/chiang_mitsuba.txt")).unwrap();
     let (mut failures, mut worst, mut count) = (Vec::new(), 0.0f64, 0);
-    for line in table.lines().filter(|l| !l.starts_with('#')) {
+    for line in table.lines().filter(|l| !l.starts_with('#') && !l.starts_with("furnace")) {
         let f: Vec<&str> = line.split_whitespace().collect();
         let [k, j, i] = [1, 2, 3].map(|n| f[n].parse::<usize>().unwrap());
         let want: Vec<f64> = f[7..10].iter().map(|v| v.parse().unwrap()).collect();

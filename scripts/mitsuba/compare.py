@@ -106,11 +106,30 @@ def hair_row(d, colour, threshold):
     ]
 
 
+def side_by_side(d, colour, threshold):
+    """C_side_by_side.png: Mitsuba depth 2 | plait chiang | plait Marschner |
+    plait default, one exposure for all four (Mitsuba's 99th percentile of
+    hair luminance maps to 1), clipped, sRGB-encoded; 3x nearest upscale."""
+    names = ["mitsuba_d2_s0", "plait_chiang", "plait_marschner", "plait_default"]
+    imgs = [load(os.path.join(d, f"{colour}_{n}.exr")) for n in names]
+    if any(i is None for i in imgs):
+        return None
+    mask = load(os.path.join(d, f"{colour}_mask.exr"))[..., 0] >= threshold
+    scale = 1.0 / np.percentile(luminance(imgs[0])[mask], 99)
+    row = np.concatenate([np.clip(i[..., :3] * scale, 0, 1) for i in imgs], axis=1)
+    srgb = np.where(row <= 0.0031308, 12.92 * row, 1.055 * row ** (1 / 2.4) - 0.055)
+    big = np.repeat(np.repeat(srgb, 3, axis=0), 3, axis=1)
+    out = os.path.join(d, f"{colour}_side_by_side.png")
+    mi.util.write_bitmap(out, (big * 255 + 0.5).astype(np.uint8))
+    return out
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("dir")
     p.add_argument("--threshold", type=float, default=0.9)
     p.add_argument("--colours", default="blond,dark_brown,black")
+    p.add_argument("--png", action="store_true", help="also write C_side_by_side.png per colour")
     a = p.parse_args()
     colours = a.colours.split(",")
     ground_table(a.dir, colours[0])
@@ -121,6 +140,8 @@ def main():
     print("|---" * len(head) + "|")
     for c in colours:
         print("| " + " | ".join(hair_row(a.dir, c, a.threshold)) + " |")
+    for c in colours if a.png else []:
+        print(f"{c}: {side_by_side(a.dir, c, a.threshold) or 'side-by-side skipped (an image is missing)'}")
 
 
 if __name__ == "__main__":

@@ -62,3 +62,15 @@ for name, c in COLOURS.items():
                 v = mean_over_h(b, to, np.radians(ti), po)
                 print(f"{name} {k} {j} {i} {ti:.1f} {np.degrees(to):.4f} {np.degrees(po):.4f} "
                       f"{v[0]:.6e} {v[1]:.6e} {v[2]:.6e}")
+
+# The white furnace: ∫ f dωo (dω = cos θo dθo dφo) under each light, by the
+# midpoint rule, 64 × 64 eye directions, 64 points over h.
+print("# furnace light_k theta_i_deg integral (white)")
+b = bsdf([0.0, 0.0, 0.0])
+for k, ti in enumerate(LIGHTS):
+    n = 64
+    total = 0.0
+    for to in -PI/2 + (np.arange(n) + 0.5)*PI/n:
+        for po in (np.arange(n) + 0.5)*2*PI/n:
+            total += mean_over_h(b, to, np.radians(ti), po, n=64)[0]*np.cos(to)*(PI/n)*(2*PI/n)
+    print(f"furnace {k} {ti:.1f} {total:.6f}")
