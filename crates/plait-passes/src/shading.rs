@@ -82,10 +82,34 @@ pub const CHIANG_FIBRE: [f64; 4] = [0.3, 0.3, 2.0, 1.55];
 fn chiang_params() -> Vec<ParamSpec> {
     let [beta_m, beta_n, tilt, eta] = CHIANG_FIBRE;
     vec![
-        float("chiang_beta_m", beta_m, 0.02, 1.0, "chiang: longitudinal roughness β_m (Chiang et al. 2016 §4.1)"),
-        float("chiang_beta_n", beta_n, 0.15, 1.0, "chiang: azimuthal roughness β_n (Chiang et al. 2016 §4.1; also in σ_a's mapping, §4.2)"),
-        float("chiang_tilt", tilt, -10.0, 10.0, "chiang: cuticle scale tilt α, degrees (Chiang et al. 2016 §4)"),
-        float("chiang_eta", eta, 1.1, 2.0, "chiang: index of refraction η of the fibre"),
+        float(
+            "chiang_beta_m",
+            beta_m,
+            0.02,
+            1.0,
+            "chiang: longitudinal roughness β_m (Chiang et al. 2016 §4.1)",
+        ),
+        float(
+            "chiang_beta_n",
+            beta_n,
+            0.15,
+            1.0,
+            "chiang: azimuthal roughness β_n (Chiang et al. 2016 §4.1; also in σ_a's mapping, §4.2)",
+        ),
+        float(
+            "chiang_tilt",
+            tilt,
+            -10.0,
+            10.0,
+            "chiang: cuticle scale tilt α, degrees (Chiang et al. 2016 §4)",
+        ),
+        float(
+            "chiang_eta",
+            eta,
+            1.1,
+            2.0,
+            "chiang: index of refraction η of the fibre",
+        ),
     ]
 }
 
