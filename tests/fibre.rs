@@ -568,3 +568,30 @@ fn chiang_defaults_are_the_mitsuba_exports_fibre() {
         );
     }
 }
+
+/// Out-of-range fibre params are refused at load, naming the param and
+/// the `--set` flag (ranges in crates/plait-passes/src/shading.rs).
+#[test]
+fn chiang_bad_params_are_errors_naming_the_param() {
+    let opts = plait_graph::CompileOptions::default();
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    for (set, param) in [
+        ("params.chiang_beta_m=0", "chiang_beta_m"),
+        ("params.chiang_beta_m=1.5", "chiang_beta_m"),
+        ("params.chiang_beta_n=0.1", "chiang_beta_n"),
+        ("params.chiang_tilt=-12", "chiang_tilt"),
+        ("params.chiang_eta=1.0", "chiang_eta"),
+        ("params.chiang_eta=nan", "chiang_eta"),
+    ] {
+        let sets = vec!["techniques.shading=chiang".to_string(), set.to_string()];
+        let message = match plait::session::compile_checked(&pipeline, &sets, &opts) {
+            Ok(_) => panic!("{set} compiled"),
+            Err(e) => e.to_string(),
+        };
+        assert!(
+            message.contains(&format!("param `{param}`"))
+                && message.contains(&format!("--set {set}")),
+            "{set}: {message}"
+        );
+    }
+}
