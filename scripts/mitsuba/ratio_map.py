@@ -6,6 +6,10 @@
 # middle, bottom third of the mask), and DIR/ratio_map.png: per colour
 # (blond, black) Mitsuba | plait | log2 ratio (red plait brighter, blue
 # dimmer, saturated at 4x), one exposure per row.
+# Then like with like (physical-check.sh's header): plait chiang with opaque
+# fibres (C_plait_chiang_opaque) ÷ Mitsuba's single scattering about each
+# strand's own axis (C_probe_fibre_shadowed, direct_probe.py), and the probe
+# with Mitsuba's own frame ÷ Mitsuba depth 2 (the probe reproduces it).
 # Usage: $PLAIT_MITSUBA_PYTHON scripts/mitsuba/ratio_map.py [DIR]
 import sys
 import numpy as np, mitsuba as mi, os
@@ -29,6 +33,21 @@ for c in ["blond","dark_brown","black"]:
         sel=m.copy(); yy=np.arange(m.shape[0])[:,None]; sel&=(yy>=bands[i])&(yy<=bands[i+1])
         rb.append(f"{pl[sel].mean()/mt[sel].mean():.3f}")
     print(c, "; ".join(rows), "| rows top/mid/bottom:", rb)
+def by_rows(m, num, den):
+    ys=np.nonzero(m)[0]; b=np.quantile(ys,[0,1/3,2/3,1]); yy=np.arange(m.shape[0])[:,None]
+    return [num[m&(yy>=b[i])&(yy<=b[i+1])].mean()/den[m&(yy>=b[i])&(yy<=b[i+1])].mean() for i in range(3)]
+for c in ["blond","dark_brown","black"]:
+    if not os.path.exists(f"{d}/{c}_probe_fibre_shadowed.exr"):
+        continue
+    m=np.array(mi.Bitmap(f"{d}/{c}_mask.exr"),dtype=np.float64); m=(m if m.ndim==2 else m[...,0])>=0.9
+    mt=(L(f"{c}_mitsuba_d2_s0.exr")+L(f"{c}_mitsuba_d2_s1.exr"))/2
+    probe=L(f"{c}_probe_shadowed.exr"); fib=L(f"{c}_probe_fibre_shadowed.exr")
+    line=[f"probe/d2 {probe[m].mean()/mt[m].mean():.3f} rows "+" ".join(f"{r:.2f}" for r in by_rows(m,probe,mt))]
+    for name in ["chiang","chiang_opaque"]:
+        if os.path.exists(f"{d}/{c}_plait_{name}.exr"):
+            pl=L(f"{c}_plait_{name}.exr")
+            line.append(f"plait {name}/probe_fibre {pl[m].mean()/fib[m].mean():.3f} rows "+" ".join(f"{r:.2f}" for r in by_rows(m,pl,fib)))
+    print(c, "like with like:", "; ".join(line))
 rows=[]
 for c in ["blond","black"]:
     m=np.array(mi.Bitmap(f"{d}/{c}_mask.exr"),dtype=np.float64); m=(m if m.ndim==2 else m[...,0])>=0.9
