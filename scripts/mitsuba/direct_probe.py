@@ -90,6 +90,11 @@ def main():
     fibre = mi.SurfaceInteraction3f(si)
     fibre.sh_frame = dr.select(hair, mi.Frame3f(dr.cross(t, nrm), t, nrm), si.sh_frame)
     fibre.wi = fibre.sh_frame.to_local(-ray.d)
+    on = np.array(hair)
+    cos = np.abs(np.array(dr.dot(si.sh_frame.t, t)))[on]
+    angle = np.degrees(np.arccos(np.minimum(cos, 1.0)))
+    print(f"{a.scene_dir}: {on.sum()} hair hits; angle between Mitsuba's fibre axis (local y) "
+          f"and the strand: median {np.median(angle):.0f} deg, 90th percentile {np.percentile(angle, 90):.0f} deg")
     ctx = mi.BSDFContext()
     bsdf = si.bsdf(ray)
     sample = mi.Point2f(rng.next_float32(), rng.next_float32())
