@@ -4,9 +4,19 @@
 # 160x120), for blond, dark brown and black hair.
 #   - the ground's radiance at a few lit pixels against rho/pi * E * cos(theta);
 #   - mean linear luminance over hair pixels: plait's pipelines/reference.toml
-#     (exact single scattering) with Marschner shading and with its default
-#     shading, against Mitsuba at max depth 2 (single scattering) and at full
+#     (exact single scattering) with Marschner shading, with Chiang et al.
+#     2016's fibre (`chiang`, the model Mitsuba's hair BSDF is) and with its
+#     default shading, against Mitsuba at max depth 2 (single scattering) and at full
 #     depth (16), each Mitsuba image at two seeds for its noise.
+# Like with like at depth 2 (Mitsuba's max depth 2: one scattering event, a
+# shadow ray that meets a fibre is blocked): plait's chiang is also rendered
+# with params.shadow_opaque=1 (fibres opaque to light, visibility =
+# Π (1 - share); docs/formats.md, "Light and units") as C_plait_chiang_opaque,
+# and scripts/mitsuba/direct_probe.py re-renders Mitsuba's single scattering
+# with the hair BSDF about each strand's own axis (C_probe_fibre_shadowed;
+# Mitsuba's linearcurve frame ignores the strand: see that script), which
+# scripts/mitsuba/ratio_map.py holds plait_chiang_opaque to, by region. The
+# depth-16 comparison and compare.py's tables are unchanged.
 # Usage: bash scripts/physical-check.sh [OUT_DIR]   (default target/physical-check)
 # Env: SPP_D2 (default 64), SPP_FULL (default 256), PLAIT_SETS (extra --set
 # flags for both plait renders), MITSUBA_REUSE=1 (keep Mitsuba images already
@@ -50,9 +60,12 @@ for c in blond dark_brown black; do
         "$py" "$render" "$out/$c" "$out/${c}_mitsuba_full_s1.exr" --spp "$spp_full" --max-depth 16 --seed 1
     fi
     echo "$c: Mitsuba (2 x ${spp_d2} spp depth 2 + coverage, 2 x ${spp_full} spp depth 16) took $((SECONDS - start)) s" >&2
-    for shading in default marschner; do
+    "$py" "$root/scripts/mitsuba/direct_probe.py" "$out/$c" "$out/${c}_probe" --spp "$spp_d2"
+    for shading in default marschner chiang chiang_opaque; do
         sets=()
         [ "$shading" = marschner ] && sets=(--set techniques.shading=marschner_reference)
+        [ "$shading" = chiang ] && sets=(--set techniques.shading=chiang)
+        [ "$shading" = chiang_opaque ] && sets=(--set techniques.shading=chiang --set params.shadow_opaque=1)
         rm -f "$out/${c}_plait_$shading.exr"
         # shellcheck disable=SC2086
         if ! "$plait" render "$root/pipelines/reference.toml" --scene "$scene" --size "$size" \
@@ -62,3 +75,4 @@ for c in blond dark_brown black; do
     done
 done
 "$py" "$root/scripts/mitsuba/compare.py" "$out"
+"$py" "$root/scripts/mitsuba/ratio_map.py" "$out"

@@ -63,11 +63,57 @@ pub fn params() -> Vec<ParamSpec> {
         ),
     ];
     p.extend(marschner_model_params());
+    p.extend(chiang_params());
     p
 }
 
 /// The pass-type file whose params the Marschner model's are.
 const TABLES_FILE: &str = "shaders/passes/marschner_tables.toml";
+
+/// Chiang et al. 2016's fibre at its standard values (§4, the ones issue
+/// 47's Mitsuba measurement uses): β_m, β_n, tilt α (degrees), η. One
+/// description: the `chiang` technique's param defaults and
+/// `plait::mitsuba::Fibre::default()` both read it.
+pub const CHIANG_FIBRE: [f64; 4] = [0.3, 0.3, 2.0, 1.55];
+
+/// The `chiang` technique's params. Ranges: β below 0.02 leaves f32's M_p
+/// (1/v > 4000) and β_n below 0.15 the 64-point mean over h (its logistic
+/// then narrower than the points' spacing; 6.4 % from 512 points at 0.15,
+/// measured by tests/fibre.rs); 1 is the papers' top. The tilt within ±10° (Chiang 2016 §4: 2–4°
+/// for human hair), η within 1.1–2 (hair 1.55).
+fn chiang_params() -> Vec<ParamSpec> {
+    let [beta_m, beta_n, tilt, eta] = CHIANG_FIBRE;
+    vec![
+        float(
+            "chiang_beta_m",
+            beta_m,
+            0.02,
+            1.0,
+            "chiang: longitudinal roughness β_m (Chiang et al. 2016 §4.1)",
+        ),
+        float(
+            "chiang_beta_n",
+            beta_n,
+            0.15,
+            1.0,
+            "chiang: azimuthal roughness β_n (Chiang et al. 2016 §4.1; also in σ_a's mapping, §4.2)",
+        ),
+        float(
+            "chiang_tilt",
+            tilt,
+            -10.0,
+            10.0,
+            "chiang: cuticle scale tilt α, degrees (Chiang et al. 2016 §4)",
+        ),
+        float(
+            "chiang_eta",
+            eta,
+            1.1,
+            2.0,
+            "chiang: index of refraction η of the fibre",
+        ),
+    ]
+}
 
 /// The Marschner model's params (lobe shifts and widths, index of
 /// refraction, absorption, caustic limit): those of the `marschner_tables`

@@ -105,6 +105,13 @@ pub fn params() -> Vec<ParamSpec> {
             "occupancy, deep_opacity, opacity_shadow_maps, density_clustering, exact, tressfx: opacity w added per hair fragment in front (§3.3; tressfx: w = -ln(1 - α))",
         ),
         float(
+            "shadow_opaque",
+            0.0,
+            0.0,
+            1.0,
+            "exact: 1 = fibres opaque to light, T = product of (1 - share) over the fibres in front (a path tracer's single scattering); 0 = exp(-shadow_weight * sum of shares); between: their mix",
+        ),
+        float(
             "layer_size",
             0.05,
             1e-6,

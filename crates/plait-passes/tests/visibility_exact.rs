@@ -131,7 +131,7 @@ fn provider_params(visibility: &str) -> &'static [&'static str] {
     match visibility {
         "occupancy" | "opacity_shadow_maps" | "density_clustering" => &["shadow_weight"],
         "deep_opacity" => &["shadow_weight", "layer_size"],
-        "exact" => &["shadow_weight"],
+        "exact" => &["shadow_weight", "shadow_opaque"],
         "modified_shadow_map" => &["density"],
         _ => &[],
     }

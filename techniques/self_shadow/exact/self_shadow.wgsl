@@ -19,28 +19,44 @@
 struct VisibilityParams {
     // Opacity added by one hair fragment in front (w of Sintorn & Assarsson 2009 §3.3).
     shadow_weight: f32,
+    // 0: T = exp(-w · Σ share), the convention every provider shares; 1:
+    // fibres opaque to light, T = Π (1 - share) — a shadow ray that meets a
+    // fibre is blocked, as in a path tracer limited to single scattering
+    // (docs/formats.md, "Light and units"); between: the mix of the two.
+    shadow_opaque: f32,
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
 
+struct InFront {
+    // Σ share of the fragments in front (whole-texel fragments count 1).
+    count: f32,
+    // Π (1 - share) over them: the part of the texel no fibre in front covers.
+    open: f32,
+}
+
 // Hair fragments at `texel` nearer the light than linear depth `below`.
-fn exact_count(texel: vec2<u32>, size: vec2<u32>, below: f32) -> f32 {
+fn exact_in_front(texel: vec2<u32>, size: vec2<u32>, below: f32) -> InFront {
     let index = texel.y * size.x + texel.x;
     let capacity = arrayLength(&vis_lists) / (size.x * size.y);
     let total = vis_counts[index];
     let stored = min(total, capacity);
     // Each fragment counts its strand's share of the texel (1 for whole
     // texels, coverage off): the depth_lists pass stores it with the depth.
-    var n = 0.0;
+    var out = InFront(0.0, 1.0);
     for (var i = 0u; i < stored; i++) {
         let entry = vis_lists[index * capacity + i];
         if (list_depth(entry) < below) {
-            n += list_share(entry);
+            out.count += list_share(entry);
+            out.open *= 1.0 - list_share(entry);
         }
     }
-    if (stored == 0u) {
-        return 0.0;
+    if (stored < total) {
+        // The dropped fragments, distributed like the stored ones.
+        let scale = f32(total) / f32(stored);
+        out.count *= scale;
+        out.open = select(pow(out.open, scale), 0.0, out.open <= 0.0);
     }
-    return n * f32(total) / f32(stored);
+    return out;
 }
 
 fn hair_visibility(world: vec3<f32>) -> f32 {
@@ -49,5 +65,7 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     if (!lookup.inside) {
         return 1.0;
     }
-    return exp(-visibility_params.shadow_weight * exact_count(lookup.texel, size, lookup.in_front_below));
+    let front = exact_in_front(lookup.texel, size, lookup.in_front_below);
+    let soft = exp(-visibility_params.shadow_weight * front.count);
+    return mix(soft, front.open, visibility_params.shadow_opaque);
 }

@@ -60,11 +60,13 @@ pub struct Fibre {
 
 impl Default for Fibre {
     fn default() -> Self {
+        // The `chiang` shading technique's defaults: one fibre for both sides.
+        let [beta_m, beta_n, tilt, eta] = crate::passes::shading::CHIANG_FIBRE.map(|v| v as f32);
         Fibre {
-            longitudinal_roughness: 0.3,
-            azimuthal_roughness: 0.3,
-            scale_tilt_degrees: 2.0,
-            eta: 1.55,
+            longitudinal_roughness: beta_m,
+            azimuthal_roughness: beta_n,
+            scale_tilt_degrees: tilt,
+            eta,
         }
     }
 }
