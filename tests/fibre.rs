@@ -62,6 +62,12 @@ impl Sphere {
     }
 }
 
+/// The failure line of a value outside its band at light angle `degrees`.
+fn outside(degrees: f64, name: &str, value: f64, low: f64, high: f64) -> Option<String> {
+    (!(low..=high).contains(&value))
+        .then(|| format!("θi {degrees}°: {name} {value:.4} outside [{low}, {high}]"))
+}
+
 fn theta_o(j: usize) -> f64 {
     -0.5 * PI + (j as f64 + 0.5) * PI / ANGLES as f64
 }
@@ -233,11 +239,7 @@ fn a_white_fibre_reflects_no_more_than_it_receives() {
             ("Halén & Wester diffuse", hw_diffuse, 0.995, 1.005),
             ("clear Marschner / own energy", clear / own, 0.75, 1.12),
         ] {
-            if !(low..=high).contains(&value) {
-                failures.push(format!(
-                    "θi {degrees}°: {name} {value:.4} outside [{low}, {high}]"
-                ));
-            }
+            failures.extend(outside(*degrees, name, value, low, high));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -432,11 +434,7 @@ fn chiang_white_furnace() {
             ("64 vs 512 points at β_n 0.3", q3, 0.0, 0.02),
             ("64 vs 512 points at β_n 0.15", q15, 0.0, 0.07),
         ] {
-            if !(low..=high).contains(&value) {
-                failures.push(format!(
-                    "θi {degrees}°: {name} {value:.4} outside [{low}, {high}]"
-                ));
-            }
+            failures.extend(outside(*degrees, name, value, low, high));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -136,24 +136,25 @@ pub(crate) fn grid_indices(stacks: u32, slices: u32) -> Vec<u32> {
 }
 
 #[cfg(test)]
+/// Every triangle's geometric normal (CCW winding) agrees with the
+/// vertex normals, i.e. faces are front-facing from outside.
+pub(crate) fn assert_outward(m: &Mesh) {
+    assert_eq!(m.indices.len() % 3, 0);
+    for t in m.indices.chunks_exact(3) {
+        let p = |i: u32| Vec3::from(m.vertices[i as usize].position);
+        let n = |i: u32| Vec3::from(m.vertices[i as usize].normal);
+        let face = (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
+        assert!(face.length() > 0.0, "degenerate triangle {t:?}");
+        assert!(
+            face.dot(n(t[0]) + n(t[1]) + n(t[2])) > 0.0,
+            "triangle {t:?} faces inward"
+        );
+    }
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Every triangle's geometric normal (CCW winding) agrees with the
-    /// vertex normals, i.e. faces are front-facing from outside.
-    fn assert_outward(m: &Mesh) {
-        assert_eq!(m.indices.len() % 3, 0);
-        for t in m.indices.chunks_exact(3) {
-            let p = |i: u32| Vec3::from(m.vertices[i as usize].position);
-            let n = |i: u32| Vec3::from(m.vertices[i as usize].normal);
-            let face = (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
-            assert!(face.length() > 0.0, "degenerate triangle {t:?}");
-            assert!(
-                face.dot(n(t[0]) + n(t[1]) + n(t[2])) > 0.0,
-                "triangle {t:?} faces inward"
-            );
-        }
-    }
 
     #[test]
     fn ellipsoid_is_closed_and_outward() {

@@ -188,16 +188,7 @@ mod tests {
     #[test]
     fn closed_outward_with_a_face_and_a_neck() {
         let m = sculpted_head(96, 128);
-        for t in m.indices.chunks_exact(3) {
-            let p = |i: u32| Vec3::from(m.vertices[i as usize].position);
-            let n = |i: u32| Vec3::from(m.vertices[i as usize].normal);
-            let face = (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
-            assert!(face.length() > 0.0, "degenerate triangle {t:?}");
-            assert!(
-                face.dot(n(t[0]) + n(t[1]) + n(t[2])) > 0.0,
-                "{t:?} faces inward"
-            );
-        }
+        crate::mesh::assert_outward(&m);
         let front = m
             .vertices
             .iter()
