@@ -7,7 +7,7 @@
 //! one BSDF to a shape), the opaque meshes with their albedo, the camera, the
 //! light, the ambient and the background. [`MitsubaScene::write`] writes it as
 //! a folder `scripts/mitsuba/render.py` renders: `scene.xml`, one
-//! `linearcurve` file per hair group, one OBJ per mesh and `plait.json`
+//! `bsplinecurve` file per hair group, one OBJ per mesh and `plait.json`
 //! (what the XML cannot hold: the background, and the notes).
 //!
 //! Nothing is dropped silently: what Mitsuba cannot express is an
