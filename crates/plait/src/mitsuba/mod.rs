@@ -254,6 +254,16 @@ fn hair_groups(
             .collect();
         groups[g].strands.push(points);
     }
+    let dips = groups
+        .iter()
+        .flat_map(|g| &g.strands)
+        .filter(|strand| write::radius_dips_below_zero(strand))
+        .count();
+    if dips > 0 {
+        notes.push(format!(
+            "{dips} strand(s) taper so sharply that the B-spline through their radii dips below 0: Mitsuba is given radius 0 there"
+        ));
+    }
     if varying > 0 {
         notes.push(format!(
             "{varying} strand(s) change colour or alpha along their length: each takes its root's (Mitsuba has one BSDF per shape)"

@@ -259,3 +259,20 @@ fn the_bspline_passes_through_every_point() {
         );
     }
 }
+
+/// A tip of radius 0 after thick points: the exact spline's end control
+/// radius is negative; it is written as 0 and the strand is counted.
+#[test]
+fn a_sharp_taper_is_clamped_and_counted() {
+    let strand: Vec<(Vec3, f32)> = [0.02, 0.02, 0.02, 0.0]
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (Vec3::new(i as f32, 0.0, 0.0), *r))
+        .collect();
+    assert!(super::write::radius_dips_below_zero(&strand));
+    let c = super::write::through_points(&strand);
+    assert!(c.iter().all(|c| c.w >= 0.0), "{c:?}");
+    assert_eq!(c.last().unwrap().w, 0.0);
+    let even: Vec<(Vec3, f32)> = strand.iter().map(|(p, _)| (*p, 0.01)).collect();
+    assert!(!super::write::radius_dips_below_zero(&even));
+}

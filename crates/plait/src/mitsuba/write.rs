@@ -229,7 +229,26 @@ pub(super) fn through_points(strand: &[(Vec3, f32)]) -> Vec<Vec4> {
     }
     c[0] = 2.0 * c[1] - c[2];
     c[n + 1] = 2.0 * c[n] - c[n - 1];
+    // A sharp taper (a tip of radius 0 after a thick point) makes the exact
+    // spline's radius negative, which Mitsuba cannot draw: 0 there, and
+    // `plan` notes how many strands ([`radius_dips_below_zero`]).
+    for k in &mut c {
+        k.w = k.w.max(0.0);
+    }
     c
+}
+
+/// Whether the exact spline through `strand`'s radii has a control radius
+/// below 0 (then [`through_points`] writes 0 there).
+pub(super) fn radius_dips_below_zero(strand: &[(Vec3, f32)]) -> bool {
+    let mut unclamped = strand.to_vec();
+    // The same solve on the radii alone, as positions (the solve is per
+    // component), so the clamp in through_points cannot hide the dip.
+    for (p, r) in &mut unclamped {
+        *p = Vec3::new(*r, 0.0, 0.0);
+        *r = 1.0;
+    }
+    through_points(&unclamped).iter().any(|c| c.x < 0.0)
 }
 
 /// A Wavefront OBJ with per-vertex normals (1-based indices).
