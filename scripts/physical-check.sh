@@ -13,9 +13,11 @@
 # with params.shadow_opaque=1 (fibres opaque to light, visibility =
 # Π (1 - share); docs/formats.md, "Light and units") as C_plait_chiang_opaque,
 # and scripts/mitsuba/direct_probe.py re-renders Mitsuba's single scattering
-# with the hair BSDF about each strand's own axis (C_probe_fibre_shadowed;
-# Mitsuba's linearcurve frame ignores the strand: see that script), which
-# scripts/mitsuba/ratio_map.py holds plait_chiang_opaque to, by region. The
+# by hand, with Mitsuba's frame and with one rebuilt from the curve's tangent
+# (C_probe_fibre_shadowed; equal since the export is bsplinecurve: see that
+# script), which scripts/mitsuba/ratio_map.py holds plait_chiang_opaque to,
+# by region. Mitsuba images kept by MITSUBA_REUSE=1 from before the switch to
+# bsplinecurve shade about the wrong axis: render them again. The
 # depth-16 comparison and compare.py's tables are unchanged.
 # Usage: bash scripts/physical-check.sh [OUT_DIR]   (default target/physical-check)
 # Env: SPP_D2 (default 64), SPP_FULL (default 256), PLAIT_SETS (extra --set

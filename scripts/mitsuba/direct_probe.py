@@ -15,14 +15,16 @@ integrates), the first camera hit's BSDF times the directional emitter:
                              own axis (see below)
   OUT_PREFIX_coverage.exr    the fraction of each pixel's rays whose first
                              hit is a fibre (as render.py --coverage)
-Why the fibre images: at a `linearcurve` hit this Mitsuba (3.x, as installed
-by scripts/ensure-mitsuba.sh) leaves dp_du zero and builds the shading frame
-from the normal alone (Frame3f(n): sh_frame.s equals it exactly), while its
-hair BSDF takes local y as the fibre's axis (scripts/mitsuba/fibre_probe.py).
-So Mitsuba shades each fibre about an axis that depends on its normal, not
-on the strand. The fibre images rebuild the frame from the strand's segment
-(si.prim_index into hair_0.txt's segments): y = the segment's direction,
-z = the normal made perpendicular to it.
+Why the fibre images: at a `linearcurve` hit Mitsuba 3.9.1 leaves dp_du zero
+and builds the shading frame from the normal alone, while its hair BSDF takes
+local y as the fibre's axis, so each fibre was shaded about an axis that
+depends on its normal, not on the strand (scripts/mitsuba/frame_probe.py).
+plait now exports `bsplinecurve` (dp_du around the curve: local y is the
+curve's tangent); the fibre images rebuild the frame from the curve's own
+tangent (si.prim_index and uv into hair_0.txt's control points): y = the
+tangent, z = the normal made perpendicular to it. They should now equal
+Mitsuba's own, and the printed angle be ~0. Also printed: how far the
+B-spline strays from plait's polyline between points, in fibre radii.
 Run with the Mitsuba venv's python (scripts/ensure-mitsuba.sh).
 """
 import argparse
@@ -34,21 +36,40 @@ import mitsuba as mi
 import numpy as np
 
 
-def segments(path):
-    """Directions of every consecutive point pair of every strand, in the
-    order of linearcurve's prim_index (blank lines separate strands)."""
-    strands, cur = [], []
+def strands(path):
+    """Control points (x y z radius) of each strand; blank lines separate them."""
+    out, cur = [], []
     for line in open(path):
         f = line.split()
         if not f:
-            strands.append(cur)
+            out.append(np.array(cur))
             cur = []
         else:
-            cur.append([float(x) for x in f[:3]])
-    strands.append(cur)
-    dirs = [np.diff(np.array(s), axis=0) for s in strands if len(s) > 1]
-    d = np.concatenate(dirs)
-    return d / np.linalg.norm(d, axis=1)[:, None]
+            cur.append([float(x) for x in f[:4]])
+    out.append(np.array(cur))
+    return [c for c in out if len(c) >= 4]
+
+
+def bspline(path):
+    """Per segment (bsplinecurve's prim_index order): its four control points
+    (segments x 4 x 4). Segment j of a strand uses C[j..j+4]."""
+    return np.concatenate([np.stack([c[j:j + 4] for j in range(len(c) - 3)]) for c in strands(path)])
+
+
+BASIS = lambda t: np.stack([(1 - t) ** 3, 3 * t**3 - 6 * t**2 + 4, -3 * t**3 + 3 * t**2 + 3 * t + 1, t**3], -1) / 6
+DBASIS = lambda t: np.stack([-(1 - t) ** 2, 3 * t**2 - 4 * t, -3 * t**2 + 2 * t + 1, t**2], -1) / 2
+
+
+def polyline_error(seg):
+    """Distance from the B-spline to plait's polyline (the chord between the
+    points the curve passes through at its knots), in the curve's radius."""
+    t = np.linspace(0.0, 1.0, 17)
+    q = np.einsum("tk,skc->stc", BASIS(t), seg)
+    a, b = q[:, :1, :3], q[:, -1:, :3]
+    ab = b - a
+    u = np.clip(np.sum((q[..., :3] - a) * ab, -1) / np.maximum(np.sum(ab * ab, -1), 1e-30), 0, 1)
+    d = np.linalg.norm(q[..., :3] - (a + u[..., None] * ab), axis=-1)
+    return (d / q[..., 3]).ravel()
 
 
 def image(mi, np, val, valid, w, h, n, bg):
@@ -82,19 +103,30 @@ def main():
     cov = np.array(mi.Float(dr.select(hair, 1.0, 0.0))).reshape(h, w, n).mean(axis=2)
     write = lambda rgb, name: mi.Bitmap(np.ascontiguousarray(rgb, dtype=np.float32)).write(f"{a.prefix}_{name}.exr")
     write(np.repeat(cov[..., None], 3, axis=2), "coverage")
-    # The strand's axis at each hair hit (others keep Mitsuba's frame).
-    dirs = segments(os.path.join(a.scene_dir, "hair_0.txt"))
-    k = np.minimum(np.array(si.prim_index), len(dirs) - 1)
-    t = mi.Vector3f(*[mi.Float(dirs[k, i]) for i in range(3)])
+    # The curve's tangent at each hair hit (others keep Mitsuba's frame).
+    seg = bspline(os.path.join(a.scene_dir, "hair_0.txt"))
+    err = polyline_error(seg)
+    print(f"{a.scene_dir}: B-spline to plait's polyline, in fibre radii: median {np.median(err):.4f}, "
+          f"99th percentile {np.percentile(err, 99):.4f}, max {err.max():.4f} ({len(seg)} segments)")
+    k = np.minimum(np.array(si.prim_index), len(seg) - 1)
+    tl = np.clip(np.array(si.uv.y) * len(seg) - k, 0.0, 1.0)
+    tan = np.einsum("nk,nkc->nc", DBASIS(tl), seg[k][..., :3])
+    tan /= np.maximum(np.linalg.norm(tan, axis=1), 1e-30)[:, None]
+    t = mi.Vector3f(*[mi.Float(tan[:, i]) for i in range(3)])
     nrm = dr.normalize(si.n - t * dr.dot(si.n, t))
     fibre = mi.SurfaceInteraction3f(si)
     fibre.sh_frame = dr.select(hair, mi.Frame3f(dr.cross(t, nrm), t, nrm), si.sh_frame)
     fibre.wi = fibre.sh_frame.to_local(-ray.d)
     on = np.array(hair)
+    # A fibre radius in pixels at the hits: the polyline error above in pixels.
+    xfov = np.radians(float(mi.traverse(sensor)["x_fov"][0]))
+    px = 2.0 * np.array(si.t)[on] * np.tan(0.5 * xfov) / w
+    r_px = seg[k[on], 1, 3] / px
+    print(f"{a.scene_dir}: a fibre radius is {np.median(r_px):.4f} px at the median hair hit (max {r_px.max():.4f})")
     cos = np.abs(np.array(dr.dot(si.sh_frame.t, t)))[on]
     angle = np.degrees(np.arccos(np.minimum(cos, 1.0)))
     print(f"{a.scene_dir}: {on.sum()} hair hits; angle between Mitsuba's fibre axis (local y) "
-          f"and the strand: median {np.median(angle):.0f} deg, 90th percentile {np.percentile(angle, 90):.0f} deg")
+          f"and the curve's tangent: median {np.median(angle):.0f} deg, 90th percentile {np.percentile(angle, 90):.0f} deg")
     ctx = mi.BSDFContext()
     bsdf = si.bsdf(ray)
     sample = mi.Point2f(rng.next_float32(), rng.next_float32())

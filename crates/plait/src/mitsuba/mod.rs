@@ -7,7 +7,7 @@
 //! one BSDF to a shape), the opaque meshes with their albedo, the camera, the
 //! light, the ambient and the background. [`MitsubaScene::write`] writes it as
 //! a folder `scripts/mitsuba/render.py` renders: `scene.xml`, one
-//! `linearcurve` file per hair group, one OBJ per mesh and `plait.json`
+//! `bsplinecurve` file per hair group, one OBJ per mesh and `plait.json`
 //! (what the XML cannot hold: the background, and the notes).
 //!
 //! Nothing is dropped silently: what Mitsuba cannot express is an
@@ -253,6 +253,16 @@ fn hair_groups(
             .map(|i| (head.transform_point3(s.points[i]), 0.5 * s.thickness[i]))
             .collect();
         groups[g].strands.push(points);
+    }
+    let dips = groups
+        .iter()
+        .flat_map(|g| &g.strands)
+        .filter(|strand| write::radius_dips_below_zero(strand))
+        .count();
+    if dips > 0 {
+        notes.push(format!(
+            "{dips} strand(s) taper so sharply that the B-spline through their radii dips below 0: Mitsuba is given radius 0 there"
+        ));
     }
     if varying > 0 {
         notes.push(format!(

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use super::*;
 use plait_hair::{Scene, Strands};
@@ -146,11 +146,29 @@ fn the_folder_holds_every_file_the_xml_names() {
             "plait.json"
         ]
     );
+    // hair_0.txt: the B-spline's control points, the curve through the
+    // strand's points (x y z radius) at its knots.
     let curve = std::fs::read_to_string(dir.path().join("hair_0.txt")).unwrap();
-    assert_eq!(
-        curve,
-        "-0.5 0 0 0.01\n-0.5 -1 0 0.0075\n-0.5 -2 0.5 0.005\n"
-    );
+    let c: Vec<Vec4> = curve
+        .lines()
+        .map(|l| {
+            let f: Vec<f32> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            Vec4::from_slice(&f)
+        })
+        .collect();
+    let want = [
+        Vec4::new(-0.5, 0.0, 0.0, 0.01),
+        Vec4::new(-0.5, -1.0, 0.0, 0.0075),
+        Vec4::new(-0.5, -2.0, 0.5, 0.005),
+    ];
+    assert_eq!(c.len(), want.len() + 2, "{curve}");
+    for (i, w) in want.iter().enumerate() {
+        let at_knot = (c[i] + 4.0 * c[i + 1] + c[i + 2]) / 6.0;
+        assert!(
+            (at_knot - *w).abs().max_element() < 1e-6,
+            "point {i}: {at_knot} != {w}"
+        );
+    }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("plait.json")).unwrap())
             .unwrap();
@@ -201,4 +219,60 @@ fn a_colour_changing_along_a_strand_is_noted() {
         "{:?}",
         m.notes
     );
+}
+
+/// The B-spline passes through every point of a strand (at its knots) and
+/// has no curvature at either end; a straight strand stays straight.
+#[test]
+fn the_bspline_passes_through_every_point() {
+    let strand: Vec<(Vec3, f32)> = (0..7)
+        .map(|i| {
+            let t = i as f32;
+            (Vec3::new(t, (0.7 * t).sin(), 0.1 * t * t), 0.01 + 0.001 * t)
+        })
+        .collect();
+    let c = super::write::through_points(&strand);
+    assert_eq!(c.len(), strand.len() + 2);
+    for (i, (p, r)) in strand.iter().enumerate() {
+        let at_knot = (c[i] + 4.0 * c[i + 1] + c[i + 2]) / 6.0;
+        assert!(
+            (at_knot - p.extend(*r)).abs().max_element() < 1e-5,
+            "point {i}: {at_knot}"
+        );
+    }
+    let n = c.len();
+    assert!(
+        (c[0] - 2.0 * c[1] + c[2]).abs().max_element() < 1e-6,
+        "natural start"
+    );
+    assert!(
+        (c[n - 1] - 2.0 * c[n - 2] + c[n - 3]).abs().max_element() < 1e-6,
+        "natural end"
+    );
+    let line: Vec<(Vec3, f32)> = (0..5)
+        .map(|i| (Vec3::new(i as f32, 0.3, 0.0), 0.1))
+        .collect();
+    for c in super::write::through_points(&line) {
+        assert!(
+            (c.y - 0.3).abs() < 1e-6 && c.z == 0.0 && (c.w - 0.1).abs() < 1e-6,
+            "{c}"
+        );
+    }
+}
+
+/// A tip of radius 0 after thick points: the exact spline's end control
+/// radius is negative; it is written as 0 and the strand is counted.
+#[test]
+fn a_sharp_taper_is_clamped_and_counted() {
+    let strand: Vec<(Vec3, f32)> = [0.02, 0.02, 0.02, 0.0]
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (Vec3::new(i as f32, 0.0, 0.0), *r))
+        .collect();
+    assert!(super::write::radius_dips_below_zero(&strand));
+    let c = super::write::through_points(&strand);
+    assert!(c.iter().all(|c| c.w >= 0.0), "{c:?}");
+    assert_eq!(c.last().unwrap().w, 0.0);
+    let even: Vec<(Vec3, f32)> = strand.iter().map(|(p, _)| (*p, 0.01)).collect();
+    assert!(!super::write::radius_dips_below_zero(&even));
 }

@@ -1,6 +1,6 @@
 //! Writing a [`MitsubaScene`] as a folder: `scene.xml` (Mitsuba 3's scene
-//! format, version 3.0.0), `hair_K.txt` (Mitsuba's curve files: one control
-//! point `x y z radius` a line, strands separated by an empty line),
+//! format, version 3.0.0), `hair_K.txt` (Mitsuba's `bsplinecurve` files: one
+//! control point `x y z radius` a line, strands separated by an empty line),
 //! `mesh_K.obj` and `plait.json`.
 //!
 //! The XML leaves samples per pixel, maximum path depth and seed as
@@ -10,7 +10,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use super::{ExportError, HairGroup, MitsubaMesh, MitsubaScene};
 
@@ -129,7 +129,7 @@ impl MitsubaScene {
             hair
         };
         format!(
-            "  <shape type=\"linearcurve\" id=\"hair_{k}\">\n    <!-- colour {} alpha {}: {} strands -->\n    <string name=\"filename\" value=\"hair_{k}.txt\"/>\n    {bsdf}\n  </shape>\n",
+            "  <shape type=\"bsplinecurve\" id=\"hair_{k}\">\n    <!-- colour {} alpha {}: {} strands -->\n    <string name=\"filename\" value=\"hair_{k}.txt\"/>\n    {bsdf}\n  </shape>\n",
             v3(g.color),
             g.alpha,
             g.strands.len()
@@ -163,19 +163,92 @@ impl MitsubaScene {
     }
 }
 
-/// A curve file: `x y z radius` per control point (`{}` prints an f32 so
-/// that it reads back to the same f32).
+/// A curve file for `bsplinecurve`: `x y z radius` per control point (`{}`
+/// prints an f32 so that it reads back to the same f32), the control points
+/// of [`through_points`] for each strand.
+///
+/// Why a B-spline and not `linearcurve`, which is plait's polyline as it is:
+/// at a `linearcurve` hit Mitsuba 3.9.1 leaves dp_du zero and builds the
+/// shading frame from the normal alone, while its `hair` BSDF takes the
+/// frame's second axis as the fibre's axis, so each fibre was shaded about
+/// an axis that ignores the strand. At a `bsplinecurve` hit dp_du runs
+/// around the curve, so the frame's second axis (normal × dp_du) is the
+/// curve's tangent (`scripts/mitsuba/frame_probe.py`).
 fn curve_file(g: &HairGroup) -> String {
     let mut s = String::new();
     for (i, strand) in g.strands.iter().enumerate() {
         if i > 0 {
             s.push('\n');
         }
-        for (p, r) in strand {
-            let _ = writeln!(s, "{} {} {} {}", p.x, p.y, p.z, r);
+        for c in through_points(strand) {
+            let _ = writeln!(s, "{} {} {} {}", c.x, c.y, c.z, c.w);
         }
     }
     s
+}
+
+/// Control points (position, radius) of the uniform cubic B-spline that
+/// passes through every point of `strand` in order: n points give n + 2
+/// control points, n − 1 segments, segment i running from point i to point
+/// i + 1 (so Mitsuba's `prim_index` is plait's segment index). Each point is
+/// (C[i] + 4 C[i+1] + C[i+2]) / 6; the ends are natural (no curvature:
+/// C[0] = 2 C[1] − C[2], which puts C[1] on the first point), and the
+/// interior is the tridiagonal system solved by Thomas's algorithm. Between
+/// points the curve bends where plait's polyline has corners:
+/// `direct_probe.py` measures how far from the polyline, in fibre radii. A
+/// strand of one point has no segment and is written as it is (Mitsuba then
+/// refuses the file: fewer than four control points).
+pub(super) fn through_points(strand: &[(Vec3, f32)]) -> Vec<Vec4> {
+    let p: Vec<Vec4> = strand.iter().map(|(q, r)| q.extend(*r)).collect();
+    let n = p.len();
+    if n < 2 {
+        return p;
+    }
+    // c[1] = p[0], c[n] = p[n-1]; unknowns c[2..n-1] from rows i = 1..n-2:
+    // c[i] + 4 c[i+1] + c[i+2] = 6 p[i].
+    let mut c = vec![Vec4::ZERO; n + 2];
+    c[1] = p[0];
+    c[n] = p[n - 1];
+    let m = n - 2;
+    let (mut diag, mut rhs) = (vec![4.0f32; m], vec![Vec4::ZERO; m]);
+    for k in 0..m {
+        rhs[k] = 6.0 * p[k + 1];
+    }
+    if m > 0 {
+        rhs[0] -= c[1];
+        rhs[m - 1] -= c[n];
+    }
+    for k in 1..m {
+        let w = 1.0 / diag[k - 1];
+        diag[k] -= w;
+        rhs[k] = rhs[k] - w * rhs[k - 1];
+    }
+    for k in (0..m).rev() {
+        let next = if k + 1 < m { c[k + 3] } else { Vec4::ZERO };
+        c[k + 2] = (rhs[k] - next) / diag[k];
+    }
+    c[0] = 2.0 * c[1] - c[2];
+    c[n + 1] = 2.0 * c[n] - c[n - 1];
+    // A sharp taper (a tip of radius 0 after a thick point) makes the exact
+    // spline's radius negative, which Mitsuba cannot draw: 0 there, and
+    // `plan` notes how many strands ([`radius_dips_below_zero`]).
+    for k in &mut c {
+        k.w = k.w.max(0.0);
+    }
+    c
+}
+
+/// Whether the exact spline through `strand`'s radii has a control radius
+/// below 0 (then [`through_points`] writes 0 there).
+pub(super) fn radius_dips_below_zero(strand: &[(Vec3, f32)]) -> bool {
+    let mut unclamped = strand.to_vec();
+    // The same solve on the radii alone, as positions (the solve is per
+    // component), so the clamp in through_points cannot hide the dip.
+    for (p, r) in &mut unclamped {
+        *p = Vec3::new(*r, 0.0, 0.0);
+        *r = 1.0;
+    }
+    through_points(&unclamped).iter().any(|c| c.x < 0.0)
 }
 
 /// A Wavefront OBJ with per-vertex normals (1-based indices).
