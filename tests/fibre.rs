@@ -19,24 +19,32 @@ struct Sphere {
     texels: Vec<[f32; 4]>,
 }
 
+/// The `fibre` target (rgba32float) of the fixture pipeline `fixture` at
+/// `size`, one frame on the small scene: each texel a shading technique's
+/// value at one (light, outgoing direction) pair.
+fn render_fibre(fixture: &str, size: (u32, u32)) -> Vec<[f32; 4]> {
+    let (_lock, gpu) = open_gpu();
+    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads");
+    let pipeline = repo_root().join("tests/fixtures").join(fixture);
+    let prepared = prepare(&gpu, &pipeline, &[], &scene, size)
+        .unwrap_or_else(|e| panic!("{fixture} prepares: {e}"));
+    prepared.renderer.render().expect("renders");
+    let read = prepared.renderer.read_resource("fibre").expect("fibre");
+    read.bytes
+        .chunks_exact(16)
+        .map(|t| {
+            std::array::from_fn(|c| f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()))
+        })
+        .collect()
+}
+
 impl Sphere {
     fn render() -> Sphere {
-        let (_lock, gpu) = open_gpu();
-        let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
-            .expect("the small scene loads");
-        let pipeline = repo_root().join("tests/fixtures/fibre.toml");
         let size = ((2 * AZIMUTHS) as u32, (4 * ANGLES) as u32);
-        let prepared = prepare(&gpu, &pipeline, &[], &scene, size).expect("fibre.toml prepares");
-        prepared.renderer.render().expect("renders");
-        let read = prepared.renderer.read_resource("fibre").expect("fibre");
-        let texels = read
-            .bytes
-            .chunks_exact(16)
-            .map(|t| {
-                std::array::from_fn(|c| f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()))
-            })
-            .collect();
-        Sphere { texels }
+        Sphere {
+            texels: render_fibre("fibre.toml", size),
+        }
     }
 
     /// Half `half` (0 left, 1 right), light `k`, outgoing (θo row j, φo column i).
@@ -321,23 +329,10 @@ struct ChiangSphere {
 
 impl ChiangSphere {
     fn render() -> ChiangSphere {
-        let (_lock, gpu) = open_gpu();
-        let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
-            .expect("the small scene loads");
-        let pipeline = repo_root().join("tests/fixtures/fibre_chiang.toml");
         let size = ((4 * AZIMUTHS) as u32, (5 * ANGLES) as u32);
-        let prepared =
-            prepare(&gpu, &pipeline, &[], &scene, size).expect("fibre_chiang.toml prepares");
-        prepared.renderer.render().expect("renders");
-        let read = prepared.renderer.read_resource("fibre").expect("fibre");
-        let texels = read
-            .bytes
-            .chunks_exact(16)
-            .map(|t| {
-                std::array::from_fn(|c| f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()))
-            })
-            .collect();
-        ChiangSphere { texels }
+        ChiangSphere {
+            texels: render_fibre("fibre_chiang.toml", size),
+        }
     }
 
     fn at(&self, quarter: usize, k: usize, j: usize, i: usize) -> [f32; 4] {
