@@ -25,6 +25,9 @@ case "${1:-}" in
     figures="${CARGO_TARGET_DIR:-target}/debug/plait-figures"
     if [ "$1" = --stale ]; then exec "$figures" stale; fi
     shift
+    # A figure measured against references/path_traced.toml renders with
+    # Mitsuba (installed once into the build folder; a cached image needs none).
+    eval "$(bash scripts/ensure-mitsuba.sh)"
     exec "$figures" check "$@"
     ;;
 esac

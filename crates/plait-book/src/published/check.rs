@@ -56,7 +56,9 @@ pub fn compare(figure: &Figure, published: &Record, today: &Record) -> Vec<Compa
     for scene in scenes {
         let was: Vec<&Row> = published.scene_rows(scene).collect();
         let now: Vec<&Row> = today.scene_rows(scene).collect();
-        let base = |rows: &[&Row]| rows.first().map(|r| r.ms);
+        // Speed is a ratio of two GPU frames of one run; a row timed otherwise
+        // (a path-traced reference's CPU wall time) has no speed figure.
+        let base = |rows: &[&Row]| rows.first().filter(|r| r.gpu_timed).map(|r| r.ms);
         let (was_base, now_base) = (base(&was), base(&now));
         let mut variants: Vec<&str> = was.iter().map(|r| r.variant.as_str()).collect();
         for r in &now {
@@ -85,6 +87,8 @@ pub fn compare(figure: &Figure, published: &Record, today: &Record) -> Vec<Compa
                 continue;
             };
             if i > 0
+                && p.gpu_timed
+                && t.gpu_timed
                 && let (Some(wb), Some(nb)) = (was_base, now_base)
             {
                 let published = p.ms.median / wb.median;
@@ -194,6 +198,7 @@ mod tests {
                 min: ms.1,
                 max: ms.2,
             },
+            gpu_timed: true,
             rmse,
             ssim: 0.99,
             flip: 0.01,
@@ -237,6 +242,30 @@ mod tests {
         ]);
         let rows = compare(&figure(), &published, &same);
         assert!(rows.iter().all(|r| !r.moved), "{rows:?}");
+    }
+
+    #[test]
+    fn a_row_timed_on_the_cpu_has_no_speed_figure_but_keeps_its_metrics() {
+        // A path-traced reference: Mitsuba's wall time, 60 s published and
+        // 6 s today (a cache hit, another load), beside GPU frames.
+        let cpu = |ms: f64, rmse: f64| Row {
+            gpu_timed: false,
+            ..row("path_traced", (ms, ms, ms), rmse)
+        };
+        let published = record(vec![row("a", (50.0, 50.0, 50.0), 0.05), cpu(60_000.0, 0.0)]);
+        let today = record(vec![row("a", (50.0, 49.0, 51.0), 0.05), cpu(6_000.0, 0.0)]);
+        let rows = compare(&figure(), &published, &today);
+        assert!(rows.iter().all(|r| !r.quantity.starts_with('×')), "{rows:?}");
+        assert!(rows.iter().all(|r| !r.moved), "{rows:?}");
+        // First in its scene, it is no base for the GPU rows either.
+        let published = record(vec![cpu(60_000.0, 0.0), row("a", (50.0, 50.0, 50.0), 0.05)]);
+        let today = record(vec![cpu(6_000.0, 0.0), row("a", (50.0, 49.0, 51.0), 0.05)]);
+        let rows = compare(&figure(), &published, &today);
+        assert!(rows.iter().all(|r| !r.quantity.starts_with('×')), "{rows:?}");
+        // Its error metrics still count.
+        let today = record(vec![cpu(6_000.0, 0.0), row("a", (50.0, 49.0, 51.0), 0.07)]);
+        let rows = compare(&figure(), &published, &today);
+        assert!(rows.iter().any(|r| r.moved && r.quantity == "RMSE"), "{rows:?}");
     }
 
     #[test]

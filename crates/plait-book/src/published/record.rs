@@ -37,11 +37,20 @@ pub struct Row {
     pub reference: bool,
     /// Frame GPU ms (wall ms without timestamp queries) over the repeats.
     pub ms: Spread,
+    /// Whether `ms` is GPU time. A path-traced reference's row is Mitsuba's
+    /// wall time on the CPU: no ratio to a GPU frame is a speed figure.
+    /// Records written before this field had only GPU-timed rows.
+    #[serde(default = "gpu_timed_default")]
+    pub gpu_timed: bool,
     pub rmse: f64,
     pub ssim: f64,
     pub flip: f64,
     /// Self-shadowing error, where the run probed it.
     pub mean_dv: Option<f64>,
+}
+
+fn gpu_timed_default() -> bool {
+    true
 }
 
 /// Median and range over the repeats (read from the report's `Stats`,
@@ -166,6 +175,7 @@ impl Record {
                     variant: variant.label.clone(),
                     reference: variant.is_reference,
                     ms: run.timing.total_gpu_ms.unwrap_or(run.timing.wall_ms),
+                    gpu_timed: run.timing.total_gpu_ms.is_some(),
                     rmse: run.metrics.rmse,
                     ssim: run.metrics.ssim,
                     flip: run.metrics.flip_mean,
