@@ -255,17 +255,26 @@ mod tests {
         let published = record(vec![row("a", (50.0, 50.0, 50.0), 0.05), cpu(60_000.0, 0.0)]);
         let today = record(vec![row("a", (50.0, 49.0, 51.0), 0.05), cpu(6_000.0, 0.0)]);
         let rows = compare(&figure(), &published, &today);
-        assert!(rows.iter().all(|r| !r.quantity.starts_with('×')), "{rows:?}");
+        assert!(
+            rows.iter().all(|r| !r.quantity.starts_with('×')),
+            "{rows:?}"
+        );
         assert!(rows.iter().all(|r| !r.moved), "{rows:?}");
         // First in its scene, it is no base for the GPU rows either.
         let published = record(vec![cpu(60_000.0, 0.0), row("a", (50.0, 50.0, 50.0), 0.05)]);
         let today = record(vec![cpu(6_000.0, 0.0), row("a", (50.0, 49.0, 51.0), 0.05)]);
         let rows = compare(&figure(), &published, &today);
-        assert!(rows.iter().all(|r| !r.quantity.starts_with('×')), "{rows:?}");
+        assert!(
+            rows.iter().all(|r| !r.quantity.starts_with('×')),
+            "{rows:?}"
+        );
         // Its error metrics still count.
         let today = record(vec![cpu(6_000.0, 0.0), row("a", (50.0, 49.0, 51.0), 0.07)]);
         let rows = compare(&figure(), &published, &today);
-        assert!(rows.iter().any(|r| r.moved && r.quantity == "RMSE"), "{rows:?}");
+        assert!(
+            rows.iter().any(|r| r.moved && r.quantity == "RMSE"),
+            "{rows:?}"
+        );
     }
 
     #[test]
