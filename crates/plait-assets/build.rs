@@ -1,5 +1,7 @@
 //! Embeds every `pipelines/*.toml`, `techniques/**/*.{toml,wgsl}`,
-//! `shaders/**/*.{wgsl,toml}` and `examples/scenes/*.toml` of the checkout as
+//! `shaders/**/*.{wgsl,toml}`, `examples/scenes/*.toml`, `references/*.toml`
+//! and the two scripts a path-traced reference runs (`scripts/mitsuba/render.py`,
+//! `scripts/ensure-mitsuba.sh`) of the checkout as
 //! the built-in copies (the fallback when no folder of the search path holds a
 //! file), so new gallery files need no list to be kept by hand.
 
@@ -42,6 +44,12 @@ fn main() {
         false,
         &mut files,
     );
+    // `plait ab --reference references/path_traced.toml` from any directory:
+    // the reference file, the script that renders it and the one that pins
+    // (and installs) Mitsuba.
+    collect(&root, &root.join("references"), "toml", false, &mut files);
+    files.push(PathBuf::from("scripts/mitsuba/render.py"));
+    files.push(PathBuf::from("scripts/ensure-mitsuba.sh"));
     files.sort();
     let mut code = String::from("pub(crate) const BUILTIN: &[(&str, &str)] = &[\n");
     for rel in &files {
@@ -66,4 +74,7 @@ fn main() {
     println!("cargo:rerun-if-changed=../../techniques");
     println!("cargo:rerun-if-changed=../../shaders");
     println!("cargo:rerun-if-changed=../../examples/scenes");
+    println!("cargo:rerun-if-changed=../../references");
+    println!("cargo:rerun-if-changed=../../scripts/mitsuba/render.py");
+    println!("cargo:rerun-if-changed=../../scripts/ensure-mitsuba.sh");
 }

@@ -271,3 +271,90 @@ fn bad_reference_files_exit_2_at_file_line_col() {
     );
     assert!(text(&out.stdout).is_empty(), "{}", text(&out.stdout));
 }
+
+/// `plait` copied out of the checkout (as `cargo install` puts it) and run
+/// with no search path (`PLAIT_PATH=""`: the built-in copies alone) from a
+/// folder of its own: the shipped reference by its library name, the
+/// install script and `render.py` all come from the binary.
+#[test]
+fn an_installed_plait_runs_a_path_traced_reference_from_its_built_in_copies() {
+    let env = mitsuba_env();
+    let tmp = tempfile::tempdir().unwrap();
+    let exe = tmp.path().join("plait");
+    std::fs::copy(env!("CARGO_BIN_EXE_plait"), &exe).unwrap();
+    let target = tmp.path().join("build");
+    let run = |reference: &Path, out: &str, python: &str| {
+        let mut cmd = Command::new(&exe);
+        cmd.current_dir(tmp.path())
+            .args(["ab", "forward.toml", "--reference"])
+            .arg(reference)
+            .args(["--scene", "small.toml", "--size", "16x12", "--repeats", "1"])
+            .args(["--cache", "cache", "--out", out])
+            .envs(env.iter().map(|(k, v)| (k, v)))
+            .env("PLAIT_PATH", "")
+            .env("CARGO_TARGET_DIR", &target)
+            .env("PLAIT_MITSUBA_PYTHON", python);
+        // A test thread forking while another still writes a copy can lend
+        // the child that descriptor until its exec (ETXTBSY): retry briefly.
+        for _ in 0..50 {
+            match cmd.output() {
+                Err(e) if e.kind() == std::io::ErrorKind::ExecutableFileBusy => {
+                    std::thread::sleep(std::time::Duration::from_millis(100))
+                }
+                result => return result.expect("run the copied plait"),
+            }
+        }
+        panic!("the copied plait stayed busy (ETXTBSY) for 5 s")
+    };
+
+    // The shipped file, found by its library name; no Mitsuba: the message
+    // names the built-in install script, written out where it can run.
+    let missing = run(
+        Path::new("references/path_traced.toml"),
+        "r0",
+        "/nonexistent/python",
+    );
+    let stderr = text(&missing.stderr);
+    assert_eq!(missing.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("Mitsuba is not installed"), "{stderr}");
+    let scripts = target.join("plait-scripts");
+    let written: Vec<PathBuf> = std::fs::read_dir(&scripts)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let ensure = written
+        .iter()
+        .find(|p| p.to_string_lossy().contains("ensure-mitsuba-"))
+        .unwrap_or_else(|| panic!("no install script in {written:?}"));
+    assert!(stderr.contains(&ensure.display().to_string()), "{stderr}");
+    assert_eq!(
+        std::fs::read_to_string(ensure).unwrap(),
+        std::fs::read_to_string(root().join("scripts/ensure-mitsuba.sh")).unwrap()
+    );
+
+    // With Mitsuba: render.py is the built-in copy, written out and run.
+    let python = env
+        .iter()
+        .find(|(k, _)| k == "PLAIT_MITSUBA_PYTHON")
+        .map(|(_, v)| v.clone())
+        .unwrap();
+    let reference = reference_file(tmp.path(), 4);
+    let ok = run(&reference, "r1", &python);
+    assert!(
+        ok.status.success(),
+        "{}\n{}",
+        text(&ok.stdout),
+        text(&ok.stderr)
+    );
+    let render_py = std::fs::read_dir(&scripts)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.to_string_lossy().contains("render-"))
+        .expect("render.py written out");
+    assert_eq!(
+        std::fs::read_to_string(render_py).unwrap(),
+        std::fs::read_to_string(root().join("scripts/mitsuba/render.py")).unwrap()
+    );
+    let report = std::fs::read_to_string(tmp.path().join("r1/report.json")).unwrap();
+    assert!(report.contains("Mitsuba 3.9.1"), "{report}");
+}

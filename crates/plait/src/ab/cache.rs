@@ -14,7 +14,6 @@ use sha2::{Digest, Sha256};
 
 use super::ScenePlan;
 use super::path_traced::{PathTraced, PathTracedError};
-use crate::session::repo_root;
 
 /// Both seeds' mean at the run's `--size` and what the run needs to know of it.
 pub(super) struct Reference {
@@ -23,12 +22,24 @@ pub(super) struct Reference {
     pub seconds: f64,
 }
 
+/// The scripts a path-traced reference runs, as library files: the search
+/// path's copy (the checkout's, or one on `PLAIT_PATH`), else the one built
+/// into the binary — an installed `plait` needs no checkout.
+const RENDER_PY: &str = "scripts/mitsuba/render.py";
+const ENSURE_MITSUBA: &str = "scripts/ensure-mitsuba.sh";
+
+fn script_text(relative: &str) -> Result<String, PathTracedError> {
+    let path = plait_assets::find(relative).unwrap_or_else(|| PathBuf::from(relative));
+    plait_assets::read_to_string(&path)
+        .map(|t| t.into_owned())
+        .map_err(|source| PathTracedError::Read { path, source })
+}
+
 /// The Mitsuba version `scripts/ensure-mitsuba.sh` pins (render.py checks
 /// the installed one is it), read from the script so the key cannot
 /// disagree with what is installed without starting Python.
 pub fn mitsuba_version() -> String {
-    let script = repo_root().join("scripts/ensure-mitsuba.sh");
-    std::fs::read_to_string(script)
+    script_text(ENSURE_MITSUBA)
         .ok()
         .and_then(|t| {
             t.lines()
@@ -38,12 +49,53 @@ pub fn mitsuba_version() -> String {
         .unwrap_or_else(|| "unknown".into())
 }
 
-fn render_py() -> PathBuf {
-    repo_root().join("scripts/mitsuba/render.py")
+/// A library script as a file a program can run: the checkout's own file
+/// when it is one, else its text written under `<build folder>/plait-scripts/`
+/// with a name from its hash (two versions never share a file; a second
+/// run writes nothing; written under a temporary name and renamed).
+fn script_file(relative: &str) -> Result<PathBuf, PathTracedError> {
+    if let Some(path) = plait_assets::find(relative).filter(|p| !plait_assets::is_builtin(p)) {
+        return Ok(path);
+    }
+    let text = script_text(relative)?;
+    let hash: String = Sha256::digest(text.as_bytes())
+        .iter()
+        .take(8)
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    let name = Path::new(relative);
+    let stem = name.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = name.extension().unwrap_or_default().to_string_lossy();
+    let dir = target_dir().join("plait-scripts");
+    let path = dir.join(format!("{stem}-{hash}.{ext}"));
+    if !path.exists() {
+        std::fs::create_dir_all(&dir).map_err(io(&dir))?;
+        let tmp = dir.join(format!(".tmp-{}-{stem}.{ext}", std::process::id()));
+        std::fs::write(&tmp, &text).map_err(io(&tmp))?;
+        std::fs::rename(&tmp, &path).map_err(io(&path))?;
+    }
+    Ok(path)
+}
+
+/// The command that installs Mitsuba where [`python`] looks for it.
+fn install_command() -> String {
+    match script_file(ENSURE_MITSUBA) {
+        Ok(script) if std::env::var_os("CARGO_TARGET_DIR").is_some() => {
+            format!("bash {}", script.display())
+        }
+        // The script puts the venv in $CARGO_TARGET_DIR, else beside itself
+        // in a checkout: name the folder plait looks in.
+        Ok(script) => format!(
+            "CARGO_TARGET_DIR={} bash {}",
+            target_dir().display(),
+            script.display()
+        ),
+        Err(_) => "bash scripts/ensure-mitsuba.sh".into(),
+    }
 }
 
 /// `$PLAIT_MITSUBA_PYTHON`, else the venv `scripts/ensure-mitsuba.sh`
-/// makes in `$CARGO_TARGET_DIR` (or the repository's `target/`).
+/// makes in the build folder ([`target_dir`]).
 fn python() -> Result<PathBuf, PathTracedError> {
     let candidate = match std::env::var_os("PLAIT_MITSUBA_PYTHON") {
         Some(p) => PathBuf::from(p),
@@ -54,14 +106,26 @@ fn python() -> Result<PathBuf, PathTracedError> {
     } else {
         Err(PathTracedError::NoMitsuba {
             tried: format!("no {}", candidate.display()),
+            install: install_command(),
         })
     }
 }
 
+/// `$CARGO_TARGET_DIR`, else the build checkout's `target/` while it
+/// exists, else `$XDG_CACHE_HOME/plait` (or `~/.cache/plait`): where the
+/// venv, the cache and written scripts go.
 fn target_dir() -> PathBuf {
-    std::env::var_os("CARGO_TARGET_DIR")
+    if let Some(dir) = std::env::var_os("CARGO_TARGET_DIR") {
+        return PathBuf::from(dir);
+    }
+    if let Some(checkout) = plait_assets::build_checkout() {
+        return checkout.join("target");
+    }
+    let cache_home = std::env::var_os("XDG_CACHE_HOME")
         .map(PathBuf::from)
-        .unwrap_or_else(|| repo_root().join("target"))
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+        .unwrap_or_else(std::env::temp_dir);
+    cache_home.join("plait")
 }
 
 /// The default `--cache`: `plait-references` in the build folder.
@@ -98,9 +162,20 @@ fn key(spec: &PathTraced, dir: &Path) -> Result<String, PathTracedError> {
         .collect::<Result<_, _>>()
         .map_err(io(dir))?;
     names.sort();
-    for path in names.iter().chain([&render_py()]) {
+    let mut files = Vec::new();
+    for path in &names {
         let bytes = std::fs::read(path).map_err(io(path))?;
-        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        files.push((
+            path.file_name()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .into_owned(),
+            bytes,
+        ));
+    }
+    // render.py's text, wherever it was found (same key as a file of that name).
+    files.push(("render.py".into(), script_text(RENDER_PY)?.into_bytes()));
+    for (name, bytes) in files {
         h.update(format!("{name}\0{}\0", bytes.len()).as_bytes());
         h.update(&bytes);
     }
@@ -173,6 +248,7 @@ fn render(
     progress: &mut dyn FnMut(&str) -> std::io::Result<()>,
 ) -> Result<(), super::AbError> {
     let python = python()?;
+    let render_py = script_file(RENDER_PY)?;
     let tmp = entry.with_file_name(format!(
         ".tmp-{}-{}",
         std::process::id(),
@@ -195,7 +271,7 @@ fn render(
         let start = Instant::now();
         let mut command = Command::new(&python);
         command
-            .arg(render_py())
+            .arg(&render_py)
             .arg(export)
             .arg(tmp.join(format!("seed{seed}.exr")))
             .args(["--spp", &spec.spp.to_string()])
@@ -211,6 +287,7 @@ fn render(
         }
         let out = command.output().map_err(|e| PathTracedError::NoMitsuba {
             tried: format!("{}: {e}", python.display()),
+            install: install_command(),
         })?;
         if !out.status.success() {
             // Keep the exported scene for the user to look at or re-run;

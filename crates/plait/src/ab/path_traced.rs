@@ -31,10 +31,12 @@ pub enum PathTracedError {
         col: usize,
         message: String,
     },
+    /// `install` is the command that installs it: the checkout's script, or
+    /// outside a checkout the built-in copy plait wrote out.
     #[error(
-        "Mitsuba is not installed ({tried}): run `bash scripts/ensure-mitsuba.sh` (or `eval \"$(bash scripts/ensure-mitsuba.sh)\"` to set PLAIT_MITSUBA_PYTHON)"
+        "Mitsuba is not installed ({tried}): run `{install}` (or `eval \"$({install})\"` to set PLAIT_MITSUBA_PYTHON)"
     )]
-    NoMitsuba { tried: String },
+    NoMitsuba { tried: String, install: String },
     #[error("scene {scene}: {source}")]
     Export {
         scene: String,
@@ -130,7 +132,7 @@ struct FibreToml {
 /// Whether `path` is a path-traced reference (a TOML file with a top-level
 /// `[path_traced]` table) rather than a pipeline.
 pub fn is_path_traced(path: &Path) -> bool {
-    std::fs::read_to_string(path)
+    plait_assets::read_to_string(path)
         .ok()
         .and_then(|text| text.parse::<toml::Table>().ok())
         .is_some_and(|t| t.contains_key("path_traced"))
@@ -139,7 +141,8 @@ pub fn is_path_traced(path: &Path) -> bool {
 impl PathTraced {
     /// Read and check `path`: every bad key or value at file:line:col.
     pub fn load(path: &Path) -> Result<Self, PathTracedError> {
-        let text = std::fs::read_to_string(path).map_err(|source| PathTracedError::Read {
+        // `plait_assets` reads a built-in copy (`<built-in>/references/…`) too.
+        let text = plait_assets::read_to_string(path).map_err(|source| PathTracedError::Read {
             path: path.to_path_buf(),
             source,
         })?;

@@ -221,7 +221,8 @@ impl Plan {
         let points = grid_points(&options.sweeps);
         for given in &options.pipelines {
             let pipeline = resolve_pipeline(Some(given));
-            if !pipeline.exists() {
+            // A built-in copy (`<built-in>/pipelines/…`) exists for plait only.
+            if !plait_assets::exists(&pipeline) {
                 return Err(AbError::MissingPipeline(given.clone()));
             }
             let base = stem(&pipeline);
@@ -253,7 +254,7 @@ impl Plan {
             }
         }
         let reference = resolve_pipeline(Some(&options.reference));
-        if !reference.exists() {
+        if !plait_assets::exists(&reference) {
             return Err(AbError::MissingReference(options.reference.clone()));
         }
         let path_traced = super::path_traced::load_if_path_traced(&reference, &options)?;

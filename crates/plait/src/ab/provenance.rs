@@ -42,14 +42,18 @@ fn hash_file(path: &Path) -> Result<FileHash, AbError> {
 /// A path-traced reference's files: its TOML, the script that renders it
 /// and the script that pins Mitsuba's version.
 pub(super) fn path_traced_provenance(file: &Path) -> Result<PipelineProvenance, AbError> {
-    let root = crate::session::repo_root();
-    let root = root.canonicalize().unwrap_or(root);
+    // The library's copies (the checkout's, or the built-in ones): the ones
+    // the reference ran.
+    let script = |relative: &str| {
+        let path = plait_assets::find(relative).unwrap_or_else(|| PathBuf::from(relative));
+        hash_file(&path)
+    };
     Ok(PipelineProvenance {
         path: file.display().to_string(),
         files: vec![
             hash_file(file)?,
-            hash_file(&root.join("scripts/mitsuba/render.py"))?,
-            hash_file(&root.join("scripts/ensure-mitsuba.sh"))?,
+            script("scripts/mitsuba/render.py")?,
+            script("scripts/ensure-mitsuba.sh")?,
         ],
         shaders: Vec::new(),
     })
