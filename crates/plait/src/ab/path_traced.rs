@@ -75,6 +75,9 @@ pub enum PathTracedError {
         path: PathBuf,
         source: image::ImageError,
     },
+    /// A `--set params.chiang_…` the path tracer's fibre cannot take.
+    #[error("--set {set}: {message}")]
+    FibreSet { set: String, message: String },
     /// A `--set` the reference cannot follow (its display is AgX).
     #[error("--set {0}: a path-traced reference is shown through tone_mapping = agx only")]
     Display(String),
@@ -204,10 +207,20 @@ impl PathTraced {
         })
     }
 
-    /// How the report names it: renderer, version, samples, depth.
+    /// How the report names it: renderer, version, samples, depth, and
+    /// the fibre when it is not the standard one.
     pub fn describe(&self) -> String {
+        let f = &self.fibre;
+        let fibre = if *f == Fibre::default() {
+            String::new()
+        } else {
+            format!(
+                ", fibre β_m {} β_n {} α {}° η {}",
+                f.longitudinal_roughness, f.azimuthal_roughness, f.scale_tilt_degrees, f.eta
+            )
+        };
         format!(
-            "path-traced, Mitsuba {} hair BSDF, {} × {} spp, max_depth {}",
+            "path-traced, Mitsuba {} hair BSDF, {} × {} spp, max_depth {}{fibre}",
             super::cache::mitsuba_version(),
             self.seeds.len(),
             self.spp,
@@ -216,50 +229,113 @@ impl PathTraced {
     }
 }
 
-/// The `[fibre]` table over `Fibre::default()`; each value finite, the
-/// roughnesses in (0, 1], η above 1.
+type Check = fn(f32) -> bool;
+
+/// The fibre's values: each one's `[fibre]` key, the `--set` that sets it
+/// too (the `chiang` technique's param of the same quantity, so one flag
+/// describes the fibre to the variants and to the path tracer), its check
+/// and what it must be.
+const FIBRE_FIELDS: [(&str, &str, Check, &str); 4] = [
+    (
+        "longitudinal_roughness",
+        "params.chiang_beta_m",
+        |x| x > 0.0 && x <= 1.0,
+        "in (0, 1]",
+    ),
+    (
+        "azimuthal_roughness",
+        "params.chiang_beta_n",
+        |x| x > 0.0 && x <= 1.0,
+        "in (0, 1]",
+    ),
+    (
+        "scale_tilt_degrees",
+        "params.chiang_tilt",
+        |x| x.abs() <= 45.0,
+        "within ±45",
+    ),
+    (
+        "eta",
+        "params.chiang_eta",
+        |x| x > 1.0 && x < 4.0,
+        "in (1, 4)",
+    ),
+];
+
+fn fibre_field(fibre: &mut Fibre, i: usize) -> &mut f32 {
+    match i {
+        0 => &mut fibre.longitudinal_roughness,
+        1 => &mut fibre.azimuthal_roughness,
+        2 => &mut fibre.scale_tilt_degrees,
+        _ => &mut fibre.eta,
+    }
+}
+
+/// The `[fibre]` table over `Fibre::default()`; each value finite and
+/// within its field's bounds.
 fn fibre(
     given: Option<FibreToml>,
     at: &dyn Fn(Option<Range<usize>>, String) -> PathTracedError,
 ) -> Result<Fibre, PathTracedError> {
     let mut fibre = Fibre::default();
     let Some(f) = given else { return Ok(fibre) };
-    type Check = fn(f32) -> bool;
-    let fields: [(Option<Spanned<f32>>, &mut f32, Check, &str); 4] = [
-        (
-            f.longitudinal_roughness,
-            &mut fibre.longitudinal_roughness,
-            |x| x > 0.0 && x <= 1.0,
-            "longitudinal_roughness must be in (0, 1]",
-        ),
-        (
-            f.azimuthal_roughness,
-            &mut fibre.azimuthal_roughness,
-            |x| x > 0.0 && x <= 1.0,
-            "azimuthal_roughness must be in (0, 1]",
-        ),
-        (
-            f.scale_tilt_degrees,
-            &mut fibre.scale_tilt_degrees,
-            |x| x.abs() <= 45.0,
-            "scale_tilt_degrees must be within ±45",
-        ),
-        (
-            f.eta,
-            &mut fibre.eta,
-            |x| x > 1.0 && x < 4.0,
-            "eta must be in (1, 4)",
-        ),
+    let values = [
+        f.longitudinal_roughness,
+        f.azimuthal_roughness,
+        f.scale_tilt_degrees,
+        f.eta,
     ];
-    for (value, slot, ok, message) in fields {
+    for (i, value) in values.into_iter().enumerate() {
+        let (key, _, ok, bounds) = FIBRE_FIELDS[i];
         if let Some(v) = value {
             if !(v.get_ref().is_finite() && ok(*v.get_ref())) {
-                return Err(at(Some(v.span()), message.to_string()));
+                return Err(at(Some(v.span()), format!("{key} must be {bounds}")));
             }
-            *slot = *v.get_ref();
+            *fibre_field(&mut fibre, i) = *v.get_ref();
         }
     }
     Ok(fibre)
+}
+
+/// `fibre` with the run's `--set params.chiang_…` applied (they win over
+/// the file's `[fibre]`: the flag is what the user typed for this run),
+/// each checked as the file's value is, the error naming the flag.
+pub(super) fn fibre_with_sets(mut fibre: Fibre, sets: &[String]) -> Result<Fibre, PathTracedError> {
+    for set in sets {
+        let Some((key, value)) = set.split_once('=') else {
+            continue;
+        };
+        let Some(i) = FIBRE_FIELDS.iter().position(|f| f.1 == key.trim()) else {
+            continue;
+        };
+        let (name, _, ok, bounds) = FIBRE_FIELDS[i];
+        match value.trim().parse::<f32>() {
+            Ok(v) if v.is_finite() && ok(v) => *fibre_field(&mut fibre, i) = v,
+            _ => {
+                return Err(PathTracedError::FibreSet {
+                    set: set.clone(),
+                    message: format!("the path tracer's fibre {name} must be {bounds}"),
+                });
+            }
+        }
+    }
+    Ok(fibre)
+}
+
+/// The run's `--set`s the path-traced reference does not follow: all but
+/// the display (`params.exposure`, `techniques.tone_mapping = agx`) and the
+/// fibre (`params.chiang_…`). They tune the pipelines; the path tracer
+/// renders the scene and its fibre. Said in the run, never ignored silently.
+pub(super) fn sets_not_followed(sets: &[String]) -> Vec<String> {
+    sets.iter()
+        .filter(|set| {
+            let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
+            !(key == "params.exposure"
+                || key == "techniques.tone_mapping"
+                || FIBRE_FIELDS.iter().any(|f| f.1 == key))
+        })
+        .cloned()
+        .collect()
 }
 
 /// 1-based line and column (in characters) of byte `offset` in `text`.
@@ -279,11 +355,12 @@ pub(super) fn load_if_path_traced(
     if !is_path_traced(reference) {
         return Ok(None);
     }
-    let spec = PathTraced::load(reference)?;
+    let mut spec = PathTraced::load(reference)?;
     if options.sequence.is_some() {
         return Err(PathTracedError::Frames);
     }
     display_exposure(&options.sets)?;
+    spec.fibre = fibre_with_sets(spec.fibre, &options.sets)?;
     Ok(Some(spec))
 }
 
@@ -342,6 +419,14 @@ pub fn render_references(
         return Ok(());
     };
     let exposure = display_exposure(&plan.options.sets)?;
+    let ignored = sets_not_followed(&plan.options.sets);
+    if !ignored.is_empty() {
+        progress(&format!(
+            "note: the path-traced reference does not follow --set {} (it renders the scene and its fibre; it follows params.exposure and params.chiang_*)",
+            ignored.join(", --set ")
+        ))
+        .map_err(super::AbError::Progress)?;
+    }
     let size = plan.options.render_size(true);
     let k = plan.options.supersample.max(1);
     let mut rendered = Vec::new();
@@ -479,6 +564,35 @@ mod tests {
             assert!(e.contains(&format!(".toml:{line}:")), "{e}");
             assert!(e.contains(word), "{e}");
         }
+    }
+
+    #[test]
+    fn chiang_sets_reach_the_fibre_and_other_sets_are_named() {
+        let sets: Vec<String> = [
+            "params.chiang_beta_m=0.2",
+            "params.chiang_eta=1.6",
+            "params.exposure=1",
+            "params.shadow_weight=0.3",
+            "techniques.transparency=linked_list",
+        ]
+        .map(String::from)
+        .into();
+        let f = fibre_with_sets(Fibre::default(), &sets).unwrap();
+        assert_eq!(f.longitudinal_roughness, 0.2);
+        assert_eq!(f.eta, 1.6);
+        assert_eq!(f.azimuthal_roughness, Fibre::default().azimuthal_roughness);
+        assert_eq!(
+            sets_not_followed(&sets),
+            [
+                "params.shadow_weight=0.3",
+                "techniques.transparency=linked_list"
+            ]
+        );
+        let e = fibre_with_sets(Fibre::default(), &["params.chiang_eta=0.5".into()]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--set params.chiang_eta=0.5: the path tracer's fibre eta must be in (1, 4)"
+        );
     }
 
     #[test]
