@@ -358,3 +358,82 @@ fn an_installed_plait_runs_a_path_traced_reference_from_its_built_in_copies() {
     let report = std::fs::read_to_string(tmp.path().join("r1/report.json")).unwrap();
     assert!(report.contains("Mitsuba 3.9.1"), "{report}");
 }
+
+/// Ctrl-C (SIGINT to the process group, as a terminal sends it) while
+/// Mitsuba renders a seed: exit 130, no cache entry, and the next run
+/// removes the interrupted run's temporary folder and renders afresh.
+#[test]
+fn interrupting_a_path_traced_reference_leaves_no_cache_entry() {
+    use std::io::BufRead;
+    use std::os::unix::process::CommandExt;
+    let env = mitsuba_env();
+    let tmp = tempfile::tempdir().unwrap();
+    let cache = tmp.path().join("cache");
+    // Enough samples that a seed takes seconds after Mitsuba starts.
+    let slow = reference_file(tmp.path(), 4096);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_plait"))
+        .current_dir(root())
+        .args(["ab", "pipelines/forward.toml", "--reference"])
+        .arg(&slow)
+        .args(["--scene", "examples/scenes/small.toml", "--size", "32x24"])
+        .args(["--repeats", "1", "--cache"])
+        .arg(&cache)
+        .arg("--out")
+        .arg(tmp.path().join("r"))
+        .envs(env.iter().map(|(k, v)| (k, v)))
+        .process_group(0)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start plait");
+    let stdout = std::io::BufReader::new(child.stdout.take().unwrap());
+    let mut seen = Vec::new();
+    for line in stdout.lines() {
+        let line = line.unwrap();
+        seen.push(line.clone());
+        if line.contains("Mitsuba seed 0") {
+            break;
+        }
+    }
+    assert!(
+        seen.last().is_some_and(|l| l.contains("Mitsuba seed 0")),
+        "{seen:?}"
+    );
+    // Python is started right after the line; give it time to be rendering.
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    let pgid = format!("-{}", child.id());
+    let sent = Command::new("kill")
+        .args(["-INT", "--", &pgid])
+        .status()
+        .expect("run kill");
+    assert!(sent.success());
+    let out = child.wait_with_output().expect("output");
+    assert_eq!(out.status.code(), Some(130), "{}", text(&out.stderr));
+    let names = |dir: &Path| -> Vec<String> {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect()
+    };
+    let left = names(&cache);
+    assert!(
+        left.iter()
+            .all(|n| n.starts_with(".tmp-") || n == "last-seed.json"),
+        "an entry after an interrupt: {left:?}"
+    );
+    assert!(left.iter().any(|n| n.starts_with(".tmp-")), "{left:?}");
+
+    // The next run: the dead run's temporaries are gone, its own entry stored.
+    let done = ab(&good_file(tmp.path()), &cache, &tmp.path().join("r2"), &env);
+    assert!(done.status.success(), "{}", text(&done.stderr));
+    let left = names(&cache);
+    assert!(
+        left.iter().all(|n| !n.starts_with(".tmp-")),
+        "temporaries of the interrupted run stayed: {left:?}"
+    );
+    assert!(
+        left.iter()
+            .any(|n| cache.join(n).join("entry.json").exists()),
+        "{left:?}"
+    );
+}

@@ -4,7 +4,8 @@
 //! version and `render.py`'s bytes, the samples, depth and seeds. An entry
 //! is a folder `<cache>/<key>/` with one EXR per seed and `entry.json`; it
 //! is written under a temporary name and renamed, so an interrupt leaves
-//! no half entry (at most a `.tmp-*` folder, never read).
+//! no half entry (at most a `.tmp-*` folder, never read, and removed by the
+//! next run once its process is gone).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -205,6 +206,7 @@ pub(super) fn reference(
     progress: &mut dyn FnMut(&str) -> std::io::Result<()>,
 ) -> Result<Reference, super::AbError> {
     std::fs::create_dir_all(cache).map_err(io(cache))?;
+    sweep_interrupted(cache);
     let export = cache.join(format!(".tmp-export-{}-{}", std::process::id(), scene.name));
     let _ = std::fs::remove_dir_all(&export);
     let exported = crate::mitsuba::plan(&scene.data, size, spec.fibre)
@@ -236,6 +238,35 @@ pub(super) fn reference(
     })();
     let _ = std::fs::remove_dir_all(&export);
     result
+}
+
+/// Removes the temporaries (`.tmp-PID-…`, `.tmp-export-PID-…`) of runs that
+/// no longer exist: an interrupted run ends without its destructors and
+/// leaves its half-rendered folder, which is never read but would stay. A
+/// folder of a live process (another run sharing the cache) is kept. Only
+/// where `/proc` says which processes live; elsewhere they stay, unread.
+fn sweep_interrupted(cache: &Path) {
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(cache) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = name
+            .strip_prefix(".tmp-export-")
+            .or_else(|| name.strip_prefix(".tmp-"))
+        else {
+            continue;
+        };
+        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<u32>().ok()) else {
+            continue;
+        };
+        if !Path::new("/proc").join(pid.to_string()).exists() {
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+    }
 }
 
 /// Both seeds rendered into a temporary folder, renamed to `entry` once complete.
