@@ -12,7 +12,7 @@ use std::process::{Command, ExitCode};
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
-use plait_book::published::{self, Figure, Record, Registry, check, stale};
+use plait_book::published::{self, Figure, Kind, Record, Registry, check, stale, table};
 
 /// `println!` that ends the program quietly when standard output is gone
 /// (`plait-figures stale | head`), instead of panicking on the broken pipe.
@@ -109,7 +109,7 @@ fn run() -> Result<ExitCode> {
             for figure in figures {
                 let published = Record::load(&published::record_path(&repo, &figure.id))?;
                 let dir = measure(&plait, figure, &args.runs)?;
-                let today = Record::from_run(figure, &dir, made(&repo, figure)?)?;
+                let today = record_of(&repo, figure, &dir)?;
                 let rows = check::compare(figure, &published, &today);
                 moved += rows.iter().filter(|r| r.moved).count();
                 say!("{}", check::table(figure, &published, &rows));
@@ -147,9 +147,31 @@ fn run() -> Result<ExitCode> {
     }
 }
 
-/// Runs the figure's command into `runs/ID` and returns that folder.
+/// Runs the figure's command into `runs/ID` and returns that folder: a
+/// `plait ab` report, or a table figure's standard output (`stdout.txt`).
 fn measure(plait: &Path, figure: &Figure, runs: &Path) -> Result<PathBuf> {
     let dir = runs.join(&figure.id);
+    if figure.kind == Kind::Table {
+        eprintln!("measuring {}: {}", figure.id, figure.command_line());
+        let out = Command::new(&figure.command[0])
+            .args(&figure.command[1..])
+            .stderr(std::process::Stdio::inherit())
+            .output()
+            .with_context(|| format!("running {}", figure.command[0]))?;
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        eprint!("{stdout}");
+        if !out.status.success() {
+            bail!(
+                "figure `{}`: `{}` failed ({})",
+                figure.id,
+                figure.command_line(),
+                out.status
+            );
+        }
+        std::fs::create_dir_all(&dir)?;
+        std::fs::write(dir.join("stdout.txt"), stdout.as_bytes())?;
+        return Ok(dir);
+    }
     eprintln!(
         "measuring {}: {} --out {}",
         figure.id,
@@ -174,7 +196,7 @@ fn measure(plait: &Path, figure: &Figure, runs: &Path) -> Result<PathBuf> {
 
 /// Writes the record, then the page's block from it.
 fn publish(repo: &Path, figure: &Figure, dir: &Path) -> Result<()> {
-    let record = Record::from_run(figure, dir, made(repo, figure)?)?;
+    let record = record_of(repo, figure, dir)?;
     let page = repo.join(&figure.page);
     let text = std::fs::read_to_string(&page).with_context(|| page.display().to_string())?;
     let new = published::replace_block(&text, &figure.id, &record.block(figure))
@@ -189,6 +211,20 @@ fn publish(repo: &Path, figure: &Figure, dir: &Path) -> Result<()> {
         figure.page
     );
     Ok(())
+}
+
+/// The record of a measurement in `dir`, as the figure's kind reads it.
+fn record_of(repo: &Path, figure: &Figure, dir: &Path) -> Result<Record> {
+    let made = made(repo, figure)?;
+    Ok(match figure.kind {
+        Kind::Ab => Record::from_run(figure, dir, made)?,
+        Kind::Table => {
+            let path = dir.join("stdout.txt");
+            let text =
+                std::fs::read_to_string(&path).with_context(|| path.display().to_string())?;
+            table::record(figure, &text, made)?
+        }
+    })
 }
 
 /// The commit and date a measurement of `figure` made now belongs to; dirty

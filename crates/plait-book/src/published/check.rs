@@ -18,7 +18,7 @@ use super::{Figure, Record, Row};
 pub struct Comparison {
     pub scene: String,
     pub variant: String,
-    pub quantity: &'static str,
+    pub quantity: String,
     pub published: Option<f64>,
     pub today: Option<f64>,
     /// Today's range (equal to `today` for deterministic quantities).
@@ -46,6 +46,9 @@ fn metric(row: &Row, name: &str) -> Option<f64> {
 
 /// Every value of `published` against `today`'s.
 pub fn compare(figure: &Figure, published: &Record, today: &Record) -> Vec<Comparison> {
+    if let (Some(p), Some(t)) = (&published.table, &today.table) {
+        return super::table::compare(figure, p, t);
+    }
     let mut out = Vec::new();
     let mut scenes = published.scenes();
     for s in today.scenes() {
@@ -70,15 +73,17 @@ pub fn compare(figure: &Figure, published: &Record, today: &Record) -> Vec<Compa
             let p = was.iter().find(|r| r.variant == variant);
             let t = now.iter().find(|r| r.variant == variant);
             let row =
-                |quantity, published: Option<f64>, today: Option<f64>, lo, hi, moved| Comparison {
-                    scene: scene.to_string(),
-                    variant: variant.to_string(),
-                    quantity,
-                    published,
-                    today,
-                    lo,
-                    hi,
-                    moved,
+                |quantity: &str, published: Option<f64>, today: Option<f64>, lo, hi, moved| {
+                    Comparison {
+                        scene: scene.to_string(),
+                        variant: variant.to_string(),
+                        quantity: quantity.to_string(),
+                        published,
+                        today,
+                        lo,
+                        hi,
+                        moved,
+                    }
                 };
             let (Some(p), Some(t)) = (p, t) else {
                 // A row only one side has: the table changed shape.
@@ -183,6 +188,9 @@ mod tests {
             id: "f".into(),
             page: "README.md".into(),
             command: vec!["ab".into()],
+            kind: super::super::Kind::Ab,
+            key: vec![],
+            columns: Default::default(),
             measures: vec![],
             speed_tolerance: 0.10,
         }
@@ -216,6 +224,7 @@ mod tests {
             repeats: 3,
             command_line: "plait ab".into(),
             rows,
+            table: None,
             markdown: String::new(),
         }
     }
@@ -292,7 +301,7 @@ mod tests {
         let moved: Vec<(&str, &str)> = rows
             .iter()
             .filter(|r| r.moved)
-            .map(|r| (r.variant.as_str(), r.quantity))
+            .map(|r| (r.variant.as_str(), r.quantity.as_str()))
             .collect();
         assert_eq!(moved, [("b", "RMSE"), ("c", "row present")]);
     }

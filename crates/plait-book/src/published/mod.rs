@@ -13,11 +13,12 @@ pub mod check;
 mod record;
 mod registry;
 pub mod stale;
+pub mod table;
 
 use std::path::{Path, PathBuf};
 
 pub use record::{Made, Record, Row, Spread};
-pub use registry::{Figure, Registry};
+pub use registry::{Column, Figure, Kind, Registry};
 
 use crate::error::BookError;
 

@@ -24,6 +24,9 @@ pub struct Record {
     pub repeats: u32,
     pub command_line: String,
     pub rows: Vec<Row>,
+    /// A table figure's cells (`kind = "table"`; `rows` is then empty).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<super::table::Table>,
     /// The report's Markdown tables, as the page shows them.
     pub markdown: String,
 }
@@ -197,6 +200,7 @@ impl Record {
             repeats: report.provenance.repeats,
             command_line: figure.command_line(),
             rows,
+            table: None,
             markdown: markdown.trim_end().to_string(),
         })
     }
@@ -205,6 +209,21 @@ impl Record {
     /// where they came from and how to check them again.
     pub fn block(&self, figure: &Figure) -> String {
         let short = &self.commit[..self.commit.len().min(10)];
+        if self.table.is_some() {
+            return format!(
+                "{}\n\n*Printed by `{}` at commit `{short}`{} on {}; re-measured by \
+                 `bash scripts/bench.sh --check {}`.*",
+                self.markdown,
+                figure.command_line(),
+                if self.dirty {
+                    " with uncommitted changes"
+                } else {
+                    ""
+                },
+                self.date,
+                figure.id
+            );
+        }
         format!(
             "{}\n\n*Measured by `{}` at commit `{short}`{} on {} ({}, {} repeat{}); \
              re-measured by `bash scripts/bench.sh --check {}`.*",

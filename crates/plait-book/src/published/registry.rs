@@ -23,8 +23,20 @@ pub struct Figure {
     pub id: String,
     /// The Markdown file that shows it, relative to the repository root.
     pub page: String,
-    /// `plait`'s arguments (an `ab` command); the tool adds `--out DIR`.
+    /// `kind = "ab"` (the default): `plait`'s arguments, an `ab` command;
+    /// the tool adds `--out DIR`. `kind = "table"`: a program and its
+    /// arguments, run from the repository root (a benchmark, a script), whose
+    /// standard output's last Markdown table is the figure.
     pub command: Vec<String>,
+    #[serde(default)]
+    pub kind: Kind,
+    /// A table figure's columns naming a row (default: the first column).
+    #[serde(default)]
+    pub key: Vec<String>,
+    /// A table figure's compared columns and how (the rest are shown, not
+    /// compared: a paper's numbers, a description).
+    #[serde(default)]
+    pub columns: indexmap::IndexMap<String, Column>,
     /// Files and folders whose change can move the figure: a commit touching
     /// one after the figure's own commit makes it stale.
     pub measures: Vec<String>,
@@ -33,6 +45,33 @@ pub struct Figure {
     /// machine repeats to about ±10 %, book → Performance).
     #[serde(default = "default_speed_tolerance")]
     pub speed_tolerance: f64,
+}
+
+/// How a figure is measured.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// One `plait ab` run (its `report.json`).
+    #[default]
+    Ab,
+    /// The last Markdown table a program prints.
+    Table,
+}
+
+/// How a table figure's column is compared with today's.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Column {
+    /// Times of one run: compared as each row's ratio to the first row's
+    /// (side by side, never as milliseconds), within `speed_tolerance`.
+    Time,
+    /// A ratio measured within the run (its cell may give the rounds'
+    /// range as `[lo–hi]`), within that range widened by `speed_tolerance`.
+    Ratio,
+    /// A deterministic metric: within 2 % (or 0.001 near 0).
+    Metric,
+    /// Text or a count that must not change.
+    Exact,
 }
 
 fn default_speed_tolerance() -> f64 {
@@ -53,14 +92,26 @@ impl Registry {
                     format!("figure `{}` is registered twice", f.id),
                 ));
             }
-            if f.command.first().map(String::as_str) != Some("ab") {
-                return Err(BookError::content(
-                    &path,
-                    format!(
-                        "figure `{}`: command must be a `plait ab` command (starts with \"ab\")",
-                        f.id
-                    ),
-                ));
+            match f.kind {
+                Kind::Ab if f.command.first().map(String::as_str) != Some("ab") => {
+                    return Err(BookError::content(
+                        &path,
+                        format!(
+                            "figure `{}`: command must be a `plait ab` command (starts with \"ab\"), or give kind = \"table\"",
+                            f.id
+                        ),
+                    ));
+                }
+                Kind::Table if f.command.is_empty() || f.columns.is_empty() => {
+                    return Err(BookError::content(
+                        &path,
+                        format!(
+                            "figure `{}`: a table figure needs a command and the columns it compares",
+                            f.id
+                        ),
+                    ));
+                }
+                _ => {}
             }
             if f.command.iter().any(|a| a == "--out") {
                 return Err(BookError::content(
@@ -117,7 +168,12 @@ impl Registry {
 impl Figure {
     /// The command line as a reader types it.
     pub fn command_line(&self) -> String {
-        std::iter::once("plait")
+        let program = match self.kind {
+            Kind::Ab => Some("plait"),
+            Kind::Table => None,
+        };
+        program
+            .into_iter()
             .chain(self.command.iter().map(String::as_str))
             .map(|a| {
                 if a.chars().any(char::is_whitespace) {
