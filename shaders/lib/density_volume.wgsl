@@ -3,7 +3,7 @@
 // passes and the provider declare their own buffers).
 //
 // The box (8 f32, written each frame by density_bounds.wgsl): lo.xyz, the
-// resolution R, size.xyz, the march step in voxels. The grid holds R³ u32,
+// resolution R, size.xyz, 0. The grid holds R³ u32,
 // x fastest: per voxel q = Σ w · l · |sin(t, L)| / V^(2/3) in units of
 // 1 / DENSITY_SCALE — each strand piece inside the voxel (width w, length l,
 // tangent t) weighed by its projected area toward the key light L, V the
@@ -24,12 +24,10 @@ struct DensityBox {
     lo: vec3<f32>,
     res: u32,
     size: vec3<f32>,
-    // march step in voxels
-    step: f32,
 }
 
 fn density_box_from(words: array<f32, 8>) -> DensityBox {
-    return DensityBox(vec3<f32>(words[0], words[1], words[2]), u32(words[3]), vec3<f32>(words[4], words[5], words[6]), words[7]);
+    return DensityBox(vec3<f32>(words[0], words[1], words[2]), u32(words[3]), vec3<f32>(words[4], words[5], words[6]));
 }
 
 // A voxel's edge lengths (world units).

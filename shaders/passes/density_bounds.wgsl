@@ -16,7 +16,6 @@
 struct BoundsParams {
     resolution: u32,
     padding: f32,
-    step: f32,
 }
 @group(1) @binding(3) var<uniform> bounds_params: BoundsParams;
 
@@ -45,5 +44,5 @@ fn main(@builtin(local_invocation_index) t: u32) {
     // One more voxel each side: voxel = size / res, size = extent + 2 pad + 2 voxel.
     let size = (extent + 2.0 * pad) * res / max(res - 2.0, 1.0);
     let lo_out = b.lo - pad - size / res;
-    box = array<f32, 8>(lo_out.x, lo_out.y, lo_out.z, res, size.x, size.y, size.z, bounds_params.step);
+    box = array<f32, 8>(lo_out.x, lo_out.y, lo_out.z, res, size.x, size.y, size.z, 0.0);
 }
