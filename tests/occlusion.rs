@@ -464,7 +464,9 @@ fn density_volume_occlusion_is_in_unit_range_deeper_hair_darker_and_near_directi
     let (ci, co) = inner_outer(&scene, &cylinders);
     eprintln!(
         "density volume: inner {inner:.3}, outer {outer:.3}, mean {:.3}; deep opacity directions (25) inner {ri:.3} outer {ro:.3} mean {:.3}, mean |Δ| {diff:.4}; cylinders inner {ci:.3} outer {co:.3} mean {:.3}, mean |Δ| {diff_cyl:.4}",
-        mean(&ao), mean(&reference), mean(&cylinders)
+        mean(&ao),
+        mean(&reference),
+        mean(&cylinders)
     );
     assert!(
         outer > inner + 0.01,
@@ -472,7 +474,10 @@ fn density_volume_occlusion_is_in_unit_range_deeper_hair_darker_and_near_directi
     );
     let (r_dod, r_cyl) = (correlation(&ao, &reference), correlation(&ao, &cylinders));
     eprintln!("correlation per vertex: deep opacity directions {r_dod:.3}, cylinders {r_cyl:.3}");
-    assert!(diff < DENSITY_AO_MAX_DIFF, "mean |Δ| {diff:.4} against deep opacity directions");
+    assert!(
+        diff < DENSITY_AO_MAX_DIFF,
+        "mean |Δ| {diff:.4} against deep opacity directions"
+    );
     assert!(
         r_dod > DENSITY_AO_MIN_CORRELATION && r_cyl > DENSITY_AO_MIN_CORRELATION,
         "the volume should darken the vertices the other techniques darken: r {r_dod:.3}, {r_cyl:.3}"

@@ -284,7 +284,9 @@ fn the_density_volume_shadows_a_strands_area() {
                 failures.push(format!("R {resolution} {thickness}: ratio {ratio:.3}"));
             }
             if open < 0.8 {
-                failures.push(format!("R {resolution} {thickness}: only {open:.3} of the ground has T = 1"));
+                failures.push(format!(
+                    "R {resolution} {thickness}: only {open:.3} of the ground has T = 1"
+                ));
             }
         }
     }
@@ -318,8 +320,7 @@ fn density_integral(gpu: &Gpu, thickness: f32, extra: &[&str]) -> (f64, f64, f64
         let t = s / l;
         open += usize::from(s == l);
         darkest = darkest.min(t);
-        integral += -t.min(1.0).max(1e-6).ln() * pixel * pixel;
+        integral += -t.clamp(1e-6, 1.0).ln() * pixel * pixel;
     }
     (integral, darkest, open as f64 / lit.len() as f64)
 }
-

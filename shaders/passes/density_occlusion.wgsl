@@ -32,7 +32,7 @@ fn lattice(i: u32, n: u32) -> vec3<f32> {
     return vec3<f32>(r * cos(phi), r * sin(phi), z);
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(256)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let v = id.x;
     let vertices = arrayLength(&hair_vertices);
