@@ -1,8 +1,8 @@
 // density_occlusion — per-vertex ambient occlusion from the hair density
 // volume: each vertex's transmittance exp(−w · n) averaged over N
 // directions of a spherical Fibonacci lattice, n the strands crossed from
-// the vertex to the volume's edge (the self-shadow provider's march,
-// plait::self_shadow::density_volume). Xing et al. 2012 §4 average
+// the vertex to the volume's edge (the march the self-shadow technique
+// makes from every voxel, plait::density_march). Xing et al. 2012 §4 average
 // transmittance over directions on the sphere from deep opacity maps
 // (hair only occludes, as there); here every direction marches the one
 // volume built this frame. The volume weighs strands by their area across
@@ -10,7 +10,7 @@
 // crossing it the same way (exact for strands across every direction, an
 // over-estimate along the strands' own direction).
 #import plait::hair_point::HairPoint
-#import plait::self_shadow::density_volume::{density_strands_along, density_bias}
+#import plait::density_march::{density_strands_along, density_bias}
 
 @group(1) @binding(0) var<storage, read> hair_vertices: array<HairPoint>;
 @group(1) @binding(1) var<storage, read_write> vertex_ao: array<f32>;

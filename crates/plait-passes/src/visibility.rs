@@ -79,9 +79,9 @@ pub fn slots() -> Vec<SlotSpec> {
         )
         .optional(),
         buffer(
-            "vis_density",
+            "vis_toward",
             Access::StorageRead,
-            "density_volume: R³ voxels of projected strand area toward the light (Jansson et al. 2019)",
+            "density_volume: per voxel, the strands between its centre and the light (Jansson et al. 2019)",
         )
         .optional(),
         buffer(

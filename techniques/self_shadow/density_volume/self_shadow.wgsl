@@ -1,19 +1,24 @@
 // plait::self_shadow::density_volume — self-shadowing from the hair density
-// volume (plait::density_volume): from the point toward the key light, the
-// expected number of strands in between is n = ∫ λ ds, λ = q / V^(1/3) the
-// strands crossed per world unit, integrated voxel by voxel through the grid; visibility = exp(−w · n), w =
-// shadow_weight — the convention of exact self-shadowing, whose n is
-// Σ share of the fragments in front (one strand across the ray: n = 1).
-// The march starts the self-shadow bias toward the light ("In front of",
-// docs/design.md); the point's own strand is not excluded beyond that: it
-// counts with whatever of its voxel lies past the bias.
+// volume (plait::density_volume): the expected number n of strands between
+// a point and the key light, n = ∫ λ ds, λ = q / V^(1/3) the strands
+// crossed per world unit; visibility = exp(−w · n), w = shadow_weight — the
+// convention of exact self-shadowing, whose n is Σ share of the fragments in
+// front (one strand across the ray: n = 1).
+// n is integrated exactly, voxel by voxel, once a frame from every voxel's
+// centre (density_light.wgsl, plait::density_march) into `vis_toward`; a
+// point reads it trilinearly where the ray from it (moved the self-shadow
+// bias toward the light, "In front of", docs/design.md) meets the volume: at
+// the point inside it, at the entry outside it (the head, the ground: the
+// volume's outer voxels hold no hair, so n there is the entry's). The point's
+// own strand is not excluded beyond the bias: its voxel's density is spread
+// over the neighbouring centres' values.
 #define_import_path plait::self_shadow::density_volume
 
 #import plait::frame::frame
-#import plait::density_volume::{DENSITY_SCALE, DensityBox, density_box_from, density_cell, density_clip, density_index, density_to_light}
+#import plait::density_volume::{DensityBox, density_box_from, density_cell, density_clip, density_index, density_to_light}
 
-@group(1) @binding(9) var<storage, read> vis_density: array<u32>;
 @group(1) @binding(10) var<storage, read> vis_box: array<f32, 8>;
+@group(1) @binding(11) var<storage, read> vis_toward: array<f32>;
 
 struct VisibilityParams {
     // Opacity added by one strand in front (w of Sintorn & Assarsson 2009 §3.3).
@@ -21,74 +26,41 @@ struct VisibilityParams {
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
 
-fn density_at_voxel(b: DensityBox, v: vec3<i32>) -> f32 {
-    if (any(v < vec3<i32>(0)) || any(v >= vec3<i32>(i32(b.res)))) {
-        return 0.0;
-    }
-    return f32(vis_density[density_index(b, vec3<u32>(v))]);
+fn toward_at(b: DensityBox, v: vec3<i32>) -> f32 {
+    let r = i32(b.res) - 1;
+    return vis_toward[density_index(b, vec3<u32>(clamp(v, vec3<i32>(0), vec3<i32>(r))))];
 }
 
-// Expected strands crossed from `world` along unit `dir` to the volume's
-// edge: the exact integral of the voxels' constant densities, voxel by voxel
-// (Amanatides & Woo 1987's traversal, as the splat walks segments): one read
-// per voxel crossed. A march in fixed steps reading the voxel at each
-// midpoint would alias (parallel rays entering the box at one face put their
-// samples at the same depths of each voxel layer, so a thin layer is counted
-// once, twice or not at all), and trilinear steps cost 8 reads each.
-fn density_strands_along(world: vec3<f32>, dir: vec3<f32>) -> f32 {
-    let b = density_box_from(vis_box);
-    if (b.res == 0u) {
-        return 0.0;
-    }
-    let cell = density_cell(b);
-    let g0 = (world - b.lo) / cell;
-    let d = dir / cell;
-    let res = f32(b.res);
-    let span = density_clip(g0, d, res);
-    let t0 = max(span.x, 0.0);
-    let t1 = span.y;
-    if (t1 <= t0) {
-        return 0.0;
-    }
-    let entry = g0 + d * t0;
-    var v = vec3<i32>(clamp(floor(entry + d * 1e-4), vec3<f32>(0.0), vec3<f32>(res - 1.0)));
-    let dir_step = vec3<i32>(sign(d));
-    let inv = 1.0 / max(abs(d), vec3<f32>(1e-30));
-    let next_face = vec3<f32>(v) + select(vec3<f32>(0.0), vec3<f32>(1.0), d > vec3<f32>(0.0));
-    var t_max = select(vec3<f32>(3.0e38), t0 + abs(next_face - entry) * inv, abs(d) > vec3<f32>(1e-30));
-    var t = t0;
-    var q = 0.0;
-    for (var i = 0u; i < 3u * b.res + 3u && t < t1; i++) {
-        let t_next = min(min(min(t_max.x, t_max.y), t_max.z), t1);
-        q += density_at_voxel(b, v) * (t_next - t);
-        t = t_next;
-        if (t_max.x <= t_max.y && t_max.x <= t_max.z) {
-            v.x += dir_step.x;
-            t_max.x += inv.x;
-        } else if (t_max.y <= t_max.z) {
-            v.y += dir_step.y;
-            t_max.y += inv.y;
-        } else {
-            v.z += dir_step.z;
-            t_max.z += inv.z;
-        }
-        if (any(v < vec3<i32>(0)) || any(v >= vec3<i32>(i32(b.res)))) {
-            break;
-        }
-    }
-    // t is in world units along dir (|dir| = 1); q / V^(1/3) per unit length.
-    return q / (DENSITY_SCALE * pow(cell.x * cell.y * cell.z, 1.0 / 3.0));
-}
-
-// World units of the self-shadow bias (light linear depth × the light's depth range).
-fn density_bias() -> f32 {
-    return frame.conventions.x * (frame.near_far.w - frame.near_far.z);
+// n at grid coordinate g (voxel centres at i + 0.5), trilinear; constant
+// past the outer centres.
+fn toward_trilinear(b: DensityBox, g: vec3<f32>) -> f32 {
+    let c = clamp(g - 0.5, vec3<f32>(0.0), vec3<f32>(f32(b.res) - 1.0));
+    let i = vec3<i32>(floor(c));
+    let f = c - floor(c);
+    let x00 = mix(toward_at(b, i), toward_at(b, i + vec3<i32>(1, 0, 0)), f.x);
+    let x10 = mix(toward_at(b, i + vec3<i32>(0, 1, 0)), toward_at(b, i + vec3<i32>(1, 1, 0)), f.x);
+    let x01 = mix(toward_at(b, i + vec3<i32>(0, 0, 1)), toward_at(b, i + vec3<i32>(1, 0, 1)), f.x);
+    let x11 = mix(toward_at(b, i + vec3<i32>(0, 1, 1)), toward_at(b, i + vec3<i32>(1, 1, 1)), f.x);
+    return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
 }
 
 // Expected number of strands between `world` and the key light.
 fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+    let b = density_box_from(vis_box);
+    if (b.res == 0u) {
+        return 0.0;
+    }
     let to_light = density_to_light(world, frame.light_direction, frame.light_position);
-    return density_strands_along(world + to_light * density_bias(), to_light);
+    let bias = frame.conventions.x * (frame.near_far.w - frame.near_far.z);
+    let cell = density_cell(b);
+    let g0 = (world + to_light * bias - b.lo) / cell;
+    let d = to_light / cell;
+    let span = density_clip(g0, d, f32(b.res));
+    let t0 = max(span.x, 0.0);
+    if (span.y <= t0) {
+        return 0.0;
+    }
+    return toward_trilinear(b, g0 + d * t0);
 }
 
 fn hair_visibility(world: vec3<f32>) -> f32 {
