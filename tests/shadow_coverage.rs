@@ -324,3 +324,53 @@ fn density_integral(gpu: &Gpu, thickness: f32, extra: &[&str]) -> (f64, f64, f64
     }
     (integral, darkest, open as f64 / lit.len() as f64)
 }
+
+/// The density volume holds each strand's projected area toward the light:
+/// Σ voxels q · V^(2/3) = Σ segments w · l · |sin(t, L)| — here the strand
+/// across the light (sin 1) and the second, slanted one (sin 0.709), at
+/// three resolutions, within 0.1 % (u32 fixed point, 2^16 per voxel face).
+/// Measured: 8.500e-4 of 8.500e-4 at 32³, 64³ and 128³.
+#[test]
+fn the_density_volume_holds_each_strands_area_toward_the_light() {
+    let (_lock, gpu) = open_gpu();
+    let scene = scene(0.001);
+    let light = glam::Vec3::from(LIGHT).normalize();
+    let mut expected = 0.0f64;
+    let strands = &scene.strands;
+    for range in strands.ranges() {
+        for s in range.start..range.end - 1 {
+            let d = strands.points[s + 1] - strands.points[s];
+            let width = 0.5 * (strands.thickness[s] + strands.thickness[s + 1]);
+            expected += (width * d.normalize().cross(light).length() * d.length()) as f64;
+        }
+    }
+    let mut failures = Vec::new();
+    for res in [32, 64, 128] {
+        let sets = vec![
+            "techniques.self_shadow=density_volume".to_owned(),
+            format!("params.density_resolution={res}"),
+        ];
+        let pipeline = repo_root().join("pipelines/occupancy.toml");
+        let prepared = prepare(&gpu, &pipeline, &sets, &scene, SIZE).expect("prepares");
+        prepared.renderer.render().expect("renders");
+        let words = |name: &str| -> Vec<u32> {
+            let bytes = prepared.renderer.read_buffer(name).expect(name);
+            bytes
+                .chunks_exact(4)
+                .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                .collect()
+        };
+        let b: Vec<f32> = words("density_box")
+            .into_iter()
+            .map(f32::from_bits)
+            .collect();
+        let volume = (b[4] * b[5] * b[6]) as f64 / (b[3] as f64).powi(3);
+        let held: f64 = words("density_grid").iter().map(|&q| q as f64).sum::<f64>() / 65536.0
+            * volume.powf(2.0 / 3.0);
+        eprintln!("density_volume R {res}: held {held:.4e}, expected {expected:.4e}");
+        if (held / expected - 1.0).abs() > 0.001 {
+            failures.push(format!("R {res}: {held:.4e} of {expected:.4e}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
