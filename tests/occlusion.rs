@@ -435,16 +435,16 @@ fn cylinders_chunk_size_does_not_change_the_sum() {
     assert!(one.iter().any(|&v| v < 0.9), "the hair occludes itself");
 }
 
-/// Measured on small: mean |Δ| 0.149 against deep-opacity directions (25),
-/// which count whole texels (0.753 / 0.851 inner / outer; 0.902 / 0.948 with
-/// shares, docs/design.md) where the volume counts strand widths; per-vertex
-/// correlation 0.581 with them and 0.614 with cylinders.
+/// Measured on small (32³): mean |Δ| 0.153 against deep-opacity directions
+/// (25), which count whole texels (0.753 / 0.851 inner / outer; 0.902 /
+/// 0.948 with shares, docs/design.md) where the volume counts strand widths;
+/// per-vertex correlation 0.598 with them and 0.643 with cylinders.
 const DENSITY_AO_MAX_DIFF: f64 = 0.18;
 const DENSITY_AO_MIN_CORRELATION: f64 = 0.5;
 
 /// The density volume's occlusion (techniques/ambient_occlusion/density_volume,
-/// issue 43): in [0, 1], inner hair darker than outer (measured 0.942 /
-/// 0.960: strand widths, not whole texels, so a smaller margin than the other
+/// issue 43): in [0, 1], inner hair darker than outer (measured 0.945 /
+/// 0.963: strand widths, not whole texels, so a smaller margin than the other
 /// techniques' 0.05), within the convention gap of deep-opacity directions
 /// (25) — both average exp(−w · hair crossed) over sphere directions with
 /// w = 0.15 — and darkening the vertices the other two darken.
