@@ -116,7 +116,7 @@ const VISIBILITY_RATIO_FLOORS: [(&str, f64, f64); 3] = [
 fn every_self_shadowing_technique_keeps_its_measured_error() {
     let (_lock, gpu) = open_gpu();
     // (pipeline, measured mean |ΔV| on small, allowed band)
-    let expected: [Row; 8] = [
+    let expected: [Row; 9] = [
         ("occupancy", MEASURED_OCCUPANCY, (0.0, 0.00016)),
         ("occupancy_no_slab", MEASURED_NO_SLAB, (0.0009, 0.0013)),
         ("deep_opacity", MEASURED_DOM, (0.0030, 0.0046)),
@@ -124,6 +124,7 @@ fn every_self_shadowing_technique_keeps_its_measured_error() {
         ("density_clustering", MEASURED_DC, (0.00020, 0.00028)),
         ("modified_shadow_map", MEASURED_MSM, (0.157, 0.21)),
         ("tressfx_shadow", MEASURED_TRESSFX, (0.064, 0.096)),
+        ("density_volume", MEASURED_DENSITY_VOLUME, (0.052, 0.063)),
         ("no_self_shadow", MEASURED_NONE, (0.097, 0.12)),
     ];
     let names: Vec<&str> = expected.iter().map(|e| e.0).collect();
@@ -148,6 +149,14 @@ const MEASURED_DC: f64 = 0.000_252_5;
 const MEASURED_MSM: f64 = 0.1885;
 const MEASURED_TRESSFX: f64 = 0.09283;
 const MEASURED_NONE: f64 = 0.09925;
+// The density volume at its default 32³ (issue 43): a voxel spreads a
+// strand's shadow over its cross-section, so a point right behind a strand
+// reads less than the texel's exact list gives and a point beside it more;
+// along the probe's rays its optical depth is 0.475× exact's on small's 400
+// strands, 0.85× on the default groom, while the total over the light's
+// plane is conserved (tests/shadow_coverage.rs). 0.0570 at 64³ (plait ab on
+// small, 480×360, pipelines extending density_volume.toml with each R).
+const MEASURED_DENSITY_VOLUME: f64 = 0.06008;
 
 /// The band check fails for a band that admits another technique: the
 /// self-shadowing bands as they were (the modified shadow map's [0.10, 0.25]

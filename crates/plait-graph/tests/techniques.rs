@@ -405,3 +405,32 @@ fn a_technique_that_does_not_write_what_its_point_promises_is_an_error() {
         "{text}"
     );
 }
+
+/// One fragment included by two chosen techniques (the density volume that
+/// self_shadow and ambient_occlusion both read, issue 43) defines its names
+/// once: the same keys at the same place are one definition, not a clash
+/// (the same name written in each technique's own file still is one:
+/// `two_techniques_defining_one_name_is_an_error`).
+#[test]
+fn one_fragment_included_by_two_techniques_is_defined_once() {
+    let shared =
+        "[resources.shared_map]\nkind = \"texture\"\nformat = \"rgba8unorm\"\nsize = [2, 2]\n";
+    let flat = FLAT.replace(
+        "description = \"flat colour\"",
+        "description = \"flat colour\"\nincludes = [\"../../shared.toml\"]",
+    );
+    let sky = "[technique]\npoint = \"lighting\"\ndescription = \"sky\"\nincludes = [\"../../shared.toml\"]\n";
+    let pipeline = PIPELINE.replace(
+        "shading = \"flat\"",
+        "shading = \"flat\"\nlighting = \"sky\"",
+    );
+    let t = Tree::new(&[
+        ("pipelines/p.toml", &pipeline),
+        ("techniques/shading/flat/technique.toml", &flat),
+        ("techniques/lighting/sky/technique.toml", sky),
+        ("techniques/shared.toml", shared),
+    ]);
+    if let Err(e) = load(&t.path("pipelines/p.toml"), &[]) {
+        panic!("{:?}", e.0);
+    }
+}

@@ -78,6 +78,18 @@ pub fn slots() -> Vec<SlotSpec> {
             "exact: fragments per light texel",
         )
         .optional(),
+        buffer(
+            "vis_toward",
+            Access::StorageRead,
+            "density_volume: per voxel, the strands between its centre and the light (Jansson et al. 2019)",
+        )
+        .optional(),
+        buffer(
+            "vis_box",
+            Access::StorageRead,
+            "density_volume: the volume's box, resolution and march step",
+        )
+        .optional(),
     ]
 }
 

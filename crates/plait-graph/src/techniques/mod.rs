@@ -320,8 +320,9 @@ struct Chooser<'a> {
     /// The techniques' data (without `[technique]`), merged in choice order.
     combined: Option<Spanned<Node>>,
     /// Which technique defined each resource and pass, to refuse two of them
-    /// defining the same name: (section, `point/name`, item).
-    owners: Vec<(String, String, String)>,
+    /// defining the same name: (section, `point/name`, item, where its key
+    /// is written).
+    owners: Vec<(String, String, String, Location)>,
 }
 
 impl Chooser<'_> {
@@ -505,10 +506,14 @@ impl Chooser<'_> {
                 continue;
             };
             for (item, e) in t {
-                if let Some((_, other, _)) = self
+                // One fragment included by two chosen techniques (the density
+                // volume of self_shadow and ambient_occlusion) defines its
+                // names once: the same key at the same place is one item.
+                let shared = |at: &Location| *at == e.key;
+                if let Some((_, other, _, _)) = self
                     .owners
                     .iter()
-                    .find(|(s, _, i)| s == section && i == item)
+                    .find(|(s, _, i, at)| s == section && i == item && !shared(at))
                 {
                     let hint = if section == "params" {
                         format!(
@@ -524,8 +529,12 @@ impl Chooser<'_> {
                         ),
                     ));
                 } else {
-                    self.owners
-                        .push((section.to_owned(), format!("{point}/{name}"), item.clone()));
+                    self.owners.push((
+                        section.to_owned(),
+                        format!("{point}/{name}"),
+                        item.clone(),
+                        e.key.clone(),
+                    ));
                 }
             }
         }
