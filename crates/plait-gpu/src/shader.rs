@@ -126,10 +126,11 @@ pub struct ShaderLibrary {
 }
 
 impl ShaderLibrary {
-    pub fn new() -> Result<Self, ShaderError> {
+    /// The composer with the modules of `library` added, each provider
+    /// checked against its point's contract.
+    pub fn new(library: &crate::library::Library) -> Result<Self, ShaderError> {
         let mut composer = Composer::default().with_capabilities(naga::valid::Capabilities::all());
         composer.validate = true;
-        let library = crate::library::discover()?;
         let mut digest = std::hash::DefaultHasher::new();
         for module in &library.modules {
             std::hash::Hash::hash(&module.source, &mut digest);
