@@ -28,6 +28,8 @@ pub struct Shaders {
     /// The WGSL library as read, or why it could not be (every compile with
     /// it reports that, at its file, line and column).
     library: Result<Library, ShaderError>,
+    /// Digest of the library modules' text, for pipeline cache keys.
+    digest: u64,
     state: Mutex<State>,
 }
 
@@ -60,8 +62,14 @@ impl Shaders {
     }
 
     pub fn new(library: Result<Library, ShaderError>) -> Self {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::hash::DefaultHasher::new();
+        for module in library.iter().flat_map(|l| &l.modules) {
+            module.source.hash(&mut h);
+        }
         Shaders {
             library,
+            digest: h.finish(),
             state: Mutex::new(State::default()),
         }
     }
@@ -121,12 +129,9 @@ impl Shaders {
     }
 
     /// Digest of the library modules' text, for pipeline cache keys (an
-    /// edited module changes every shader); 0 before the first composition.
+    /// edited module changes every shader).
     pub fn digest(&self) -> u64 {
-        match &self.state().composer {
-            Some(Ok(l)) => l.library_digest(),
-            _ => 0,
-        }
+        self.digest
     }
 
     /// How many distinct modules have been composed (for tests of the cache).

@@ -61,8 +61,8 @@ fn a_build_composes_the_text_its_compile_read_and_a_new_library_reads_the_edit()
     // A new library value (the viewer's and --watch's reload) sees the edit.
     let again = PipelineSource::new(&pipeline, &sets);
     let loaded = again.load(&[]).expect("loads");
-    let err = plait::adapter::compile_on(&gpu, &loaded, &again, size)
-        .err()
-        .expect("the broken shader is refused by a new library value");
+    let Err(err) = plait::adapter::compile_on(&gpu, &loaded, &again, size) else {
+        panic!("the broken shader should be refused by a new library value");
+    };
     assert!(err.to_string().contains("compose.wgsl"), "{err}");
 }
