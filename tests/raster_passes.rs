@@ -99,7 +99,11 @@ fn check_with(replace: &str, with: &str) -> String {
     assert!(text.contains(replace), "fixture lacks {replace:?}");
     let text = text.replace(replace, with);
     let pipeline = plait_graph::load_str(&path, &text, &[]).unwrap_or_else(|e| panic!("{e}"));
-    match check_pipeline(&pipeline, &CompileOptions::default()) {
+    match check_pipeline(
+        &plait_passes::read_library(&[]),
+        &pipeline,
+        &CompileOptions::default(),
+    ) {
         Ok(_) => String::new(),
         Err(e) => e.to_string(),
     }
@@ -132,9 +136,13 @@ fn a_blend_its_target_format_cannot_do_is_an_error_at_the_blend() {
         .expect("fixture")
         .replace(from, to);
     let pipeline = plait_graph::load_str(&path, &text, &[]).expect("loads");
-    let err = check_pipeline(&pipeline, &CompileOptions::default())
-        .expect_err("r32uint cannot blend")
-        .to_string();
+    let err = check_pipeline(
+        &plait_passes::read_library(&[]),
+        &pipeline,
+        &CompileOptions::default(),
+    )
+    .expect_err("r32uint cannot blend")
+    .to_string();
     let line = line_of(from, to, "blend = { count");
     assert!(
         err.contains(&format!("raster_counts.toml:{line}:")),
@@ -241,8 +249,12 @@ fn a_culled_raster_pass_with_state_checks() {
     let path = repo_root().join("tests/fixtures/raster_counts.toml");
     let pipeline =
         plait_graph::load(&path, &["pipeline.outputs=[\"slab_counts\"]".into()]).expect("loads");
-    let schedule = check_pipeline(&pipeline, &CompileOptions::default())
-        .unwrap_or_else(|e| panic!("culled passes with state must check: {e}"));
+    let schedule = check_pipeline(
+        &plait_passes::read_library(&[]),
+        &pipeline,
+        &CompileOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("culled passes with state must check: {e}"));
     let culled: Vec<&str> = schedule
         .culled
         .iter()

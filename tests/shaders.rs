@@ -13,13 +13,14 @@ use plait_graph::{Location, ParamSpec, ParamType, PassShape, ScheduledPass, Valu
 use plait_tests::{files_with_ext, rel, repo_root};
 
 fn library() -> ShaderLibrary {
-    ShaderLibrary::new().unwrap_or_else(|e| {
-        panic!(
-            "composing the shader library failed in {}:\n{}",
-            e.path.display(),
-            e.message
-        )
-    })
+    ShaderLibrary::new(&plait_gpu::library::Library::read(&[]).expect("the library is found"))
+        .unwrap_or_else(|e| {
+            panic!(
+                "composing the shader library failed in {}:\n{}",
+                e.path.display(),
+                e.message
+            )
+        })
 }
 
 /// A value for a param: its default, else the smallest valid one.
@@ -116,7 +117,7 @@ fn shader_files() -> Vec<String> {
 fn every_shader_composes_and_validates() {
     let root = repo_root();
     let files = shader_files();
-    let passes = plait_passes::library();
+    let passes = plait_passes::read_library(&[]);
     let mut shaders = library();
     let mut failures: Vec<String> = Vec::new();
     let mut compositions = 0;
@@ -127,7 +128,7 @@ fn every_shader_composes_and_validates() {
     // each file under shaders/lib/, and each file of shaders/ or techniques/
     // declaring `#define_import_path`, is a module of the library, read from
     // the checkout.
-    let found = plait_gpu::library::discover().expect("the library is found");
+    let found = plait_gpu::library::Library::read(&[]).expect("the library is found");
     let keys: BTreeSet<&str> = found.modules.iter().map(|m| m.key.as_str()).collect();
     let mut module_files: Vec<String> = files_with_ext(&root.join("techniques"), "wgsl")
         .iter()

@@ -353,8 +353,10 @@ fn returns(block: &naga::Block, out: &mut Vec<Option<naga::Handle<naga::Expressi
 /// fails here, naming it.
 #[test]
 fn every_shading_space_providers_w_is_a_constant() {
-    let mut library = ShaderLibrary::new().unwrap_or_else(|e| panic!("{}", e.message));
-    let providers = plait_passes::shading_space::providers();
+    let mut library =
+        ShaderLibrary::new(&plait_gpu::library::Library::read(&[]).expect("the library is found"))
+            .unwrap_or_else(|e| panic!("{}", e.message));
+    let providers = plait_passes::shading_space::providers(&plait_passes::read_library(&[]));
     assert!(providers.len() >= 2, "providers found: {providers:?}");
     for name in &providers {
         let probe = format!(

@@ -59,7 +59,7 @@ fn fuzz_pipeline_loader() {
         }
         text
     });
-    let library = plait_passes::library();
+    let library = plait_passes::read_library(&[]);
     let registry = library.registry();
     let top = repo_root().join("pipelines/fuzz.toml");
     let opts = plait_graph::CompileOptions {

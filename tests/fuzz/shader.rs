@@ -56,7 +56,10 @@ fn fuzz_shader_composer() {
     paths.extend(files_with_ext(&repo_root().join("tests/fixtures"), "wgsl"));
     assert!(!paths.is_empty(), "no shader seeds");
     let seeds: Vec<Vec<u8>> = paths.iter().map(|p| read(p)).collect();
-    let mut library = plait_gpu::ShaderLibrary::new().expect("the library composes");
+    let mut library = plait_gpu::ShaderLibrary::new(
+        &plait_gpu::library::Library::read(&[]).expect("the library is found"),
+    )
+    .expect("the library composes");
     let defines = vec![
         (
             "LIGHT_VIEW".to_string(),

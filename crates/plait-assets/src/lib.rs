@@ -49,39 +49,6 @@ pub fn search_path() -> Vec<PathBuf> {
     search_path_from(std::env::var_os(SEARCH_PATH_VAR))
 }
 
-/// Folders holding a loaded pipeline's own `techniques/` (the one beside it
-/// or an ancestor's), nearest first. Its technique folders are found by the
-/// graph; their WGSL is part of the shader library only once its folder is
-/// here, so loading a pipeline records it ([`add_pipeline_root`]).
-static PIPELINE_ROOTS: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
-
-/// Make the `techniques/` of `root` part of the library for the rest of the
-/// process (a pipeline beside it was loaded). The library caches notice: the
-/// files they list change.
-pub fn add_pipeline_root(root: &Path) {
-    let root = root.canonicalize().unwrap_or_else(|_| root.to_path_buf());
-    let mut roots = PIPELINE_ROOTS.lock().unwrap_or_else(|p| p.into_inner());
-    if !roots.contains(&root) {
-        roots.push(root);
-    }
-}
-
-/// The folders recorded by [`add_pipeline_root`], in the order recorded.
-pub fn pipeline_roots() -> Vec<PathBuf> {
-    PIPELINE_ROOTS
-        .lock()
-        .unwrap_or_else(|p| p.into_inner())
-        .clone()
-}
-
-/// The folders whose `techniques/` the library reads: every loaded
-/// pipeline's own (see [`add_pipeline_root`]), then the search path.
-pub fn technique_roots() -> Vec<PathBuf> {
-    let mut roots = pipeline_roots();
-    roots.extend(search_path());
-    roots
-}
-
 /// [`search_path`] for a given value of `PLAIT_PATH` (`None`: unset).
 pub fn search_path_from(var: Option<OsString>) -> Vec<PathBuf> {
     match var {

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use plait::session::{compile_checked, resolve_pipeline};
+use plait::session::{compile_checked_in, resolve_pipeline};
 use plait_graph::{
     CompileOptions, Formats, ParamType, PassShape, PassTypeSpec, ResourceKind, SlotSpec,
 };
@@ -29,14 +29,24 @@ pub fn check(args: CheckArgs) -> Result<()> {
     // Plain `check` needs no GPU; `--adapter` opens the one render would.
     let gpu = args.adapter.then(plait_gpu::Gpu::new).transpose()?;
     let mut failures = Vec::new();
-    for given in &args.pipelines {
-        // A gallery name (`forward.toml`) is found on the library search path,
-        // as `plait render` finds it.
-        let path = &resolve_pipeline(Some(given));
+    // A gallery name (`forward.toml`) is found on the library search path,
+    // as `plait render` finds it.
+    let paths: Vec<PathBuf> = args
+        .pipelines
+        .iter()
+        .map(|given| resolve_pipeline(Some(given)))
+        .collect();
+    // One library for every pipeline checked together: two whose own
+    // folders declare one module are an error naming both files.
+    let library =
+        plait_passes::library_for(&paths.iter().map(PathBuf::as_path).collect::<Vec<_>>());
+    for path in &paths {
         let checked = match &gpu {
-            Some(gpu) => plait::adapter::check_on_adapter(gpu, path, &args.set.sets, (960, 720))
-                .map_err(anyhow::Error::from),
-            None => compile_checked(path, &args.set.sets, &CompileOptions::default())
+            Some(gpu) => {
+                plait::adapter::check_on_adapter(gpu, &library, path, &args.set.sets, (960, 720))
+                    .map_err(anyhow::Error::from)
+            }
+            None => compile_checked_in(&library, path, &args.set.sets, &CompileOptions::default())
                 .map_err(anyhow::Error::from),
         };
         match checked {
@@ -169,10 +179,10 @@ pub fn graph(args: GraphArgs) -> Result<()> {
     let loaded = plait_graph::load(&pipeline, &args.set.sets)?;
     // A default capacity lowered to fit, as the render would (the graph
     // shows the schedule that runs).
-    let schedule = match compile_checked(&pipeline, &args.set.sets, &opts) {
+    let source = plait::source::PipelineSource::new(&pipeline, &args.set.sets);
+    let schedule = match compile_checked_in(&source.library, &pipeline, &args.set.sets, &opts) {
         Ok(schedule) => schedule,
         Err(errors) => {
-            let source = plait::source::PipelineSource::new(&pipeline, &args.set.sets);
             crate::size_limit::explain_default_limits(&loaded, &source, args.size)?;
             return Err(errors.into());
         }
@@ -288,7 +298,7 @@ fn print_rows(title: &str, rows: &[(String, String, String)]) -> std::io::Result
 }
 
 pub fn passes(args: PassesArgs) -> Result<()> {
-    let library = plait_passes::library();
+    let library = plait_passes::read_library(&[]);
     let specs: Vec<PassTypeSpec> = library.types.values().map(|t| t.spec()).collect();
     if args.json {
         let all: Vec<_> = specs.iter().map(spec_json).collect();

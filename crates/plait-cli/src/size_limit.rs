@@ -96,7 +96,7 @@ fn explain(
     on: &str,
     options: &dyn Fn((u32, u32)) -> CompileOptions,
 ) -> Result<()> {
-    let registry = plait_passes::library().registry();
+    let registry = source.library.registry();
     let with = |extra: &[String], opts: &CompileOptions| -> Result<Schedule, Errors> {
         if extra.is_empty() {
             plait_graph::compile(loaded, &registry, opts)

@@ -349,6 +349,56 @@ fn render_watch_renders_again_on_every_save_and_survives_an_error() {
     );
 }
 
+/// `render --watch` reads a new library when a library module on the search
+/// path changes: the edited `frame.wgsl` (every shader imports it) reaches
+/// the next image with no restart.
+#[test]
+fn render_watch_reads_an_edited_library_module() {
+    let library = tempfile::tempdir().expect("temp dir");
+    copy_tree(&root().join("shaders"), &library.path().join("shaders"));
+    let frame_wgsl = library.path().join("shaders/lib/frame.wgsl");
+    let original = std::fs::read_to_string(&frame_wgsl).expect("frame.wgsl");
+    let out = library.path().join("out.png");
+    let mut child = Killed(
+        Command::new(env!("CARGO_BIN_EXE_plait"))
+            .arg("render")
+            .arg(root().join("pipelines/forward.toml"))
+            .arg("--scene")
+            .arg(root().join("examples/scenes/small.toml"))
+            .args(["--watch", "--size", "48x36"])
+            .args(["--set", "params.light_size=128"])
+            // Radiance in [0, 1] passes the display transform unchanged.
+            .args(["--set", "techniques.tone_mapping=clip"])
+            .arg("--out")
+            .arg(&out)
+            .env("PLAIT_PATH", library.path())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("start plait render --watch"),
+    );
+    let stderr = lines(child.0.stderr.take().expect("piped stderr"));
+    let mut log = Vec::new();
+    wait_for(&stderr, "watching", Duration::from_secs(120), &mut log);
+    let before = image::open(&out).expect("the first render").to_rgb8();
+    assert_ne!(before.get_pixel(0, 0).0, [255, 0, 0], "red before the edit");
+
+    let red = original.replace(
+        "    return frame.background.rgb;\n}",
+        "    return vec3<f32>(1.0, 0.0, 0.0);\n}",
+    );
+    assert_ne!(red, original, "frame.wgsl changed: update this test's edit");
+    save(&frame_wgsl, &red);
+    wait_for(&stderr, "watching", Duration::from_secs(120), &mut log);
+    let after = image::open(&out).expect("rendered again").to_rgb8();
+    assert_eq!(
+        after.get_pixel(0, 0).0,
+        [255, 0, 0],
+        "the background should be the edited module's red: {}",
+        log.join("\n")
+    );
+}
+
 #[test]
 fn without_a_display_the_viewer_says_what_to_do() {
     let o = Command::new(env!("CARGO_BIN_EXE_plait"))

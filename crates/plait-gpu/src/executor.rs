@@ -97,7 +97,6 @@ impl<'g> Renderer<'g> {
         frame: &FrameUniforms,
         base_dir: &Path,
     ) -> Result<Self, GpuError> {
-        let _one_library = crate::modules::LibrarySnapshot::take();
         let device = &gpu.device;
         for r in &schedule.resources {
             if let ResourceDesc::Texture { width, height, .. } = r.desc {
@@ -158,6 +157,7 @@ impl<'g> Renderer<'g> {
                 geometry: &geometry,
                 frame_layout: &frame_group.layout,
                 base_dir,
+                shaders: &library.shaders,
             };
             passes.push(t.build(pass, &mut ctx)?);
             if let Some(message) = gpu.take_uncaptured_errors().into_iter().next() {

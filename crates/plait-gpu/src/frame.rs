@@ -350,9 +350,9 @@ mod tests {
     #[test]
     fn the_wgsl_frame_struct_matches_frame_uniforms() {
         let source = "#import plait::frame::frame\n@fragment\nfn fs_main() -> @location(0) vec4<f32> {\n    return frame.ambient;\n}\n";
-        let module =
-            crate::modules::compose(std::path::Path::new("frame_layout.wgsl"), source, &[])
-                .unwrap_or_else(|e| panic!("{e}"));
+        let module = crate::modules::Shaders::read(&[])
+            .compose(std::path::Path::new("frame_layout.wgsl"), source, &[])
+            .unwrap_or_else(|e| panic!("{e}"));
         let (_, var) = module
             .global_variables
             .iter()

@@ -10,10 +10,14 @@
 //! named `<providers>::<name>`, and its selector module is generated from the
 //! providers found. Nothing here lists a file: a module dropped into a
 //! technique folder on `PLAIT_PATH` is part of the library on the next load.
+//!
+//! The library is a value ([`Library::read`]), read once per session from the
+//! search path and the loaded pipelines' own `techniques/` folders; nothing
+//! here caches it. A front end that reloads (the viewer, `render --watch`)
+//! reads a new one.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex};
 
 use plait_graph::techniques::{POINT_FILE, WgslPoint, wgsl_points};
 
@@ -53,21 +57,24 @@ pub struct ProviderPoint {
 }
 
 /// The whole library, modules in the order naga_oil must receive them.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct Library {
     pub modules: Vec<LibraryModule>,
     pub points: Vec<ProviderPoint>,
+    /// The loaded pipelines' own folders it was read with (their
+    /// `techniques/` before the search path's), resolved.
+    pub own_roots: Vec<PathBuf>,
 }
 
-/// Every file the library is made of, as `(library path, where it is read
-/// from)`: what [`crate::modules::library_stamp`] watches.
-pub fn library_files() -> Vec<(String, PathBuf)> {
+/// Every file the library read with `own_roots` is made of, as `(library
+/// path, where it is read from)`: what the viewer and `render --watch` watch.
+pub fn library_files(own_roots: &[PathBuf]) -> Vec<(String, PathBuf)> {
     let mut files: Vec<(String, PathBuf)> = MODULE_FOLDERS
         .iter()
-        .flat_map(|f| list_tree(f, "wgsl"))
+        .flat_map(|f| list_tree(own_roots, f, "wgsl"))
         .collect();
     files.extend(
-        list_tree(plait_graph::techniques::TECHNIQUES_DIR, "toml")
+        list_tree(own_roots, plait_graph::techniques::TECHNIQUES_DIR, "toml")
             .into_iter()
             .filter(|(key, _)| key.ends_with(&format!("/{POINT_FILE}"))),
     );
@@ -75,23 +82,22 @@ pub fn library_files() -> Vec<(String, PathBuf)> {
 }
 
 /// The files of `folder` with extension `ext`, nearest copy of each: a
-/// loaded pipeline's own `techniques/` before the search path's
-/// ([`plait_assets::technique_roots`]), the built-in copies last.
+/// loaded pipeline's own `techniques/` (under `own_roots`) before the search
+/// path's, the built-in copies last.
 ///
 /// A pipeline's own copy of a file shadows the search path's. Two pipelines'
 /// own folders holding the same file are both kept, so a module both declare
 /// is an error naming the two files, not a silent pick of the first.
-fn list_tree(folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
+fn list_tree(own_roots: &[PathBuf], folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
     let mut found = plait_assets::list_tree(folder, ext);
     if folder != plait_graph::techniques::TECHNIQUES_DIR {
         return found;
     }
     let mut own: Vec<(String, PathBuf)> = Vec::new();
-    // Each file resolved once: this runs on every library stamp, i.e. on
-    // every shader composition, and resolving walks the path by `readlink`.
+    // Two own roots may be one folder written two ways: each file once.
     let mut seen: std::collections::HashSet<PathBuf> = std::collections::HashSet::new();
-    for root in plait_assets::pipeline_roots() {
-        for (key, path) in plait_assets::list_tree_in(std::slice::from_ref(&root), folder, ext) {
+    for root in own_roots {
+        for (key, path) in plait_assets::list_tree_in(std::slice::from_ref(root), folder, ext) {
             if plait_assets::is_builtin(&path) {
                 continue;
             }
@@ -106,28 +112,30 @@ fn list_tree(folder: &str, ext: &str) -> Vec<(String, PathBuf)> {
     own
 }
 
-/// The library as found now: read again only when a file of it changed
-/// ([`crate::modules::library_stamp`]), since the params' choices, the
-/// define check of every pass and the composer all ask for it.
-pub fn discover() -> Result<Arc<Library>, ShaderError> {
-    static FOUND: Mutex<Option<(u64, Arc<Library>)>> = Mutex::new(None);
-    let stamp = crate::modules::library_stamp();
-    let mut guard = FOUND.lock().unwrap_or_else(|p| p.into_inner());
-    if let Some((s, library)) = guard.as_ref()
-        && *s == stamp
-    {
-        return Ok(library.clone());
+impl Library {
+    /// Find, read and order the library (see the module docs): the search
+    /// path as it is now, with the `techniques/` of each of `own_roots` (the
+    /// loaded pipelines' own folders, [`plait_graph::techniques::own_root`])
+    /// before it.
+    pub fn read(own_roots: &[PathBuf]) -> Result<Library, ShaderError> {
+        read_library(own_roots)
     }
-    let library = Arc::new(read_library()?);
-    *guard = Some((stamp, library.clone()));
-    Ok(library)
+
+    /// The value names of the point whose param is `param` (`visibility`):
+    /// the providers found.
+    pub fn providers(&self, param: &str) -> Vec<String> {
+        self.points
+            .iter()
+            .find(|p| p.contract.param == param)
+            .map(|p| p.providers.iter().map(|(n, _)| n.clone()).collect())
+            .unwrap_or_default()
+    }
 }
 
-/// Find, read and order the library (see the module docs).
-fn read_library() -> Result<Library, ShaderError> {
+fn read_library(own_roots: &[PathBuf]) -> Result<Library, ShaderError> {
     let mut found: BTreeMap<String, LibraryModule> = BTreeMap::new();
     for folder in MODULE_FOLDERS {
-        for (key, path) in list_tree(folder, "wgsl") {
+        for (key, path) in list_tree(own_roots, folder, "wgsl") {
             let source = plait_assets::read_to_string(&path)
                 .map_err(|e| ShaderError {
                     message: format!("{}: cannot read file: {e}", path.display()),
@@ -164,7 +172,9 @@ fn read_library() -> Result<Library, ShaderError> {
             );
         }
     }
-    let points = provider_points(&found)?;
+    let mut technique_roots = own_roots.to_vec();
+    technique_roots.extend(plait_assets::search_path());
+    let points = provider_points(&found, &technique_roots)?;
     for point in &points {
         let names: Vec<String> = point.providers.iter().map(|(n, _)| n.clone()).collect();
         let source = point.contract.selector_source(&names);
@@ -200,20 +210,8 @@ fn read_library() -> Result<Library, ShaderError> {
     Ok(Library {
         modules: dependency_order(found)?,
         points,
+        own_roots: own_roots.to_vec(),
     })
-}
-
-/// The value names of the point whose param is `param` (`visibility`): the
-/// providers found. Empty when the library cannot be read; loading it then
-/// reports why.
-pub fn providers(param: &str) -> Vec<String> {
-    discover()
-        .ok()
-        .and_then(|l| {
-            let point = l.points.iter().find(|p| p.contract.param == param)?;
-            Some(point.providers.iter().map(|(n, _)| n.clone()).collect())
-        })
-        .unwrap_or_default()
 }
 
 fn point_path(point: &WgslPoint) -> PathBuf {
@@ -229,8 +227,9 @@ fn point_path(point: &WgslPoint) -> PathBuf {
 /// default must be one of them.
 fn provider_points(
     found: &BTreeMap<String, LibraryModule>,
+    technique_roots: &[PathBuf],
 ) -> Result<Vec<ProviderPoint>, ShaderError> {
-    let contracts = wgsl_points().map_err(|e| ShaderError {
+    let contracts = wgsl_points(technique_roots).map_err(|e| ShaderError {
         path: e
             .0
             .first()

@@ -120,19 +120,15 @@ pub enum Define {
 /// The composer with plait's library modules loaded.
 pub struct ShaderLibrary {
     composer: Composer,
-    /// Digest of the library modules' texts as read: part of every pipeline
-    /// cache key, since an edited module changes every shader importing it.
-    digest: u64,
 }
 
 impl ShaderLibrary {
-    pub fn new() -> Result<Self, ShaderError> {
+    /// The composer with the modules of `library` added, each provider
+    /// checked against its point's contract.
+    pub fn new(library: &crate::library::Library) -> Result<Self, ShaderError> {
         let mut composer = Composer::default().with_capabilities(naga::valid::Capabilities::all());
         composer.validate = true;
-        let library = crate::library::discover()?;
-        let mut digest = std::hash::DefaultHasher::new();
         for module in &library.modules {
-            std::hash::Hash::hash(&module.source, &mut digest);
             let file_path = module.path.display().to_string();
             let added = composer.add_composable_module(ComposableModuleDescriptor {
                 source: &module.source,
@@ -159,15 +155,7 @@ impl ShaderLibrary {
                 check_contract(&mut composer, &point.contract, name, path, source)?;
             }
         }
-        Ok(ShaderLibrary {
-            composer,
-            digest: std::hash::Hasher::finish(&digest),
-        })
-    }
-
-    /// Digest of the library modules as read (see the field).
-    pub fn library_digest(&self) -> u64 {
-        self.digest
+        Ok(ShaderLibrary { composer })
     }
 
     /// Compose and validate a shader. `path` is only used in messages.

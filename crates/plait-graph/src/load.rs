@@ -187,14 +187,6 @@ pub struct PassDecl {
 /// (`overrides` holds the `key=value` texts).
 pub fn load(path: &Path, overrides: &[String]) -> Result<Pipeline, Errors> {
     crate::counters::LOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    // The pipeline's own technique folders hold shader modules (providers)
-    // as well as technique files: the shader library reads them from now on.
-    if !plait_assets::is_builtin(path)
-        && let Some(own) = crate::techniques::techniques_beside(path)
-    {
-        let root = own.parent().filter(|p| !p.as_os_str().is_empty());
-        plait_assets::add_pipeline_root(root.unwrap_or(Path::new(".")));
-    }
     // The file as a whole: a file that cannot be read has no line 1.
     // `plait_assets` reads built-in copies (`<built-in>/…`) too.
     let text = plait_assets::read_to_string(path).map_err(|e| {

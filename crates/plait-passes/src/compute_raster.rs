@@ -78,9 +78,9 @@ pub struct TileScan;
 /// thread per texel of the first written texture) blends its segments.
 pub struct TileBlend;
 
-inventory::submit! { crate::RustPassType(|| Box::new(StrandBin)) }
-inventory::submit! { crate::RustPassType(|| Box::new(TileScan)) }
-inventory::submit! { crate::RustPassType(|| Box::new(TileBlend)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(StrandBin)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(TileScan)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(TileBlend)) }
 
 const SOURCE: &str =
     "Tafuri 2019 (Frostbite); Unreal Engine 5 hair rasterizer; Unity HDRP High Quality Lines";

@@ -43,9 +43,9 @@ pub const COMPUTE: DataOnly = DataOnly {
 };
 
 // The three data-only types are found by the library like every Rust pass type.
-inventory::submit! { crate::RustPassType(|| Box::new(FULLSCREEN)) }
-inventory::submit! { crate::RustPassType(|| Box::new(RASTER)) }
-inventory::submit! { crate::RustPassType(|| Box::new(COMPUTE)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(FULLSCREEN)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(RASTER)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(COMPUTE)) }
 
 impl PassType for DataOnly {
     fn spec(&self) -> PassTypeSpec {

@@ -40,7 +40,7 @@ use plait_graph::pass_type_file::{WordsPerTexel, check_words_per_texel};
 
 pub struct DensityClustering;
 
-inventory::submit! { crate::RustPassType(|| Box::new(DensityClustering)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(DensityClustering)) }
 
 /// Clusters per texel (the paper's K = 4: one RGBA texel).
 pub const CLUSTERS: u64 = 4;

@@ -36,11 +36,16 @@ use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
 use crate::hair_fragment;
 use crate::spec_util::{DEPTH, HDR, int, texture};
 
-pub struct HairDepthPeel;
+/// With the params of the library's providers (see [`HairShade`](crate::hair_shade::HairShade)).
+pub struct HairDepthPeel {
+    shading_params: Vec<plait_graph::ParamSpec>,
+}
 
-inventory::submit! { crate::RustPassType(|| Box::new(HairDepthPeel)) }
+inventory::submit! { crate::RustPassType(|library| Box::new(HairDepthPeel {
+    shading_params: hair_fragment::shading_params(library),
+})) }
 
-fn spec() -> PassTypeSpec {
+fn spec(shading_params: &[plait_graph::ParamSpec]) -> PassTypeSpec {
     let mut inputs = hair_fragment::shading_inputs();
     inputs.push(texture(
         "opaque_depth",
@@ -48,7 +53,7 @@ fn spec() -> PassTypeSpec {
         DEPTH,
         "camera depth of opaque geometry: hair behind it is not peeled",
     ));
-    let mut params = hair_fragment::shading_params();
+    let mut params = shading_params.to_vec();
     params.push(int(
         "max_layers",
         256,
@@ -103,7 +108,7 @@ fn spec() -> PassTypeSpec {
 
 impl PassType for HairDepthPeel {
     fn spec(&self) -> PassTypeSpec {
-        spec()
+        spec(&self.shading_params)
     }
     fn shader(&self) -> Option<&str> {
         // The technique folder's own shader (library path, search path first).
@@ -187,6 +192,7 @@ impl PassType for HairDepthPeel {
                 load_colors: true,
                 ..RasterState::default()
             },
+            ctx,
         )?;
         let blend = build_draw(&blend_draw, &blend_pass, ctx)?;
 

@@ -21,7 +21,7 @@ use crate::spec_util::{DEPTH, texture};
 
 pub struct DepthRange;
 
-inventory::submit! { crate::RustPassType(|| Box::new(DepthRange)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(DepthRange)) }
 
 pub(crate) const SHADER: &str = "shaders/passes/depth_range.wgsl";
 

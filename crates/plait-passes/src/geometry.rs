@@ -16,8 +16,8 @@ pub const WISP_COUNT_DEFAULT: i64 = 300;
 pub const WISP_LOD_SCREEN_FRACTION_DEFAULT: f64 = 0.5;
 
 /// The providers, by param value: every module `plait::geometry::NAME` found.
-pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("geometry")
+pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
+    library.shaders.providers("geometry")
 }
 
 /// The providers' optional input slots, taken by every pass drawing hair.
@@ -34,12 +34,15 @@ pub fn slots() -> Vec<SlotSpec> {
 }
 
 /// Params of the providers (filled into `geometry_params` by member name).
-pub fn params() -> Vec<ParamSpec> {
+pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
     vec![
         choice(
             "geometry",
             "strands",
-            &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+            &providers(library)
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>(),
             "which strands a hair draw rasterizes, and how wide each is (geometry provider)",
         ),
         float(

@@ -32,12 +32,13 @@ pub fn shading_inputs() -> Vec<SlotSpec> {
     v
 }
 
-/// The params of every provider a hair pass composes.
-pub fn shading_params() -> Vec<ParamSpec> {
-    let mut p = visibility::params();
-    p.extend(shading::params());
-    p.extend(lighting::params());
-    p.extend(occlusion::params());
-    p.extend(shading_space::params());
+/// The params of every provider a hair pass composes: the providers of
+/// `library` are their choices.
+pub fn shading_params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
+    let mut p = visibility::params(library);
+    p.extend(shading::params(library));
+    p.extend(lighting::params(library));
+    p.extend(occlusion::params(library));
+    p.extend(shading_space::params(library));
     p
 }

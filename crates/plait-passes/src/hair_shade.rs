@@ -13,9 +13,15 @@ use plait_graph::{Access, PassShape, PassTypeSpec, ScheduledPass};
 use crate::hair_fragment;
 use crate::spec_util::{DEPTH, HDR, SlotExt, texture};
 
-pub struct HairShade;
+/// With the params of the library's providers (their choices are the
+/// providers found).
+pub struct HairShade {
+    params: Vec<plait_graph::ParamSpec>,
+}
 
-inventory::submit! { crate::RustPassType(|| Box::new(HairShade)) }
+inventory::submit! { crate::RustPassType(|library| Box::new(HairShade {
+    params: hair_fragment::shading_params(library),
+})) }
 
 impl PassType for HairShade {
     fn spec(&self) -> PassTypeSpec {
@@ -40,7 +46,7 @@ impl PassType for HairShade {
                 )
                 .loads(),
             ],
-            params: hair_fragment::shading_params(),
+            params: self.params.clone(),
             ..PassTypeSpec::new(
                 "hair_shade",
                 PassShape::Raster,

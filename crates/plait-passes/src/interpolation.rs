@@ -15,7 +15,7 @@ use crate::spec_util::{SlotExt, buffer};
 
 pub struct GuideInterpolation;
 
-inventory::submit! { crate::RustPassType(|| Box::new(GuideInterpolation)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(GuideInterpolation)) }
 
 const SHADER: &str = "shaders/passes/sim_interpolate.wgsl";
 

@@ -29,85 +29,56 @@ pub mod simulation;
 pub mod spec_util;
 pub mod visibility;
 
-use std::cell::RefCell;
-use std::rc::Rc;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use plait_gpu::Capabilities;
+use plait_gpu::modules::Shaders;
 use plait_gpu::pass::check::ShaderChecker;
 use plait_gpu::pass::{PassLibrary, PassType};
 use plait_graph::{CompileOptions, Errors, Pipeline, Schedule};
 
 /// A pass type written in Rust, registered by its own module:
-/// `inventory::submit! { crate::RustPassType(|| Box::new(MyPass)) }`.
-pub struct RustPassType(pub fn() -> Box<dyn PassType>);
+/// `inventory::submit! { crate::RustPassType(|_| Box::new(MyPass)) }`. It is
+/// made for each library read, from the library so far (the shader library
+/// and the pass types declared in TOML): a type whose params are a point's
+/// takes the providers found there.
+pub struct RustPassType(pub fn(&PassLibrary) -> Box<dyn PassType>);
 
 inventory::collect!(RustPassType);
 
-/// Every pass type plait ships, and those on the search path.
-///
-/// Read once per thread and again only when a pass-type file or its shader
-/// on the search path changes (the viewer edits them live): a render asks
-/// for the library when it compiles, checks against the adapter and builds,
-/// and should parse its files once.
-pub fn library() -> Rc<PassLibrary> {
-    thread_local! {
-        static CACHE: RefCell<Option<(u64, Rc<PassLibrary>)>> = const { RefCell::new(None) };
-    }
-    let stamp = library_stamp();
-    CACHE.with_borrow_mut(|cache| match cache {
-        Some((s, lib)) if *s == stamp => lib.clone(),
-        _ => {
-            let lib = Rc::new(read_library());
-            *cache = Some((stamp, lib.clone()));
-            lib
+/// The library for a session rendering the pipelines at `pipelines`: the
+/// search path read now, with each pipeline's own `techniques/` before it
+/// ([`read_library`]). One value per session; nothing keeps it.
+pub fn library_for(pipelines: &[&Path]) -> Arc<PassLibrary> {
+    let mut own: Vec<PathBuf> = Vec::new();
+    for root in pipelines
+        .iter()
+        .filter_map(|p| plait_graph::techniques::own_root(p))
+    {
+        if !own.contains(&root) {
+            own.push(root);
         }
-    })
+    }
+    Arc::new(read_library(&own))
 }
 
-/// How many times this process parsed the pass library's files
-/// ([`library`] reads them again only when they change).
+/// How many times this process read a pass library ([`read_library`]): a
+/// render reads one.
 pub fn library_reads() -> usize {
     LIBRARY_READS.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 static LIBRARY_READS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
-/// The pass-type files and shaders on the search path, by name, size and
-/// modification time, and the shader library's stamp (the providers found
-/// are the choices of the shared params).
-fn library_stamp() -> u64 {
-    use std::hash::{Hash, Hasher};
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    plait_gpu::modules::library_stamp().hash(&mut h);
-    for ext in ["toml", "wgsl"] {
-        for path in plait_assets::list(data_pass::PASS_TYPE_DIR, ext) {
-            path.hash(&mut h);
-            if let Ok(meta) = std::fs::metadata(&path) {
-                meta.len().hash(&mut h);
-                meta.modified().ok().hash(&mut h);
-            }
-        }
-    }
-    h.finish()
-}
-
-/// Parse every pass type (what [`library`] caches).
-fn read_library() -> PassLibrary {
+/// Every pass type plait ships and those on the search path, and the shader
+/// library, read from the search path as it is now with the `techniques/`
+/// of `own_roots` (loaded pipelines' own folders) before it. A broken file
+/// is kept as its error, which every compile with the library reports.
+pub fn read_library(own_roots: &[PathBuf]) -> PassLibrary {
     LIBRARY_READS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let mut lib = PassLibrary {
-        // The providers' params mean the same in a data-only pass that
-        // imports plait::hair_fragment as in the Rust pass types; the
-        // geometry provider's in every pass that draws hair.
-        shared_params: [
-            hair_fragment::shading_params(),
-            geometry::params(),
-            display::params(),
-        ]
-        .concat(),
-        // Every hair draw scales its coverage by the shading_space
-        // provider's tip fading (plait::strand_coverage), so its buffers
-        // reach the unshaded draws (alpha_sum) too.
-        shared_slots: [geometry::slots(), shading_space::slots()].concat(),
+        shaders: Arc::new(Shaders::read(own_roots)),
         // A provider's loop bounded by a texture size, wherever it is chosen.
         shared_checks: vec![lighting::check_environment_size],
         ..PassLibrary::default()
@@ -119,13 +90,27 @@ fn read_library() -> PassLibrary {
         lib.add(t);
     }
     lib.problems = problems;
+    // The providers' params mean the same in a data-only pass that imports
+    // plait::hair_fragment as in the Rust pass types; the geometry
+    // provider's in every pass that draws hair. Their choices are the
+    // providers this library found.
+    lib.shared_params = [
+        hair_fragment::shading_params(&lib),
+        geometry::params(&lib),
+        display::params(),
+    ]
+    .concat();
+    // Every hair draw scales its coverage by the shading_space provider's
+    // tip fading (plait::strand_coverage), so its buffers reach the
+    // unshaded draws (alpha_sum) too.
+    lib.shared_slots = [geometry::slots(), shading_space::slots()].concat();
     // Pass types written in Rust (loops, readback, state chosen by a param):
     // each module registers its own with `inventory::submit!`, so a new one
     // is its module and no line here. Sorted by name: the registration order
     // is the linker's.
     let mut rust: Vec<Box<dyn PassType>> = inventory::iter::<RustPassType>
         .into_iter()
-        .map(|r| (r.0)())
+        .map(|r| (r.0)(&lib))
         .collect();
     rust.sort_by_key(|t| t.spec().name);
     for t in rust {
@@ -134,22 +119,15 @@ fn read_library() -> PassLibrary {
     lib
 }
 
-/// Compile `pipeline` with every pass (live and culled) checked against its
-/// shader with naga and its formats fitted to the adapter `opts` describes:
-/// the final schedule (`plait check` and every render run this, before any
-/// GPU work).
-pub fn compile(pipeline: &Pipeline, opts: &CompileOptions) -> Result<Schedule, Errors> {
-    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
-    compile_in(&library(), pipeline, opts)
-}
-
-/// [`compile`] with the pass types of `library`.
+/// Compile `pipeline` with the pass types and shaders of `library`, every
+/// pass (live and culled) checked against its shader with naga and its
+/// formats fitted to the adapter `opts` describes: the final schedule
+/// (`plait check` and every render run this, before any GPU work).
 pub fn compile_in(
     library: &PassLibrary,
     pipeline: &Pipeline,
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
-    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     let checker = ShaderChecker::new(library, Capabilities::of_compile(opts));
     // A broken pass-type file or shader library first: the params' choices
     // (the providers found) and the pass types come from them, so what
@@ -204,9 +182,9 @@ mod tests {
             found, registered,
             "registrations in src/ vs found at run time"
         );
-        let library = super::library();
+        let library = super::read_library(&[]);
         for r in inventory::iter::<super::RustPassType> {
-            let name = (r.0)().spec().name;
+            let name = (r.0)(&library).spec().name;
             assert!(
                 library.get(&name).is_some(),
                 "`{name}` is not in the library"

@@ -13,8 +13,8 @@ use plait_graph::{
 use crate::spec_util::choice;
 
 /// The providers, by param value: every module `plait::lighting::NAME` found.
-pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("lighting")
+pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
+    library.shaders.providers("lighting")
 }
 
 /// The optional input slots any provider may need.
@@ -44,11 +44,14 @@ pub fn slots() -> Vec<SlotSpec> {
 }
 
 /// Params of the providers (filled into `lighting_params` by member name).
-pub fn params() -> Vec<ParamSpec> {
+pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
     vec![choice(
         "lighting",
         "ambient",
-        &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+        &providers(library)
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
         "light from everything but the key light (lighting provider), darkened by occlusion",
     )]
 }

@@ -16,8 +16,8 @@ use crate::spec_util::{SlotExt, buffer, choice};
 
 /// The providers, by param value: every module `plait::ambient_occlusion::NAME`
 /// found.
-pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("ambient_occlusion")
+pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
+    library.shaders.providers("ambient_occlusion")
 }
 
 /// The optional input slots any provider may need.
@@ -33,11 +33,14 @@ pub fn slots() -> Vec<SlotSpec> {
 }
 
 /// Params of the providers (filled into `occlusion_params` by member name).
-pub fn params() -> Vec<ParamSpec> {
+pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
     vec![choice(
         "ambient_occlusion",
         "none",
-        &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+        &providers(library)
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
         "per-vertex ambient occlusion of the environment's light (occlusion provider)",
     )]
 }

@@ -28,7 +28,7 @@ use crate::spec_util::{buffer, choice, int};
 
 pub struct OcclusionCylinders;
 
-inventory::submit! { crate::RustPassType(|| Box::new(OcclusionCylinders)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(OcclusionCylinders)) }
 
 const SHADER: &str = "shaders/passes/occlusion_cylinders.wgsl";
 

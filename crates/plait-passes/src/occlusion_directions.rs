@@ -29,7 +29,7 @@ use crate::spec_util::{DEPTH, float, int, texture};
 
 pub struct OcclusionDirections;
 
-inventory::submit! { crate::RustPassType(|| Box::new(OcclusionDirections)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(OcclusionDirections)) }
 
 const SHADER: &str = "shaders/passes/occlusion_directions.wgsl";
 const DEEP_OPACITY: &str = "shaders/passes/deep_opacity.wgsl";
@@ -185,6 +185,7 @@ pub(crate) fn compute_kernel(
         PassShape::Compute,
         defines,
         RasterState::default(),
+        ctx,
     )?;
     draw.threads = [threads, 1, 1];
     build_draw(&draw, kernels, ctx)
@@ -311,6 +312,7 @@ impl PassType for OcclusionDirections {
             PassShape::Raster,
             default_defines(&range_pass),
             RasterState::default(),
+            ctx,
         )?;
         let [near_state, far_state] = depth_range::draw_states();
         range_draw.state = near_state;
@@ -339,6 +341,7 @@ impl PassType for OcclusionDirections {
                 depth: DepthMode::TestOnly(wgpu::CompareFunction::Less),
                 ..RasterState::default()
             },
+            ctx,
         )?;
         let layers = build_draw(&layers_draw, &layers_pass, ctx)?;
 

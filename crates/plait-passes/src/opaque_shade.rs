@@ -8,9 +8,14 @@ use plait_graph::{Access, PassShape, PassTypeSpec};
 use crate::spec_util::{DEPTH, HDR, texture};
 use crate::visibility;
 
-pub struct OpaqueShade;
+/// With the params of the library's self-shadowing providers.
+pub struct OpaqueShade {
+    params: Vec<plait_graph::ParamSpec>,
+}
 
-inventory::submit! { crate::RustPassType(|| Box::new(OpaqueShade)) }
+inventory::submit! { crate::RustPassType(|library| Box::new(OpaqueShade {
+    params: visibility::params(library),
+})) }
 
 impl PassType for OpaqueShade {
     fn spec(&self) -> PassTypeSpec {
@@ -37,7 +42,7 @@ impl PassType for OpaqueShade {
                     "camera depth of opaque geometry",
                 ),
             ],
-            params: visibility::params(),
+            params: self.params.clone(),
             ..PassTypeSpec::new(
                 "opaque_shade",
                 PassShape::Raster,

@@ -14,15 +14,13 @@
 //! `marschner_` (the names of the technique's params), so their ranges and
 //! docs are written once.
 
-use std::sync::Mutex;
-
-use plait_graph::{Access, Format, ParamSpec, SlotSpec, pass_type_file};
+use plait_graph::{Access, Format, ParamSpec, SlotSpec};
 
 use crate::spec_util::{SlotExt, choice, float, texture};
 
 /// The providers, by param value: every module `plait::shading::NAME` found.
-pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("shading")
+pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
+    library.shaders.providers("shading")
 }
 
 /// The optional input slots any provider may need.
@@ -46,12 +44,15 @@ pub fn slots() -> Vec<SlotSpec> {
 }
 
 /// Params of the providers (filled into `shading_params` by member name).
-pub fn params() -> Vec<ParamSpec> {
+pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
     let mut p = vec![
         choice(
             "shading",
             "kajiya_kay",
-            &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+            &providers(library)
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>(),
             "key-light shading model (shading provider): the strand's reflection of the light",
         ),
         float(
@@ -62,13 +63,14 @@ pub fn params() -> Vec<ParamSpec> {
             "marschner, marschner_reference: gain of the R, TT and TRT lobes against Kajiya-Kay's diffuse term",
         ),
     ];
-    p.extend(marschner_model_params());
+    p.extend(marschner_model_params(library));
     p.extend(chiang_params());
     p
 }
 
-/// The pass-type file whose params the Marschner model's are.
-const TABLES_FILE: &str = "shaders/passes/marschner_tables.toml";
+/// The pass type whose params the Marschner model's are
+/// (`shaders/passes/marschner_tables.toml`).
+const TABLES_TYPE: &str = "marschner_tables";
 
 /// Chiang et al. 2016's fibre at its standard values (§4, the ones issue
 /// 47's Mitsuba measurement uses): β_m, β_n, tilt α (degrees), η. One
@@ -117,44 +119,26 @@ fn chiang_params() -> Vec<ParamSpec> {
 
 /// The Marschner model's params (lobe shifts and widths, index of
 /// refraction, absorption, caustic limit): those of the `marschner_tables`
-/// pass type but its table size.
+/// pass type of `library` but its table size.
 ///
-/// Parsed again whenever the file's text changes (the viewer reloads it on a
-/// save). A missing or broken file gives none here, never a panic: the pass
-/// library reads the same file and reports what is wrong at its file, line
-/// and column (`data_pass::discover`), so `plait check` fails there.
-fn marschner_model_params() -> Vec<ParamSpec> {
-    // Keyed on the text: a param spec is asked for on every pass's spec, and
-    // one small read is cheaper than parsing again.
-    static PARSED: Mutex<Option<(String, Vec<ParamSpec>)>> = Mutex::new(None);
-    let Some(path) = plait_assets::find(TABLES_FILE) else {
+/// A missing or broken file gives none here, never a panic: the pass
+/// library reports what is wrong at its file, line and column
+/// (`data_pass::discover`), so `plait check` fails there.
+fn marschner_model_params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
+    let Some(tables) = library.get(TABLES_TYPE) else {
         return Vec::new();
     };
-    let Ok(text) = plait_assets::read_to_string(&path) else {
-        return Vec::new();
-    };
-    let mut parsed = PARSED.lock().unwrap_or_else(|p| p.into_inner());
-    if let Some((seen, params)) = parsed.as_ref()
-        && **seen == *text
-    {
-        return params.clone();
-    }
-    let params: Vec<ParamSpec> = pass_type_file::parse(&path, &text)
-        .map(|file| {
-            file.spec
-                .params
-                .into_iter()
-                .filter(|p| p.name != "table_size")
-                .map(|mut p| {
-                    p.name = format!("marschner_{}", p.name);
-                    p.doc = format!("marschner_reference: {}", p.doc);
-                    p
-                })
-                .collect()
+    tables
+        .spec()
+        .params
+        .into_iter()
+        .filter(|p| p.name != "table_size")
+        .map(|mut p| {
+            p.name = format!("marschner_{}", p.name);
+            p.doc = format!("marschner_reference: {}", p.doc);
+            p
         })
-        .unwrap_or_default();
-    *parsed = Some((text.into_owned(), params.clone()));
-    params
+        .collect()
 }
 
 #[cfg(test)]
@@ -163,7 +147,8 @@ mod tests {
 
     #[test]
     fn the_reference_takes_every_model_param_of_the_table_pass() {
-        let names: Vec<String> = params().into_iter().map(|p| p.name).collect();
+        let library = crate::read_library(&[]);
+        let names: Vec<String> = params(&library).into_iter().map(|p| p.name).collect();
         for want in [
             "marschner_shift_r",
             "marschner_shift_tt",

@@ -28,8 +28,8 @@ pub const MAX_SHADING_POINTS: i64 = 256;
 const RADIANCE_BYTES: u64 = 16;
 
 /// The providers, by param value: every module `plait::shading_space::NAME` found.
-pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("shading_space")
+pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
+    library.shaders.providers("shading_space")
 }
 
 /// The optional input slots any provider may need.
@@ -51,12 +51,15 @@ pub fn slots() -> Vec<SlotSpec> {
 }
 
 /// Params of the providers (filled into `shading_space_params` by member name).
-pub fn params() -> Vec<ParamSpec> {
+pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
     vec![
         choice(
             "shading_space",
             "fragment",
-            &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+            &providers(library)
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>(),
             "where hair is shaded: per fragment, or at shading points along each strand (shading_space provider)",
         ),
         int(
@@ -88,7 +91,7 @@ pub fn params() -> Vec<ParamSpec> {
 /// only the built geometry knows — hence Rust.
 pub struct StrandShading;
 
-inventory::submit! { crate::RustPassType(|| Box::new(StrandShading)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(StrandShading)) }
 
 impl PassType for StrandShading {
     fn spec(&self) -> PassTypeSpec {

@@ -48,7 +48,7 @@ use crate::spec_util::{SlotExt, buffer, float, int};
 
 pub struct HairSimulation;
 
-inventory::submit! { crate::RustPassType(|| Box::new(HairSimulation)) }
+inventory::submit! { crate::RustPassType(|_| Box::new(HairSimulation)) }
 
 const SHADER: &str = "shaders/passes/sim_verlet.wgsl";
 

@@ -15,8 +15,8 @@ use crate::spec_util::{DEPTH, SlotExt, buffer, choice, float, texture};
 /// found (`techniques/self_shadow/tressfx/self_shadow.wgsl` →
 /// `self_shadow = "tressfx"`), so a provider that needs no maps or params
 /// beyond those below is WGSL alone.
-pub fn providers() -> Vec<String> {
-    plait_gpu::library::providers("self_shadow")
+pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
+    library.shaders.providers("self_shadow")
 }
 
 /// The optional input slots any provider may need.
@@ -94,12 +94,15 @@ pub fn slots() -> Vec<SlotSpec> {
 }
 
 /// Params of the providers (filled into `visibility_params` by name).
-pub fn params() -> Vec<ParamSpec> {
+pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
     vec![
         choice(
             "self_shadow",
             "none",
-            &providers().iter().map(String::as_str).collect::<Vec<_>>(),
+            &providers(library)
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>(),
             "self-shadowing technique (visibility provider) used for hair shadows",
         ),
         float(

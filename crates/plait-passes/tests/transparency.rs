@@ -59,7 +59,7 @@ fn render_with(
     scene.material.alpha = material_alpha;
     let strands = scene.strands().expect("strands");
     let meshes = scene.opaque_meshes();
-    let library = plait_passes::library();
+    let library = plait_passes::read_library(&[]);
     let loaded = plait_graph::load(&path, sets).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     let opts = CompileOptions {
         screen: SIZE,

@@ -156,7 +156,7 @@ fn probe(
         max_texture_dimension: gpu.capabilities.max_texture_dimension,
         ..Default::default()
     };
-    let library = plait_passes::library();
+    let library = plait_passes::read_library(&[]);
     let sets = [format!("params.light_size={MAP}")];
     let variant_path = repo().join("pipelines").join(format!("{variant}.toml"));
     // The variant's own hair pass says which provider, maps and params it uses.

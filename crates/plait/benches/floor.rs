@@ -184,7 +184,7 @@ fn main() {
         );
         return;
     }
-    let library = plait::passes::library();
+    let library = plait::passes::read_library(&[]);
     let mut entries = Vec::new();
     for row in rows {
         let name = row.label;

@@ -11,14 +11,15 @@ use plait_graph::{Pipeline, Schedule};
 use crate::session::{SessionError, check_pipeline, gpu_options};
 use crate::source::PipelineSource;
 
-/// Load `pipeline` with `sets` and [`compile_on`] `gpu`.
+/// Load `pipeline` with `sets` and [`compile_on`] `gpu` with `library`.
 pub fn check_on_adapter(
     gpu: &Gpu,
+    library: &std::sync::Arc<PassLibrary>,
     pipeline: &Path,
     sets: &[String],
     size: (u32, u32),
 ) -> Result<Schedule, SessionError> {
-    let source = PipelineSource::new(pipeline, sets);
+    let source = PipelineSource::with_library(pipeline, sets, library.clone());
     compile_on(gpu, &source.load(&[])?, &source, size)
 }
 
@@ -35,7 +36,7 @@ pub fn compile_on(
     // fit the adapter), loaded again from its source.
     let compile = |extra: &[String], opts: &plait_graph::CompileOptions| {
         if extra.is_empty() {
-            check_pipeline(loaded, opts)
+            check_pipeline(&source.library, loaded, opts)
         } else {
             source.compile(extra, opts)
         }
@@ -54,15 +55,14 @@ pub fn check_schedule_on(
     source: &PipelineSource,
     size: (u32, u32),
 ) -> Result<(), SessionError> {
-    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
-    let library = plait_passes::library();
-    let Err(mut unsupported) = check_schedule(schedule, &library, &gpu.support, &gpu.capabilities)
+    let library = &source.library;
+    let Err(mut unsupported) = check_schedule(schedule, library, &gpu.support, &gpu.capabilities)
     else {
         return Ok(());
     };
     let trial = Trial {
         gpu,
-        library: &library,
+        library,
         source,
         size,
     };

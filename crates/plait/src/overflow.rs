@@ -29,8 +29,6 @@
 //! The sizing frame is thrown away and the pipeline built anew, so the
 //! caller's first frame is the renderer's first (histories, `run = "once"`).
 
-use std::path::Path;
-
 use plait_gpu::{FrameReport, Gpu, Overflow};
 use plait_graph::{CompileOptions, Errors, ResourceDesc, Schedule};
 
@@ -46,13 +44,13 @@ pub type Recompile<'a> = dyn Fn(&[String]) -> Result<Schedule, Errors> + 'a;
 
 /// Build `schedule` so that every bounded buffer whose size is still its
 /// technique's default holds all the first frame appends (see the module
-/// docs). `pipeline` is the file it came from; `recompile` compiles it with
+/// docs). `pipeline` is where it came from (its file and library); `recompile` compiles it with
 /// extra flags.
 pub fn prepare_holding<'g>(
     gpu: &'g Gpu,
     schedule: Schedule,
     recompile: &Recompile<'_>,
-    pipeline: &Path,
+    pipeline: &crate::source::PipelineSource,
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
@@ -204,7 +202,7 @@ fn growable_drops(report: &FrameReport) -> impl Iterator<Item = &Overflow> {
 fn sizing_frame(
     gpu: &Gpu,
     schedule: &Schedule,
-    pipeline: &Path,
+    pipeline: &crate::source::PipelineSource,
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<FrameReport, SessionError> {

@@ -181,7 +181,8 @@ fn build_probe<'g>(
     grid: &ProbeGrid,
 ) -> Result<Option<(String, crate::session::Prepared<'g>)>, SessionError> {
     let opts = gpu_options(gpu, size);
-    let variant = crate::session::compile_checked(pipeline, sets, &opts)?;
+    let library = plait_passes::library_for(&[pipeline]);
+    let variant = crate::session::compile_checked_in(&library, pipeline, sets, &opts)?;
     // Capacities the session lowered to fit the adapter, kept: the probe
     // pipeline draws no pass that counts into them (its one output is
     // `probe_out`), so it could not lower them itself, yet their resources
@@ -214,7 +215,7 @@ fn build_probe<'g>(
     // Only the providers' params: the probe samples self-shadowing as the
     // shading pass sees it, not the pass's own (transparency) params, which
     // its shader would not read.
-    let provider_params: Vec<String> = plait_passes::hair_fragment::shading_params()
+    let provider_params: Vec<String> = plait_passes::hair_fragment::shading_params(&library)
         .into_iter()
         .map(|p| p.name)
         .collect();
@@ -257,7 +258,7 @@ fn build_probe<'g>(
     ));
     let compile = |extra: &[String]| {
         let loaded = plait_graph::load_str(&probe_path, &text, &[sets, extra].concat())?;
-        check_pipeline(&loaded, &opts)
+        check_pipeline(&library, &loaded, &opts)
     };
     let mut schedule = compile(&[])?;
     // The session chose the carried values, not the user: they stay growable.
@@ -268,8 +269,8 @@ fn build_probe<'g>(
             .any(|v| v.grows && v.param == c.param);
     }
     // The reference's bounded buffers hold everything, as when it renders.
-    let prepared =
-        crate::overflow::prepare_holding(gpu, schedule, &compile, &probe_path, scene, size)?;
+    let probe = crate::source::PipelineSource::with_library(&probe_path, &[], library.clone());
+    let prepared = crate::overflow::prepare_holding(gpu, schedule, &compile, &probe, scene, size)?;
     Ok(Some((visibility, prepared)))
 }
 

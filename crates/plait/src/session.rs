@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use plait_gpu::frame::FrameUniforms;
 use plait_gpu::geometry::SceneGeometry;
-use plait_gpu::{Gpu, GpuError, Renderer};
+use plait_gpu::{Gpu, GpuError, PassLibrary, Renderer};
 use plait_graph::{CompileOptions, Errors, Schedule};
 use plait_hair::scene::{Background, Scene, SceneError};
 
@@ -87,13 +87,14 @@ pub fn resolve_scene(given: &Path) -> PathBuf {
 /// its passes (files it names and the pass types' own), the shader library,
 /// the scene and the files the scene names. Best effort: a pipeline that does not load still
 /// yields itself and the files its errors point at. Built-in copies are left
-/// out (they cannot change).
+/// out (they cannot change). The library is read again for this: the files
+/// as they are now are the ones to watch.
 pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> Vec<PathBuf> {
     let mut files = vec![pipeline.to_path_buf()];
+    let library = plait_passes::library_for(&[pipeline]);
     match plait_graph::load(pipeline, sets) {
         Ok(loaded) => {
             files.extend(loaded.files.iter().cloned());
-            let library = plait_passes::library();
             for pass in loaded.passes.values() {
                 if let Some(shader) = &pass.shader {
                     files.push(shader.value.clone());
@@ -125,8 +126,13 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
         }
     }
     // The shader library as found now: its modules and point files.
+    let own_roots = library
+        .shaders
+        .library()
+        .map(|l| l.own_roots.clone())
+        .unwrap_or_default();
     files.extend(
-        plait_gpu::library::library_files()
+        plait_gpu::library::library_files(&own_roots)
             .into_iter()
             .map(|(_, path)| path),
     );
@@ -148,12 +154,23 @@ pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> 
     files
 }
 
-/// Load, compile and check a pipeline against the pass library, shaders
-/// included (naga), without a GPU. A bounded buffer still at its
-/// technique's default is lowered to fit `opts`' binding limit, as a render
-/// does ([`crate::overflow::compile_fitting`]), so `plait check` and `plait
-/// ab`'s checks before any GPU work accept what the render would.
+/// Load, compile and check a pipeline against a library read for it now,
+/// shaders included (naga), without a GPU (see [`compile_checked_in`]).
 pub fn compile_checked(
+    path: &Path,
+    sets: &[String],
+    opts: &CompileOptions,
+) -> Result<Schedule, Errors> {
+    compile_checked_in(&plait_passes::library_for(&[path]), path, sets, opts)
+}
+
+/// Load, compile and check a pipeline against `library`, shaders included
+/// (naga), without a GPU. A bounded buffer still at its technique's default
+/// is lowered to fit `opts`' binding limit, as a render does
+/// ([`crate::overflow::compile_fitting`]), so `plait check` and `plait ab`'s
+/// checks before any GPU work accept what the render would.
+pub fn compile_checked_in(
+    library: &PassLibrary,
     path: &Path,
     sets: &[String],
     opts: &CompileOptions,
@@ -161,20 +178,23 @@ pub fn compile_checked(
     let loaded = plait_graph::load(path, sets)?;
     let compile = |extra: &[String], opts: &CompileOptions| {
         if extra.is_empty() {
-            check_pipeline(&loaded, opts)
+            check_pipeline(library, &loaded, opts)
         } else {
-            check_pipeline(&plait_graph::load(path, &[sets, extra].concat())?, opts)
+            let again = plait_graph::load(path, &[sets, extra].concat())?;
+            check_pipeline(library, &again, opts)
         }
     };
     crate::overflow::compile_fitting(&compile, &[], opts)
 }
 
-/// Compile and check a loaded pipeline (see [`compile_checked`]).
+/// Compile and check a loaded pipeline with `library` (see
+/// [`compile_checked_in`]).
 pub fn check_pipeline(
+    library: &PassLibrary,
     pipeline: &plait_graph::Pipeline,
     opts: &CompileOptions,
 ) -> Result<Schedule, Errors> {
-    plait_passes::compile(pipeline, opts)
+    plait_passes::compile_in(library, pipeline, opts)
 }
 
 /// A scene's geometry on the CPU, built once and shared by every pipeline rendering it.
@@ -307,8 +327,6 @@ pub fn prepare<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
-    // One library for the whole preparation (see `LibrarySnapshot`).
-    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     let source = crate::source::PipelineSource::new(pipeline, sets);
     let schedule = crate::adapter::compile_on(gpu, &source.load(&[])?, &source, size)?;
     prepare_compiled(gpu, schedule, &source, scene, size)
@@ -324,7 +342,6 @@ pub fn prepare_compiled<'g>(
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
-    let _one_library = plait_gpu::modules::LibrarySnapshot::take();
     let fit = crate::scene_fit::fit_to_scene(&schedule, source, scene)?;
     let opts = gpu_options(gpu, size);
     // A grown buffer changes only sizes, which the executor checks again
@@ -343,7 +360,7 @@ pub fn prepare_compiled<'g>(
     } else {
         recompile(&[])?
     };
-    crate::overflow::prepare_holding(gpu, schedule, &recompile, &source.path, scene, size)
+    crate::overflow::prepare_holding(gpu, schedule, &recompile, source, scene, size)
 }
 
 /// Standard inputs for frame `index` of `scene` at `size` as `schedule`
@@ -382,15 +399,17 @@ pub fn gpu_options(gpu: &Gpu, size: (u32, u32)) -> CompileOptions {
     }
 }
 
-/// Build a checked schedule for `scene` at `size` on `gpu`; `pipeline` is the
-/// file it came from (relative shader paths resolve against its folder).
+/// Build a checked schedule for `scene` at `size` on `gpu` with the library
+/// it was compiled with: `source` is where it came from (relative shader
+/// paths resolve against its folder).
 pub fn build<'g>(
     gpu: &'g Gpu,
     mut schedule: Schedule,
-    pipeline: &Path,
+    source: &crate::source::PipelineSource,
     scene: &SceneData,
     size: (u32, u32),
 ) -> Result<Prepared<'g>, SessionError> {
+    let pipeline = source.path.as_path();
     let output = schedule
         .outputs
         .first()
@@ -425,14 +444,7 @@ pub fn build<'g>(
         wisp_count = Some(wisps.wisp_count);
     }
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
-    let mut renderer = Renderer::new(
-        gpu,
-        schedule,
-        &plait_passes::library(),
-        geometry,
-        &frame,
-        base_dir,
-    )?;
+    let mut renderer = Renderer::new(gpu, schedule, &source.library, geometry, &frame, base_dir)?;
     if let Some(image) = &scene.background {
         renderer.set_background_image(image);
     }

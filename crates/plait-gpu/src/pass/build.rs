@@ -50,8 +50,8 @@ impl ShaderDraw {
         ctx: &BuildContext<'_>,
     ) -> Result<ShaderDraw, GpuError> {
         let spec = t.spec();
-        let (path, source) =
-            shader_source(t, pass).map_err(|(_, message)| pass_error(pass, message))?;
+        let (path, source) = shader_source(t, pass, ctx.shaders)
+            .map_err(|(_, message)| pass_error(pass, message))?;
         let state = raster_state_of(t, pass, &ctx.schedule.resources, ctx.capabilities)
             .map_err(|m| pass_error(pass, m))?;
         Ok(ShaderDraw {
@@ -75,9 +75,12 @@ impl ShaderDraw {
         shape: PassShape,
         defines: Vec<(String, Define)>,
         state: RasterState,
+        ctx: &BuildContext<'_>,
     ) -> Result<ShaderDraw, GpuError> {
-        let (path, source) =
-            crate::shader::library_file(shader).map_err(|e| pass_error(pass, e.message))?;
+        let (path, source) = ctx
+            .shaders
+            .library_file(shader)
+            .map_err(|e| pass_error(pass, e.message))?;
         Ok(ShaderDraw {
             path,
             source,
@@ -180,7 +183,7 @@ fn build_inner(
         immediate_size: 0,
     });
     // The library modules' digest too: they may be edited while plait runs.
-    let library = crate::modules::library_digest();
+    let library = ctx.shaders.digest();
     let shader_key = crate::cache::key(&[
         &draw.path,
         &draw.source,
@@ -218,7 +221,9 @@ fn plan_and_guard(
     pass: &ScheduledPass,
     ctx: &BuildContext<'_>,
 ) -> Result<(BindingPlan, DepthGuard, std::sync::Arc<naga::Module>), GpuError> {
-    let module = crate::modules::compose(&draw.path, &draw.source, &draw.defines)?;
+    let module = ctx
+        .shaders
+        .compose(&draw.path, &draw.source, &draw.defines)?;
     let (plan, errors) = BindingPlan::new(
         &module,
         pass,

@@ -73,7 +73,7 @@ fn library_error(e: ShaderError) -> GraphError {
 
 impl PassChecker for ShaderChecker<'_> {
     fn check_library(&self) -> Vec<GraphError> {
-        match crate::modules::check_library() {
+        match self.library.shaders.check() {
             Ok(()) => Vec::new(),
             Err(e) => vec![library_error(e)],
         }
@@ -90,7 +90,14 @@ impl PassChecker for ShaderChecker<'_> {
             .iter()
             .map(|p| p.name.as_str())
             .collect();
-        let mut check = check_pass(t, pass, resources, &shared, &self.caps);
+        let mut check = check_pass(
+            t,
+            pass,
+            resources,
+            &shared,
+            &self.caps,
+            &self.library.shaders,
+        );
         for shared_check in &self.library.shared_checks {
             if let Err(message) = shared_check(pass, resources) {
                 check.errors.push(GraphError::new(
@@ -113,8 +120,9 @@ pub fn check_pass(
     resources: &[ResolvedResource],
     shared_params: &[&str],
     caps: &Capabilities,
+    shaders: &crate::modules::Shaders,
 ) -> PassCheck {
-    let module = match pass_module(t, pass) {
+    let module = match pass_module(t, pass, shaders) {
         Ok(m) => m,
         Err(e) => {
             return PassCheck {
@@ -139,7 +147,7 @@ pub fn check_pass(
     }
     if spec.dynamic_slots {
         errors.extend(
-            unread_params(t, pass, &module, shared_params)
+            unread_params(t, pass, &module, shared_params, shaders)
                 .into_iter()
                 .map(|m| err(&pass.location, m)),
         );
@@ -153,7 +161,7 @@ pub fn check_pass(
         spec.dynamic_slots,
         &aliases,
     );
-    let source = shader_source(t, pass).ok();
+    let source = shader_source(t, pass, shaders).ok();
     let source = source.as_ref().map(|(p, s)| (p.as_path(), s.as_ref()));
     errors.extend(super::storage_format::at_wgsl(
         plan_errors,
@@ -220,6 +228,7 @@ fn unread_params(
     pass: &ScheduledPass,
     module: &naga::Module,
     shared_params: &[&str],
+    shaders: &crate::modules::Shaders,
 ) -> Vec<String> {
     let mut members: std::collections::BTreeSet<String> = module
         .global_variables
@@ -230,8 +239,8 @@ fn unread_params(
         .flat_map(|(_, members)| members.into_iter().map(|m| m.name))
         .collect();
     members.extend(shared_params.iter().map(|s| s.to_string()));
-    let mut defines = super::param_use::library_define_names();
-    if let Ok((_, source)) = shader_source(t, pass) {
+    let mut defines = super::param_use::library_define_names(shaders);
+    if let Ok((_, source)) = shader_source(t, pass, shaders) {
         defines.extend(super::param_use::define_names(&source));
     }
     super::param_use::unread_params(pass, &members, &defines)

@@ -89,8 +89,9 @@ pub fn unread_params(
 
 /// Every define a library module tests: a param may reach the shader through
 /// a module it imports (`SELF_SHADOW_DEEP_OPACITY` is the generated selector's).
-pub fn library_define_names() -> BTreeSet<String> {
-    crate::library::discover()
+pub fn library_define_names(shaders: &crate::modules::Shaders) -> BTreeSet<String> {
+    shaders
+        .library()
         .map(|l| {
             l.modules
                 .iter()

@@ -121,6 +121,8 @@ pub struct BuildContext<'a> {
     pub geometry: &'a SceneGeometry,
     pub frame_layout: &'a wgpu::BindGroupLayout,
     pub base_dir: &'a Path,
+    /// The session's shaders: every module is composed from their texts.
+    pub shaders: &'a crate::modules::Shaders,
 }
 
 /// What recording a pass can use.
@@ -138,10 +140,16 @@ pub struct RecordContext<'a> {
     pub schedule: &'a Schedule,
 }
 
-/// The pass types available to a run, by name.
+/// The library of one session: the pass types available to it, by name,
+/// and its shaders (the WGSL library, the composer, every shader text it
+/// read). A value read once and passed to compile and build; a front end
+/// that reloads reads a new one.
 #[derive(Default)]
 pub struct PassLibrary {
     pub types: IndexMap<String, Box<dyn PassType>>,
+    /// The shader side: WGSL modules, points and their providers, composed
+    /// modules and shader texts ([`crate::modules::Shaders`]).
+    pub shaders: std::sync::Arc<crate::modules::Shaders>,
     /// See [`plait_graph::Registry::shared_params`].
     pub shared_params: Vec<plait_graph::ParamSpec>,
     /// See [`plait_graph::Registry::shared_slots`].
@@ -185,16 +193,20 @@ impl PassLibrary {
     }
 }
 
-/// The shader source of a pass: built in, or the file the pipeline names.
-/// An error says where the pipeline named it (or should have).
+/// The shader source of a pass: built in, or the file the pipeline names,
+/// as `shaders` read it (the first time, from disk: compile; then the same
+/// text: build). An error says where the pipeline named it (or should have).
 pub fn shader_source<T: PassType + ?Sized>(
     t: &T,
     pass: &ScheduledPass,
+    shaders: &crate::modules::Shaders,
 ) -> Result<(PathBuf, Cow<'static, str>), (Location, String)> {
     if let Some(name) = t.shader() {
         // The copy on the search path when there is one (edits apply without
         // a rebuild), else the built-in text.
-        return crate::shader::library_file(name).map_err(|e| (pass.location.clone(), e.message));
+        return shaders
+            .library_file(name)
+            .map_err(|e| (pass.location.clone(), e.message));
     }
     let loc = pass
         .shader_location
@@ -203,7 +215,7 @@ pub fn shader_source<T: PassType + ?Sized>(
     let Some(path) = &pass.shader else {
         return Err((loc, "needs `shader = \"path.wgsl\"`".into()));
     };
-    match crate::shader::read_shader_file(path) {
+    match shaders.shader_file(path) {
         Ok(text) => Ok((path.clone(), text)),
         Err(e) => Err((loc, format!("{}: cannot read file: {e}", path.display()))),
     }

@@ -45,7 +45,7 @@ pub fn problems(
     for pass in &schedule.passes {
         super::textures::usage_problems(pass, schedule, support, &mut out);
         if let Some(t) = library.get(&pass.type_name) {
-            pass_problems(t, pass, schedule, support, caps, &mut out);
+            pass_problems(t, pass, schedule, support, caps, &library.shaders, &mut out);
         }
     }
     let mut unique: Vec<Problem> = Vec::new();
@@ -85,6 +85,7 @@ fn pass_problems(
     schedule: &Schedule,
     support: &AdapterSupport,
     caps: &Capabilities,
+    shaders: &crate::modules::Shaders,
     out: &mut Vec<Problem>,
 ) {
     let spec = t.spec();
@@ -100,7 +101,7 @@ fn pass_problems(
         return;
     }
     // A shader that does not compose was reported by `plait check`.
-    let Ok(module) = pass_module(t, pass) else {
+    let Ok(module) = pass_module(t, pass, shaders) else {
         return;
     };
     let (plan, _) = BindingPlan::new(

@@ -69,6 +69,22 @@ pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 
+/// The folder whose `techniques/` is `pipeline`'s own (see
+/// [`techniques_beside`]), resolved; `None` for a built-in pipeline or one
+/// with no `techniques/` beside it. Its WGSL is part of the shader library a
+/// session reads for that pipeline (`plait_gpu::library::Library::read`).
+pub fn own_root(pipeline: &Path) -> Option<PathBuf> {
+    if plait_assets::is_builtin(pipeline) {
+        return None;
+    }
+    let own = techniques_beside(pipeline)?;
+    let root = own
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    Some(root.canonicalize().unwrap_or_else(|_| root.to_path_buf()))
+}
+
 /// The techniques folder beside `pipeline`: its own folder's, or an
 /// ancestor's — relative to the working directory when it is below it, so
 /// messages name `techniques/…` as a user would.

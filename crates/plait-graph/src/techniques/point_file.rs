@@ -332,16 +332,13 @@ fn split_signature(text: &str) -> Option<(String, String, String)> {
 }
 
 /// The WGSL contract of every point file of the library
-/// (`techniques/*/point.toml` on the search path, then the built-in copies)
-/// that has one; the errors of every broken file.
-pub fn wgsl_points() -> Result<Vec<WgslPoint>, Errors> {
+/// (`techniques/*/point.toml` under `roots` — a pipeline's own folders, then
+/// the search path — and then the built-in copies) that has one; the errors
+/// of every broken file.
+pub fn wgsl_points(roots: &[std::path::PathBuf]) -> Result<Vec<WgslPoint>, Errors> {
     let mut points = Vec::new();
     let mut errors = Vec::new();
-    for (key, path) in plait_assets::list_tree_in(
-        &plait_assets::technique_roots(),
-        super::TECHNIQUES_DIR,
-        "toml",
-    ) {
+    for (key, path) in plait_assets::list_tree_in(roots, super::TECHNIQUES_DIR, "toml") {
         let parts: Vec<&str> = key.split('/').collect();
         let [_, point, file] = parts.as_slice() else {
             continue;

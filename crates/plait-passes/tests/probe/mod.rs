@@ -20,7 +20,10 @@ impl Probe {
     /// as a read-only storage buffer; `output_bytes` of read-write storage.
     pub fn new(gpu: &Gpu, name: &str, source: &str, input: &[u8], output_bytes: u64) -> Probe {
         let device = &gpu.device;
-        let mut shaders = ShaderLibrary::new().expect("library modules compose");
+        let mut shaders = ShaderLibrary::new(
+            &plait_gpu::library::Library::read(&[]).expect("the library is found"),
+        )
+        .expect("library modules compose");
         let module = shaders
             .compose(Path::new(name), source, &[])
             .unwrap_or_else(|e| panic!("{e}"));

@@ -8,7 +8,7 @@ use indexmap::IndexMap;
 use plait_graph::CompileOptions;
 
 use super::AbError;
-use crate::session::{SceneData, compile_checked, resolve_pipeline};
+use crate::session::{SceneData, compile_checked_in, resolve_pipeline};
 
 /// A `--set` key and the values it takes, one variant each:
 /// `params.slices=32,64,128` or `techniques.self_shadow=occupancy,exact`.
@@ -195,6 +195,10 @@ pub struct Plan {
     /// [`render_references`](super::render_references) before the run.
     pub path_traced: Option<super::PathTraced>,
     pub path_traced_images: Vec<super::path_traced::Rendered>,
+    /// The run's one library, read with every variant's own `techniques/`:
+    /// two pipelines whose folders declare one module are an error naming
+    /// both files, and every variant compiles and builds with it.
+    pub library: std::sync::Arc<plait_gpu::PassLibrary>,
 }
 
 impl Plan {
@@ -279,6 +283,12 @@ impl Plan {
             screen: options.size,
             ..CompileOptions::default()
         };
+        let pipelines: Vec<&std::path::Path> = variants
+            .iter()
+            .filter(|v| !(v.is_reference && path_traced.is_some()))
+            .map(|v| v.pipeline.as_path())
+            .collect();
+        let library = plait_passes::library_for(&pipelines);
         for v in variants
             .iter()
             .filter(|v| !(v.is_reference && path_traced.is_some()))
@@ -287,7 +297,7 @@ impl Plan {
                 screen: options.render_size(v.is_reference),
                 ..compile.clone()
             };
-            compile_checked(&v.pipeline, &v.sets, &compile).map_err(|source| {
+            compile_checked_in(&library, &v.pipeline, &v.sets, &compile).map_err(|source| {
                 AbError::Pipeline {
                     path: v.pipeline.clone(),
                     what: what_of(v),
@@ -348,6 +358,7 @@ impl Plan {
             scenes,
             path_traced,
             path_traced_images: Vec::new(),
+            library,
         })
     }
 

@@ -112,17 +112,21 @@ pub(super) fn pipeline_provenance(
 /// A library shader, named as in the library, with the text the run uses:
 /// the copy on the search path when there is one (`PLAIT_PATH`, the
 /// checkout), else the built-in text.
-fn as_used(name: &str) -> (String, String) {
-    let used = plait_gpu::shader::library_file(name)
+fn as_used(library: &plait_gpu::PassLibrary, name: &str) -> (String, String) {
+    let used = library
+        .shaders
+        .library_file(name)
         .map(|(_, used)| used.into_owned())
         .unwrap_or_default();
     (name.to_owned(), used)
 }
 
-fn builtin_shaders() -> Vec<FileHash> {
+fn builtin_shaders(library: &plait_gpu::PassLibrary) -> Vec<FileHash> {
     // The library as this run composes with it: every module found on the
     // search path, generated selectors included.
-    let mut out: Vec<FileHash> = plait_gpu::library::discover()
+    let mut out: Vec<FileHash> = library
+        .shaders
+        .library()
         .map(|l| {
             l.modules
                 .iter()
@@ -133,11 +137,10 @@ fn builtin_shaders() -> Vec<FileHash> {
     // Pass types may share one WGSL file (the pass-type files of
     // shaders/passes name theirs): list each file once, with the pass types
     // that use it.
-    let library = plait_passes::library();
     let mut files: Vec<(String, String, Vec<&str>)> = Vec::new();
     for (type_name, t) in &library.types {
         if let Some(name) = t.shader() {
-            let (path, used) = as_used(name);
+            let (path, used) = as_used(library, name);
             match files.iter_mut().find(|(n, x, _)| *n == path && *x == used) {
                 Some((_, _, types)) => types.push(type_name),
                 None => files.push((path, used, vec![type_name])),
@@ -160,6 +163,7 @@ pub(super) fn provenance(
     plan: &Plan,
     gpu: &Gpu,
     pipelines: Vec<PipelineProvenance>,
+    library: &plait_gpu::PassLibrary,
 ) -> Result<Provenance, AbError> {
     let o = &plan.options;
     // A scene at several camera distances is one file, hashed once.
@@ -200,7 +204,7 @@ pub(super) fn provenance(
         reference: plan.reference.display().to_string(),
         metrics: METRICS.into(),
         pipelines,
-        builtin_shaders: builtin_shaders(),
+        builtin_shaders: builtin_shaders(library),
         scenes,
         unix_time: std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
@@ -222,7 +226,7 @@ mod tests {
 
     #[test]
     fn each_builtin_shader_file_is_listed_once() {
-        let shaders = builtin_shaders();
+        let shaders = builtin_shaders(&plait_passes::read_library(&[]));
         let hair: Vec<_> = shaders
             .iter()
             .filter(|f| f.path.starts_with("shaders/passes/hair_shade.wgsl"))

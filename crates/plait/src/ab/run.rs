@@ -153,8 +153,9 @@ pub(super) fn render(
     let mut schedules = Vec::new();
     for v in plan.gpu_variants() {
         let size = plan.options.render_size(v.is_reference);
-        let schedule = crate::adapter::check_on_adapter(gpu, &v.pipeline, &v.sets, size)
-            .map_err(render_error(format!("pipeline {}", v.label)))?;
+        let schedule =
+            crate::adapter::check_on_adapter(gpu, &plan.library, &v.pipeline, &v.sets, size)
+                .map_err(render_error(format!("pipeline {}", v.label)))?;
         schedules.push(schedule);
     }
     let mut described = None;
@@ -195,6 +196,7 @@ pub(super) fn render(
                 .cloned()
                 .into_iter()
                 .collect(),
+            library: plan.library.clone(),
         };
         // A path-traced reference (last) has no schedule: it is not built.
         let sub_schedules: Vec<Schedule> = chosen
@@ -223,7 +225,7 @@ pub(super) fn render(
     let (variants, graphs, pipelines) = described.unwrap_or_default();
     let report = Report {
         schema: SCHEMA.into(),
-        provenance: provenance(plan, gpu, pipelines)?,
+        provenance: provenance(plan, gpu, pipelines, &plan.library)?,
         sweeps: plan
             .options
             .sweeps
@@ -311,7 +313,7 @@ fn build_all<'g>(
     let mut prepared = Vec::new();
     for (v, schedule) in plan.variants.iter().zip(schedules) {
         let size = plan.options.render_size(v.is_reference);
-        let source = PipelineSource::new(&v.pipeline, &v.sets);
+        let source = PipelineSource::with_library(&v.pipeline, &v.sets, plan.library.clone());
         let p = prepare_compiled(gpu, schedule.clone(), &source, &scene.data, size).map_err(
             render_error(format!(
                 "pipeline {} on scene {}",

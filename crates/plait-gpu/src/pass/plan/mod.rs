@@ -232,8 +232,9 @@ pub fn binding_aliases(spec: &plait_graph::PassTypeSpec) -> Vec<(String, String)
 pub(crate) fn pass_module<T: PassType + ?Sized>(
     t: &T,
     pass: &ScheduledPass,
+    shaders: &crate::modules::Shaders,
 ) -> Result<Arc<naga::Module>, Box<GraphError>> {
-    let (path, source) = shader_source(t, pass).map_err(|(loc, message)| {
+    let (path, source) = shader_source(t, pass, shaders).map_err(|(loc, message)| {
         Box::new(GraphError::new(
             loc,
             ErrorKind::Pass {
@@ -242,17 +243,19 @@ pub(crate) fn pass_module<T: PassType + ?Sized>(
             },
         ))
     })?;
-    crate::modules::compose(&path, &source, &t.defines(pass)).map_err(|e| {
-        Box::new(GraphError::new(
-            pass.shader_location
-                .clone()
-                .unwrap_or_else(|| pass.location.clone()),
-            ErrorKind::Shader {
-                path: e.path,
-                message: e.message,
-            },
-        ))
-    })
+    shaders
+        .compose(&path, &source, &t.defines(pass))
+        .map_err(|e| {
+            Box::new(GraphError::new(
+                pass.shader_location
+                    .clone()
+                    .unwrap_or_else(|| pass.location.clone()),
+                ErrorKind::Shader {
+                    path: e.path,
+                    message: e.message,
+                },
+            ))
+        })
 }
 
 /// Why the engine cannot keep this pass's storage writes to fragments that

@@ -117,9 +117,12 @@ impl<'g> HandWritten<'g> {
         let frame: FrameUniforms = scene.frame(size, 0);
         let (frame_layout, frame_group) = frame_group(gpu, &frame);
         let geometry = SceneGeometry::upload(device, &scene.strands, &scene.meshes);
+        // The shader library as plait reads it (the search path), once.
+        let shaders = plait::gpu::modules::Shaders::read(&[]);
         let mut built = Vec::new();
         for desc in passes() {
-            let (pipeline, group) = build_pass(gpu, &desc, &frame_layout, &textures, &buffers)?;
+            let (pipeline, group) =
+                build_pass(gpu, &shaders, &desc, &frame_layout, &textures, &buffers)?;
             built.push(BuiltPass {
                 desc,
                 pipeline,
@@ -357,6 +360,7 @@ fn frame_group(gpu: &Gpu, frame: &FrameUniforms) -> (wgpu::BindGroupLayout, wgpu
 
 fn build_pass(
     gpu: &Gpu,
+    shaders: &plait::gpu::modules::Shaders,
     d: &PassDesc,
     frame_layout: &wgpu::BindGroupLayout,
     textures: &HashMap<&'static str, (wgpu::Texture, wgpu::TextureView)>,
@@ -377,7 +381,8 @@ fn build_pass(
         .iter()
         .map(|n| (n.to_string(), Define::Bool(true)))
         .collect();
-    let module = plait::gpu::modules::compose(Path::new(d.shader), &source, &defines)
+    let module = shaders
+        .compose(Path::new(d.shader), &source, &defines)
         .map_err(|e| format!("{}: {}", d.shader, e.message))?;
     let mut module = (*module).clone();
     if d.early_depth_test {
