@@ -27,7 +27,10 @@ pub fn build(schedule: &Schedule, scene: &SceneData) -> Option<(WispMesh, String
     }
     let count = match schedule.params.get("wisp_count") {
         Some(Value::Int(n)) => (*n).max(0) as usize,
-        _ => plait_passes::geometry::WISP_COUNT_DEFAULT as usize,
+        _ => match plait_passes::points::default("geometry", "wisp_count") {
+            Some(Value::Int(n)) => n.max(0) as usize,
+            _ => 0,
+        },
     };
     let (mesh, followed) = build_wisps(&scene.strands, &scene.guides, count);
     let what = match followed {
@@ -88,7 +91,10 @@ pub fn lod_note(
     let fraction = match schedule.params.get("wisp_lod_screen_fraction") {
         Some(Value::Float(f)) => *f as f32,
         Some(Value::Int(i)) => *i as f32,
-        _ => plait_passes::geometry::WISP_LOD_SCREEN_FRACTION_DEFAULT as f32,
+        _ => match plait_passes::points::default("geometry", "wisp_lod_screen_fraction") {
+            Some(Value::Float(f)) => f as f32,
+            _ => 0.0,
+        },
     };
     let kept = kept_wisps(frame, fraction, count);
     if kept >= count {

@@ -59,6 +59,7 @@ const EXPORT_KEYS: &[&str] = &["reads", "params"];
 mod catalog;
 mod exports;
 mod param_scope;
+pub mod point_contract;
 pub mod point_file;
 mod roots;
 
@@ -66,6 +67,7 @@ pub use catalog::{TechniqueInfo, catalog};
 use exports::{PointExports, give_exports};
 pub use param_scope::ENGINE_PARAMS;
 pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
+pub use point_contract::{PointContract, PointParam};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 

@@ -37,6 +37,8 @@ use crate::error::{Errors, Location, Spanned};
 use crate::load::{Node, parse_file};
 use crate::node_reader::Reader;
 
+use super::point_contract::{self, PointContract};
+
 /// The file in a point's folder that declares its WGSL contract.
 pub const POINT_FILE: &str = "point.toml";
 
@@ -58,6 +60,8 @@ pub struct WgslPoint {
     pub call: String,
     pub default: Spanned<String>,
     pub doc: String,
+    /// Its providers' bindings, slots and params (`point_contract`).
+    pub contract: PointContract,
 }
 
 const KEYS: &[&str] = &[
@@ -163,11 +167,21 @@ pub fn parse(point: &str, path: &Path, text: &str) -> Result<PointFile, Errors> 
 
 fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<PointFile> {
     let top = r.table(root, "a point file")?;
-    r.keys(top, &["point", "wgsl"], "a point file");
+    r.keys(
+        top,
+        &["point", "wgsl", "inputs", "params", "params_from"],
+        "a point file",
+    );
     let mut file = PointFile::default();
+    let mut point_table = None;
     if let Some(p) = top.get("point") {
         let t = r.table(&p.value, "[point]")?;
-        r.keys(t, &["writes", "draws"], "[point]");
+        point_table = Some(t);
+        r.keys(
+            t,
+            &[&["writes", "draws"], point_contract::POINT_KEYS].concat(),
+            "[point]",
+        );
         for (key, what, list) in [
             ("writes", "resource names", &mut file.writes),
             ("draws", "geometries (`draw` values)", &mut file.draws),
@@ -199,8 +213,16 @@ fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<PointFi
             }
         }
     }
+    let contract = point_contract::read(r, top, point_table);
     if let Some(wgsl) = top.get("wgsl") {
-        file.wgsl = Some(read_wgsl(r, point, root, wgsl)?);
+        let mut w = read_wgsl(r, point, root, wgsl)?;
+        w.contract = contract;
+        file.wgsl = Some(w);
+    } else if contract != PointContract::default() {
+        r.schema(
+            &root.location,
+            "bindings, [inputs], [params] and [params_from] are a WGSL point's: this file has no [wgsl]".into(),
+        );
     }
     Some(file)
 }
@@ -256,6 +278,7 @@ fn read_wgsl(
         call: call?.value,
         default: default?,
         doc: doc?.value,
+        contract: PointContract::default(),
     })
 }
 
