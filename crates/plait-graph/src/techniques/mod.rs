@@ -362,17 +362,25 @@ impl Chooser<'_> {
             return;
         };
         self.check_point_key(technique, &tree, point);
+        let (reads, params) = self.read_exports(technique);
         let mut draws = Vec::new();
         match self.roots.point_file(point) {
             Some(Ok(promise)) => {
                 self.errors
                     .extend(point_file::check_writes(&promise, point, name, &tree));
+                if let Some(wgsl) = &promise.wgsl {
+                    self.errors.extend(point_contract::check_technique(
+                        wgsl,
+                        name,
+                        &tree,
+                        (reads.as_ref(), params.as_ref()),
+                    ));
+                }
                 draws = promise.draws.into_iter().map(|d| d.value).collect();
             }
             Some(Err(mut e)) => self.errors.append(&mut e),
             None => {}
         }
-        let (reads, params) = self.read_exports(technique);
         self.exports.push(PointExports {
             point: point.to_owned(),
             reads,

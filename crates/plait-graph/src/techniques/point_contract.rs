@@ -189,3 +189,86 @@ fn read_from(r: &mut Reader<'_>, e: &crate::load::Entry) -> Option<ParamsFrom> {
         at: e.key.clone(),
     })
 }
+
+/// Technique `name` of `point` against its point's contract: every param it
+/// exports is the point's selecting param or one the point declares, every
+/// read it exports a declared input slot, and a `[params]` value it exports
+/// under the same name (`K = "${K}"`, the point's param tuned by the
+/// technique) equals the point's default, so the default is one number.
+pub(crate) fn check_technique(
+    wgsl: &super::WgslPoint,
+    name: &str,
+    tree: &Spanned<Node>,
+    exports: (Option<&Table>, Option<&Table>),
+) -> Vec<Error> {
+    let c = &wgsl.contract;
+    let mut errors = Vec::new();
+    let declared = match c.all_params() {
+        Ok(p) => p,
+        Err(e) => return vec![e],
+    };
+    let point = &wgsl.point;
+    let (reads, params) = exports;
+    for (slot, e) in reads.into_iter().flatten() {
+        if !c.inputs.iter().any(|s| s.name == *slot) {
+            let names = c.inputs.iter().map(|s| s.name.as_str());
+            errors.push(Error::new(
+                e.key.clone(),
+                ErrorKind::Schema(format!(
+                    "{point} technique `{name}` exports a read of slot `{slot}`, which {} does not declare{} (its [inputs]: {}); declare it there",
+                    wgsl.file,
+                    crate::suggest::did_you_mean(slot, names.clone()),
+                    names.collect::<Vec<_>>().join(", ")
+                )),
+            ));
+        }
+    }
+    let own = super::table(tree, "params");
+    for (param, e) in params.into_iter().flatten() {
+        if *param == wgsl.param {
+            continue;
+        }
+        let Some(decl) = declared.iter().find(|p| p.spec.name == *param) else {
+            let names = declared.iter().map(|p| p.spec.name.as_str());
+            errors.push(Error::new(
+                e.key.clone(),
+                ErrorKind::Schema(format!(
+                    "{point} technique `{name}` exports param `{param}`, which {} does not declare{} (its params: {}); declare it there with its default and range",
+                    wgsl.file,
+                    crate::suggest::did_you_mean(param, names.clone()),
+                    names.collect::<Vec<_>>().join(", ")
+                )),
+            ));
+            continue;
+        };
+        let same_name = matches!(&e.value.value, Node::Scalar(crate::value::Value::Str(s)) if *s == format!("${{{param}}}"));
+        let own_value = own.and_then(|t| t.get(param.as_str()));
+        if let (true, Some(v), Some(default)) = (same_name, own_value, &decl.spec.default)
+            && let Node::Scalar(value) = &v.value.value
+            && !same_number(value, default)
+        {
+            errors.push(Error::new(
+                v.value.location.clone(),
+                ErrorKind::Schema(format!(
+                    "{point} technique `{name}`: `{param} = {value}` differs from the point's default {default} ({}): a point param has one default; write {default} here, change the point's, or give the technique a param of its own (`{name}_{param}`) and export that",
+                    decl.at
+                )),
+            ));
+        }
+    }
+    errors
+}
+
+/// Whether two scalars are the same value (an int and a float of equal value are).
+fn same_number(a: &crate::value::Value, b: &crate::value::Value) -> bool {
+    use crate::value::Value;
+    let num = |v: &Value| match v {
+        Value::Int(i) => Some(*i as f64),
+        Value::Float(f) => Some(*f),
+        _ => None,
+    };
+    match (num(a), num(b)) {
+        (Some(x), Some(y)) => x == y,
+        _ => a == b,
+    }
+}
