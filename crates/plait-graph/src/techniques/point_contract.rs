@@ -250,7 +250,7 @@ pub(crate) fn check_technique(
             errors.push(Error::new(
                 v.value.location.clone(),
                 ErrorKind::Schema(format!(
-                    "{point} technique `{name}`: `{param} = {value}` differs from the point's default {default} ({}): a point param has one default; write {default} here, change the point's, or give the technique a param of its own (`{name}_{param}`) and export that",
+                    "{point} technique `{name}`: `{param} = {value}` differs from the point's default {default} ({}): a point param has one default; write {default} here, change the point's, or export a differently named param of the technique's own under `{param}`",
                     decl.at
                 )),
             ));

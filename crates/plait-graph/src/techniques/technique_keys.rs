@@ -57,6 +57,7 @@ pub(super) fn engine(technique: &Table, errors: &mut Vec<Error>) -> Vec<String> 
             Node::Scalar(Value::Str(s)) if ENGINE_NEEDS.contains(&s.as_str()) => out.push(s.clone()),
             _ => {
                 let text = match &item.value {
+                    Node::Scalar(Value::Str(s)) => s.clone(),
                     Node::Scalar(v) => v.to_string(),
                     _ => "a table".into(),
                 };
