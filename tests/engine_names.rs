@@ -68,12 +68,18 @@ fn code_lines(text: &str) -> Vec<String> {
 /// `(point, technique)` for every technique folder of the checkout.
 fn techniques(root: &Path) -> Vec<(String, String)> {
     let mut out = Vec::new();
-    for p in std::fs::read_dir(root.join("techniques")).expect("techniques/").flatten() {
+    for p in std::fs::read_dir(root.join("techniques"))
+        .expect("techniques/")
+        .flatten()
+    {
         if !p.path().is_dir() {
             continue;
         }
         let point = p.file_name().to_string_lossy().into_owned();
-        for t in std::fs::read_dir(p.path()).expect("a point folder").flatten() {
+        for t in std::fs::read_dir(p.path())
+            .expect("a point folder")
+            .flatten()
+        {
             if t.path().join("technique.toml").is_file() {
                 out.push((point.clone(), t.file_name().to_string_lossy().into_owned()));
             }
@@ -89,7 +95,11 @@ fn violations(root: &Path, files: &[PathBuf]) -> Vec<String> {
     let techniques = techniques(root);
     let mut found = Vec::new();
     for path in files {
-        let rel = path.strip_prefix(root).unwrap_or(path).to_string_lossy().replace('\\', "/");
+        let rel = path
+            .strip_prefix(root)
+            .unwrap_or(path)
+            .to_string_lossy()
+            .replace('\\', "/");
         let text = std::fs::read_to_string(path).expect("read");
         let lines = code_lines(&text);
         for (i, line) in lines.iter().enumerate() {
@@ -154,5 +164,10 @@ fn the_check_finds_a_technique_choice() {
     let found = violations(&root, std::slice::from_ref(&file));
     std::fs::remove_dir_all(&dir).ok();
     assert_eq!(found.len(), 1, "{found:?}");
-    assert!(found[0].ends_with(":4: `lod` (a geometry technique) decides behaviour here: && t.name == \"lod\""), "{found:?}");
+    assert!(
+        found[0].ends_with(
+            ":4: `lod` (a geometry technique) decides behaviour here: && t.name == \"lod\""
+        ),
+        "{found:?}"
+    );
 }

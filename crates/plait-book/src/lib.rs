@@ -204,11 +204,17 @@ fn contract_section(c: &plait_graph::techniques::WgslPoint) -> Result<String, Bo
     if !all.is_empty() {
         md.push_str("| param a provider may read | type | default | what |\n|---|---|---|---|\n");
         for p in &all {
-            let default = p.spec.default.as_ref().map_or(String::new(), |d| d.to_string());
+            let default = p
+                .spec
+                .default
+                .as_ref()
+                .map_or(String::new(), |d| d.to_string());
             // A param the point leaves unbounded (its technique may bound
             // it, `[param_ranges]`) reads as a number, not ±f64::MAX.
             let ty = match p.spec.ty {
-                plait_graph::ParamType::Float { min, max } if min == f64::MIN && max == f64::MAX => {
+                plait_graph::ParamType::Float { min, max }
+                    if min == f64::MIN && max == f64::MAX =>
+                {
                     "number".to_owned()
                 }
                 ref t => t.to_string(),
@@ -359,7 +365,10 @@ mod tests {
     #[test]
     fn a_point_page_lists_its_contract_from_the_point_file() {
         let points = plait_graph::techniques::wgsl_points().expect("the point files");
-        let shading = points.iter().find(|p| p.point == "shading").expect("shading");
+        let shading = points
+            .iter()
+            .find(|p| p.point == "shading")
+            .expect("shading");
         let md = super::contract_section(shading).expect("a contract");
         for want in [
             "## Contract (`techniques/shading/point.toml`)",

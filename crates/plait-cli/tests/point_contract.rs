@@ -83,9 +83,21 @@ doc = \"halfmap: the fraction of light, one f32\"\n";
 fn halfmap_library(binding: u32, declare: bool) -> tempfile::TempDir {
     let library = tempfile::tempdir().expect("temp dir");
     let folder = "techniques/self_shadow/halfmap";
-    write(library.path(), &format!("{folder}/technique.toml"), HALFMAP_TECHNIQUE);
-    write(library.path(), &format!("{folder}/half_fill.wgsl"), HALF_FILL);
-    write(library.path(), &format!("{folder}/self_shadow.wgsl"), &halfmap_provider(binding));
+    write(
+        library.path(),
+        &format!("{folder}/technique.toml"),
+        HALFMAP_TECHNIQUE,
+    );
+    write(
+        library.path(),
+        &format!("{folder}/half_fill.wgsl"),
+        HALF_FILL,
+    );
+    write(
+        library.path(),
+        &format!("{folder}/self_shadow.wgsl"),
+        &halfmap_provider(binding),
+    );
     if declare {
         write(
             library.path(),
@@ -102,7 +114,11 @@ fn halfmap_library(binding: u32, declare: bool) -> tempfile::TempDir {
 fn own_pipeline(library: &Path) -> String {
     let text = std::fs::read_to_string(root().join("pipelines/occupancy.toml")).expect("occupancy");
     write(library, "pipelines/occupancy.toml", &text);
-    library.join("pipelines/occupancy.toml").to_str().expect("utf-8").to_owned()
+    library
+        .join("pipelines/occupancy.toml")
+        .to_str()
+        .expect("utf-8")
+        .to_owned()
 }
 
 fn render(library: &Path, technique: &str, out: &Path) -> Output {
@@ -132,7 +148,10 @@ fn render(library: &Path, technique: &str, out: &Path) -> Output {
 fn a_new_slot_name_in_the_point_file_works_for_every_pass_type() {
     let library = halfmap_library(12, true);
     let mapped = library.path().join("mapped.png");
-    assert_ok("render with vis_half", &render(library.path(), "halfmap", &mapped));
+    assert_ok(
+        "render with vis_half",
+        &render(library.path(), "halfmap", &mapped),
+    );
     // The same technique reading no map: its provider returns the 0.5.
     let constant = halfmap_library(12, true);
     write(
@@ -147,10 +166,16 @@ fn a_new_slot_name_in_the_point_file_works_for_every_pass_type() {
          fn hair_visibility(world: vec3<f32>) -> f32 {\n    return 0.5;\n}\n",
     );
     let reference = constant.path().join("constant.png");
-    assert_ok("render with 0.5", &render(constant.path(), "halfmap", &reference));
+    assert_ok(
+        "render with 0.5",
+        &render(constant.path(), "halfmap", &reference),
+    );
     let a = std::fs::read(&mapped).expect("mapped.png");
     let b = std::fs::read(&reference).expect("constant.png");
-    assert!(a == b, "the map's 0.5 and the constant 0.5 differ: vis_half was not bound as declared");
+    assert!(
+        a == b,
+        "the map's 0.5 and the constant 0.5 differ: vis_half was not bound as declared"
+    );
 }
 
 /// Without the point file's line the technique's export is refused at its
@@ -160,7 +185,12 @@ fn a_read_the_point_does_not_declare_is_refused_at_the_export() {
     let library = halfmap_library(12, false);
     let o = with_library(
         library.path(),
-        &["check", &own_pipeline(library.path()), "--set", "techniques.self_shadow=halfmap"],
+        &[
+            "check",
+            &own_pipeline(library.path()),
+            "--set",
+            "techniques.self_shadow=halfmap",
+        ],
     );
     assert_refused(
         "undeclared slot",
@@ -198,12 +228,24 @@ fn a_technique_param_must_be_the_points() {
         .expect("chiang");
     let changed = chiang
         .replace("chiang_beta_n = 0.3\n", "chiang_beta_n = 0.4\n")
-        .replace("chiang_eta = \"${chiang_eta}\"", "chiang_etta = \"${chiang_eta}\"");
+        .replace(
+            "chiang_eta = \"${chiang_eta}\"",
+            "chiang_etta = \"${chiang_eta}\"",
+        );
     assert_ne!(chiang, changed);
-    write(library.path(), "techniques/shading/chiang/technique.toml", &changed);
+    write(
+        library.path(),
+        "techniques/shading/chiang/technique.toml",
+        &changed,
+    );
     let o = with_library(
         library.path(),
-        &["check", &own_pipeline(library.path()), "--set", "techniques.shading=chiang"],
+        &[
+            "check",
+            &own_pipeline(library.path()),
+            "--set",
+            "techniques.shading=chiang",
+        ],
     );
     assert_refused(
         "default and export",
@@ -247,7 +289,13 @@ fn a_technique_param_range_names_the_flag_or_the_line() {
     )
     .expect("write");
     let o = plait(&["check", pipeline.to_str().expect("utf-8")]);
-    assert_refused("tilt 12", &o, &["p.toml:8:15: param `chiang_tilt` = 12 is out of shading technique chiang's range -10…10"]);
+    assert_refused(
+        "tilt 12",
+        &o,
+        &[
+            "p.toml:8:15: param `chiang_tilt` = 12 is out of shading technique chiang's range -10…10",
+        ],
+    );
     let o = plait(&[
         "check",
         "pipelines/occupancy.toml",
@@ -267,12 +315,20 @@ fn engine_needs_and_ranges_are_checked_in_the_technique_file() {
         .expect("wisps");
     let bad = wisps.replace("engine = [\"wisp_mesh\"]", "engine = [\"wisp_mesch\"]");
     assert_ne!(wisps, bad);
-    write(library.path(), "techniques/geometry/wisps/technique.toml", &bad);
+    write(
+        library.path(),
+        "techniques/geometry/wisps/technique.toml",
+        &bad,
+    );
     let chiang = std::fs::read_to_string(root().join("techniques/shading/chiang/technique.toml"))
         .expect("chiang");
     let bad = chiang.replace("chiang_tilt = { min = -10.0", "chiang_tlt = { min = -10.0");
     assert_ne!(chiang, bad);
-    write(library.path(), "techniques/shading/chiang/technique.toml", &bad);
+    write(
+        library.path(),
+        "techniques/shading/chiang/technique.toml",
+        &bad,
+    );
     let o = with_library(
         library.path(),
         &[

@@ -19,7 +19,9 @@ pub fn contract(name: &str) -> Option<WgslPoint> {
 
 /// The optional input slots any provider of point `name` may bind.
 pub fn slots(name: &str) -> Vec<SlotSpec> {
-    contract(name).map(|c| c.contract.inputs).unwrap_or_default()
+    contract(name)
+        .map(|c| c.contract.inputs)
+        .unwrap_or_default()
 }
 
 /// The point's params: the one naming the provider (its choices the
@@ -35,7 +37,10 @@ pub fn params(name: &str) -> Vec<ParamSpec> {
         &point.param,
         &point.default.value,
         &providers.iter().map(String::as_str).collect::<Vec<_>>(),
-        &format!("{name} technique (provider of `{}`): {}", point.module, point.doc),
+        &format!(
+            "{name} technique (provider of `{}`): {}",
+            point.module, point.doc
+        ),
     )];
     let declared = match point.contract.all_params() {
         Ok(all) => all,

@@ -14,9 +14,7 @@
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{BuildContext, PassType, PreparedPass, ShaderDraw, build_draw};
-use plait_graph::{
-    ParamSpec, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, SlotSpec,
-};
+use plait_graph::{ParamSpec, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, SlotSpec};
 
 use crate::occlusion_directions::{bound, int_param};
 

@@ -69,10 +69,10 @@ pub use catalog::{TechniqueInfo, catalog};
 use exports::{PointExports, give_exports};
 pub use param_scope::ENGINE_PARAMS;
 pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
-pub(crate) use technique_keys::check_param_ranges;
 pub use point_contract::{PointContract, PointParam};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
+pub(crate) use technique_keys::check_param_ranges;
 
 /// The techniques folder beside `pipeline`: its own folder's, or an
 /// ancestor's — relative to the working directory when it is below it, so

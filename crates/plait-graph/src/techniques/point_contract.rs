@@ -31,7 +31,7 @@
 //! here, and a `[params]` value it exports unchanged must equal the point's
 //! default, so the default is one number.
 
-use crate::error::{Error, ErrorKind, Location, Spanned};
+use crate::error::{Error, ErrorKind, Errors, Location, Spanned};
 use crate::load::{Node, Table};
 use crate::node_reader::Reader;
 use crate::pass_type_file::{read_param, read_slot};
@@ -71,16 +71,16 @@ impl PointContract {
     /// `[params_from]` file (read from the search path now). A missing or
     /// broken file is an error at `[params_from]`; the pass library reports
     /// what is wrong inside it.
-    pub fn all_params(&self) -> Result<Vec<PointParam>, Error> {
+    pub fn all_params(&self) -> Result<Vec<PointParam>, Errors> {
         let mut out = self.params.clone();
         let Some(from) = &self.params_from else {
             return Ok(out);
         };
         let fail = |why: String| {
-            Error::new(
+            Errors(vec![Error::new(
                 from.at.clone(),
                 ErrorKind::Schema(format!("[params_from] `{}`: {why}", from.file)),
-            )
+            )])
         };
         let path = plait_assets::find(&from.file)
             .ok_or_else(|| fail("no such file on the library search path".into()))?;
@@ -113,7 +113,10 @@ pub(super) fn read(r: &mut Reader<'_>, top: &Table, point: Option<&Table>) -> Po
         bindings: point.and_then(|t| read_bindings(r, t)),
         ..PointContract::default()
     };
-    if let Some(t) = top.get("inputs").and_then(|e| r.table(&e.value, "[inputs]")) {
+    if let Some(t) = top
+        .get("inputs")
+        .and_then(|e| r.table(&e.value, "[inputs]"))
+    {
         for (name, entry) in t {
             let ctx = format!("inputs.{name}");
             let Some(st) = r.table(&entry.value, &ctx) else {
@@ -127,7 +130,10 @@ pub(super) fn read(r: &mut Reader<'_>, top: &Table, point: Option<&Table>) -> Po
             }
         }
     }
-    if let Some(t) = top.get("params").and_then(|e| r.table(&e.value, "[params]")) {
+    if let Some(t) = top
+        .get("params")
+        .and_then(|e| r.table(&e.value, "[params]"))
+    {
         for (name, entry) in t {
             if let Some(spec) = read_param(r, name, entry, &format!("params.{name}")) {
                 c.params.push(PointParam {
@@ -148,7 +154,8 @@ fn read_bindings(r: &mut Reader<'_>, t: &Table) -> Option<Spanned<(u32, u32)>> {
     let bad = |r: &mut Reader<'_>| {
         r.schema(
             &e.value.location,
-            "point.bindings must be [FIRST, LAST], two group-1 binding numbers, FIRST ≤ LAST".into(),
+            "point.bindings must be [FIRST, LAST], two group-1 binding numbers, FIRST ≤ LAST"
+                .into(),
         );
         None
     };
@@ -205,7 +212,7 @@ pub(crate) fn check_technique(
     let mut errors = Vec::new();
     let declared = match c.all_params() {
         Ok(p) => p,
-        Err(e) => return vec![e],
+        Err(e) => return e.0,
     };
     let point = &wgsl.point;
     let (reads, params) = exports;

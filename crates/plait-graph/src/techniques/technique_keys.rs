@@ -54,7 +54,9 @@ pub(super) fn engine(technique: &Table, errors: &mut Vec<Error>) -> Vec<String> 
     let mut out = Vec::new();
     for item in items {
         match &item.value {
-            Node::Scalar(Value::Str(s)) if ENGINE_NEEDS.contains(&s.as_str()) => out.push(s.clone()),
+            Node::Scalar(Value::Str(s)) if ENGINE_NEEDS.contains(&s.as_str()) => {
+                out.push(s.clone())
+            }
             _ => {
                 let text = match &item.value {
                     Node::Scalar(Value::Str(s)) => s.clone(),
@@ -118,7 +120,10 @@ fn read_range(name: &str, e: &crate::load::Entry, errors: &mut Vec<Error>) -> Op
         if !["min", "max", "doc"].contains(&key.as_str()) {
             errors.push(schema(
                 &t[key].key,
-                format!("{ctx}: unknown key `{key}`{} (keys: min, max, doc)", did_you_mean(key, ["min", "max", "doc"])),
+                format!(
+                    "{ctx}: unknown key `{key}`{} (keys: min, max, doc)",
+                    did_you_mean(key, ["min", "max", "doc"])
+                ),
             ));
             ok = false;
         }
@@ -135,7 +140,10 @@ fn read_range(name: &str, e: &crate::load::Entry, errors: &mut Vec<Error>) -> Op
         Some(Node::Scalar(Value::Int(i))) => Some(*i as f64),
         Some(Node::Scalar(Value::Float(f))) if f.is_finite() => Some(*f),
         Some(_) => {
-            errors.push(schema(&n?.location, format!("{ctx}: min and max are finite numbers")));
+            errors.push(schema(
+                &n?.location,
+                format!("{ctx}: min and max are finite numbers"),
+            ));
             None
         }
         None => None,
@@ -151,7 +159,10 @@ fn read_range(name: &str, e: &crate::load::Entry, errors: &mut Vec<Error>) -> Op
     };
     let (lo, hi, doc) = (lo?, hi?, doc?);
     if lo > hi {
-        errors.push(schema(&e.value.location, format!("{ctx}: min {lo} is above max {hi}")));
+        errors.push(schema(
+            &e.value.location,
+            format!("{ctx}: min {lo} is above max {hi}"),
+        ));
         return None;
     }
     ok.then(|| ParamRange {
@@ -165,7 +176,11 @@ fn read_range(name: &str, e: &crate::load::Entry, errors: &mut Vec<Error>) -> Op
 
 /// Each chosen technique's `[param_ranges]` against the value the pipeline
 /// ends with (after its techniques and `--set`), at that value.
-pub(crate) fn check_param_ranges(root: &Spanned<Node>, chosen: &[ChosenTechnique], errors: &mut Vec<Error>) {
+pub(crate) fn check_param_ranges(
+    root: &Spanned<Node>,
+    chosen: &[ChosenTechnique],
+    errors: &mut Vec<Error>,
+) {
     let Some(params) = super::table(root, "params") else {
         return;
     };
@@ -180,7 +195,10 @@ pub(crate) fn check_param_ranges(root: &Spanned<Node>, chosen: &[ChosenTechnique
                 _ => {
                     errors.push(schema(
                         &e.value.location,
-                        format!("param `{}` must be a number: {} technique {} holds it to {}…{} ({})", r.name, t.point, t.name, r.min, r.max, r.at),
+                        format!(
+                            "param `{}` must be a number: {} technique {} holds it to {}…{} ({})",
+                            r.name, t.point, t.name, r.min, r.max, r.at
+                        ),
                     ));
                     continue;
                 }

@@ -66,8 +66,13 @@ impl Default for Fibre {
             Some(plait_graph::Value::Float(f)) => f as f32,
             _ => f32::NAN,
         };
-        let [beta_m, beta_n, tilt, eta] =
-            ["chiang_beta_m", "chiang_beta_n", "chiang_tilt", "chiang_eta"].map(value);
+        let [beta_m, beta_n, tilt, eta] = [
+            "chiang_beta_m",
+            "chiang_beta_n",
+            "chiang_tilt",
+            "chiang_eta",
+        ]
+        .map(value);
         Fibre {
             longitudinal_roughness: beta_m,
             azimuthal_roughness: beta_n,
