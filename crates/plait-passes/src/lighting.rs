@@ -5,7 +5,7 @@
 //! `lighting_params` (binding 30), its resources bind at 31–39 through the
 //! optional slots below.
 
-use plait_graph::{ParamSpec, ResolvedResource, ResourceDesc, ScheduledPass, SlotSpec};
+use plait_graph::{ParamSpec, ResolvedResource, ResourceDesc, ScheduledPass, SlotSpec, Value};
 
 /// The slot of the cube a provider sums in every fragment (the point
 /// file's `[inputs.light_environment]`).
@@ -52,8 +52,13 @@ pub fn check_environment_size(
         Some(ResourceDesc::Texture { height, .. }) if *height > MAX_REFERENCE_ENVIRONMENT => {
             let s = *height as u64;
             let laps = s * (6 * s + 1) + s + 1;
+            // The provider chosen, as the pass's param names it.
+            let provider = match pass.params.get("lighting") {
+                Some(Value::Str(p)) => format!("lighting = \"{p}\""),
+                _ => "the lighting provider".to_owned(),
+            };
             Err(format!(
-                "the lighting provider sums all 6 · {s}² texels of `{SUMMED_CUBE}` in every fragment ({laps} loop laps), and lavapipe ends every loop of a group of 8 fragments after 65,535 laps, shared with the other providers; with it environment_size is at most {MAX_REFERENCE_ENVIRONMENT} (--set params.environment_size={MAX_REFERENCE_ENVIRONMENT})"
+                "{provider} sums all 6 · {s}² texels of `{SUMMED_CUBE}` in every fragment ({laps} loop laps), and lavapipe ends every loop of a group of 8 fragments after 65,535 laps, shared with the other providers; with it environment_size is at most {MAX_REFERENCE_ENVIRONMENT} (--set params.environment_size={MAX_REFERENCE_ENVIRONMENT})"
             ))
         }
         _ => Ok(()),
