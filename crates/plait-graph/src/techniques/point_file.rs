@@ -480,6 +480,33 @@ doc = "Fraction of the light reaching `world`."
     }
 
     #[test]
+    fn a_point_contract_is_read_and_its_mistakes_located() {
+        let text = format!(
+            "[point]\nbindings = [8, 15]\n{GOOD}\n[inputs.vis_x]\nkind = \"buffer\"\naccess = \"storage_read\"\n\n[params.w]\ntype = \"float\"\ndefault = 0.5\nmin = 0.0\nmax = 1.0\n"
+        );
+        let p = parse("self_shadow", Path::new("point.toml"), &text)
+            .expect("parses")
+            .wgsl
+            .expect("[wgsl]");
+        let c = &p.contract;
+        assert_eq!(c.bindings.as_ref().map(|b| b.value), Some((8, 15)));
+        assert_eq!(c.inputs.len(), 1);
+        assert!(c.inputs[0].optional, "a provider's slot is optional");
+        assert_eq!(c.params[0].spec.name, "w");
+        let bad = text.replace("bindings = [8, 15]", "bindings = [15, 8]");
+        let e = parse("self_shadow", Path::new("point.toml"), &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("point.toml:2:12"), "{e}");
+        assert!(e.contains("FIRST ≤ LAST"), "{e}");
+        let bad = text.replace("access = \"storage_read\"", "acess = \"storage_read\"");
+        let e = parse("self_shadow", Path::new("point.toml"), &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("did you mean `access`"), "{e}");
+    }
+
+    #[test]
     fn a_broken_point_file_names_the_key() {
         let bad = GOOD.replace(
             "fn hair_visibility(world: vec3<f32>) -> f32",
