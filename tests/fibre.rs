@@ -519,9 +519,9 @@ fn chiang_reads_mitsubas_hair_bsdf() {
 }
 
 /// One fibre description: the `chiang` technique's exported params
-/// (techniques/shading/chiang/technique.toml), the typed passes' defaults
-/// (`plait::passes::shading::CHIANG_FIBRE`) and the Mitsuba export's
-/// `Fibre::default()` are the same four numbers.
+/// (techniques/shading/chiang/technique.toml), the shading point's defaults
+/// (techniques/shading/point.toml, as the typed passes read them) and the
+/// Mitsuba export's `Fibre::default()` are the same four numbers.
 #[test]
 fn chiang_defaults_are_the_mitsuba_exports_fibre() {
     let text =
@@ -549,21 +549,32 @@ fn chiang_defaults_are_the_mitsuba_exports_fibre() {
         f.eta,
     ]
     .map(f64::from);
-    let typed = plait::passes::shading::CHIANG_FIBRE;
+    let typed = [
+        "chiang_beta_m",
+        "chiang_beta_n",
+        "chiang_tilt",
+        "chiang_eta",
+    ]
+    .map(
+        |name| match plait::passes::points::default_on_search_path("shading", name) {
+            Some(plait_graph::Value::Float(f)) => f,
+            other => panic!("the shading point's {name}: {other:?}"),
+        },
+    );
     for k in 0..4 {
         assert_eq!(
             toml[k], typed[k],
-            "technique.toml vs CHIANG_FIBRE, field {k}"
+            "technique.toml vs the shading point's default, field {k}"
         );
         assert!(
             (mitsuba[k] - typed[k]).abs() < 1e-6,
-            "Fibre::default() vs CHIANG_FIBRE, field {k}"
+            "Fibre::default() vs the shading point's default, field {k}"
         );
     }
 }
 
 /// Out-of-range fibre params are refused at load, naming the param and
-/// the `--set` flag (ranges in crates/plait-passes/src/shading.rs).
+/// the `--set` flag (ranges in the chiang technique's `[param_ranges]`).
 #[test]
 fn chiang_bad_params_are_errors_naming_the_param() {
     let opts = plait_graph::CompileOptions::default();

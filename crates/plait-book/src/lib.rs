@@ -95,11 +95,18 @@ pub fn build(opts: &Options) -> Result<Built, BookError> {
     let mut generated = Vec::new();
     let mut technique_toc = String::new();
     let mut point = String::new();
+    let contracts = plait_graph::techniques::wgsl_points(&[])
+        .map_err(|e| BookError::content("techniques", e.to_string()))?;
     for info in &catalog {
         if info.point != point {
             point = info.point.clone();
             let intro = format!("techniques/{point}.md");
-            write(&src.join(&intro), &point_page(&point, &catalog))?;
+            let contract = contracts.iter().find(|c| c.point == point);
+            let mut page = point_page(&point, &catalog);
+            if let Some(c) = contract {
+                page.push_str(&contract_section(c)?);
+            }
+            write(&src.join(&intro), &page)?;
             technique_toc.push_str(&format!("- [{point}]({intro})\n"));
         }
         let page = technique_page::page_path(&info.point, &info.name);
@@ -150,6 +157,76 @@ fn point_page(point: &str, catalog: &[plait_graph::techniques::TechniqueInfo]) -
         ));
     }
     md
+}
+
+/// A WGSL point's contract, from its point file: the function, the
+/// selector, the binding range, the slots and the params any provider may
+/// use (what `docs/design.md` once kept by hand).
+fn contract_section(c: &plait_graph::techniques::WgslPoint) -> Result<String, BookError> {
+    let mut md = format!(
+        "\n## Contract (`techniques/{0}/point.toml`)\n\n\
+         Each technique's provider is the WGSL module `{1}::NAME` defining `{2}`; \
+         shading code calls `{3}` from the generated `{4}`, which picks the one the \
+         `{5}` param names (default `{6}`). {7}\n\n",
+        c.point,
+        c.providers,
+        c.signature(),
+        c.call,
+        c.module,
+        c.param,
+        c.default.value,
+        c.doc
+    );
+    if let Some(b) = &c.contract.bindings {
+        let (first, last) = b.value;
+        md.push_str(&format!(
+            "Its providers' bindings: group 1, {first}–{last}.\n\n"
+        ));
+    }
+    if !c.contract.inputs.is_empty() {
+        md.push_str("| slot a provider may bind | kind | access | formats | what |\n|---|---|---|---|---|\n");
+        for s in &c.contract.inputs {
+            md.push_str(&format!(
+                "| `{}` | {:?} | {} | {} | {} |\n",
+                s.name,
+                s.kind,
+                s.access,
+                s.formats,
+                params::cell(&s.doc)
+            ));
+        }
+        md.push('\n');
+    }
+    let all = c
+        .contract
+        .all_params()
+        .map_err(|e| BookError::content("techniques", e.to_string()))?;
+    if !all.is_empty() {
+        md.push_str("| param a provider may read | type | default | what |\n|---|---|---|---|\n");
+        for p in &all {
+            let default = p
+                .spec
+                .default
+                .as_ref()
+                .map_or(String::new(), |d| d.to_string());
+            // A param the point leaves unbounded (its technique may bound
+            // it, `[param_ranges]`) reads as a number, not ±f64::MAX.
+            let ty = match p.spec.ty {
+                plait_graph::ParamType::Float { min, max }
+                    if min == f64::MIN && max == f64::MAX =>
+                {
+                    "number".to_owned()
+                }
+                ref t => t.to_string(),
+            };
+            md.push_str(&format!(
+                "| `{}` | {ty} | {default} | {} |\n",
+                p.spec.name,
+                params::cell(&p.spec.doc)
+            ));
+        }
+    }
+    Ok(md)
 }
 
 fn write(path: &Path, text: &str) -> Result<(), BookError> {
@@ -279,4 +356,30 @@ fn run_mdbook(stage: &Path, out: &Path) -> Result<(), BookError> {
     config.build.build_dir = out.to_path_buf();
     let book = mdbook_driver::MDBook::load_with_config(stage, config).map_err(BookError::MdBook)?;
     book.build().map_err(BookError::MdBook)
+}
+
+#[cfg(test)]
+mod tests {
+    /// The point page's contract comes from the point file: its range, its
+    /// slots and its params, the `[params_from]` ones included.
+    #[test]
+    fn a_point_page_lists_its_contract_from_the_point_file() {
+        let points = plait_graph::techniques::wgsl_points(&[]).expect("the point files");
+        let shading = points
+            .iter()
+            .find(|p| p.point == "shading")
+            .expect("shading");
+        let md = super::contract_section(shading).expect("a contract");
+        for want in [
+            "## Contract (`techniques/shading/point.toml`)",
+            "`fn hair_direct(",
+            "group 1, 20–29",
+            "| `marschner_m` | Texture | sampled | rgba16float |",
+            "| `chiang_beta_m` | number | 0.3 |",
+            "| `marschner_shift_r` | number -45 … 45 | -7.5 |",
+            "defining `fn hair_direct(",
+        ] {
+            assert!(md.contains(want), "no `{want}` in\n{md}");
+        }
+    }
 }

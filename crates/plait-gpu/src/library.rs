@@ -247,6 +247,12 @@ fn provider_points(
                 (!name.contains("::")).then(|| (name.to_owned(), m.path.clone()))
             })
             .collect();
+        for (name, path) in &providers {
+            let module = found.values().find(|m| m.path == *path);
+            if let Some(m) = module {
+                check_bindings(&contract, name, path, &m.source)?;
+            }
+        }
         let default = &contract.default;
         if !providers.iter().any(|(n, _)| *n == default.value) {
             let names: Vec<&str> = providers.iter().map(|(n, _)| n.as_str()).collect();
@@ -274,6 +280,48 @@ fn provider_points(
         });
     }
     Ok(points)
+}
+
+/// Every group-1 binding provider `name` declares lies in its point's
+/// `bindings` (`techniques/<point>/point.toml`, `[point]`): the points share
+/// group 1 of every shading pass, so a binding outside its range could
+/// collide with another point's. An error at the binding's line and column.
+fn check_bindings(
+    contract: &WgslPoint,
+    name: &str,
+    path: &std::path::Path,
+    source: &str,
+) -> Result<(), ShaderError> {
+    let Some(range) = &contract.contract.bindings else {
+        return Ok(());
+    };
+    let (first, last) = range.value;
+    for (i, line) in source.lines().enumerate() {
+        let code = line.split("//").next().unwrap_or("");
+        let number = |attr: &str| -> Option<(usize, u32)> {
+            let at = code.find(attr)?;
+            let rest = &code[at + attr.len()..];
+            let n = rest.split(')').next()?.trim().parse().ok()?;
+            Some((at, n))
+        };
+        let (Some((_, 1)), Some((at, binding))) = (number("@group("), number("@binding(")) else {
+            continue;
+        };
+        if binding < first || binding > last {
+            return Err(ShaderError {
+                path: path.to_owned(),
+                message: format!(
+                    "{}:{}:{}: {} provider `{name}` declares @group(1) @binding({binding}), outside the point's bindings {first}–{last} ({}): the points share group 1, so its bindings must lie in its point's range",
+                    path.display(),
+                    i + 1,
+                    at + 1,
+                    contract.point,
+                    range.location
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The module's `#define_import_path`, if it declares one.

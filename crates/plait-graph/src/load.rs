@@ -247,6 +247,7 @@ pub fn load_str(
         &mut errors,
         &mut notes,
     );
+    crate::techniques::check_param_ranges(&root, &techniques, &mut errors);
     let root = substitute_params(root, &mut errors);
     let mut pipeline = build_pipeline(root, files, path_for_messages, &mut errors);
     pipeline.techniques = techniques;

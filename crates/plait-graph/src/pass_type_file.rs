@@ -225,7 +225,7 @@ fn read_file(r: &mut Reader<'_>, root: &Spanned<Node>) -> Option<PassTypeFile> {
     })
 }
 
-fn read_slot(
+pub(crate) fn read_slot(
     r: &mut Reader<'_>,
     name: &str,
     t: &Table,
@@ -386,7 +386,7 @@ fn read_words_per_texel(
     })
 }
 
-fn read_param(
+pub(crate) fn read_param(
     r: &mut Reader<'_>,
     name: &str,
     entry: &crate::load::Entry,

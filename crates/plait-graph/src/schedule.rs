@@ -169,6 +169,12 @@ pub struct ChosenTechnique {
     pub path: PathBuf,
     /// The params its file defines (its `[params]` keys).
     pub params: Vec<String>,
+    /// Its `[param_ranges]`.
+    #[serde(skip)]
+    pub ranges: Vec<crate::techniques::technique_keys::ParamRange>,
+    /// What the engine does for it (`[technique] engine`).
+    #[serde(skip)]
+    pub engine: Vec<String>,
 }
 
 impl ChosenTechnique {

@@ -97,7 +97,7 @@ impl std::fmt::Display for Formats {
 }
 
 /// One named input or output of a pass type.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SlotSpec {
     pub name: String,
     pub kind: ResourceKind,
@@ -169,7 +169,7 @@ pub fn short_number(x: f64) -> String {
     }
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ParamSpec {
     pub name: String,
     pub ty: ParamType,

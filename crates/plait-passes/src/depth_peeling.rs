@@ -38,15 +38,17 @@ use crate::spec_util::{DEPTH, HDR, int, texture};
 
 /// With the params of the library's providers (see [`HairShade`](crate::hair_shade::HairShade)).
 pub struct HairDepthPeel {
+    shading_inputs: Vec<plait_graph::SlotSpec>,
     shading_params: Vec<plait_graph::ParamSpec>,
 }
 
 inventory::submit! { crate::RustPassType(|library| Box::new(HairDepthPeel {
+    shading_inputs: hair_fragment::shading_inputs(library),
     shading_params: hair_fragment::shading_params(library),
 })) }
 
-fn spec(shading_params: &[plait_graph::ParamSpec]) -> PassTypeSpec {
-    let mut inputs = hair_fragment::shading_inputs();
+fn spec(shading_inputs: &[plait_graph::SlotSpec], shading_params: &[plait_graph::ParamSpec]) -> PassTypeSpec {
+    let mut inputs = shading_inputs.to_vec();
     inputs.push(texture(
         "opaque_depth",
         Access::Sampled,
@@ -108,7 +110,7 @@ fn spec(shading_params: &[plait_graph::ParamSpec]) -> PassTypeSpec {
 
 impl PassType for HairDepthPeel {
     fn spec(&self) -> PassTypeSpec {
-        spec(&self.shading_params)
+        spec(&self.shading_inputs, &self.shading_params)
     }
     fn shader(&self) -> Option<&str> {
         // The technique folder's own shader (library path, search path first).

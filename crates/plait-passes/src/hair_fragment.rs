@@ -17,18 +17,18 @@ use crate::{lighting, occlusion, shading, shading_space, visibility};
 /// The shading inputs of every hair pass: the opaque shadow map, the
 /// visibility provider's light maps, and what the shading, lighting and
 /// occlusion providers bind.
-pub fn shading_inputs() -> Vec<SlotSpec> {
+pub fn shading_inputs(library: &plait_gpu::PassLibrary) -> Vec<SlotSpec> {
     let mut v = vec![texture(
         "shadow_map",
         Access::Sampled,
         DEPTH,
         "opaque shadow map from the light",
     )];
-    v.extend(visibility::slots());
-    v.extend(shading::slots());
-    v.extend(lighting::slots());
-    v.extend(occlusion::slots());
-    v.extend(shading_space::slots());
+    v.extend(visibility::slots(library));
+    v.extend(shading::slots(library));
+    v.extend(lighting::slots(library));
+    v.extend(occlusion::slots(library));
+    v.extend(shading_space::slots(library));
     v
 }
 

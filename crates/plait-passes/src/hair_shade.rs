@@ -16,16 +16,18 @@ use crate::spec_util::{DEPTH, HDR, SlotExt, texture};
 /// With the params of the library's providers (their choices are the
 /// providers found).
 pub struct HairShade {
+    inputs: Vec<plait_graph::SlotSpec>,
     params: Vec<plait_graph::ParamSpec>,
 }
 
 inventory::submit! { crate::RustPassType(|library| Box::new(HairShade {
+    inputs: hair_fragment::shading_inputs(library),
     params: hair_fragment::shading_params(library),
 })) }
 
 impl PassType for HairShade {
     fn spec(&self) -> PassTypeSpec {
-        let mut inputs = hair_fragment::shading_inputs();
+        let mut inputs = self.inputs.clone();
         inputs.insert(
             1,
             texture(

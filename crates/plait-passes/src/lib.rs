@@ -23,6 +23,7 @@ pub mod occlusion_cylinders;
 pub mod occlusion_directions;
 pub mod occupancy;
 pub mod opaque_shade;
+pub mod points;
 pub mod shading;
 pub mod shading_space;
 pub mod simulation;
@@ -103,7 +104,7 @@ pub fn read_library(own_roots: &[PathBuf]) -> PassLibrary {
     // Every hair draw scales its coverage by the shading_space provider's
     // tip fading (plait::strand_coverage), so its buffers reach the
     // unshaded draws (alpha_sum) too.
-    lib.shared_slots = [geometry::slots(), shading_space::slots()].concat();
+    lib.shared_slots = [geometry::slots(&lib), shading_space::slots(&lib)].concat();
     // Pass types written in Rust (loops, readback, state chosen by a param):
     // each module registers its own with `inventory::submit!`, so a new one
     // is its module and no line here. Sorted by name: the registration order

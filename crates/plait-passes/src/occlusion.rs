@@ -10,9 +10,7 @@
 //! directions, Xing et al. 2012 §4) and `occlusion_cylinders` (cylinders and
 //! scalp discs, Halén & Wester 2007 §3.3.1).
 
-use plait_graph::{Access, ParamSpec, SlotSpec};
-
-use crate::spec_util::{SlotExt, buffer, choice};
+use plait_graph::{ParamSpec, SlotSpec};
 
 /// The providers, by param value: every module `plait::ambient_occlusion::NAME`
 /// found.
@@ -20,27 +18,13 @@ pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
     library.shaders.providers("ambient_occlusion")
 }
 
-/// The optional input slots any provider may need.
-pub fn slots() -> Vec<SlotSpec> {
-    vec![
-        buffer(
-            "occ_vertex_ao",
-            Access::StorageRead,
-            "per_vertex: ambient visibility per hair vertex (f32, 1 = open)",
-        )
-        .optional(),
-    ]
+/// The optional input slots any provider may need
+/// (`techniques/ambient_occlusion/point.toml`, `[inputs]`).
+pub fn slots(library: &plait_gpu::PassLibrary) -> Vec<SlotSpec> {
+    crate::points::slots(library, "ambient_occlusion")
 }
 
 /// Params of the providers (filled into `occlusion_params` by member name).
 pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
-    vec![choice(
-        "ambient_occlusion",
-        "none",
-        &providers(library)
-            .iter()
-            .map(String::as_str)
-            .collect::<Vec<_>>(),
-        "per-vertex ambient occlusion of the environment's light (occlusion provider)",
-    )]
+    crate::points::params(library, "ambient_occlusion")
 }

@@ -10,10 +10,12 @@ use crate::visibility;
 
 /// With the params of the library's self-shadowing providers.
 pub struct OpaqueShade {
+    slots: Vec<plait_graph::SlotSpec>,
     params: Vec<plait_graph::ParamSpec>,
 }
 
 inventory::submit! { crate::RustPassType(|library| Box::new(OpaqueShade {
+    slots: visibility::slots(library),
     params: visibility::params(library),
 })) }
 
@@ -25,7 +27,7 @@ impl PassType for OpaqueShade {
             DEPTH,
             "opaque shadow map from the light",
         )];
-        inputs.extend(visibility::slots());
+        inputs.extend(self.slots.iter().cloned());
         PassTypeSpec {
             inputs,
             outputs: vec![

@@ -14,15 +14,9 @@
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{BuildContext, PassType, PreparedPass, ShaderDraw, build_draw};
-use plait_graph::{
-    Access, ParamSpec, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, SlotSpec,
-};
+use plait_graph::{ParamSpec, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, SlotSpec};
 
 use crate::occlusion_directions::{bound, int_param};
-use crate::spec_util::{SlotExt, buffer, choice, float, int};
-
-/// The largest `shading_points` a pass takes (frostbitten-hair-webgpu shades 64).
-pub const MAX_SHADING_POINTS: i64 = 256;
 
 /// Bytes of one shading point's radiance (`vec4<f32>`).
 const RADIANCE_BYTES: u64 = 16;
@@ -32,58 +26,15 @@ pub fn providers(library: &plait_gpu::PassLibrary) -> Vec<String> {
     library.shaders.providers("shading_space")
 }
 
-/// The optional input slots any provider may need.
-pub fn slots() -> Vec<SlotSpec> {
-    vec![
-        buffer(
-            "shading_radiance",
-            Access::StorageRead,
-            "strand: radiance per shading point (vec4<f32>), `shading_points` per strand",
-        )
-        .optional(),
-        buffer(
-            "shading_strands",
-            Access::StorageRead,
-            "strand: the scene's `strand_guides` (each strand's first vertex and point count)",
-        )
-        .optional(),
-    ]
+/// The optional input slots any provider may need
+/// (`techniques/shading_space/point.toml`, `[inputs]`).
+pub fn slots(library: &plait_gpu::PassLibrary) -> Vec<SlotSpec> {
+    crate::points::slots(library, "shading_space")
 }
 
 /// Params of the providers (filled into `shading_space_params` by member name).
 pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
-    vec![
-        choice(
-            "shading_space",
-            "fragment",
-            &providers(library)
-                .iter()
-                .map(String::as_str)
-                .collect::<Vec<_>>(),
-            "where hair is shaded: per fragment, or at shading points along each strand (shading_space provider)",
-        ),
-        int(
-            "shading_points",
-            16,
-            1,
-            MAX_SHADING_POINTS,
-            "strand: shading points per strand, evenly spread from root to tip (at most the points of the scene's shortest strand)",
-        ),
-        float(
-            "tip_scale",
-            1.0,
-            0.0,
-            1.0,
-            "strand: the strand's width (coverage) at its tip, as a fraction of its own (Unity's hair package tapering; 1 = no tip fading)",
-        ),
-        float(
-            "tip_scale_offset",
-            0.75,
-            0.0,
-            1.0,
-            "strand: the fraction of the strand's length where the taper toward tip_scale begins (over at least the last segment)",
-        ),
-    ]
+    crate::points::params(library, "shading_space")
 }
 
 /// `strand_shading`: a data-only compute pass (its slots are its shader's

@@ -202,14 +202,18 @@ fn build_probe<'g>(
     let Some(shading) = shading else {
         return Ok(None);
     };
-    let visibility = shading.params["self_shadow"]
-        .as_str()
-        .unwrap_or("none")
-        .to_owned();
+    let Some(visibility) = shading.params["self_shadow"].as_str().map(str::to_owned) else {
+        return Ok(None);
+    };
+    // The self_shadow point's slots, as its point file declares them.
+    let slots: Vec<String> = plait_passes::visibility::slots(&library)
+        .into_iter()
+        .map(|s| s.name)
+        .collect();
     let reads: Vec<String> = shading
         .reads
         .iter()
-        .filter(|b| b.slot.starts_with("vis_"))
+        .filter(|b| slots.contains(&b.slot))
         .map(|b| format!("{} = {:?}", b.slot, b.resource_name))
         .collect();
     // Only the providers' params: the probe samples self-shadowing as the

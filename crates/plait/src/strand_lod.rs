@@ -5,6 +5,7 @@
 
 use glam::{Mat4, Vec4};
 use plait_gpu::frame::FrameUniforms;
+use plait_graph::techniques::technique_keys::STRAND_LOD_NOTE;
 use plait_graph::{Schedule, Value};
 
 /// The groom's height on screen as a fraction of the screen's height
@@ -35,13 +36,14 @@ pub fn kept(id: u32, k: f32) -> bool {
     k >= 1.0 || (id.wrapping_mul(0x9E37_79B9) >> 8) < (k * 16_777_216.0) as u32
 }
 
-/// "geometry lod: N of M strands drawn …" when the schedule draws with
-/// `lod` and leaves strands out at this frame's camera.
+/// "geometry lod: N of M strands drawn …" when a chosen technique asks for
+/// the note (`[technique] engine = ["strand_lod_note"]`) and strands are left
+/// out at this frame's camera.
 pub fn note(schedule: &Schedule, frame: &FrameUniforms) -> Option<String> {
     schedule
         .techniques
         .iter()
-        .find(|t| t.point == "geometry" && t.name == "lod")?;
+        .find(|t| t.engine.iter().any(|e| e == STRAND_LOD_NOTE))?;
     let fraction = match schedule.params.get("lod_screen_fraction")? {
         Value::Float(f) => *f as f32,
         Value::Int(i) => *i as f32,

@@ -1,21 +1,24 @@
-//! `geometry = "wisps"` at load (Halén & Wester, "Real-Time Hair Simulation
+//! A technique asking for the wisp mesh (`engine = ["wisp_mesh"]`, the
+//! geometry technique `wisps`) at load (Halén & Wester, "Real-Time Hair Simulation
 //! and Visualization for Games", M.Sc. thesis, Lund University, 2007,
 //! §2.2–2.4): the wisps' triangle strips are built on the CPU from the
 //! scene's strands and guides ([`plait_hair::wisps`]) and every hair draw
 //! draws them instead of the strands' lines. What was built is named in a
 //! note: wisps stand for strands on purpose, never silently.
 
+use plait_graph::techniques::technique_keys::WISP_MESH;
 use plait_graph::{Schedule, Value};
 use plait_hair::wisps::{WispGuides, WispMesh, build_wisps};
 
 use crate::session::SceneData;
 
-/// Whether the schedule draws hair as wisps.
+/// Whether the schedule draws hair as wisps: a chosen technique asks the
+/// engine for the wisp mesh (`[technique] engine = ["wisp_mesh"]`).
 pub fn chosen(schedule: &Schedule) -> bool {
     schedule
         .techniques
         .iter()
-        .any(|t| t.point == "geometry" && t.name == "wisps")
+        .any(|t| t.engine.iter().any(|e| e == WISP_MESH))
 }
 
 /// The wisps of `scene` as the schedule's params ask (`wisp_count`, range
@@ -27,7 +30,10 @@ pub fn build(schedule: &Schedule, scene: &SceneData) -> Option<(WispMesh, String
     }
     let count = match schedule.params.get("wisp_count") {
         Some(Value::Int(n)) => (*n).max(0) as usize,
-        _ => plait_passes::geometry::WISP_COUNT_DEFAULT as usize,
+        _ => match plait_passes::points::default_on_search_path("geometry", "wisp_count") {
+            Some(Value::Int(n)) => n.max(0) as usize,
+            _ => 0,
+        },
     };
     let (mesh, followed) = build_wisps(&scene.strands, &scene.guides, count);
     let what = match followed {
@@ -88,7 +94,10 @@ pub fn lod_note(
     let fraction = match schedule.params.get("wisp_lod_screen_fraction") {
         Some(Value::Float(f)) => *f as f32,
         Some(Value::Int(i)) => *i as f32,
-        _ => plait_passes::geometry::WISP_LOD_SCREEN_FRACTION_DEFAULT as f32,
+        _ => match plait_passes::points::default_on_search_path("geometry", "wisp_lod_screen_fraction") {
+            Some(Value::Float(f)) => f as f32,
+            _ => 0.0,
+        },
     };
     let kept = kept_wisps(frame, fraction, count);
     if kept >= count {

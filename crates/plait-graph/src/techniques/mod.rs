@@ -50,24 +50,29 @@ const TECHNIQUE_KEYS: &[&str] = &[
     "memory",
     "includes",
     "exports",
+    "engine",
 ];
 /// Top-level tables a technique file may hold.
-const FILE_KEYS: &[&str] = &["technique", "params", "resources", "passes"];
+const FILE_KEYS: &[&str] = &["technique", "params", "param_ranges", "resources", "passes"];
 /// What exports may carry.
 const EXPORT_KEYS: &[&str] = &["reads", "params"];
 
 mod catalog;
 mod exports;
 mod param_scope;
+pub mod point_contract;
 pub mod point_file;
 mod roots;
+pub mod technique_keys;
 
 pub use catalog::{TechniqueInfo, catalog};
 use exports::{PointExports, give_exports};
 pub use param_scope::ENGINE_PARAMS;
 pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
+pub use point_contract::{PointContract, PointParam};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
+pub(crate) use technique_keys::check_param_ranges;
 
 /// The folder whose `techniques/` is `pipeline`'s own (see
 /// [`techniques_beside`]), resolved; `None` for a built-in pipeline or one
@@ -363,6 +368,10 @@ impl Chooser<'_> {
             params: table(&tree, "params")
                 .map(|t| t.keys().cloned().collect())
                 .unwrap_or_default(),
+            ranges: technique_keys::ranges(&tree, self.errors),
+            engine: technique_table(&tree)
+                .map(|t| technique_keys::engine(t, self.errors))
+                .unwrap_or_default(),
         });
         let Some(technique) = technique_table(&tree) else {
             // Without it the choice would vanish: no exports, no check of
@@ -377,17 +386,25 @@ impl Chooser<'_> {
             return;
         };
         self.check_point_key(technique, &tree, point);
+        let (reads, params) = self.read_exports(technique);
         let mut draws = Vec::new();
         match self.roots.point_file(point) {
             Some(Ok(promise)) => {
                 self.errors
                     .extend(point_file::check_writes(&promise, point, name, &tree));
+                if let Some(wgsl) = &promise.wgsl {
+                    self.errors.extend(point_contract::check_technique(
+                        wgsl,
+                        name,
+                        &tree,
+                        (reads.as_ref(), params.as_ref()),
+                    ));
+                }
                 draws = promise.draws.into_iter().map(|d| d.value).collect();
             }
             Some(Err(mut e)) => self.errors.append(&mut e),
             None => {}
         }
-        let (reads, params) = self.read_exports(technique);
         self.exports.push(PointExports {
             point: point.to_owned(),
             reads,
@@ -399,6 +416,7 @@ impl Chooser<'_> {
             return;
         };
         t.shift_remove("technique");
+        t.shift_remove("param_ranges");
         let data = Spanned::new(Node::Table(t), tree.location);
         match &mut self.combined {
             Some(c) => merge(c, data),

@@ -37,6 +37,8 @@ use crate::error::{Errors, Location, Spanned};
 use crate::load::{Node, parse_file};
 use crate::node_reader::Reader;
 
+use super::point_contract::{self, PointContract};
+
 /// The file in a point's folder that declares its WGSL contract.
 pub const POINT_FILE: &str = "point.toml";
 
@@ -58,6 +60,8 @@ pub struct WgslPoint {
     pub call: String,
     pub default: Spanned<String>,
     pub doc: String,
+    /// Its providers' bindings, slots and params (`point_contract`).
+    pub contract: PointContract,
 }
 
 const KEYS: &[&str] = &[
@@ -163,11 +167,21 @@ pub fn parse(point: &str, path: &Path, text: &str) -> Result<PointFile, Errors> 
 
 fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<PointFile> {
     let top = r.table(root, "a point file")?;
-    r.keys(top, &["point", "wgsl"], "a point file");
+    r.keys(
+        top,
+        &["point", "wgsl", "inputs", "params", "params_from"],
+        "a point file",
+    );
     let mut file = PointFile::default();
+    let mut point_table = None;
     if let Some(p) = top.get("point") {
         let t = r.table(&p.value, "[point]")?;
-        r.keys(t, &["writes", "draws"], "[point]");
+        point_table = Some(t);
+        r.keys(
+            t,
+            &[&["writes", "draws"], point_contract::POINT_KEYS].concat(),
+            "[point]",
+        );
         for (key, what, list) in [
             ("writes", "resource names", &mut file.writes),
             ("draws", "geometries (`draw` values)", &mut file.draws),
@@ -199,8 +213,16 @@ fn read(r: &mut Reader<'_>, point: &str, root: &Spanned<Node>) -> Option<PointFi
             }
         }
     }
+    let contract = point_contract::read(r, top, point_table);
     if let Some(wgsl) = top.get("wgsl") {
-        file.wgsl = Some(read_wgsl(r, point, root, wgsl)?);
+        let mut w = read_wgsl(r, point, root, wgsl)?;
+        w.contract = contract;
+        file.wgsl = Some(w);
+    } else if contract != PointContract::default() {
+        r.schema(
+            &root.location,
+            "bindings, [inputs], [params] and [params_from] are a WGSL point's: this file has no [wgsl]".into(),
+        );
     }
     Some(file)
 }
@@ -256,6 +278,7 @@ fn read_wgsl(
         call: call?.value,
         default: default?,
         doc: doc?.value,
+        contract: PointContract::default(),
     })
 }
 
@@ -451,6 +474,33 @@ doc = "Fraction of the light reaching `world`."
             text.contains("no geometry `hairs`; did you mean `hair`?"),
             "{text}"
         );
+    }
+
+    #[test]
+    fn a_point_contract_is_read_and_its_mistakes_located() {
+        let text = format!(
+            "[point]\nbindings = [8, 15]\n{GOOD}\n[inputs.vis_x]\nkind = \"buffer\"\naccess = \"storage_read\"\n\n[params.w]\ntype = \"float\"\ndefault = 0.5\nmin = 0.0\nmax = 1.0\n"
+        );
+        let p = parse("self_shadow", Path::new("point.toml"), &text)
+            .expect("parses")
+            .wgsl
+            .expect("[wgsl]");
+        let c = &p.contract;
+        assert_eq!(c.bindings.as_ref().map(|b| b.value), Some((8, 15)));
+        assert_eq!(c.inputs.len(), 1);
+        assert!(c.inputs[0].optional, "a provider's slot is optional");
+        assert_eq!(c.params[0].spec.name, "w");
+        let bad = text.replace("bindings = [8, 15]", "bindings = [15, 8]");
+        let e = parse("self_shadow", Path::new("point.toml"), &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("point.toml:2:12"), "{e}");
+        assert!(e.contains("FIRST ≤ LAST"), "{e}");
+        let bad = text.replace("access = \"storage_read\"", "acess = \"storage_read\"");
+        let e = parse("self_shadow", Path::new("point.toml"), &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("did you mean `access`"), "{e}");
     }
 
     #[test]

@@ -60,8 +60,19 @@ pub struct Fibre {
 
 impl Default for Fibre {
     fn default() -> Self {
-        // The `chiang` shading technique's defaults: one fibre for both sides.
-        let [beta_m, beta_n, tilt, eta] = crate::passes::shading::CHIANG_FIBRE.map(|v| v as f32);
+        // The shading point's fibre defaults (techniques/shading/point.toml),
+        // which the chiang technique's are: one fibre for both sides.
+        let value = |name: &str| match crate::passes::points::default_on_search_path("shading", name) {
+            Some(plait_graph::Value::Float(f)) => f as f32,
+            _ => f32::NAN,
+        };
+        let [beta_m, beta_n, tilt, eta] = [
+            "chiang_beta_m",
+            "chiang_beta_n",
+            "chiang_tilt",
+            "chiang_eta",
+        ]
+        .map(value);
         Fibre {
             longitudinal_roughness: beta_m,
             azimuthal_roughness: beta_n,
