@@ -12,7 +12,7 @@
 use plait_graph::{Access, ParamSpec, SlotSpec};
 
 use crate::spec_util::{DEPTH, texture};
-use crate::{lighting, occlusion, shading, shading_space, visibility};
+use crate::{lighting, multiple_scattering, occlusion, shading, shading_space, visibility};
 
 /// The shading inputs of every hair pass: the opaque shadow map, the
 /// visibility provider's light maps, and what the shading, lighting and
@@ -29,6 +29,7 @@ pub fn shading_inputs() -> Vec<SlotSpec> {
     v.extend(lighting::slots());
     v.extend(occlusion::slots());
     v.extend(shading_space::slots());
+    v.extend(multiple_scattering::slots());
     v
 }
 
@@ -39,5 +40,6 @@ pub fn shading_params() -> Vec<ParamSpec> {
     p.extend(lighting::params());
     p.extend(occlusion::params());
     p.extend(shading_space::params());
+    p.extend(multiple_scattering::params());
     p
 }

@@ -50,6 +50,8 @@ const TECHNIQUE_KEYS: &[&str] = &[
     "memory",
     "includes",
     "exports",
+    "provides",
+    "requires",
 ];
 /// Top-level tables a technique file may hold.
 const FILE_KEYS: &[&str] = &["technique", "params", "resources", "passes"];
@@ -60,6 +62,7 @@ mod catalog;
 mod exports;
 mod param_scope;
 pub mod point_file;
+mod requires;
 mod roots;
 
 pub use catalog::{TechniqueInfo, catalog};
@@ -276,7 +279,9 @@ pub(crate) fn apply_techniques(
         implicit = roots
             .points()
             .into_iter()
-            .filter(|p| matches!(roots.point_file(p), Some(Ok(f)) if !f.draws.is_empty()))
+            .filter(
+                |p| matches!(roots.point_file(p), Some(Ok(f)) if !f.draws.is_empty() || f.implicit),
+            )
             .collect();
         let mut chooser = Chooser {
             known_points: roots.points(),
@@ -287,10 +292,13 @@ pub(crate) fn apply_techniques(
             exports: Vec::new(),
             combined: None,
             owners: Vec::new(),
+            trees: Vec::new(),
         };
         for (point, choice) in points_table {
             chooser.choose(point, choice);
         }
+        let refused = requires::check(&chooser.roots, &chooser.trees);
+        chooser.errors.extend(refused);
         (chosen_list, exports, combined) = (chooser.chosen, chooser.exports, chooser.combined);
     }
     if !errors.is_empty() {
@@ -322,6 +330,8 @@ struct Chooser<'a> {
     /// Which technique defined each resource and pass, to refuse two of them
     /// defining the same name: (section, `point/name`, item).
     owners: Vec<(String, String, String)>,
+    /// Each chosen technique's file, for `[technique.requires]`.
+    trees: Vec<requires::Chosen>,
 }
 
 impl Chooser<'_> {
@@ -360,6 +370,12 @@ impl Chooser<'_> {
             return;
         };
         self.check_point_key(technique, &tree, point);
+        self.trees.push(requires::Chosen {
+            point: point.to_owned(),
+            name: name.clone(),
+            at: choice.value.location.clone(),
+            tree: tree.clone(),
+        });
         let mut draws = Vec::new();
         match self.roots.point_file(point) {
             Some(Ok(promise)) => {
