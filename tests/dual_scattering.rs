@@ -280,3 +280,199 @@ fn dual_scattering_white_furnace() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The fixture's grid (tests/fixtures/dual_scattering_cases.wgsl).
+const AZIMUTHS: usize = 64;
+const ANGLES: usize = 96;
+
+/// Both targets of the cases fixture: per texel (r, g, b, a).
+fn gpu_cases() -> (Vec<[f64; 4]>, Vec<[f64; 4]>) {
+    let (_lock, gpu) = open_gpu();
+    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads");
+    let pipeline = repo_root().join("tests/fixtures/dual_scattering_cases.toml");
+    let prepared = prepare(
+        &gpu,
+        &pipeline,
+        &[],
+        &scene,
+        (AZIMUTHS as u32, ANGLES as u32),
+    )
+    .expect("the fixture prepares");
+    prepared.renderer.render().expect("renders");
+    let read = |name: &str| -> Vec<[f64; 4]> {
+        let r = prepared.renderer.read_resource(name).expect(name);
+        r.bytes
+            .chunks_exact(16)
+            .map(|t| {
+                std::array::from_fn(|c| {
+                    f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()) as f64
+                })
+            })
+            .collect()
+    };
+    (read("cases"), read("front"))
+}
+
+/// Σ value · cos θo dθo dφ over the grid, both signs of φ, per channel;
+/// `half`: Some(true) the backward half only, Some(false) the forward.
+fn energy(texels: &[[f64; 4]], half: Option<bool>) -> [f64; 4] {
+    let (dt, dp) = (PI / ANGLES as f64, PI / AZIMUTHS as f64);
+    let mut sum = [0.0; 4];
+    for j in 0..ANGLES {
+        let cos_o = (-0.5 * PI + (j as f64 + 0.5) * dt).cos();
+        for i in 0..AZIMUTHS {
+            let backward = ((i as f64 + 0.5) * dp) < 0.5 * PI;
+            if half.is_some_and(|h| h != backward) {
+                continue;
+            }
+            let v = texels[j * AZIMUTHS + i];
+            (0..4).for_each(|c| sum[c] += v[c] * cos_o * dt * dp * 2.0);
+        }
+    }
+    sum
+}
+
+/// Energy-weighted variance of θh = θo/2 of one channel.
+fn theta_h_variance(texels: &[[f64; 4]], c: usize) -> f64 {
+    let dt = PI / ANGLES as f64;
+    let (mut e, mut m1, mut m2) = (0.0, 0.0, 0.0);
+    for j in 0..ANGLES {
+        let theta_o = -0.5 * PI + (j as f64 + 0.5) * dt;
+        let h = 0.5 * theta_o;
+        for i in 0..AZIMUTHS {
+            let w = texels[j * AZIMUTHS + i][c] * theta_o.cos();
+            e += w;
+            m1 += w * h;
+            m2 += w * h * h;
+        }
+    }
+    m2 / e - (m1 / e) * (m1 / e)
+}
+
+/// Zinke et al. 2008 §4.2 from the averages: (A_b eq. 14, Δ_b eq. 16,
+/// σ_b² eq. 17 squared), d_b = 0.7 — shaders/lib/dual_scattering.wgsl's
+/// `back_scattering` in f64.
+fn back_scattering(a: [f64; 6]) -> [f64; 3] {
+    let [af, ab, alpha_f, alpha_b, bf2, bb2] = a;
+    let (af2, ab2) = (af * af, ab * ab);
+    let ab3 = ab2 * ab;
+    let one = 1.0 - af2;
+    let attenuation = ab * af2 / one + ab3 * af2 / one.powi(3);
+    let shift = alpha_b * (1.0 - 2.0 * ab2 / (one * one))
+        + alpha_f * (2.0 * one * one + 4.0 * af2 * ab2) / one.powi(3);
+    let sigma = (1.0 + 0.7 * af2)
+        * (ab * (2.0 * bf2 + bb2).sqrt() + ab3 * (2.0 * bf2 + 3.0 * bb2).sqrt())
+        / (ab + ab3 * (2.0 * bf2.sqrt() + 3.0 * bb2.sqrt()));
+    [attenuation, shift, sigma * sigma]
+}
+
+/// The lobe g(θh − shift, variance)/(2 cos θo) at θi = 0 on the fixture's
+/// rows: its energy Σ lobe · cos θo dθo and its θh variance.
+fn lobe_moments(shift: f64, variance: f64) -> (f64, f64) {
+    let dt = PI / ANGLES as f64;
+    let (mut e, mut m1, mut m2) = (0.0, 0.0, 0.0);
+    for j in 0..ANGLES {
+        let theta_o = -0.5 * PI + (j as f64 + 0.5) * dt;
+        let h = 0.5 * theta_o;
+        let g = (-0.5 * (h - shift).powi(2) / variance).exp() / (2.0 * PI * variance).sqrt();
+        let w = g / (2.0 * theta_o.cos().max(0.01)) * theta_o.cos() * dt;
+        e += w;
+        m1 += w * h;
+        m2 += w * h * h;
+    }
+    (e, m2 / e - (m1 / e) * (m1 / e))
+}
+
+/// The provider's terms behave as §4 says, at θi = 0 and σ_a = 0.3 (light
+/// brown), against the CPU mirror's averages there and the closed forms:
+/// - fully lit (v = 1, n = 0) only the local back-scattering remains, all in
+///   the backward half, with energy d_b · A_b (eq. 14) × its lobe's mass —
+///   so with d_b = 0 it is exactly 0 and the fragment is single scattering
+///   exactly;
+/// - in shadow (v = 0) each strand toward the light multiplies the global
+///   term by ā_f (T_f = ā_f^n, eq. 7) and widens it by β_f² (σ̄_f² = n β_f²,
+///   eq. 8): the forward term's θh variance is that of (1 + n) β_f².
+/// Tolerances 1 %: the table's bilinear lookup and rgba16float.
+#[test]
+fn dual_scattering_terms_follow_the_paper() {
+    let (cases, front) = gpu_cases();
+    let avg = averages(0.0, 0.3, 1);
+    let [af, ab, alpha_f, _, bf2, _] = avg;
+    let [attenuation, shift, variance] = back_scattering(avg);
+    println!(
+        "at θi 0, σ_a 0.3: ā_f {af:.4} ā_b {ab:.4} α_f {alpha_f:+.4} β_f² {bf2:.4}; A_b {attenuation:.4} Δ_b {shift:+.4} σ_b² {variance:.4}"
+    );
+    let failures = std::cell::RefCell::new(Vec::new());
+    let check = |name: &str, value: f64, want: f64, tolerance: f64| {
+        let ok = (value / want - 1.0).abs() <= tolerance;
+        println!(
+            "{name}: {value:.5} (want {want:.5} ± {:.0} %){}",
+            100.0 * tolerance,
+            if ok { "" } else { "  FAILS" }
+        );
+        if !ok {
+            failures
+                .borrow_mut()
+                .push(format!("{name}: {value} against {want}"));
+        }
+    };
+    let back = energy(&cases, Some(true));
+    let fore = energy(&cases, Some(false));
+    check(
+        "lit, backward half: d_b·A_b × lobe mass",
+        back[0],
+        0.7 * attenuation * lobe_moments(shift, variance).0,
+        0.01,
+    );
+    let lit_front_only = front.iter().map(|t| t[0].abs()).fold(0.0, f64::max);
+    println!(
+        "lit with d_b = 0: largest |term| {lit_front_only:e} (want exactly 0); forward half lit {:e}",
+        fore[0]
+    );
+    if lit_front_only != 0.0 {
+        failures.borrow_mut().push(format!(
+            "d_b = 0, v = 1: the term is {lit_front_only}, not exactly 0"
+        ));
+    }
+    if fore[0] != 0.0 {
+        failures.borrow_mut().push(format!(
+            "v = 1: the forward half has {} (local back-scattering only goes back)",
+            fore[0]
+        ));
+    }
+    let e = energy(&front, None);
+    let front_energy =
+        |n: f64| 0.7 * af.powf(n) * (af + ab) * lobe_moments(alpha_f, (1.0 + n) * bf2).0;
+    for (c, n) in [(1, 1.0), (2, 2.0), (3, 4.0)] {
+        check(
+            &format!("shadowed, n = {n}: d_f·ā_f^n·(ā_f + ā_b) × lobe mass"),
+            e[c],
+            front_energy(n),
+            0.01,
+        );
+        check(
+            &format!("θh variance at n = {n}: that of (1 + n)·β_f²"),
+            theta_h_variance(&front, c),
+            lobe_moments(alpha_f, (1.0 + n) * bf2).1,
+            0.01,
+        );
+    }
+    let all = energy(&cases, None);
+    let with_back =
+        front_energy(1.0) + 0.7 * af * 0.7 * attenuation * lobe_moments(shift, variance + bf2).0;
+    check(
+        "shadowed, n = 1, d_b 0.7: forward + back-scattered global terms",
+        all[1],
+        with_back,
+        0.01,
+    );
+    check(
+        "shadowed, T_f(2)/T_f(1) = ā_f (over the lobes' masses)",
+        e[2] / e[1],
+        front_energy(2.0) / front_energy(1.0),
+        0.01,
+    );
+    let failures = failures.into_inner();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

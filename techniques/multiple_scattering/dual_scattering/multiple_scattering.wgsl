@@ -3,9 +3,9 @@
 // Chiang fibre: per channel, the tables' averages at (sin θi, σ_a), σ_a from
 // the hair colour by Chiang 2016 §4.2 (plait::chiang, as the shading does).
 // Returned: what single scattering leaves out, per unit irradiance —
-//   v · d_b · A_b · g(θh − Δ_b, σ_b²)/(2 cos θd) · N_b
-//   + (1 − v) · T_f · d_f · ( (ā_f + ā_b) · g(θh − α_f, β_f² + σ̄_f²)/(2 cos θd) / 2π
-//                                      + d_b · A_b · g(θh − Δ_b, σ_b² + σ̄_f²)/(2 cos θd) · N_b )
+//   v · d_b · A_b · g(θh − Δ_b, σ_b²)/(2 cos θo) · N_b
+//   + (1 − v) · T_f · d_f · ( (ā_f + ā_b) · g(θh − α_f, β_f² + σ̄_f²)/(2 cos θo) / 2π
+//                                      + d_b · A_b · g(θh − Δ_b, σ_b² + σ̄_f²)/(2 cos θo) · N_b )
 // v the self-shadow visibility (the direct fraction), T_f = ā_f^n,
 // σ̄_f² = n β_f², n the strand count toward the light, N_b = 1/π over the
 // backward half (|φ| < π/2), 0 elsewhere.
@@ -32,7 +32,7 @@ const PI: f32 = 3.14159265358979;
 
 // One channel's added radiance per unit irradiance: the tables' energies
 // are the shading point's (S·cos θi integrated), so no further cos θi.
-fn channel(sin_i: f32, sigma_a: f32, theta_h: f32, cos_d: f32, backward: f32, n: f32, v: f32) -> f32 {
+fn channel(sin_i: f32, sigma_a: f32, theta_h: f32, cos_o: f32, backward: f32, n: f32, v: f32) -> f32 {
     let size = vec2<f32>(textureDimensions(dual_scattering_a));
     // Texel centres span [0.5, size − 0.5]: x = sin θi over [−1, 1].
     let uv = vec2<f32>(0.5 + 0.5 * sin_i, absorption_coordinate(sigma_a));
@@ -41,11 +41,11 @@ fn channel(sin_i: f32, sigma_a: f32, theta_h: f32, cos_d: f32, backward: f32, n:
     let p = multiple_scattering_params;
     let back = back_scattering(a, b, p.dual_scattering_back_density);
     let d_b = p.dual_scattering_back_density;
-    let local = d_b * back.attenuation * lobe(theta_h, back.shift, back.variance, cos_d) * backward / PI;
+    let local = d_b * back.attenuation * lobe(theta_h, back.shift, back.variance, cos_o) * backward / PI;
     let spread = n * b.x;
     let transmitted = pow(a.x, n);
-    let global_front = (a.x + a.y) * lobe(theta_h, a.z, b.x + spread, cos_d) / (2.0 * PI);
-    let global_back = d_b * back.attenuation * lobe(theta_h, back.shift, back.variance + spread, cos_d) * backward / PI;
+    let global_front = (a.x + a.y) * lobe(theta_h, a.z, b.x + spread, cos_o) / (2.0 * PI);
+    let global_back = d_b * back.attenuation * lobe(theta_h, back.shift, back.variance + spread, cos_o) * backward / PI;
     let global = (1.0 - v) * transmitted * p.dual_scattering_front_density * (global_front + global_back);
     return v * local + global;
 }
@@ -55,15 +55,15 @@ fn hair_multiple_scattering(world: vec3<f32>, tangent: vec3<f32>, to_light: vec3
     let theta_i = asin(angles.x);
     let theta_o = asin(angles.y);
     let theta_h = 0.5 * (theta_i + theta_o);
-    let cos_d = cos(0.5 * (theta_o - theta_i));
+    let cos_o = cos(theta_o);
     // |φ| < π/2: the backward half, where back-scattered light leaves.
     let backward = select(0.0, 1.0, angles.z > 0.0);
     let n = strands_toward_light(world);
     let sigma = sigma_a_from_color(base, multiple_scattering_params.chiang_beta_n);
     let v = hair_visibility;
     return vec3<f32>(
-        channel(angles.x, sigma.x, theta_h, cos_d, backward, n, v),
-        channel(angles.x, sigma.y, theta_h, cos_d, backward, n, v),
-        channel(angles.x, sigma.z, theta_h, cos_d, backward, n, v),
+        channel(angles.x, sigma.x, theta_h, cos_o, backward, n, v),
+        channel(angles.x, sigma.y, theta_h, cos_o, backward, n, v),
+        channel(angles.x, sigma.z, theta_h, cos_o, backward, n, v),
     );
 }
