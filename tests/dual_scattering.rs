@@ -476,3 +476,55 @@ fn dual_scattering_terms_follow_the_paper() {
     let failures = failures.into_inner();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The combinations the methods do not define are refused at load, at the
+/// choice, naming what works (techniques/multiple_scattering/*/technique.toml,
+/// `[technique.requires]`): dual scattering without a strand count, dual
+/// scattering and Karis on Kajiya-Kay.
+#[test]
+fn undefined_combinations_are_refused_naming_one_that_works() {
+    let (_lock, gpu) = open_gpu();
+    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads");
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    let cases: [(&[&str], &[&str]); 3] = [
+        (
+            &[
+                "techniques.shading=chiang",
+                "techniques.multiple_scattering=dual_scattering",
+                "techniques.self_shadow=none",
+            ],
+            &[
+                "multiple_scattering `dual_scattering` needs a self_shadow technique that provides `hair_strands_toward_light`",
+                "`none` does not",
+                "techniques.self_shadow = \"deep_opacity\"",
+                "occupancy",
+            ],
+        ),
+        (
+            &["techniques.multiple_scattering=dual_scattering"],
+            &[
+                "multiple_scattering `dual_scattering` composes with shading `chiang` only",
+                "`kajiya_kay`",
+                "techniques.shading = \"chiang\"",
+            ],
+        ),
+        (
+            &["techniques.multiple_scattering=karis"],
+            &[
+                "multiple_scattering `karis` composes with shading `chiang`, `marschner`",
+                "`kajiya_kay`",
+            ],
+        ),
+    ];
+    for (sets, want) in cases {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let text = match prepare(&gpu, &pipeline, &sets, &scene, (32, 24)) {
+            Ok(_) => panic!("{sets:?} prepares; it must be refused"),
+            Err(e) => e.to_string(),
+        };
+        for w in want {
+            assert!(text.contains(w), "{sets:?}: the error lacks `{w}`:\n{text}");
+        }
+    }
+}

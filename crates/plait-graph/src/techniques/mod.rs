@@ -62,6 +62,7 @@ mod catalog;
 mod exports;
 mod param_scope;
 pub mod point_file;
+mod point_optional;
 mod requires;
 mod roots;
 
@@ -70,6 +71,7 @@ use exports::{PointExports, give_exports};
 pub use param_scope::ENGINE_PARAMS;
 pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
+pub use point_optional::OptionalFunction;
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 
 /// The techniques folder beside `pipeline`: its own folder's, or an

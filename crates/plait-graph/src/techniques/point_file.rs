@@ -55,6 +55,8 @@ use crate::error::{Errors, Location, Spanned};
 use crate::load::{Node, parse_file};
 use crate::node_reader::Reader;
 
+use super::point_optional::{OptionalFunction, argument_names, read_optional};
+
 /// The file in a point's folder that declares its WGSL contract.
 pub const POINT_FILE: &str = "point.toml";
 
@@ -78,32 +80,6 @@ pub struct WgslPoint {
     pub doc: String,
     /// The function only some providers define (`[wgsl.optional]`).
     pub optional: Option<OptionalFunction>,
-}
-
-/// `[wgsl.optional]`: a function some providers define besides `function`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct OptionalFunction {
-    pub function: String,
-    pub arguments: String,
-    pub returns: String,
-    pub call: String,
-    pub doc: String,
-}
-
-impl OptionalFunction {
-    /// The argument names, in order.
-    fn argument_names(&self) -> Vec<&str> {
-        argument_names(&self.arguments)
-    }
-}
-
-fn argument_names(arguments: &str) -> Vec<&str> {
-    arguments
-        .split(',')
-        .filter_map(|a| a.split(':').next())
-        .map(str::trim)
-        .filter(|a| !a.is_empty())
-        .collect()
 }
 
 const KEYS: &[&str] = &[
@@ -181,37 +157,6 @@ impl WgslPoint {
         if let Some(o) = &self.optional {
             s += &self.optional_source(o, with_optional);
         }
-        s
-    }
-
-    /// `call` of the optional function: the provider's when the chosen
-    /// provider defines it, else −1 ("no count"), so a module that calls it
-    /// composes with any provider (the contract check composes each with no
-    /// defines). A pipeline never reaches the −1: a technique that reads the
-    /// function requires a provider that defines it (`[technique.requires]`,
-    /// refused at load).
-    fn optional_source(&self, o: &OptionalFunction, with_optional: &[String]) -> String {
-        let mut s = format!(
-            "\n// {}\nfn {}({}) -> {} {{\n",
-            o.doc, o.call, o.arguments, o.returns
-        );
-        for (i, name) in with_optional.iter().enumerate() {
-            let directive = if i == 0 { "#ifdef" } else { "#else ifdef" };
-            s += &format!(
-                "{directive} {}\n    return {}({});\n",
-                self.define(name),
-                o.function,
-                o.argument_names().join(", ")
-            );
-        }
-        if !with_optional.is_empty() {
-            s += "#else\n";
-        }
-        s += "    return -1.0;\n";
-        if !with_optional.is_empty() {
-            s += "#endif\n";
-        }
-        s += "}\n";
         s
     }
 }
@@ -354,39 +299,6 @@ fn read_wgsl(
     })
 }
 
-/// `[wgsl.optional]`: `function`, `call` and `doc`.
-fn read_optional(r: &mut Reader<'_>, e: &crate::load::Entry) -> Option<OptionalFunction> {
-    let t = r.table(&e.value, "[wgsl.optional]")?;
-    r.keys(t, &["function", "call", "doc"], "[wgsl.optional]");
-    let mut field = |key: &str| -> Option<Spanned<String>> {
-        let Some(x) = t.get(key) else {
-            r.schema(&e.key, format!("[wgsl.optional] needs `{key}`"));
-            return None;
-        };
-        let s = r.string(&x.value, &format!("wgsl.optional.{key}"))?;
-        Some(Spanned::new(s, x.value.location.clone()))
-    };
-    let (function, call, doc) = (field("function"), field("call"), field("doc"));
-    let function = function?;
-    let Some((name, arguments, returns)) = split_signature(&function.value) else {
-        r.schema(
-            &function.location,
-            format!(
-                "wgsl.optional.function must read `fn NAME(ARGUMENTS) -> TYPE`, not `{}`",
-                function.value
-            ),
-        );
-        return None;
-    };
-    Some(OptionalFunction {
-        function: name,
-        arguments,
-        returns,
-        call: call?.value,
-        doc: doc?.value,
-    })
-}
-
 /// The resources a technique's passes (its includes' too) write.
 fn written(technique: &Spanned<Node>) -> Vec<String> {
     let Node::Table(top) = &technique.value else {
@@ -444,7 +356,7 @@ pub(crate) fn check_writes(
 }
 
 /// `fn NAME(ARGS) -> RET` → (NAME, ARGS, RET).
-fn split_signature(text: &str) -> Option<(String, String, String)> {
+pub(super) fn split_signature(text: &str) -> Option<(String, String, String)> {
     let rest = text.trim().strip_prefix("fn ")?;
     let (name, rest) = rest.split_once('(')?;
     let (args, ret) = rest.rsplit_once(')')?;
