@@ -58,6 +58,8 @@ mod chiang_cpu {
         bessel_i0(x).ln()
     }
 
+    // 0.6931 as the WGSL writes it (not ln 2 exactly): a mirror, not a fix.
+    #[allow(clippy::approx_constant)]
     fn longitudinal(cos_i: f64, cos_o: f64, sin_i: f64, sin_o: f64, v: f64) -> f64 {
         let (a, b) = (cos_i * cos_o / v, sin_i * sin_o / v);
         if v <= 0.1 {
@@ -393,6 +395,7 @@ fn lobe_moments(shift: f64, variance: f64) -> (f64, f64) {
 /// - in shadow (v = 0) each strand toward the light multiplies the global
 ///   term by ā_f (T_f = ā_f^n, eq. 7) and widens it by β_f² (σ̄_f² = n β_f²,
 ///   eq. 8): the forward term's θh variance is that of (1 + n) β_f².
+///
 /// Tolerances 1 %: the table's bilinear lookup and rgba16float.
 #[test]
 fn dual_scattering_terms_follow_the_paper() {

@@ -116,21 +116,21 @@ fn check_rule(
     let why = string(rule, "why").unwrap_or_default();
     let have = chosen_at(roots, chosen, point).unwrap_or_else(|| "(none)".into());
     let who = format!("{} `{}`", c.point, c.name);
-    if let Some(one_of) = strings(rule, "one_of") {
-        if !one_of.contains(&have) {
-            return Some(schema(
-                &c.at,
-                format!(
-                    "{who} composes with {point} {} only ({why}; declared at {key}); this pipeline's {point} is `{have}` — set `techniques.{point} = \"{}\"`",
-                    one_of
-                        .iter()
-                        .map(|n| format!("`{n}`"))
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                    one_of.first().map_or("", String::as_str),
-                ),
-            ));
-        }
+    if let Some(one_of) = strings(rule, "one_of")
+        && !one_of.contains(&have)
+    {
+        return Some(schema(
+            &c.at,
+            format!(
+                "{who} composes with {point} {} only ({why}; declared at {key}); this pipeline's {point} is `{have}` — set `techniques.{point} = \"{}\"`",
+                one_of
+                    .iter()
+                    .map(|n| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                one_of.first().map_or("", String::as_str),
+            ),
+        ));
     }
     if let Some(function) = string(rule, "provides")
         && !provides(roots, point, &have).contains(&function)
