@@ -173,13 +173,18 @@ fn offset_term(f: Fibre, m: vec4<f32>, lobes: vec4<f32>, sin_o: f32, phi: f32, g
 // to the eye: radiance towards the eye per unit irradiance, `samples` points.
 fn chiang_lobes(f: Fibre, tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, lobes: vec4<f32>, samples: i32) -> vec3<f32> {
     let a = hair_angles(tangent, to_light, to_eye);
-    let phi = acos(a.z);
-    let m = longitudinal_lobes(f, a.x, a.y);
+    return chiang_at(f, a.x, a.y, acos(a.z), lobes, samples);
+}
+
+// The same at the angles themselves: sin θi, sin θo and φ ∈ [0, π] (the
+// dual-scattering tables integrate over them; plait::dual_scattering).
+fn chiang_at(f: Fibre, sin_i: f32, sin_o: f32, phi: f32, lobes: vec4<f32>, samples: i32) -> vec3<f32> {
+    let m = longitudinal_lobes(f, sin_i, sin_o);
     let step = PI / f32(samples);
     var sum = vec3<f32>(0.0);
     for (var k = 0; k < samples; k++) {
         let gamma_o = -0.5 * PI + (f32(k) + 0.5) * step;
-        sum += cos(gamma_o) * offset_term(f, m, lobes, a.y, phi, gamma_o);
+        sum += cos(gamma_o) * offset_term(f, m, lobes, sin_o, phi, gamma_o);
     }
     return 0.5 * step * sum;
 }

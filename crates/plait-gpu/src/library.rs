@@ -177,7 +177,21 @@ fn read_library(own_roots: &[PathBuf]) -> Result<Library, ShaderError> {
     let points = provider_points(&found, &technique_roots)?;
     for point in &points {
         let names: Vec<String> = point.providers.iter().map(|(n, _)| n.clone()).collect();
-        let source = point.contract.selector_source(&names);
+        // The providers whose module defines the optional function, if the
+        // point has one (`[wgsl.optional]`).
+        let with_optional: Vec<String> = match &point.contract.optional {
+            Some(o) => names
+                .iter()
+                .filter(|n| {
+                    found
+                        .get(&format!("{}::{n}", point.contract.providers))
+                        .is_some_and(|m| m.source.contains(&format!("fn {}(", o.function)))
+                })
+                .cloned()
+                .collect(),
+            None => Vec::new(),
+        };
+        let source = point.contract.selector_source(&names, &with_optional);
         let path = point_path(&point.contract);
         if let Some(clash) = found.get(&point.contract.module) {
             return Err(ShaderError {

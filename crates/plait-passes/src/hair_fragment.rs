@@ -12,7 +12,7 @@
 use plait_graph::{Access, ParamSpec, SlotSpec};
 
 use crate::spec_util::{DEPTH, texture};
-use crate::{lighting, occlusion, shading, shading_space, visibility};
+use crate::{lighting, multiple_scattering, occlusion, shading, shading_space, visibility};
 
 /// The shading inputs of every hair pass: the opaque shadow map, the
 /// visibility provider's light maps, and what the shading, lighting and
@@ -29,6 +29,7 @@ pub fn shading_inputs(library: &plait_gpu::PassLibrary) -> Vec<SlotSpec> {
     v.extend(lighting::slots(library));
     v.extend(occlusion::slots(library));
     v.extend(shading_space::slots(library));
+    v.extend(multiple_scattering::slots(library));
     v
 }
 
@@ -40,5 +41,6 @@ pub fn shading_params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
     p.extend(lighting::params(library));
     p.extend(occlusion::params(library));
     p.extend(shading_space::params(library));
+    p.extend(multiple_scattering::params(library));
     p
 }

@@ -18,6 +18,7 @@ pub mod hair_fragment;
 pub mod hair_shade;
 pub mod interpolation;
 pub mod lighting;
+pub mod multiple_scattering;
 pub mod occlusion;
 pub mod occlusion_cylinders;
 pub mod occlusion_directions;

@@ -69,3 +69,15 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     let soft = exp(-visibility_params.shadow_weight * front.count);
     return mix(soft, front.open, visibility_params.shadow_opaque);
 }
+
+// The strand count toward the light (the self_shadow point's optional
+// function): the stored fragments in front of the point, in strands (scaled
+// up when the list overflowed, as the visibility is).
+fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+    let size = textureDimensions(vis_range);
+    let lookup = light_lookup(world, size);
+    if (!lookup.inside) {
+        return 0.0;
+    }
+    return exact_in_front(lookup.texel, size, lookup.in_front_below).count;
+}

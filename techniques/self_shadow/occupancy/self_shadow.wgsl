@@ -67,3 +67,14 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     let order = light_order(lookup.texel, size, lookup.in_front_below) / MAP_SHARE_SCALE;
     return exp(-order * visibility_params.shadow_weight);
 }
+
+// The strand count toward the light (the self_shadow point's optional
+// function): the order estimate itself, in strands (fragment shares).
+fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+    let size = textureDimensions(vis_range);
+    let lookup = light_lookup(world, size);
+    if (!lookup.inside) {
+        return 0.0;
+    }
+    return light_order(lookup.texel, size, lookup.in_front_below) / MAP_SHARE_SCALE;
+}

@@ -51,3 +51,14 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     let sigma = opacity_thickness(lookup.texel, size, lookup.in_front_below) / MAP_SHARE_SCALE;
     return exp(-visibility_params.shadow_weight * sigma);
 }
+
+// The strand count toward the light (the self_shadow point's optional
+// function): the slices' fragment count in front of the point, in strands.
+fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+    let size = textureDimensions(vis_range);
+    let lookup = light_lookup(world, size);
+    if (!lookup.inside) {
+        return 0.0;
+    }
+    return opacity_thickness(lookup.texel, size, lookup.in_front_below) / MAP_SHARE_SCALE;
+}

@@ -51,6 +51,8 @@ const TECHNIQUE_KEYS: &[&str] = &[
     "includes",
     "exports",
     "engine",
+    "provides",
+    "requires",
 ];
 /// Top-level tables a technique file may hold.
 const FILE_KEYS: &[&str] = &["technique", "params", "param_ranges", "resources", "passes"];
@@ -62,6 +64,8 @@ mod exports;
 mod param_scope;
 pub mod point_contract;
 pub mod point_file;
+mod point_optional;
+mod requires;
 mod roots;
 pub mod technique_keys;
 
@@ -71,6 +75,7 @@ pub use param_scope::ENGINE_PARAMS;
 pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
 pub use point_contract::{PointContract, PointParam};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
+pub use point_optional::OptionalFunction;
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 pub(crate) use technique_keys::check_param_ranges;
 
@@ -297,7 +302,9 @@ pub(crate) fn apply_techniques(
         implicit = roots
             .points()
             .into_iter()
-            .filter(|p| matches!(roots.point_file(p), Some(Ok(f)) if !f.draws.is_empty()))
+            .filter(
+                |p| matches!(roots.point_file(p), Some(Ok(f)) if !f.draws.is_empty() || f.implicit),
+            )
             .collect();
         let mut chooser = Chooser {
             known_points: roots.points(),
@@ -308,10 +315,13 @@ pub(crate) fn apply_techniques(
             exports: Vec::new(),
             combined: None,
             owners: Vec::new(),
+            trees: Vec::new(),
         };
         for (point, choice) in points_table {
             chooser.choose(point, choice);
         }
+        let refused = requires::check(&chooser.roots, &chooser.trees);
+        chooser.errors.extend(refused);
         (chosen_list, exports, combined) = (chooser.chosen, chooser.exports, chooser.combined);
     }
     if !errors.is_empty() {
@@ -344,6 +354,8 @@ struct Chooser<'a> {
     /// defining the same name: (section, `point/name`, item, where its key
     /// is written).
     owners: Vec<(String, String, String, Location)>,
+    /// Each chosen technique's file, for `[technique.requires]`.
+    trees: Vec<requires::Chosen>,
 }
 
 impl Chooser<'_> {
@@ -387,6 +399,12 @@ impl Chooser<'_> {
         };
         self.check_point_key(technique, &tree, point);
         let (reads, params) = self.read_exports(technique);
+        self.trees.push(requires::Chosen {
+            point: point.to_owned(),
+            name: name.clone(),
+            at: choice.value.location.clone(),
+            tree: tree.clone(),
+        });
         let mut draws = Vec::new();
         match self.roots.point_file(point) {
             Some(Ok(promise)) => {

@@ -1,0 +1,159 @@
+//! `[wgsl.optional]` of a point file: a function only some providers
+//! define (the self_shadow point's `hair_strands_toward_light`), and the part
+//! of the generated selector that defines its `call` (see
+//! [`super::point_file`]'s module docs).
+
+use crate::error::Spanned;
+use crate::node_reader::Reader;
+
+use super::point_file::{WgslPoint, split_signature};
+
+/// `[wgsl.optional]`: a function some providers define besides `function`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OptionalFunction {
+    pub function: String,
+    pub arguments: String,
+    pub returns: String,
+    pub call: String,
+    pub doc: String,
+}
+
+impl OptionalFunction {
+    /// The argument names, in order.
+    pub(super) fn argument_names(&self) -> Vec<&str> {
+        argument_names(&self.arguments)
+    }
+}
+
+pub(super) fn argument_names(arguments: &str) -> Vec<&str> {
+    arguments
+        .split(',')
+        .filter_map(|a| a.split(':').next())
+        .map(str::trim)
+        .filter(|a| !a.is_empty())
+        .collect()
+}
+
+impl WgslPoint {
+    /// `call` of the optional function: the provider's when the chosen
+    /// provider defines it, else −1 ("no count"), so a module that calls it
+    /// composes with any provider (the contract check composes each with no
+    /// defines). A pipeline never reaches the −1: a technique that reads the
+    /// function requires a provider that defines it (`[technique.requires]`,
+    /// refused at load).
+    pub(super) fn optional_source(&self, o: &OptionalFunction, with_optional: &[String]) -> String {
+        let mut s = format!(
+            "\n// {}\nfn {}({}) -> {} {{\n",
+            o.doc, o.call, o.arguments, o.returns
+        );
+        for (i, name) in with_optional.iter().enumerate() {
+            let directive = if i == 0 { "#ifdef" } else { "#else ifdef" };
+            s += &format!(
+                "{directive} {}\n    return {}({});\n",
+                self.define(name),
+                o.function,
+                o.argument_names().join(", ")
+            );
+        }
+        if !with_optional.is_empty() {
+            s += "#else\n";
+        }
+        s += "    return -1.0;\n";
+        if !with_optional.is_empty() {
+            s += "#endif\n";
+        }
+        s += "}\n";
+        s
+    }
+}
+
+/// `[wgsl.optional]`: `function`, `call` and `doc`.
+pub(super) fn read_optional(
+    r: &mut Reader<'_>,
+    e: &crate::load::Entry,
+) -> Option<OptionalFunction> {
+    let t = r.table(&e.value, "[wgsl.optional]")?;
+    r.keys(t, &["function", "call", "doc"], "[wgsl.optional]");
+    let mut field = |key: &str| -> Option<Spanned<String>> {
+        let Some(x) = t.get(key) else {
+            r.schema(&e.key, format!("[wgsl.optional] needs `{key}`"));
+            return None;
+        };
+        let s = r.string(&x.value, &format!("wgsl.optional.{key}"))?;
+        Some(Spanned::new(s, x.value.location.clone()))
+    };
+    let (function, call, doc) = (field("function"), field("call"), field("doc"));
+    let function = function?;
+    let Some((name, arguments, returns)) = split_signature(&function.value) else {
+        r.schema(
+            &function.location,
+            format!(
+                "wgsl.optional.function must read `fn NAME(ARGUMENTS) -> TYPE`, not `{}`",
+                function.value
+            ),
+        );
+        return None;
+    };
+    Some(OptionalFunction {
+        function: name,
+        arguments,
+        returns,
+        call: call?.value,
+        doc: doc?.value,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::super::point_file::parse;
+
+    const GOOD: &str = r#"
+[wgsl]
+param = "self_shadow"
+providers = "plait::self_shadow"
+function = "fn hair_visibility(world: vec3<f32>) -> f32"
+module = "plait::self_shadow"
+call = "self_shadow"
+default = "none"
+doc = "Fraction of the light reaching `world`."
+"#;
+
+    #[test]
+    fn an_optional_function_is_defined_for_the_providers_that_have_it() {
+        let text = format!(
+            "{GOOD}\n[wgsl.optional]\nfunction = \"fn hair_strands_toward_light(world: vec3<f32>) -> f32\"\ncall = \"strands_toward_light\"\ndoc = \"Strands toward the light.\"\n"
+        );
+        let p = parse("self_shadow", Path::new("point.toml"), &text)
+            .expect("parses")
+            .wgsl
+            .expect("a [wgsl] table");
+        let s = p.selector_source(
+            &["deep_opacity".into(), "none".into()],
+            &["deep_opacity".into()],
+        );
+        assert!(
+            s.contains(
+                "#ifdef SELF_SHADOW_DEEP_OPACITY\n#import plait::self_shadow::deep_opacity::hair_visibility\n#import plait::self_shadow::deep_opacity::hair_strands_toward_light\n"
+            ),
+            "{s}"
+        );
+        assert!(
+            s.contains(
+                "fn strands_toward_light(world: vec3<f32>) -> f32 {\n#ifdef SELF_SHADOW_DEEP_OPACITY\n    return hair_strands_toward_light(world);\n#else\n    return -1.0;\n#endif\n}"
+            ),
+            "{s}"
+        );
+        // `none` lacks it: no import of it anywhere.
+        assert!(!s.contains("none::hair_strands_toward_light"), "{s}");
+        let bad = text.replace(
+            "fn hair_strands_toward_light(world: vec3<f32>) -> f32",
+            "strands",
+        );
+        let e = parse("self_shadow", Path::new("point.toml"), &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("wgsl.optional.function must read"), "{e}");
+    }
+}
