@@ -47,7 +47,10 @@ inventory::submit! { crate::RustPassType(|library| Box::new(HairDepthPeel {
     shading_params: hair_fragment::shading_params(library),
 })) }
 
-fn spec(shading_inputs: &[plait_graph::SlotSpec], shading_params: &[plait_graph::ParamSpec]) -> PassTypeSpec {
+fn spec(
+    shading_inputs: &[plait_graph::SlotSpec],
+    shading_params: &[plait_graph::ParamSpec],
+) -> PassTypeSpec {
     let mut inputs = shading_inputs.to_vec();
     inputs.push(texture(
         "opaque_depth",

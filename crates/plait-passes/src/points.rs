@@ -4,8 +4,8 @@
 //! defaults. The Rust point modules (`visibility`, `shading`, …) and the
 //! hair passes take what this returns.
 
-use plait_graph::techniques::WgslPoint;
 use plait_gpu::PassLibrary;
+use plait_graph::techniques::WgslPoint;
 use plait_graph::{ParamSpec, SlotSpec, Value};
 
 use crate::spec_util::choice;

@@ -94,7 +94,10 @@ pub fn lod_note(
     let fraction = match schedule.params.get("wisp_lod_screen_fraction") {
         Some(Value::Float(f)) => *f as f32,
         Some(Value::Int(i)) => *i as f32,
-        _ => match plait_passes::points::default_on_search_path("geometry", "wisp_lod_screen_fraction") {
+        _ => match plait_passes::points::default_on_search_path(
+            "geometry",
+            "wisp_lod_screen_fraction",
+        ) {
             Some(Value::Float(f)) => f as f32,
             _ => 0.0,
         },

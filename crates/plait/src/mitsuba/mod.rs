@@ -62,10 +62,11 @@ impl Default for Fibre {
     fn default() -> Self {
         // The shading point's fibre defaults (techniques/shading/point.toml),
         // which the chiang technique's are: one fibre for both sides.
-        let value = |name: &str| match crate::passes::points::default_on_search_path("shading", name) {
-            Some(plait_graph::Value::Float(f)) => f as f32,
-            _ => f32::NAN,
-        };
+        let value =
+            |name: &str| match crate::passes::points::default_on_search_path("shading", name) {
+                Some(plait_graph::Value::Float(f)) => f as f32,
+                _ => f32::NAN,
+            };
         let [beta_m, beta_n, tilt, eta] = [
             "chiang_beta_m",
             "chiang_beta_n",
