@@ -39,10 +39,21 @@ fn figure_for(info: &TechniqueInfo, ctx: &Context) -> Figure {
             sets: Vec::new(),
         };
     }
+    let mut sets = vec![format!("techniques.{}={}", info.point, info.name)];
+    sets.extend(required_choices(&info.path));
     Figure {
         pipeline: default.file_name.clone(),
-        sets: vec![format!("techniques.{}={}", info.point, info.name)],
+        sets,
     }
+}
+
+/// The choices its `[technique.requires]` asks for, so its page renders a
+/// combination plait accepts (an unreadable file adds none: the render
+/// then says why).
+fn required_choices(technique_file: &Path) -> Vec<String> {
+    std::fs::read_to_string(technique_file)
+        .map(|text| plait_graph::techniques::required_choices(&text))
+        .unwrap_or_default()
 }
 
 pub fn write(info: &TechniqueInfo, ctx: &mut Context) -> Result<String, BookError> {

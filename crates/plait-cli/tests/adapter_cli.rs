@@ -53,7 +53,7 @@ fn assert_occupancy_refusal(err: &str) {
         "help: install Mesa's Vulkan driver, which plait opens before gl: `apt-get install -y mesa-vulkan-drivers`",
         "VK_ICD_FILENAMES=/nonexistent.json is set",
         // Tried on this adapter before it is suggested (see the test below).
-        "--set techniques.self_shadow=none --set techniques.transparency=opaque",
+        "--set techniques.self_shadow=density_volume --set techniques.transparency=opaque",
     ];
     for e in expected {
         assert!(err.contains(e), "missing {e:?} in:\n{err}");
@@ -113,7 +113,7 @@ fn check_adapter_refuses_what_plain_check_accepts() {
 fn the_suggested_techniques_pass_the_check_and_render_on_gl() {
     let sets = [
         "--set",
-        "techniques.self_shadow=none",
+        "techniques.self_shadow=density_volume",
         "--set",
         "techniques.transparency=opaque",
     ];

@@ -299,11 +299,30 @@ fn plait_files(dir: &Path, ext: &str) -> Vec<PathBuf> {
     out
 }
 
-/// `techniques.POINT=NAME` when `rel` lies in a technique's folder.
-fn technique_of(rel: &str) -> Option<String> {
+/// `techniques.POINT=NAME` when `rel` lies in a technique's folder, and the
+/// choices its (undamaged) technique.toml requires beside it.
+fn technique_of(rel: &str) -> Option<Vec<String>> {
     let parts: Vec<&str> = rel.split('/').collect();
-    (parts.len() >= 4 && parts[0] == "techniques")
-        .then(|| format!("techniques.{}={}", parts[1], parts[2]))
+    (parts.len() >= 4 && parts[0] == "techniques").then(|| {
+        let file = root().join(format!(
+            "techniques/{}/{}/technique.toml",
+            parts[1], parts[2]
+        ));
+        let mut sets = vec![format!("techniques.{}={}", parts[1], parts[2])];
+        sets.extend(
+            std::fs::read_to_string(file)
+                .map(|t| plait_graph::techniques::required_choices(&t))
+                .unwrap_or_default(),
+        );
+        sets
+    })
+}
+
+/// `--set` before each of `sets`.
+fn set_flags(sets: Vec<String>) -> Vec<String> {
+    sets.into_iter()
+        .flat_map(|s| ["--set".to_string(), s])
+        .collect()
 }
 
 /// The `plait check` arguments that read `rel`: a technique's files through
@@ -311,7 +330,10 @@ fn technique_of(rel: &str) -> Option<String> {
 fn check_args(rel: &str, pipelines: &[String]) -> Vec<String> {
     let mut args = vec!["check".to_string()];
     match technique_of(rel) {
-        Some(set) => args.extend([BASE.to_string(), "--set".into(), set]),
+        Some(sets) => {
+            args.push(BASE.to_string());
+            args.extend(set_flags(sets));
+        }
         None => args.extend(pipelines.iter().cloned()),
     }
     args
@@ -324,8 +346,8 @@ fn render_args(rel: &str) -> Vec<String> {
     ]
     .map(String::from)
     .to_vec();
-    if let Some(set) = technique_of(rel) {
-        args.extend(["--set".into(), set]);
+    if let Some(sets) = technique_of(rel) {
+        args.extend(set_flags(sets));
     }
     args
 }

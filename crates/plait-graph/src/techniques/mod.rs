@@ -66,6 +66,7 @@ pub mod point_contract;
 pub mod point_file;
 mod point_optional;
 mod requires;
+pub use requires::required_choices;
 mod roots;
 pub mod technique_keys;
 

@@ -60,6 +60,30 @@ pub(super) fn check(roots: &TechniqueRoots, chosen: &[Chosen]) -> Vec<Error> {
     errors
 }
 
+/// The `--set`s (`techniques.POINT=NAME`) that meet a technique's
+/// `one_of` rules, the first name of each list, read from its file's text:
+/// what a page or a test that shows the technique alone on a pipeline adds,
+/// so `dual_scattering` is shown with `shading = chiang`. A `provides` rule
+/// is left to the pipeline's own choice; a text that does not parse gives
+/// none (loading it says why).
+pub fn required_choices(technique_toml: &str) -> Vec<String> {
+    let Ok(table) = technique_toml.parse::<toml::Table>() else {
+        return Vec::new();
+    };
+    let requires = table
+        .get("technique")
+        .and_then(|t| t.get("requires"))
+        .and_then(toml::Value::as_table);
+    requires
+        .into_iter()
+        .flatten()
+        .filter_map(|(point, rule)| {
+            let first = rule.get("one_of")?.as_array()?.first()?.as_str()?;
+            Some(format!("techniques.{point}={first}"))
+        })
+        .collect()
+}
+
 /// The technique chosen for `point`, or the point's WGSL default.
 fn chosen_at(roots: &TechniqueRoots, chosen: &[Chosen], point: &str) -> Option<String> {
     if let Some(c) = chosen.iter().find(|c| c.point == point) {
