@@ -5,6 +5,7 @@
 
 mod cylinders;
 mod hair_fragment;
+mod marschner;
 mod occupancy;
 
 use plait::session::{SceneData, prepare};
