@@ -3,6 +3,7 @@
 //! "Mutation score"). Each names the mutants it kills. One module per
 //! technique where it has more than one such test.
 
+mod chiang;
 mod cylinders;
 mod hair_fragment;
 mod marschner;
