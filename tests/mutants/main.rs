@@ -5,6 +5,7 @@
 
 mod chiang;
 mod cylinders;
+mod exact;
 mod hair_fragment;
 mod marschner;
 mod occupancy;
