@@ -7,6 +7,7 @@ mod chiang;
 mod cylinders;
 mod exact;
 mod hair_fragment;
+mod kajiya_kay;
 mod marschner;
 mod occupancy;
 

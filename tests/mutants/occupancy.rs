@@ -33,7 +33,12 @@ fn depths() -> Vec<f32> {
 /// range. Two values checked by hand: texel 0 at rel 127.5/128 (slice 31,
 /// 7/8 into it; 2 fragments per set bit) is 2 + 2 · 7/8 = 3.75 in front of a
 /// point, and a fragment behind the range has the other 3 in front of it.
-/// Kills, in `shaders/lib/occupancy.wgsl`: the last slice's clamp
+/// The readers of words (`slab_position`, `word_bits`, `order_in_slab`, as
+/// the occupancy technique's passes read them) give the same order inside
+/// the range, and `relative_depth` maps a texel's range to [0, 1].
+/// Kills, in `shaders/lib/occupancy.wgsl`: `slab_position`'s clamp of the
+/// fraction into its slice to 1.0 → 0.9, `relative_depth`'s (near, far)
+/// swapped, the last slice's clamp
 /// `slices - 1u` → `slices - 2u` (a point in the last slice reads the slice
 /// before it: 2 instead of 3.75) and `total_fragments(maps) - own` → `+`
 /// (5 instead of 3).
@@ -51,15 +56,27 @@ fn order_estimate_matches_its_cpu_mirror_in_the_last_slice_and_behind_the_range(
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
         .collect();
     let (texels, depths) = (texels(), depths());
-    assert_eq!(got.len(), 2 * texels.len() * depths.len());
+    assert_eq!(got.len(), 4 * texels.len() * depths.len());
     let mut failures = Vec::new();
     for (t, maps) in texels.iter().enumerate() {
         for (k, &rel) in depths.iter().enumerate() {
-            let at = 2 * (t * depths.len() + k);
-            let want = [order_estimate(maps, rel), fragment_order(maps, rel)];
+            let at = 4 * (t * depths.len() + k);
+            let inside = rel > 0.0 && rel < 1.0;
+            let want = [
+                order_estimate(maps, rel),
+                fragment_order(maps, rel),
+                if inside {
+                    order_estimate(maps, rel)
+                } else {
+                    -1.0
+                },
+                (rel - 0.25) / 0.5,
+            ];
             for (name, g, w) in [
                 ("order_estimate", got[at], want[0]),
                 ("fragment_order", got[at + 1], want[1]),
+                ("word-wise order", got[at + 2], want[2]),
+                ("relative_depth in [0.25, 0.75]", got[at + 3], want[3]),
             ] {
                 if (g - w).abs() > 1e-4 * w.abs().max(1.0) {
                     failures.push(format!("texel {t}, rel {rel}: {name} GPU {g}, CPU {w}"));
