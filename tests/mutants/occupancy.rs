@@ -19,10 +19,13 @@ fn texels() -> [TexelMaps; 2] {
     ]
 }
 
-/// The fixture's relative depths: the middle of each 128th, then in front,
+/// The fixture's relative depths: the middle or the last twentieth of each
+/// 128th (a slice's fraction past 0.9), then in front,
 /// at the front edge, at the back edge and behind.
 fn depths() -> Vec<f32> {
-    let mut d: Vec<f32> = (0..128).map(|k| (k as f32 + 0.5) / 128.0).collect();
+    let mut d: Vec<f32> = (0..128)
+        .map(|k| (k as f32 + if k % 2 == 1 { 0.95 } else { 0.5 }) / 128.0)
+        .collect();
     d.extend([-0.5, 0.0, 1.0, 1.5]);
     d
 }
@@ -37,7 +40,7 @@ fn depths() -> Vec<f32> {
 /// the occupancy technique's passes read them) give the same order inside
 /// the range, and `relative_depth` maps a texel's range to [0, 1].
 /// Kills, in `shaders/lib/occupancy.wgsl`: `slab_position`'s clamp of the
-/// fraction into its slice to 1.0 → 0.9, `relative_depth`'s (near, far)
+/// fraction into its slice to 1.0 → 0.9 (a point 0.95 into its slice), `relative_depth`'s (near, far)
 /// swapped, the last slice's clamp
 /// `slices - 1u` → `slices - 2u` (a point in the last slice reads the slice
 /// before it: 2 instead of 3.75) and `total_fragments(maps) - own` → `+`
