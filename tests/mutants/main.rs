@@ -1,6 +1,15 @@
 //! Tests written to kill mutants that survived the techniques' own tests
 //! (`bash scripts/mutate.sh`, `tests/mutation.toml`; book: Reliability,
-//! "Mutation score"). Each names the mutants it kills.
+//! "Mutation score"). Each names the mutants it kills. One module per
+//! technique where it has more than one such test.
+
+mod chiang;
+mod cylinders;
+mod exact;
+mod hair_fragment;
+mod kajiya_kay;
+mod marschner;
+mod occupancy;
 
 use plait::session::{SceneData, prepare};
 use plait_tests::{open_gpu, repo_root};

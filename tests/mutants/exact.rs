@@ -1,0 +1,118 @@
+//! `self_shadow/exact`: the overflow words of `shaders/passes/depth_lists.wgsl`.
+
+use plait::session::{SceneData, prepare};
+use plait_tests::{open_gpu, repo_root};
+
+fn words(bytes: &[u8]) -> Vec<u32> {
+    bytes
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect()
+}
+
+/// Lists of 4 fragments on the small scene overflow, and the overflow words
+/// say by how much, exactly as the texels' counters (every fragment's
+/// atomicAdd, stored or not) imply: [0] the fragments past 4 summed over the
+/// texels, [1] the texels past 4, [2] the longest list. The gallery's
+/// capacity (96) never overflows there, so no other test reads them. Kills,
+/// in `shaders/passes/depth_lists.wgsl`, each word's index + 1 (27:33,
+/// 29:37, 33:29) and `slot + 1u` → `slot + 2u` (the longest list one too
+/// long).
+#[test]
+fn exact_lists_report_their_overflow_as_their_counters_imply() {
+    let (_lock, gpu) = open_gpu();
+    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads");
+    let pipeline = repo_root().join("pipelines/exact_shadow.toml");
+    let capacity = 4u32;
+    let sets = [
+        format!("params.exact_capacity={capacity}"),
+        "params.light_size=128".to_string(),
+    ];
+    let prepared = prepare(&gpu, &pipeline, &sets, &scene, (64, 48)).expect("prepares");
+    prepared.renderer.render().expect("renders");
+    let counts = words(
+        &prepared
+            .renderer
+            .read_buffer("light_counts")
+            .expect("counts"),
+    );
+    let overflow = words(
+        &prepared
+            .renderer
+            .read_buffer("light_overflow")
+            .expect("overflow"),
+    );
+    let dropped: u32 = counts.iter().map(|&c| c.saturating_sub(capacity)).sum();
+    let texels = counts.iter().filter(|&&c| c > capacity).count() as u32;
+    let longest = counts.iter().copied().max().unwrap_or(0);
+    eprintln!(
+        "capacity {capacity}: overflow words {:?}; from the counters: dropped {dropped}, texels {texels}, longest {longest}",
+        &overflow[..3]
+    );
+    assert!(
+        texels > 10,
+        "the lists must overflow: {texels} texels past {capacity}"
+    );
+    assert_eq!(overflow[..3], [dropped, texels, longest]);
+}
+
+/// The small scene's image under exact self-shadowing with lists of
+/// `capacity` (`self_shadow` = exact; none: no self-shadow), strand coverage off (every fragment a whole texel, share 1)
+/// and the strands invisible to the camera (alpha 0; the light lists count
+/// them all the same): only the opaque head and ground, shadowed by the hair.
+fn shadowed_opaque(gpu: &plait_gpu::Gpu, capacity: u32, self_shadow: &str) -> image::RgbaImage {
+    let mut scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads");
+    scene.strands.alpha.iter_mut().for_each(|a| *a = 0.0);
+    let pipeline = repo_root().join("pipelines/exact_shadow.toml");
+    let mut sets = vec![
+        format!("techniques.self_shadow={self_shadow}"),
+        "params.strand_coverage=false".to_string(),
+        "params.light_size=128".to_string(),
+    ];
+    if self_shadow == "exact" {
+        sets.push(format!("params.exact_capacity={capacity}"));
+    }
+    let prepared = prepare(gpu, &pipeline, &sets, &scene, (96, 72)).expect("prepares");
+    prepared.renderer.render().expect("renders");
+    prepared.image().expect("reads back")
+}
+
+/// Past its capacity a list stands for its dropped fragments by scaling the
+/// stored ones by total / stored. An opaque point has every stored fragment
+/// of its light texel in front of it (the lists keep only hair in front of
+/// the opaque depth), so with shares of 1 the scaled count is the total,
+/// exactly the count of lists long enough: lists of 4 shadow the head and
+/// ground as lists of 96 do, within 1/255 (f32 rounding of
+/// stored · total / stored). Kills, in
+/// `techniques/self_shadow/exact/self_shadow.wgsl`, `out.count *= scale` →
+/// `/=`, `total / stored` → `*`, and `min(total, capacity)` → `max` (reads
+/// past the texel's list).
+#[test]
+fn exact_lists_past_their_capacity_still_count_every_fragment_in_front_of_the_opaque() {
+    let (_lock, gpu) = open_gpu();
+    let short = shadowed_opaque(&gpu, 4, "exact");
+    let long = shadowed_opaque(&gpu, 96, "exact");
+    let unshadowed = shadowed_opaque(&gpu, 0, "none");
+    let diff = |a: &image::RgbaImage, b: &image::RgbaImage| {
+        a.pixels()
+            .zip(b.pixels())
+            .map(|(p, q)| {
+                p.0.iter()
+                    .zip(q.0)
+                    .map(|(&x, y)| x.abs_diff(y))
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect::<Vec<u8>>()
+    };
+    let worst = diff(&short, &long).into_iter().max().unwrap_or(0);
+    let shadowed = diff(&long, &unshadowed).iter().filter(|&&d| d > 8).count();
+    eprintln!("lists of 4 vs 96: {worst}/255; {shadowed} pixels shadowed by the hair");
+    assert!(
+        shadowed > 100,
+        "the hair must shadow the opaque: {shadowed} pixels"
+    );
+    assert!(worst <= 1, "lists of 4 vs 96 on the opaque: {worst}/255");
+}
