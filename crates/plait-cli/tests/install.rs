@@ -23,18 +23,7 @@ fn installed(dir: &Path, cwd: &Path, plait_path: Option<&str>, args: &[&str]) ->
         Some(p) => cmd.env("PLAIT_PATH", p),
         None => cmd.env_remove("PLAIT_PATH"),
     };
-    // A test thread forking a child while this one still has the copy open
-    // for writing lends the child that descriptor until its exec: running
-    // the copy then fails with ETXTBSY for a moment. Retry briefly.
-    for _ in 0..50 {
-        match cmd.output() {
-            Err(e) if e.kind() == std::io::ErrorKind::ExecutableFileBusy => {
-                std::thread::sleep(std::time::Duration::from_millis(100))
-            }
-            result => return result.expect("run the copied plait"),
-        }
-    }
-    panic!("the copied plait stayed busy (ETXTBSY) for 5 s")
+    common::run_copied(&mut cmd)
 }
 
 fn assert_ok(what: &str, o: &Output) {

@@ -294,17 +294,7 @@ fn an_installed_plait_runs_a_path_traced_reference_from_its_built_in_copies() {
             .env("PLAIT_PATH", "")
             .env("CARGO_TARGET_DIR", &target)
             .env("PLAIT_MITSUBA_PYTHON", python);
-        // A test thread forking while another still writes a copy can lend
-        // the child that descriptor until its exec (ETXTBSY): retry briefly.
-        for _ in 0..50 {
-            match cmd.output() {
-                Err(e) if e.kind() == std::io::ErrorKind::ExecutableFileBusy => {
-                    std::thread::sleep(std::time::Duration::from_millis(100))
-                }
-                result => return result.expect("run the copied plait"),
-            }
-        }
-        panic!("the copied plait stayed busy (ETXTBSY) for 5 s")
+        common::run_copied(&mut cmd)
     };
 
     // The shipped file, found by its library name; no Mitsuba: the message

@@ -4,34 +4,10 @@
 //! name new to the library reaches the Rust pass types too.
 
 mod common;
-use common::{plait, root, text, with_library};
+use common::{assert_ok, assert_refused, plait, root, with_library, write};
 
 use std::path::Path;
 use std::process::Output;
-
-fn write(base: &Path, relative: &str, text: &str) {
-    let path = base.join(relative);
-    std::fs::create_dir_all(path.parent().expect("a parent")).expect("mkdir");
-    std::fs::write(path, text).expect("write");
-}
-
-fn assert_ok(what: &str, o: &Output) {
-    assert!(
-        o.status.success(),
-        "{what}: exit {:?}\n--- stderr:\n{}",
-        o.status.code(),
-        text(&o.stderr)
-    );
-}
-
-fn assert_refused(what: &str, o: &Output, wanted: &[&str]) {
-    let stderr = text(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{what}: {stderr}");
-    for w in wanted {
-        assert!(stderr.contains(w), "{what}: no `{w}` in\n{stderr}");
-    }
-    assert!(!stderr.contains("panicked"), "{what}: {stderr}");
-}
 
 const HALFMAP_TECHNIQUE: &str = r#"
 [technique]

@@ -209,35 +209,27 @@ impl Record {
     /// where they came from and how to check them again.
     pub fn block(&self, figure: &Figure) -> String {
         let short = &self.commit[..self.commit.len().min(10)];
-        if self.table.is_some() {
-            return format!(
-                "{}\n\n*Printed by `{}` at commit `{short}`{} on {}; re-measured by \
-                 `bash scripts/bench.sh --check {}`.*",
-                self.markdown,
-                figure.command_line(),
-                if self.dirty {
-                    " with uncommitted changes"
-                } else {
-                    ""
-                },
-                self.date,
-                figure.id
-            );
-        }
+        let dirty = if self.dirty {
+            " with uncommitted changes"
+        } else {
+            ""
+        };
+        // A table figure's program prints its own adapter and repeats.
+        let (verb, run) = if self.table.is_some() {
+            ("Printed", String::new())
+        } else {
+            let plural = if self.repeats == 1 { "" } else { "s" };
+            (
+                "Measured",
+                format!(" ({}, {} repeat{plural})", self.adapter, self.repeats),
+            )
+        };
         format!(
-            "{}\n\n*Measured by `{}` at commit `{short}`{} on {} ({}, {} repeat{}); \
+            "{}\n\n*{verb} by `{}` at commit `{short}`{dirty} on {}{run}; \
              re-measured by `bash scripts/bench.sh --check {}`.*",
             self.markdown,
             figure.command_line(),
-            if self.dirty {
-                " with uncommitted changes"
-            } else {
-                ""
-            },
             self.date,
-            self.adapter,
-            self.repeats,
-            if self.repeats == 1 { "" } else { "s" },
             figure.id
         )
     }
