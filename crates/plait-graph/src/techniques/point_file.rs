@@ -431,10 +431,12 @@ pub fn wgsl_points(roots: &[std::path::PathBuf]) -> Result<Vec<WgslPoint>, Error
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    const GOOD: &str = r#"
+    /// A point file with a `[wgsl]` contract (the optional-function tests
+    /// extend it).
+    pub(crate) const GOOD: &str = r#"
 [wgsl]
 param = "self_shadow"
 providers = "plait::self_shadow"

@@ -109,16 +109,7 @@ mod tests {
 
     use super::super::point_file::parse;
 
-    const GOOD: &str = r#"
-[wgsl]
-param = "self_shadow"
-providers = "plait::self_shadow"
-function = "fn hair_visibility(world: vec3<f32>) -> f32"
-module = "plait::self_shadow"
-call = "self_shadow"
-default = "none"
-doc = "Fraction of the light reaching `world`."
-"#;
+    use super::super::point_file::tests::GOOD;
 
     #[test]
     fn an_optional_function_is_defined_for_the_providers_that_have_it() {
