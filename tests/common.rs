@@ -23,6 +23,35 @@ pub fn open_gpu() -> (MutexGuard<'static, ()>, plait_gpu::Gpu) {
     }
 }
 
+/// The rgba32float textures `targets` of the fixture pipeline
+/// `tests/fixtures/FIXTURE` after one frame at `size` on the small scene,
+/// texel by texel: the GPU side of the closed-form tests (a technique's value
+/// at one direction pair per texel).
+pub fn fixture_texels(fixture: &str, size: (u32, u32), targets: &[&str]) -> Vec<Vec<[f32; 4]>> {
+    let (_lock, gpu) = open_gpu();
+    let scene =
+        plait::session::SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+            .expect("the small scene loads");
+    let pipeline = repo_root().join("tests/fixtures").join(fixture);
+    let prepared = plait::session::prepare(&gpu, &pipeline, &[], &scene, size)
+        .unwrap_or_else(|e| panic!("{fixture} prepares: {e}"));
+    prepared.renderer.render().expect("renders");
+    targets
+        .iter()
+        .map(|name| {
+            let read = prepared.renderer.read_resource(name).expect(name);
+            read.bytes
+                .chunks_exact(16)
+                .map(|t| {
+                    std::array::from_fn(|c| {
+                        f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().expect("4 bytes"))
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// The checkout root (the parent of `tests/`).
 pub fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -8,7 +8,7 @@
 use std::f64::consts::PI;
 
 use plait::session::{SceneData, prepare};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{fixture_texels, open_gpu, repo_root};
 
 mod chiang_cpu {
     //! shaders/lib/chiang.wgsl, one channel, in f64.
@@ -162,23 +162,15 @@ fn averages(sin_i: f64, sigma_a: f64, steps: usize) -> [f64; 6] {
 
 /// The fixture's two tables, texel (x, y) → the six averages.
 fn gpu_tables() -> Vec<[f64; 6]> {
-    let (_lock, gpu) = open_gpu();
-    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
-        .expect("the small scene loads");
-    let pipeline = repo_root().join("tests/fixtures/dual_scattering_tables.toml");
-    let prepared = prepare(&gpu, &pipeline, &[], &scene, (64, 64)).expect("the fixture prepares");
-    prepared.renderer.render().expect("renders");
-    let read = |name: &str| -> Vec<f32> {
-        let r = prepared.renderer.read_resource(name).expect(name);
-        r.bytes
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
-            .collect()
-    };
-    let (a, b) = (read("table_a"), read("table_b"));
+    let tables = fixture_texels(
+        "dual_scattering_tables.toml",
+        (64, 64),
+        &["table_a", "table_b"],
+    );
+    let (a, b) = (&tables[0], &tables[1]);
     (0..SIN_STEPS * ABSORPTION_STEPS)
         .map(|t| {
-            let (a, b) = (&a[4 * t..4 * t + 4], &b[4 * t..4 * t + 4]);
+            let (a, b) = (a[t], b[t]);
             [a[0], a[1], a[2], a[3], b[0], b[1]].map(f64::from)
         })
         .collect()
@@ -289,31 +281,12 @@ const ANGLES: usize = 96;
 
 /// Both targets of the cases fixture: per texel (r, g, b, a).
 fn gpu_cases() -> (Vec<[f64; 4]>, Vec<[f64; 4]>) {
-    let (_lock, gpu) = open_gpu();
-    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
-        .expect("the small scene loads");
-    let pipeline = repo_root().join("tests/fixtures/dual_scattering_cases.toml");
-    let prepared = prepare(
-        &gpu,
-        &pipeline,
-        &[],
-        &scene,
-        (AZIMUTHS as u32, ANGLES as u32),
-    )
-    .expect("the fixture prepares");
-    prepared.renderer.render().expect("renders");
-    let read = |name: &str| -> Vec<[f64; 4]> {
-        let r = prepared.renderer.read_resource(name).expect(name);
-        r.bytes
-            .chunks_exact(16)
-            .map(|t| {
-                std::array::from_fn(|c| {
-                    f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()) as f64
-                })
-            })
-            .collect()
-    };
-    (read("cases"), read("front"))
+    let size = (AZIMUTHS as u32, ANGLES as u32);
+    let mut read = fixture_texels("dual_scattering_cases.toml", size, &["cases", "front"])
+        .into_iter()
+        .map(|texels| texels.into_iter().map(|t| t.map(f64::from)).collect());
+    let cases = read.next().expect("cases");
+    (cases, read.next().expect("front"))
 }
 
 /// Σ value · cos θo dθo dφ over the grid, both signs of φ, per channel;

@@ -7,8 +7,7 @@
 
 use std::f64::consts::PI;
 
-use plait::session::{SceneData, prepare};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{fixture_texels, repo_root};
 
 const AZIMUTHS: usize = 256;
 const ANGLES: usize = 128;
@@ -23,20 +22,7 @@ struct Sphere {
 /// `size`, one frame on the small scene: each texel a shading technique's
 /// value at one (light, outgoing direction) pair.
 fn render_fibre(fixture: &str, size: (u32, u32)) -> Vec<[f32; 4]> {
-    let (_lock, gpu) = open_gpu();
-    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
-        .expect("the small scene loads");
-    let pipeline = repo_root().join("tests/fixtures").join(fixture);
-    let prepared = prepare(&gpu, &pipeline, &[], &scene, size)
-        .unwrap_or_else(|e| panic!("{fixture} prepares: {e}"));
-    prepared.renderer.render().expect("renders");
-    let read = prepared.renderer.read_resource("fibre").expect("fibre");
-    read.bytes
-        .chunks_exact(16)
-        .map(|t| {
-            std::array::from_fn(|c| f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()))
-        })
-        .collect()
+    fixture_texels(fixture, size, &["fibre"]).remove(0)
 }
 
 impl Sphere {

@@ -8,8 +8,7 @@
 
 use std::f64::consts::PI;
 
-use plait::session::{SceneData, prepare};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::fixture_texels;
 
 const AZIMUTHS: usize = 64;
 const ANGLES: usize = 32;
@@ -42,28 +41,11 @@ fn karis(e: [f64; 3]) -> [f64; 3] {
 
 #[test]
 fn karis_adds_exactly_its_formula() {
-    let (_lock, gpu) = open_gpu();
-    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
-        .expect("the small scene loads");
-    let pipeline = repo_root().join("tests/fixtures/karis_cases.toml");
-    let prepared = prepare(
-        &gpu,
-        &pipeline,
-        &[],
-        &scene,
-        (AZIMUTHS as u32, ANGLES as u32),
-    )
-    .expect("the fixture prepares");
-    prepared.renderer.render().expect("renders");
-    let read = prepared.renderer.read_resource("cases").expect("cases");
-    let texels: Vec<[f64; 4]> = read
-        .bytes
-        .chunks_exact(16)
-        .map(|t| {
-            std::array::from_fn(|c| {
-                f32::from_le_bytes(t[4 * c..4 * c + 4].try_into().unwrap()) as f64
-            })
-        })
+    let size = (AZIMUTHS as u32, ANGLES as u32);
+    let texels: Vec<[f64; 4]> = fixture_texels("karis_cases.toml", size, &["cases"])
+        .remove(0)
+        .into_iter()
+        .map(|t| t.map(f64::from))
         .collect();
     let mut worst = 0.0_f64;
     for j in 0..ANGLES {
