@@ -194,7 +194,7 @@ pub fn run(args: AbArgs) -> Result<()> {
         if plait::ab::path_traced::is_path_traced(&path) {
             continue;
         }
-        crate::size_limit::check_default_limits(&path, &args.set.sets, size)?;
+        plait::size_limit::check_default_limits(&path, &args.set.sets, size)?;
     }
     let plan = Plan::new(AbOptions {
         pipelines: args.pipelines,
@@ -222,7 +222,8 @@ pub fn run(args: AbArgs) -> Result<()> {
     // some technique file (as `plait render` does).
     for v in plan.gpu_variants() {
         let size = plan.options.render_size(v.is_reference);
-        crate::size_limit::check(&v.pipeline, &v.sets, size, &gpu).map_err(|e| {
+        plait::size_limit::check(&v.pipeline, &v.sets, size, &gpu).map_err(|e| {
+            let e = anyhow::Error::from(e);
             if v.is_reference && plan.options.supersample > 1 {
                 e.context(format!(
                     "the reference renders at --size × --supersample {}",

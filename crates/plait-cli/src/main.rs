@@ -17,7 +17,6 @@ mod pipeline_cmd;
 mod render_cmd;
 mod sequence;
 mod show;
-mod size_limit;
 mod table;
 mod techniques_cmd;
 mod view_cmd;

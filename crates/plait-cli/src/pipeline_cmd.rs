@@ -183,7 +183,7 @@ pub fn graph(args: GraphArgs) -> Result<()> {
     let schedule = match compile_checked_in(&source.library, &pipeline, &args.set.sets, &opts) {
         Ok(schedule) => schedule,
         Err(errors) => {
-            crate::size_limit::explain_default_limits(&loaded, &source, args.size)?;
+            plait::size_limit::explain_default_limits(&loaded, &source, args.size)?;
             return Err(errors.into());
         }
     };

@@ -116,7 +116,7 @@ pub fn render(
     }
     let data = SceneData::new(scene.clone())?;
     let gpu = Gpu::new()?;
-    let schedule = crate::size_limit::compile_on(&gpu, &loaded, &source, size)?;
+    let schedule = plait::adapter::compile_on(&gpu, &loaded, &source, size)?;
     if let Some(name) = show {
         crate::show::check_readable(&schedule, name)?;
     }

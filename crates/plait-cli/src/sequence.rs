@@ -138,7 +138,7 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
     let loaded = source.load(&[])?;
     let data = SceneData::new(args.scene.clone())?;
     let gpu = Gpu::new()?;
-    let schedule = crate::size_limit::compile_on(&gpu, &loaded, &source, args.size)?;
+    let schedule = plait::adapter::compile_on(&gpu, &loaded, &source, args.size)?;
     let mut prepared = prepare_compiled(&gpu, schedule, &source, &data, args.size)?;
     let dir = pending.dir().to_path_buf();
     let mut preview =

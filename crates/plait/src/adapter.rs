@@ -26,6 +26,8 @@ pub fn check_on_adapter(
 /// The one compile of a render: `loaded` (read from `source`) compiled with
 /// `gpu`'s capabilities and limits as inputs, so the schedule is final, then
 /// checked against what the adapter supports (see [`check_schedule_on`]).
+/// A compile that fails only because of the render size names `--size`
+/// ([`crate::size_limit`]).
 pub fn compile_on(
     gpu: &Gpu,
     loaded: &Pipeline,
@@ -41,7 +43,14 @@ pub fn compile_on(
             source.compile(extra, opts)
         }
     };
-    let schedule = crate::overflow::compile_fitting(&compile, &[], &gpu_options(gpu, size))?;
+    let schedule = match crate::overflow::compile_fitting(&compile, &[], &gpu_options(gpu, size)) {
+        Ok(schedule) => schedule,
+        Err(errors) => {
+            // Resources sized from the screen past the limits: the flag's fault.
+            crate::size_limit::explain_on(loaded, source, size, gpu)?;
+            return Err(errors.into());
+        }
+    };
     check_schedule_on(gpu, &schedule, source, size)?;
     Ok(schedule)
 }

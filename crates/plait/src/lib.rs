@@ -9,6 +9,7 @@
 //! - [`gpu`]: the wgpu executor;
 //! - [`passes`]: the pass library;
 //! - [`overflow`]: bounded buffers sized to hold every frame's data;
+//! - [`size_limit`]: a `--size` too large for the adapter, named as the flag;
 //! - [`frames`]: sequences of frames (time, head animation, medians);
 //! - [`mitsuba`]: a scene exported for the Mitsuba 3 path tracer;
 //! - [`linear`]: the linear radiance image before the display transform, as OpenEXR;
@@ -28,6 +29,7 @@ pub mod overflow;
 pub mod probe;
 pub mod scene_fit;
 pub mod session;
+pub mod size_limit;
 pub mod source;
 pub mod strand_lod;
 pub mod wisps;

@@ -23,6 +23,11 @@ pub enum SessionError {
     Gpu(#[from] GpuError),
     #[error("the pipeline declares no output")]
     NoOutput,
+    /// `--size` is what keeps the pipeline from fitting the adapter's
+    /// limits: the flag, the largest size of its shape that fits, and what
+    /// overflows ([`crate::size_limit`]).
+    #[error("{0}")]
+    Size(String),
     /// A param the scene cannot satisfy (more shading points than a strand
     /// has points), naming the param and the `--set` flag that gave it.
     #[error("{0}")]

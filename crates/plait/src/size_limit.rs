@@ -4,43 +4,33 @@
 //! longer compiles. The errors then name a technique file's resource, which
 //! is not what the user changed: when the same pipeline fits at a tiny size,
 //! the flag is what to change, so the message names `--size`, the largest
-//! size of the same shape that fits, and what overflows.
+//! size of the same shape that fits, and what overflows
+//! ([`SessionError::Size`]). The session's compile for an adapter
+//! ([`crate::adapter::compile_on`]) asks this itself, so every front end
+//! (render, frames, ab, the viewer) words a too-large size the same way.
 
 use std::path::Path;
 
-use anyhow::Result;
-use plait::session::SessionError;
-use plait::source::PipelineSource;
 use plait_gpu::Gpu;
 use plait_graph::{CompileOptions, Errors, Pipeline, Schedule};
+
+use crate::session::SessionError;
+use crate::source::PipelineSource;
 
 /// Fails naming `--size` when `size` is what keeps `pipeline` (with `sets`)
 /// from fitting `gpu`'s limits; any other problem is left to the render,
 /// which reports it with its file and line. For a pipeline loaded already
 /// whose compile failed, [`explain_on`].
-pub fn check(pipeline: &Path, sets: &[String], size: (u32, u32), gpu: &Gpu) -> Result<()> {
+pub fn check(
+    pipeline: &Path,
+    sets: &[String],
+    size: (u32, u32),
+    gpu: &Gpu,
+) -> Result<(), SessionError> {
     let Ok(loaded) = plait_graph::load(pipeline, sets) else {
         return Ok(());
     };
     explain_on(&loaded, &PipelineSource::new(pipeline, sets), size, gpu)
-}
-
-/// [`plait::adapter::compile_on`], the compile of a render; when it fails
-/// because of `--size` alone, the error names the flag.
-pub fn compile_on(
-    gpu: &Gpu,
-    loaded: &Pipeline,
-    source: &PipelineSource,
-    size: (u32, u32),
-) -> Result<Schedule> {
-    match plait::adapter::compile_on(gpu, loaded, source, size) {
-        Ok(schedule) => Ok(schedule),
-        Err(e @ SessionError::Pipeline(_)) => {
-            explain_on(loaded, source, size, gpu)?;
-            Err(e.into())
-        }
-        Err(e) => Err(e.into()),
-    }
 }
 
 /// After `loaded` failed to compile for `gpu` at `size`: the `--size` error
@@ -50,15 +40,19 @@ pub fn explain_on(
     source: &PipelineSource,
     size: (u32, u32),
     gpu: &Gpu,
-) -> Result<()> {
+) -> Result<(), SessionError> {
     let on = format!("on {}", gpu.adapter_name());
     explain(loaded, source, size, &on, &|s| {
-        plait::session::gpu_options(gpu, s)
+        crate::session::gpu_options(gpu, s)
     })
 }
 
 /// [`check`] without a GPU, against WebGPU's default limits (`plait ab`).
-pub fn check_default_limits(pipeline: &Path, sets: &[String], size: (u32, u32)) -> Result<()> {
+pub fn check_default_limits(
+    pipeline: &Path,
+    sets: &[String],
+    size: (u32, u32),
+) -> Result<(), SessionError> {
     let Ok(loaded) = plait_graph::load(pipeline, sets) else {
         return Ok(());
     };
@@ -70,7 +64,7 @@ pub fn explain_default_limits(
     loaded: &Pipeline,
     source: &PipelineSource,
     size: (u32, u32),
-) -> Result<()> {
+) -> Result<(), SessionError> {
     explain(
         loaded,
         source,
@@ -87,7 +81,7 @@ pub fn explain_default_limits(
 /// (`on llvmpipe`, `within WebGPU's default limits`). Only the pipeline
 /// files are compiled here (no shaders): limits are theirs. A bounded
 /// buffer still at its technique's default is lowered to fit, as the render
-/// does (`plait::overflow::compile_fitting`): only what the user set, or
+/// does ([`crate::overflow::compile_fitting`]): only what the user set, or
 /// what cannot fit at all, is the flag's fault.
 fn explain(
     loaded: &Pipeline,
@@ -95,7 +89,7 @@ fn explain(
     size: (u32, u32),
     on: &str,
     options: &dyn Fn((u32, u32)) -> CompileOptions,
-) -> Result<()> {
+) -> Result<(), SessionError> {
     let registry = source.library.registry();
     let with = |extra: &[String], opts: &CompileOptions| -> Result<Schedule, Errors> {
         if extra.is_empty() {
@@ -105,7 +99,7 @@ fn explain(
         }
     };
     let compile = |s: (u32, u32)| -> Result<(), Errors> {
-        plait::overflow::compile_fitting(&with, &[], &options(s)).map(|_| ())
+        crate::overflow::compile_fitting(&with, &[], &options(s)).map(|_| ())
     };
     let pipeline = &source.path;
     let Err(errors) = compile(size) else {
@@ -117,7 +111,7 @@ fn explain(
     }
     let (w, h) = largest_fitting(size, |s| compile(s).is_ok());
     let overflows: Vec<String> = errors.0.iter().map(|e| format!("  {e}")).collect();
-    anyhow::bail!(
+    Err(SessionError::Size(format!(
         "--size {}x{} is too large for {} {on}: the largest size of this shape it fits is {w}x{h}; at {}x{}:\n{}",
         size.0,
         size.1,
@@ -125,7 +119,7 @@ fn explain(
         size.0,
         size.1,
         overflows.join("\n")
-    )
+    )))
 }
 
 /// The largest size with `size`'s aspect ratio (width from 1 to `size.0`,
