@@ -65,8 +65,12 @@ pub struct Rendered {
     pub image: image::RgbaImage,
     pub adapter: String,
     pub backend: String,
-    /// What the renderer adapted to the adapter (format downgrades…).
+    /// What the renderer adapted to the adapter (format downgrades…) and
+    /// the frame's level-of-detail notes.
     pub notes: Vec<String>,
+    /// Drops from a bounded buffer the user capped, one line each, as the
+    /// session worded them ([`plait::frames::Frame::dropped`]).
+    pub dropped: Vec<String>,
     /// The linear image as stored, when asked for (`--out x.exr`).
     pub linear: Option<image::Rgba32FImage>,
 }
@@ -125,15 +129,10 @@ pub fn render(
         prepared.output = name.to_owned();
     }
     // The first frame includes pipeline warm-up in the driver; time the second.
-    prepared.renderer.render()?;
-    let report = prepared.renderer.render()?;
-    plait::overflow::check_frame(&report)?;
-    let mut notes = prepared.renderer.notes().to_vec();
-    let frame = plait::session::frame_uniforms(prepared.schedule(), &data, size, 0);
-    notes.extend(plait::strand_lod::note(prepared.schedule(), &frame));
-    if let Some(count) = prepared.wisp_count {
-        notes.extend(plait::wisps::lod_note(prepared.schedule(), &frame, count));
-    }
+    prepared.render()?;
+    let frame = prepared.render()?;
+    let mut notes = prepared.notes().to_vec();
+    notes.extend(frame.notes);
     let image = match show {
         Some(name) => {
             let texels = prepared.renderer.read_resource(name)?;
@@ -151,7 +150,8 @@ pub fn render(
     };
     Ok(Rendered {
         schedule: prepared.schedule().clone(),
-        report,
+        report: frame.report,
+        dropped: frame.dropped,
         image,
         adapter: gpu.adapter_name().to_owned(),
         backend: gpu.backend_name(),
@@ -432,19 +432,12 @@ pub fn print_table(
         outln!("(this adapter has no timestamp queries: GPU times are not available)")?;
     }
     outln!("{}", memory_line(&s.memory, s.physical.len()))?;
-    print_dropped(&r.report)?;
-    outln!("wrote {}", out.display())
-}
-
-/// One line per bounded buffer that dropped data (only a size the user set
-/// can: the session grows the defaults until they hold everything), as
-/// every front end words it ([`plait::overflow::check_frame`], which passed
-/// for this frame before it was printed).
-fn print_dropped(report: &FrameReport) -> std::io::Result<()> {
-    for line in plait::overflow::check_frame(report).unwrap_or_default() {
+    // One line per bounded buffer that dropped data (only a size the user
+    // set can: the session grows the defaults until they hold everything).
+    for line in &r.dropped {
         outln!("{line}")?;
     }
-    Ok(())
+    outln!("wrote {}", out.display())
 }
 
 /// `memory: 20.00 MiB in 9 allocations (sharing saves 9.41 MiB of 29.41 MiB)`;

@@ -145,20 +145,21 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
         Preview::create(&dir.join("animation.png"), args.size, args.frames, args.fps)?;
     let bar = progress(args.frames);
     let mut last = None;
-    let reports = render_sequence(
+    let frames = render_sequence(
         &mut prepared,
         &data,
         args.size,
         args.frames,
         args.fps,
-        |index, report, image| -> Result<()> {
+        |index, frame, image| -> Result<()> {
             let name = frame_name(index, args.frames);
             let bytes = crate::output::encode_image(&image, image::ImageFormat::Png)?;
             std::fs::write(dir.join(&name), bytes).with_context(|| format!("writing {name}"))?;
             preview.push(&image)?;
             if let Some(bar) = &bar {
                 bar.set_message(
-                    report
+                    frame
+                        .report
                         .total_gpu_ms
                         .map(|ms| format!("{ms:.0} ms GPU"))
                         .unwrap_or_default(),
@@ -173,14 +174,17 @@ pub fn run(args: &SequenceArgs<'_>) -> Result<()> {
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
+    let reports: Vec<FrameReport> = frames.into_iter().map(|f| f.report).collect();
     let median = median_report(&reports).context("no frames rendered")?;
     let rendered = Rendered {
         schedule: prepared.schedule().clone(),
+        // Each counter's worst frame, so a sequence that dropped says so.
+        dropped: plait::overflow::dropped_lines(&median),
         report: median,
         image: last.context("no frames rendered")?,
         adapter: gpu.adapter_name().to_owned(),
         backend: gpu.backend_name(),
-        notes: prepared.renderer.notes().to_vec(),
+        notes: prepared.notes().to_vec(),
         linear: None,
     };
     let json = sequence_json(args, &rendered, &reports);

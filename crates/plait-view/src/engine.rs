@@ -77,11 +77,10 @@ struct Live<'g> {
     failed: bool,
 }
 
-/// A frame rendered and checked, not yet published.
+/// A frame rendered and checked by the session, not yet published.
 struct Frame {
-    report: plait_gpu::FrameReport,
+    checked: plait::frames::Frame,
     output: plait_gpu::readback::TexelData,
-    dropped: Vec<String>,
 }
 
 struct Engine<'g> {
@@ -199,9 +198,9 @@ impl<'g> Engine<'g> {
                 }
             }
         }
-        if let Some(live) = &self.live {
+        if let Some(live) = &mut self.live {
             let frame = session::frame_uniforms(live.prepared.schedule(), scene, self.opts.size, 0);
-            live.prepared.renderer.set_frame(&frame);
+            live.prepared.set_frame(&frame);
         }
     }
 
@@ -244,7 +243,7 @@ impl<'g> Engine<'g> {
                     "plait view: {what} {} in {ms:.0} ms",
                     self.pipeline.display()
                 );
-                let notes = prepared.renderer.notes().to_vec();
+                let notes = prepared.notes().to_vec();
                 let output_name = prepared.output.clone();
                 self.live = Some(Live {
                     prepared,
@@ -297,9 +296,9 @@ impl<'g> Engine<'g> {
     }
 
     /// One frame of the live pipeline: posed at the animation's time,
-    /// rendered, read back and put through the same after-frame checks as
-    /// `plait render` (a bounded buffer that drops while you watch is shown
-    /// and logged, never silent). `None` with nothing built.
+    /// rendered and checked by the session's frame step, as `plait render`'s
+    /// (a bounded buffer that drops while you watch is shown and logged,
+    /// never silent), and read back. `None` with nothing built.
     fn frame(&mut self) -> Result<Option<Frame>, String> {
         let Some(live) = &mut self.live else {
             return Ok(None);
@@ -316,19 +315,15 @@ impl<'g> Engine<'g> {
                 .prepared
                 .pose_frame(scene, self.opts.size, index as u32, FPS)
                 .map_err(|e| error_text(&e))?;
-            live.prepared.renderer.set_frame(&frame);
+            live.prepared.set_frame(&frame);
         }
-        let renderer = &live.prepared.renderer;
-        let report = renderer.render().map_err(|e| error_text(&e))?;
-        let output = renderer
+        let checked = live.prepared.render().map_err(|e| error_text(&e))?;
+        let output = live
+            .prepared
+            .renderer
             .read_resource(&live.prepared.output)
             .map_err(|e| error_text(&e))?;
-        let dropped = plait::overflow::check_frame(&report).map_err(|e| error_text(&e))?;
-        Ok(Some(Frame {
-            report,
-            output,
-            dropped,
-        }))
+        Ok(Some(Frame { checked, output }))
     }
 
     /// Publishes a rendered frame: the output, the inspected resource, the
@@ -337,12 +332,16 @@ impl<'g> Engine<'g> {
         let Some(live) = &self.live else {
             return;
         };
-        if frame.dropped != self.dropped_logged {
-            for line in &frame.dropped {
+        let dropped = frame.checked.dropped;
+        if dropped != self.dropped_logged {
+            for line in &dropped {
                 eprintln!("plait view: {line}");
             }
-            self.dropped_logged = frame.dropped.clone();
+            self.dropped_logged = dropped.clone();
         }
+        // The build's notes and this frame's level-of-detail notes.
+        let mut notes = live.prepared.notes().to_vec();
+        notes.extend(frame.checked.notes);
         let schedule = live.prepared.schedule();
         let output_view = Arc::new(inspect::texture(
             &live.prepared.output,
@@ -356,7 +355,7 @@ impl<'g> Engine<'g> {
                 inspect::resource(&live.prepared, schedule, &name, *display).map(Some)
             }
         };
-        self.timings.record(&frame.report, started);
+        self.timings.record(&frame.checked.report, started);
         let medians = self.timings.pass_medians(schedule);
         let frame_median = self.timings.frame_median();
         self.frames_since_build += 1;
@@ -380,7 +379,8 @@ impl<'g> Engine<'g> {
             }
             s.frames = frames;
             s.total_frames += 1;
-            s.dropped = frame.dropped;
+            s.dropped = dropped;
+            s.notes = notes;
         });
         if let Some(image) = screenshot {
             self.write_screenshot(&image.image);

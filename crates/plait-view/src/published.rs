@@ -51,7 +51,8 @@ pub struct Shared {
     pub peak_bytes: u64,
     pub notes: Vec<String>,
     /// The last frame's drops from bounded buffers the user capped
-    /// ([`plait::overflow::check_frame`]); a failed check is in `error`.
+    /// (the session's frame step, [`plait::frames::Frame::dropped`]); a
+    /// failed check is in `error`.
     pub dropped: Vec<String>,
     /// The last good frame's output.
     pub output: Option<Arc<Inspected>>,

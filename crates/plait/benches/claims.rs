@@ -143,7 +143,7 @@ fn main() {
             let prepared = prepare(&gpu, &path, &[], scene(claim.scene), claim.size)
                 .unwrap_or_else(|e| panic!("{pipeline} on {}: {e}", claim.scene));
             // Warm-up: pipelines, run-once passes and the first upload.
-            prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+            prepared.render().unwrap_or_else(|e| panic!("{e}"));
             runs.push(Run {
                 key,
                 prepared,
@@ -154,12 +154,8 @@ fn main() {
     for round in 0..repeats {
         eprintln!("round {} of {repeats}", round + 1);
         for run in &mut runs {
-            let frame = run
-                .prepared
-                .renderer
-                .render()
-                .unwrap_or_else(|e| panic!("{e}"));
-            run.ms.push(frame.total_gpu_ms.unwrap_or(f64::NAN));
+            let frame = run.prepared.render().unwrap_or_else(|e| panic!("{e}"));
+            run.ms.push(frame.report.total_gpu_ms.unwrap_or(f64::NAN));
         }
     }
     let table = table(&gpu, repeats, &runs);

@@ -27,7 +27,7 @@ fn setup<'g>(gpu: &'g Gpu, scene: &SceneData) -> (plait::session::Prepared<'g>, 
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let prepared = prepare(gpu, &pipeline, &[], scene, SIZE).unwrap_or_else(|e| panic!("{e}"));
     // One frame each: pipelines created, first-frame work done.
-    prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+    prepared.render().unwrap_or_else(|e| panic!("{e}"));
     let hand = HandWritten::new(gpu, scene, SIZE).unwrap_or_else(|e| panic!("{e}"));
     hand.render();
     (prepared, hand)

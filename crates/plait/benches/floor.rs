@@ -228,7 +228,6 @@ fn main() {
         std::fs::create_dir_all(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
         for e in &entries {
             e.prepared
-                .renderer
                 .render()
                 .unwrap_or_else(|err| panic!("{}: {err}", e.name));
             let image = e.prepared.image().unwrap_or_else(|err| panic!("{err}"));
@@ -243,7 +242,6 @@ fn main() {
     if let (Some(a), Some(b)) = (default_index, one_draw_index) {
         let image = |e: &Entry| {
             e.prepared
-                .renderer
                 .render()
                 .unwrap_or_else(|err| panic!("{}: {err}", e.name));
             e.prepared.image().unwrap_or_else(|err| panic!("{err}"))
@@ -257,7 +255,6 @@ fn main() {
         // Same passes, same shaders: the same picture, or the comparison means nothing.
         entries[i]
             .prepared
-            .renderer
             .render()
             .unwrap_or_else(|e| panic!("{e}"));
         hw.render();
@@ -308,9 +305,9 @@ fn main() {
         for (k, e) in entries.iter_mut().enumerate() {
             let report = render_plait.then(|| {
                 e.prepared
-                    .renderer
                     .render()
                     .unwrap_or_else(|err| panic!("{}: {err}", e.name))
+                    .report
             });
             let (floor_total, floor_passes) = if render_floor {
                 e.floor.render().unwrap_or_default()

@@ -80,11 +80,11 @@ fn main() {
         let data = SceneData::load(Some(Path::new(path))).unwrap_or_else(|e| panic!("{e}"));
         let groom_ms = started.elapsed().as_secs_f64() * 1e3;
         let prepared = prepare(&gpu, &pipeline, &[], &data, size).unwrap_or_else(|e| panic!("{e}"));
-        prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+        prepared.render().unwrap_or_else(|e| panic!("{e}"));
         let mut per_pass: Vec<Vec<f64>> = vec![Vec::new(); prepared.schedule().passes.len()];
         let mut frame = Vec::new();
         for _ in 0..repeats {
-            let report = prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+            let report = prepared.render().unwrap_or_else(|e| panic!("{e}")).report;
             for (i, p) in report.passes.iter().enumerate() {
                 per_pass[i].push(p.gpu_ms.unwrap_or(f64::NAN));
             }

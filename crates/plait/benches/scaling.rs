@@ -112,12 +112,9 @@ fn main() {
     for repeat in 0..=repeats {
         for s in 0..scenes.len() {
             for (v, column) in prepared.iter().enumerate() {
-                let report = column[s]
-                    .renderer
-                    .render()
-                    .unwrap_or_else(|e| panic!("{e}"));
+                let report = column[s].render().unwrap_or_else(|e| panic!("{e}"));
                 if repeat > 0 {
-                    times[v][s].push(report.total_gpu_ms.unwrap_or(f64::NAN));
+                    times[v][s].push(report.report.total_gpu_ms.unwrap_or(f64::NAN));
                 }
             }
         }
@@ -205,10 +202,10 @@ fn main() {
             let scene = scene_with(segments);
             let result = prepare(&gpu, &pipeline, &variants[0], &scene, size)
                 .map_err(|e| e.to_string())
-                .and_then(|p| p.renderer.render().map_err(|e| e.to_string()));
+                .and_then(|p| p.render().map_err(|e| e.to_string()));
             match result {
                 Ok(r) => {
-                    let ms = r.total_gpu_ms.unwrap_or(f64::NAN);
+                    let ms = r.report.total_gpu_ms.unwrap_or(f64::NAN);
                     println!("rendered {segments} segments: {ms:.0} ms");
                     if ms > max_ms {
                         println!("stopping: a frame took more than {:.0} s", max_ms / 1e3);

@@ -30,7 +30,6 @@ fn run(gpu: &Gpu, scene: &SceneData, sets: &[String], label: String) -> Run {
     let timed = || {
         let start = std::time::Instant::now();
         let report = prepared
-            .renderer
             .render()
             .unwrap_or_else(|e| fail(&format!("{label}: {e}")));
         (report, start.elapsed().as_secs_f64() * 1e3)
@@ -40,6 +39,7 @@ fn run(gpu: &Gpu, scene: &SceneData, sets: &[String], label: String) -> Run {
     let (report, first) = timed();
     let (_, second) = timed();
     let ms = report
+        .report
         .passes
         .iter()
         .find(|p| p.name == "ambient_occlusion")

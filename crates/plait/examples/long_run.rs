@@ -96,7 +96,6 @@ fn main() {
             .renderer
             .set_frame(&scene.frame(size, frame as u32));
         prepared
-            .renderer
             .render()
             .unwrap_or_else(|e| fail(&format!("frame {frame}: {e}")));
         let image = prepared

@@ -64,7 +64,7 @@ fn pass_ms(gpu: &Gpu, pipeline: &Path, scene: &SceneData, name: &str, frames: us
     let wall = |sets: &[String]| {
         let prepared =
             prepare(gpu, pipeline, sets, scene, (16, 16)).unwrap_or_else(|e| panic!("{e}"));
-        prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+        prepared.render().unwrap_or_else(|e| panic!("{e}"));
         let index = prepared
             .schedule()
             .passes
@@ -73,7 +73,7 @@ fn pass_ms(gpu: &Gpu, pipeline: &Path, scene: &SceneData, name: &str, frames: us
         let (mut gpu_ms, mut wall_ms) = (Vec::new(), Vec::new());
         for _ in 0..frames {
             let started = Instant::now();
-            let report = prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+            let report = prepared.render().unwrap_or_else(|e| panic!("{e}")).report;
             wall_ms.push(started.elapsed().as_secs_f64() * 1e3);
             if let Some(i) = index {
                 gpu_ms.push(report.passes[i].gpu_ms.unwrap_or(f64::NAN));

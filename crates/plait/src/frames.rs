@@ -76,22 +76,67 @@ impl SceneData {
     }
 }
 
+/// One frame rendered and checked: what the session's frame step hands a
+/// front end (`plait render`, `--frames`, `plait ab`, the probes, the viewer).
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// Per-pass times and every overflow counter as the frame left it.
+    pub report: FrameReport,
+    /// One line per bounded buffer the user capped that dropped data this
+    /// frame (a cap reports and the frame goes on; a drop nobody chose is an
+    /// error instead, [`crate::overflow::check_frame`]).
+    pub dropped: Vec<String>,
+    /// Level-of-detail notes of this frame's camera: strands or wisps left
+    /// out on purpose ([`crate::strand_lod::note`], [`crate::wisps::lod_note`]).
+    pub notes: Vec<String>,
+}
+
 impl Prepared<'_> {
+    /// The inputs of the next frames (camera, light, time, size).
+    pub fn set_frame(&mut self, frame: &FrameUniforms) {
+        self.renderer.set_frame(frame);
+        self.uniforms = *frame;
+    }
+
+    /// Render one frame with the inputs set last, then the checks every
+    /// frame owes: data dropped from a buffer nobody sized, or invocations
+    /// cut short, fail it ([`SessionError::Dropped`]); a user's cap that
+    /// dropped is in [`Frame::dropped`].
+    pub fn render(&self) -> Result<Frame, SessionError> {
+        let report = self.renderer.render()?;
+        let dropped = crate::overflow::check_frame(&report)?;
+        let schedule = self.schedule();
+        let mut notes: Vec<String> = crate::strand_lod::note(schedule, &self.uniforms)
+            .into_iter()
+            .collect();
+        if let Some(count) = self.wisp_count {
+            notes.extend(crate::wisps::lod_note(
+                &self.uniforms,
+                self.wisp_lod_fraction,
+                count,
+            ));
+        }
+        Ok(Frame {
+            report,
+            dropped,
+            notes,
+        })
+    }
+
     /// Render frame `index` of the scene's animation at `fps`: the hair
     /// follows the head (uploaded only when its pose changed), then the
-    /// frame's inputs are set and the frame rendered.
+    /// frame's inputs are set and the frame rendered and checked
+    /// ([`Prepared::render`]).
     pub fn render_frame(
         &mut self,
         scene: &SceneData,
         size: (u32, u32),
         index: u32,
         fps: f32,
-    ) -> Result<FrameReport, SessionError> {
+    ) -> Result<Frame, SessionError> {
         let frame = self.pose_frame(scene, size, index, fps)?;
-        self.renderer.set_frame(&frame);
-        let report = self.renderer.render()?;
-        crate::overflow::check_frame(&report)?;
-        Ok(report)
+        self.set_frame(&frame);
+        self.render()
     }
 
     /// Moves the hair to frame `index` (uploaded only when its pose
@@ -172,25 +217,25 @@ pub fn median_report(frames: &[FrameReport]) -> Option<FrameReport> {
     })
 }
 
-/// Renders frames `0..frames` at `fps`, handing each frame's index, report
-/// and image to `each` (which may stop the run with an error), and returns
-/// every frame's report.
+/// Renders frames `0..frames` at `fps`, handing each checked frame's index,
+/// frame and image to `each` (which may stop the run with an error), and
+/// returns every frame.
 pub fn render_sequence<E: From<SessionError>>(
     prepared: &mut Prepared,
     scene: &SceneData,
     size: (u32, u32),
     frames: u32,
     fps: f32,
-    mut each: impl FnMut(u32, &FrameReport, image::RgbaImage) -> Result<(), E>,
-) -> Result<Vec<FrameReport>, E> {
-    let mut reports = Vec::with_capacity(frames as usize);
+    mut each: impl FnMut(u32, &Frame, image::RgbaImage) -> Result<(), E>,
+) -> Result<Vec<Frame>, E> {
+    let mut rendered = Vec::with_capacity(frames as usize);
     for index in 0..frames {
-        let report = prepared.render_frame(scene, size, index, fps)?;
+        let frame = prepared.render_frame(scene, size, index, fps)?;
         let image = prepared.image().map_err(SessionError::from)?;
-        each(index, &report, image)?;
-        reports.push(report);
+        each(index, &frame, image)?;
+        rendered.push(frame);
     }
-    Ok(reports)
+    Ok(rendered)
 }
 
 #[cfg(test)]

@@ -156,8 +156,9 @@ fn fitting_values(schedule: &Schedule, limit: u64) -> (Vec<(String, i64)>, Vec<S
     (fits, notes)
 }
 
-/// The checks every front end runs after every frame (`plait render`,
-/// frames, `ab`, the probes, the viewer), so none forgets one: drops from
+/// The checks of the session's frame step ([`crate::frames::Frame`]), which
+/// every front end renders through (`plait render`, frames, `ab`, the
+/// probes, the viewer), so none forgets one: drops from
 /// buffers the user did not size and invocations cut short are an error (a
 /// later frame asking for more than the first); drops from a size the user
 /// capped are returned, one line each, for the front end to show.
@@ -165,19 +166,26 @@ pub fn check_frame(report: &FrameReport) -> Result<Vec<String>, SessionError> {
     check_complete(report)?;
     let short: Vec<Overflow> = growable_drops(report).cloned().collect();
     if short.is_empty() {
-        return Ok(report
-            .dropped()
-            .map(|o| {
-                format!(
-                    "dropped: {o} (a size set by --set or the pipeline file is a cap; left unset, it grows to hold everything)"
-                )
-            })
-            .collect());
+        return Ok(dropped_lines(report));
     }
     Err(SessionError::Dropped {
         message: "this frame asked for more than the first, which sized the buffer; set its size with the --set above".into(),
         overflow: short,
     })
+}
+
+/// One line per counter of `report` that dropped data, worded as every front
+/// end shows a user's cap (for a report that passed [`check_frame`], or a
+/// sequence's worst frame per counter, [`crate::frames::median_report`]).
+pub fn dropped_lines(report: &FrameReport) -> Vec<String> {
+    report
+        .dropped()
+        .map(|o| {
+            format!(
+                "dropped: {o} (a size set by --set or the pipeline file is a cap; left unset, it grows to hold everything)"
+            )
+        })
+        .collect()
 }
 
 /// A frame whose passes had invocations that could not finish: an error.

@@ -108,16 +108,15 @@ pub fn probe_visibility(
     size: (u32, u32),
     grid: &ProbeGrid,
 ) -> Result<Option<Probed>, SessionError> {
-    let Some((visibility, prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid)? else {
+    let Some((visibility, mut prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid)?
+    else {
         return Ok(None);
     };
     // Like with like: every provider and the reference read the texel the
     // point falls in (no Fig. 9 jitter, which is for shading), with the one
     // "in front of" convention of the frame (docs/design.md).
-    prepared
-        .renderer
-        .set_frame(&scene.frame(size, 0).with_light_jitter(false));
-    crate::overflow::check_frame(&prepared.renderer.render()?)?;
+    prepared.set_frame(&scene.frame(size, 0).with_light_jitter(false));
+    prepared.render()?;
     let values = read_probe(&prepared)?;
     Ok(Some(Probed { visibility, values }))
 }
@@ -152,8 +151,8 @@ pub fn probe_sequence(
     let mut values = Vec::with_capacity(frames as usize);
     for index in 0..frames {
         let frame = prepared.pose_frame(scene, size, index, fps)?;
-        prepared.renderer.set_frame(&frame.with_light_jitter(false));
-        crate::overflow::check_frame(&prepared.renderer.render()?)?;
+        prepared.set_frame(&frame.with_light_jitter(false));
+        prepared.render()?;
         values.push(read_probe(&prepared)?);
     }
     Ok(Some(ProbedSequence {

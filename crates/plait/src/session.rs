@@ -288,6 +288,14 @@ impl SceneData {
 }
 
 /// A pipeline built on a device for one scene, ready to render frames.
+///
+/// Front ends render through [`Prepared::render`] and
+/// [`Prepared::render_frame`] ([`crate::frames`]), which run the checks
+/// every frame owes (a bounded buffer that drops, invocations cut short) and
+/// return the frame's notes with its report, so none can forget them. The
+/// renderer stays reachable for what the session does not wrap (reading an
+/// intermediate resource, the benchmarks' encode-only timing, tests that
+/// look at one pass).
 pub struct Prepared<'g> {
     pub renderer: Renderer<'g>,
     /// Name of the resource images are read from (the first output).
@@ -301,11 +309,23 @@ pub struct Prepared<'g> {
     /// `geometry = "wisps"`: how many wisps were built (their level of
     /// detail draws a prefix of them, [`crate::wisps::kept_wisps`]).
     pub wisp_count: Option<usize>,
+    /// Their `wisp_lod_screen_fraction` ([`crate::wisps::lod_fraction`]).
+    pub(crate) wisp_lod_fraction: f32,
+    /// The frame inputs set last ([`Prepared::set_frame`]): a frame's
+    /// level-of-detail notes are about the camera it was rendered from.
+    pub(crate) uniforms: FrameUniforms,
 }
 
 impl Prepared<'_> {
     pub fn schedule(&self) -> &Schedule {
         self.renderer.schedule()
+    }
+
+    /// What the build adapted or chose for the adapter and scene (format
+    /// downgrades, values fitted to the scene, sizes lowered to fit), for
+    /// the front end to show once.
+    pub fn notes(&self) -> &[String] {
+        self.renderer.notes()
     }
 
     /// Read the output back as an 8-bit sRGB image.
@@ -443,10 +463,12 @@ pub fn build<'g>(
     );
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
     let mut wisp_count = None;
+    let mut wisp_lod_fraction = 0.0;
     if let Some((wisps, note)) = crate::wisps::build(&schedule, scene) {
         geometry.set_wisps(&gpu.device, &wisps);
         schedule.notes.push(note);
         wisp_count = Some(wisps.wisp_count);
+        wisp_lod_fraction = crate::wisps::lod_fraction(&schedule);
     }
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(gpu, schedule, &source.library, geometry, &frame, base_dir)?;
@@ -459,5 +481,7 @@ pub fn build<'g>(
         hair_pose,
         hair_follows_head: !hair_written,
         wisp_count,
+        wisp_lod_fraction,
+        uniforms: frame,
     })
 }

@@ -80,18 +80,10 @@ pub fn kept_wisps(frame: &plait_gpu::frame::FrameUniforms, fraction: f32, count:
     ((k * n).ceil().clamp(1.0, n) as usize).min(count)
 }
 
-/// "geometry wisps: m of n wisps drawn …" when the schedule draws wisps and
-/// their level of detail leaves some out at this frame's camera: wisps are
-/// left out on purpose, never silently.
-pub fn lod_note(
-    schedule: &Schedule,
-    frame: &plait_gpu::frame::FrameUniforms,
-    count: usize,
-) -> Option<String> {
-    if !chosen(schedule) {
-        return None;
-    }
-    let fraction = match schedule.params.get("wisp_lod_screen_fraction") {
+/// The schedule's `wisp_lod_screen_fraction` (its point's default when the
+/// pipeline leaves it), read once when the wisps are built, not per frame.
+pub fn lod_fraction(schedule: &Schedule) -> f32 {
+    match schedule.params.get("wisp_lod_screen_fraction") {
         Some(Value::Float(f)) => *f as f32,
         Some(Value::Int(i)) => *i as f32,
         _ => match plait_passes::points::default_on_search_path(
@@ -101,7 +93,17 @@ pub fn lod_note(
             Some(Value::Float(f)) => f as f32,
             _ => 0.0,
         },
-    };
+    }
+}
+
+/// "geometry wisps: m of n wisps drawn …" when their level of detail
+/// (`fraction`, [`lod_fraction`]) leaves some of the `count` built out at
+/// this frame's camera: wisps are left out on purpose, never silently.
+pub fn lod_note(
+    frame: &plait_gpu::frame::FrameUniforms,
+    fraction: f32,
+    count: usize,
+) -> Option<String> {
     let kept = kept_wisps(frame, fraction, count);
     if kept >= count {
         return None;

@@ -339,11 +339,11 @@ fn time_interleaved(
         .map(|p| Samples::new(p.schedule()))
         .collect();
     for ((v, p), s) in plan.variants.iter().zip(prepared).zip(&mut samples) {
-        let frame = p.renderer.render().map_err(|e| AbError::Render {
-            what: format!("{} on scene {} (warm-up)", v.label, scene.name),
-            source: e.into(),
-        })?;
-        s.add_overflow(&frame);
+        let frame = p.render().map_err(render_error(format!(
+            "{} on scene {} (warm-up)",
+            v.label, scene.name
+        )))?;
+        s.add_overflow(&frame.report);
         ticker.step(format!("{}: warm-up {}", scene.name, v.label))?;
     }
     // The reference is the truth the others are measured against: one
@@ -364,17 +364,13 @@ fn time_interleaved(
     for r in 0..repeats {
         for ((v, p), s) in plan.variants.iter().zip(prepared).zip(&mut samples) {
             let start = Instant::now();
-            let frame = p.renderer.render().map_err(|e| AbError::Render {
-                what: format!("{} on scene {} (repeat {})", v.label, scene.name, r + 1),
-                source: e.into(),
-            })?;
-            s.add(start.elapsed().as_secs_f64() * 1e3, &frame);
-            crate::overflow::check_frame(&frame).map_err(render_error(format!(
+            let frame = p.render().map_err(render_error(format!(
                 "{} on scene {} (repeat {})",
                 v.label,
                 scene.name,
                 r + 1
             )))?;
+            s.add(start.elapsed().as_secs_f64() * 1e3, &frame.report);
             ticker.step(format!(
                 "{}: repeat {}/{repeats} {}",
                 scene.name,
