@@ -72,6 +72,7 @@ fn scheduled_pass(
     ScheduledPass {
         name: format!("test_{type_name}"),
         type_name: type_name.into(),
+        type_id: None,
         shape,
         view: view.and_then(plait_graph::View::from_name),
         draw: None,

@@ -88,20 +88,18 @@ pub struct LinearOut<'a> {
     pub flag: &'a str,
 }
 
-/// Render `pipeline` on `scene` at `size`: load it (the texture `show`
+/// Render `source` on `scene` at `size`: load it (the texture `show`
 /// names checked there), read the scene, open the device, compile once with
 /// the adapter's capabilities and limits, build, render, read the first
 /// output (or `show`'s texture); with `linear`, also the float values of
 /// `show`'s texture or of the radiance (checked before the GPU opens).
 pub fn render(
-    pipeline: &Path,
-    sets: &[String],
+    mut source: PipelineSource,
     scene: &Scene,
     size: (u32, u32),
     show: Option<&str>,
     linear: Option<LinearOut>,
 ) -> Result<Rendered> {
-    let mut source = PipelineSource::new(pipeline, sets);
     if let Some(name) = show {
         source = source.with_output(name, &format!("--show {name}"));
     }
@@ -219,14 +217,17 @@ fn run_counted(args: RenderArgs) -> Result<()> {
         });
     }
     if !args.watch {
-        return render_once(&args);
+        let pipeline = resolve_pipeline(args.pipeline.as_deref());
+        return render_once(&args, PipelineSource::new(&pipeline, &args.set.sets));
     }
     let pipeline = resolve_pipeline(args.pipeline.as_deref());
     plait_view::watch::run_on_changes(
-        || plait::session::watched_files(&pipeline, &args.set.sets, args.scene.as_deref()),
         || {
+            // A new library value per change, read once: the render and the
+            // list of files to watch both come from it.
+            let source = PipelineSource::new(&pipeline, &args.set.sets);
             // An error is reported and the watch goes on: fixing the file renders again.
-            if let Err(e) = render_once(&args) {
+            if let Err(e) = render_once(&args, source.clone()) {
                 let text = crate::error_text(&e);
                 let prefix = if text.starts_with("error:") {
                     ""
@@ -235,26 +236,28 @@ fn run_counted(args: RenderArgs) -> Result<()> {
                 };
                 eprintln!("{prefix}{text}");
             }
+            plait::session::watched_files(&source, args.scene.as_deref())
         },
         |n| eprintln!("watching {n} files; save one to render again (Ctrl-C stops)"),
     )?;
     Ok(())
 }
 
-fn render_once(args: &RenderArgs) -> Result<()> {
+/// One render of `source` (the resolved pipeline, its `--set` flags and the
+/// library read for it) as `args` ask.
+fn render_once(args: &RenderArgs, source: PipelineSource) -> Result<()> {
     let out_path = args
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("plait.png"));
     let format = crate::output::image_format(&out_path, "--out")?;
     let out = PendingFile::create(&out_path, "--out")?;
-    let pipeline = resolve_pipeline(args.pipeline.as_deref());
+    let pipeline = source.path.clone();
     let scene = load_scene(args.scene.as_deref())?;
     let exr = format == image::ImageFormat::OpenExr;
     let flag = format!("--out {}", out_path.display());
     let r = render(
-        &pipeline,
-        &args.set.sets,
+        source,
         &scene,
         args.size,
         args.show.as_deref(),

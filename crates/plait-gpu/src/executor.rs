@@ -143,9 +143,13 @@ impl<'g> Renderer<'g> {
         let frame_bind_group = frame_group.bind(device, &frame_buffer, &background_view(gpu, None));
         let mut passes = Vec::with_capacity(schedule.passes.len());
         for pass in &schedule.passes {
-            let t = library.get(&pass.type_name).ok_or_else(|| GpuError::Pass {
+            // The type resolved at compile, by its handle.
+            let t = library.pass_type(pass).ok_or_else(|| GpuError::Pass {
                 pass: pass.name.clone(),
-                message: format!("no pass type `{}` in the library", pass.type_name),
+                message: format!(
+                    "pass type `{}` was not resolved against this library at compile",
+                    pass.type_name
+                ),
             })?;
             let mut ctx = BuildContext {
                 device,

@@ -21,6 +21,25 @@ pub struct ResourceId(usize);
 #[serde(transparent)]
 pub struct PhysicalId(usize);
 
+/// Index into the pass types of the [`crate::Registry`] a schedule was
+/// compiled with (the pass library's, in the same order): the pass type
+/// resolved once at compile, so build takes the type by this handle and
+/// never looks its name up again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(transparent)]
+pub struct PassTypeId(usize);
+
+impl PassTypeId {
+    /// The pass type at `index` of the registry's types.
+    pub const fn new(index: usize) -> Self {
+        PassTypeId(index)
+    }
+    /// Its position in the registry's (and the library's) types.
+    pub const fn index(self) -> usize {
+        self.0
+    }
+}
+
 impl ResourceId {
     /// The resource at `index` of [`Schedule::resources`].
     pub const fn new(index: usize) -> Self {
@@ -198,6 +217,10 @@ impl ChosenTechnique {
 pub struct ScheduledPass {
     pub name: String,
     pub type_name: String,
+    /// `type_name` resolved at compile; `None` only in a pass whose type is
+    /// unknown, which is a compile error (no schedule is built with one).
+    #[serde(skip)]
+    pub type_id: Option<PassTypeId>,
     pub shape: PassShape,
     /// Raster passes only.
     pub view: Option<View>,

@@ -204,9 +204,9 @@ impl<'g> Engine<'g> {
         }
     }
 
-    fn watch(&mut self) {
-        let files =
-            session::watched_files(&self.pipeline, &self.sets(), self.opts.scene.as_deref());
+    /// Watch what a build of `source` reads, listed from its library value.
+    fn watch(&mut self, source: &plait::source::PipelineSource) {
+        let files = session::watched_files(source, self.opts.scene.as_deref());
         if let Err(e) = self.watcher.set_files(&files) {
             eprintln!("{}", error_text(&e));
         }
@@ -215,12 +215,14 @@ impl<'g> Engine<'g> {
     fn rebuild(&mut self) {
         let started = Instant::now();
         let sets = self.sets();
-        self.watch();
+        // A new library value per change: the files as they are now, read
+        // once for the build and for the list of files to watch.
+        let source = plait::source::PipelineSource::new(&self.pipeline, &sets);
+        self.watch(&source);
         let Some(scene) = &self.scene else {
             return;
         };
         // One load and one compile per change, with the adapter's capabilities.
-        let source = plait::source::PipelineSource::new(&self.pipeline, &sets);
         let result = source
             .load(&[])
             .map_err(session::SessionError::from)

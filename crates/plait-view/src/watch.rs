@@ -133,19 +133,18 @@ impl FileWatcher {
     }
 }
 
-/// Run `action` now and again after every change to the files `files()`
-/// lists (asked again after each run, since an edit can change what is
-/// read), until the process is interrupted. `action` reports its own errors;
-/// `on_wait` is told how many files are being watched.
+/// Run `action` now and again after every change to the files it returns
+/// (what that run read: an edit can change what is read), until the process
+/// is interrupted. `action` reports its own errors; `on_wait` is told how
+/// many files are being watched.
 pub fn run_on_changes(
-    mut files: impl FnMut() -> Vec<PathBuf>,
-    mut action: impl FnMut(),
+    mut action: impl FnMut() -> Vec<PathBuf>,
     mut on_wait: impl FnMut(usize),
 ) -> Result<(), WatchError> {
     let mut watcher = FileWatcher::new()?;
     loop {
-        action();
-        watcher.set_files(&files())?;
+        let files = action();
+        watcher.set_files(&files)?;
         on_wait(watcher.files.len());
         while watcher.changes(Duration::from_secs(3600)).is_empty() {}
     }

@@ -87,17 +87,20 @@ pub fn resolve_scene(given: &Path) -> PathBuf {
     found.unwrap_or_else(|| given.to_path_buf())
 }
 
-/// The files on disk a render of `pipeline` reads, for watching them: the
+/// The files on disk a render of `source` reads, for watching them: the
 /// pipeline and every file it extends, the technique files, the shaders of
 /// its passes (files it names and the pass types' own), the shader library,
 /// the scene and the files the scene names. Best effort: a pipeline that does not load still
 /// yields itself and the files its errors point at. Built-in copies are left
-/// out (they cannot change). The library is read again for this: the files
-/// as they are now are the ones to watch.
-pub fn watched_files(pipeline: &Path, sets: &[String], scene: Option<&Path>) -> Vec<PathBuf> {
+/// out (they cannot change). The pass types and the shader library are those
+/// of `source`'s library, the value the render just used (the viewer and
+/// `render --watch` read a new one on every change): no second library is
+/// read to list them.
+pub fn watched_files(source: &crate::source::PipelineSource, scene: Option<&Path>) -> Vec<PathBuf> {
+    let pipeline = source.path.as_path();
+    let library = &source.library;
     let mut files = vec![pipeline.to_path_buf()];
-    let library = plait_passes::library_for(&[pipeline]);
-    match plait_graph::load(pipeline, sets) {
+    match plait_graph::load(pipeline, &source.sets) {
         Ok(loaded) => {
             files.extend(loaded.files.iter().cloned());
             for pass in loaded.passes.values() {

@@ -81,7 +81,7 @@ impl PassChecker for ShaderChecker<'_> {
 
     fn check_pass(&self, pass: &ScheduledPass, resources: &[ResolvedResource]) -> PassCheck {
         // An unknown type was reported by compile already.
-        let Some(t) = self.library.get(&pass.type_name) else {
+        let Some(t) = self.library.pass_type(pass) else {
             return PassCheck::default();
         };
         let shared: Vec<&str> = self

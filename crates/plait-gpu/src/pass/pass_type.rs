@@ -181,6 +181,16 @@ impl PassLibrary {
         self.types.get(name).map(|b| b.as_ref())
     }
 
+    /// The type a scheduled pass was resolved to at compile, by its handle
+    /// ([`plait_graph::PassTypeId`], an index into [`Self::registry`]'s
+    /// types, which are this library's in order): no lookup by name. `None`
+    /// for a pass whose type was unknown (a compile error) or a schedule
+    /// compiled with another library (the handle names another type).
+    pub fn pass_type(&self, pass: &ScheduledPass) -> Option<&dyn PassType> {
+        let (name, t) = self.types.get_index(pass.type_id?.index())?;
+        (*name == pass.type_name).then_some(t.as_ref())
+    }
+
     /// The specs for the graph crate's checks.
     pub fn registry(&self) -> plait_graph::Registry {
         let mut r = plait_graph::Registry::new();

@@ -44,7 +44,7 @@ pub fn problems(
     super::textures::resource_problems(schedule, support, &mut out);
     for pass in &schedule.passes {
         super::textures::usage_problems(pass, schedule, support, &mut out);
-        if let Some(t) = library.get(&pass.type_name) {
+        if let Some(t) = library.pass_type(pass) {
             pass_problems(t, pass, schedule, support, caps, &library.shaders, &mut out);
         }
     }

@@ -110,6 +110,10 @@ pub(super) fn resolve_pass(
     ScheduledPass {
         name: decl.name.clone(),
         type_name: decl.type_name.value.clone(),
+        type_id: registry
+            .types
+            .get_index_of(&decl.type_name.value)
+            .map(crate::schedule::PassTypeId::new),
         shape: spec.map_or(PassShape::Compute, |s| s.shape),
         // Their names were checked at load.
         view: decl.view.as_ref().and_then(|v| View::from_name(&v.value)),
