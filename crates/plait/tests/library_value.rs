@@ -66,3 +66,32 @@ fn a_build_composes_the_text_its_compile_read_and_a_new_library_reads_the_edit()
     };
     assert!(err.to_string().contains("compose.wgsl"), "{err}");
 }
+
+/// Pass types are resolved once, at compile, into a handle on each pass
+/// (issue 41 item 4): the library hands the build the type the handle names,
+/// and a handle that names another type (a schedule compiled with another
+/// library) is refused rather than looked up again by name.
+#[test]
+fn a_compiled_pass_carries_its_type_as_a_handle() {
+    let source = PipelineSource::new(&root().join("pipelines/occupancy.toml"), &[]);
+    let opts = plait_graph::CompileOptions::default();
+    let schedule = source.compile(&[], &opts).expect("compiles");
+    assert!(!schedule.passes.is_empty());
+    for pass in &schedule.passes {
+        let id = pass.type_id.expect("resolved at compile");
+        let (name, _) = source
+            .library
+            .types
+            .get_index(id.index())
+            .expect("in the library");
+        assert_eq!(*name, pass.type_name, "pass `{}`", pass.name);
+        assert!(source.library.pass_type(pass).is_some());
+    }
+    // Another type's handle: refused, not looked up again by name.
+    let mut pass = schedule.passes[0].clone();
+    let other = (0..source.library.types.len())
+        .find(|&i| source.library.types.get_index(i).map(|(n, _)| n) != Some(&pass.type_name))
+        .expect("a library of more than one type");
+    pass.type_id = Some(plait_graph::PassTypeId::new(other));
+    assert!(source.library.pass_type(&pass).is_none());
+}
