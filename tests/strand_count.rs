@@ -99,7 +99,7 @@ fn mean_counts(technique: &str, extra: &[String]) -> Vec<(f64, usize)> {
         .unwrap_or_else(|| panic!("{technique} has no self-shadow provider"));
     let frame = scene.frame(SIZE, 0);
     let inverse = glam::Mat4::from_cols_array_2d(&frame.light_inv_view_proj);
-    let mut sums = vec![(0.0, 0usize); LAYERS + 1];
+    let mut sums = [(0.0, 0usize); LAYERS + 1];
     for r in 0..grid.ray_count() as u32 {
         let uv = grid.ray_uv(r);
         for d in 0..grid.depths {
