@@ -108,7 +108,28 @@ pub fn probe_visibility(
     size: (u32, u32),
     grid: &ProbeGrid,
 ) -> Result<Option<Probed>, SessionError> {
-    let Some((visibility, mut prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid)?
+    probe_with(gpu, pipeline, sets, scene, size, grid, VISIBILITY_PROBE)
+}
+
+/// The built-in probe shader: the provider's `self_shadow(world)`.
+const VISIBILITY_PROBE: &str = "shaders/visibility_probe.wgsl";
+
+/// As [`probe_visibility`], with another probe shader: one of the same
+/// layout (`probe_out`, `probe_params`) evaluating something else of the
+/// provider at each probe point — e.g. its optional strand count
+/// (`tests/fixtures/strands_probe.wgsl`). `shader` is found like any shader
+/// a pipeline names (next to `pipeline`, at its checkout's root, on the
+/// library search path).
+pub fn probe_with(
+    gpu: &Gpu,
+    pipeline: &Path,
+    sets: &[String],
+    scene: &SceneData,
+    size: (u32, u32),
+    grid: &ProbeGrid,
+    shader: &str,
+) -> Result<Option<Probed>, SessionError> {
+    let Some((visibility, mut prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid, shader)?
     else {
         return Ok(None);
     };
@@ -144,7 +165,8 @@ pub fn probe_sequence(
     frames: u32,
     fps: f32,
 ) -> Result<Option<ProbedSequence>, SessionError> {
-    let Some((visibility, mut prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid)?
+    let Some((visibility, mut prepared)) =
+        build_probe(gpu, pipeline, sets, scene, size, grid, VISIBILITY_PROBE)?
     else {
         return Ok(None);
     };
@@ -178,6 +200,7 @@ fn build_probe<'g>(
     scene: &SceneData,
     size: (u32, u32),
     grid: &ProbeGrid,
+    shader: &str,
 ) -> Result<Option<(String, crate::session::Prepared<'g>)>, SessionError> {
     let opts = gpu_options(gpu, size);
     let library = plait_passes::library_for(&[pipeline]);
@@ -241,9 +264,8 @@ fn build_probe<'g>(
         .file_name()
         .and_then(|f| f.to_str())
         .unwrap_or("pipeline.toml");
-    // Found like any shader a pipeline names: next to it, at its checkout's
-    // root, or on the library search path (built-in copy last).
-    let shader = "shaders/visibility_probe.wgsl";
+    // `shader` is found like any shader a pipeline names: next to it, at its
+    // checkout's root, or on the library search path (built-in copy last).
     let mut text = String::new();
     let _ = write!(
         text,

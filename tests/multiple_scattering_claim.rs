@@ -1,0 +1,203 @@
+//! Issue 43's multiple-scattering claim against the path-traced reference
+//! (Mitsuba 3, Chiang et al. 2016's fibre, 16 scattering events): on blond
+//! hair Zinke et al. 2008's dual scattering is closer to the path tracer
+//! than single scattering (`none`), and the gap shrinks from blond to dark
+//! brown to black (multiple scattering matters less in dark hair). Karis
+//! 2016's wrap term is measured beside them.
+//!
+//! The measure is `scripts/mitsuba/hair_luminance.py`'s: the mean Rec. 709
+//! luminance of the linear radiance over the hair pixels (where `karis` or
+//! `dual_scattering` changes the `none` image), as a ratio to the path
+//! tracer's over the same pixels. Scenes: tests/scenes/ms_*.toml (one groom,
+//! three colours), 160×120, `pipelines/occupancy.toml` with
+//! `techniques.shading=chiang`; the reference `tests/fixtures/
+//! ms_path_traced.toml` (2 × 64 spp), cached by content key in the build
+//! folder (`plait::ab::default_cache`) as `plait ab` caches it — the first
+//! run renders it (Mitsuba installed by `scripts/ensure-mitsuba.sh`, which
+//! `scripts/test.sh` runs), later runs read it.
+//!
+//! The reference's own noise: `plait ab`'s estimate (half the two seeds'
+//! RMSE difference, linear radiance) is asserted under the file's bound,
+//! and the standard error it implies on a mean over the hair pixels is
+//! printed beside the bands it must stay under.
+
+use std::path::PathBuf;
+
+use plait::ab::{AbOptions, Plan, default_cache, render_references};
+use plait::session::prepare;
+use plait_tests::bands::{Row, band_failures};
+use plait_tests::{open_gpu, repo_root};
+
+const SIZE: (u32, u32) = (160, 120);
+const COLOURS: [&str; 3] = ["blond", "dark_brown", "black"];
+const METHODS: [&str; 3] = ["none", "karis", "dual_scattering"];
+
+/// Rec. 709 luminance of every pixel.
+fn luminance(image: &image::Rgba32FImage) -> Vec<f64> {
+    image
+        .pixels()
+        .map(|p| 0.2126 * p.0[0] as f64 + 0.7152 * p.0[1] as f64 + 0.0722 * p.0[2] as f64)
+        .collect()
+}
+
+/// Per colour: the path tracer's noise RMSE, its mean hair luminance, the
+/// hair pixel count, and each method's mean hair luminance over it.
+struct Measured {
+    noise_rmse: f64,
+    reference: f64,
+    pixels: usize,
+    ratios: [f64; 3],
+}
+
+fn measure() -> Vec<Measured> {
+    let root = repo_root();
+    let mut options = AbOptions::new(
+        vec![root.join("pipelines/occupancy.toml")],
+        root.join("tests/fixtures/ms_path_traced.toml"),
+    );
+    options.scenes = COLOURS
+        .iter()
+        .map(|c| root.join(format!("tests/scenes/ms_{c}.toml")))
+        .collect::<Vec<PathBuf>>();
+    options.sets = vec!["techniques.shading=chiang".to_owned()];
+    options.size = SIZE;
+    options.repeats = 1;
+    let mut plan = Plan::new(options).unwrap_or_else(|e| panic!("the plan: {e}"));
+    render_references(&mut plan, &default_cache(), &mut |line| {
+        eprintln!("{line}");
+        Ok(())
+    })
+    .unwrap_or_else(|e| panic!("the path-traced references: {e}"));
+    let (_lock, gpu) = open_gpu();
+    let pipeline = root.join("pipelines/occupancy.toml");
+    plan.scenes
+        .iter()
+        .zip(&plan.path_traced_images)
+        .map(|(scene, reference)| {
+            let images: Vec<Vec<f64>> = METHODS
+                .iter()
+                .map(|m| {
+                    let sets = [
+                        "techniques.shading=chiang".to_owned(),
+                        format!("techniques.multiple_scattering={m}"),
+                    ];
+                    let prepared = prepare(&gpu, &pipeline, &sets, &scene.data, SIZE)
+                        .unwrap_or_else(|e| panic!("{m} on {}: {e}", scene.name));
+                    prepared.renderer.render().expect("renders");
+                    luminance(&prepared.radiance().expect("reads the radiance"))
+                })
+                .collect();
+            let (none, karis, dual) = (&images[0], &images[1], &images[2]);
+            let hair: Vec<usize> = (0..none.len())
+                .filter(|&i| (dual[i] - none[i]).abs() > 1e-5 || (karis[i] - none[i]).abs() > 1e-5)
+                .collect();
+            assert!(
+                hair.len() > 1000,
+                "{}: {} hair pixels",
+                scene.name,
+                hair.len()
+            );
+            let mean = |l: &[f64]| hair.iter().map(|&i| l[i]).sum::<f64>() / hair.len() as f64;
+            let reference_mean = mean(&luminance(&reference.linear));
+            Measured {
+                noise_rmse: reference.noise_rmse,
+                reference: reference_mean,
+                pixels: hair.len(),
+                ratios: std::array::from_fn(|k| mean(&images[k]) / reference_mean),
+            }
+        })
+        .collect()
+}
+
+/// The claim, and every method's ratio in a band per colour that admits no
+/// other method's value (`plait_tests::bands`).
+#[test]
+fn dual_scattering_is_closer_than_single_scattering_on_blond_and_the_gap_shrinks() {
+    let start = std::time::Instant::now();
+    let measured = measure();
+    let mut report = Vec::new();
+    let mut failures = Vec::new();
+    let mut gaps = Vec::new();
+    for ((colour, m), rows) in COLOURS.iter().zip(&measured).zip(BANDS) {
+        // The noise RMSE is over the whole image; all of it in the hair
+        // pixels makes their RMSE noise · √(pixels / hair), and the mean of
+        // N = hair independent pixels errs by that / √N.
+        let all = (SIZE.0 * SIZE.1) as f64;
+        let standard_error = m.noise_rmse * all.sqrt() / m.pixels as f64 / m.reference;
+        let [none, karis, dual] = m.ratios;
+        let gap = (none - 1.0).abs() - (dual - 1.0).abs();
+        gaps.push(gap);
+        report.push(format!(
+            "{colour}: {} hair pixels, path tracer mean luminance {:.5} (noise RMSE {:.4}, \
+             standard error of the mean ≤ {standard_error:.4} of it); luminance ÷ path tracer: \
+             none {none:.3}, karis {karis:.3}, dual_scattering {dual:.3}; \
+             |none − 1| − |dual − 1| = {gap:.3}",
+            m.pixels, m.reference, m.noise_rmse
+        ));
+        if m.noise_rmse > NOISE_BOUND {
+            failures.push(format!(
+                "{colour}: noise RMSE {:.4} > {NOISE_BOUND}",
+                m.noise_rmse
+            ));
+        }
+        failures.extend(band_failures(colour, &rows, &m.ratios));
+    }
+    if gaps[0] < BLOND_MARGIN {
+        failures.push(format!(
+            "blond: dual scattering closer than single scattering by {:.3} of the path tracer's luminance, asserted ≥ {BLOND_MARGIN}",
+            gaps[0]
+        ));
+    }
+    if !(gaps[0] > gaps[1] && gaps[1] > gaps[2]) {
+        failures.push(format!(
+            "the gap does not shrink blond → dark brown → black: {gaps:.3?}"
+        ));
+    }
+    report.push(format!("{:.1} s", start.elapsed().as_secs_f64()));
+    println!("{}", report.join("\n"));
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The bound on the reference's noise RMSE (linear radiance, `plait ab`'s
+/// two-seed estimate): the largest measured, blond's 0.0389 (dark brown
+/// 0.0279, black 0.0107), × 1.5 — the file's `max_noise_rmse`, which
+/// `plait ab` enforces too. The standard error it bounds on a mean over
+/// the 4647 hair pixels (all the noise in them) is ≤ 0.0044 of the path
+/// tracer's (blond; dark brown 0.0040, black 0.0028): the bands are ± 0.02,
+/// black's none/dual pair ± 0.0063 (2.3 standard errors) — a bound for
+/// another Mitsuba build; this one's seeded reference is the same image on
+/// every run.
+const NOISE_BOUND: f64 = 0.06;
+
+/// The blond gap |none − 1| − |dual − 1| asserted: the measured 0.218
+/// (dark brown 0.158, black 0.019) / 1.25.
+const BLOND_MARGIN: f64 = 0.174;
+
+/// Per colour (blond, dark brown, black), each method's mean hair luminance
+/// ÷ the path tracer's, measured on lavapipe with this test (Mitsuba 3 as
+/// scripts/ensure-mitsuba.sh pins it, LLVM 19), and its band: ± a third of
+/// the way to the nearest other method's value, at most ± 0.02
+/// (4.5 times the bound on the mean's standard error; lavapipe and the
+/// seeded reference are deterministic).
+/// Dual scattering undershoots the path tracer on every colour (0.63 on
+/// blond), Karis's wrap term lands nearest in mean luminance (1.05) with
+/// no error bound; on black even `none` is 0.78: the path tracer's light
+/// from the lit ground and head onto the hair, which no real-time method
+/// here models (issue 47's residual), not multiple scattering in the hair.
+const BANDS: [[Row; 3]; 3] = [
+    [
+        ("none", 0.4131, (0.3931, 0.4331)),
+        ("karis", 1.053, (1.033, 1.073)),
+        ("dual_scattering", 0.6308, (0.6108, 0.6508)),
+    ],
+    [
+        ("none", 0.4945, (0.4745, 0.5145)),
+        ("karis", 0.9493, (0.9293, 0.9693)),
+        ("dual_scattering", 0.6525, (0.6325, 0.6725)),
+    ],
+    [
+        ("none", 0.7836, (0.7773, 0.7899)),
+        ("karis", 1.036, (1.016, 1.056)),
+        ("dual_scattering", 0.8027, (0.7964, 0.8090)),
+    ],
+];
