@@ -232,7 +232,9 @@ pub fn check_golden(stem: &str, actual: &RgbaImage, no_hair: &RgbaImage) -> Resu
 
 /// The driver `tests/golden/<stem>.driver` says the golden was made on.
 pub fn recorded_driver(stem: &str) -> Option<String> {
-    let path = repo_root().join("tests/golden").join(format!("{stem}.driver"));
+    let path = repo_root()
+        .join("tests/golden")
+        .join(format!("{stem}.driver"));
     let text = std::fs::read_to_string(path).ok()?;
     Some(text.trim().to_string()).filter(|t| !t.is_empty())
 }

@@ -347,7 +347,10 @@ fn environment_sums_past_the_loop_budget_fail_the_frame() {
     assert_eq!((sh, direct), (0, 0), "the defaults fit the budget");
     check.expect("a complete frame passes");
     // Measured (Mesa 22.3's lavapipe cuts, Mesa 25's does not).
-    let cuts = gpu.loop_budget().expect("the loop-budget probe runs").is_some();
+    let cuts = gpu
+        .loop_budget()
+        .expect("the loop-budget probe runs")
+        .is_some();
 
     let (sh, direct, check) = incomplete(&["params.sh_bands=14"]);
     eprintln!("14 bands: {sh} sh_project threads cut, {direct} direct");

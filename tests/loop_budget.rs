@@ -63,7 +63,10 @@ fn a_list_past_the_loop_budget_fails_the_frame() {
     let budget = gpu.loop_budget().expect("the loop-budget probe runs");
     eprintln!("driver's loop budget: {budget:?}");
     if budget.is_some() {
-        assert!(count > 0, "a driver with a loop budget cannot walk 40,000 fragments");
+        assert!(
+            count > 0,
+            "a driver with a loop budget cannot walk 40,000 fragments"
+        );
         let e = plait::overflow::check_frame(&cut)
             .expect_err("a frame with unresolved pixels fails")
             .to_string();
