@@ -1,7 +1,7 @@
 //! Helpers shared by plait's cross-crate tests (`tests/*.rs`).
 
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, MutexGuard};
+use std::sync::{Mutex, MutexGuard, OnceLock};
 
 pub mod bands;
 pub mod golden_images;
@@ -18,9 +18,31 @@ pub fn open_gpu() -> (MutexGuard<'static, ()>, plait_gpu::Gpu) {
         .lock()
         .unwrap_or_else(|poisoned| poisoned.into_inner());
     match plait_gpu::Gpu::new() {
-        Ok(gpu) => (guard, gpu),
+        Ok(gpu) => {
+            let _ = DRIVER.set(describe_driver(&gpu));
+            (guard, gpu)
+        }
         Err(e) => panic!("GPU tests need an adapter and none could be opened: {e}"),
     }
+}
+
+static DRIVER: OnceLock<String> = OnceLock::new();
+
+/// The driver and its version, as a golden records the one it was made on
+/// (`llvmpipe, Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)`): two Mesa releases
+/// rasterize the same lines a little differently, so a golden failing on
+/// another driver than its own must say so.
+pub fn describe_driver(gpu: &plait_gpu::Gpu) -> String {
+    format!("{}, {}", gpu.info.driver, gpu.info.driver_info)
+}
+
+/// The driver this test binary renders with: the one [`open_gpu`] opened, or,
+/// for a binary that opens its GPU another way, the adapter [`plait_gpu::Gpu::new`] picks.
+pub fn driver() -> &'static str {
+    DRIVER.get_or_init(|| match plait_gpu::Gpu::new() {
+        Ok(gpu) => describe_driver(&gpu),
+        Err(e) => format!("no adapter ({e})"),
+    })
 }
 
 /// The rgba32float textures `targets` of the fixture pipeline

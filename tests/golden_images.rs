@@ -24,11 +24,13 @@
 //! pipeline bit for bit the same frame after frame (`tests/determinism.rs`);
 //! the only slack needed is for 1/255 roundings of colours summed in another
 //! order. Another driver rasterizes lines differently and fails these
-//! goldens: on it, look at the difference images and re-bless.
+//! goldens: on it, look at the difference images and re-bless. So each
+//! golden records the driver it was made on (`<stem>.driver`, written when it
+//! is blessed), and a failure on another driver names both.
 
 use image::RgbaImage;
 
-use crate::{bless, rel, repo_root};
+use crate::{bless, driver, rel, repo_root};
 
 /// Per-pixel difference: the largest absolute difference over R, G, B, A.
 pub fn pixel_diff(a: &image::Rgba<u8>, b: &image::Rgba<u8>) -> u8 {
@@ -182,7 +184,10 @@ pub fn check_golden(stem: &str, actual: &RgbaImage, no_hair: &RgbaImage) -> Resu
         actual
             .save(&golden_path)
             .map_err(|e| format!("writing {}: {e}", golden_path.display()))?;
-        eprintln!("blessed {}", rel(&golden_path));
+        let driver_path = dir.join(format!("{stem}.driver"));
+        std::fs::write(&driver_path, format!("{}\n", driver()))
+            .map_err(|e| format!("writing {}: {e}", driver_path.display()))?;
+        eprintln!("blessed {} (on {})", rel(&golden_path), driver());
         return Ok(());
     }
     let save_actual = || {
@@ -217,11 +222,39 @@ pub fn check_golden(stem: &str, actual: &RgbaImage, no_hair: &RgbaImage) -> Resu
     let actual_written = save_actual();
     let _ = c.difference.save(&diff_path);
     Err(format!(
-        "{stem}: render differs from {}: {}; see {actual_written} and {}",
+        "{stem}: render differs from {}: {}; see {actual_written} and {}{}",
         rel(&golden_path),
         c.summary(),
-        rel(&diff_path)
+        rel(&diff_path),
+        driver_note(recorded_driver(stem).as_deref(), driver())
     ))
+}
+
+/// The driver `tests/golden/<stem>.driver` says the golden was made on.
+pub fn recorded_driver(stem: &str) -> Option<String> {
+    let path = repo_root()
+        .join("tests/golden")
+        .join(format!("{stem}.driver"));
+    let text = std::fs::read_to_string(path).ok()?;
+    Some(text.trim().to_string()).filter(|t| !t.is_empty())
+}
+
+/// What a failed comparison adds about drivers: nothing when the golden was
+/// made on this run's driver; otherwise both, so a driver change is named
+/// rather than read as a change of the technique.
+pub fn driver_note(recorded: Option<&str>, current: &str) -> String {
+    match recorded {
+        Some(r) if r == current => String::new(),
+        Some(r) => format!(
+            ". The golden was made on `{r}`; this run renders on `{current}`: another driver \
+             rasterizes lines a little differently. Look at the difference image; if only the \
+             driver moved it, re-bless on the driver CI installs (scripts/ensure-vulkan.sh)"
+        ),
+        None => format!(
+            ". No driver is recorded for this golden (its .driver file is missing); this run \
+             renders on `{current}`"
+        ),
+    }
 }
 
 /// The hair-less image of a golden scene: rendered, held to its own golden

@@ -15,7 +15,7 @@ use image::RgbaImage;
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
 use plait_tests::golden_images::{
-    MAX_HAIR_MEAN, check_golden, check_no_hair, compare, load_golden,
+    MAX_HAIR_MEAN, check_golden, check_no_hair, compare, driver_note, load_golden, recorded_driver,
 };
 use plait_tests::{open_gpu, pipeline_files, rel, repo_root, strands_subset};
 
@@ -310,4 +310,37 @@ fn goldens_tell_every_technique_apart() {
         println!("closest pair, {margin:.1}× the limit: {line}");
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every committed golden records the driver it was made on, and a failure on
+/// another driver names both (CPU only): without the record, moving CI to a
+/// new Mesa would read as every technique changing at once.
+#[test]
+fn every_golden_records_the_driver_it_was_made_on() {
+    let dir = repo_root().join("tests/golden");
+    let goldens = plait_tests::files_with_ext(&dir, "png");
+    let goldens: Vec<_> = goldens
+        .iter()
+        .filter_map(|p| p.file_stem()?.to_str())
+        .filter(|s| !s.ends_with(".actual") && !s.ends_with(".difference"))
+        .collect();
+    assert!(goldens.len() > 20, "found only {} goldens", goldens.len());
+    let missing: Vec<_> = goldens
+        .iter()
+        .filter(|s| recorded_driver(s).is_none())
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "goldens without a tests/golden/<stem>.driver: {missing:?}"
+    );
+
+    let old = "llvmpipe, Mesa 22.3.6 (LLVM 15.0.6)";
+    let new = "llvmpipe, Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)";
+    assert_eq!(driver_note(Some(new), new), "");
+    let note = driver_note(Some(old), new);
+    assert!(
+        note.contains(old) && note.contains(new),
+        "the note must name both drivers: {note}"
+    );
+    assert!(driver_note(None, new).contains(new));
 }

@@ -48,7 +48,8 @@ fn incomplete(report: &FrameReport) -> u64 {
 
 /// 3,000 fragments a pixel resolve (the heap keeps the nearest 256 in
 /// ~2 laps a fragment); 40,000 are past the budget in the walk alone, and
-/// the frame fails naming the pass. A driver without the limit resolves both.
+/// the frame fails naming the pass. A driver without the limit (the probe,
+/// `Gpu::loop_budget`, finds none on Mesa 25's lavapipe) resolves both.
 #[test]
 fn a_list_past_the_loop_budget_fails_the_frame() {
     let (_lock, gpu) = open_gpu();
@@ -59,8 +60,13 @@ fn a_list_past_the_loop_budget_fails_the_frame() {
     let cut = resolve(&gpu, &stacked(40_000));
     let count = incomplete(&cut);
     eprintln!("40,000 fragments a pixel: {count} pixels unresolved");
-    if gpu.info.name.contains("llvmpipe") {
-        assert!(count > 0, "lavapipe cannot walk 40,000 fragments");
+    let budget = gpu.loop_budget().expect("the loop-budget probe runs");
+    eprintln!("driver's loop budget: {budget:?}");
+    if budget.is_some() {
+        assert!(
+            count > 0,
+            "a driver with a loop budget cannot walk 40,000 fragments"
+        );
         let e = plait::overflow::check_frame(&cut)
             .expect_err("a frame with unresolved pixels fails")
             .to_string();
@@ -70,5 +76,23 @@ fn a_list_past_the_loop_budget_fails_the_frame() {
         );
     } else {
         assert_eq!(count, 0);
+    }
+}
+
+/// The probe the loop-budget tests branch on: a driver that cuts loops cuts
+/// the probe's near lavapipe's 65,535 laps (one loop, so the group's whole
+/// budget); one that does not runs all of them. A probe that reported a cut
+/// where there is none, or none where there is one, would send the tests
+/// above down the wrong branch — where their frame's own count disagrees.
+#[test]
+fn the_loop_budget_probe_measures_the_drivers_budget() {
+    let (_lock, gpu) = open_gpu();
+    let budget = gpu.loop_budget().expect("the probe runs");
+    eprintln!("{}: loop budget {budget:?}", plait_tests::driver());
+    if let Some(laps) = budget {
+        assert!(
+            (60_000..plait_gpu::loop_budget::PROBE_LAPS).contains(&laps),
+            "a cut near lavapipe's 65,535 laps, got {laps}"
+        );
     }
 }

@@ -195,6 +195,14 @@ impl Gpu {
         &self.info.name
     }
 
+    /// The laps a group of invocations may run before the driver ends its
+    /// loops (`Some(65_535)`-ish on Mesa 22's lavapipe), or `None` when a
+    /// loop of [`crate::loop_budget::PROBE_LAPS`] ran whole: measured by one
+    /// dispatch each call ([`crate::loop_budget::probe`]).
+    pub fn loop_budget(&self) -> Result<Option<u32>, GpuError> {
+        crate::loop_budget::probe(&self.device, &self.queue)
+    }
+
     /// `vulkan`, `gl`, …
     pub fn backend_name(&self) -> String {
         self.info.backend.to_str().to_owned()

@@ -10,6 +10,7 @@ pub mod executor;
 pub mod frame;
 pub mod geometry;
 pub mod library;
+pub mod loop_budget;
 pub mod modules;
 pub mod overflow;
 pub mod pass;
