@@ -13,6 +13,17 @@ integrates), the first camera hit's BSDF times the directional emitter:
   OUT_PREFIX_fibre_shadowed.exr, OUT_PREFIX_fibre_unshadowed.exr
                              the same with the hair BSDF given the strand's
                              own axis (see below)
+  OUT_PREFIX_haverage_shadowed.exr, OUT_PREFIX_haverage_unshadowed.exr
+                             at each hair hit the BSDF averaged over the
+                             fibre's width (h uniform in [−1, 1]) about the
+                             curve's tangent: what plait's shading point
+                             computes (shaders/lib/chiang.wgsl)
+  OUT_PREFIX_plait_tangent_shadowed.exr, …_plait_tangent_unshadowed.exr
+                             the same about plait's shading tangent (its
+                             vertex tangents, central differences of the
+                             points, interpolated along the segment): the
+                             difference to haverage is issue 47's top/bottom
+                             residual (scripts/mitsuba/tangent_check.sh)
   OUT_PREFIX_coverage.exr    the fraction of each pixel's rays whose first
                              hit is a fibre (as render.py --coverage)
 Why the fibre images: at a `linearcurve` hit Mitsuba 3.9.1 leaves dp_du zero
@@ -179,13 +190,13 @@ def main():
         write(image(mi, np, val, si.is_valid(), w, h, n, bg), name)
         val = bsdf.eval(ctx, fibre, fibre.sh_frame.to_local(ds.d)) * em
         write(image(mi, np, val, si.is_valid(), w, h, n, bg), "fibre_" + name)
-        # plait's shading point: the same fibre's BSDF averaged over h.
-        val = dr.select(hair, h_average(bsdf, ctx, t, -ray.d, ds.d, si), val) * em
-        write(image(mi, np, val, si.is_valid(), w, h, n, bg), "haverage_" + name)
-        # ... and about plait's interpolated vertex tangent instead.
-        val = bsdf.eval(ctx, fibre, fibre.sh_frame.to_local(ds.d))
-        val = dr.select(hair, h_average(bsdf, ctx, plait_t, -ray.d, ds.d, si), val) * em
-        write(image(mi, np, val, si.is_valid(), w, h, n, bg), "plait_tangent_" + name)
+        # plait's shading point: the same fibre's BSDF averaged over h, about
+        # the curve's tangent, then about plait's interpolated vertex
+        # tangent (the head and the ground as in Mitsuba's own image).
+        own = bsdf.eval(ctx, si, si.to_local(ds.d))
+        for tangent, prefix in ((t, "haverage_"), (plait_t, "plait_tangent_")):
+            val = dr.select(hair, h_average(bsdf, ctx, tangent, -ray.d, ds.d, si), own) * em
+            write(image(mi, np, val, si.is_valid(), w, h, n, bg), prefix + name)
 
 
 if __name__ == "__main__":
