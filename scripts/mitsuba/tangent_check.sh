@@ -8,7 +8,9 @@
 # colour and segment count: mean hair light and the top/middle/bottom thirds
 # of the hair mask (Mitsuba's coverage >= 0.9), and the split by
 # direct_probe.py: plait ÷ Mitsuba's BSDF about plait's own shading tangent,
-# and that ÷ the same BSDF about the B-spline's tangent (Mitsuba's).
+# and that ÷ the same BSDF about the B-spline's tangent (Mitsuba's); and
+# Mitsuba with the strands as Catmull-Rom pieces (scripts/mitsuba/
+# catmull_rom.py: tangents at the points = plait's) ÷ Mitsuba.
 # plait uses transparency=linked_list here (exact per-pixel sort, as depth
 # peeling; 9 s a render instead of minutes): on blond at 24 segments,
 # unshadowed (self_shadow=none), depth_peeling ÷ linked_list is 0.997 / 0.995 /
@@ -41,6 +43,10 @@ for segments in 24 96; do
         "$py" "$root/scripts/mitsuba/render.py" "$out/$name" "$out/${name}_mitsuba_d2.exr" \
             --spp "$spp" --max-depth 2 --seed 0 --coverage "$out/${name}_mask.exr"
         "$py" "$root/scripts/mitsuba/direct_probe.py" "$out/$name" "$out/${name}_probe" --spp "$spp" >/dev/null
+        # The same points as Catmull-Rom pieces (knot tangents = plait's).
+        "$py" "$root/scripts/mitsuba/catmull_rom.py" "$out/$name" "$out/${name}_cr" >/dev/null
+        "$py" "$root/scripts/mitsuba/render.py" "$out/${name}_cr" "$out/${name}_cr_mitsuba_d2.exr" \
+            --spp "$spp" --max-depth 2 --seed 0
         "$plait" render "$root/pipelines/reference.toml" --scene "$out/$name.toml" --size 160x120 \
             --set techniques.shading=chiang --set params.shadow_opaque=1 \
             --set techniques.transparency=linked_list --out "$out/${name}_plait.exr" >/dev/null 2>"$out/plait.err"
