@@ -10,7 +10,9 @@
 # direct_probe.py: plait ÷ Mitsuba's BSDF about plait's own shading tangent,
 # and that ÷ the same BSDF about the B-spline's tangent (Mitsuba's); and
 # Mitsuba with the strands as Catmull-Rom pieces (scripts/mitsuba/
-# catmull_rom.py: tangents at the points = plait's) ÷ Mitsuba.
+# catmull_rom.py: tangents at the points = plait's) ÷ Mitsuba; and plait
+# given the export's B-spline sampled 4 times a segment (resample_curve.py:
+# the curve Mitsuba draws) ÷ Mitsuba.
 # plait uses transparency=linked_list here (exact per-pixel sort, as depth
 # peeling; 9 s a render instead of minutes): on blond at 24 segments,
 # unshadowed (self_shadow=none), depth_peeling ÷ linked_list is 0.997 / 0.995 /
@@ -50,6 +52,11 @@ for segments in 24 96; do
         "$plait" render "$root/pipelines/reference.toml" --scene "$out/$name.toml" --size 160x120 \
             --set techniques.shading=chiang --set params.shadow_opaque=1 \
             --set techniques.transparency=linked_list --out "$out/${name}_plait.exr" >/dev/null 2>"$out/plait.err"
+        # plait on the curve Mitsuba draws: the export's B-spline, 4 points a segment.
+        "$py" "$root/scripts/mitsuba/resample_curve.py" "$out/$name" "$out/$name.toml" "$out/${name}_x4" 4
+        "$plait" render "$root/pipelines/reference.toml" --scene "$out/${name}_x4.toml" --size 160x120 \
+            --set techniques.shading=chiang --set params.shadow_opaque=1 \
+            --set techniques.transparency=linked_list --out "$out/${name}_x4_plait.exr" >/dev/null 2>"$out/plait.err"
         "$plait" render "$root/pipelines/reference.toml" --scene "$out/$name.toml" --size 160x120 \
             --set techniques.shading=chiang --set techniques.self_shadow=none \
             --set techniques.transparency=linked_list --out "$out/${name}_plait_unshadowed.exr" >/dev/null 2>"$out/plait.err"

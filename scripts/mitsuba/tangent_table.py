@@ -19,6 +19,9 @@ Per colour and segment count, over the hair mask (Mitsuba's hair coverage
                               Mitsuba d2 ÷ Mitsuba unshadowed
   Catmull-Rom / B-spline      Mitsuba d2 with the strands as Catmull-Rom
                               pieces (catmull_rom.py) ÷ as the B-spline
+  plait on B-spline x4 / Mitsuba  plait shadow_opaque=1 on the export's
+                              B-spline sampled 4 times a segment
+                              (resample_curve.py) ÷ Mitsuba d2
 The four factors multiply to about the first column (ratios of means over a
 region do not multiply exactly).
 """
@@ -48,7 +51,7 @@ def cells(m, num, den):
 def main():
     d = sys.argv[1]
     print("colour segments | plait / Mitsuba d2 | plait / BSDF@plait tangent | BSDF@plait / BSDF@spline"
-          " | h-average / hit h | shadow plait / Mitsuba | Catmull-Rom / B-spline   (mean (top / mid / bottom third))")
+          " | h-average / hit h | shadow plait / Mitsuba | Catmull-Rom / B-spline | plait on B-spline x4 / Mitsuba   (mean (top / mid / bottom third))")
     for segments in (24, 96):
         for c in ("blond", "dark_brown", "black"):
             n = f"{c}_{segments}"
@@ -62,7 +65,8 @@ def main():
             # The shadow factor as a ratio of region means, like the others.
             sh = cells(m, pl * hit, pu * mt)
             print(f"{c} {segments} ({m.sum()} px) | {cells(m, pl, mt)} | {cells(m, pu, pt)} | {cells(m, pt, sp)}"
-                  f" | {cells(m, sp, hit)} | {sh} | {cells(m, lum(d, f'{n}_cr_mitsuba_d2.exr'), mt)}")
+                  f" | {cells(m, sp, hit)} | {sh} | {cells(m, lum(d, f'{n}_cr_mitsuba_d2.exr'), mt)}"
+                  f" | {cells(m, lum(d, f'{n}_x4_plait.exr'), mt)}")
 
 
 if __name__ == "__main__":
