@@ -13,6 +13,17 @@ integrates), the first camera hit's BSDF times the directional emitter:
   OUT_PREFIX_fibre_shadowed.exr, OUT_PREFIX_fibre_unshadowed.exr
                              the same with the hair BSDF given the strand's
                              own axis (see below)
+  OUT_PREFIX_haverage_shadowed.exr, OUT_PREFIX_haverage_unshadowed.exr
+                             at each hair hit the BSDF averaged over the
+                             fibre's width (h uniform in [−1, 1]) about the
+                             curve's tangent: what plait's shading point
+                             computes (shaders/lib/chiang.wgsl)
+  OUT_PREFIX_plait_tangent_shadowed.exr, …_plait_tangent_unshadowed.exr
+                             the same about plait's shading tangent (its
+                             vertex tangents, central differences of the
+                             points, interpolated along the segment): the
+                             difference to haverage is issue 47's top/bottom
+                             residual (scripts/mitsuba/tangent_check.sh)
   OUT_PREFIX_coverage.exr    the fraction of each pixel's rays whose first
                              hit is a fibre (as render.py --coverage)
 Why the fibre images: at a `linearcurve` hit Mitsuba 3.9.1 leaves dp_du zero
@@ -56,6 +67,20 @@ def bspline(path):
     return np.concatenate([np.stack([c[j:j + 4] for j in range(len(c) - 3)]) for c in strands(path)])
 
 
+def polyline_tangents(path):
+    """Per segment (bspline()'s order): plait's unit vertex tangents at its two
+    ends (crates/plait-hair/src/strands.rs: central differences of the points,
+    one-sided at a strand's ends; segments x 2 x 3). The points are where the
+    B-spline passes at its knots, (C[i] + 4 C[i+1] + C[i+2]) / 6."""
+    out = []
+    for c in strands(path):
+        p = (c[:-2, :3] + 4 * c[1:-1, :3] + c[2:, :3]) / 6
+        t = np.concatenate([p[1:2] - p[:1], p[2:] - p[:-2], p[-1:] - p[-2:-1]])
+        t /= np.maximum(np.linalg.norm(t, axis=1), 1e-30)[:, None]
+        out.append(np.stack([t[:-1], t[1:]], axis=1))
+    return np.concatenate(out)
+
+
 BASIS = lambda t: np.stack([(1 - t) ** 3, 3 * t**3 - 6 * t**2 + 4, -3 * t**3 + 3 * t**2 + 3 * t + 1, t**3], -1) / 6
 DBASIS = lambda t: np.stack([-(1 - t) ** 2, 3 * t**2 - 4 * t, -3 * t**2 + 2 * t + 1, t**2], -1) / 2
 
@@ -77,6 +102,28 @@ def image(mi, np, val, valid, w, h, n, bg):
     rgb = (rgb if rgb.shape[-1] == 3 else rgb.T).reshape(h, w, n, 3).mean(axis=2)
     miss = 1.0 - np.array(mi.Float(dr.select(valid, 1.0, 0.0))).reshape(h, w, n).mean(axis=2)
     return rgb + miss[..., None] * bg
+
+
+def h_average(bsdf, ctx, t, to_eye, to_light, si, samples=32):
+    """The hair BSDF at each hit averaged over the fibre's width, as plait's
+    shading point is (shaders/lib/chiang.wgsl: h = sin γ uniform in [−1, 1]):
+    the eye and the light keep their angles to the tangent t and their
+    relative azimuth φ about it; Mitsuba's hair frame has the tangent as
+    local y and h = sin of the eye's azimuth from local z."""
+    sin_e, sin_l = dr.dot(to_eye, t), dr.dot(to_light, t)
+    e_perp = dr.normalize(to_eye - t * sin_e)
+    l_perp = dr.normalize(to_light - t * sin_l)
+    phi = dr.atan2(dr.dot(dr.cross(e_perp, l_perp), t), dr.dot(e_perp, l_perp))
+    cos_e, cos_l = dr.safe_sqrt(1 - sin_e * sin_e), dr.safe_sqrt(1 - sin_l * sin_l)
+    local = mi.SurfaceInteraction3f(si)
+    local.sh_frame = mi.Frame3f(mi.Vector3f(1, 0, 0), mi.Vector3f(0, 1, 0), mi.Vector3f(0, 0, 1))
+    acc = mi.Color3f(0.0)
+    for k in range(samples):
+        g = float(np.arcsin((k + 0.5) / samples * 2.0 - 1.0))
+        local.wi = mi.Vector3f(cos_e * np.sin(g), sin_e, cos_e * np.cos(g))
+        wo = mi.Vector3f(cos_l * dr.sin(g + phi), sin_l, cos_l * dr.cos(g + phi))
+        acc += bsdf.eval(ctx, local, wo)
+    return acc / samples
 
 
 def main():
@@ -113,6 +160,12 @@ def main():
     tan = np.einsum("nk,nkc->nc", DBASIS(tl), seg[k][..., :3])
     tan /= np.maximum(np.linalg.norm(tan, axis=1), 1e-30)[:, None]
     t = mi.Vector3f(*[mi.Float(tan[:, i]) for i in range(3)])
+    # plait's shading tangent at the same place: its vertex tangents
+    # interpolated along the segment (the line's varying), normalized.
+    ends = polyline_tangents(os.path.join(a.scene_dir, "hair_0.txt"))[k]
+    ptan = ends[:, 0] * (1 - tl)[:, None] + ends[:, 1] * tl[:, None]
+    ptan /= np.maximum(np.linalg.norm(ptan, axis=1), 1e-30)[:, None]
+    plait_t = mi.Vector3f(*[mi.Float(ptan[:, i]) for i in range(3)])
     nrm = dr.normalize(si.n - t * dr.dot(si.n, t))
     fibre = mi.SurfaceInteraction3f(si)
     fibre.sh_frame = dr.select(hair, mi.Frame3f(dr.cross(t, nrm), t, nrm), si.sh_frame)
@@ -137,6 +190,13 @@ def main():
         write(image(mi, np, val, si.is_valid(), w, h, n, bg), name)
         val = bsdf.eval(ctx, fibre, fibre.sh_frame.to_local(ds.d)) * em
         write(image(mi, np, val, si.is_valid(), w, h, n, bg), "fibre_" + name)
+        # plait's shading point: the same fibre's BSDF averaged over h, about
+        # the curve's tangent, then about plait's interpolated vertex
+        # tangent (the head and the ground as in Mitsuba's own image).
+        own = bsdf.eval(ctx, si, si.to_local(ds.d))
+        for tangent, prefix in ((t, "haverage_"), (plait_t, "plait_tangent_")):
+            val = dr.select(hair, h_average(bsdf, ctx, tangent, -ray.d, ds.d, si), own) * em
+            write(image(mi, np, val, si.is_valid(), w, h, n, bg), prefix + name)
 
 
 if __name__ == "__main__":
