@@ -21,8 +21,12 @@ profile="${PLAIT_WEB_PROFILE:-dev}"
 bindgen="$(bash "$root/scripts/ensure-wasm.sh")"
 dir=$([ "$profile" = dev ] && echo debug || echo "$profile")
 echo "plait: building the engine for wasm32 ($profile)" >&2
+# plait-passes in one codegen unit: its pass types register themselves
+# (`inventory`), and wasm-ld drops an object file nothing else references
+# with its registration (data_only.rs's `fullscreen`, `raster`, `compute`).
 cargo build --manifest-path "$root/Cargo.toml" -p plait-web --lib --locked \
-    --target wasm32-unknown-unknown --profile "$profile" >&2
+    --target wasm32-unknown-unknown --profile "$profile" \
+    --config "profile.$profile.package.plait-passes.codegen-units=1" >&2
 mkdir -p "$out"
 "$bindgen" --target web --no-typescript --out-dir "$out" \
     "$target/wasm32-unknown-unknown/$dir/plait_web.wasm"
