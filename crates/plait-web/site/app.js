@@ -5,7 +5,10 @@
 //
 // A test drives the page through its URL: `?test=a.toml,b.toml&size=96x72`
 // renders each pipeline once and POSTs the frames (or errors) to /result on
-// the server that served the page.
+// the server that served the page. `?screenshot` keeps a request to /hold
+// open until the first frame is drawn, then asks /release: headless
+// Chromium's virtual time waits for open requests, so its --screenshot shows
+// the frame (scripts/web-screenshot.py serves both).
 import init, { open, gallery } from './plait_web.js';
 
 const $ = (id) => document.getElementById(id);
@@ -120,6 +123,7 @@ async function test(names, width, height) {
 
 async function main() {
   const query = new URLSearchParams(location.search);
+  if (query.has('screenshot')) fetch('/hold');
   if (!navigator.gpu) throw new Error('this browser has no WebGPU (navigator.gpu): the pictures in the book are static renders');
   await init();
   engine = await open();
@@ -136,6 +140,7 @@ async function main() {
   select.onchange = () => { state.pipeline = select.value; state.sets = {}; render(); };
   orbitWithMouse();
   await render();
+  if (query.has('screenshot')) await fetch('/release');
 }
 
 main().catch(async (e) => {
