@@ -10,8 +10,13 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/ensure-vulkan.sh
 # Xvfb for the `plait view` test (a window on a virtual display).
 bash scripts/ensure-xvfb.sh
-# Headless Chromium for the book's browser check (crates/plait-cli/tests/book.rs).
+# Headless Chromium for the book's browser check (crates/plait-cli/tests/book.rs)
+# and the live page's test (tests/web.rs, WebGPU on SwiftShader).
 bash scripts/ensure-chromium.sh
+# The web build's tools for the browser test (tests/web.rs): Rust's wasm32
+# target and wasm-bindgen's CLI at Cargo.lock's version, cached in the build
+# folder.
+bash scripts/ensure-wasm.sh >/dev/null
 # Mitsuba 3 (pinned, in the build folder) for the path-traced reference's
 # tests (crates/plait-cli/tests/mitsuba_cli.rs); its exports are for callers
 # that render, not needed here.

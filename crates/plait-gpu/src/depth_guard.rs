@@ -20,8 +20,12 @@ use naga::{
     Type, TypeInner, VectorSize,
 };
 
-/// Group 1 binding of the depth texture the in-shader test reads.
-pub const GUARD_BINDING: u32 = 1000;
+/// Group 1 binding of the depth texture the in-shader test reads: far above
+/// any binding a pass author writes, and below WebGPU's (and wgpu's GL)
+/// `maxBindingsPerBindGroup` of 1000 — binding numbers must be less than it,
+/// and these adapters are the ones without an early depth test that need
+/// the guard (1000 was refused in a browser).
+pub const GUARD_BINDING: u32 = 999;
 
 /// How a pass's storage writes are kept to fragments that pass its depth test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -65,21 +65,24 @@ pub struct Gpu {
 impl Gpu {
     /// Open the best adapter: Vulkan first (lavapipe on CI), then GL; `WGPU_BACKEND` overrides.
     pub fn new() -> Result<Gpu, GpuError> {
-        pollster::block_on(Self::new_async(&[]))
+        Self::new_without_features(&[])
     }
 
     /// [`Gpu::new`] pretending the adapter lacks the named optional features
     /// (as `PLAIT_DISABLE_FEATURES` does): how tests reach the fallbacks.
     pub fn new_without_features(names: &[&str]) -> Result<Gpu, GpuError> {
-        pollster::block_on(Self::new_async(names))
+        crate::wait::wait_for(Self::new_async(names)).map_err(GpuError::Device)?
     }
 
-    async fn new_async(disabled: &[&str]) -> Result<Gpu, GpuError> {
+    /// [`Gpu::new_without_features`], awaited: how a browser opens its
+    /// WebGPU adapter (it cannot block).
+    pub async fn new_async(disabled: &[&str]) -> Result<Gpu, GpuError> {
         // Vulkan first (lavapipe on CI); GL (llvmpipe) only when Vulkan has no
         // adapter, since probing EGL prints noise on headless machines.
-        // WGPU_BACKEND picks one explicitly.
+        // WGPU_BACKEND picks one explicitly. In a browser: its WebGPU.
         let explicit = wgpu::Backends::from_env();
         let tries = match explicit {
+            _ if cfg!(target_arch = "wasm32") => vec![wgpu::Backends::BROWSER_WEBGPU],
             Some(b) => vec![b],
             None => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
         };
@@ -144,7 +147,14 @@ impl Gpu {
                 }
             }
         }
-        let limits = adapter.limits();
+        // A page asks for WebGPU's default limits, not its adapter's: what
+        // runs there then runs in every reader's browser, and what does not
+        // is refused by the same check as on a weak native adapter.
+        let limits = if cfg!(target_arch = "wasm32") {
+            wgpu::Limits::default()
+        } else {
+            adapter.limits()
+        };
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("plait"),

@@ -13,7 +13,7 @@ use crate::pass::{
     BuildContext, FrameSamplers, PassLibrary, PreparedPass, RecordContext, frame_layout,
 };
 use crate::pool::ResourcePool;
-use crate::readback::{TexelData, map_buffer, read_texture};
+use crate::readback::{TexelData, map_buffer, map_buffer_async, read_texture_async};
 use crate::{Gpu, GpuError};
 
 /// GPU time of one pass.
@@ -122,9 +122,9 @@ impl<'g> Renderer<'g> {
                 unsupported,
             ))));
         }
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let pool = ResourcePool::new(device, &schedule, &geometry);
-        if let Some(e) = pollster::block_on(scope.pop()) {
+        let (pool, scoped) =
+            crate::wait::validated(device, || ResourcePool::new(device, &schedule, &geometry));
+        if let Some(e) = scoped {
             return Err(GpuError::Resource {
                 resource: "memory plan".into(),
                 message: crate::describe_wgpu_error(&e),
@@ -310,18 +310,42 @@ impl<'g> Renderer<'g> {
 
     /// Render one frame and wait for it; per-pass GPU times when the adapter has timestamps.
     pub fn render(&self) -> Result<FrameReport, GpuError> {
+        crate::wait::wait_for(self.render_async()).map_err(GpuError::Device)?
+    }
+
+    /// Render one frame and await it: [`Renderer::render`] in a browser,
+    /// where the GPU's results arrive through the page's event loop.
+    pub async fn render_async(&self) -> Result<FrameReport, GpuError> {
         let device = &self.gpu.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let first_frame = self.first_frame();
         let skipped = |i: usize| self.schedule.passes[i].run_once && !first_frame;
         self.gpu.queue.submit([self.encode()]);
         self.gpu.wait()?;
-        if let Some(e) = pollster::block_on(scope.pop()) {
+        if let Some(e) = scope.pop().await {
             return Err(GpuError::Validation {
                 pass: self.schedule.name.clone(),
                 message: crate::describe_wgpu_error(&e),
             });
         }
+        // The timestamps' and counters' readbacks come before the check of
+        // errors raised outside a scope: in a browser those arrive with them.
+        let mut times: Option<Vec<u64>> = None;
+        if let Some(ts) = &self.timestamps {
+            let bytes = map_buffer_async(device, &ts.readback)
+                .await
+                .map_err(|message| GpuError::Readback {
+                    resource: "timestamps".into(),
+                    message,
+                })?;
+            times = Some(
+                bytes
+                    .chunks_exact(8)
+                    .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+                    .collect(),
+            );
+        }
+        let overflow = self.overflow.read(device, &self.schedule).await?;
         if let Some(message) = self.gpu.take_uncaptured_errors().into_iter().next() {
             return Err(GpuError::Validation {
                 pass: self.schedule.name.clone(),
@@ -333,19 +357,6 @@ impl<'g> Renderer<'g> {
                 pass: self.schedule.passes[i].name.clone(),
                 message,
             })?;
-        }
-        let mut times: Option<Vec<u64>> = None;
-        if let Some(ts) = &self.timestamps {
-            let bytes = map_buffer(device, &ts.readback).map_err(|message| GpuError::Readback {
-                resource: "timestamps".into(),
-                message,
-            })?;
-            times = Some(
-                bytes
-                    .chunks_exact(8)
-                    .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-                    .collect(),
-            );
         }
         let ms = |a: u64, b: u64, period: f32| b.saturating_sub(a) as f64 * period as f64 / 1e6;
         let period = self.timestamps.as_ref().map(|t| t.period_ns).unwrap_or(1.0);
@@ -376,7 +387,7 @@ impl<'g> Renderer<'g> {
         Ok(FrameReport {
             passes,
             total_gpu_ms,
-            overflow: self.overflow.read(device, &self.schedule)?,
+            overflow,
         })
     }
 
@@ -408,6 +419,16 @@ impl<'g> Renderer<'g> {
 
     /// Read a texture resource back (layer 0; multisampled textures cannot be read).
     pub fn read_resource(&self, name: &str) -> Result<TexelData, GpuError> {
+        crate::wait::wait_for(self.read_resource_async(name)).map_err(|message| {
+            GpuError::Readback {
+                resource: name.into(),
+                message,
+            }
+        })?
+    }
+
+    /// [`Renderer::read_resource`], awaited (in a browser).
+    pub async fn read_resource_async(&self, name: &str) -> Result<TexelData, GpuError> {
         let id = self
             .schedule
             .resource(name)
@@ -434,7 +455,7 @@ impl<'g> Renderer<'g> {
             resource: name.into(),
             message: "not a texture".into(),
         })?;
-        read_texture(&self.gpu.device, &self.gpu.queue, texture, format, name)
+        read_texture_async(&self.gpu.device, &self.gpu.queue, texture, format, name).await
     }
 
     /// Read a buffer resource back as bytes.

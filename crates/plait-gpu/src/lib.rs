@@ -19,6 +19,7 @@ pub mod readback;
 pub mod reflect;
 pub mod shader;
 pub mod support;
+pub mod wait;
 
 pub use device::{Capabilities, Gpu, NO_ADAPTER_HELP};
 pub use executor::{FrameReport, PassTiming, Renderer};

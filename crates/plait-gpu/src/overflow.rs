@@ -14,7 +14,7 @@ use plait_graph::{OverflowCounter, Schedule};
 
 use crate::GpuError;
 use crate::pool::ResourcePool;
-use crate::readback::map_buffer;
+use crate::readback::map_buffer_async;
 
 /// What one overflow counter read after a frame.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -111,44 +111,49 @@ impl OverflowReadback {
 
     /// Every counter as the last frame left it (a counter whose writer is a
     /// `run = "once"` pass keeps the first frame's count).
-    pub(crate) fn read(
+    pub(crate) async fn read(
         &self,
         device: &wgpu::Device,
         schedule: &Schedule,
     ) -> Result<Vec<Overflow>, GpuError> {
-        self.entries
-            .iter()
-            .map(|e| {
-                let bytes =
-                    map_buffer(device, &e.staging).map_err(|message| GpuError::Readback {
-                        resource: e.counter.counter_name.clone(),
-                        message,
-                    })?;
-                let word = |i: u32| {
-                    let at = i as usize * 4;
-                    bytes
-                        .get(at..at + 4)
-                        .map_or(0, |w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as u64)
-                };
-                let c = &e.counter;
-                let needed = c.needed_word.map_or(0, word);
-                Ok(Overflow {
-                    pass: schedule.passes[e.first].name.clone(),
-                    counter: c.counter_name.clone(),
-                    of: c.of.clone(),
-                    dropped: c.dropped_word.map_or(0, word),
-                    needed,
-                    capacity: c.capacity(),
-                    param: c.param.clone(),
-                    value: c.value,
-                    per: c.per,
-                    value_needed: c.value_for(needed),
-                    incomplete: c.incomplete_word.map_or(0, word),
-                    last_pass: schedule.passes[e.writer].name.clone(),
-                    grows: c.grows,
-                })
-            })
-            .collect()
+        let mut read = Vec::with_capacity(self.entries.len());
+        for e in &self.entries {
+            let bytes = map_buffer_async(device, &e.staging)
+                .await
+                .map_err(|message| GpuError::Readback {
+                    resource: e.counter.counter_name.clone(),
+                    message,
+                })?;
+            read.push(Self::counted(e, &bytes, schedule));
+        }
+        Ok(read)
+    }
+
+    /// What counter `e` holds in `bytes` (its staging copy).
+    fn counted(e: &Entry, bytes: &[u8], schedule: &Schedule) -> Overflow {
+        let word = |i: u32| {
+            let at = i as usize * 4;
+            bytes
+                .get(at..at + 4)
+                .map_or(0, |w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as u64)
+        };
+        let c = &e.counter;
+        let needed = c.needed_word.map_or(0, word);
+        Overflow {
+            pass: schedule.passes[e.first].name.clone(),
+            counter: c.counter_name.clone(),
+            of: c.of.clone(),
+            dropped: c.dropped_word.map_or(0, word),
+            needed,
+            capacity: c.capacity(),
+            param: c.param.clone(),
+            value: c.value,
+            per: c.per,
+            value_needed: c.value_for(needed),
+            incomplete: c.incomplete_word.map_or(0, word),
+            last_pass: schedule.passes[e.writer].name.clone(),
+            grows: c.grows,
+        }
     }
 }
 

@@ -13,8 +13,26 @@ pub struct TexelData {
     pub bytes: Vec<u8>,
 }
 
-/// Read layer 0 of a single-sampled texture.
+/// Read layer 0 of a single-sampled texture, waiting for it (a browser
+/// cannot block: it awaits [`read_texture_async`], see [`crate::wait`]).
 pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    format: Format,
+    name: &str,
+) -> Result<TexelData, GpuError> {
+    crate::wait::wait_for(read_texture_async(device, queue, texture, format, name)).map_err(
+        |message| GpuError::Readback {
+            resource: name.to_owned(),
+            message,
+        },
+    )?
+}
+
+/// Read layer 0 of a single-sampled texture: the one readback of a frame's
+/// image, native and in the browser.
+pub async fn read_texture_async(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     texture: &wgpu::Texture,
@@ -56,10 +74,12 @@ pub fn read_texture(
         },
     );
     queue.submit([encoder.finish()]);
-    let bytes = map_buffer(device, &buffer).map_err(|message| GpuError::Readback {
-        resource: name.to_owned(),
-        message,
-    })?;
+    let bytes = map_buffer_async(device, &buffer)
+        .await
+        .map_err(|message| GpuError::Readback {
+            resource: name.to_owned(),
+            message,
+        })?;
     let mut out = Vec::with_capacity((unpadded * height) as usize);
     for row in bytes.chunks(padded as usize) {
         out.extend_from_slice(&row[..unpadded as usize]);
@@ -72,24 +92,77 @@ pub fn read_texture(
     })
 }
 
-/// Map a MAP_READ buffer and copy its contents out.
+/// Map a MAP_READ buffer and copy its contents out, waiting for the GPU (a
+/// browser cannot: there this fails, see [`crate::wait`]).
 pub fn map_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, String> {
-    let (tx, rx) = std::sync::mpsc::channel();
-    buffer.map_async(wgpu::MapMode::Read, .., move |r| {
-        let _ = tx.send(r);
-    });
+    crate::wait::wait_for(map_buffer_async(device, buffer))?
+}
+
+/// Map a MAP_READ buffer and copy its contents out: the one place plait
+/// waits for the GPU's results. Native code polls the device until the
+/// mapping is done; in a browser the mapping completes from the page's event
+/// loop, so the future yields to it.
+pub async fn map_buffer_async(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<u8>, String> {
+    let (done, mapped) = oneshot();
+    buffer.map_async(wgpu::MapMode::Read, .., move |r| done.send(r));
+    #[cfg(not(target_arch = "wasm32"))]
     device
         .poll(wgpu::PollType::wait_indefinitely())
         .map_err(|e| e.to_string())?;
-    rx.recv()
-        .map_err(|e| e.to_string())?
-        .map_err(|e| e.to_string())?;
+    #[cfg(target_arch = "wasm32")]
+    let _ = device;
+    mapped.await.map_err(|e| e.to_string())?;
     let data = buffer
         .get_mapped_range(..)
         .map_err(|e| e.to_string())?
         .to_vec();
     buffer.unmap();
     Ok(data)
+}
+
+/// A value sent once from a callback, awaited (no executor needed: the
+/// sender wakes whoever polled).
+fn oneshot<T>() -> (Sender<T>, Receiver<T>) {
+    let slot = std::sync::Arc::new(std::sync::Mutex::new(Slot {
+        value: None,
+        waker: None,
+    }));
+    (Sender(slot.clone()), Receiver(slot))
+}
+
+struct Slot<T> {
+    value: Option<T>,
+    waker: Option<std::task::Waker>,
+}
+
+struct Sender<T>(std::sync::Arc<std::sync::Mutex<Slot<T>>>);
+struct Receiver<T>(std::sync::Arc<std::sync::Mutex<Slot<T>>>);
+
+impl<T> Sender<T> {
+    fn send(self, value: T) {
+        let mut slot = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        slot.value = Some(value);
+        if let Some(w) = slot.waker.take() {
+            w.wake();
+        }
+    }
+}
+
+impl<T> std::future::Future for Receiver<T> {
+    type Output = T;
+    fn poll(self: std::pin::Pin<&mut Self>, cx: &mut std::task::Context<'_>) -> std::task::Poll<T> {
+        let mut slot = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        match slot.value.take() {
+            Some(v) => std::task::Poll::Ready(v),
+            None => {
+                slot.waker = Some(cx.waker().clone());
+                std::task::Poll::Pending
+            }
+        }
+    }
 }
 
 fn linear_to_srgb(x: f32) -> u8 {

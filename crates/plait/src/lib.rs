@@ -20,12 +20,14 @@ pub use plait_graph as graph;
 pub use plait_hair as hair;
 pub use plait_passes as passes;
 
+#[cfg(not(target_arch = "wasm32"))]
 pub mod ab;
 pub mod adapter;
 pub mod frames;
 pub mod linear;
 pub mod mitsuba;
 pub mod overflow;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod probe;
 pub mod scene_fit;
 pub mod session;

@@ -149,9 +149,8 @@ pub fn build_draw(
         }
     }
     // Everything below is checked by wgpu; its errors name this pass.
-    let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let result = build_inner(draw, pass, ctx);
-    let scoped = pollster::block_on(scope.pop());
+    let device = ctx.device;
+    let (result, scoped) = crate::wait::validated(device, || build_inner(draw, pass, ctx));
     let built = result?;
     if let Some(e) = scoped {
         return Err(GpuError::Validation {

@@ -84,7 +84,13 @@ impl fmt::Display for Unsupported {
         for p in &self.problems {
             write!(f, "\nerror: {p}")?;
         }
-        if self.backend != wgpu::Backend::Vulkan {
+        // In a browser there is no driver to install: the page's WebGPU is
+        // the adapter.
+        let driver_help = !matches!(
+            self.backend,
+            wgpu::Backend::Vulkan | wgpu::Backend::BrowserWebGpu
+        );
+        if driver_help {
             write!(
                 f,
                 "\nhelp: install Mesa's Vulkan driver, which plait opens before {}: `apt-get install -y {VULKAN_PACKAGE}`",
@@ -97,11 +103,7 @@ impl fmt::Display for Unsupported {
                 )?;
             }
         }
-        let or = if self.backend != wgpu::Backend::Vulkan {
-            "or "
-        } else {
-            ""
-        };
+        let or = if driver_help { "or " } else { "" };
         match &self.suggestion {
             Some(sets) if !sets.is_empty() => {
                 let flags: Vec<String> = sets.iter().map(|s| format!("--set {s}")).collect();
