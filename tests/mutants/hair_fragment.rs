@@ -78,3 +78,74 @@ fn the_fragment_alpha_is_the_strand_alpha_times_the_material_alpha_at_most_one()
     );
     assert_eq!(past_one, 0, "strands of alpha 1.6 vs 1: {past_one}/255");
 }
+
+/// Wisps (the strand texture, 32², 120 wisps) on the small scene with the
+/// specular off, at 96×72: shaded per fragment, and in strand space with a
+/// shading point per strand point (17), which `shade_hair` scales by the
+/// strand texture's colour where the per-fragment path puts it into the
+/// albedo: the two agree on every term linear in the albedo, here all of
+/// them. Returns the RMSE of the colour channels over the hair pixels (0–1)
+/// and how many pixels that is.
+fn wisps_strand_space_against_fragment(gpu: &Gpu) -> (f64, usize) {
+    let path = repo_root().join("examples/scenes/small.toml");
+    let mut scene = SceneData::load(Some(&path)).expect("the small scene loads");
+    scene.scene.material.specular = 0.0;
+    let mut bare = SceneData::load(Some(&path)).expect("the small scene loads");
+    bare.scene.material.specular = 0.0;
+    bare.strands = plait_tests::hair_taken_away(&bare.strands);
+    bare.guides = plait_hair::guides::Guides::default();
+    let wisps = [
+        "techniques.geometry=wisps",
+        "params.wisp_texture_size=32",
+        "params.wisp_count=120",
+    ];
+    let render = |scene: &SceneData, extra: &[&str]| {
+        let pipeline = repo_root().join("pipelines/occupancy.toml");
+        let sets: Vec<String> = wisps.iter().chain(extra).map(|s| s.to_string()).collect();
+        let prepared = prepare(gpu, &pipeline, &sets, scene, (96, 72)).expect("prepares");
+        prepared.renderer.render().expect("renders");
+        prepared.image().expect("reads back")
+    };
+    let fragment = render(&scene, &[]);
+    let strand = render(
+        &scene,
+        &[
+            "techniques.shading_space=strand",
+            "params.shading_points=17",
+        ],
+    );
+    let no_hair = render(&bare, &[]);
+    let (mut sum, mut n) = (0.0, 0usize);
+    for ((a, b), o) in fragment.pixels().zip(strand.pixels()).zip(no_hair.pixels()) {
+        let differs = |p: &image::Rgba<u8>| (0..3).any(|c| p.0[c].abs_diff(o.0[c]) > 2);
+        if differs(a) || differs(b) {
+            for c in 0..3 {
+                let d = (a.0[c] as f64 - b.0[c] as f64) / 255.0;
+                sum += d * d;
+            }
+            n += 1;
+        }
+    }
+    ((sum / (3 * n.max(1)) as f64).sqrt(), n)
+}
+
+/// Twice the RMSE measured on lavapipe (0.00303 over 1837 hair pixels;
+/// the `/ texel.rgb` mutant measures 0.01347).
+const WISP_MARGIN: f64 = 0.006;
+
+/// Wisps shaded in strand space (every strand point a shading point, no
+/// specular) stay within an RMSE of WISP_MARGIN of per-fragment shading over
+/// the hair pixels. Kills, in `shaders/lib/hair_fragment.wgsl`,
+/// `shaded.rgb * texel.rgb` → `/` (the strand texture's colour divides the
+/// strand-space radiance: the gallery's wisps never run in strand space).
+#[test]
+fn wisps_in_strand_space_match_fragment_shading_without_specular() {
+    let (_lock, gpu) = open_gpu();
+    let (rmse, pixels) = wisps_strand_space_against_fragment(&gpu);
+    eprintln!("wisps, strand space against per fragment: RMSE {rmse:.5} over {pixels} hair pixels");
+    assert!(pixels > 500, "only {pixels} hair pixels");
+    assert!(
+        rmse <= WISP_MARGIN,
+        "wisps in strand space are {rmse:.5} from per-fragment shading, above {WISP_MARGIN}"
+    );
+}

@@ -5,6 +5,7 @@
 
 mod chiang;
 mod cylinders;
+mod dual_scattering;
 mod exact;
 mod hair_fragment;
 mod kajiya_kay;
