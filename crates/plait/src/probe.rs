@@ -129,7 +129,8 @@ pub fn probe_with(
     grid: &ProbeGrid,
     shader: &str,
 ) -> Result<Option<Probed>, SessionError> {
-    let Some((visibility, mut prepared)) = build_probe(gpu, pipeline, sets, scene, size, grid, shader)?
+    let Some((visibility, mut prepared)) =
+        build_probe(gpu, pipeline, sets, scene, size, grid, shader)?
     else {
         return Ok(None);
     };
