@@ -471,18 +471,14 @@ fn probe_all(
     }
     let grid = ProbeGrid::through_hair(&scene.data, (16, 16), 48);
     let probe = |v: &VariantPlan| {
-        probe_visibility(
-            gpu,
-            &v.pipeline,
-            &v.sets,
-            &scene.data,
-            plan.options.size,
-            &grid,
-        )
-        .map_err(render_error(format!(
-            "probing the self-shadowing of {} on scene {}",
-            v.label, scene.name
-        )))
+        // The run's one library: the probe reads none of its own.
+        let source = PipelineSource::with_library(&v.pipeline, &v.sets, plan.library.clone());
+        probe_visibility(gpu, &source, &scene.data, plan.options.size, &grid).map_err(render_error(
+            format!(
+                "probing the self-shadowing of {} on scene {}",
+                v.label, scene.name
+            ),
+        ))
     };
     let reference = probe(&plan.variants[plan.reference_index()])?;
     let mut visibilities = Vec::new();
