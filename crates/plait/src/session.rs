@@ -467,11 +467,11 @@ pub fn build<'g>(
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
     let mut wisp_count = None;
     let mut wisp_lod_fraction = 0.0;
-    if let Some((wisps, note)) = crate::wisps::build(&schedule, scene) {
+    if let Some((wisps, note)) = crate::wisps::build(&schedule, &source.library, scene) {
         geometry.set_wisps(&gpu.device, &wisps);
         schedule.notes.push(note);
         wisp_count = Some(wisps.wisp_count);
-        wisp_lod_fraction = crate::wisps::lod_fraction(&schedule);
+        wisp_lod_fraction = crate::wisps::lod_fraction(&schedule, &source.library);
     }
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(gpu, schedule, &source.library, geometry, &frame, base_dir)?;
