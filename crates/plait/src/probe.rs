@@ -185,7 +185,7 @@ pub fn probe_sequence(
 }
 
 fn read_probe(prepared: &crate::session::Prepared<'_>) -> Result<Vec<f32>, SessionError> {
-    let bytes = prepared.renderer.read_buffer("probe_out")?;
+    let bytes = prepared.read_buffer("probe_out")?;
     Ok(bytes
         .chunks_exact(4)
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))

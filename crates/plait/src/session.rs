@@ -300,7 +300,11 @@ impl SceneData {
 /// intermediate resource, the benchmarks' encode-only timing, tests that
 /// look at one pass).
 pub struct Prepared<'g> {
-    pub renderer: Renderer<'g>,
+    /// Private so that a front end renders only through the frame step
+    /// ([`Prepared::render`]), which checks every frame for dropped data and
+    /// cut-short loops; reading resources back goes through the read-only
+    /// accessors below.
+    pub(crate) renderer: Renderer<'g>,
     /// Name of the resource images are read from (the first output).
     pub output: String,
     /// The head pose the uploaded hair follows ([`Prepared::render_frame`]).
@@ -334,6 +338,32 @@ impl Prepared<'_> {
     /// Read the output back as an 8-bit sRGB image.
     pub fn image(&self) -> Result<image::RgbaImage, GpuError> {
         Ok(self.renderer.read_resource(&self.output)?.to_image())
+    }
+
+    /// Read texture resource `name` back (layer 0).
+    pub fn read_resource(&self, name: &str) -> Result<plait_gpu::readback::TexelData, GpuError> {
+        self.renderer.read_resource(name)
+    }
+
+    /// Read buffer resource `name` back as bytes.
+    pub fn read_buffer(&self, name: &str) -> Result<Vec<u8>, GpuError> {
+        self.renderer.read_buffer(name)
+    }
+
+    /// Render one frame WITHOUT the frame step's checks: for a test that
+    /// asserts on the overflow counters of a frame that drops data on
+    /// purpose, or that renders a schedule whose checks are what it
+    /// measures. Front ends use [`Prepared::render`], which fails a frame
+    /// that dropped data nobody chose to drop.
+    pub fn render_unchecked(&self) -> Result<plait_gpu::FrameReport, GpuError> {
+        self.renderer.render()
+    }
+
+    /// Record one frame's commands without submitting them: for measuring
+    /// the CPU cost of encoding (`benches/encode.rs`). A frame is rendered
+    /// only by [`Prepared::render`].
+    pub fn encode_only(&self) -> wgpu::CommandBuffer {
+        self.renderer.encode()
     }
 
     /// Read the linear radiance (before the display transform) back as

@@ -403,8 +403,7 @@ fn read_linears(
             });
             let Some(_) = kept else { return Ok(None) };
             let k = plan.options.render_size(v.is_reference).0 / plan.options.size.0.max(1);
-            p.renderer
-                .read_resource(crate::linear::RADIANCE)
+            p.read_resource(crate::linear::RADIANCE)
                 .map(|t| {
                     Some(super::supersample::box_filter_linear(
                         &crate::linear::to_f32_image(&t),
