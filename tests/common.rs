@@ -35,7 +35,7 @@ pub fn fixture_texels(fixture: &str, size: (u32, u32), targets: &[&str]) -> Vec<
     let pipeline = repo_root().join("tests/fixtures").join(fixture);
     let prepared = plait::session::prepare(&gpu, &pipeline, &[], &scene, size)
         .unwrap_or_else(|e| panic!("{fixture} prepares: {e}"));
-    prepared.render_unchecked().expect("renders");
+    prepared.render().expect("renders");
     targets
         .iter()
         .map(|name| {

@@ -25,7 +25,7 @@ fn a_persistent_buffer_accumulates_and_previous_holds_last_frame() {
         prepare(&gpu, &pipeline, &[], &scene, size).unwrap_or_else(|e| panic!("history.toml: {e}"));
     for frame in 0..3u32 {
         prepared.set_frame(&scene.frame(size, frame));
-        prepared.render_unchecked().expect("renders");
+        prepared.render().expect("renders");
         let read = |name: &str| words(&prepared.read_buffer(name).expect(name));
         let expected_total: Vec<u32> = (0..4).map(|i| (frame + 1) * (i + 1)).collect();
         assert_eq!(read("total"), expected_total, "total after frame {frame}");
