@@ -296,9 +296,26 @@ impl SceneData {
 /// [`Prepared::render_frame`] ([`crate::frames`]), which run the checks
 /// every frame owes (a bounded buffer that drops, invocations cut short) and
 /// return the frame's notes with its report, so none can forget them. The
-/// renderer stays reachable for what the session does not wrap (reading an
-/// intermediate resource, the benchmarks' encode-only timing, tests that
-/// look at one pass).
+/// renderer is private: resources are read back with
+/// [`Prepared::read_resource`] and [`Prepared::read_buffer`], the encode
+/// bench times [`Prepared::encode_only`], and a test that asserts on the
+/// counters of a frame dropping data on purpose names
+/// [`Prepared::render_unchecked`]. Outside this crate the frame step cannot
+/// be bypassed:
+///
+/// ```compile_fail
+/// fn bypass(prepared: &plait::session::Prepared<'_>) {
+///     let _ = prepared.renderer.render();
+/// }
+/// ```
+///
+/// while the checked path compiles:
+///
+/// ```no_run
+/// fn checked(prepared: &plait::session::Prepared<'_>) {
+///     let _ = prepared.render();
+/// }
+/// ```
 pub struct Prepared<'g> {
     /// Private so that a front end renders only through the frame step
     /// ([`Prepared::render`]), which checks every frame for dropped data and
