@@ -27,7 +27,7 @@ fn hair_alpha(gpu: &Gpu, pipeline: &str, sets: &[&str], scene: &SceneData) -> (f
     all.push("pipeline.outputs=[\"final\", \"hair\"]".into());
     let prepared = prepare(gpu, &repo_root().join(pipeline), &all, scene, SIZE)
         .unwrap_or_else(|e| panic!("preparing {pipeline}: {e}"));
-    prepared.render_unchecked().expect("renders");
+    prepared.render().expect("renders");
     let hair = prepared.read_resource("hair").expect("hair");
     let (mut sum, mut x, mut y) = (0.0, 0.0, 0.0);
     for i in 0..(hair.width * hair.height) as usize {

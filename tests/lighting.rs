@@ -41,7 +41,7 @@ fn gpu_kernels_match_the_cpu_references() {
     let scene = small_scene();
     let pipeline = repo_root().join("tests/fixtures/lighting_maps.toml");
     let prepared = prepare(&gpu, &pipeline, &[], &scene, (64, 48)).expect("prepare");
-    prepared.render_unchecked().expect("render");
+    prepared.render().expect("render");
     let texels = |name: &str| -> Vec<[f32; 4]> {
         let data = prepared.read_resource(name).expect(name);
         (0..(data.width * data.height) as usize)
@@ -77,7 +77,7 @@ fn gpu_kernels_match_the_cpu_references() {
         (64, 48),
     )
     .expect("prepare turned");
-    turned.render_unchecked().expect("render turned");
+    turned.render().expect("render turned");
     let data = turned.read_resource("environment").expect("turned cube");
     let turned_gpu: Vec<Vec3> = (0..(data.width * data.height) as usize)
         .map(|i| Vec3::from_slice(&data.texel(i)[..3]))

@@ -35,7 +35,7 @@ fn counts(gpu: &Gpu) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
         .expect("the small scene loads");
     let prepared = prepare(gpu, &pipeline, &[], &scene, SIZE)
         .unwrap_or_else(|e| panic!("raster_counts.toml: {e}"));
-    prepared.render_unchecked().expect("renders");
+    prepared.render().expect("renders");
     let read = |name: &str| prepared.read_buffer(name).expect(name);
     let blended = prepared
         .read_resource("blended_counts")

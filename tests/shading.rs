@@ -44,7 +44,7 @@ fn tables(gpu: &Gpu, size: u32, sets: &[&str]) -> (Table, Table) {
         .expect("the small scene loads");
     let prepared = prepare(gpu, &pipeline, &all, &scene, (16, 16))
         .unwrap_or_else(|e| panic!("marschner_tables.toml: {e}"));
-    prepared.render_unchecked().expect("renders");
+    prepared.render().expect("renders");
     let read = |name: &str| {
         let data = prepared.read_resource(name).expect(name);
         assert_eq!((data.width, data.height), (size, size), "{name}");
@@ -169,7 +169,7 @@ fn render(gpu: &Gpu, sets: &[String]) -> image::RgbaImage {
         .expect("the small scene loads");
     let prepared = prepare(gpu, &pipeline, sets, &scene, (192, 144))
         .unwrap_or_else(|e| panic!("marschner.toml {sets:?}: {e}"));
-    prepared.render_unchecked().expect("renders");
+    prepared.render().expect("renders");
     prepared.image().expect("reads back")
 }
 

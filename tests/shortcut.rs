@@ -55,7 +55,7 @@ fn render(
     sets.extend(extra.iter().cloned());
     let prepared =
         prepare(gpu, &pipeline, &sets, scene, size).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-    prepared.render_unchecked().expect("renders");
+    prepared.render().expect("renders");
     outputs
         .iter()
         .map(|&(name, is_buffer)| {
