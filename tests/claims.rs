@@ -30,6 +30,7 @@ use std::path::PathBuf;
 
 use plait::probe::{ProbeGrid, probe_visibility, visibility_error};
 use plait::session::{SceneData, prepare};
+use plait::source::PipelineSource;
 use plait_gpu::Gpu;
 use plait_tests::bands::{Row, band_failures};
 use plait_tests::{open_gpu, repo_root};
@@ -48,7 +49,8 @@ fn scene(name: &str) -> SceneData {
 fn visibility_errors(gpu: &Gpu, scene: &SceneData, variants: &[&str]) -> Vec<f64> {
     let grid = ProbeGrid::through_hair(scene, (16, 16), 48);
     let probe = |name: &str| {
-        probe_visibility(gpu, &pipeline(name), &[], scene, (64, 48), &grid)
+        let source = PipelineSource::new(&pipeline(name), &[]);
+        probe_visibility(gpu, &source, scene, (64, 48), &grid)
             .unwrap_or_else(|e| panic!("probing {name}: {e}"))
             .unwrap_or_else(|| panic!("{name} has no visibility provider"))
     };
@@ -227,8 +229,7 @@ fn render(gpu: &Gpu, name: &str, scene: &SceneData, size: (u32, u32), sets: &[St
     let prepared = prepare(gpu, &pipeline(name), sets, scene, size)
         .unwrap_or_else(|e| panic!("preparing {name}: {e}"));
     let report = prepared
-        .renderer
-        .render()
+        .render_unchecked()
         .unwrap_or_else(|e| panic!("rendering {name}: {e}"));
     // A reference (the fragment lists on stray) that lost fragments would
     // make every comparison against it wrong.

@@ -57,11 +57,11 @@ pub fn fixture_texels(fixture: &str, size: (u32, u32), targets: &[&str]) -> Vec<
     let pipeline = repo_root().join("tests/fixtures").join(fixture);
     let prepared = plait::session::prepare(&gpu, &pipeline, &[], &scene, size)
         .unwrap_or_else(|e| panic!("{fixture} prepares: {e}"));
-    prepared.renderer.render().expect("renders");
+    prepared.render().expect("renders");
     targets
         .iter()
         .map(|name| {
-            let read = prepared.renderer.read_resource(name).expect(name);
+            let read = prepared.read_resource(name).expect(name);
             read.bytes
                 .chunks_exact(16)
                 .map(|t| {

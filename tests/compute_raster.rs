@@ -27,8 +27,8 @@ fn hair_alpha(gpu: &Gpu, pipeline: &str, sets: &[&str], scene: &SceneData) -> (f
     all.push("pipeline.outputs=[\"final\", \"hair\"]".into());
     let prepared = prepare(gpu, &repo_root().join(pipeline), &all, scene, SIZE)
         .unwrap_or_else(|e| panic!("preparing {pipeline}: {e}"));
-    prepared.renderer.render().expect("renders");
-    let hair = prepared.renderer.read_resource("hair").expect("hair");
+    prepared.render().expect("renders");
+    let hair = prepared.read_resource("hair").expect("hair");
     let (mut sum, mut x, mut y) = (0.0, 0.0, 0.0);
     for i in 0..(hair.width * hair.height) as usize {
         let a = f64::from(hair.texel(i)[3]);
@@ -150,7 +150,7 @@ fn a_binning_walk_cut_short_is_counted() {
         let path = repo_root().join("pipelines/compute_raster.toml");
         let prepared =
             prepare(&gpu, &path, &sets, &scene, (640, 480)).map_err(|e| e.to_string())?;
-        let report = prepared.renderer.render().expect("renders");
+        let report = prepared.render_unchecked().expect("renders");
         let status = report.overflow.iter().find(|o| o.counter == "bin_status");
         Ok(status.expect("bin_status is read back").incomplete)
     };
@@ -192,10 +192,9 @@ fn final_and_hair(
     let prepared = prepare(gpu, &repo_root().join(pipeline), &all, scene, size)
         .unwrap_or_else(|e| panic!("preparing {pipeline} {sets:?}: {e}"));
     prepared
-        .renderer
-        .render()
+        .render_unchecked()
         .unwrap_or_else(|e| panic!("{pipeline} {sets:?}: {e}"));
-    let hair = prepared.renderer.read_resource("hair").expect("hair");
+    let hair = prepared.read_resource("hair").expect("hair");
     let texels = (0..(hair.width * hair.height) as usize)
         .map(|i| hair.texel(i))
         .collect();
@@ -349,7 +348,7 @@ fn wisps_fill_the_pool_and_its_counters() {
         sets.push("techniques.shading_space=fragment".into());
         let path = repo_root().join("pipelines/compute_raster.toml");
         let prepared = prepare(&gpu, &path, &sets, &scene, SIZE).expect("prepares");
-        let report = prepared.renderer.render().expect("renders");
+        let report = prepared.render_unchecked().expect("renders");
         let find = |name: &str| {
             report
                 .overflow

@@ -16,7 +16,7 @@ fn render(gpu: &Gpu, scene: &SceneData, sets: &[&str], size: (u32, u32)) -> imag
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let prepared =
         prepare(gpu, &pipeline, &sets, scene, size).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-    prepared.renderer.render().expect("renders");
+    prepared.render().expect("renders");
     prepared.image().expect("reads back")
 }
 
@@ -95,9 +95,8 @@ fn camera_alpha_sums(
     sets.extend(extra.iter().map(|s| s.to_string()));
     let prepared =
         prepare(gpu, &pipeline, &sets, scene, size).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-    prepared.renderer.render().expect("renders");
+    prepared.render().expect("renders");
     let texels = prepared
-        .renderer
         .read_resource("camera_alpha")
         .expect("camera_alpha reads back");
     let sums = texels

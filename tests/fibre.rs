@@ -428,7 +428,8 @@ fn chiang_white_furnace() {
 #[test]
 fn chiang_sigma_a_is_the_mitsuba_exports() {
     let sphere = ChiangSphere::render();
-    let beta_n = plait::mitsuba::Fibre::default().azimuthal_roughness;
+    let beta_n =
+        plait::mitsuba::Fibre::standard(&plait_passes::read_library(&[])).azimuthal_roughness;
     for (q, colour) in [[0.85, 0.65, 0.40], [0.32, 0.20, 0.11], [0.02; 3]]
         .iter()
         .enumerate()
@@ -507,7 +508,7 @@ fn chiang_reads_mitsubas_hair_bsdf() {
 /// One fibre description: the `chiang` technique's exported params
 /// (techniques/shading/chiang/technique.toml), the shading point's defaults
 /// (techniques/shading/point.toml, as the typed passes read them) and the
-/// Mitsuba export's `Fibre::default()` are the same four numbers.
+/// Mitsuba export's `Fibre::standard` are the same four numbers.
 #[test]
 fn chiang_defaults_are_the_mitsuba_exports_fibre() {
     let text =
@@ -527,7 +528,8 @@ fn chiang_defaults_are_the_mitsuba_exports_fibre() {
         "chiang_eta",
     ]
     .map(value);
-    let f = plait::mitsuba::Fibre::default();
+    let library = plait_passes::read_library(&[]);
+    let f = plait::mitsuba::Fibre::standard(&library);
     let mitsuba = [
         f.longitudinal_roughness,
         f.azimuthal_roughness,
@@ -542,7 +544,7 @@ fn chiang_defaults_are_the_mitsuba_exports_fibre() {
         "chiang_eta",
     ]
     .map(
-        |name| match plait::passes::points::default_on_search_path("shading", name) {
+        |name| match plait::passes::points::default(&library, "shading", name) {
             Some(plait_graph::Value::Float(f)) => f,
             other => panic!("the shading point's {name}: {other:?}"),
         },
@@ -554,7 +556,7 @@ fn chiang_defaults_are_the_mitsuba_exports_fibre() {
         );
         assert!(
             (mitsuba[k] - typed[k]).abs() < 1e-6,
-            "Fibre::default() vs the shading point's default, field {k}"
+            "Fibre::standard vs the shading point's default, field {k}"
         );
     }
 }

@@ -21,12 +21,12 @@ fn a_persistent_buffer_accumulates_and_previous_holds_last_frame() {
     let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
         .expect("the small scene loads");
     let size = (8, 8);
-    let prepared =
+    let mut prepared =
         prepare(&gpu, &pipeline, &[], &scene, size).unwrap_or_else(|e| panic!("history.toml: {e}"));
     for frame in 0..3u32 {
-        prepared.renderer.set_frame(&scene.frame(size, frame));
-        prepared.renderer.render().expect("renders");
-        let read = |name: &str| words(&prepared.renderer.read_buffer(name).expect(name));
+        prepared.set_frame(&scene.frame(size, frame));
+        prepared.render().expect("renders");
+        let read = |name: &str| words(&prepared.read_buffer(name).expect(name));
         let expected_total: Vec<u32> = (0..4).map(|i| (frame + 1) * (i + 1)).collect();
         assert_eq!(read("total"), expected_total, "total after frame {frame}");
         // Last frame's values; zero before the first frame.

@@ -29,7 +29,9 @@ fn render(gpu: &Gpu, sets: &[&str], scene: &SceneData) -> RgbaImage {
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let prepared = prepare(gpu, &pipeline, &sets, scene, SIZE)
         .unwrap_or_else(|e| panic!("preparing {sets:?}: {e}"));
-    prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+    prepared
+        .render_unchecked()
+        .unwrap_or_else(|e| panic!("{e}"));
     prepared.image().unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -195,7 +197,7 @@ fn lod_drops_strands_under_every_self_shadowing_and_transparency_technique() {
             let image = |sets: Vec<String>| -> Result<RgbaImage, String> {
                 let p =
                     prepare(&gpu, &pipeline, &sets, &scene, (96, 72)).map_err(|e| e.to_string())?;
-                p.renderer.render().map_err(|e| e.to_string())?;
+                p.render_unchecked().map_err(|e| e.to_string())?;
                 p.image().map_err(|e| e.to_string())
             };
             let lod = image(vec![
@@ -292,7 +294,6 @@ fn prepare_small<'g>(
 /// `camera_alpha`, red), after the last render.
 fn alpha_sums(prepared: &plait::session::Prepared) -> Vec<f32> {
     let texels = prepared
-        .renderer
         .read_resource("camera_alpha")
         .unwrap_or_else(|e| panic!("{e}"));
     (0..(texels.width * texels.height) as usize)
@@ -413,7 +414,9 @@ fn strand_space_shading_reaches_the_wisps() {
         let mut sets = WISPS.to_vec();
         sets.extend_from_slice(extra);
         let prepared = prepare_small(&gpu, &sets, &scene, SMALL);
-        prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+        prepared
+            .render_unchecked()
+            .unwrap_or_else(|e| panic!("{e}"));
         prepared.radiance().unwrap_or_else(|e| panic!("{e}"))
     };
     let every = format!("params.shading_points={points}");
@@ -459,7 +462,9 @@ fn far_away_fewer_wider_wisps_keep_the_coverage_and_near_nothing_changes() {
             let mut sets = WISPS.to_vec();
             sets.extend_from_slice(extra);
             let prepared = prepare_small(&gpu, &sets, &scene, size);
-            prepared.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+            prepared
+                .render_unchecked()
+                .unwrap_or_else(|e| panic!("{e}"));
             let count = prepared.wisp_count.expect("wisps were built");
             let (_, total) = hair_centre(&alpha_sums(&prepared), size.0);
             (

@@ -37,7 +37,6 @@ fn render_with(gpu: &Gpu, pipeline: &Path, sets: &[String], scene: &SceneData) -
     let prepared = prepare(gpu, pipeline, sets, scene, SIZE)
         .unwrap_or_else(|e| panic!("preparing {name} {sets:?}: {e}"));
     prepared
-        .renderer
         .render()
         .unwrap_or_else(|e| panic!("rendering {name}: {e}"));
     prepared

@@ -41,9 +41,9 @@ fn gpu_kernels_match_the_cpu_references() {
     let scene = small_scene();
     let pipeline = repo_root().join("tests/fixtures/lighting_maps.toml");
     let prepared = prepare(&gpu, &pipeline, &[], &scene, (64, 48)).expect("prepare");
-    prepared.renderer.render().expect("render");
+    prepared.render().expect("render");
     let texels = |name: &str| -> Vec<[f32; 4]> {
-        let data = prepared.renderer.read_resource(name).expect(name);
+        let data = prepared.read_resource(name).expect(name);
         (0..(data.width * data.height) as usize)
             .map(|i| data.texel(i))
             .collect()
@@ -77,11 +77,8 @@ fn gpu_kernels_match_the_cpu_references() {
         (64, 48),
     )
     .expect("prepare turned");
-    turned.renderer.render().expect("render turned");
-    let data = turned
-        .renderer
-        .read_resource("environment")
-        .expect("turned cube");
+    turned.render().expect("render turned");
+    let data = turned.read_resource("environment").expect("turned cube");
     let turned_gpu: Vec<Vec3> = (0..(data.width * data.height) as usize)
         .map(|i| Vec3::from_slice(&data.texel(i)[..3]))
         .collect();
@@ -100,7 +97,6 @@ fn gpu_kernels_match_the_cpu_references() {
 
     // The SH coefficients and the maps rebuilt from them.
     let bytes = prepared
-        .renderer
         .read_buffer("sh_coefficients")
         .expect("coefficients");
     let floats: Vec<f32> = bytes
@@ -141,8 +137,7 @@ fn render_lighting(gpu: &plait_gpu::Gpu, scene: &SceneData, lighting: &str) -> i
     let prepared = prepare(gpu, &pipeline, &sets, scene, IMAGE_SIZE)
         .unwrap_or_else(|e| panic!("{lighting}: {e}"));
     prepared
-        .renderer
-        .render()
+        .render_unchecked()
         .unwrap_or_else(|e| panic!("{lighting}: {e}"));
     prepared
         .image()
@@ -331,7 +326,7 @@ fn environment_sums_past_the_loop_budget_fail_the_frame() {
     let incomplete = |sets: &[&str]| {
         let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
         let prepared = prepare(&gpu, &pipeline, &sets, &scene, (64, 48)).expect("prepare");
-        let report = prepared.renderer.render().expect("render");
+        let report = prepared.render_unchecked().expect("render");
         let count = |counter: &str| {
             report
                 .overflow

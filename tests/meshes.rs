@@ -28,7 +28,7 @@ fn render(scene: &SceneData) -> Vec<u8> {
     let (_lock, gpu) = open_gpu();
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let p = prepare(&gpu, Path::new(&pipeline), &[], scene, SIZE).expect("pipeline builds");
-    p.renderer.render().expect("renders");
+    p.render().expect("renders");
     p.image().expect("image").into_raw()
 }
 

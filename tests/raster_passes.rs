@@ -35,10 +35,9 @@ fn counts(gpu: &Gpu) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
         .expect("the small scene loads");
     let prepared = prepare(gpu, &pipeline, &[], &scene, SIZE)
         .unwrap_or_else(|e| panic!("raster_counts.toml: {e}"));
-    prepared.renderer.render().expect("renders");
-    let read = |name: &str| prepared.renderer.read_buffer(name).expect(name);
+    prepared.render().expect("renders");
+    let read = |name: &str| prepared.read_buffer(name).expect(name);
     let blended = prepared
-        .renderer
         .read_resource("blended_counts")
         .expect("blended_counts");
     let blended: Vec<u32> = blended

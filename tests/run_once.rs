@@ -19,9 +19,9 @@ fn a_run_once_pass_records_on_the_first_frame_only_and_its_output_is_kept() {
     let pipeline = repo_root().join("tests/fixtures/run_once.toml");
     let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
         .expect("the small scene loads");
-    let prepared = prepare(&gpu, &pipeline, &[], &scene, SIZE)
+    let mut prepared = prepare(&gpu, &pipeline, &[], &scene, SIZE)
         .unwrap_or_else(|e| panic!("run_once.toml: {e}"));
-    let schedule = &prepared.renderer.schedule();
+    let schedule = prepared.schedule();
     let once = schedule
         .resources
         .iter()
@@ -37,15 +37,15 @@ fn a_run_once_pass_records_on_the_first_frame_only_and_its_output_is_kept() {
         "a kept resource shares no allocation"
     );
     for frame in 0..3u32 {
-        prepared.renderer.set_frame(&scene.frame(SIZE, frame));
-        let report = prepared.renderer.render().expect("renders");
+        prepared.set_frame(&scene.frame(SIZE, frame));
+        let report = prepared.render_unchecked().expect("renders");
         let tally = report
             .passes
             .iter()
             .find(|p| p.name == "tally_once")
             .expect("tally_once timed");
         assert_eq!(tally.cached, frame > 0, "frame {frame}: cached flag");
-        let out = words(&prepared.renderer.read_buffer("out").expect("out"));
+        let out = words(&prepared.read_buffer("out").expect("out"));
         // The tally writes frame index + 1: 1 means it last ran on frame 0.
         assert!(
             out.iter().all(|&w| w == 1),

@@ -44,9 +44,9 @@ fn tables(gpu: &Gpu, size: u32, sets: &[&str]) -> (Table, Table) {
         .expect("the small scene loads");
     let prepared = prepare(gpu, &pipeline, &all, &scene, (16, 16))
         .unwrap_or_else(|e| panic!("marschner_tables.toml: {e}"));
-    prepared.renderer.render().expect("renders");
+    prepared.render().expect("renders");
     let read = |name: &str| {
-        let data = prepared.renderer.read_resource(name).expect(name);
+        let data = prepared.read_resource(name).expect(name);
         assert_eq!((data.width, data.height), (size, size), "{name}");
         let texels = data
             .bytes
@@ -169,7 +169,7 @@ fn render(gpu: &Gpu, sets: &[String]) -> image::RgbaImage {
         .expect("the small scene loads");
     let prepared = prepare(gpu, &pipeline, sets, &scene, (192, 144))
         .unwrap_or_else(|e| panic!("marschner.toml {sets:?}: {e}"));
-    prepared.renderer.render().expect("renders");
+    prepared.render().expect("renders");
     prepared.image().expect("reads back")
 }
 
@@ -295,7 +295,7 @@ fn tables_are_drawn_once_and_kept_across_frames() {
     let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
         .expect("the small scene loads");
     let size = (96, 72);
-    let prepared = prepare(
+    let mut prepared = prepare(
         &gpu,
         &pipeline,
         &["params.marschner_table_size=32".into()],
@@ -303,10 +303,9 @@ fn tables_are_drawn_once_and_kept_across_frames() {
         size,
     )
     .unwrap_or_else(|e| panic!("marschner.toml: {e}"));
-    let tables = || {
+    let tables = |prepared: &plait::session::Prepared<'_>| {
         ["marschner_m", "marschner_n"].map(|name| {
             prepared
-                .renderer
                 .read_resource(name)
                 .unwrap_or_else(|e| panic!("{name}: {e}"))
                 .bytes
@@ -314,8 +313,8 @@ fn tables_are_drawn_once_and_kept_across_frames() {
     };
     let mut first = None;
     for frame in 0..3u32 {
-        prepared.renderer.set_frame(&scene.frame(size, frame));
-        let report = prepared.renderer.render().expect("renders");
+        prepared.set_frame(&scene.frame(size, frame));
+        let report = prepared.render_unchecked().expect("renders");
         let pass = report
             .passes
             .iter()
@@ -326,7 +325,7 @@ fn tables_are_drawn_once_and_kept_across_frames() {
             frame > 0,
             "frame {frame}: the table pass ran again or not at all"
         );
-        let now = tables();
+        let now = tables(&prepared);
         assert!(
             now.iter().all(|t| t.iter().any(|&b| b != 0)),
             "frame {frame}: a table is empty"

@@ -29,7 +29,7 @@ fn render(gpu: &Gpu, sets: &[String], scene: &SceneData) -> RgbaImage {
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let prepared =
         prepare(gpu, &pipeline, sets, scene, SIZE).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-    prepared.renderer.render().expect("render");
+    prepared.render_unchecked().expect("render");
     prepared.image().expect("read back")
 }
 
@@ -180,11 +180,8 @@ fn column_alpha(
     all.push(format!("pipeline.outputs=[\"final\", \"{resource}\"]"));
     let prepared = prepare(gpu, &repo_root().join(pipeline), &all, scene, (160, 120))
         .unwrap_or_else(|e| panic!("{pipeline} {all:?}: {e}"));
-    prepared.renderer.render().expect("render");
-    let texels = prepared
-        .renderer
-        .read_resource(resource)
-        .expect("read back");
+    prepared.render_unchecked().expect("render");
+    let texels = prepared.read_resource(resource).expect("read back");
     let width = texels.width as usize;
     let mut columns = vec![0.0; width];
     for i in 0..width * texels.height as usize {

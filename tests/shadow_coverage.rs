@@ -88,7 +88,7 @@ fn render_at(gpu: &Gpu, scene: &SceneData, sets: &[String], size: (u32, u32)) ->
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let prepared =
         prepare(gpu, &pipeline, sets, scene, size).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-    prepared.renderer.render().expect("renders");
+    prepared.render().expect("renders");
     let image = prepared.radiance().expect("reads back");
     if let Ok(dir) = std::env::var("PLAIT_SHADOW_DUMP") {
         image
@@ -352,9 +352,9 @@ fn the_density_volume_holds_each_strands_area_toward_the_light() {
         ];
         let pipeline = repo_root().join("pipelines/occupancy.toml");
         let prepared = prepare(&gpu, &pipeline, &sets, &scene, SIZE).expect("prepares");
-        prepared.renderer.render().expect("renders");
+        prepared.render().expect("renders");
         let words = |name: &str| -> Vec<u32> {
-            let bytes = prepared.renderer.read_buffer(name).expect(name);
+            let bytes = prepared.read_buffer(name).expect(name);
             bytes
                 .chunks_exact(4)
                 .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))

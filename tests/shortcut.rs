@@ -55,14 +55,14 @@ fn render(
     sets.extend(extra.iter().cloned());
     let prepared =
         prepare(gpu, &pipeline, &sets, scene, size).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-    prepared.renderer.render().expect("renders");
+    prepared.render().expect("renders");
     outputs
         .iter()
         .map(|&(name, is_buffer)| {
             if is_buffer {
-                prepared.renderer.read_buffer(name)
+                prepared.read_buffer(name)
             } else {
-                prepared.renderer.read_resource(name).map(|t| t.bytes)
+                prepared.read_resource(name).map(|t| t.bytes)
             }
             .unwrap_or_else(|e| panic!("reading {name}: {e}"))
         })

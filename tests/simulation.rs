@@ -80,7 +80,6 @@ fn vec4s(bytes: &[u8]) -> Vec<Vec3> {
 
 fn guide_positions(p: &Prepared<'_>, count: usize) -> Vec<Vec3> {
     let bytes = p
-        .renderer
         .read_buffer("guide_positions")
         .expect("guide_positions reads back");
     vec4s(&bytes)[..count].to_vec()
@@ -88,7 +87,6 @@ fn guide_positions(p: &Prepared<'_>, count: usize) -> Vec<Vec3> {
 
 fn guide_previous(p: &Prepared<'_>, count: usize) -> Vec<Vec3> {
     let bytes = p
-        .renderer
         .read_buffer("guide_previous")
         .expect("guide_previous reads back");
     vec4s(&bytes)[..count].to_vec()
@@ -96,7 +94,7 @@ fn guide_previous(p: &Prepared<'_>, count: usize) -> Vec<Vec3> {
 
 fn render(p: &Prepared<'_>, frames: usize) {
     for _ in 0..frames {
-        p.renderer.render().expect("frame renders");
+        p.render_unchecked().expect("frame renders");
     }
 }
 
@@ -316,7 +314,6 @@ fn gpu_interpolation_matches_the_cpu() {
     let guides_now = guide_positions(&p, guide_points);
     let expected = scene.guides.interpolate(&scene.strands, &guides_now);
     let bytes = p
-        .renderer
         .read_buffer("hair_vertices")
         .expect("hair_vertices reads back");
     let drawn: &[plait_hair::StrandVertex] = bytemuck::cast_slice(&bytes);
@@ -388,8 +385,7 @@ fn a_nan_is_reported_with_the_pass_and_strand() {
     scene.guides.strands.points[2 * 9 + 4].x = f32::NAN;
     let p = prepare(&gpu, &pipeline(), &sets(&[]), &scene, SIZE).expect("pipeline builds");
     let err = p
-        .renderer
-        .render()
+        .render_unchecked()
         .expect_err("a NaN must fail the frame")
         .to_string();
     assert!(err.contains("pass `simulate`"), "{err}");
@@ -413,8 +409,7 @@ fn runaway_lengths_are_reported() {
     ]);
     let p = prepare(&gpu, &pipeline(), &wild, &scene, SIZE).expect("pipeline builds");
     let err = p
-        .renderer
-        .render()
+        .render_unchecked()
         .expect_err("stretching must fail the frame")
         .to_string();
     assert!(err.contains("its rest length"), "{err}");
@@ -431,10 +426,10 @@ fn a_simulation_cut_short_by_the_loop_budget_fails_the_frame() {
     let (_lock, gpu) = open_gpu();
     let scene = groom(6, None);
     let p = prepare(&gpu, &pipeline(), &sets(&[]), &scene, SIZE).expect("pipeline builds");
-    p.renderer.render().expect("the defaults finish");
+    p.render_unchecked().expect("the defaults finish");
     let long = sets(&["params.sim_substeps=64", "params.sim_iterations=64"]);
     let p = prepare(&gpu, &pipeline(), &long, &scene, SIZE).expect("pipeline builds");
-    let result = p.renderer.render();
+    let result = p.render_unchecked();
     if gpu
         .loop_budget()
         .expect("the loop-budget probe runs")

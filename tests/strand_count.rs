@@ -19,6 +19,7 @@
 
 use plait::probe::{ProbeGrid, probe_with};
 use plait::session::SceneData;
+use plait::source::PipelineSource;
 use plait_tests::{open_gpu, repo_root};
 
 const LAYERS: usize = 4;
@@ -94,7 +95,8 @@ fn mean_counts(technique: &str, extra: &[String]) -> Vec<(f64, usize)> {
     sets.extend(extra.iter().cloned());
     let pipeline = repo_root().join("pipelines/occupancy.toml");
     let shader = "tests/fixtures/strands_probe.wgsl";
-    let probed = probe_with(&gpu, &pipeline, &sets, &scene, SIZE, &grid, shader)
+    let source = PipelineSource::new(&pipeline, &sets);
+    let probed = probe_with(&gpu, &source, &scene, SIZE, &grid, shader)
         .unwrap_or_else(|e| panic!("probing {technique}: {e}"))
         .unwrap_or_else(|| panic!("{technique} has no self-shadow provider"));
     let frame = scene.frame(SIZE, 0);

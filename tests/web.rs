@@ -214,7 +214,6 @@ fn native(pipeline: &str, scene: &SceneData) -> RgbaImage {
     let prepared =
         prepare(&gpu, &path, &[], scene, SIZE).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     prepared
-        .renderer
         .render()
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
     prepared

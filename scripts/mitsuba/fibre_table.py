@@ -8,7 +8,7 @@
 # averaged over the eye ray's offset h ∈ [−1, 1] (4000 midpoint points
 # in γ = asin h), as
 # a pixel covering the fibre sees it; fibre_probe.py documents the frame.
-# The fibre is plait::mitsuba::Fibre::default() (β_m 0.3, β_n 0.3, tilt 2°,
+# The fibre is plait::mitsuba::Fibre::standard (the shading point's defaults: β_m 0.3, β_n 0.3, tilt 2°,
 # η 1.55); σ_a from the colour by Chiang 2016 §4.2, the same formula as
 # plait::mitsuba::sigma_a_from_color.
 # Usage: eval "$(bash scripts/ensure-mitsuba.sh)";

@@ -44,8 +44,8 @@ fn dual_scattering_back_scattering_matches_the_paper_on_bright_fibres() {
         .expect("the small scene loads");
     let pipeline = repo_root().join("tests/fixtures/ds_back.toml");
     let prepared = prepare(&gpu, &pipeline, &[], &scene, (4, 4)).expect("the fixture prepares");
-    prepared.renderer.render().expect("renders");
-    let bytes = prepared.renderer.read_buffer("back").expect("back");
+    prepared.render().expect("renders");
+    let bytes = prepared.read_buffer("back").expect("back");
     let got: Vec<f64> = bytes
         .chunks_exact(4)
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)

@@ -15,7 +15,7 @@ fn render(gpu: &Gpu, scene: &SceneData) -> image::RgbaImage {
         "techniques.transparency=linked_list".to_string(),
     ];
     let prepared = prepare(gpu, &pipeline, &sets, scene, (96, 72)).expect("prepares");
-    prepared.renderer.render().expect("renders");
+    prepared.render_unchecked().expect("renders");
     prepared.image().expect("reads back")
 }
 
@@ -103,7 +103,7 @@ fn wisps_strand_space_against_fragment(gpu: &Gpu) -> (f64, usize) {
         let pipeline = repo_root().join("pipelines/occupancy.toml");
         let sets: Vec<String> = wisps.iter().chain(extra).map(|s| s.to_string()).collect();
         let prepared = prepare(gpu, &pipeline, &sets, scene, (96, 72)).expect("prepares");
-        prepared.renderer.render().expect("renders");
+        prepared.render().expect("renders");
         prepared.image().expect("reads back")
     };
     let fragment = render(&scene, &[]);

@@ -59,7 +59,7 @@ fn weighted_average_resolve_matches_its_closed_form_on_known_sums() {
     let pipeline = repo_root().join("tests/fixtures/wa_resolve.toml");
     let size = (16 * WA_CASES.len() as u32, 4);
     let prepared = prepare(&gpu, &pipeline, &[], &scene, size).expect("the fixture prepares");
-    prepared.renderer.render().expect("renders");
+    prepared.render_unchecked().expect("renders");
     let image = prepared.image().expect("reads back");
     let mut failures = Vec::new();
     for (k, &(n, alpha_sum)) in WA_CASES.iter().enumerate() {
@@ -106,7 +106,7 @@ fn kajiya_kay_matches_its_closed_form_where_the_tangent_meets_the_eye() {
     let pipeline = repo_root().join("tests/fixtures/kk.toml");
     let width = 64;
     let prepared = prepare(&gpu, &pipeline, &[], &scene, (width, 2)).expect("the fixture prepares");
-    prepared.renderer.render().expect("renders");
+    prepared.render_unchecked().expect("renders");
     let image = prepared.image().expect("reads back");
     let mut failures = Vec::new();
     for x in 0..width {
@@ -139,7 +139,7 @@ fn the_hair_colour_tints_the_strands_as_their_own_colour_would() {
     let render = |scene: &SceneData| {
         let pipeline = repo_root().join("pipelines/occupancy.toml");
         let prepared = prepare(&gpu, &pipeline, &[], scene, (96, 72)).expect("prepares");
-        prepared.renderer.render().expect("renders");
+        prepared.render_unchecked().expect("renders");
         prepared.image().expect("reads back")
     };
     let mut on_material = SceneData::load(Some(&path)).expect("the small scene loads");

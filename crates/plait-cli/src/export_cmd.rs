@@ -35,18 +35,22 @@ struct MitsubaArgs {
     /// Folder to write (created if missing).
     #[arg(long)]
     out: PathBuf,
-    /// Longitudinal roughness β_m of the hair BSDF (Chiang et al. 2016), in (0, 1].
-    #[arg(long, default_value_t = Fibre::default().longitudinal_roughness)]
-    beta_m: f32,
-    /// Azimuthal roughness β_n, in (0, 1]; also maps colour to absorption.
-    #[arg(long, default_value_t = Fibre::default().azimuthal_roughness)]
-    beta_n: f32,
-    /// Cuticle scale tilt α in degrees, in [-90, 90].
-    #[arg(long, default_value_t = Fibre::default().scale_tilt_degrees)]
-    alpha_degrees: f32,
-    /// Index of refraction η of the fibre, above 1.
-    #[arg(long, default_value_t = Fibre::default().eta)]
-    eta: f32,
+    /// Longitudinal roughness β_m of the hair BSDF (Chiang et al. 2016), in (0, 1]
+    /// (default: the shading point's `chiang_beta_m`).
+    #[arg(long)]
+    beta_m: Option<f32>,
+    /// Azimuthal roughness β_n, in (0, 1]; also maps colour to absorption
+    /// (default: the shading point's `chiang_beta_n`).
+    #[arg(long)]
+    beta_n: Option<f32>,
+    /// Cuticle scale tilt α in degrees, in [-90, 90] (default: the shading
+    /// point's `chiang_tilt`).
+    #[arg(long)]
+    alpha_degrees: Option<f32>,
+    /// Index of refraction η of the fibre, above 1 (default: the shading
+    /// point's `chiang_eta`).
+    #[arg(long)]
+    eta: Option<f32>,
 }
 
 pub fn run(args: ExportArgs) -> Result<()> {
@@ -75,25 +79,32 @@ fn mitsuba(a: MitsubaArgs) -> Result<()> {
     Ok(())
 }
 
-/// The fibre flags, each checked against its range (exit 2 naming the flag).
+/// The fibre flags over the library's standard fibre (the shading point's
+/// defaults, read once here), each checked against its range (exit 2 naming
+/// the flag).
 fn fibre(a: &MitsubaArgs) -> Result<Fibre> {
+    let standard = Fibre::standard(&plait_passes::read_library(&[]));
+    let beta_m = a.beta_m.unwrap_or(standard.longitudinal_roughness);
+    let beta_n = a.beta_n.unwrap_or(standard.azimuthal_roughness);
+    let alpha_degrees = a.alpha_degrees.unwrap_or(standard.scale_tilt_degrees);
+    let eta = a.eta.unwrap_or(standard.eta);
     let unit = |v: f32| v.is_finite() && v > 0.0 && v <= 1.0;
-    if !unit(a.beta_m) {
-        bail!("--beta-m {}: must be in (0, 1]", a.beta_m);
+    if !unit(beta_m) {
+        bail!("--beta-m {}: must be in (0, 1]", beta_m);
     }
-    if !unit(a.beta_n) {
-        bail!("--beta-n {}: must be in (0, 1]", a.beta_n);
+    if !unit(beta_n) {
+        bail!("--beta-n {}: must be in (0, 1]", beta_n);
     }
-    if !(a.alpha_degrees.is_finite() && a.alpha_degrees.abs() <= 90.0) {
-        bail!("--alpha-degrees {}: must be in [-90, 90]", a.alpha_degrees);
+    if !(alpha_degrees.is_finite() && alpha_degrees.abs() <= 90.0) {
+        bail!("--alpha-degrees {}: must be in [-90, 90]", alpha_degrees);
     }
-    if !(a.eta.is_finite() && a.eta > 1.0) {
-        bail!("--eta {}: must be a finite number above 1", a.eta);
+    if !(eta.is_finite() && eta > 1.0) {
+        bail!("--eta {}: must be a finite number above 1", eta);
     }
     Ok(Fibre {
-        longitudinal_roughness: a.beta_m,
-        azimuthal_roughness: a.beta_n,
-        scale_tilt_degrees: a.alpha_degrees,
-        eta: a.eta,
+        longitudinal_roughness: beta_m,
+        azimuthal_roughness: beta_n,
+        scale_tilt_degrees: alpha_degrees,
+        eta,
     })
 }

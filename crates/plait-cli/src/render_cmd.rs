@@ -133,7 +133,7 @@ pub fn render(
     notes.extend(frame.notes);
     let image = match show {
         Some(name) => {
-            let texels = prepared.renderer.read_resource(name)?;
+            let texels = prepared.read_resource(name)?;
             let (image, note) = crate::show::picture(name, &texels);
             notes.extend(note);
             image
@@ -141,9 +141,7 @@ pub fn render(
         None => prepared.image()?,
     };
     let linear = match linear_name {
-        Some(name) => Some(plait::linear::to_f32_image(
-            &prepared.renderer.read_resource(name)?,
-        )),
+        Some(name) => Some(plait::linear::to_f32_image(&prepared.read_resource(name)?)),
         None => None,
     };
     Ok(Rendered {

@@ -58,19 +58,3 @@ pub fn default(library: &PassLibrary, name: &str, param: &str) -> Option<Value> 
         .find(|p| p.name == param)
         .and_then(|p| p.default)
 }
-
-/// The default of param `param` of point `name` as the point file on the
-/// search path declares it, read now (no library value at hand: a default
-/// asked for outside a compile, such as `plait::mitsuba::Fibre::default`).
-pub fn default_on_search_path(name: &str, param: &str) -> Option<Value> {
-    let points = plait_graph::techniques::wgsl_points(&[]).ok()?;
-    let point = points.into_iter().find(|p| p.point == name)?;
-    let params = point
-        .contract
-        .all_params()
-        .unwrap_or_else(|_| point.contract.params.clone());
-    params
-        .into_iter()
-        .find(|p| p.spec.name == param)
-        .and_then(|p| p.spec.default)
-}

@@ -322,7 +322,6 @@ impl<'g> Engine<'g> {
         let checked = live.prepared.render().map_err(|e| error_text(&e))?;
         let output = live
             .prepared
-            .renderer
             .read_resource(&live.prepared.output)
             .map_err(|e| error_text(&e))?;
         Ok(Some(Frame { checked, output }))

@@ -382,7 +382,7 @@ pub fn resource(
     })?;
     let desc = &schedule.resources[id].desc;
     let display = display.unwrap_or_else(|| default_display(desc));
-    let r = &prepared.renderer;
+    let r = prepared;
     match desc {
         ResourceDesc::Texture { .. } => r
             .read_resource(name)

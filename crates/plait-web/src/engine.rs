@@ -159,7 +159,7 @@ impl Engine {
             let prepared = self.prepare(req).map_err(|e| e.to_string())?;
             self.built = Some(Built { key, prepared });
         }
-        let Some(built) = &self.built else {
+        let Some(built) = &mut self.built else {
             unreachable!("built above")
         };
         // The frame's inputs from the scene with its camera turned.
@@ -167,14 +167,14 @@ impl Engine {
         let scene_camera = std::mem::replace(&mut self.scene.scene.camera, turned);
         let frame = plait::session::frame_uniforms(built.prepared.schedule(), &self.scene, size, 0);
         self.scene.scene.camera = scene_camera;
-        let renderer = &built.prepared.renderer;
-        renderer.set_frame(&frame);
-        let report = renderer.render_async().await.map_err(|e| e.to_string())?;
-        // A bounded buffer that dropped data is an error, as natively
-        // (there the first frame sizes it; see the report's note).
-        plait::overflow::check_frame(&report).map_err(|e| e.to_string())?;
-        let texels = renderer
-            .read_resource_async(&built.prepared.output)
+        let prepared = &mut built.prepared;
+        prepared.set_frame(&frame);
+        // The session's frame step, as every front end's: a bounded buffer
+        // that dropped data fails the frame (natively the first frame sizes
+        // it; see the report's note), and the frame's notes come with it.
+        let checked = prepared.render_async().await.map_err(|e| e.to_string())?;
+        let texels = prepared
+            .read_resource_async(&prepared.output)
             .await
             .map_err(|e| e.to_string())?;
         let image = texels.to_image();
@@ -182,8 +182,14 @@ impl Engine {
             width: image.width(),
             height: image.height(),
             rgba: image.into_raw(),
-            report,
-            notes: renderer.notes().to_vec(),
+            report: checked.report,
+            notes: prepared
+                .notes()
+                .iter()
+                .cloned()
+                .chain(checked.notes)
+                .chain(checked.dropped)
+                .collect(),
             controls: Controls::of(built.prepared.schedule(), &pipeline_path(&req.pipeline)),
         })
     }

@@ -38,7 +38,7 @@ fn encode(c: &mut Criterion) {
     let scene = SceneData::load(None).unwrap_or_else(|e| panic!("{e}"));
     let (prepared, hand) = setup(&gpu, &scene);
     let mut group = c.benchmark_group("encode occupancy.toml");
-    group.bench_function("plait executor", |b| b.iter(|| prepared.renderer.encode()));
+    group.bench_function("plait executor", |b| b.iter(|| prepared.encode_only()));
     group.bench_function("hand-written wgpu", |b| b.iter(|| hand.encode()));
     group.finish();
 
@@ -47,7 +47,7 @@ fn encode(c: &mut Criterion) {
     let (mut ours, mut theirs) = (Vec::new(), Vec::new());
     for _ in 0..turns {
         let t = Instant::now();
-        drop(prepared.renderer.encode());
+        drop(prepared.encode_only());
         ours.push(t.elapsed().as_secs_f64() * 1e6);
         let t = Instant::now();
         drop(hand.encode());

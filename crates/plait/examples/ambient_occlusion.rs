@@ -53,7 +53,6 @@ fn run(gpu: &Gpu, scene: &SceneData, sets: &[String], label: String) -> Run {
         .map(|r| r.desc.bytes())
         .sum();
     let raw = prepared
-        .renderer
         .read_buffer("ao_vertex")
         .unwrap_or_else(|e| fail(&format!("{label}: {e}")));
     let ao = raw

@@ -75,7 +75,7 @@ fn main() {
 
     let gpu = Gpu::new().unwrap_or_else(|e| fail(&e.to_string()));
     let scene = SceneData::load(Some(&scene_path)).unwrap_or_else(|e| fail(&e.to_string()));
-    let prepared =
+    let mut prepared =
         prepare(&gpu, &pipeline, &[], &scene, size).unwrap_or_else(|e| fail(&e.to_string()));
     println!(
         "{} on {}, {}x{}, {frames} frames, each read back, on {} ({})",
@@ -92,9 +92,7 @@ fn main() {
     let mut samples = Vec::new();
     for frame in 0..frames {
         // A new frame index each frame (it drives the jitter), as an animation would.
-        prepared
-            .renderer
-            .set_frame(&scene.frame(size, frame as u32));
+        prepared.set_frame(&scene.frame(size, frame as u32));
         prepared
             .render()
             .unwrap_or_else(|e| fail(&format!("frame {frame}: {e}")));

@@ -103,7 +103,26 @@ impl Prepared<'_> {
     /// cut short, fail it ([`SessionError::Dropped`]); a user's cap that
     /// dropped is in [`Frame::dropped`].
     pub fn render(&self) -> Result<Frame, SessionError> {
-        let report = self.renderer.render()?;
+        self.checked(self.renderer.render()?)
+    }
+
+    /// [`Prepared::render`] for a caller that cannot block on the GPU (the
+    /// browser, `crates/plait-web`): the same frame step and checks, the
+    /// readback awaited.
+    pub async fn render_async(&self) -> Result<Frame, SessionError> {
+        self.checked(self.renderer.render_async().await?)
+    }
+
+    /// [`Prepared::read_resource`], awaited ([`Prepared::render_async`]).
+    pub async fn read_resource_async(
+        &self,
+        name: &str,
+    ) -> Result<plait_gpu::readback::TexelData, plait_gpu::GpuError> {
+        self.renderer.read_resource_async(name).await
+    }
+
+    /// The checks every frame owes, and its notes, on a rendered frame.
+    fn checked(&self, report: FrameReport) -> Result<Frame, SessionError> {
         let dropped = crate::overflow::check_frame(&report)?;
         let schedule = self.schedule();
         let mut notes: Vec<String> = crate::strand_lod::note(schedule, &self.uniforms)

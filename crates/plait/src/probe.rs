@@ -10,7 +10,6 @@
 //! every pass the probe does not need (the camera, the image) is culled.
 
 use std::fmt::Write;
-use std::path::Path;
 
 use glam::Vec3;
 use plait_compare::report::{Visibility, VisibilityCurve};
@@ -18,6 +17,7 @@ use plait_gpu::Gpu;
 use plait_graph::Value;
 
 use crate::session::{SceneData, SessionError, check_pipeline, gpu_options};
+use crate::source::PipelineSource;
 
 /// Rays on a uv grid of the light map, sampled at evenly spaced light depths.
 #[derive(Clone, Debug)]
@@ -98,17 +98,20 @@ fn literal(v: &Value) -> String {
     }
 }
 
-/// Probe `pipeline`'s self-shadowing on `scene`; `None` when no pass of it
-/// has a visibility provider (a `visibility` param).
+/// Probe the self-shadowing of `source`'s pipeline (with its sets) on
+/// `scene`; `None` when no pass of it has a visibility provider (a
+/// `visibility` param). The probe compiles and builds with `source.library`
+/// and reads no library of its own, so `plait ab` probes every variant with
+/// the one library its run rendered them with. `source.extra_outputs` are
+/// not probed (the probe's one output is its buffer).
 pub fn probe_visibility(
     gpu: &Gpu,
-    pipeline: &Path,
-    sets: &[String],
+    source: &PipelineSource,
     scene: &SceneData,
     size: (u32, u32),
     grid: &ProbeGrid,
 ) -> Result<Option<Probed>, SessionError> {
-    probe_with(gpu, pipeline, sets, scene, size, grid, VISIBILITY_PROBE)
+    probe_with(gpu, source, scene, size, grid, VISIBILITY_PROBE)
 }
 
 /// The built-in probe shader: the provider's `self_shadow(world)`.
@@ -118,19 +121,17 @@ const VISIBILITY_PROBE: &str = "shaders/visibility_probe.wgsl";
 /// layout (`probe_out`, `probe_params`) evaluating something else of the
 /// provider at each probe point — e.g. its optional strand count
 /// (`tests/fixtures/strands_probe.wgsl`). `shader` is found like any shader
-/// a pipeline names (next to `pipeline`, at its checkout's root, on the
-/// library search path).
+/// a pipeline names (next to the pipeline, at its checkout's root, on the
+/// library search path of `source.library`).
 pub fn probe_with(
     gpu: &Gpu,
-    pipeline: &Path,
-    sets: &[String],
+    source: &PipelineSource,
     scene: &SceneData,
     size: (u32, u32),
     grid: &ProbeGrid,
     shader: &str,
 ) -> Result<Option<Probed>, SessionError> {
-    let Some((visibility, mut prepared)) =
-        build_probe(gpu, pipeline, sets, scene, size, grid, shader)?
+    let Some((visibility, mut prepared)) = build_probe(gpu, source, scene, size, grid, shader)?
     else {
         return Ok(None);
     };
@@ -152,14 +153,13 @@ pub struct ProbedSequence {
     pub frames: Vec<Vec<f32>>,
 }
 
-/// Probe `pipeline`'s self-shadowing at frames `0..frames` of the scene's
-/// animation at `fps` (the hair and the light's frustum where they are in
-/// each frame); `None` without a visibility provider.
-#[allow(clippy::too_many_arguments)]
+/// Probe the self-shadowing of `source`'s pipeline (compiled with
+/// `source.library`, as [`probe_visibility`]) at frames `0..frames` of the
+/// scene's animation at `fps` (the hair and the light's frustum where they
+/// are in each frame); `None` without a visibility provider.
 pub fn probe_sequence(
     gpu: &Gpu,
-    pipeline: &Path,
-    sets: &[String],
+    source: &PipelineSource,
     scene: &SceneData,
     size: (u32, u32),
     grid: &ProbeGrid,
@@ -167,7 +167,7 @@ pub fn probe_sequence(
     fps: f32,
 ) -> Result<Option<ProbedSequence>, SessionError> {
     let Some((visibility, mut prepared)) =
-        build_probe(gpu, pipeline, sets, scene, size, grid, VISIBILITY_PROBE)?
+        build_probe(gpu, source, scene, size, grid, VISIBILITY_PROBE)?
     else {
         return Ok(None);
     };
@@ -185,7 +185,7 @@ pub fn probe_sequence(
 }
 
 fn read_probe(prepared: &crate::session::Prepared<'_>) -> Result<Vec<f32>, SessionError> {
-    let bytes = prepared.renderer.read_buffer("probe_out")?;
+    let bytes = prepared.read_buffer("probe_out")?;
     Ok(bytes
         .chunks_exact(4)
         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
@@ -193,19 +193,19 @@ fn read_probe(prepared: &crate::session::Prepared<'_>) -> Result<Vec<f32>, Sessi
 }
 
 /// The variant extended by the probe pass, built: its provider's name and
-/// the prepared pipeline; `None` without a provider.
+/// the prepared pipeline; `None` without a provider. Compiled and built with
+/// `source.library`: the probe reads no library of its own.
 fn build_probe<'g>(
     gpu: &'g Gpu,
-    pipeline: &Path,
-    sets: &[String],
+    source: &PipelineSource,
     scene: &SceneData,
     size: (u32, u32),
     grid: &ProbeGrid,
     shader: &str,
 ) -> Result<Option<(String, crate::session::Prepared<'g>)>, SessionError> {
     let opts = gpu_options(gpu, size);
-    let library = plait_passes::library_for(&[pipeline]);
-    let variant = crate::session::compile_checked_in(&library, pipeline, sets, &opts)?;
+    let (library, pipeline, sets) = (&source.library, source.path.as_path(), &source.sets[..]);
+    let variant = crate::session::compile_checked_in(library, pipeline, sets, &opts)?;
     // Capacities the session lowered to fit the adapter, kept: the probe
     // pipeline draws no pass that counts into them (its one output is
     // `probe_out`), so it could not lower them itself, yet their resources
@@ -229,7 +229,7 @@ fn build_probe<'g>(
         return Ok(None);
     };
     // The self_shadow point's slots, as its point file declares them.
-    let slots: Vec<String> = plait_passes::visibility::slots(&library)
+    let slots: Vec<String> = plait_passes::visibility::slots(library)
         .into_iter()
         .map(|s| s.name)
         .collect();
@@ -242,7 +242,7 @@ fn build_probe<'g>(
     // Only the providers' params: the probe samples self-shadowing as the
     // shading pass sees it, not the pass's own (transparency) params, which
     // its shader would not read.
-    let provider_params: Vec<String> = plait_passes::hair_fragment::shading_params(&library)
+    let provider_params: Vec<String> = plait_passes::hair_fragment::shading_params(library)
         .into_iter()
         .map(|p| p.name)
         .collect();
@@ -284,7 +284,7 @@ fn build_probe<'g>(
     ));
     let compile = |extra: &[String]| {
         let loaded = plait_graph::load_str(&probe_path, &text, &[sets, extra].concat())?;
-        check_pipeline(&library, &loaded, &opts)
+        check_pipeline(library, &loaded, &opts)
     };
     let mut schedule = compile(&[])?;
     // The session chose the carried values, not the user: they stay growable.
@@ -295,7 +295,7 @@ fn build_probe<'g>(
             .any(|v| v.grows && v.param == c.param);
     }
     // The reference's bounded buffers hold everything, as when it renders.
-    let probe = crate::source::PipelineSource::with_library(&probe_path, &[], library.clone());
+    let probe = PipelineSource::with_library(&probe_path, &[], library.clone());
     let prepared = crate::overflow::prepare_holding(gpu, schedule, &compile, &probe, scene, size)?;
     Ok(Some((visibility, prepared)))
 }

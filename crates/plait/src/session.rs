@@ -296,11 +296,32 @@ impl SceneData {
 /// [`Prepared::render_frame`] ([`crate::frames`]), which run the checks
 /// every frame owes (a bounded buffer that drops, invocations cut short) and
 /// return the frame's notes with its report, so none can forget them. The
-/// renderer stays reachable for what the session does not wrap (reading an
-/// intermediate resource, the benchmarks' encode-only timing, tests that
-/// look at one pass).
+/// renderer is private: resources are read back with
+/// [`Prepared::read_resource`] and [`Prepared::read_buffer`], the encode
+/// bench times [`Prepared::encode_only`], and a test that asserts on the
+/// counters of a frame dropping data on purpose names
+/// [`Prepared::render_unchecked`]. Outside this crate the frame step cannot
+/// be bypassed:
+///
+/// ```compile_fail
+/// fn bypass(prepared: &plait::session::Prepared<'_>) {
+///     let _ = prepared.renderer.render();
+/// }
+/// ```
+///
+/// while the checked path compiles:
+///
+/// ```no_run
+/// fn checked(prepared: &plait::session::Prepared<'_>) {
+///     let _ = prepared.render();
+/// }
+/// ```
 pub struct Prepared<'g> {
-    pub renderer: Renderer<'g>,
+    /// Private so that a front end renders only through the frame step
+    /// ([`Prepared::render`]), which checks every frame for dropped data and
+    /// cut-short loops; reading resources back goes through the read-only
+    /// accessors below.
+    pub(crate) renderer: Renderer<'g>,
     /// Name of the resource images are read from (the first output).
     pub output: String,
     /// The head pose the uploaded hair follows ([`Prepared::render_frame`]).
@@ -334,6 +355,32 @@ impl Prepared<'_> {
     /// Read the output back as an 8-bit sRGB image.
     pub fn image(&self) -> Result<image::RgbaImage, GpuError> {
         Ok(self.renderer.read_resource(&self.output)?.to_image())
+    }
+
+    /// Read texture resource `name` back (layer 0).
+    pub fn read_resource(&self, name: &str) -> Result<plait_gpu::readback::TexelData, GpuError> {
+        self.renderer.read_resource(name)
+    }
+
+    /// Read buffer resource `name` back as bytes.
+    pub fn read_buffer(&self, name: &str) -> Result<Vec<u8>, GpuError> {
+        self.renderer.read_buffer(name)
+    }
+
+    /// Render one frame WITHOUT the frame step's checks: for a test that
+    /// asserts on the overflow counters of a frame that drops data on
+    /// purpose, or that renders a schedule whose checks are what it
+    /// measures. Front ends use [`Prepared::render`], which fails a frame
+    /// that dropped data nobody chose to drop.
+    pub fn render_unchecked(&self) -> Result<plait_gpu::FrameReport, GpuError> {
+        self.renderer.render()
+    }
+
+    /// Record one frame's commands without submitting them: for measuring
+    /// the CPU cost of encoding (`benches/encode.rs`). A frame is rendered
+    /// only by [`Prepared::render`].
+    pub fn encode_only(&self) -> wgpu::CommandBuffer {
+        self.renderer.encode()
     }
 
     /// Read the linear radiance (before the display transform) back as
@@ -467,11 +514,11 @@ pub fn build<'g>(
     geometry.set_environment(&gpu.device, &gpu.queue, &scene.environment);
     let mut wisp_count = None;
     let mut wisp_lod_fraction = 0.0;
-    if let Some((wisps, note)) = crate::wisps::build(&schedule, scene) {
+    if let Some((wisps, note)) = crate::wisps::build(&schedule, &source.library, scene) {
         geometry.set_wisps(&gpu.device, &wisps);
         schedule.notes.push(note);
         wisp_count = Some(wisps.wisp_count);
-        wisp_lod_fraction = crate::wisps::lod_fraction(&schedule);
+        wisp_lod_fraction = crate::wisps::lod_fraction(&schedule, &source.library);
     }
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(gpu, schedule, &source.library, geometry, &frame, base_dir)?;

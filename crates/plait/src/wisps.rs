@@ -6,6 +6,7 @@
 //! draws them instead of the strands' lines. What was built is named in a
 //! note: wisps stand for strands on purpose, never silently.
 
+use plait_gpu::PassLibrary;
 use plait_graph::techniques::technique_keys::WISP_MESH;
 use plait_graph::{Schedule, Value};
 use plait_hair::wisps::{WispGuides, WispMesh, build_wisps};
@@ -22,15 +23,20 @@ pub fn chosen(schedule: &Schedule) -> bool {
 }
 
 /// The wisps of `scene` as the schedule's params ask (`wisp_count`, range
-/// checked at load with the param), and the note naming them; `None` when
-/// the schedule does not draw wisps.
-pub fn build(schedule: &Schedule, scene: &SceneData) -> Option<(WispMesh, String)> {
+/// checked at load with the param; the geometry point's default in
+/// `library` when the pipeline leaves it), and the note naming them; `None`
+/// when the schedule does not draw wisps.
+pub fn build(
+    schedule: &Schedule,
+    library: &PassLibrary,
+    scene: &SceneData,
+) -> Option<(WispMesh, String)> {
     if !chosen(schedule) {
         return None;
     }
     let count = match schedule.params.get("wisp_count") {
         Some(Value::Int(n)) => (*n).max(0) as usize,
-        _ => match plait_passes::points::default_on_search_path("geometry", "wisp_count") {
+        _ => match plait_passes::points::default(library, "geometry", "wisp_count") {
             Some(Value::Int(n)) => n.max(0) as usize,
             _ => 0,
         },
@@ -80,16 +86,14 @@ pub fn kept_wisps(frame: &plait_gpu::frame::FrameUniforms, fraction: f32, count:
     ((k * n).ceil().clamp(1.0, n) as usize).min(count)
 }
 
-/// The schedule's `wisp_lod_screen_fraction` (its point's default when the
-/// pipeline leaves it), read once when the wisps are built, not per frame.
-pub fn lod_fraction(schedule: &Schedule) -> f32 {
+/// The schedule's `wisp_lod_screen_fraction` (its point's default in
+/// `library` when the pipeline leaves it), read once when the wisps are
+/// built, not per frame.
+pub fn lod_fraction(schedule: &Schedule, library: &PassLibrary) -> f32 {
     match schedule.params.get("wisp_lod_screen_fraction") {
         Some(Value::Float(f)) => *f as f32,
         Some(Value::Int(i)) => *i as f32,
-        _ => match plait_passes::points::default_on_search_path(
-            "geometry",
-            "wisp_lod_screen_fraction",
-        ) {
+        _ => match plait_passes::points::default(library, "geometry", "wisp_lod_screen_fraction") {
             Some(Value::Float(f)) => f as f32,
             _ => 0.0,
         },

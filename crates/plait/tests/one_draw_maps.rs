@@ -42,17 +42,11 @@ fn occupancy_and_slabs_in_one_draw_give_the_same_maps_and_image() {
         one.schedule().passes.len() + 2,
         "the two slab passes are gone"
     );
-    two.renderer.render().unwrap_or_else(|e| panic!("{e}"));
-    one.renderer.render().unwrap_or_else(|e| panic!("{e}"));
+    two.render().unwrap_or_else(|e| panic!("{e}"));
+    one.render().unwrap_or_else(|e| panic!("{e}"));
     for map in ["light_bits", "light_slabs", "camera_bits", "camera_slabs"] {
-        let a = two
-            .renderer
-            .read_buffer(map)
-            .unwrap_or_else(|e| panic!("{e}"));
-        let b = one
-            .renderer
-            .read_buffer(map)
-            .unwrap_or_else(|e| panic!("{e}"));
+        let a = two.read_buffer(map).unwrap_or_else(|e| panic!("{e}"));
+        let b = one.read_buffer(map).unwrap_or_else(|e| panic!("{e}"));
         assert!(
             a.iter().any(|&x| x != 0),
             "{map} is empty: the scene drew no hair"

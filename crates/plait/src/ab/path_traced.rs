@@ -104,6 +104,10 @@ pub struct PathTraced {
     /// radiance) exceeds this.
     pub max_noise_rmse: f64,
     pub fibre: Fibre,
+    /// The standard fibre of the run's library ([`Fibre::standard`]): the
+    /// one `fibre` starts from, and the report names `fibre` only when it
+    /// differs.
+    pub standard_fibre: Fibre,
 }
 
 #[derive(Deserialize)]
@@ -142,8 +146,9 @@ pub fn is_path_traced(path: &Path) -> bool {
 }
 
 impl PathTraced {
-    /// Read and check `path`: every bad key or value at file:line:col.
-    pub fn load(path: &Path) -> Result<Self, PathTracedError> {
+    /// Read and check `path`: every bad key or value at file:line:col. Its
+    /// `[fibre]` table is over `library`'s standard fibre.
+    pub fn load(path: &Path, library: &plait_gpu::PassLibrary) -> Result<Self, PathTracedError> {
         // `plait_assets` reads a built-in copy (`<built-in>/references/…`) too.
         let text = plait_assets::read_to_string(path).map_err(|source| PathTracedError::Read {
             path: path.to_path_buf(),
@@ -203,7 +208,8 @@ impl PathTraced {
             max_depth: depth,
             seeds,
             max_noise_rmse: bound,
-            fibre: fibre(file.fibre, &at)?,
+            fibre: fibre(file.fibre, Fibre::standard(library), &at)?,
+            standard_fibre: Fibre::standard(library),
         })
     }
 
@@ -211,7 +217,7 @@ impl PathTraced {
     /// the fibre when it is not the standard one.
     pub fn describe(&self) -> String {
         let f = &self.fibre;
-        let fibre = if *f == Fibre::default() {
+        let fibre = if *f == self.standard_fibre {
             String::new()
         } else {
             format!(
@@ -271,13 +277,14 @@ fn fibre_field(fibre: &mut Fibre, i: usize) -> &mut f32 {
     }
 }
 
-/// The `[fibre]` table over `Fibre::default()`; each value finite and
-/// within its field's bounds.
+/// The `[fibre]` table over `standard`; each value finite and within its
+/// field's bounds.
 fn fibre(
     given: Option<FibreToml>,
+    standard: Fibre,
     at: &dyn Fn(Option<Range<usize>>, String) -> PathTracedError,
 ) -> Result<Fibre, PathTracedError> {
-    let mut fibre = Fibre::default();
+    let mut fibre = standard;
     let Some(f) = given else { return Ok(fibre) };
     let values = [
         f.longitudinal_roughness,
@@ -351,11 +358,12 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
 pub(super) fn load_if_path_traced(
     reference: &Path,
     options: &super::AbOptions,
+    library: &plait_gpu::PassLibrary,
 ) -> Result<Option<PathTraced>, PathTracedError> {
     if !is_path_traced(reference) {
         return Ok(None);
     }
-    let mut spec = PathTraced::load(reference)?;
+    let mut spec = PathTraced::load(reference, library)?;
     if options.sequence.is_some() {
         return Err(PathTracedError::Frames);
     }
@@ -525,12 +533,17 @@ fn stem(path: &Path) -> String {
 mod tests {
     use super::*;
 
+    /// The standard fibre of the library on the search path.
+    fn standard() -> Fibre {
+        Fibre::standard(&plait_passes::read_library(&[]))
+    }
+
     fn load(text: &str) -> Result<PathTraced, PathTracedError> {
         let dir = std::env::temp_dir().join(format!("plait-pt-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join(format!("{:x}.toml", text.len() * 31 + text.lines().count()));
         std::fs::write(&path, text).unwrap();
-        PathTraced::load(&path)
+        PathTraced::load(&path, &plait_passes::read_library(&[]))
     }
 
     const GOOD: &str = "[path_traced]\nrenderer = \"mitsuba\"\nspp = 8\nmax_depth = 16\nseeds = [0, 1]\nmax_noise_rmse = 0.01\n";
@@ -539,8 +552,8 @@ mod tests {
     fn the_shipped_reference_loads_with_the_default_fibre() {
         let path = crate::session::repo_root().join("references/path_traced.toml");
         assert!(is_path_traced(&path));
-        let p = PathTraced::load(&path).expect("loads");
-        assert_eq!(p.fibre, Fibre::default());
+        let p = PathTraced::load(&path, &plait_passes::read_library(&[])).expect("loads");
+        assert_eq!(p.fibre, standard());
         assert_eq!(p.renderer, "mitsuba");
         assert!(!is_path_traced(
             &crate::session::repo_root().join("pipelines/depth_peeling.toml")
@@ -577,10 +590,10 @@ mod tests {
         ]
         .map(String::from)
         .into();
-        let f = fibre_with_sets(Fibre::default(), &sets).unwrap();
+        let f = fibre_with_sets(standard(), &sets).unwrap();
         assert_eq!(f.longitudinal_roughness, 0.2);
         assert_eq!(f.eta, 1.6);
-        assert_eq!(f.azimuthal_roughness, Fibre::default().azimuthal_roughness);
+        assert_eq!(f.azimuthal_roughness, standard().azimuthal_roughness);
         assert_eq!(
             sets_not_followed(&sets),
             [
@@ -588,7 +601,7 @@ mod tests {
                 "techniques.transparency=linked_list"
             ]
         );
-        let e = fibre_with_sets(Fibre::default(), &["params.chiang_eta=0.5".into()]).unwrap_err();
+        let e = fibre_with_sets(standard(), &["params.chiang_eta=0.5".into()]).unwrap_err();
         assert_eq!(
             e.to_string(),
             "--set params.chiang_eta=0.5: the path tracer's fibre eta must be in (1, 4)"

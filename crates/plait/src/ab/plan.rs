@@ -261,7 +261,16 @@ impl Plan {
         if !plait_assets::exists(&reference) {
             return Err(AbError::MissingReference(options.reference.clone()));
         }
-        let path_traced = super::path_traced::load_if_path_traced(&reference, &options)?;
+        // The run's one library, read with every variant's own `techniques/`
+        // (a path-traced reference is no pipeline): the path tracer's
+        // standard fibre is its shading point's.
+        let pipelines: Vec<&std::path::Path> = variants
+            .iter()
+            .map(|v| v.pipeline.as_path())
+            .chain((!super::path_traced::is_path_traced(&reference)).then_some(reference.as_path()))
+            .collect();
+        let library = plait_passes::library_for(&pipelines);
+        let path_traced = super::path_traced::load_if_path_traced(&reference, &options, &library)?;
         variants.push(VariantPlan {
             id: unique("reference".into(), &mut taken),
             label: if options.supersample > 1 {
@@ -283,12 +292,6 @@ impl Plan {
             screen: options.size,
             ..CompileOptions::default()
         };
-        let pipelines: Vec<&std::path::Path> = variants
-            .iter()
-            .filter(|v| !(v.is_reference && path_traced.is_some()))
-            .map(|v| v.pipeline.as_path())
-            .collect();
-        let library = plait_passes::library_for(&pipelines);
         for v in variants
             .iter()
             .filter(|v| !(v.is_reference && path_traced.is_some()))

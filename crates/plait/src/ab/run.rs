@@ -403,8 +403,7 @@ fn read_linears(
             });
             let Some(_) = kept else { return Ok(None) };
             let k = plan.options.render_size(v.is_reference).0 / plan.options.size.0.max(1);
-            p.renderer
-                .read_resource(crate::linear::RADIANCE)
+            p.read_resource(crate::linear::RADIANCE)
                 .map(|t| {
                     Some(super::supersample::box_filter_linear(
                         &crate::linear::to_f32_image(&t),
@@ -471,18 +470,14 @@ fn probe_all(
     }
     let grid = ProbeGrid::through_hair(&scene.data, (16, 16), 48);
     let probe = |v: &VariantPlan| {
-        probe_visibility(
-            gpu,
-            &v.pipeline,
-            &v.sets,
-            &scene.data,
-            plan.options.size,
-            &grid,
-        )
-        .map_err(render_error(format!(
-            "probing the self-shadowing of {} on scene {}",
-            v.label, scene.name
-        )))
+        // The run's one library: the probe reads none of its own.
+        let source = PipelineSource::with_library(&v.pipeline, &v.sets, plan.library.clone());
+        probe_visibility(gpu, &source, &scene.data, plan.options.size, &grid).map_err(render_error(
+            format!(
+                "probing the self-shadowing of {} on scene {}",
+                v.label, scene.name
+            ),
+        ))
     };
     let reference = probe(&plan.variants[plan.reference_index()])?;
     let mut visibilities = Vec::new();

@@ -9,6 +9,7 @@ use plait_gpu::Gpu;
 use super::{AbError, Plan, ScenePlan, Sequence};
 use crate::probe::{ProbeGrid, probe_sequence};
 use crate::session::Prepared;
+use crate::source::PipelineSource;
 
 /// One [`Temporal`] per variant of `plan` on `scene` (visibility where the
 /// variant and the reference both have a provider). `step` hears of each
@@ -53,8 +54,7 @@ pub(super) fn measure(
         probes.push(
             probe_sequence(
                 gpu,
-                &v.pipeline,
-                &v.sets,
+                &PipelineSource::with_library(&v.pipeline, &v.sets, plan.library.clone()),
                 &scene.data,
                 size,
                 &grid,

@@ -44,8 +44,8 @@ pub enum ExportError {
 
 /// The fibre model Mitsuba's `hair` BSDF is given (Chiang, Bitterli, Tappan
 /// & Burley 2016, "A Practical and Controllable Hair and Fur Model for
-/// Production Path Tracing", EGSR). The defaults are the paper's standard
-/// values, the ones issue 47's measurement uses.
+/// Production Path Tracing", EGSR). [`Fibre::standard`] is the paper's
+/// standard fibre, the one issue 47's measurement uses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fibre {
     /// Longitudinal roughness β_m.
@@ -58,15 +58,17 @@ pub struct Fibre {
     pub eta: f32,
 }
 
-impl Default for Fibre {
-    fn default() -> Self {
-        // The shading point's fibre defaults (techniques/shading/point.toml),
-        // which the chiang technique's are: one fibre for both sides.
-        let value =
-            |name: &str| match crate::passes::points::default_on_search_path("shading", name) {
-                Some(plait_graph::Value::Float(f)) => f as f32,
-                _ => f32::NAN,
-            };
+impl Fibre {
+    /// The shading point's fibre defaults in `library` (its
+    /// `techniques/shading/point.toml`), which the chiang technique's are:
+    /// one fibre for both sides, read from the library value the caller
+    /// renders with, never from the search path behind its back. A default
+    /// the point file lacks is NaN, which every fibre check refuses.
+    pub fn standard(library: &plait_gpu::PassLibrary) -> Self {
+        let value = |name: &str| match crate::passes::points::default(library, "shading", name) {
+            Some(plait_graph::Value::Float(f)) => f as f32,
+            _ => f32::NAN,
+        };
         let [beta_m, beta_n, tilt, eta] = [
             "chiang_beta_m",
             "chiang_beta_n",

@@ -8,6 +8,11 @@ use glam::{Vec3, Vec4};
 use super::*;
 use plait_hair::{Scene, Strands};
 
+/// The standard fibre of the library on the search path.
+fn standard() -> Fibre {
+    Fibre::standard(&plait_passes::read_library(&[]))
+}
+
 const SCENE: &str = r#"
 ambient = 0.25
 [hair.procedural]
@@ -60,7 +65,7 @@ fn two_strands() -> SceneData {
 
 #[test]
 fn radii_are_half_the_thickness_and_colours_make_groups() {
-    let m = plan(&two_strands(), (32, 24), Fibre::default()).expect("exports");
+    let m = plan(&two_strands(), (32, 24), standard()).expect("exports");
     assert_eq!(m.hair.len(), 2, "two colours, two shapes");
     let g0 = &m.hair[0];
     // material.color (1, 0.5, 1) tints the strand's colour.
@@ -93,7 +98,7 @@ fn radii_are_half_the_thickness_and_colours_make_groups() {
 
 #[test]
 fn camera_light_ambient_and_background_in_plaits_units() {
-    let m = plan(&two_strands(), (32, 24), Fibre::default()).expect("exports");
+    let m = plan(&two_strands(), (32, 24), standard()).expect("exports");
     let xml = m.xml();
     for want in [
         "<lookat origin=\"0, 1, 6\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>",
@@ -127,7 +132,7 @@ fn camera_light_ambient_and_background_in_plaits_units() {
 #[test]
 fn the_folder_holds_every_file_the_xml_names() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let written = plan(&two_strands(), (32, 24), Fibre::default())
+    let written = plan(&two_strands(), (32, 24), standard())
         .expect("exports")
         .write(dir.path())
         .expect("writes");
@@ -183,9 +188,7 @@ fn the_folder_holds_every_file_the_xml_names() {
 fn what_mitsuba_cannot_express_is_an_error() {
     let mut data = two_strands();
     data.scene.background = plait_hair::Background::Image("sky.png".into());
-    let e = plan(&data, (8, 8), Fibre::default())
-        .unwrap_err()
-        .to_string();
+    let e = plan(&data, (8, 8), standard()).unwrap_err().to_string();
     assert!(e.contains("background image (sky.png)"), "{e}");
 
     let mut data = two_strands();
@@ -194,16 +197,12 @@ fn what_mitsuba_cannot_express_is_an_error() {
         direction: [0.0, -1.0, 0.0],
         cone_degrees: 30.0,
     };
-    let e = plan(&data, (8, 8), Fibre::default())
-        .unwrap_err()
-        .to_string();
+    let e = plan(&data, (8, 8), standard()).unwrap_err().to_string();
     assert!(e.contains("spot light"), "{e}");
 
     let mut data = two_strands();
     data.scene.material.color = [1.0, 0.0, 1.0];
-    let e = plan(&data, (8, 8), Fibre::default())
-        .unwrap_err()
-        .to_string();
+    let e = plan(&data, (8, 8), standard()).unwrap_err().to_string();
     assert!(e.contains("no") || e.contains("absorption"), "{e}");
 }
 
@@ -211,7 +210,7 @@ fn what_mitsuba_cannot_express_is_an_error() {
 fn a_colour_changing_along_a_strand_is_noted() {
     let mut data = two_strands();
     data.strands.color[1] = Vec3::new(0.2, 0.2, 0.2);
-    let m = plan(&data, (8, 8), Fibre::default()).expect("exports");
+    let m = plan(&data, (8, 8), standard()).expect("exports");
     assert!(
         m.notes
             .iter()
