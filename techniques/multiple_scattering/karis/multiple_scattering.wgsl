@@ -21,8 +21,11 @@ fn karis_term(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base: 
     let wrap = clamp((dot(fake_normal, to_light) + 1.0) / 4.0, 0.0, 1.0);
     let diffuse_scatter = (1.0 / PI) * mix(wrap, kajiya_diffuse, 0.33) * scatter;
     // A channel of 0 has √base = 0, so the term is 0 whatever the tint; the
-    // floors only keep WGSL's pow (exp2(y·log2 x)) off 0⁰ = NaN.
-    let luma = max(dot(base, vec3<f32>(0.3, 0.59, 0.11)), 1e-6);
+    // floors only keep WGSL's pow (exp2(y·log2 x)) off 0⁰ = NaN and 0/0. At
+    // 1e-30 they bind only for a black base: a floor of 1e-6 on the luma
+    // replaced the formula's tint for any base darker than that (0.26× for
+    // the blond colour × 1e-7, tests/karis.rs).
+    let luma = max(dot(base, vec3<f32>(0.3, 0.59, 0.11)), 1e-30);
     let tint = pow(max(base / luma, vec3<f32>(1e-30)), vec3<f32>(1.0 - shadow));
     return sqrt(base) * diffuse_scatter * tint;
 }
