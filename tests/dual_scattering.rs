@@ -280,13 +280,18 @@ const AZIMUTHS: usize = 64;
 const ANGLES: usize = 96;
 
 /// Both targets of the cases fixture: per texel (r, g, b, a).
-fn gpu_cases() -> (Vec<[f64; 4]>, Vec<[f64; 4]>) {
+fn gpu_cases() -> (Vec<[f64; 4]>, Vec<[f64; 4]>, Vec<[f64; 4]>) {
     let size = (AZIMUTHS as u32, ANGLES as u32);
-    let mut read = fixture_texels("dual_scattering_cases.toml", size, &["cases", "front"])
-        .into_iter()
-        .map(|texels| texels.into_iter().map(|t| t.map(f64::from)).collect());
+    let mut read = fixture_texels(
+        "dual_scattering_cases.toml",
+        size,
+        &["cases", "front", "behind"],
+    )
+    .into_iter()
+    .map(|texels| texels.into_iter().map(|t| t.map(f64::from)).collect());
     let cases = read.next().expect("cases");
-    (cases, read.next().expect("front"))
+    let front = read.next().expect("front");
+    (cases, front, read.next().expect("behind"))
 }
 
 /// Σ value · cos θo dθo dφ over the grid, both signs of φ, per channel;
@@ -372,7 +377,7 @@ fn lobe_moments(shift: f64, variance: f64) -> (f64, f64) {
 /// Tolerances 1 %: the table's bilinear lookup and rgba16float.
 #[test]
 fn dual_scattering_terms_follow_the_paper() {
-    let (cases, front) = gpu_cases();
+    let (cases, front, _) = gpu_cases();
     let avg = averages(0.0, 0.3, 1);
     let [af, ab, alpha_f, _, bf2, _] = avg;
     let [attenuation, shift, variance] = back_scattering(avg);
@@ -450,6 +455,43 @@ fn dual_scattering_terms_follow_the_paper() {
         0.01,
     );
     let failures = failures.into_inner();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The local back-scattering counts only the hair behind the point (issue
+/// 43): Zinke et al. 2008's A_b (eq. 14) sums back-scattering by the k-th
+/// strand behind for every k, ā_b ā_f^2k; with m strands there, the
+/// provider's energy is (1 − ā_f^2m) of the unbounded one — none with
+/// nothing behind, all of it with 10⁶ strands (fully lit, θi = 0,
+/// σ_a = 0.3, against the CPU mirror's ā_f; 1 %: rgba16float tables).
+#[test]
+fn back_scattering_counts_the_strands_behind() {
+    let (_, _, behind) = gpu_cases();
+    let af = averages(0.0, 0.3, 1)[0];
+    let e = energy(&behind, Some(true));
+    let unbounded = e[3];
+    let mut failures = Vec::new();
+    for (c, m) in [(0, 0.0), (1, 1.0), (2, 3.0)] {
+        let want = 1.0 - af.powf(2.0 * m);
+        let got = e[c] / unbounded;
+        let ok = if m == 0.0 {
+            e[c] == 0.0
+        } else {
+            (got / want - 1.0).abs() <= 0.01
+        };
+        println!(
+            "m = {m}: energy {:.5} = {got:.4} of the unbounded {unbounded:.5} (want 1 − ā_f^2m = {want:.4}, ā_f {af:.4}){}",
+            e[c],
+            if ok { "" } else { "  FAILS" }
+        );
+        if !ok {
+            failures.push(format!("m = {m}: {got} of the unbounded, want {want}"));
+        }
+    }
+    assert!(
+        unbounded > 0.0,
+        "no back-scattering with 10⁶ strands behind"
+    );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

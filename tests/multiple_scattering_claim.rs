@@ -30,7 +30,26 @@ use plait_tests::{open_gpu, repo_root};
 
 const SIZE: (u32, u32) = (160, 120);
 const COLOURS: [&str; 3] = ["blond", "dark_brown", "black"];
-const METHODS: [&str; 3] = ["none", "karis", "dual_scattering"];
+/// Each variant: its name and its `--set`s beside `shading=chiang`. The
+/// last is Zinke et al. 2008's A_b as published — unbounded hair behind
+/// every point — which plait's dual scattering replaced by the strands
+/// behind it (issue 43; techniques/multiple_scattering/dual_scattering/
+/// technique.toml): measured beside it, its band must exclude it.
+const METHODS: [(&str, &[&str]); 4] = [
+    ("none", &["techniques.multiple_scattering=none"]),
+    ("karis", &["techniques.multiple_scattering=karis"]),
+    (
+        "dual_scattering",
+        &["techniques.multiple_scattering=dual_scattering"],
+    ),
+    (
+        "dual_scattering_unbounded",
+        &[
+            "techniques.multiple_scattering=dual_scattering",
+            "params.dual_scattering_count_behind=0",
+        ],
+    ),
+];
 
 /// Rec. 709 luminance of every pixel.
 fn luminance(image: &image::Rgba32FImage) -> Vec<f64> {
@@ -46,16 +65,17 @@ struct Measured {
     noise_rmse: f64,
     reference: f64,
     pixels: usize,
-    ratios: [f64; 3],
+    ratios: [f64; 4],
 }
 
-fn measure() -> Vec<Measured> {
+/// Per scene `tests/scenes/ms_<name>.toml`, in order.
+fn measure(names: &[String]) -> Vec<Measured> {
     let root = repo_root();
     let mut options = AbOptions::new(
         vec![root.join("pipelines/occupancy.toml")],
         root.join("tests/fixtures/ms_path_traced.toml"),
     );
-    options.scenes = COLOURS
+    options.scenes = names
         .iter()
         .map(|c| root.join(format!("tests/scenes/ms_{c}.toml")))
         .collect::<Vec<PathBuf>>();
@@ -76,11 +96,9 @@ fn measure() -> Vec<Measured> {
         .map(|(scene, reference)| {
             let images: Vec<Vec<f64>> = METHODS
                 .iter()
-                .map(|m| {
-                    let sets = [
-                        "techniques.shading=chiang".to_owned(),
-                        format!("techniques.multiple_scattering={m}"),
-                    ];
+                .map(|(m, variant)| {
+                    let mut sets = vec!["techniques.shading=chiang".to_owned()];
+                    sets.extend(variant.iter().map(|s| s.to_string()));
                     let prepared = prepare(&gpu, &pipeline, &sets, &scene.data, SIZE)
                         .unwrap_or_else(|e| panic!("{m} on {}: {e}", scene.name));
                     prepared.render_unchecked().expect("renders");
@@ -114,7 +132,7 @@ fn measure() -> Vec<Measured> {
 #[test]
 fn dual_scattering_is_closer_than_single_scattering_on_blond_and_the_gap_shrinks() {
     let start = std::time::Instant::now();
-    let measured = measure();
+    let measured = measure(&COLOURS.map(String::from));
     let mut report = Vec::new();
     let mut failures = Vec::new();
     let mut gaps = Vec::new();
@@ -124,14 +142,14 @@ fn dual_scattering_is_closer_than_single_scattering_on_blond_and_the_gap_shrinks
         // N = hair independent pixels errs by that / √N.
         let all = (SIZE.0 * SIZE.1) as f64;
         let standard_error = m.noise_rmse * all.sqrt() / m.pixels as f64 / m.reference;
-        let [none, karis, dual] = m.ratios;
+        let [none, karis, dual, unbounded] = m.ratios;
         let gap = (none - 1.0).abs() - (dual - 1.0).abs();
         gaps.push(gap);
         report.push(format!(
             "{colour}: {} hair pixels, path tracer mean luminance {:.5} (noise RMSE {:.4}, \
              standard error of the mean ≤ {standard_error:.4} of it); luminance ÷ path tracer: \
-             none {none:.3}, karis {karis:.3}, dual_scattering {dual:.3}; \
-             |none − 1| − |dual − 1| = {gap:.3}",
+             none {none:.3}, karis {karis:.3}, dual_scattering {dual:.3} \
+             (unbounded A_b {unbounded:.3}); |none − 1| − |dual − 1| = {gap:.3}",
             m.pixels, m.reference, m.noise_rmse
         ));
         if m.noise_rmse > NOISE_BOUND {
@@ -169,35 +187,121 @@ fn dual_scattering_is_closer_than_single_scattering_on_blond_and_the_gap_shrinks
 /// every run.
 const NOISE_BOUND: f64 = 0.06;
 
-/// The blond gap |none − 1| − |dual − 1| asserted: the measured 0.218
-/// (dark brown 0.158, black 0.019) / 1.25.
-const BLOND_MARGIN: f64 = 0.174;
+/// The blond gap |none − 1| − |dual − 1| asserted: the measured 0.069
+/// (dark brown 0.060, black 0.013) / 1.25. It was 0.218 with Zinke's A_b
+/// as published (unbounded hair behind every point); most of that was
+/// back-scattering by hair the groom does not have (issue 43, the
+/// dark-surroundings test below).
+const BLOND_MARGIN: f64 = 0.055;
 
-/// Per colour (blond, dark brown, black), each method's mean hair luminance
-/// ÷ the path tracer's, measured on lavapipe with this test (Mitsuba 3 as
-/// scripts/ensure-mitsuba.sh pins it, LLVM 19), and its band: ± a third of
-/// the way to the nearest other method's value, at most ± 0.02
-/// (4.5 times the bound on the mean's standard error; lavapipe and the
-/// seeded reference are deterministic).
-/// Dual scattering undershoots the path tracer on every colour (0.63 on
+/// Per colour (blond, dark brown, black), each variant's mean hair
+/// luminance ÷ the path tracer's, measured on lavapipe with this test
+/// (Mitsuba 3 as scripts/ensure-mitsuba.sh pins it, LLVM 19), and its band:
+/// ± a third of the way to the nearest other variant's value, at most
+/// ± 0.02 (4.5 times the bound on the mean's standard error; lavapipe and
+/// the seeded reference are deterministic — black's dual scattering lies
+/// 0.0057 from the unbounded A_b's, so its band is ± 0.0019).
+/// Dual scattering undershoots the path tracer on every colour (0.48 on
 /// blond), Karis's wrap term lands nearest in mean luminance (1.05) with
 /// no error bound; on black even `none` is 0.78: the path tracer's light
 /// from the lit ground and head onto the hair, which no real-time method
 /// here models (issue 47's residual), not multiple scattering in the hair.
-const BANDS: [[Row; 3]; 3] = [
+const BANDS: [[Row; 4]; 3] = [
     [
         ("none", 0.4131, (0.3931, 0.4331)),
         ("karis", 1.053, (1.033, 1.073)),
-        ("dual_scattering", 0.6308, (0.6108, 0.6508)),
+        ("dual_scattering", 0.4817, (0.4617, 0.5017)),
+        ("dual_scattering_unbounded", 0.6308, (0.6108, 0.6508)),
     ],
     [
         ("none", 0.4945, (0.4745, 0.5145)),
         ("karis", 0.9493, (0.9293, 0.9693)),
-        ("dual_scattering", 0.6525, (0.6325, 0.6725)),
+        ("dual_scattering", 0.5547, (0.5347, 0.5747)),
+        ("dual_scattering_unbounded", 0.6525, (0.6325, 0.6725)),
     ],
     [
-        ("none", 0.7836, (0.7773, 0.7899)),
+        ("none", 0.7836, (0.7791, 0.7880)),
         ("karis", 1.036, (1.016, 1.056)),
-        ("dual_scattering", 0.8027, (0.7964, 0.8090)),
+        ("dual_scattering", 0.7970, (0.7951, 0.7989)),
+        ("dual_scattering_unbounded", 0.8027, (0.8008, 0.8046)),
+    ],
+];
+
+/// Issue 43's isolation of the hair's own multiple scattering: the same
+/// three scenes with the head and the ground black
+/// (tests/scenes/ms_*_dark_surroundings.toml), where no light reaches the
+/// hair by them in the path tracer either, so what differs from it is the
+/// hair's own scattering. Each variant in a band that admits no other's
+/// value — Zinke's A_b as published among them.
+#[test]
+fn dual_scattering_with_dark_surroundings() {
+    let start = std::time::Instant::now();
+    let measured = measure(&COLOURS.map(|c| format!("{c}_dark_surroundings")));
+    let mut failures = Vec::new();
+    for ((colour, m), rows) in COLOURS.iter().zip(&measured).zip(DARK_BANDS) {
+        let [none, karis, dual, unbounded] = m.ratios;
+        let all = (SIZE.0 * SIZE.1) as f64;
+        let standard_error = m.noise_rmse * all.sqrt() / m.pixels as f64 / m.reference;
+        println!(
+            "{colour}, dark surroundings: {} hair pixels, path tracer mean luminance {:.5} \
+             (noise RMSE {:.4}, standard error of the mean ≤ {standard_error:.4} of it); \
+             luminance ÷ path tracer: none {none:.3}, karis {karis:.3}, \
+             dual_scattering {dual:.3} (unbounded A_b {unbounded:.3})",
+            m.pixels, m.reference, m.noise_rmse
+        );
+        if m.noise_rmse > NOISE_BOUND {
+            failures.push(format!(
+                "{colour}: noise RMSE {:.4} > {NOISE_BOUND}",
+                m.noise_rmse
+            ));
+        }
+        failures.extend(band_failures(colour, &rows, &m.ratios));
+    }
+    println!("{:.1} s", start.elapsed().as_secs_f64());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The blond dark-surroundings groom at 20000 strands instead of 3000
+/// (tests/scenes/ms_blond_dense_dark_surroundings.toml): hair deep behind
+/// the visible points, nearer the unbounded hair Zinke's A_b assumes. Not
+/// a claim — a measurement for the book (`--ignored`; its reference takes
+/// Mitsuba about 20 s more on a cold cache).
+#[test]
+#[ignore]
+fn dense_groom_against_the_path_tracer() {
+    for m in measure(&["blond_dense_dark_surroundings".to_owned()]) {
+        let [none, karis, dual, unbounded] = m.ratios;
+        println!(
+            "blond, 20000 strands, dark surroundings: {} hair pixels, path tracer mean \
+             luminance {:.5} (noise RMSE {:.4}); luminance ÷ path tracer: none {none:.3}, \
+             karis {karis:.3}, dual_scattering {dual:.3} (unbounded A_b {unbounded:.3})",
+            m.pixels, m.reference, m.noise_rmse
+        );
+    }
+}
+
+/// As `BANDS`, with the head and the ground black (same command, same
+/// rule). With Zinke's A_b as published dual scattering is 1.41 / 1.39 /
+/// 1.13 of the path tracer; counting the strands behind each point it is
+/// 0.77 / 0.89 / 1.07 — nearer on every colour, and single scattering
+/// (0.47 / 0.59 / 0.94) below both.
+const DARK_BANDS: [[Row; 4]; 3] = [
+    [
+        ("none", 0.4734, (0.4534, 0.4934)),
+        ("karis", 3.215, (3.195, 3.235)),
+        ("dual_scattering", 0.7672, (0.7472, 0.7872)),
+        ("dual_scattering_unbounded", 1.405, (1.385, 1.425)),
+    ],
+    [
+        ("none", 0.5857, (0.5657, 0.6057)),
+        ("karis", 2.902, (2.882, 2.922)),
+        ("dual_scattering", 0.8923, (0.8723, 0.9123)),
+        ("dual_scattering_unbounded", 1.390, (1.370, 1.410)),
+    ],
+    [
+        ("none", 0.9370, (0.9170, 0.9570)),
+        ("karis", 3.452, (3.432, 3.472)),
+        ("dual_scattering", 1.071, (1.052, 1.0899)),
+        ("dual_scattering_unbounded", 1.128, (1.109, 1.1469)),
     ],
 ];

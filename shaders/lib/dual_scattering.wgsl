@@ -58,6 +58,17 @@ fn back_scattering(a: vec4<f32>, b: vec2<f32>, d_b: f32) -> BackScattering {
     return BackScattering(attenuation, shift, sigma * sigma);
 }
 
+// The part of A_b (eq. 14) the first m strands behind the point return:
+// A_1 = ā_b Σ_{k=1..∞} ā_f^2k sums one back-scattering by the strand k deep
+// (crossed k times each way), so m strands give ā_b ā_f² (1 − ā_f^2m)/(1 − ā_f²)
+// = A_1 · (1 − ā_f^2m); the same factor is taken for A_3 (three
+// back-scatterings: its paths reach deeper, so this keeps more of it than a
+// slab of m strands would). m → ∞: Zinke's A_b; m = 0: none. The floor
+// keeps pow's log finite when ā_f is 0.
+fn behind_fraction(af: f32, m: f32) -> f32 {
+    return 1.0 - pow(max(af * af, 1e-30), m);
+}
+
 // A unit-area Gaussian of variance v at x.
 fn gaussian(x: f32, v: f32) -> f32 {
     return exp(-0.5 * x * x / v) / sqrt(2.0 * PI * v);
