@@ -280,7 +280,10 @@ const AZIMUTHS: usize = 64;
 const ANGLES: usize = 96;
 
 /// Both targets of the cases fixture: per texel (r, g, b, a).
-fn gpu_cases() -> (Vec<[f64; 4]>, Vec<[f64; 4]>, Vec<[f64; 4]>) {
+/// One fixture output's texels, row-major.
+type Texels = Vec<[f64; 4]>;
+
+fn gpu_cases() -> (Texels, Texels, Texels) {
     let size = (AZIMUTHS as u32, ANGLES as u32);
     let mut read = fixture_texels(
         "dual_scattering_cases.toml",
