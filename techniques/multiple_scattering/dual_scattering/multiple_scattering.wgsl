@@ -76,8 +76,12 @@ fn hair_multiple_scattering(world: vec3<f32>, tangent: vec3<f32>, to_light: vec3
     // |φ| < π/2: the backward half, where back-scattered light leaves.
     let backward = select(0.0, 1.0, angles.z > 0.0);
     let n = strands_toward_light(world);
-    // count_behind 0: Zinke's unbounded hair (10⁶ strands: ā_f^2m is 0).
-    let m = select(1e6, strands_behind(world, to_light), multiple_scattering_params.dual_scattering_count_behind > 0.5);
+    // count_behind 0: Zinke's unbounded hair (10⁶ strands: ā_f^2m is 0),
+    // without the two lookups (a uniform branch: skipped, not masked).
+    var m = 1e6;
+    if (multiple_scattering_params.dual_scattering_count_behind > 0.5) {
+        m = strands_behind(world, to_light);
+    }
     let sigma = sigma_a_from_color(base, multiple_scattering_params.chiang_beta_n);
     let v = hair_visibility;
     return vec3<f32>(
