@@ -109,6 +109,9 @@ pub(crate) fn spec(
             ),
         ],
         params,
+        // The peel draw's WGSL is the technique's file, named by its pass
+        // (`shader = "peel.wgsl"`): no Rust names a technique's folder.
+        needs_shader: true,
         ..PassTypeSpec::new(
             "hair_depth_peel",
             PassShape::Raster,
@@ -123,8 +126,8 @@ impl PassType for HairDepthPeel {
         spec(&self.shading_inputs, &self.shading_params)
     }
     fn shader(&self) -> Option<&str> {
-        // The technique folder's own shader (library path, search path first).
-        Some("techniques/transparency/depth_peeling/peel.wgsl")
+        // The pass's `shader = …`, beside the technique file that declares it.
+        None
     }
     fn build(
         &self,
