@@ -7,7 +7,10 @@
 //! name P (`t.point == "geometry" && t.name == "lod"`,
 //! `params.get("lighting") == … "environment_reference"`,
 //! `choice("shading", "kajiya_kay", …)`): the shapes a choice on a technique
-//! takes. Comments and `#[cfg(test)]` modules are not read.
+//! takes; and at a path literal into a technique's folder
+//! (`"techniques/transparency/depth_peeling/peel.wgsl"`), which the
+//! technique's own data should name. Comments and `#[cfg(test)]` modules are
+//! not read.
 
 use std::path::{Path, PathBuf};
 
@@ -118,6 +121,15 @@ fn violations(root: &Path, files: &[PathBuf]) -> Vec<String> {
                         line.trim()
                     ));
                 }
+                // A file of the technique's folder named from Rust: the
+                // technique's data should name it (a pass's `shader = …`).
+                if line.contains(&format!("\"techniques/{point}/{name}/")) {
+                    found.push(format!(
+                        "{rel}:{}: a file of technique {point}/{name} is named here: {}",
+                        i + 1,
+                        line.trim()
+                    ));
+                }
             }
         }
     }
@@ -158,16 +170,20 @@ fn the_check_finds_a_technique_choice() {
     let file = dir.join("choice.rs");
     std::fs::write(
         &file,
-        "fn f(t: &T) -> bool {\n    // t.name == \"lod\" in a comment is fine\n    t.point == \"geometry\"\n        && t.name == \"lod\"\n}\n#[cfg(test)]\nmod tests { const X: (&str, &str) = (\"geometry\", \"wisps\"); }\n",
+        "fn f(t: &T) -> bool {\n    // t.name == \"lod\" in a comment is fine\n    t.point == \"geometry\"\n        && t.name == \"lod\"\n}\nconst S: &str = \"techniques/geometry/wisps/x.wgsl\";\n#[cfg(test)]\nmod tests { const X: (&str, &str) = (\"geometry\", \"wisps\"); }\n",
     )
     .expect("write");
     let found = violations(&root, std::slice::from_ref(&file));
     std::fs::remove_dir_all(&dir).ok();
-    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found.len(), 2, "{found:?}");
     assert!(
         found[0].ends_with(
             ":4: `lod` (a geometry technique) decides behaviour here: && t.name == \"lod\""
         ),
+        "{found:?}"
+    );
+    assert!(
+        found[1].ends_with(":6: a file of technique geometry/wisps is named here: const S: &str = \"techniques/geometry/wisps/x.wgsl\";"),
         "{found:?}"
     );
 }

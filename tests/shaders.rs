@@ -82,6 +82,7 @@ fn scheduled_pass(
         shader: None,
         shader_location: None,
         raster: Default::default(),
+        blend_writes: Vec::new(),
         location: Location::Builtin,
         technique: None,
         run_once: false,

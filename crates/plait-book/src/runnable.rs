@@ -17,6 +17,8 @@ pub struct Runnable {
     pub line: usize,
     /// The command, continuation lines joined, its trailing comment removed.
     pub command: String,
+    /// Its lines' trailing comments, joined (what the text says it does).
+    pub comment: String,
 }
 
 /// Every runnable command of the Markdown files under `dir`, in file order.
@@ -75,7 +77,11 @@ fn in_text(file: &Path, text: &str) -> Vec<Runnable> {
             file: file.to_path_buf(),
             line: i + 1,
             command: String::new(),
+            comment: String::new(),
         });
+        if let Some(i) = t.find(" #").filter(|_| !t.starts_with('#')) {
+            cmd.comment.push_str(t[i + 2..].trim());
+        }
         if !cmd.command.is_empty() {
             cmd.command.push(' ');
         }

@@ -52,6 +52,22 @@ fn every_runnable_command_of_the_guide_and_readme_succeeds() {
             .args(&words[1..])
             .output()
             .expect("run plait");
+        // A file the comment names under the command's `--out` folder
+        // (`# report/report.html, …`) is one the command wrote.
+        let out_dir = words
+            .iter()
+            .position(|w| *w == "--out")
+            .and_then(|i| words.get(i + 1));
+        for named in c.comment.split([' ', ',']).filter(|w| {
+            out_dir.is_some_and(|d| w.strip_prefix(d).is_some_and(|r| r.starts_with('/')))
+        }) {
+            if out.status.success() && !dir.path().join(named).exists() {
+                failed.push(format!(
+                    "{at}: its comment names {named}, which `{}` did not write",
+                    c.command
+                ));
+            }
+        }
         if !out.status.success() {
             failed.push(format!(
                 "{at}: `{}` failed ({}):\n{}",

@@ -217,6 +217,7 @@ fn read_file(r: &mut Reader<'_>, root: &Spanned<Node>) -> Option<PassTypeFile> {
             params,
             required_features: features,
             state_from_data: shape != PassShape::Compute,
+            raster: raster.clone(),
             ..PassTypeSpec::new(&name, shape, &source, &description)
         },
         shader,

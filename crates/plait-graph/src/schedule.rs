@@ -29,6 +29,20 @@ pub struct PhysicalId(usize);
 #[serde(transparent)]
 pub struct PassTypeId(usize);
 
+/// A slot a pass type declares: its index among the type's inputs, its
+/// outputs ([`crate::PassTypeSpec::slot_id`]), or the registry's shared
+/// slots (the ones every hair draw takes). Compile gives each binding the
+/// handle of its slot, so build and record find a slot by comparing
+/// handles, never names; a name that matches no slot is an error at compile
+/// with the nearest one. A Rust pass type names its own slots by constant
+/// handles (`SlotId::Output(2)`), each checked against its name by a test.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum SlotId {
+    Input(usize),
+    Output(usize),
+    Shared(usize),
+}
+
 impl PassTypeId {
     /// The pass type at `index` of the registry's types.
     pub const fn new(index: usize) -> Self {
@@ -144,7 +158,18 @@ impl ResourceDesc {
 /// One slot of a scheduled pass bound to a resource.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Binding {
+    /// The slot's name, for messages, graphs and the shader binding it
+    /// feeds; code finds a slot by [`Binding::slot_id`].
     pub slot: String,
+    /// The slot resolved at compile: `None` for a slot the type does not
+    /// declare (a data-only pass's slots are its shader's bindings).
+    #[serde(skip)]
+    pub slot_id: Option<SlotId>,
+    /// For a colour target `X_resolve` of a pass that also writes `X`: the
+    /// index in [`ScheduledPass::writes`] of `X`, whose samples it receives
+    /// (paired by name once, at compile).
+    #[serde(skip)]
+    pub resolves: Option<usize>,
     /// `None` only in a culled pass, when its resource was dropped because
     /// only culled passes use it (see [`Binding::resource_name`]). While
     /// compile runs it is the declared index (`[resources]`, then the
@@ -237,6 +262,13 @@ pub struct ScheduledPass {
     /// Raster state the pass sets in its file (`depth`, `blend`, `cull`).
     #[serde(skip)]
     pub raster: crate::raster_decl::RasterDecl,
+    /// For each blend of the pass over its type's
+    /// ([`crate::PassTypeSpec::raster`] overridden by `raster`, the decl
+    /// build uses), in order: the index in `writes` of the slot it names,
+    /// `None` if the pass writes no such slot. Resolved at compile, so state
+    /// is built from indices, not names.
+    #[serde(skip)]
+    pub blend_writes: Vec<Option<usize>>,
     #[serde(skip)]
     pub location: Location,
     /// The technique that declared the pass (`self_shadow/occupancy`), if any.
@@ -245,6 +277,25 @@ pub struct ScheduledPass {
     /// only; what it writes is kept across frames ([`ResolvedResource::kept`]).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub run_once: bool,
+}
+
+impl ScheduledPass {
+    /// The binding of the declared slot `slot`, written or read.
+    pub fn bound(&self, slot: SlotId) -> Option<&Binding> {
+        self.writes
+            .iter()
+            .chain(self.reads.iter())
+            .find(|b| b.slot_id == Some(slot))
+    }
+
+    /// Whether write `index` is an `X_resolve` receiving the samples of a
+    /// colour target `X` (it is not drawn into).
+    pub fn is_resolve(&self, index: usize) -> bool {
+        self.writes[index]
+            .resolves
+            .and_then(|x| self.writes.get(x))
+            .is_some_and(|x| x.access == Access::ColorTarget)
+    }
 }
 
 /// Why a pass does not run.

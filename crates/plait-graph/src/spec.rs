@@ -267,6 +267,10 @@ pub struct PassTypeSpec {
     /// Passes of this type may set `depth`, `blend` and `cull`
     /// ([`crate::raster_decl`]); other types choose their state in Rust.
     pub state_from_data: bool,
+    /// The raster keys the type sets for every pass of it (a pass-type
+    /// file's `depth`, `blend`, …); a pass's own keys override them, and
+    /// compile merges the two into [`crate::ScheduledPass::raster`].
+    pub raster: crate::raster_decl::RasterDecl,
 }
 
 impl PassTypeSpec {
@@ -285,7 +289,30 @@ impl PassTypeSpec {
             needs_shader: false,
             required_features: Vec::new(),
             state_from_data: false,
+            raster: crate::raster_decl::RasterDecl::default(),
         }
+    }
+
+    /// The declared slot `id` names (`None` for a shared slot, which the
+    /// registry holds, or an index past the type's slots).
+    pub fn slot(&self, id: crate::SlotId) -> Option<&SlotSpec> {
+        match id {
+            crate::SlotId::Input(i) => self.inputs.get(i),
+            crate::SlotId::Output(i) => self.outputs.get(i),
+            crate::SlotId::Shared(_) => None,
+        }
+    }
+
+    /// The handle of the slot named `name` among the type's declared slots,
+    /// the one compile gives the bindings of it ([`crate::Binding::slot_id`]).
+    pub fn slot_id(&self, name: &str) -> Option<crate::SlotId> {
+        let named = |s: &SlotSpec| s.name == name;
+        (self.inputs.iter().position(named).map(crate::SlotId::Input)).or_else(|| {
+            self.outputs
+                .iter()
+                .position(named)
+                .map(crate::SlotId::Output)
+        })
     }
 
     /// A data-only pass type: any slot names (the shader's bindings), params

@@ -32,7 +32,7 @@ use plait_gpu::pass::{
 };
 use plait_gpu::{Define, GpuError};
 use plait_graph::{
-    Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, Value,
+    Access, Format, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, SlotId, Value,
 };
 
 use crate::spec_util::{DEPTH, buffer, int, texture};
@@ -49,7 +49,10 @@ pub const WORDS_PER_CLUSTER: u64 = 3;
 
 const SHADER: &str = "shaders/passes/density_clustering.wgsl";
 
-fn spec() -> PassTypeSpec {
+/// The `clusters` slot ([`SlotId`]): cleared by the first draw only.
+pub(crate) const CLUSTERS_SLOT: SlotId = SlotId::Output(0);
+
+pub(crate) fn spec() -> PassTypeSpec {
     PassTypeSpec {
         inputs: vec![
             texture(
@@ -156,7 +159,11 @@ impl PassType for DensityClustering {
             // Only the first draw clears the buffer; later draws add to it.
             let mut p = pass.clone();
             if stage > 0 {
-                for b in p.writes.iter_mut().filter(|b| b.slot == "clusters") {
+                for b in p
+                    .writes
+                    .iter_mut()
+                    .filter(|b| b.slot_id == Some(CLUSTERS_SLOT))
+                {
                     b.loads = true;
                 }
             }

@@ -31,10 +31,10 @@ use plait_gpu::pass::{
     BlendPreset, BuildContext, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw,
     ShaderPass, blend_preset, build_draw, default_defines,
 };
-use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass};
+use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass, SlotId};
 
 use crate::hair_fragment;
-use crate::spec_util::{DEPTH, HDR, int, texture};
+use crate::spec_util::{DEPTH, HDR, bound, int, texture};
 
 /// With the params of the library's providers (see [`HairShade`](crate::hair_shade::HairShade)).
 pub struct HairDepthPeel {
@@ -47,7 +47,14 @@ inventory::submit! { crate::RustPassType(|library| Box::new(HairDepthPeel {
     shading_params: hair_fragment::shading_params(library),
 })) }
 
-fn spec(
+/// Its outputs' handles ([`SlotId`]), in `spec`'s order (its inputs are the
+/// shading point's, which vary with the library).
+pub(crate) const COLOR: SlotId = SlotId::Output(0);
+pub(crate) const LAYER: SlotId = SlotId::Output(1);
+pub(crate) const PEEL_DEPTH: SlotId = SlotId::Output(2);
+pub(crate) const PEEL_PREV: SlotId = SlotId::Output(3);
+
+pub(crate) fn spec(
     shading_inputs: &[plait_graph::SlotSpec],
     shading_params: &[plait_graph::ParamSpec],
 ) -> PassTypeSpec {
@@ -102,6 +109,9 @@ fn spec(
             ),
         ],
         params,
+        // The peel draw's WGSL is the technique's file, named by its pass
+        // (`shader = "peel.wgsl"`): no Rust names a technique's folder.
+        needs_shader: true,
         ..PassTypeSpec::new(
             "hair_depth_peel",
             PassShape::Raster,
@@ -116,29 +126,21 @@ impl PassType for HairDepthPeel {
         spec(&self.shading_inputs, &self.shading_params)
     }
     fn shader(&self) -> Option<&str> {
-        // The technique folder's own shader (library path, search path first).
-        Some("techniques/transparency/depth_peeling/peel.wgsl")
+        // The pass's `shader = …`, beside the technique file that declares it.
+        None
     }
     fn build(
         &self,
         pass: &ScheduledPass,
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        let find = |slot: &str| {
-            pass.writes
-                .iter()
-                .find(|b| b.slot == slot)
-                .cloned()
-                .ok_or_else(|| GpuError::Pass {
-                    pass: pass.name.clone(),
-                    message: format!("`{slot}` is not bound"),
-                })
-        };
+        let spec = self.spec();
+        let find = |slot: SlotId| bound(pass, &spec, slot).cloned();
         let (color, layer, depth_a, depth_b) = (
-            find("color")?,
-            find("layer")?,
-            find("peel_depth")?,
-            find("peel_prev")?,
+            find(COLOR)?,
+            find(LAYER)?,
+            find(PEEL_DEPTH)?,
+            find(PEEL_PREV)?,
         );
         let int_param = |name: &str, default: i64| match pass.params.get(name) {
             Some(plait_graph::Value::Int(i)) => (*i).max(1) as u32,

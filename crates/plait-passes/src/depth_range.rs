@@ -14,7 +14,7 @@ use plait_gpu::pass::{
     build_draw,
 };
 use plait_graph::{
-    Access, Format, PassShape, PassTypeSpec, ResolvedResource, ResourceDesc, ScheduledPass,
+    Access, Format, PassShape, PassTypeSpec, ResolvedResource, ResourceDesc, ScheduledPass, SlotId,
 };
 
 use crate::spec_util::{DEPTH, texture};
@@ -25,7 +25,11 @@ inventory::submit! { crate::RustPassType(|_| Box::new(DepthRange)) }
 
 pub(crate) const SHADER: &str = "shaders/passes/depth_range.wgsl";
 
-fn spec() -> PassTypeSpec {
+/// Its slots' handles ([`SlotId`]), in `spec`'s order.
+pub(crate) const OPAQUE_DEPTH: SlotId = SlotId::Input(0);
+pub(crate) const RANGE: SlotId = SlotId::Output(0);
+
+pub(crate) fn spec() -> PassTypeSpec {
     PassTypeSpec {
         inputs: vec![texture(
             "opaque_depth",
@@ -108,7 +112,7 @@ impl PassType for DepthRange {
         pass: &ScheduledPass,
         resources: &[ResolvedResource],
     ) -> Result<(), String> {
-        check_same_size(pass, resources, "opaque_depth", "range")
+        check_same_size(pass, resources, OPAQUE_DEPTH, RANGE)
     }
     fn build(
         &self,
@@ -129,28 +133,26 @@ impl PassType for DepthRange {
 fn check_same_size(
     pass: &ScheduledPass,
     resources: &[ResolvedResource],
-    slot: &str,
-    like: &str,
+    slot: SlotId,
+    like: SlotId,
 ) -> Result<(), String> {
-    let size = |slot: &str| {
-        let binding = pass
-            .reads
-            .iter()
-            .chain(pass.writes.iter())
-            .find(|b| b.slot == slot)?;
+    let size = |slot: SlotId| {
+        let binding = pass.bound(slot)?;
         match binding.resolved(resources)? {
             ResolvedResource {
                 name,
                 desc: ResourceDesc::Texture { width, height, .. },
                 ..
-            } => Some((name.clone(), *width, *height)),
+            } => Some((name.clone(), binding.slot.clone(), *width, *height)),
             _ => None,
         }
     };
     match (size(slot), size(like)) {
-        (Some((name, w, h)), Some((like_name, lw, lh))) if (w, h) != (lw, lh) => Err(format!(
-            "`{name}` (slot `{slot}`) is {w}x{h} but `{like_name}` (slot `{like}`) is {lw}x{lh}: the opaque depth is tested texel for texel, give both one size"
-        )),
+        (Some((name, slot, w, h)), Some((like_name, like, lw, lh))) if (w, h) != (lw, lh) => {
+            Err(format!(
+                "`{name}` (slot `{slot}`) is {w}x{h} but `{like_name}` (slot `{like}`) is {lw}x{lh}: the opaque depth is tested texel for texel, give both one size"
+            ))
+        }
         _ => Ok(()),
     }
 }

@@ -28,6 +28,8 @@ pub mod points;
 pub mod shading;
 pub mod shading_space;
 pub mod simulation;
+#[cfg(test)]
+mod slot_handles;
 pub mod spec_util;
 pub mod visibility;
 

@@ -21,10 +21,10 @@ use plait_gpu::pass::{
     BuildContext, PassType, PreparedPass, RecordContext, ShaderPass, default_defines,
 };
 use plait_gpu::shader::Define;
-use plait_graph::{Access, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, Value};
+use plait_graph::{Access, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, SlotId, Value};
 
-use crate::occlusion_directions::{bound, compute_kernel, kernel_pass};
-use crate::spec_util::{buffer, choice, int};
+use crate::occlusion_directions::{compute_kernel, kernel_pass};
+use crate::spec_util::{bound, buffer, choice, int};
 
 pub struct OcclusionCylinders;
 
@@ -42,7 +42,12 @@ const HAIR_BOX_BYTES: u64 = 48;
 const CHUNK_OFFSET: u64 = 32;
 const CHUNK_BYTES: u64 = 16;
 
-fn spec() -> PassTypeSpec {
+/// Its slots' handles ([`SlotId`]), in `spec`'s order.
+pub(crate) const VERTEX_AO: SlotId = SlotId::Output(0);
+pub(crate) const HAIR_BOX: SlotId = SlotId::Output(1);
+pub(crate) const AO_STATUS: SlotId = SlotId::Output(2);
+
+pub(crate) fn spec() -> PassTypeSpec {
     PassTypeSpec {
         outputs: vec![
             buffer(
@@ -112,17 +117,19 @@ impl PassType for OcclusionCylinders {
         pass: &ScheduledPass,
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        let vertices = crate::occlusion_directions::checked_vertex_count(pass, ctx)?;
+        let spec = spec();
+        let vertices =
+            crate::occlusion_directions::checked_vertex_count(pass, &spec, VERTEX_AO, ctx)?;
         let mut defines = default_defines(pass);
         if ctx.geometry.opaque.is_none() {
             defines.push(("NO_SCALP".into(), Define::Bool(true)));
         }
         let slots = [
-            ("vertex_ao", "vertex_ao", Access::StorageWrite),
-            ("hair_box", "hair_box", Access::StorageWrite),
-            ("ao_status", "ao_status", Access::StorageWrite),
+            ("vertex_ao", VERTEX_AO, Access::StorageWrite),
+            ("hair_box", HAIR_BOX, Access::StorageWrite),
+            ("ao_status", AO_STATUS, Access::StorageWrite),
         ];
-        let kernels = kernel_pass(pass, PassShape::Compute, &[], &slots)?;
+        let kernels = kernel_pass(pass, &spec, PassShape::Compute, &[], &slots)?;
         let kernel = |extra: Option<&str>, threads: u32| {
             let mut defines = defines.clone();
             if let Some(name) = extra {
@@ -133,7 +140,7 @@ impl PassType for OcclusionCylinders {
         let bounds = kernel(Some("CYLINDER_BOUNDS"), 1)?;
         let shadow = kernel(None, vertices)?;
         let visibility = kernel(Some("CYLINDER_VISIBILITY"), vertices)?;
-        check_scratch(pass, ctx)?;
+        check_scratch(pass, &spec, ctx)?;
         let (chunk_buffer, chunks) = chunk_buffer(pass, ctx, vertices);
         Ok(Box::new(Prepared {
             bounds,
@@ -141,17 +148,22 @@ impl PassType for OcclusionCylinders {
             visibility,
             chunk_buffer,
             chunks,
-            vertex_ao: bound(pass, "vertex_ao")?.id(),
-            hair_box: bound(pass, "hair_box")?.id(),
+            vertex_ao: bound(pass, &spec, VERTEX_AO)?.id(),
+            hair_box: bound(pass, &spec, HAIR_BOX)?.id(),
         }))
     }
 }
 
 /// The scratch buffers the shader indexes: `hair_box` holds the box and the
 /// chunk, `ao_status` its one word.
-fn check_scratch(pass: &ScheduledPass, ctx: &BuildContext<'_>) -> Result<(), GpuError> {
-    for (slot, need) in [("hair_box", HAIR_BOX_BYTES), ("ao_status", 4)] {
-        let id = bound(pass, slot)?.id();
+fn check_scratch(
+    pass: &ScheduledPass,
+    spec: &PassTypeSpec,
+    ctx: &BuildContext<'_>,
+) -> Result<(), GpuError> {
+    for (slot, need) in [(HAIR_BOX, HAIR_BOX_BYTES), (AO_STATUS, 4)] {
+        let binding = bound(pass, spec, slot)?;
+        let (id, slot) = (binding.id(), &binding.slot);
         if let ResourceDesc::Buffer { size } = ctx.schedule.resources[id].desc
             && size < need
         {

@@ -21,11 +21,12 @@ use plait_gpu::pass::{
 };
 use plait_gpu::shader::Define;
 use plait_graph::{
-    Access, Binding, Format, PassShape, PassTypeSpec, ResolvedResource, ResourceDesc, ScheduledPass,
+    Access, Binding, Format, PassShape, PassTypeSpec, ResolvedResource, ResourceDesc,
+    ScheduledPass, SlotId,
 };
 
 use crate::depth_range;
-use crate::spec_util::{DEPTH, float, int, texture};
+use crate::spec_util::{DEPTH, bound, float, int, texture};
 
 pub struct OcclusionDirections;
 
@@ -43,7 +44,15 @@ pub const DIRECTION_FRAME_BYTES: u64 = 768;
 /// handles any count; this bounds the precompute's time).
 pub const MAX_DIRECTIONS: i64 = 1024;
 
-fn spec() -> PassTypeSpec {
+/// Its slots' handles ([`SlotId`]), in `spec`'s order.
+pub(crate) const VERTEX_AO: SlotId = SlotId::Output(0);
+pub(crate) const DIRECTION_FRAMES: SlotId = SlotId::Output(1);
+pub(crate) const RANGE: SlotId = SlotId::Output(2);
+pub(crate) const LAYERS: SlotId = SlotId::Output(3);
+pub(crate) const SCRATCH: SlotId = SlotId::Output(4);
+pub(crate) const NO_OPAQUE: SlotId = SlotId::Output(5);
+
+pub(crate) fn spec() -> PassTypeSpec {
     let buffer = crate::spec_util::buffer;
     let aliased = |mut s: plait_graph::SlotSpec, binding: &str| {
         s.binding = Some(binding.into());
@@ -124,32 +133,26 @@ fn spec() -> PassTypeSpec {
     }
 }
 
-/// The resource bound to `slot` of `pass`.
-pub(crate) fn bound<'p>(pass: &'p ScheduledPass, slot: &str) -> Result<&'p Binding, GpuError> {
-    pass.writes
-        .iter()
-        .chain(pass.reads.iter())
-        .find(|b| b.slot == slot)
-        .ok_or_else(|| GpuError::Pass {
-            pass: pass.name.clone(),
-            message: format!("slot `{slot}` is not bound"),
-        })
-}
-
-/// A pass like `pass` whose slots are the ones a kernel it records expects:
-/// `(kernel slot, this pass's slot, access)`.
+/// A pass like `pass` (of the type whose spec is `spec`) whose slots are the
+/// ones a kernel it records expects: `(kernel slot, this pass's slot,
+/// access)`. The kernel's slots are its shader's bindings, so they go by
+/// name; the pass's own go by handle.
 pub(crate) fn kernel_pass(
     pass: &ScheduledPass,
+    spec: &PassTypeSpec,
     shape: PassShape,
-    reads: &[(&str, &str, Access)],
-    writes: &[(&str, &str, Access)],
+    reads: &[(&str, SlotId, Access)],
+    writes: &[(&str, SlotId, Access)],
 ) -> Result<ScheduledPass, GpuError> {
-    let rebind = |list: &[(&str, &str, Access)], loads: bool| {
+    let rebind = |list: &[(&str, SlotId, Access)], loads: bool| {
         list.iter()
             .map(|&(slot, ours, access)| {
-                let b = bound(pass, ours)?;
+                let b = bound(pass, spec, ours)?;
                 Ok(Binding {
                     slot: slot.into(),
+                    // A slot of the kernel's shader, no longer of the type.
+                    slot_id: None,
+                    resolves: None,
                     access,
                     loads,
                     ..b.clone()
@@ -195,9 +198,12 @@ pub(crate) fn int_param(pass: &ScheduledPass, name: &str) -> i64 {
     pass.params.get(name).and_then(|v| v.as_i64()).unwrap_or(0)
 }
 
-/// The hair's vertex count, checked against the `vertex_ao` buffer bound to `pass`.
+/// The hair's vertex count, checked against the `vertex_ao` buffer bound to
+/// `pass` (slot `ao` of the type whose spec is `spec`).
 pub(crate) fn checked_vertex_count(
     pass: &ScheduledPass,
+    spec: &PassTypeSpec,
+    ao: SlotId,
     ctx: &BuildContext<'_>,
 ) -> Result<u32, GpuError> {
     let error = |message: String| GpuError::Pass {
@@ -210,7 +216,7 @@ pub(crate) fn checked_vertex_count(
         .as_ref()
         .ok_or_else(|| error("the scene has no hair".into()))?;
     let vertices = hair.vertices.size() / std::mem::size_of::<plait_hair::StrandVertex>() as u64;
-    let ao = &ctx.schedule.resources[bound(pass, "vertex_ao")?.id()];
+    let ao = &ctx.schedule.resources[bound(pass, spec, ao)?.id()];
     if let ResourceDesc::Buffer { size } = ao.desc
         && size < vertices * 4
     {
@@ -238,7 +244,7 @@ impl PassType for OcclusionDirections {
         resources: &[ResolvedResource],
     ) -> Result<(), String> {
         let directions = int_param(pass, "directions") as u64;
-        let frames = pass.writes.iter().find(|b| b.slot == "direction_frames");
+        let frames = pass.bound(DIRECTION_FRAMES);
         if let Some(ResourceDesc::Buffer { size }) =
             frames.and_then(|b| b.resolved(resources)).map(|r| &r.desc)
         {
@@ -257,18 +263,20 @@ impl PassType for OcclusionDirections {
         pass: &ScheduledPass,
         ctx: &mut BuildContext<'_>,
     ) -> Result<Box<dyn PreparedPass>, GpuError> {
-        let vertices = checked_vertex_count(pass, ctx)?;
-        let ao_id = bound(pass, "vertex_ao")?.id();
+        let spec = spec();
+        let vertices = checked_vertex_count(pass, &spec, VERTEX_AO, ctx)?;
+        let ao_id = bound(pass, &spec, VERTEX_AO)?.id();
         let directions = int_param(pass, "directions").clamp(1, MAX_DIRECTIONS) as u32;
 
         // The frames kernel (one workgroup) and the gather kernel (a thread per vertex).
         let frames_pass = kernel_pass(
             pass,
+            &spec,
             PassShape::Compute,
             &[],
             &[
-                ("direction_frames", "direction_frames", Access::StorageWrite),
-                ("vertex_ao", "vertex_ao", Access::StorageWrite),
+                ("direction_frames", DIRECTION_FRAMES, Access::StorageWrite),
+                ("vertex_ao", VERTEX_AO, Access::StorageWrite),
             ],
         )?;
         let mut defines = default_defines(pass);
@@ -277,14 +285,15 @@ impl PassType for OcclusionDirections {
 
         let gather_pass = kernel_pass(
             pass,
+            &spec,
             PassShape::Compute,
             &[
-                ("vis_range", "range", Access::Sampled),
-                ("vis_layers", "layers", Access::StorageRead),
+                ("vis_range", RANGE, Access::Sampled),
+                ("vis_layers", LAYERS, Access::StorageRead),
             ],
             &[
-                ("direction_frames", "direction_frames", Access::StorageWrite),
-                ("vertex_ao", "vertex_ao", Access::StorageWrite),
+                ("direction_frames", DIRECTION_FRAMES, Access::StorageWrite),
+                ("vertex_ao", VERTEX_AO, Access::StorageWrite),
             ],
         )?;
         let gather = compute_kernel(
@@ -299,11 +308,12 @@ impl PassType for OcclusionDirections {
         // Self-shadowing's own kernels, from each direction's frame.
         let range_pass = kernel_pass(
             pass,
+            &spec,
             PassShape::Raster,
-            &[("opaque_depth", "no_opaque", Access::Sampled)],
+            &[("opaque_depth", NO_OPAQUE, Access::Sampled)],
             &[
-                ("range", "range", Access::ColorTarget),
-                ("scratch", "scratch", Access::DepthTarget),
+                ("range", RANGE, Access::ColorTarget),
+                ("scratch", SCRATCH, Access::DepthTarget),
             ],
         )?;
         let mut range_draw = ShaderDraw::library(
@@ -322,12 +332,13 @@ impl PassType for OcclusionDirections {
 
         let layers_pass = kernel_pass(
             pass,
+            &spec,
             PassShape::Raster,
             &[
-                ("range", "range", Access::Sampled),
-                ("depth", "no_opaque", Access::DepthTarget),
+                ("range", RANGE, Access::Sampled),
+                ("depth", NO_OPAQUE, Access::DepthTarget),
             ],
-            &[("layers", "layers", Access::StorageWrite)],
+            &[("layers", LAYERS, Access::StorageWrite)],
         )?;
         let mut layers_pass = layers_pass;
         // Zeroed before every direction's draw.
@@ -361,9 +372,9 @@ impl PassType for OcclusionDirections {
             layers,
             uniforms,
             groups,
-            frames_buffer: bound(pass, "direction_frames")?.id(),
+            frames_buffer: bound(pass, &spec, DIRECTION_FRAMES)?.id(),
             vertex_ao: ao_id,
-            no_opaque: bound(pass, "no_opaque")?.id(),
+            no_opaque: bound(pass, &spec, NO_OPAQUE)?.id(),
             directions,
         }))
     }

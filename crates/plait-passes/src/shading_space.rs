@@ -16,7 +16,7 @@ use plait_gpu::GpuError;
 use plait_gpu::pass::{BuildContext, PassType, PreparedPass, ShaderDraw, build_draw};
 use plait_graph::{ParamSpec, PassShape, PassTypeSpec, ResourceDesc, ScheduledPass, SlotSpec};
 
-use crate::occlusion_directions::{bound, int_param};
+use crate::occlusion_directions::int_param;
 
 /// Bytes of one shading point's radiance (`vec4<f32>`).
 const RADIANCE_BYTES: u64 = 16;
@@ -71,7 +71,13 @@ impl PassType for StrandShading {
         };
         let points = int_param(pass, "shading_points").max(1) as u64;
         let strands = u64::from(ctx.geometry.strand_count);
-        let out = bound(pass, "strand_radiance")?;
+        // A data-only pass's slots are its shader's bindings, which declare
+        // no handle: this one is the binding the dispatch is sized for.
+        let out = pass
+            .writes
+            .iter()
+            .find(|b| b.slot == "strand_radiance")
+            .ok_or_else(|| error("slot `strand_radiance` is not bound".into()))?;
         let resource = &ctx.schedule.resources[out.id()];
         if let ResourceDesc::Buffer { size } = resource.desc
             && size < strands * points * RADIANCE_BYTES

@@ -41,10 +41,11 @@ use plait_gpu::pass::{
 use plait_gpu::readback::map_buffer;
 use plait_gpu::{Define, GpuError};
 use plait_graph::{
-    Access, ParamSpec, ParamType, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, Value,
+    Access, ParamSpec, ParamType, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, SlotId,
+    Value,
 };
 
-use crate::spec_util::{SlotExt, buffer, float, int};
+use crate::spec_util::{SlotExt, bound, buffer, float, int};
 
 pub struct HairSimulation;
 
@@ -60,7 +61,10 @@ fn aliased(mut slot: plait_graph::SlotSpec, binding: &str) -> plait_graph::SlotS
     slot
 }
 
-fn spec() -> PassTypeSpec {
+/// The `status` slot: the faults the kernel flags, read back every frame.
+pub(crate) const STATUS: SlotId = SlotId::Output(2);
+
+pub(crate) fn spec() -> PassTypeSpec {
     PassTypeSpec {
         inputs: vec![
             aliased(
@@ -240,8 +244,7 @@ impl PassType for HairSimulation {
         if let Some(why) = instability(pass) {
             return Err(why);
         }
-        let status = pass.writes.iter().find(|b| b.slot == "status");
-        if let Some(r) = status.and_then(|b| b.resolved(resources))
+        if let Some(r) = pass.bound(STATUS).and_then(|b| b.resolved(resources))
             && r.desc.bytes() < STATUS_BYTES
         {
             return Err(format!(
@@ -259,15 +262,7 @@ impl PassType for HairSimulation {
         let mut draw = ShaderDraw::of(self, pass, ctx)?;
         draw.threads = [ctx.geometry.guides.guide_count, 1, 1];
         let inner = build_draw(&draw, pass, ctx)?;
-        let status = pass
-            .writes
-            .iter()
-            .find(|b| b.slot == "status")
-            .map(plait_graph::Binding::id)
-            .ok_or_else(|| GpuError::Pass {
-                pass: pass.name.clone(),
-                message: "needs a `status` buffer".into(),
-            })?;
+        let status = bound(pass, &spec(), STATUS)?.id();
         let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(&format!("{} status readback", pass.name)),
             size: STATUS_BYTES,

@@ -78,3 +78,33 @@ pub fn choice(name: &str, default: &str, options: &[&str], doc: &str) -> ParamSp
 
 pub const DEPTH: &[Format] = &[Format::Depth32Float];
 pub const HDR: &[Format] = &[Format::Rgba16Float, Format::Rgba32Float];
+
+/// The binding of `pass`'s declared slot `slot` (a constant handle of its
+/// Rust pass type, whose spec is `spec`), or an error naming the slot.
+pub fn bound<'p>(
+    pass: &'p plait_graph::ScheduledPass,
+    spec: &plait_graph::PassTypeSpec,
+    slot: plait_graph::SlotId,
+) -> Result<&'p plait_graph::Binding, plait_gpu::GpuError> {
+    pass.bound(slot).ok_or_else(|| plait_gpu::GpuError::Pass {
+        pass: pass.name.clone(),
+        message: format!(
+            "slot `{}` is not bound",
+            spec.slot(slot).map_or("?", |s| s.name.as_str())
+        ),
+    })
+}
+
+/// Fails unless each constant handle names the slot it is written beside:
+/// the one place a Rust pass type's handles meet its slots' names.
+#[cfg(test)]
+pub fn assert_handles(spec: &plait_graph::PassTypeSpec, handles: &[(plait_graph::SlotId, &str)]) {
+    for &(id, name) in handles {
+        assert_eq!(
+            spec.slot(id).map(|s| s.name.as_str()),
+            Some(name),
+            "pass type `{}`: handle {id:?} is not the slot `{name}`",
+            spec.name
+        );
+    }
+}

@@ -129,20 +129,14 @@ fn blendable(format: Format) -> bool {
     )
 }
 
-/// A colour target's slot is `X_resolve` for a colour target `X`: it receives
-/// `X`'s resolved samples, it is not drawn into.
-pub fn is_resolve_slot(pass: &ScheduledPass, slot: &str) -> bool {
-    slot.strip_suffix("_resolve").is_some_and(|base| {
-        pass.writes
-            .iter()
-            .any(|o| o.slot == base && o.access == Access::ColorTarget)
-    })
-}
-
 /// The state a TOML raster declaration gives `pass` (whose slot accesses are
 /// settled), or every problem with it, each where it was written: a blend for
 /// a slot that is not a colour target or whose format cannot blend, a depth
 /// test without a depth input, a depth write into a target the pass only reads.
+/// `decl` is the pass's over its type's ([`PassType::raster_decl`]), whose
+/// blends compile resolved to writes ([`ScheduledPass::blend_writes`]).
+///
+/// [`PassType::raster_decl`]: super::PassType::raster_decl
 pub fn from_decl(
     decl: &RasterDecl,
     pass: &ScheduledPass,
@@ -150,21 +144,25 @@ pub fn from_decl(
 ) -> Result<RasterState, Vec<(Location, String)>> {
     let mut errors = Vec::new();
     let mut state = RasterState::default();
-    let targets: Vec<_> = pass
-        .writes
-        .iter()
-        .filter(|b| b.access == Access::ColorTarget && !is_resolve_slot(pass, &b.slot))
+    // The colour targets drawn into (an `X_resolve` only receives samples),
+    // as indices into `pass.writes`, in attachment order.
+    let targets: Vec<usize> = (0..pass.writes.len())
+        .filter(|&i| pass.writes[i].access == Access::ColorTarget && !pass.is_resolve(i))
         .collect();
     // A culled pass may bind resources the schedule dropped: what they would
     // have been is unknown, so they are not held against it.
     let dropped = |b: &plait_graph::Binding| b.resolved(resources).is_none();
     let any_dropped = pass.reads.iter().chain(pass.writes.iter()).any(dropped);
-    for (slot, blend) in &decl.blend {
-        if pass.writes.iter().any(|b| &b.slot == slot && dropped(b)) {
+    for (k, (slot, blend)) in decl.blend.iter().enumerate() {
+        let write = pass.blend_writes.get(k).copied().flatten();
+        if write.is_some_and(|w| dropped(&pass.writes[w])) {
             continue;
         }
-        let Some(index) = targets.iter().position(|b| &b.slot == slot) else {
-            let names: Vec<&str> = targets.iter().map(|b| b.slot.as_str()).collect();
+        let Some(index) = write.and_then(|w| targets.iter().position(|&t| t == w)) else {
+            let names: Vec<&str> = targets
+                .iter()
+                .map(|&t| pass.writes[t].slot.as_str())
+                .collect();
             errors.push((
                 blend.location.clone(),
                 format!(
@@ -182,7 +180,7 @@ pub fn from_decl(
             ));
             continue;
         };
-        let Some(res) = targets[index].resolved(resources) else {
+        let Some(res) = pass.writes[targets[index]].resolved(resources) else {
             continue;
         };
         if let ResourceDesc::Texture { format, .. } = res.desc
@@ -246,7 +244,7 @@ pub fn from_decl(
         // wgpu accepts alpha to coverage only with more than one sample.
         let samples = targets
             .first()
-            .and_then(|b| b.resolved(resources))
+            .and_then(|&t| pass.writes[t].resolved(resources))
             .map(|r| match r.desc {
                 ResourceDesc::Texture { samples, .. } => samples,
                 ResourceDesc::Buffer { .. } => 1,

@@ -106,7 +106,19 @@ pub(super) fn resolve_pass(
         &[]
     };
     let reads = bind_slots(decl, spec, shared, pipeline, descs, Direction::Read, errors);
-    let writes = bind_slots(decl, spec, &[], pipeline, descs, Direction::Write, errors);
+    let mut writes = bind_slots(decl, spec, &[], pipeline, descs, Direction::Write, errors);
+    pair_resolves(&mut writes);
+    // The blends of the pass over its type's (the decl build uses,
+    // `PassType::raster_decl`), each slot resolved to its write.
+    let blend_writes = spec
+        .map_or_else(
+            || decl.raster.clone(),
+            |s| s.raster.overridden_by(&decl.raster),
+        )
+        .blend
+        .keys()
+        .map(|slot| writes.iter().position(|b| &b.slot == slot))
+        .collect();
     ScheduledPass {
         name: decl.name.clone(),
         type_name: decl.type_name.value.clone(),
@@ -124,6 +136,7 @@ pub(super) fn resolve_pass(
         shader: decl.shader.as_ref().map(|s| s.value.clone()),
         shader_location: decl.shader.as_ref().map(|s| s.location.clone()),
         raster: decl.raster.clone(),
+        blend_writes,
         run_once: decl.run_once.is_some(),
         location: decl.location.clone(),
         technique: match &decl.location {
@@ -134,6 +147,15 @@ pub(super) fn resolve_pass(
                 .map(|t| t.label()),
             _ => None,
         },
+    }
+}
+
+/// Pairs each written `X_resolve` with the written `X` whose samples it
+/// receives: by name here, once, so build pairs them by index.
+fn pair_resolves(writes: &mut [Binding]) {
+    for i in 0..writes.len() {
+        let base = writes[i].slot.strip_suffix("_resolve");
+        writes[i].resolves = base.and_then(|base| writes.iter().position(|b| b.slot == base));
     }
 }
 
@@ -447,6 +469,8 @@ impl Binder<'_> {
         }
         Some(Binding {
             slot: slot_name.clone(),
+            slot_id: self.slot_id(slot_name),
+            resolves: None,
             resource: Some(ResourceId::new(index)),
             resource_name: resource.value.clone(),
             access,
@@ -458,6 +482,22 @@ impl Binder<'_> {
             location: resource.location.clone(),
             shared: !self.slots.iter().any(|s| &s.name == slot_name)
                 && self.shared.iter().any(|s| &s.name == slot_name),
+        })
+    }
+
+    /// The handle of `slot_name` ([`crate::SlotId`]): one of the type's
+    /// slots for this direction, else one of the shared slots.
+    fn slot_id(&self, slot_name: &str) -> Option<crate::SlotId> {
+        let named = |s: &SlotSpec| s.name == slot_name;
+        let own = self.slots.iter().position(named).map(match self.direction {
+            Direction::Read => crate::SlotId::Input,
+            Direction::Write => crate::SlotId::Output,
+        });
+        own.or_else(|| {
+            self.shared
+                .iter()
+                .position(named)
+                .map(crate::SlotId::Shared)
         })
     }
 

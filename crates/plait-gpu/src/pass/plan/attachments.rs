@@ -12,23 +12,21 @@ impl<'a> Planner<'a> {
         let settled: Vec<(SlotRef, Access, &'a Binding)> = SlotRef::all(self.pass)
             .map(|(slot, b)| (slot, self.access_of(slot, b.access), b))
             .collect();
+        // In the order of `pass.writes`, so `Binding::resolves` indexes it.
         let writes: Vec<(Access, &Binding)> = settled
             .iter()
             .filter(|(s, _, _)| s.is_write())
             .map(|&(_, a, b)| (a, b))
             .collect();
-        let color_slots: Vec<&str> = writes
-            .iter()
-            .filter(|(a, _)| *a == Access::ColorTarget)
-            .map(|(_, b)| b.slot.as_str())
-            .collect();
-        let resolve_of = |slot: &str| {
-            slot.strip_suffix("_resolve")
-                .is_some_and(|base| color_slots.contains(&base))
+        // An `X_resolve` paired (at compile) with a colour target `X`.
+        let is_resolve = |b: &Binding| {
+            b.resolves
+                .and_then(|x| writes.get(x))
+                .is_some_and(|(a, _)| *a == Access::ColorTarget)
         };
-        for &(a, b) in &writes {
+        for (i, &(a, b)) in writes.iter().enumerate() {
             match a {
-                Access::ColorTarget if !resolve_of(&b.slot) => self.color_target(b, &writes),
+                Access::ColorTarget if !is_resolve(b) => self.color_target(i, b, &writes),
                 // Storage textures are not zeroed: clearing one needs
                 // CLEAR_TEXTURE, which core WebGPU lacks; their kernels write
                 // every texel (the lighting maps, the environment cube).
@@ -65,9 +63,9 @@ impl<'a> Planner<'a> {
         });
     }
 
-    /// A colour target, with the `<slot>_resolve` target its samples
-    /// resolve into if the pass writes one.
-    fn color_target(&mut self, b: &Binding, writes: &[(Access, &Binding)]) {
+    /// A colour target (write `index`), with the `<slot>_resolve` target its
+    /// samples resolve into if the pass writes one.
+    fn color_target(&mut self, index: usize, b: &Binding, writes: &[(Access, &Binding)]) {
         let Some((format, samples)) = self.texture(b.resource) else {
             if b.resolved(self.resources).is_some() {
                 let message = format!("colour target `{}` is not a texture", b.slot);
@@ -77,7 +75,7 @@ impl<'a> Planner<'a> {
         };
         let resolve = writes
             .iter()
-            .find(|(_, r)| r.slot == format!("{}_resolve", b.slot))
+            .find(|(_, r)| r.resolves == Some(index))
             .map(|(_, r)| *r);
         if let Some(r) = resolve {
             self.check_resolve(b, r, format, samples);
