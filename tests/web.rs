@@ -22,7 +22,12 @@ use plait_tests::{open_gpu, repo_root};
 const SIZE: (u32, u32) = (96, 72);
 
 /// The pipelines rendered in the page and compared with lavapipe.
-const RENDERED: &[&str] = &["occupancy.toml", "linked_list.toml"];
+const RENDERED: &[&str] = &[
+    "occupancy.toml",
+    "linked_list.toml",
+    "depth_peeling.toml",
+    "reference.toml",
+];
 
 /// The web frame against lavapipe's, hair pixels only. SwiftShader and
 /// lavapipe rasterize the sub-pixel strands differently at their edges, so
@@ -53,6 +58,9 @@ struct Outcome {
     width: Option<u32>,
     height: Option<u32>,
     pixels: Option<Vec<u8>>,
+    /// The frame's report (`FrameReport` as JSON); null when it failed.
+    #[serde(default)]
+    report: Option<serde_json::Value>,
 }
 
 /// `scripts/web.sh` into the build folder; the site's directory.
@@ -208,17 +216,54 @@ fn run_page(pipelines: &[&str]) -> (Posted, Vec<String>, Vec<String>) {
     (posted, console, paths)
 }
 
-fn native(pipeline: &str, scene: &SceneData) -> RgbaImage {
+fn native(pipeline: &str, scene: &SceneData) -> (RgbaImage, plait_gpu::FrameReport) {
     let (_lock, gpu) = open_gpu();
     let path = repo_root().join("pipelines").join(pipeline);
     let prepared =
         prepare(&gpu, &path, &[], scene, SIZE).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
-    prepared
+    let frame = prepared
         .render()
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
-    prepared
+    let image = prepared
         .image()
-        .unwrap_or_else(|e| panic!("{pipeline}: {e}"))
+        .unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+    (image, frame.report)
+}
+
+/// Every pass stat of a report (`pass.stat` → value): what a pass found out
+/// while recording, e.g. depth peeling's `layers` and `capped`.
+fn stats(report: &serde_json::Value) -> Vec<(String, f64)> {
+    let passes = report["passes"].as_array().cloned().unwrap_or_default();
+    passes
+        .iter()
+        .flat_map(|p| {
+            let pass = p["name"].as_str().unwrap_or("?").to_owned();
+            let stats = p["stats"].as_array().cloned().unwrap_or_default();
+            stats.into_iter().map(move |s| {
+                (
+                    format!("{pass}.{}", s[0].as_str().unwrap_or("?")),
+                    s[1].as_f64().unwrap_or(f64::NAN),
+                )
+            })
+        })
+        .collect()
+}
+
+/// The same stats, each within 10% (at least 1) of lavapipe's: the two
+/// rasterizers cover strand edges differently, so a pixel's depth complexity
+/// (depth peeling's `layers`) may differ by one — measured 26 layers in the
+/// page, 25 on lavapipe for depth_peeling.toml at 96x72. A page that stopped
+/// peeling at its first read-back (4 layers) is far outside.
+fn stats_agree(web: &[(String, f64)], native: &[(String, f64)]) -> bool {
+    web.len() == native.len()
+        && web
+            .iter()
+            .zip(native)
+            .all(|((a, x), (b, y))| a == b && (x - y).abs() <= (0.1 * y.abs()).max(1.0))
+}
+
+fn small_scene() -> SceneData {
+    SceneData::load(Some(&repo_root().join("examples/scenes/small.toml"))).expect("small scene")
 }
 
 #[test]
@@ -230,18 +275,21 @@ fn the_page_renders_gallery_pipelines_as_lavapipe_does() {
     }
     let adapter = posted.adapter.clone().unwrap_or_default();
     eprintln!("web adapter: {adapter}");
-    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
-        .expect("small scene");
+    let scene = small_scene();
     let mut bare = scene.clone();
     bare.strands = plait_tests::hair_taken_away(&bare.strands);
     bare.guides = plait_hair::guides::Guides::default();
-    let no_hair = native("occupancy.toml", &bare);
+    let (no_hair, _) = native("occupancy.toml", &bare);
     let mut failures = Vec::new();
     for outcome in &posted.results {
         let name = outcome.pipeline.as_str();
-        let (Some(w), Some(h), Some(pixels)) =
-            (outcome.width, outcome.height, outcome.pixels.clone())
-        else {
+        let (None, Some(w), Some(h), Some(pixels), Some(report)) = (
+            &outcome.error,
+            outcome.width,
+            outcome.height,
+            outcome.pixels.clone(),
+            &outcome.report,
+        ) else {
             failures.push(format!("{name}: no frame: {:?}", outcome.error));
             continue;
         };
@@ -249,11 +297,15 @@ fn the_page_renders_gallery_pipelines_as_lavapipe_does() {
         // Lavapipe's first frame, timed as the page times its own: compile,
         // build, one frame, readback (wall clock, this machine, same run).
         let started = std::time::Instant::now();
-        let reference = native(name, &scene);
+        let (reference, native_report) = native(name, &scene);
         let native_ms = started.elapsed().as_secs_f64() * 1e3;
         let c = compare(&web, &reference, &no_hair);
+        // What the passes found out (depth peeling's layers) must agree: a
+        // browser that stopped peeling early would report fewer.
+        let native_stats = stats(&serde_json::to_value(&native_report).expect("report as JSON"));
+        let web_stats = stats(report);
         eprintln!(
-            "{name}: first frame in the page (SwiftShader) {:.0} ms, natively (lavapipe, device opening included) {native_ms:.0} ms; vs lavapipe: {}",
+            "{name}: first frame in the page (SwiftShader) {:.0} ms, natively (lavapipe, device opening included) {native_ms:.0} ms; vs lavapipe: {}; pass stats web {web_stats:?}, native {native_stats:?}",
             outcome.ms,
             c.summary()
         );
@@ -267,6 +319,11 @@ fn the_page_renders_gallery_pipelines_as_lavapipe_does() {
             failures.push(format!(
                 "{name}: the page's frame differs from lavapipe's: {}",
                 c.summary()
+            ));
+        }
+        if !stats_agree(&web_stats, &native_stats) {
+            failures.push(format!(
+                "{name}: the page's pass stats {web_stats:?}, lavapipe's {native_stats:?}"
             ));
         }
     }

@@ -18,6 +18,7 @@ pub struct WebEngine {
 /// Opens the page's WebGPU device and reads the built-in library.
 #[wasm_bindgen]
 pub async fn open() -> Result<WebEngine, JsValue> {
+    crate::occlusion_shim::install()?;
     let engine = Engine::open().await.map_err(|e| JsValue::from_str(&e))?;
     Ok(WebEngine {
         inner: Rc::new(RefCell::new(engine)),

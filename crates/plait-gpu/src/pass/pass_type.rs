@@ -92,9 +92,25 @@ pub trait PassType: Send + Sync {
     }
 }
 
+/// A pass's recording, awaited ([`PreparedPass::record_async`]).
+pub type Recording<'a> = std::pin::Pin<Box<dyn std::future::Future<Output = ()> + 'a>>;
+
 /// GPU objects of one pass, ready to record every frame.
 pub trait PreparedPass {
     fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder);
+
+    /// What the executor calls: [`PreparedPass::record`], for a pass that
+    /// must see a GPU result mid-frame (depth peeling's occlusion queries)
+    /// awaiting it. A browser cannot block inside `record`: there the
+    /// result arrives through the page's event loop, so the pass awaits it
+    /// here. The default records at once.
+    fn record_async<'a>(
+        &'a self,
+        ctx: &'a RecordContext<'a>,
+        encoder: &'a mut wgpu::CommandEncoder,
+    ) -> Recording<'a> {
+        Box::pin(async move { self.record(ctx, encoder) })
+    }
 
     /// Numbers the last `record` found out (e.g. the layers a depth-peeling
     /// pass needed), reported per pass in the executor's `FrameReport`.
