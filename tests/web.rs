@@ -356,3 +356,120 @@ fn the_page_renders_gallery_pipelines_as_lavapipe_does() {
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// lavapipe checked as the page's device is: with WebGPU's default limits,
+/// what `Gpu::new_async` asks for in a browser (so a pipeline the page
+/// refuses is refused here by the same check, with the same text).
+fn with_webgpu_default_limits(gpu: &mut plait_gpu::Gpu) {
+    gpu.support.limits = Default::default();
+    let l = &gpu.support.limits;
+    gpu.capabilities.max_texture_dimension = l.max_texture_dimension_2d;
+    gpu.capabilities.max_storage_buffer_binding_size =
+        l.max_storage_buffer_binding_size.min(l.max_buffer_size);
+}
+
+/// The gallery's pipelines, by file name.
+fn gallery() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(repo_root().join("pipelines"))
+        .expect("pipelines/")
+        .flatten()
+        .filter_map(|e| e.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    names.sort();
+    names
+}
+
+/// `plait check --adapter`'s text for `pipeline` with `sets` on lavapipe
+/// with WebGPU's default limits, at the page's test size; `None` if it passes.
+fn check_text(gpu: &plait_gpu::Gpu, pipeline: &str, sets: &[String]) -> Option<String> {
+    let library = plait_passes::library_for(&[]);
+    let path = repo_root().join("pipelines").join(pipeline);
+    plait::adapter::check_on_adapter(gpu, &library, &path, sets, SIZE)
+        .err()
+        .map(|e| e.to_string())
+}
+
+/// Every gallery pipeline passes the adapter check within WebGPU's default
+/// limits (what the page's device has), natively: the page can render them all.
+#[test]
+fn gallery_pipelines_fit_webgpus_default_limits() {
+    let (_lock, mut gpu) = open_gpu();
+    with_webgpu_default_limits(&mut gpu);
+    let refused: Vec<String> = gallery()
+        .iter()
+        .filter_map(|name| check_text(&gpu, name, &[]).map(|e| format!("{name}: {e}")))
+        .collect();
+    eprintln!(
+        "{} of {} gallery pipelines pass the check within WebGPU's default limits",
+        gallery().len() - refused.len(),
+        gallery().len()
+    );
+    assert!(refused.is_empty(), "{}", refused.join("\n"));
+}
+
+/// A message as the page gives it: the built-in library's paths (`<built-in>/`, `plait_assets::BUILTIN_ROOT`) for the
+/// repository's, and the adapter (`adapter `…` (… backend…) cannot run`)
+/// left out, since the page's is another.
+fn as_the_page_says(text: &str) -> String {
+    let root = format!("{}/", repo_root().display());
+    let text = text.replace(&root, "<built-in>/");
+    match (text.find("adapter "), text.find(" cannot run pipeline")) {
+        (Some(a), Some(b)) if a < b => format!("{}adapter …{}", &text[..a], &text[b..]),
+        _ => text,
+    }
+}
+
+/// A bad param and a pipeline beyond WebGPU's default limits, changed on the
+/// page as a reader would: each shows the CLI's text for the same flags
+/// (`plait check --adapter`'s, for the same limits) and the picture stays the
+/// last good frame.
+#[test]
+fn the_page_refuses_and_reports_as_the_cli_does() {
+    let good = "linked_list.toml";
+    let bad_param = ["params.max_sorted=1000".to_owned()];
+    // compute_raster's tile_blend binds 8 storage buffers, WebGPU's default
+    // maxStorageBuffersPerShaderStage; per-vertex ambient occlusion adds one.
+    let too_many = ["techniques.ambient_occlusion=cylinders".to_owned()];
+    let entries = [
+        good.to_owned(),
+        format!("{good};{}", bad_param[0]),
+        format!("compute_raster.toml;{}", too_many[0]),
+    ];
+    let asked: Vec<&str> = entries.iter().map(String::as_str).collect();
+    let (posted, console, _) = run_page(&asked);
+    if let Some(fatal) = &posted.fatal {
+        panic!("the page failed: {fatal}");
+    }
+    let (_lock, mut gpu) = open_gpu();
+    let bad_param_text = check_text(&gpu, good, &bad_param).expect("max_sorted=1000 is refused");
+    with_webgpu_default_limits(&mut gpu);
+    let limits_text =
+        check_text(&gpu, "compute_raster.toml", &too_many).expect("refused within the limits");
+    drop(_lock);
+    let [first, param, limits] = &posted.results[..] else {
+        panic!("three results: {posted:?}");
+    };
+    assert_eq!(first.error, None, "the good frame");
+    for (outcome, native) in [(param, &bad_param_text), (limits, &limits_text)] {
+        eprintln!("{}: the page says:\n{:?}", outcome.pipeline, outcome.error);
+        assert_eq!(
+            outcome.error.as_deref().map(as_the_page_says),
+            Some(as_the_page_says(native)),
+            "{}: the page's text against the CLI's",
+            outcome.pipeline
+        );
+        assert_eq!(
+            (outcome.width, outcome.height, &outcome.pixels),
+            (first.width, first.height, &first.pixels),
+            "{}: the page should keep showing the last good frame",
+            outcome.pipeline
+        );
+    }
+    // The refusals are expected; Chromium logs nothing else.
+    assert!(
+        console.is_empty(),
+        "console errors:\n{}",
+        console.join("\n")
+    );
+}

@@ -14,6 +14,9 @@ use plait_gpu::{FrameReport, Gpu, PassLibrary};
 /// The scene the page renders: the tests' small scene, built in.
 pub const SCENE: &str = "examples/scenes/small.toml";
 
+/// The adapter's name in messages when the browser gives none.
+pub const UNNAMED_ADAPTER: &str = "this browser's WebGPU adapter (unnamed)";
+
 /// What the page asks for.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize)]
 pub struct Request {
@@ -120,7 +123,13 @@ impl Engine {
     /// and scene. The device lives as long as the page: it is leaked, so a
     /// build can borrow it.
     pub async fn open() -> Result<Engine, String> {
-        let gpu = Gpu::new_async(&[]).await.map_err(|e| e.to_string())?;
+        let mut gpu = Gpu::new_async(&[]).await.map_err(|e| e.to_string())?;
+        // A browser may keep its adapter's name to itself (headless
+        // Chromium's SwiftShader gives none): messages still name something.
+        if gpu.info.name.is_empty() {
+            gpu.info.name = UNNAMED_ADAPTER.into();
+            gpu.support.adapter = UNNAMED_ADAPTER.into();
+        }
         let gpu: &'static Gpu = Box::leak(Box::new(gpu));
         let library = plait_passes::library_for(&[]);
         let scene_path = Path::new(plait_assets::BUILTIN_ROOT).join(SCENE);
