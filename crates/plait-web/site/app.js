@@ -5,10 +5,8 @@
 //
 // A test drives the page through its URL: `?test=a.toml,b.toml&size=96x72`
 // renders each pipeline once and POSTs the frames (or errors) to /result on
-// the server that served the page. `?screenshot` keeps a request to /hold
-// open until the first frame is drawn, then asks /release: headless
-// Chromium's virtual time waits for open requests, so its --screenshot shows
-// the frame (scripts/web-screenshot.py serves both).
+// the server that served the page. `?screenshot` asks /release once the first
+// frame is drawn: scripts/web-screenshot.py takes its picture then.
 import init, { open, gallery } from './plait_web.js';
 
 const $ = (id) => document.getElementById(id);
@@ -137,8 +135,9 @@ async function test(entries, width, height) {
 
 async function main() {
   const query = new URLSearchParams(location.search);
-  if (query.has('screenshot')) fetch('/hold');
-  if (!navigator.gpu) throw new Error('this browser has no WebGPU (navigator.gpu): the pictures in the book are static renders');
+  if (!(navigator.gpu && await navigator.gpu.requestAdapter().catch(() => null))) {
+    throw new Error('this browser offers no WebGPU adapter (navigator.gpu is missing or gives none): the pictures in the book are static renders');
+  }
   await init();
   engine = await open();
   $('adapter').textContent = `adapter: ${engine.adapter()}`;
