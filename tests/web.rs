@@ -34,9 +34,14 @@ const RENDERED: &[&str] = &[
 /// the bound is far wider than the goldens' (one driver against itself):
 /// at most 20% of the hair pixels off by more than 2/255 and a hair mean
 /// within 2/255. Measured at 96x72 (tests/web.rs, `--nocapture`):
-/// occupancy and linked_list 15% and 1.27/255; a camera turned by 0.05 rad
-/// fails both bounds. forward.toml is left out: its hair mean is 6.7/255
-/// with 21 isolated outliers (its hair shadow map, unexplained yet).
+/// occupancy, linked_list, depth_peeling and reference 15% (201–203 of
+/// 1328) and 1.26–1.28/255; a camera turned by 0.05 rad fails both bounds.
+/// forward.toml is left out: its hair mean is 6.7/255 with 21 isolated
+/// outliers. Its self-shadow reads one texel of a 1024² line-rasterized
+/// hair depth map, and the two rasterizers cover nearly the same texels
+/// (73205 in the page, 73240 on lavapipe) but 1798 differ (the opaque map:
+/// 155 of 1048576), so a hair pixel on such a texel flips between lit and
+/// shadowed (`forward_maps` below; not yet traced pixel by pixel).
 fn close_enough(c: &Comparison) -> bool {
     c.changed as f64 <= c.hair_pixels as f64 * 0.2 && c.hair_mean <= 2.0
 }
@@ -472,4 +477,52 @@ fn the_page_refuses_and_reports_as_the_cli_does() {
         "console errors:\n{}",
         console.join("\n")
     );
+}
+
+/// forward.toml's difference isolated (issue 44): its light-view maps read
+/// back from the page and from lavapipe, texel by texel.
+#[test]
+#[ignore = "an investigation, run by hand: cargo test -p plait-tests --test web forward_maps -- --ignored --nocapture"]
+fn forward_maps() {
+    let maps = ["hair_depth", "opaque_shadow", "radiance"];
+    let entries: Vec<String> = maps
+        .iter()
+        .map(|m| format!("forward.toml;read={m}"))
+        .collect();
+    let asked: Vec<&str> = entries.iter().map(String::as_str).collect();
+    let (posted, _, _) = run_page(&asked);
+    let scene = small_scene();
+    let (_lock, gpu) = open_gpu();
+    let path = repo_root().join("pipelines/forward.toml");
+    let prepared = prepare(&gpu, &path, &[], &scene, SIZE).expect("forward");
+    prepared.render().expect("frame");
+    for (map, outcome) in maps.iter().zip(&posted.results) {
+        let native = prepared.read_resource(map).expect("map").to_image();
+        let web = outcome.pixels.clone().unwrap_or_default();
+        let covered = |px: &[u8]| px.chunks(4).filter(|p| p[0] < 255).count();
+        let differ = native
+            .as_raw()
+            .chunks(4)
+            .zip(web.chunks(4))
+            .filter(|(a, b)| a[0] != b[0])
+            .count();
+        eprintln!(
+            "{map}: {:?}; covered texels web {} native {}; differing {differ}",
+            outcome.error,
+            covered(&web),
+            covered(native.as_raw())
+        );
+        if std::env::var_os("PLAIT_WEB_KEEP").is_some() {
+            let dir = repo_root().join("target/web-frames");
+            std::fs::create_dir_all(&dir).ok();
+            native
+                .save(dir.join(format!("forward-{map}.native.png")))
+                .ok();
+            if let (Some(w), Some(h)) = (outcome.width, outcome.height)
+                && let Some(img) = RgbaImage::from_raw(w, h, web)
+            {
+                img.save(dir.join(format!("forward-{map}.web.png"))).ok();
+            }
+        }
+    }
 }

@@ -18,7 +18,7 @@ function request() {
   return JSON.stringify({
     pipeline: state.pipeline, width, height,
     sets: Object.entries(state.sets).map(([k, v]) => `${k}=${v}`),
-    yaw: state.yaw, pitch: state.pitch,
+    yaw: state.yaw, pitch: state.pitch, read: state.read,
   });
 }
 
@@ -95,10 +95,13 @@ async function render() {
 }
 
 // `name.toml;params.x=1;techniques.p=t` as the page's state.
+// A test may add `;read=RESOURCE`: that resource is shown instead of the output.
 function choose(entry) {
   const [name, ...sets] = entry.split(';');
   state.pipeline = name;
-  state.sets = Object.fromEntries(sets.map((s) => [s.slice(0, s.indexOf('=')), s.slice(s.indexOf('=') + 1)]));
+  const pairs = sets.map((s) => [s.slice(0, s.indexOf('=')), s.slice(s.indexOf('=') + 1)]);
+  state.read = (pairs.find(([k]) => k === 'read') || [])[1];
+  state.sets = Object.fromEntries(pairs.filter(([k]) => k !== 'read'));
 }
 
 function orbitWithMouse() {

@@ -32,6 +32,10 @@ pub struct Request {
     pub yaw: f32,
     #[serde(default)]
     pub pitch: f32,
+    /// A resource of the schedule to read back instead of its output (a
+    /// shadow map, say): how a test compares what the page's passes wrote.
+    #[serde(default)]
+    pub read: Option<String>,
 }
 
 /// A frame read back.
@@ -182,8 +186,9 @@ impl Engine {
         // that dropped data fails the frame (natively the first frame sizes
         // it; see the report's note), and the frame's notes come with it.
         let checked = prepared.render_async().await.map_err(|e| e.to_string())?;
+        let read = req.read.as_deref().unwrap_or(&prepared.output);
         let texels = prepared
-            .read_resource_async(&prepared.output)
+            .read_resource_async(read)
             .await
             .map_err(|e| e.to_string())?;
         let image = texels.to_image();
