@@ -27,6 +27,8 @@ const RENDERED: &[&str] = &[
     "linked_list.toml",
     "depth_peeling.toml",
     "reference.toml",
+    // The simulation's status is read back after the frame, awaited.
+    "occupancy.toml;techniques.simulation=verlet",
 ];
 
 /// The web frame against lavapipe's, hair pixels only. SwiftShader and
@@ -221,11 +223,15 @@ fn run_page(pipelines: &[&str]) -> (Posted, Vec<String>, Vec<String>) {
     (posted, console, paths)
 }
 
-fn native(pipeline: &str, scene: &SceneData) -> (RgbaImage, plait_gpu::FrameReport) {
+/// lavapipe's frame for a page entry (`name.toml;--set value;…`).
+fn native(entry: &str, scene: &SceneData) -> (RgbaImage, plait_gpu::FrameReport) {
     let (_lock, gpu) = open_gpu();
+    let mut parts = entry.split(';');
+    let pipeline = parts.next().unwrap_or_default();
+    let sets: Vec<String> = parts.map(str::to_owned).collect();
     let path = repo_root().join("pipelines").join(pipeline);
     let prepared =
-        prepare(&gpu, &path, &[], scene, SIZE).unwrap_or_else(|e| panic!("{pipeline}: {e}"));
+        prepare(&gpu, &path, &sets, scene, SIZE).unwrap_or_else(|e| panic!("{entry}: {e}"));
     let frame = prepared
         .render()
         .unwrap_or_else(|e| panic!("{pipeline}: {e}"));

@@ -361,10 +361,12 @@ impl<'g> Renderer<'g> {
             });
         }
         for (i, pass) in self.passes.iter().enumerate() {
-            pass.finish(device).map_err(|message| GpuError::Pass {
-                pass: self.schedule.passes[i].name.clone(),
-                message,
-            })?;
+            pass.finish_async(device)
+                .await
+                .map_err(|message| GpuError::Pass {
+                    pass: self.schedule.passes[i].name.clone(),
+                    message,
+                })?;
         }
         let ms = |a: u64, b: u64, period: f32| b.saturating_sub(a) as f64 * period as f64 / 1e6;
         let period = self.timestamps.as_ref().map(|t| t.period_ns).unwrap_or(1.0);

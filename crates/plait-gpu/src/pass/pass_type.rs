@@ -95,6 +95,10 @@ pub trait PassType: Send + Sync {
 /// A pass's recording, awaited ([`PreparedPass::record_async`]).
 pub type Recording<'a> = std::pin::Pin<Box<dyn std::future::Future<Output = ()> + 'a>>;
 
+/// A pass's check after its frame, awaited ([`PreparedPass::finish_async`]).
+pub type Finishing<'a> =
+    std::pin::Pin<Box<dyn std::future::Future<Output = Result<(), String>> + 'a>>;
+
 /// GPU objects of one pass, ready to record every frame.
 pub trait PreparedPass {
     fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder);
@@ -123,6 +127,13 @@ pub trait PreparedPass {
     /// fails the frame here, so its image is never returned.
     fn finish(&self, _device: &wgpu::Device) -> Result<(), String> {
         Ok(())
+    }
+
+    /// What the executor calls: [`PreparedPass::finish`], for a pass whose
+    /// status is read back awaited (a browser cannot block on the mapping).
+    /// The default calls `finish`.
+    fn finish_async<'a>(&'a self, device: &'a wgpu::Device) -> Finishing<'a> {
+        Box::pin(async move { self.finish(device) })
     }
 }
 
