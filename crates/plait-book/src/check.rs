@@ -27,11 +27,14 @@ struct Reference {
     target: String,
 }
 
-/// Every `.html` under `root`, relative paths, sorted.
+/// Every `.html` under `root`, relative paths, sorted; not the live view's
+/// page (`live/`): it is no chapter of the book, and it needs WebGPU, which
+/// its own test gives Chromium (`tests/web.rs`).
 pub fn pages(root: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
     walk(root, root, &mut out);
     out.retain(|p| p.extension().is_some_and(|x| x == "html"));
+    out.retain(|p| !p.starts_with(crate::live::DIR));
     out.sort();
     out
 }

@@ -50,6 +50,8 @@ pub struct Context<'a> {
     pub pass_params: Vec<PassParam>,
     pub runs: Vec<Run>,
     pub figures: Figures<'a>,
+    /// Whether the book has the live view (`live/`): pages link to it.
+    pub live: bool,
 }
 
 impl Context<'_> {

@@ -16,6 +16,7 @@ pub mod check;
 mod context;
 mod error;
 mod figures;
+pub mod live;
 pub mod measured;
 mod params;
 mod pipeline_page;
@@ -47,6 +48,10 @@ pub struct Options {
     /// The `plait` binary that makes the figures.
     pub plait: PathBuf,
     pub figures: FigureSettings,
+    /// The live view's site (`bash scripts/web.sh`), copied into the book
+    /// under `live/`; every technique and gallery page then links to it
+    /// ([`live`]). `None`: the book without it.
+    pub live: Option<PathBuf>,
 }
 
 /// A generated page: its path under `src/` and what it documents.
@@ -90,6 +95,7 @@ pub fn build(opts: &Options) -> Result<Built, BookError> {
         pass_params: context::pass_params(&plait)?,
         runs: measured::read(&opts.repo.join(GALLERY_PAGE))?,
         figures: figures::Figures::new(&plait, &src, opts.figures.clone())?,
+        live: opts.live.is_some(),
     };
 
     let mut generated = Vec::new();
@@ -132,6 +138,9 @@ pub fn build(opts: &Options) -> Result<Built, BookError> {
     write_published(&opts.repo, &src)?;
     fill_default_frame(&src, &opts.stage, &plait)?;
     run_mdbook(&opts.stage, &opts.out)?;
+    if let Some(site) = &opts.live {
+        live::copy_site(site, &opts.out)?;
+    }
     Ok(Built {
         out: opts.out.clone(),
         generated,

@@ -30,6 +30,10 @@ struct Args {
     /// Write screenshots of the index and a technique page here.
     #[arg(long, value_name = "DIR")]
     screenshots: Option<PathBuf>,
+    /// The live view's site (`bash scripts/web.sh` builds it): copied into
+    /// the book under live/, linked from every technique and gallery page.
+    #[arg(long, value_name = "DIR")]
+    live: Option<PathBuf>,
 }
 
 fn main() -> Result<()> {
@@ -56,6 +60,7 @@ fn main() -> Result<()> {
             scenes: vec!["small.toml".into(), "stray.toml".into()],
             size: (w, h),
         },
+        live: args.live.as_ref().map(abs),
     };
     let built = plait_book::build(&opts)?;
     let problems = plait_book::check::check(&built.out);

@@ -62,6 +62,9 @@ pub fn write(p: &GalleryPipeline, ctx: &mut Context) -> Result<String, BookError
              ![{stem}, measured](../docs/variants/{stem}.png)\n"
         ));
     }
+    if ctx.live {
+        md.push_str(&crate::live::section(&p.page, &figure));
+    }
     md.push_str(&format!(
         "\n## Schedule\n\nPasses as rows, resource lifetimes as columns; a technique's passes are tinted.\n\n\
          ![schedule](../{})\n\n```sh\n{}\n```\n",

@@ -124,6 +124,10 @@ pub fn write(info: &TechniqueInfo, ctx: &mut Context) -> Result<String, BookErro
     }
     md.push_str("\n## Picture\n\n");
     md.push_str(&renders_markdown(&renders, 2));
+    if ctx.live {
+        let page = page_path(&info.point, &info.name);
+        md.push_str(&crate::live::section(&page, &figure));
+    }
     md.push_str(&format!(
         "\n## Schedule\n\nThe passes of `{}` with this technique; its rows are tinted.\n\n\
          ![schedule](../../{})\n\n```sh\n{}\n```\n",

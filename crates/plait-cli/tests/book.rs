@@ -53,6 +53,7 @@ fn the_book_has_a_page_per_technique_and_pipeline_and_opens_cleanly_in_chromium(
             scenes: vec!["small.toml".into()],
             size: (96, 72),
         },
+        live: None,
     };
     let built = plait_book::build(&opts).unwrap_or_else(|e| panic!("book: {e}"));
 

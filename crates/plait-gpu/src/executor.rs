@@ -267,7 +267,14 @@ impl<'g> Renderer<'g> {
     /// timestamps — and finish them, without submitting: what `render`
     /// submits, and what the encode benchmark (`crates/plait/benches/encode.rs`)
     /// times against wgpu written by hand.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn encode(&self) -> wgpu::CommandBuffer {
+        pollster::block_on(self.encode_async())
+    }
+
+    /// [`Renderer::encode`], awaiting the passes that read a GPU result
+    /// mid-frame ([`PreparedPass::record_async`]): what `render_async` submits.
+    async fn encode_async(&self) -> wgpu::CommandBuffer {
         let device = &self.gpu.device;
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some(&self.schedule.name),
@@ -288,7 +295,7 @@ impl<'g> Renderer<'g> {
         for (i, pass) in self.passes.iter().enumerate() {
             if !skipped(i) {
                 encoder.push_debug_group(&self.schedule.passes[i].name);
-                pass.record(&ctx, &mut encoder);
+                pass.record_async(&ctx, &mut encoder).await;
                 encoder.pop_debug_group();
                 self.overflow.record(i, &self.pool, &mut encoder);
             }
@@ -320,7 +327,8 @@ impl<'g> Renderer<'g> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let first_frame = self.first_frame();
         let skipped = |i: usize| self.schedule.passes[i].run_once && !first_frame;
-        self.gpu.queue.submit([self.encode()]);
+        let commands = self.encode_async().await;
+        self.gpu.queue.submit([commands]);
         self.gpu.wait()?;
         if let Some(e) = scope.pop().await {
             return Err(GpuError::Validation {
@@ -353,10 +361,12 @@ impl<'g> Renderer<'g> {
             });
         }
         for (i, pass) in self.passes.iter().enumerate() {
-            pass.finish(device).map_err(|message| GpuError::Pass {
-                pass: self.schedule.passes[i].name.clone(),
-                message,
-            })?;
+            pass.finish_async(device)
+                .await
+                .map_err(|message| GpuError::Pass {
+                    pass: self.schedule.passes[i].name.clone(),
+                    message,
+                })?;
         }
         let ms = |a: u64, b: u64, period: f32| b.saturating_sub(a) as f64 * period as f64 / 1e6;
         let period = self.timestamps.as_ref().map(|t| t.period_ns).unwrap_or(1.0);

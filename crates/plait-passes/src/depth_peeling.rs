@@ -14,7 +14,10 @@
 //! `check_every` layers the pass resolves the queries, submits what it has
 //! recorded and waits for the result (mid-frame, through
 //! [`RecordContext::device`]/`queue`, continuing in a fresh encoder), and
-//! stops at the first layer that drew nothing, or at `max_layers`. The layers
+//! stops at the first layer that drew nothing, or at `max_layers`. The wait
+//! is awaited (`record_async`): in a browser it yields to the page's event
+//! loop, so the page peels to completion as natively. A read-back that fails
+//! fails the frame with the layers peeled (`finish`), never a silent cut. The layers
 //! used are reported as the pass stat `layers` (`FrameReport`), with
 //! `capped = 1` when the cap cut it short. Fragments at exactly the depth of
 //! the previous layer are peeled together with it (only one kept) — the
@@ -24,13 +27,14 @@
 //! trip per `check_every` layers. Memory: the accumulated colour, one layer
 //! colour target and two depth buffers at screen size.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 use plait_gpu::GpuError;
 use plait_gpu::pass::{
-    BlendPreset, BuildContext, PassType, PreparedPass, RasterState, RecordContext, ShaderDraw,
-    ShaderPass, blend_preset, build_draw, default_defines,
+    BlendPreset, BuildContext, PassType, PreparedPass, RasterState, RecordContext, Recording,
+    ShaderDraw, ShaderPass, blend_preset, build_draw, default_defines,
 };
+use plait_gpu::readback::map_buffer_async;
 use plait_graph::{Access, Binding, PassShape, PassTypeSpec, ScheduledPass, SlotId};
 
 use crate::hair_fragment;
@@ -204,8 +208,13 @@ impl PassType for HairDepthPeel {
         let blend = build_draw(&blend_draw, &blend_pass, ctx)?;
 
         let device = ctx.device;
+        // Labelled `occlusion:` + the pass's name, the label of its peel
+        // draws' render passes: how the page's device finds the set that
+        // wgpu's WebGPU backend leaves out of their descriptors
+        // (crates/plait-web/src/occlusion_shim.rs).
+        let label = format!("occlusion:{}", pass.name);
         let queries = device.create_query_set(&wgpu::QuerySetDescriptor {
-            label: Some("depth peeling"),
+            label: Some(&label),
             ty: wgpu::QueryType::Occlusion,
             count: max_layers,
         });
@@ -235,59 +244,51 @@ impl PassType for HairDepthPeel {
             check_every,
             layers: Cell::new(0),
             capped: Cell::new(false),
+            failed: RefCell::new(None),
         }))
     }
 }
 
-struct Peeling {
-    name: String,
-    peel: [ShaderPass; 2],
-    blend: ShaderPass,
-    color: plait_graph::ResourceId,
-    first_prev: plait_graph::ResourceId,
-    queries: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    readback: wgpu::Buffer,
-    max_layers: u32,
-    check_every: u32,
-    layers: Cell<u32>,
-    capped: Cell<bool>,
-}
-
-impl PreparedPass for Peeling {
-    fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
-        // Start: nothing accumulated; the "previous layer" at depth 0 lets every fragment through.
-        {
-            let view = |id| {
-                ctx.pool
-                    .texture(id)
-                    .map(|(_, v)| v)
-                    .expect("peeling targets are textures")
-            };
-            let _clear = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(&self.name),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: view(self.color),
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: view(self.first_prev),
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
+impl Peeling {
+    /// Start: nothing accumulated; the "previous layer" at depth 0 lets every fragment through.
+    fn clear(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        let view = |id| {
+            ctx.pool
+                .texture(id)
+                .map(|(_, v)| v)
+                .expect("peeling targets are textures")
+        };
+        encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(&self.name),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: view(self.color),
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: view(self.first_prev),
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Store,
                 }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-        }
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+    }
+
+    /// Peel front to back until a layer draws nothing or the cap, reading the
+    /// occlusion queries back every `check_every` layers (awaited: in a
+    /// browser the mapping completes through the page's event loop).
+    async fn peel(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        self.failed.replace(None);
+        self.clear(ctx, encoder);
         let mut used = self.max_layers;
         let mut start = 0;
         'peel: while start < self.max_layers {
@@ -321,8 +322,15 @@ impl PreparedPass for Peeling {
             );
             encoder.push_debug_group(&self.name);
             ctx.queue.submit([done.finish()]);
-            let Ok(bytes) = plait_gpu::readback::map_buffer(ctx.device, &self.readback) else {
-                break 'peel;
+            // The layers recorded so far, should the wait below not return.
+            self.layers.set(end);
+            self.capped.set(false);
+            let bytes = match map_buffer_async(ctx.device, &self.readback).await {
+                Ok(bytes) => bytes,
+                Err(message) => {
+                    self.failed.replace(Some(message));
+                    return;
+                }
             };
             for k in start..end {
                 let at = (k - start) as usize * 8;
@@ -336,6 +344,54 @@ impl PreparedPass for Peeling {
         }
         self.layers.set(used);
         self.capped.set(used == self.max_layers);
+    }
+}
+
+struct Peeling {
+    name: String,
+    peel: [ShaderPass; 2],
+    blend: ShaderPass,
+    color: plait_graph::ResourceId,
+    first_prev: plait_graph::ResourceId,
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    max_layers: u32,
+    check_every: u32,
+    layers: Cell<u32>,
+    capped: Cell<bool>,
+    /// Why the last frame's peeling stopped early, if a read-back failed.
+    failed: RefCell<Option<String>>,
+}
+
+impl PreparedPass for Peeling {
+    /// Natively: [`Peeling::peel`], blocking on each read-back. In a browser
+    /// nothing can block; the executor calls `record_async` there, and a
+    /// caller that records synchronously gets a frame that fails (`finish`).
+    fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        if let Err(message) = plait_gpu::wait::wait_for(self.peel(ctx, encoder)) {
+            self.failed.replace(Some(message));
+        }
+    }
+
+    fn record_async<'a>(
+        &'a self,
+        ctx: &'a RecordContext<'a>,
+        encoder: &'a mut wgpu::CommandEncoder,
+    ) -> Recording<'a> {
+        Box::pin(self.peel(ctx, encoder))
+    }
+
+    /// A read-back that failed mid-frame stopped the peeling: the frame fails
+    /// with it rather than showing the layers peeled so far as the answer.
+    fn finish(&self, _device: &wgpu::Device) -> Result<(), String> {
+        match self.failed.take() {
+            Some(message) => Err(format!(
+                "depth peeling stopped after {} layers: the occlusion queries could not be read back ({message})",
+                self.layers.get()
+            )),
+            None => Ok(()),
+        }
     }
 
     fn stats(&self) -> Vec<(String, f64)> {

@@ -36,9 +36,9 @@
 use std::cell::Cell;
 
 use plait_gpu::pass::{
-    BuildContext, PassType, PreparedPass, RecordContext, ShaderDraw, build_draw,
+    BuildContext, Finishing, PassType, PreparedPass, RecordContext, ShaderDraw, build_draw,
 };
-use plait_gpu::readback::map_buffer;
+use plait_gpu::readback::map_buffer_async;
 use plait_gpu::{Define, GpuError};
 use plait_graph::{
     Access, ParamSpec, ParamType, PassShape, PassTypeSpec, ResolvedResource, ScheduledPass, SlotId,
@@ -298,7 +298,19 @@ impl PreparedPass for Simulation {
     }
 
     fn finish(&self, device: &wgpu::Device) -> Result<(), String> {
-        let bytes = map_buffer(device, &self.staging)?;
+        plait_gpu::wait::wait_for(self.check(device))?
+    }
+
+    fn finish_async<'a>(&'a self, device: &'a wgpu::Device) -> Finishing<'a> {
+        Box::pin(self.check(device))
+    }
+}
+
+impl Simulation {
+    /// The status the frame's last step left, read back (awaited: in a
+    /// browser the mapping completes through the page's event loop).
+    async fn check(&self, device: &wgpu::Device) -> Result<(), String> {
+        let bytes = map_buffer_async(device, &self.staging).await?;
         let word =
             |i: usize| u32::from_le_bytes(bytes[i * 4..i * 4 + 4].try_into().unwrap_or([0; 4]));
         let (flags, strand, stretch) = (word(0), u32::MAX - word(1), word(2));

@@ -5,21 +5,20 @@
 //
 // A test drives the page through its URL: `?test=a.toml,b.toml&size=96x72`
 // renders each pipeline once and POSTs the frames (or errors) to /result on
-// the server that served the page. `?screenshot` keeps a request to /hold
-// open until the first frame is drawn, then asks /release: headless
-// Chromium's virtual time waits for open requests, so its --screenshot shows
-// the frame (scripts/web-screenshot.py serves both).
+// the server that served the page. `?screenshot` asks /release once the first
+// frame is drawn: scripts/web-screenshot.py takes its picture then.
 import init, { open, gallery } from './plait_web.js';
 
 const $ = (id) => document.getElementById(id);
-const state = { pipeline: 'occupancy.toml', sets: {}, yaw: 0, pitch: 0, busy: false, again: false };
+const state = { pipeline: 'occupancy.toml', sets: {}, size: [480, 360], yaw: 0, pitch: 0, busy: false, again: false };
 let engine = null;
 
-function request(width, height) {
+function request() {
+  const [width, height] = state.size;
   return JSON.stringify({
     pipeline: state.pipeline, width, height,
     sets: Object.entries(state.sets).map(([k, v]) => `${k}=${v}`),
-    yaw: state.yaw, pitch: state.pitch,
+    yaw: state.yaw, pitch: state.pitch, read: state.read,
   });
 }
 
@@ -69,26 +68,40 @@ function showControls(controls) {
 }
 
 // One frame at a time; a change while one renders asks for one more.
+// Resolves to the frame's report, or null when the engine refused or failed.
 async function render() {
-  if (state.busy) { state.again = true; return; }
+  if (state.busy) { state.again = true; return null; }
   state.busy = true;
   const started = performance.now();
   try {
-    const frame = await engine.render(request(480, 360));
+    const frame = await engine.render(request());
     draw(frame);
-    showTimings(JSON.parse(frame.report), JSON.parse(frame.notes));
+    const report = JSON.parse(frame.report);
+    showTimings(report, JSON.parse(frame.notes));
     showControls(JSON.parse(frame.controls));
     $('error').hidden = true;
     $('status').textContent = `${state.pipeline}: ${(performance.now() - started).toFixed(0)} ms`;
+    return report;
   } catch (e) {
     // The last good frame stays; the error is the CLI's text.
     $('error').textContent = String(e);
     $('error').hidden = false;
     $('status').textContent = 'error';
+    return null;
   } finally {
     state.busy = false;
     if (state.again) { state.again = false; render(); }
   }
+}
+
+// `name.toml;params.x=1;techniques.p=t` as the page's state.
+// A test may add `;read=RESOURCE`: that resource is shown instead of the output.
+function choose(entry) {
+  const [name, ...sets] = entry.split(';');
+  state.pipeline = name;
+  const pairs = sets.map((s) => [s.slice(0, s.indexOf('=')), s.slice(s.indexOf('=') + 1)]);
+  state.read = (pairs.find(([k]) => k === 'read') || [])[1];
+  state.sets = Object.fromEntries(pairs.filter(([k]) => k !== 'read'));
 }
 
 function orbitWithMouse() {
@@ -105,26 +118,29 @@ function orbitWithMouse() {
   };
 }
 
-async function test(names, width, height) {
+// Each entry rendered as a reader's change would be (the same `render`): what
+// the page then shows is posted — the canvas, the error text, the report.
+async function test(entries, width, height) {
+  state.size = [width, height];
   const results = [];
-  for (const name of names) {
-    state.pipeline = name;
+  for (const entry of entries) {
+    choose(entry);
     const started = performance.now();
-    try {
-      const frame = await engine.render(request(width, height));
-      results.push({ pipeline: name, ms: performance.now() - started, width: frame.width,
-        height: frame.height, pixels: Array.from(frame.pixels), report: JSON.parse(frame.report) });
-    } catch (e) {
-      results.push({ pipeline: name, ms: performance.now() - started, error: String(e) });
-    }
+    const report = await render();
+    const ms = performance.now() - started;
+    const canvas = $('view');
+    const shown = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
+    results.push({ pipeline: entry, ms, error: $('error').hidden ? null : $('error').textContent,
+      width: canvas.width, height: canvas.height, pixels: Array.from(shown.data), report });
   }
   return results;
 }
 
 async function main() {
   const query = new URLSearchParams(location.search);
-  if (query.has('screenshot')) fetch('/hold');
-  if (!navigator.gpu) throw new Error('this browser has no WebGPU (navigator.gpu): the pictures in the book are static renders');
+  if (!(navigator.gpu && await navigator.gpu.requestAdapter().catch(() => null))) {
+    throw new Error('this browser offers no WebGPU adapter (navigator.gpu is missing or gives none): the pictures in the book are static renders');
+  }
   await init();
   engine = await open();
   $('adapter').textContent = `adapter: ${engine.adapter()}`;
@@ -135,6 +151,9 @@ async function main() {
     $('status').textContent = 'test done';
     return;
   }
+  // A link from the book chooses the pipeline and its sets:
+  // `?pipeline=default.toml&set=techniques.shading=marschner`.
+  if (query.has('pipeline')) choose([query.get('pipeline'), ...query.getAll('set')].join(';'));
   const select = $('pipeline');
   for (const name of JSON.parse(gallery())) select.add(new Option(name, name, false, name === state.pipeline));
   select.onchange = () => { state.pipeline = select.value; state.sets = {}; render(); };

@@ -12,15 +12,19 @@ use crate::engine::{Engine, Request};
 /// The engine the page holds: one device, one build at a time.
 #[wasm_bindgen]
 pub struct WebEngine {
-    inner: Rc<RefCell<Engine>>,
+    /// `None` while a frame renders.
+    inner: Rc<RefCell<Option<Engine>>>,
+    adapter: String,
 }
 
 /// Opens the page's WebGPU device and reads the built-in library.
 #[wasm_bindgen]
 pub async fn open() -> Result<WebEngine, JsValue> {
+    crate::occlusion_shim::install()?;
     let engine = Engine::open().await.map_err(|e| JsValue::from_str(&e))?;
     Ok(WebEngine {
-        inner: Rc::new(RefCell::new(engine)),
+        adapter: engine.adapter(),
+        inner: Rc::new(RefCell::new(Some(engine))),
     })
 }
 
@@ -38,7 +42,7 @@ fn set(object: &Object, key: &str, value: &JsValue) -> Result<(), JsValue> {
 impl WebEngine {
     /// The adapter, as `plait render` names it.
     pub fn adapter(&self) -> String {
-        self.inner.borrow().adapter()
+        self.adapter.clone()
     }
 
     /// Renders the request (JSON: pipeline, width, height, sets, yaw,
@@ -50,14 +54,16 @@ impl WebEngine {
             serde_json::from_str(request).map_err(|e| format!("bad request: {e}"));
         wasm_bindgen_futures::future_to_promise(async move {
             let request = request.map_err(|e| JsValue::from_str(&e))?;
-            // One frame at a time: the page waits for each before the next.
+            // One frame at a time: the engine is taken out while it renders
+            // (no borrow held across the await), so a second call meanwhile
+            // is refused instead of panicking.
             let mut engine = inner
-                .try_borrow_mut()
-                .map_err(|_| JsValue::from_str("a frame is still rendering"))?;
-            let frame = engine
-                .render(&request)
-                .await
-                .map_err(|e| JsValue::from_str(&e))?;
+                .borrow_mut()
+                .take()
+                .ok_or_else(|| JsValue::from_str("a frame is still rendering"))?;
+            let frame = engine.render(&request).await;
+            *inner.borrow_mut() = Some(engine);
+            let frame = frame.map_err(|e| JsValue::from_str(&e))?;
             let out = Object::new();
             set(&out, "width", &frame.width.into())?;
             set(&out, "height", &frame.height.into())?;

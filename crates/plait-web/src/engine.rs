@@ -14,6 +14,9 @@ use plait_gpu::{FrameReport, Gpu, PassLibrary};
 /// The scene the page renders: the tests' small scene, built in.
 pub const SCENE: &str = "examples/scenes/small.toml";
 
+/// The adapter's name in messages when the browser gives none.
+pub const UNNAMED_ADAPTER: &str = "this browser's WebGPU adapter (unnamed)";
+
 /// What the page asks for.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize)]
 pub struct Request {
@@ -29,6 +32,10 @@ pub struct Request {
     pub yaw: f32,
     #[serde(default)]
     pub pitch: f32,
+    /// A resource of the schedule to read back instead of its output (a
+    /// shadow map, say): how a test compares what the page's passes wrote.
+    #[serde(default)]
+    pub read: Option<String>,
 }
 
 /// A frame read back.
@@ -120,7 +127,13 @@ impl Engine {
     /// and scene. The device lives as long as the page: it is leaked, so a
     /// build can borrow it.
     pub async fn open() -> Result<Engine, String> {
-        let gpu = Gpu::new_async(&[]).await.map_err(|e| e.to_string())?;
+        let mut gpu = Gpu::new_async(&[]).await.map_err(|e| e.to_string())?;
+        // A browser may keep its adapter's name to itself (headless
+        // Chromium's SwiftShader gives none): messages still name something.
+        if gpu.info.name.is_empty() {
+            gpu.info.name = UNNAMED_ADAPTER.into();
+            gpu.support.adapter = UNNAMED_ADAPTER.into();
+        }
         let gpu: &'static Gpu = Box::leak(Box::new(gpu));
         let library = plait_passes::library_for(&[]);
         let scene_path = Path::new(plait_assets::BUILTIN_ROOT).join(SCENE);
@@ -173,8 +186,9 @@ impl Engine {
         // that dropped data fails the frame (natively the first frame sizes
         // it; see the report's note), and the frame's notes come with it.
         let checked = prepared.render_async().await.map_err(|e| e.to_string())?;
+        let read = req.read.as_deref().unwrap_or(&prepared.output);
         let texels = prepared
-            .read_resource_async(&prepared.output)
+            .read_resource_async(read)
             .await
             .map_err(|e| e.to_string())?;
         let image = texels.to_image();

@@ -12,5 +12,7 @@ pub mod orbit;
 
 #[cfg(target_arch = "wasm32")]
 pub mod bindings;
+#[cfg(target_arch = "wasm32")]
+mod occlusion_shim;
 
 pub use engine::{Engine, Frame, Request};

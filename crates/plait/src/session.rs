@@ -378,7 +378,9 @@ impl Prepared<'_> {
 
     /// Record one frame's commands without submitting them: for measuring
     /// the CPU cost of encoding (`benches/encode.rs`). A frame is rendered
-    /// only by [`Prepared::render`].
+    /// only by [`Prepared::render`]. Native only: a pass may wait for the GPU
+    /// while recording (depth peeling), which a browser awaits instead.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn encode_only(&self) -> wgpu::CommandBuffer {
         self.renderer.encode()
     }

@@ -39,7 +39,8 @@ pub use check::ShaderChecker;
 pub use defaults::{default_defines, default_threads};
 pub use layout::{FrameSamplers, frame_layout};
 pub use pass_type::{
-    BuildContext, PassLibrary, PassType, PreparedPass, RecordContext, SCENE_BINDINGS, shader_source,
+    BuildContext, Finishing, PassLibrary, PassType, PreparedPass, RecordContext, Recording,
+    SCENE_BINDINGS, shader_source,
 };
 pub use plait_graph::raster_decl::BlendPreset;
 pub use plan::BindingPlan;

@@ -92,9 +92,29 @@ pub trait PassType: Send + Sync {
     }
 }
 
+/// A pass's recording, awaited ([`PreparedPass::record_async`]).
+pub type Recording<'a> = std::pin::Pin<Box<dyn std::future::Future<Output = ()> + 'a>>;
+
+/// A pass's check after its frame, awaited ([`PreparedPass::finish_async`]).
+pub type Finishing<'a> =
+    std::pin::Pin<Box<dyn std::future::Future<Output = Result<(), String>> + 'a>>;
+
 /// GPU objects of one pass, ready to record every frame.
 pub trait PreparedPass {
     fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder);
+
+    /// What the executor calls: [`PreparedPass::record`], for a pass that
+    /// must see a GPU result mid-frame (depth peeling's occlusion queries)
+    /// awaiting it. A browser cannot block inside `record`: there the
+    /// result arrives through the page's event loop, so the pass awaits it
+    /// here. The default records at once.
+    fn record_async<'a>(
+        &'a self,
+        ctx: &'a RecordContext<'a>,
+        encoder: &'a mut wgpu::CommandEncoder,
+    ) -> Recording<'a> {
+        Box::pin(async move { self.record(ctx, encoder) })
+    }
 
     /// Numbers the last `record` found out (e.g. the layers a depth-peeling
     /// pass needed), reported per pass in the executor's `FrameReport`.
@@ -107,6 +127,13 @@ pub trait PreparedPass {
     /// fails the frame here, so its image is never returned.
     fn finish(&self, _device: &wgpu::Device) -> Result<(), String> {
         Ok(())
+    }
+
+    /// What the executor calls: [`PreparedPass::finish`], for a pass whose
+    /// status is read back awaited (a browser cannot block on the mapping).
+    /// The default calls `finish`.
+    fn finish_async<'a>(&'a self, device: &'a wgpu::Device) -> Finishing<'a> {
+        Box::pin(async move { self.finish(device) })
     }
 }
 

@@ -86,10 +86,13 @@ impl HairFile {
         tmp_name.push(format!(".{}.tmp", std::process::id()));
         let tmp = dir.join(tmp_name);
         let result = (|| -> std::io::Result<()> {
-            let mut f = std::fs::File::create(&tmp)?;
-            f.write_all(&bytes)?;
-            f.sync_all()?;
-            drop(f);
+            // Closed (end of block) before the rename. A block, not `drop`:
+            // on wasm32 a File has no Drop and clippy refuses `drop(f)`.
+            {
+                let mut f = std::fs::File::create(&tmp)?;
+                f.write_all(&bytes)?;
+                f.sync_all()?;
+            }
             std::fs::rename(&tmp, path)
         })();
         if let Err(e) = result {
