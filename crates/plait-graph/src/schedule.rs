@@ -194,6 +194,10 @@ pub struct ChosenTechnique {
     /// What the engine does for it (`[technique] engine`).
     #[serde(skip)]
     pub engine: Vec<String>,
+    /// What it needs of the adapter (`[technique] adapter`, each one of
+    /// `techniques::technique_keys::ADAPTER_NEEDS`), where each is written.
+    #[serde(skip)]
+    pub adapter: Vec<crate::error::Spanned<String>>,
 }
 
 impl ChosenTechnique {
