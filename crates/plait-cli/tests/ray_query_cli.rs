@@ -67,3 +67,44 @@ fn a_ray_traced_technique_is_refused_on_an_adapter_without_ray_queries() {
         text(&o.stdout)
     );
 }
+
+/// A self-shadow provider binding an acceleration structure: plait cannot
+/// bind one to a pass yet, and `plait check` says so before any GPU work,
+/// where the render used to fail at pipeline creation with wgpu's "binding
+/// is missing from the pipeline layout" (the binding was left out of the
+/// plan silently).
+#[test]
+fn a_provider_binding_an_acceleration_structure_is_refused_by_check() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    write(
+        dir.path(),
+        "techniques/self_shadow/rt_probe/technique.toml",
+        "[technique]\npoint = \"self_shadow\"\ndescription = \"a ray query\"\n\
+         source = \"-\"\nmemory = \"0\"\nadapter = [\"ray_query\"]\n\n\
+         [technique.exports]\nparams = { self_shadow = \"rt_probe\" }\n",
+    );
+    write(
+        dir.path(),
+        "techniques/self_shadow/rt_probe/self_shadow.wgsl",
+        "enable wgpu_ray_query;\n#define_import_path plait::self_shadow::rt_probe\n\n\
+         @group(1) @binding(8) var vis_strands: acceleration_structure;\n\n\
+         fn hair_visibility(world: vec3<f32>) -> f32 {\n    var rq: ray_query;\n    \
+         rayQueryInitialize(&rq, vis_strands, RayDesc(0u, 0xFFu, 0.01, 1e30, world, vec3<f32>(0.0, 1.0, 0.0)));\n    \
+         var n = 0.0;\n    while (rayQueryProceed(&rq)) {\n        n += 1.0;\n    }\n    return exp(-n);\n}\n",
+    );
+    write(
+        dir.path(),
+        "mine.toml",
+        "[pipeline]\nname = \"mine\"\nextends = \"occupancy.toml\"\n\n\
+         [techniques]\nself_shadow = \"rt_probe\"\n",
+    );
+    let pipeline = dir.path().join("mine.toml");
+    let o = plait_env(&["check", pipeline.to_str().expect("utf-8")], false);
+    assert_refused(
+        "check",
+        &o,
+        &[
+            "shader binding `vis_strands` (group 1, binding 8) is an acceleration structure, which plait cannot bind to a pass",
+        ],
+    );
+}

@@ -188,6 +188,30 @@ pub fn bindings(module: &Module) -> Vec<ShaderBinding> {
     out
 }
 
+/// Resource bindings of a module that [`bindings`] leaves out because plait
+/// cannot bind them to a pass: (name, group, binding, what it is). Reported
+/// by the binding plan, so `plait check` refuses such a shader instead of
+/// the render failing at pipeline creation with wgpu's "binding is missing
+/// from the pipeline layout".
+pub fn unbindable(module: &Module) -> Vec<(String, u32, u32, &'static str)> {
+    let mut out = Vec::new();
+    for (_, var) in module.global_variables.iter() {
+        let Some(rb) = &var.binding else { continue };
+        let what = match &module.types[var.ty].inner {
+            TypeInner::AccelerationStructure { .. } => "an acceleration structure",
+            TypeInner::Image {
+                class: ImageClass::External,
+                ..
+            } => "an external texture",
+            TypeInner::BindingArray { .. } => "a binding array",
+            _ => continue,
+        };
+        let name = plain_name(var.name.as_deref().unwrap_or_default()).to_owned();
+        out.push((name, rb.group, rb.binding, what));
+    }
+    out
+}
+
 /// A member of a shader's `params` uniform struct.
 #[derive(Clone, Debug)]
 pub struct ParamMember {
