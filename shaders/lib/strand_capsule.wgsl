@@ -1,5 +1,5 @@
 // plait::strand_capsule — a ray against one strand segment as a tapered
-// swept sphere (RTX Hair's linear swept spheres: a sphere swept from one
+// swept sphere (the tapered capsules issue 48 describes for RTX Hair: a sphere swept from one
 // vertex to the next, its radius going linearly from the strand's
 // half-width at one end to that at the other). Used by the ray-traced
 // techniques on each candidate box of the strands' acceleration structure

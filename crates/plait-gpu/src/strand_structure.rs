@@ -1,6 +1,6 @@
 //! The frame's strands in an acceleration structure (issue 48): one
-//! procedural box per segment enclosing its tapered swept sphere (RTX Hair's
-//! linear swept spheres; the radius is half the strand's thickness at each
+//! procedural box per segment enclosing its tapered swept sphere (the
+//! tapered capsules issue 48 describes for RTX Hair; the radius is half the strand's thickness at each
 //! end), written by a compute pass from the hair's vertex buffer as it is
 //! this frame (after simulation and level of detail), then a bottom-level
 //! structure built from the boxes and a top-level one holding it once.
