@@ -28,6 +28,8 @@ pub enum BindingKind {
     Sampler {
         comparison: bool,
     },
+    /// `acceleration_structure` (ray queries): the strands' structure.
+    AccelerationStructure,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,6 +58,7 @@ impl ShaderBinding {
                 Some(ResourceKind::Texture)
             }
             BindingKind::Sampler { .. } => None,
+            BindingKind::AccelerationStructure => Some(ResourceKind::AccelerationStructure),
         }
     }
 
@@ -175,6 +178,7 @@ pub fn bindings(module: &Module) -> Vec<ShaderBinding> {
             (_, TypeInner::Sampler { comparison }) => BindingKind::Sampler {
                 comparison: *comparison,
             },
+            (_, TypeInner::AccelerationStructure { .. }) => BindingKind::AccelerationStructure,
             _ => continue,
         };
         out.push(ShaderBinding {
@@ -198,7 +202,6 @@ pub fn unbindable(module: &Module) -> Vec<(String, u32, u32, &'static str)> {
     for (_, var) in module.global_variables.iter() {
         let Some(rb) = &var.binding else { continue };
         let what = match &module.types[var.ty].inner {
-            TypeInner::AccelerationStructure { .. } => "an acceleration structure",
             TypeInner::Image {
                 class: ImageClass::External,
                 ..

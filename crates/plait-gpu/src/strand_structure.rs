@@ -77,10 +77,21 @@ impl StrandStructure {
         hair_vertices: &wgpu::Buffer,
         points: u32,
     ) -> Result<Self, StructureError> {
+        let adapter = gpu.support.describe();
+        Self::on(&gpu.device, (&gpu.capabilities, &adapter), hair_vertices, points)
+    }
+
+    /// [`StrandStructure::new`] on `device`, whose adapter is described by
+    /// its capabilities and name.
+    pub fn on(
+        device: &wgpu::Device,
+        (caps, adapter): (&Capabilities, &str),
+        hair_vertices: &wgpu::Buffer,
+        points: u32,
+    ) -> Result<Self, StructureError> {
         let segments = segment_count(points).max(1);
-        check_segments(segments, &gpu.capabilities, &gpu.support.describe())?;
+        check_segments(segments, caps, adapter)?;
         let segments = segments as u32;
-        let device = &gpu.device;
         let boxes = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("strand_boxes"),
             size: u64::from(segments) * BOX_STRIDE,

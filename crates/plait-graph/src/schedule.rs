@@ -88,6 +88,9 @@ pub enum ResourceDesc {
     Buffer {
         size: u64,
     },
+    /// The frame's strands for ray queries: sized by the scene's hair when
+    /// built, so its memory is the engine's to report.
+    AccelerationStructure,
 }
 
 impl ResourceDesc {
@@ -95,6 +98,7 @@ impl ResourceDesc {
         match self {
             ResourceDesc::Texture { .. } => ResourceKind::Texture,
             ResourceDesc::Buffer { .. } => ResourceKind::Buffer,
+            ResourceDesc::AccelerationStructure => ResourceKind::AccelerationStructure,
         }
     }
 
@@ -114,6 +118,8 @@ impl ResourceDesc {
                     * samples as u64
             }
             ResourceDesc::Buffer { size } => size,
+            // The driver's, at build (plait_gpu::strand_structure).
+            ResourceDesc::AccelerationStructure => 0,
         }
     }
 
@@ -137,6 +143,7 @@ impl ResourceDesc {
                 s
             }
             ResourceDesc::Buffer { size } => format!("buffer {size} B"),
+            ResourceDesc::AccelerationStructure => "acceleration structure".into(),
         }
     }
 }

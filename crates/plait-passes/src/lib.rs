@@ -29,6 +29,7 @@ pub mod shading;
 pub mod shading_space;
 pub mod simulation;
 pub mod spec_util;
+pub mod strand_structure;
 pub mod visibility;
 
 use std::path::{Path, PathBuf};

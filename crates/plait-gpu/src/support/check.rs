@@ -340,6 +340,9 @@ impl PassCtx<'_> {
                     BindingKind::Texture { .. } => 2,
                     BindingKind::StorageTexture { .. } => 3,
                     BindingKind::Sampler { .. } => 4,
+                    // One structure, far below any adapter's
+                    // max_acceleration_structures_per_shader_stage.
+                    BindingKind::AccelerationStructure => continue,
                 };
                 n[i] += 1;
             }

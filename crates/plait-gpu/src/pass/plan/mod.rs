@@ -165,7 +165,7 @@ impl<'a> Planner<'a> {
             }
         }
         for (name, group, binding, what) in reflect::unbindable(module) {
-            planner.error(&pass.location, format!("shader binding `{name}` (group {group}, binding {binding}) is {what}, which plait cannot bind to a pass (the strands' acceleration structure, plait_gpu::strand_structure, is no graph resource yet: issue 48)"));
+            planner.error(&pass.location, format!("shader binding `{name}` (group {group}, binding {binding}) is {what}, which plait cannot bind to a pass"));
         }
         planner.plan.writes_storage = planner.group1.iter().any(|b| b.writes());
         planner
