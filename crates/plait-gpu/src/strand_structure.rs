@@ -78,7 +78,12 @@ impl StrandStructure {
         points: u32,
     ) -> Result<Self, StructureError> {
         let adapter = gpu.support.describe();
-        Self::on(&gpu.device, (&gpu.capabilities, &adapter), hair_vertices, points)
+        Self::on(
+            &gpu.device,
+            (&gpu.capabilities, &adapter),
+            hair_vertices,
+            points,
+        )
     }
 
     /// [`StrandStructure::new`] on `device`, whose adapter is described by

@@ -12,7 +12,9 @@
 use plait_gpu::pass::{BuildContext, PassType, PreparedPass, RecordContext};
 use plait_gpu::strand_structure::StrandStructure;
 use plait_gpu::{Define, GpuError};
-use plait_graph::{Access, Formats, PassShape, PassTypeSpec, ResourceKind, ScheduledPass, SlotSpec};
+use plait_graph::{
+    Access, Formats, PassShape, PassTypeSpec, ResourceKind, ScheduledPass, SlotSpec,
+};
 
 use crate::spec_util::buffer;
 

@@ -305,7 +305,10 @@ fn bind_group<'a>(
             )),
             BindingSource::Slot { resource, .. } => {
                 if ctx.pool.binding_resource(*resource).is_none() {
-                    let message = format!("`{}`: the strands' structure is bound before the pass that builds it", b.name);
+                    let message = format!(
+                        "`{}`: the strands' structure is bound before the pass that builds it",
+                        b.name
+                    );
                     return Err(pass_error(pass, message));
                 }
                 resources.push((b.binding, *resource))

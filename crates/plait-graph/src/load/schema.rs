@@ -353,7 +353,9 @@ fn resource_kind(
     let Some(kind_entry) = t.get("kind") else {
         b.schema(
             &entry.key,
-            format!("{context} needs `kind = \"texture\"`, `\"buffer\"` or `\"acceleration_structure\"`"),
+            format!(
+                "{context} needs `kind = \"texture\"`, `\"buffer\"` or `\"acceleration_structure\"`"
+            ),
         );
         return None;
     };
