@@ -68,11 +68,11 @@ fn a_ray_traced_technique_is_refused_on_an_adapter_without_ray_queries() {
     );
 }
 
-/// A self-shadow provider binding an acceleration structure: plait cannot
-/// bind one to a pass yet, and `plait check` says so before any GPU work,
-/// where the render used to fail at pipeline creation with wgpu's "binding
-/// is missing from the pipeline layout" (the binding was left out of the
-/// plan silently).
+/// A self-shadow provider binding an acceleration structure that its
+/// technique does not export: `plait check` names the binding before any GPU
+/// work. (Before acceleration structures were a resource kind the binding
+/// was left out of the plan silently and the render failed at pipeline
+/// creation with wgpu's "binding is missing from the pipeline layout".)
 #[test]
 fn a_provider_binding_an_acceleration_structure_is_refused_by_check() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -104,7 +104,7 @@ fn a_provider_binding_an_acceleration_structure_is_refused_by_check() {
         "check",
         &o,
         &[
-            "shader binding `vis_strands` (group 1, binding 8) is an acceleration structure, which plait cannot bind to a pass",
+            "pass `hair`: shader binding `vis_strands` (group 1, binding 8) is not provided by the pipeline file",
         ],
     );
 }
