@@ -92,6 +92,7 @@ fn hair_maps(gpu: &Gpu, pipeline: &Path) -> (Vec<(String, bool)>, String) {
             let readable = match desc {
                 ResourceDesc::Buffer { .. } => true,
                 ResourceDesc::Texture { samples, .. } => *samples == 1,
+                ResourceDesc::AccelerationStructure => false,
             };
             // Fragment lists hold node indices in the order the GPU's threads
             // allocated them, which adding geometry may change; their fragment

@@ -172,6 +172,9 @@ fn providers() -> Vec<Provider> {
         provider("deep_opacity", dom, false),
         provider("opacity_shadow_maps", light_64(), true),
         provider("density_volume", vec![], true),
+        // One ray per point through the strands' acceleration structure
+        // (tests/ray_traced_strands.rs holds one strand and the mutations).
+        provider("ray_traced", vec![], true),
         // The volume converges with its resolution (the trilinear lookup
         // smears the count over a voxel either side: at 8³, voxels wider
         // than the layers' gap, 0.78 below the first layer): at 64³ it

@@ -270,6 +270,9 @@ fn slot_words(slot: &SlotSpec) -> String {
             formats => format!("{formats} texture, {}", slot.access),
         },
         ResourceKind::Buffer => format!("buffer, {}", slot.access),
+        ResourceKind::AccelerationStructure => {
+            format!("acceleration structure, {}", slot.access)
+        }
     };
     if slot.loads {
         words.push_str(", adds to what is there");

@@ -332,6 +332,9 @@ pub fn report_json(
                     ("texture", Some(format.name()))
                 }
                 plait_graph::ResourceDesc::Buffer { .. } => ("buffer", None),
+                plait_graph::ResourceDesc::AccelerationStructure => {
+                    ("acceleration_structure", None)
+                }
             };
             serde_json::json!({
                 "name": res.name, "kind": kind, "format": format, "desc": res.desc.label(),

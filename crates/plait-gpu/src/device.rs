@@ -22,6 +22,14 @@ pub struct Capabilities {
     pub max_texture_dimension: u32,
     /// `max_storage_buffer_binding_size` of the adapter.
     pub max_storage_buffer_binding_size: u64,
+    /// Shaders can trace rays through acceleration structures
+    /// (`EXPERIMENTAL_RAY_QUERY`; Vulkan's `VK_KHR_ray_query`: Mesa ≥ 25's
+    /// lavapipe has it, 22.3's does not). Techniques with `[technique]
+    /// adapter = ["ray_query"]` are refused without it ([`crate::support`]).
+    pub ray_query: bool,
+    /// `max_blas_primitive_count`: the most primitives (strand segments) one
+    /// bottom-level acceleration structure holds; 0 without ray queries.
+    pub max_blas_primitives: u32,
 }
 
 impl Capabilities {
@@ -35,6 +43,8 @@ impl Capabilities {
             early_depth_test: false,
             max_texture_dimension: opts.max_texture_dimension,
             max_storage_buffer_binding_size: opts.max_buffer_binding_size,
+            ray_query: false,
+            max_blas_primitives: 0,
         }
     }
 
@@ -44,6 +54,19 @@ impl Capabilities {
             float32_blendable: self.float32_blendable,
         }
     }
+}
+
+/// wgpu's experimental features, asked for only when the adapter has ray
+/// queries (the one experimental feature plait uses).
+#[allow(unsafe_code)]
+fn experimental_features() -> wgpu::ExperimentalFeatures {
+    // SAFETY: `enabled` is unsafe as an acknowledgement that experimental
+    // APIs may have bugs, not for memory safety of this call. plait uses only
+    // ray queries from them, and declares each ray query in a function
+    // outside any loop: one declared in a loop made naga emit a null
+    // constant of the ray-query type, which Mesa rejects and the device is
+    // lost at submit (wgpu PR 9945).
+    unsafe { wgpu::ExperimentalFeatures::enabled() }
 }
 
 /// The device plait renders with.
@@ -126,7 +149,10 @@ impl Gpu {
             // The engine zeroes storage-texture outputs that do not load
             // with `clear_texture`, which wgpu allows only with this feature
             // (a compute pass writing a texture failed validation without it).
-            | wgpu::Features::CLEAR_TEXTURE;
+            | wgpu::Features::CLEAR_TEXTURE
+            // Ray-traced techniques (issue 48); the device then needs the
+            // experimental features and acceleration-structure limits below.
+            | wgpu::Features::EXPERIMENTAL_RAY_QUERY;
         let mut features = available & wanted;
         // PLAIT_DISABLE_FEATURES=FLOAT32_BLENDABLE,TIMESTAMP_QUERY pretends the
         // adapter lacks them: how the fallbacks for weaker adapters are tested here.
@@ -155,12 +181,19 @@ impl Gpu {
         } else {
             adapter.limits()
         };
+        let ray_query = features.contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY);
+        let (limits, experimental_features) = if ray_query {
+            let limits = limits.using_acceleration_structure_values(adapter.limits());
+            (limits, experimental_features())
+        } else {
+            (limits, wgpu::ExperimentalFeatures::disabled())
+        };
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("plait"),
                 required_features: features,
                 required_limits: limits.clone(),
-                experimental_features: wgpu::ExperimentalFeatures::disabled(),
+                experimental_features,
                 memory_hints: wgpu::MemoryHints::Performance,
                 trace: wgpu::Trace::Off,
             })
@@ -186,6 +219,12 @@ impl Gpu {
             max_storage_buffer_binding_size: limits
                 .max_storage_buffer_binding_size
                 .min(limits.max_buffer_size),
+            ray_query,
+            max_blas_primitives: if ray_query {
+                limits.max_blas_primitive_count
+            } else {
+                0
+            },
         };
         let support = crate::AdapterSupport::probe(&adapter, &device);
         Ok(Gpu {

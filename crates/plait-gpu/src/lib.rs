@@ -18,6 +18,7 @@ pub mod pool;
 pub mod readback;
 pub mod reflect;
 pub mod shader;
+pub mod strand_structure;
 pub mod support;
 pub mod wait;
 

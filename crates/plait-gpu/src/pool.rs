@@ -29,6 +29,10 @@ pub enum GpuResource {
         view: wgpu::TextureView,
     },
     Buffer(wgpu::Buffer),
+    /// The strands' acceleration structure: made by the pass that builds
+    /// it (`strand_structure`, when it is built, before any pass binding it),
+    /// which sizes it by the scene's hair.
+    Strands(std::sync::OnceLock<crate::strand_structure::StrandStructure>),
 }
 
 /// The allocations of one schedule, indexed by logical resource.
@@ -101,6 +105,9 @@ impl ResourcePool {
                     .collect::<Vec<_>>()
                     .join("+");
                 match phys.desc {
+                    ResourceDesc::AccelerationStructure => {
+                        GpuResource::Strands(std::sync::OnceLock::new())
+                    }
                     ResourceDesc::Texture {
                         format,
                         width,
@@ -173,21 +180,36 @@ impl ResourcePool {
     pub fn texture(&self, id: ResourceId) -> Option<(&wgpu::Texture, &wgpu::TextureView)> {
         match self.get(id) {
             GpuResource::Texture { texture, view } => Some((texture, view)),
-            GpuResource::Buffer(_) => None,
+            _ => None,
         }
     }
 
     pub fn buffer(&self, id: ResourceId) -> Option<&wgpu::Buffer> {
         match self.get(id) {
             GpuResource::Buffer(b) => Some(b),
-            GpuResource::Texture { .. } => None,
+            _ => None,
         }
     }
 
-    pub fn binding_resource(&self, id: ResourceId) -> wgpu::BindingResource<'_> {
+    /// The strands' structure slot (set once by its building pass).
+    pub fn strands(
+        &self,
+        id: ResourceId,
+    ) -> Option<&std::sync::OnceLock<crate::strand_structure::StrandStructure>> {
         match self.get(id) {
+            GpuResource::Strands(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// What a bind group binds for `id`; `None` for a structure its pass
+    /// has not built (a pass binding it is then ordered before its builder,
+    /// which the schedule never does).
+    pub fn binding_resource(&self, id: ResourceId) -> Option<wgpu::BindingResource<'_>> {
+        Some(match self.get(id) {
             GpuResource::Texture { view, .. } => wgpu::BindingResource::TextureView(view),
             GpuResource::Buffer(b) => b.as_entire_binding(),
-        }
+            GpuResource::Strands(s) => s.get()?.tlas().as_binding(),
+        })
     }
 }

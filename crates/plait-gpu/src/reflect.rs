@@ -28,6 +28,8 @@ pub enum BindingKind {
     Sampler {
         comparison: bool,
     },
+    /// `acceleration_structure` (ray queries): the strands' structure.
+    AccelerationStructure,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,6 +58,7 @@ impl ShaderBinding {
                 Some(ResourceKind::Texture)
             }
             BindingKind::Sampler { .. } => None,
+            BindingKind::AccelerationStructure => Some(ResourceKind::AccelerationStructure),
         }
     }
 
@@ -175,6 +178,7 @@ pub fn bindings(module: &Module) -> Vec<ShaderBinding> {
             (_, TypeInner::Sampler { comparison }) => BindingKind::Sampler {
                 comparison: *comparison,
             },
+            (_, TypeInner::AccelerationStructure { .. }) => BindingKind::AccelerationStructure,
             _ => continue,
         };
         out.push(ShaderBinding {
@@ -185,6 +189,29 @@ pub fn bindings(module: &Module) -> Vec<ShaderBinding> {
         });
     }
     out.sort_by_key(|b| (b.group, b.binding));
+    out
+}
+
+/// Resource bindings of a module that [`bindings`] leaves out because plait
+/// cannot bind them to a pass: (name, group, binding, what it is). Reported
+/// by the binding plan, so `plait check` refuses such a shader instead of
+/// the render failing at pipeline creation with wgpu's "binding is missing
+/// from the pipeline layout".
+pub fn unbindable(module: &Module) -> Vec<(String, u32, u32, &'static str)> {
+    let mut out = Vec::new();
+    for (_, var) in module.global_variables.iter() {
+        let Some(rb) = &var.binding else { continue };
+        let what = match &module.types[var.ty].inner {
+            TypeInner::Image {
+                class: ImageClass::External,
+                ..
+            } => "an external texture",
+            TypeInner::BindingArray { .. } => "a binding array",
+            _ => continue,
+        };
+        let name = plain_name(var.name.as_deref().unwrap_or_default()).to_owned();
+        out.push((name, rb.group, rb.binding, what));
+    }
     out
 }
 

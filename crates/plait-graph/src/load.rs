@@ -151,6 +151,9 @@ pub enum SizeDecl {
     },
     /// A buffer's size in bytes: an integer or an expression string.
     Bytes(Spanned<Value>),
+    /// An acceleration structure's: the scene's hair, no key (where its
+    /// `kind` is written).
+    Scene(Location),
 }
 
 impl SizeDecl {
@@ -158,6 +161,7 @@ impl SizeDecl {
         match self {
             SizeDecl::Screen { location, .. } | SizeDecl::Extent { location, .. } => location,
             SizeDecl::Bytes(v) => &v.location,
+            SizeDecl::Scene(location) => location,
         }
     }
 }

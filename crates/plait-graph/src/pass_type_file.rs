@@ -96,7 +96,9 @@ const SLOT_KEYS: &[&str] = &[
 const WORDS_KEYS: &[&str] = &["of", "multiple", "max", "hint"];
 const PARAM_KEYS: &[&str] = &["type", "default", "min", "max", "choices", "doc"];
 const SHAPES: &[&str] = &["raster", "fullscreen", "compute"];
-const KINDS: &[&str] = &["texture", "buffer"];
+const KINDS: &[&str] = &["texture", "buffer", "acceleration_structure"];
+/// A pass builds an acceleration structure or traces rays through it.
+const STRUCTURE_ACCESS: &[&str] = &["storage_read", "storage_write"];
 const TEXTURE_ACCESS: &[&str] = &[
     "sampled",
     "storage_read",
@@ -292,12 +294,13 @@ fn read_kind_and_access(
     let kind_node = &need(r, "kind")?.value;
     let kind = match r.named(kind_node, &format!("{ctx}.kind"), KINDS)?.as_str() {
         "texture" => ResourceKind::Texture,
-        _ => ResourceKind::Buffer,
+        "buffer" => ResourceKind::Buffer,
+        _ => ResourceKind::AccelerationStructure,
     };
-    let accepted = if kind == ResourceKind::Texture {
-        TEXTURE_ACCESS
-    } else {
-        BUFFER_ACCESS
+    let accepted = match kind {
+        ResourceKind::Texture => TEXTURE_ACCESS,
+        ResourceKind::Buffer => BUFFER_ACCESS,
+        ResourceKind::AccelerationStructure => STRUCTURE_ACCESS,
     };
     let access_node = &need(r, "access")?.value;
     let access = match r

@@ -102,6 +102,9 @@ pub enum ResourceDesc {
     Buffer {
         size: u64,
     },
+    /// The frame's strands for ray queries: sized by the scene's hair when
+    /// built, so its memory is the engine's to report.
+    AccelerationStructure,
 }
 
 impl ResourceDesc {
@@ -109,6 +112,7 @@ impl ResourceDesc {
         match self {
             ResourceDesc::Texture { .. } => ResourceKind::Texture,
             ResourceDesc::Buffer { .. } => ResourceKind::Buffer,
+            ResourceDesc::AccelerationStructure => ResourceKind::AccelerationStructure,
         }
     }
 
@@ -128,6 +132,8 @@ impl ResourceDesc {
                     * samples as u64
             }
             ResourceDesc::Buffer { size } => size,
+            // The driver's, at build (plait_gpu::strand_structure).
+            ResourceDesc::AccelerationStructure => 0,
         }
     }
 
@@ -151,6 +157,7 @@ impl ResourceDesc {
                 s
             }
             ResourceDesc::Buffer { size } => format!("buffer {size} B"),
+            ResourceDesc::AccelerationStructure => "acceleration structure".into(),
         }
     }
 }
@@ -219,6 +226,10 @@ pub struct ChosenTechnique {
     /// What the engine does for it (`[technique] engine`).
     #[serde(skip)]
     pub engine: Vec<String>,
+    /// What it needs of the adapter (`[technique] adapter`, each one of
+    /// `techniques::technique_keys::ADAPTER_NEEDS`), where each is written.
+    #[serde(skip)]
+    pub adapter: Vec<crate::error::Spanned<String>>,
 }
 
 impl ChosenTechnique {

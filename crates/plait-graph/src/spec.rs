@@ -15,6 +15,10 @@ use crate::value::Value;
 pub enum ResourceKind {
     Texture,
     Buffer,
+    /// A ray-tracing acceleration structure of the frame's strands (issue
+    /// 48): built by a pass (`strand_structure`), traced by shaders that
+    /// bind it as `acceleration_structure`. No size: the hair's.
+    AccelerationStructure,
 }
 
 impl std::fmt::Display for ResourceKind {
@@ -22,6 +26,7 @@ impl std::fmt::Display for ResourceKind {
         f.write_str(match self {
             ResourceKind::Texture => "texture",
             ResourceKind::Buffer => "buffer",
+            ResourceKind::AccelerationStructure => "acceleration_structure",
         })
     }
 }

@@ -86,6 +86,7 @@ fn short_desc(desc: &ResourceDesc) -> String {
             s
         }
         ResourceDesc::Buffer { size } => format!("buffer {}", bytes(size)),
+        ResourceDesc::AccelerationStructure => "strands (ray queries)".into(),
     }
 }
 
@@ -385,7 +386,7 @@ impl<'s> Layout<'s> {
         let res = &self.schedule.resources[r];
         let colour = match res.desc.kind() {
             ResourceKind::Texture => TEXTURE_COLOUR,
-            ResourceKind::Buffer => BUFFER_COLOUR,
+            ResourceKind::Buffer | ResourceKind::AccelerationStructure => BUFFER_COLOUR,
         };
         let x = self.col_x(c);
         let output_y = self.output_y();

@@ -31,6 +31,7 @@ pub mod simulation;
 #[cfg(test)]
 mod slot_handles;
 pub mod spec_util;
+pub mod strand_structure;
 pub mod visibility;
 
 use std::path::{Path, PathBuf};

@@ -79,7 +79,7 @@ pub fn default_display(desc: &ResourceDesc) -> Display {
             Display::Color
         }
         ResourceDesc::Texture { .. } => Display::Channel(0),
-        ResourceDesc::Buffer { .. } => Display::Word(0),
+        ResourceDesc::Buffer { .. } | ResourceDesc::AccelerationStructure => Display::Word(0),
     }
 }
 
@@ -95,6 +95,8 @@ pub fn displays(desc: &ResourceDesc, words_per_texel: u32) -> Vec<Display> {
             out.extend((0..n).map(Display::Channel));
             out
         }
+        // Nothing plait can read back and show.
+        ResourceDesc::AccelerationStructure => Vec::new(),
         ResourceDesc::Buffer { .. } => {
             let mut out: Vec<Display> = (0..words_per_texel.min(64)).map(Display::Word).collect();
             out.extend([Display::WordSum, Display::BitCount, Display::Bit(0)]);
@@ -394,6 +396,9 @@ pub fn resource(
                 .map(|b| buffer(name, &b, layout, display))
                 .map_err(|e| crate::engine::error_text(&e))
         }
+        ResourceDesc::AccelerationStructure => Err(format!(
+            "`{name}` is an acceleration structure: it cannot be read back and shown"
+        )),
     }
 }
 

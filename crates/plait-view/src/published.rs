@@ -135,7 +135,7 @@ pub(crate) fn describe_schedule(s: &mut Shared, schedule: &Schedule) {
             desc: r.desc.clone(),
             words_per_texel: match r.desc {
                 ResourceDesc::Buffer { size } => inspect::buffer_layout(size, &sizes).per_texel,
-                ResourceDesc::Texture { .. } => 0,
+                ResourceDesc::Texture { .. } | ResourceDesc::AccelerationStructure => 0,
             },
         })
         .collect();
@@ -174,7 +174,7 @@ pub(crate) fn texture_sizes(schedule: &Schedule) -> Vec<(u32, u32)> {
         .iter()
         .filter_map(|r| match r.desc {
             ResourceDesc::Texture { width, height, .. } => Some((width, height)),
-            ResourceDesc::Buffer { .. } => None,
+            ResourceDesc::Buffer { .. } | ResourceDesc::AccelerationStructure => None,
         })
         .collect()
 }

@@ -41,6 +41,8 @@ fn caps() -> Capabilities {
         early_depth_test: true,
         max_texture_dimension: 8192,
         max_storage_buffer_binding_size: 1 << 30,
+        ray_query: true,
+        max_blas_primitives: (1 << 24) - 1,
     }
 }
 

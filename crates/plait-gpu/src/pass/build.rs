@@ -303,7 +303,16 @@ fn bind_group<'a>(
                     },
                 ),
             )),
-            BindingSource::Slot { resource, .. } => resources.push((b.binding, *resource)),
+            BindingSource::Slot { resource, .. } => {
+                if ctx.pool.binding_resource(*resource).is_none() {
+                    let message = format!(
+                        "`{}`: the strands' structure is bound before the pass that builds it",
+                        b.name
+                    );
+                    return Err(pass_error(pass, message));
+                }
+                resources.push((b.binding, *resource))
+            }
             BindingSource::Scene(name) if name == "environment_source" => {
                 let view = ctx.geometry.environment.as_ref().ok_or_else(|| {
                     pass_error(pass, "the scene's environment image was not uploaded")
@@ -358,7 +367,8 @@ fn bind_group<'a>(
         for (binding, id) in &resources {
             entries.push(wgpu::BindGroupEntry {
                 binding: *binding,
-                resource: ctx.pool.binding_resource(*id),
+                // Checked above when the plan was read.
+                resource: ctx.pool.binding_resource(*id)?,
             });
         }
         for (binding, resource) in &scene {

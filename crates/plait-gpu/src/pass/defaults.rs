@@ -52,6 +52,6 @@ pub fn default_threads(pass: &ScheduledPass, schedule: &Schedule) -> [u32; 3] {
             ..
         }) => [*width, *height, *layers],
         Some(ResourceDesc::Buffer { size }) => [(size / 4).min(u32::MAX as u64) as u32, 1, 1],
-        None => [1, 1, 1],
+        Some(ResourceDesc::AccelerationStructure) | None => [1, 1, 1],
     }
 }

@@ -64,6 +64,9 @@ pub(crate) fn binding_type(
             view_dimension: dimension(*arrayed),
         },
         BindingKind::Sampler { .. } => return None,
+        BindingKind::AccelerationStructure => wgpu::BindingType::AccelerationStructure {
+            vertex_return: false,
+        },
     })
 }
 

@@ -78,6 +78,8 @@ impl ShaderPass {
                 crate::pool::GpuResource::Texture { texture, .. } => {
                     encoder.clear_texture(texture, &wgpu::ImageSubresourceRange::default())
                 }
+                // Built whole every frame by its pass: nothing to clear.
+                crate::pool::GpuResource::Strands(_) => {}
             }
         }
         match &self.kind {

@@ -247,7 +247,7 @@ pub fn from_decl(
             .and_then(|&t| pass.writes[t].resolved(resources))
             .map(|r| match r.desc {
                 ResourceDesc::Texture { samples, .. } => samples,
-                ResourceDesc::Buffer { .. } => 1,
+                ResourceDesc::Buffer { .. } | ResourceDesc::AccelerationStructure => 1,
             });
         match samples {
             Some(n) if n > 1 => state.alpha_to_coverage = true,

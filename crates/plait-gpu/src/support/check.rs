@@ -41,6 +41,7 @@ pub fn problems(
     caps: &Capabilities,
 ) -> Vec<Problem> {
     let mut out = Vec::new();
+    super::adapter_needs::technique_problems(schedule, caps, &mut out);
     super::textures::resource_problems(schedule, support, &mut out);
     for pass in &schedule.passes {
         super::textures::usage_problems(pass, schedule, support, &mut out);
@@ -339,6 +340,9 @@ impl PassCtx<'_> {
                     BindingKind::Texture { .. } => 2,
                     BindingKind::StorageTexture { .. } => 3,
                     BindingKind::Sampler { .. } => 4,
+                    // One structure, far below any adapter's
+                    // max_acceleration_structures_per_shader_stage.
+                    BindingKind::AccelerationStructure => continue,
                 };
                 n[i] += 1;
             }

@@ -11,12 +11,14 @@
 //! reports every problem at once, each at the line of the pipeline file that
 //! asked for it.
 
+mod adapter_needs;
 mod check;
 mod depth_values;
 mod message;
 mod sample_mask;
 mod textures;
 
+pub use adapter_needs::RAY_QUERY_FIX;
 pub use check::{check_schedule, problems};
 pub use message::{Problem, Unsupported};
 

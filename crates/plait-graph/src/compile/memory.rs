@@ -14,9 +14,12 @@ pub(super) fn plan_memory(
     let mut physical: Vec<PhysicalResource> = Vec::new();
     for r in by_start {
         let (desc, first_use) = (resources[r].desc.clone(), resources[r].first_use);
-        // The scene's buffers are its own: never shared.
+        // The scene's buffers are its own: never shared; nor an acceleration
+        // structure, which its pass builds once for the hair it holds.
+        let own = matches!(desc, crate::schedule::ResourceDesc::AccelerationStructure);
         let reusable = physical.iter().position(|p| {
             !resources[r].scene
+                && !own
                 && p.desc == desc
                 && p.users
                     .iter()

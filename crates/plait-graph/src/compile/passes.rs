@@ -654,7 +654,9 @@ impl Binder<'_> {
 fn dynamic_access(direction: Direction, kind: ResourceKind) -> Access {
     match (direction, kind) {
         (Direction::Read, ResourceKind::Texture) => Access::Sampled,
-        (Direction::Read, ResourceKind::Buffer) => Access::StorageRead,
+        (Direction::Read, ResourceKind::Buffer | ResourceKind::AccelerationStructure) => {
+            Access::StorageRead
+        }
         (Direction::Write, _) => Access::StorageWrite,
     }
 }

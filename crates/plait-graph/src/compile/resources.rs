@@ -55,6 +55,7 @@ pub(super) fn resolve_resource(
             }
             Some(ResourceDesc::Buffer { size: bytes as u64 })
         }
+        SizeDecl::Scene(_) => Some(ResourceDesc::AccelerationStructure),
         SizeDecl::Screen { .. } | SizeDecl::Extent { .. } => {
             let (width, height) = match &r.size {
                 SizeDecl::Screen { divisor, .. } => {
@@ -68,7 +69,7 @@ pub(super) fn resolve_resource(
                     eval(width, "width", errors)?,
                     eval(height, "height", errors)?,
                 ),
-                SizeDecl::Bytes(_) => return None,
+                SizeDecl::Bytes(_) | SizeDecl::Scene(_) => return None,
             };
             let limit = opts.max_texture_dimension;
             if width < 1 || height < 1 || width > limit as i64 || height > limit as i64 {

@@ -25,6 +25,8 @@ pub(crate) const TEXTURE_KEYS: &[&str] = &[
     "clear",
 ];
 pub(crate) const BUFFER_KEYS: &[&str] = &["kind", "size", "history", "persistent", "overflow"];
+/// An acceleration structure is sized by the scene's hair.
+pub(crate) const STRUCTURE_KEYS: &[&str] = &["kind"];
 /// The most frames of history a resource may keep (one copy per frame each).
 pub const MAX_HISTORY: i64 = 8;
 pub(crate) const PASS_KEYS: &[&str] = &[
@@ -273,20 +275,21 @@ fn build_resource(b: &mut Builder<'_>, name: &str, entry: &Entry) -> Option<Reso
     let kind = resource_kind(b, name, entry, t, &context)?;
     b.check_keys(
         t,
-        if kind.value == ResourceKind::Texture {
-            TEXTURE_KEYS
-        } else {
-            BUFFER_KEYS
+        match kind.value {
+            ResourceKind::Texture => TEXTURE_KEYS,
+            ResourceKind::Buffer => BUFFER_KEYS,
+            ResourceKind::AccelerationStructure => STRUCTURE_KEYS,
         },
         &format!("{context} ({})", kind.value),
     );
-    let Some(size_entry) = t.get("size") else {
-        b.schema(&entry.key, format!("{context} needs a `size`"));
-        return None;
-    };
-    let size = match kind.value {
-        ResourceKind::Buffer => buffer_size(b, name, &size_entry.value)?,
-        ResourceKind::Texture => texture_size(b, name, &size_entry.value)?,
+    let size = match (kind.value, t.get("size")) {
+        (ResourceKind::AccelerationStructure, _) => SizeDecl::Scene(kind.location.clone()),
+        (_, None) => {
+            b.schema(&entry.key, format!("{context} needs a `size`"));
+            return None;
+        }
+        (ResourceKind::Buffer, Some(e)) => buffer_size(b, name, &e.value)?,
+        (ResourceKind::Texture, Some(e)) => texture_size(b, name, &e.value)?,
     };
     let format = resource_format(b, name, entry, t, &context, kind.value)?;
     let int_field = |key: &str| {
@@ -350,19 +353,21 @@ fn resource_kind(
     let Some(kind_entry) = t.get("kind") else {
         b.schema(
             &entry.key,
-            format!("{context} needs `kind = \"texture\"` or `\"buffer\"`"),
+            format!(
+                "{context} needs `kind = \"texture\"`, `\"buffer\"` or `\"acceleration_structure\"`"
+            ),
         );
         return None;
     };
     let kind_name = b.one_of(
         kind_entry,
         &format!("resources.{name}.kind"),
-        &["texture", "buffer"],
+        &["texture", "buffer", "acceleration_structure"],
     )?;
-    let kind = if kind_name.value == "texture" {
-        ResourceKind::Texture
-    } else {
-        ResourceKind::Buffer
+    let kind = match kind_name.value.as_str() {
+        "texture" => ResourceKind::Texture,
+        "buffer" => ResourceKind::Buffer,
+        _ => ResourceKind::AccelerationStructure,
     };
     Some(Spanned::new(kind, kind_name.location))
 }

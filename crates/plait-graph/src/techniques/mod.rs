@@ -53,6 +53,7 @@ const TECHNIQUE_KEYS: &[&str] = &[
     "engine",
     "provides",
     "requires",
+    "adapter",
 ];
 /// Top-level tables a technique file may hold.
 const FILE_KEYS: &[&str] = &["technique", "params", "param_ranges", "resources", "passes"];
@@ -384,6 +385,9 @@ impl Chooser<'_> {
             ranges: technique_keys::ranges(&tree, self.errors),
             engine: technique_table(&tree)
                 .map(|t| technique_keys::engine(t, self.errors))
+                .unwrap_or_default(),
+            adapter: technique_table(&tree)
+                .map(|t| technique_keys::adapter(t, self.errors))
                 .unwrap_or_default(),
         });
         let Some(technique) = technique_table(&tree) else {

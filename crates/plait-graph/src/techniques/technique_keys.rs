@@ -39,23 +39,59 @@ pub struct ParamRange {
     pub at: Location,
 }
 
+/// The adapter can trace rays through acceleration structures
+/// (`Features::EXPERIMENTAL_RAY_QUERY` in wgpu, `VK_KHR_ray_query` in
+/// Vulkan): techniques whose WGSL says `enable wgpu_ray_query;` need it.
+pub const RAY_QUERY: &str = "ray_query";
+/// What `[technique] adapter` may name: capabilities some adapters lack. A
+/// technique needing one is refused on an adapter without it before any GPU
+/// work (`plait_gpu::support`), naming the adapter, the capability and how
+/// to get it.
+pub const ADAPTER_NEEDS: &[&str] = &[RAY_QUERY];
+
 /// `[technique] engine`, each value one of [`ENGINE_NEEDS`].
 pub(super) fn engine(technique: &Table, errors: &mut Vec<Error>) -> Vec<String> {
-    let Some(e) = technique.get("engine") else {
+    let names = listed(
+        technique,
+        "engine",
+        ("engine need", "needs"),
+        ENGINE_NEEDS,
+        errors,
+    );
+    names.into_iter().map(|n| n.value).collect()
+}
+
+/// `[technique] adapter`, each value one of [`ADAPTER_NEEDS`], with where
+/// it is written (the refusal points there).
+pub(super) fn adapter(technique: &Table, errors: &mut Vec<Error>) -> Vec<Spanned<String>> {
+    let what = ("adapter capability", "capabilities");
+    listed(technique, "adapter", what, ADAPTER_NEEDS, errors)
+}
+
+/// `[technique] <key>`: a list of names from `allowed`; `what` names one
+/// and several in messages.
+fn listed(
+    technique: &Table,
+    key: &str,
+    (one, many): (&str, &str),
+    allowed: &[&str],
+    errors: &mut Vec<Error>,
+) -> Vec<Spanned<String>> {
+    let Some(e) = technique.get(key) else {
         return Vec::new();
     };
     let Node::List(items) = &e.value.value else {
         errors.push(schema(
             &e.value.location,
-            format!("technique.engine is a list of: {}", ENGINE_NEEDS.join(", ")),
+            format!("technique.{key} is a list of: {}", allowed.join(", ")),
         ));
         return Vec::new();
     };
     let mut out = Vec::new();
     for item in items {
         match &item.value {
-            Node::Scalar(Value::Str(s)) if ENGINE_NEEDS.contains(&s.as_str()) => {
-                out.push(s.clone())
+            Node::Scalar(Value::Str(s)) if allowed.contains(&s.as_str()) => {
+                out.push(Spanned::new(s.clone(), item.location.clone()))
             }
             _ => {
                 let text = match &item.value {
@@ -66,9 +102,9 @@ pub(super) fn engine(technique: &Table, errors: &mut Vec<Error>) -> Vec<String> 
                 errors.push(schema(
                     &item.location,
                     format!(
-                        "technique.engine: no engine need `{text}`{} (needs: {})",
-                        did_you_mean(&text, ENGINE_NEEDS.iter().copied()),
-                        ENGINE_NEEDS.join(", ")
+                        "technique.{key}: no {one} `{text}`{} ({many}: {})",
+                        did_you_mean(&text, allowed.iter().copied()),
+                        allowed.join(", ")
                     ),
                 ));
             }

@@ -276,8 +276,8 @@ impl<'g> Floor<'g> {
                 ResourceDesc::Texture {
                     format, samples, ..
                 } => Ok((texture_format(format), samples)),
-                ResourceDesc::Buffer { .. } => Err(format!(
-                    "pass `{}`: target `{}` is a buffer",
+                ResourceDesc::Buffer { .. } | ResourceDesc::AccelerationStructure => Err(format!(
+                    "pass `{}`: target `{}` is no texture",
                     pass.name, schedule.resources[id].name
                 )),
             };
@@ -432,6 +432,7 @@ impl<'g> Floor<'g> {
                 GpuResource::Texture { texture, .. } => {
                     encoder.clear_texture(texture, &wgpu::ImageSubresourceRange::default())
                 }
+                GpuResource::Strands(_) => {}
             }
         }
     }

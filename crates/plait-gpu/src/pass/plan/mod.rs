@@ -164,6 +164,9 @@ impl<'a> Planner<'a> {
                 group => planner.error(&pass.location, format!("shader binding `{}` is in group {group}; plait binds only groups 0 (frame) and 1 (slots)", b.name)),
             }
         }
+        for (name, group, binding, what) in reflect::unbindable(module) {
+            planner.error(&pass.location, format!("shader binding `{name}` (group {group}, binding {binding}) is {what}, which plait cannot bind to a pass"));
+        }
         planner.plan.writes_storage = planner.group1.iter().any(|b| b.writes());
         planner
     }

@@ -1,0 +1,115 @@
+//! `strand_structure`: the frame's strands in an acceleration structure for
+//! ray queries (issue 48; `plait_gpu::strand_structure`): one box per
+//! segment enclosing its tapered swept sphere, from the scene's
+//! `hair_vertices` as they are when the pass runs (after simulation and
+//! interpolation, which write them), then the bottom- and top-level
+//! structures, rebuilt every frame. Its output slot is the resource a
+//! ray-traced technique binds (`kind = "acceleration_structure"`). The
+//! pass's shader declares the slots for `plait check`; the boxes are
+//! written by the structure's own compute pass
+//! (`shaders/passes/strand_boxes.wgsl`).
+
+use plait_gpu::pass::{BuildContext, PassType, PreparedPass, RecordContext};
+use plait_gpu::strand_structure::StrandStructure;
+use plait_gpu::{Define, GpuError};
+use plait_graph::{
+    Access, Formats, PassShape, PassTypeSpec, ResourceKind, ScheduledPass, SlotSpec,
+};
+
+use crate::spec_util::buffer;
+
+pub struct StrandStructurePass;
+
+inventory::submit! { crate::RustPassType(|_| Box::new(StrandStructurePass)) }
+
+const SHADER: &str = "shaders/passes/strand_structure.wgsl";
+
+fn spec() -> PassTypeSpec {
+    let structure = SlotSpec {
+        name: "structure".into(),
+        kind: ResourceKind::AccelerationStructure,
+        access: Access::StorageWrite,
+        formats: Formats::Any,
+        loads: false,
+        optional: false,
+        doc: "the strands' acceleration structure (declare `kind = \"acceleration_structure\"`)"
+            .into(),
+        binding: None,
+    };
+    PassTypeSpec {
+        inputs: vec![buffer(
+            "hair_vertices",
+            Access::StorageRead,
+            "the scene's hair vertices (this frame's)",
+        )],
+        outputs: vec![structure],
+        ..PassTypeSpec::new(
+            "strand_structure",
+            PassShape::Compute,
+            "issue 48 (RTX Hair's tapered capsules as procedural boxes)",
+            "The strands in an acceleration structure: a box per segment around its tapered swept sphere, BLAS + TLAS rebuilt every frame.",
+        )
+    }
+}
+
+impl PassType for StrandStructurePass {
+    fn spec(&self) -> PassTypeSpec {
+        spec()
+    }
+    fn shader(&self) -> Option<&str> {
+        Some(SHADER)
+    }
+    fn defines(&self, _pass: &ScheduledPass) -> Vec<(String, Define)> {
+        Vec::new()
+    }
+    fn build(
+        &self,
+        pass: &ScheduledPass,
+        ctx: &mut BuildContext<'_>,
+    ) -> Result<Box<dyn PreparedPass>, GpuError> {
+        let fail = |message: String| GpuError::Pass {
+            pass: pass.name.clone(),
+            message,
+        };
+        let hair = ctx
+            .geometry
+            .hair
+            .as_ref()
+            .ok_or_else(|| fail("the scene has no hair to put in a structure".into()))?;
+        let slot = pass.writes.iter().find(|b| b.slot == "structure");
+        let (id, name) = slot
+            .and_then(|b| Some((b.resource?, b.resource_name.as_str())))
+            .ok_or_else(|| fail("no resource bound to `structure`".into()))?;
+        let cell = ctx
+            .pool
+            .strands(id)
+            .ok_or_else(|| fail(format!("`{name}` is no acceleration structure")))?;
+        let structure = StrandStructure::on(
+            ctx.device,
+            (ctx.capabilities, ctx.adapter_name),
+            &hair.vertices,
+            ctx.geometry.point_count,
+        )
+        .map_err(|e| fail(e.to_string()))?;
+        if cell.set(structure).is_err() {
+            return Err(fail(format!("`{name}` is built by two passes")));
+        }
+        Ok(Box::new(Prepared { id }))
+    }
+}
+
+struct Prepared {
+    id: plait_graph::ResourceId,
+}
+
+impl PreparedPass for Prepared {
+    fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(s) = ctx.pool.strands(self.id).and_then(|c| c.get()) {
+            s.encode(encoder);
+        }
+    }
+
+    fn stats(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
+}

@@ -1,0 +1,271 @@
+//! The strands' acceleration structure (`plait_gpu::strand_structure`) and
+//! the ray-traced strand count through it (issue 48): a ray from a point
+//! toward the light counts the strands it crosses beyond the self-shadow
+//! bias, each candidate box intersected as a tapered swept sphere
+//! (`shaders/lib/strand_capsule.wgsl`). Checked on one strand (its own
+//! strand never counts, one strand across the ray counts once) and on the
+//! slab of tests/strand_count.rs against its closed form k · WIDTH / SPACING.
+
+use glam::Vec3;
+use plait_gpu::strand_structure::{StrandStructure, StructureError, check_segments};
+use plait_hair::StrandVertex;
+use plait_tests::{open_gpu, repo_root};
+use wgpu::util::DeviceExt;
+
+/// The self-shadow bias every provider shares (docs/design.md).
+const BIAS: f32 = 0.01;
+
+/// One strand's vertices: `points` with thickness `width`, strand id `id`.
+fn strand(points: &[Vec3], width: f32, id: u32) -> Vec<StrandVertex> {
+    points
+        .iter()
+        .map(|p| StrandVertex {
+            position: p.to_array(),
+            thickness: width,
+            tangent: [1.0, 0.0, 0.0],
+            alpha: 1.0,
+            color: [0.5; 3],
+            strand_id: id,
+        })
+        .collect()
+}
+
+/// The probe shader: the fixture after `enable` and plait::strand_capsule.
+fn probe_shader() -> String {
+    let read = |p: &str| std::fs::read_to_string(repo_root().join(p)).expect(p);
+    let capsule: String = read("shaders/lib/strand_capsule.wgsl")
+        .lines()
+        .filter(|l| !l.starts_with("#define_import_path"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let fixture = read("tests/fixtures/strand_trace_probe.wgsl");
+    format!("enable wgpu_ray_query;\n{capsule}\n{fixture}")
+}
+
+/// Strands crossed from each point toward `to_light`, traced on the GPU.
+fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32) -> Vec<f32> {
+    let (_lock, gpu) = open_gpu();
+    assert!(
+        gpu.capabilities.ray_query,
+        "adapter {} has no ray queries: {}",
+        gpu.support.describe(),
+        plait_gpu::support::RAY_QUERY_FIX
+    );
+    let device = &gpu.device;
+    let storage = |label: &str, bytes: &[u8], usage: wgpu::BufferUsages| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::STORAGE | usage,
+        })
+    };
+    let hair = storage(
+        "hair",
+        bytemuck::cast_slice(vertices),
+        wgpu::BufferUsages::empty(),
+    );
+    let structure =
+        StrandStructure::new(&gpu, &hair, vertices.len() as u32).expect("the structure");
+    let p4: Vec<[f32; 4]> = points.iter().map(|p| [p.x, p.y, p.z, 0.0]).collect();
+    let probe_points = storage(
+        "points",
+        bytemuck::cast_slice(&p4),
+        wgpu::BufferUsages::empty(),
+    );
+    let out_size = (points.len() * 4) as u64;
+    let out = storage(
+        "counts",
+        &vec![0u8; out_size as usize],
+        wgpu::BufferUsages::COPY_SRC,
+    );
+    let read = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read"),
+        size: out_size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let uniform = [to_light.x, to_light.y, to_light.z, bias];
+    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe"),
+        contents: bytemuck::cast_slice(&uniform),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("strand_trace_probe"),
+        source: wgpu::ShaderSource::Wgsl(probe_shader().into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("strand_trace_probe"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("strand_trace_probe"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: structure.tlas().as_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: hair.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: probe_points.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: out.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: uniform.as_entire_binding(),
+            },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    structure.encode(&mut encoder);
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&out, 0, &read, 0, out_size);
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = plait_gpu::readback::map_buffer(device, &read).expect("read the counts");
+    let errors = gpu.take_uncaptured_errors();
+    assert!(errors.is_empty(), "GPU errors: {errors:#?}");
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+/// One straight strand along x of width 0.005, four segments; the light
+/// slanted in the x-y plane. Points on its axis (its own strand, behind no
+/// other) count 0; points 0.05 below it along the light count 1 when the
+/// ray passes within half the width of the axis, 0 when just outside; a
+/// point through a joint between two segments counts 1, not 2.
+#[test]
+fn one_strand_counts_once_and_never_itself() {
+    let width = 0.005;
+    let axis: Vec<Vec3> = (0..=4)
+        .map(|i| Vec3::new(0.25 * i as f32 - 0.5, 0.0, 0.0))
+        .collect();
+    let vertices = strand(&axis, width, 0);
+    let to_light = Vec3::new(0.3, 1.0, 0.0).normalize();
+    let below = |x: f32, dz: f32| Vec3::new(x, 0.0, dz) - 0.05 * to_light;
+    let cases = [
+        ("on the axis", Vec3::new(0.1, 0.0, 0.0), 0.0),
+        ("on the axis at a joint", Vec3::new(0.0, 0.0, 0.0), 0.0),
+        ("on the surface", Vec3::new(0.1, 0.0, 0.4 * width), 0.0),
+        ("below the middle of a segment", below(0.1, 0.0), 1.0),
+        ("below a joint", below(0.0, 0.0), 1.0),
+        ("below, 0.4 widths aside", below(0.1, 0.4 * width), 1.0),
+        ("below, 0.6 widths aside", below(0.1, 0.6 * width), 0.0),
+        ("above it", Vec3::new(0.1, 0.0, 0.0) + 0.05 * to_light, 0.0),
+    ];
+    let points: Vec<Vec3> = cases.iter().map(|c| c.1).collect();
+    let found = counts(&vertices, &points, to_light, BIAS);
+    let wrong: Vec<String> = cases
+        .iter()
+        .zip(&found)
+        .filter(|((_, _, want), got)| *got != want)
+        .map(|((what, _, want), got)| format!("{what}: {got}, expected {want}"))
+        .collect();
+    assert!(wrong.is_empty(), "{wrong:#?}");
+}
+
+const LAYERS: usize = 4;
+const TOP: f32 = 0.4;
+const GAP: f32 = 0.1;
+const PER_LAYER: usize = 50;
+const SPACING: f32 = 0.02;
+const WIDTH: f32 = 0.005;
+const HALF_LENGTH: f32 = 0.5;
+
+/// The slab of tests/strand_count.rs: LAYERS layers of PER_LAYER parallel
+/// strands along x, 8 segments each, layer k a quarter spacing aside.
+fn slab() -> Vec<StrandVertex> {
+    let mut out = Vec::new();
+    for k in 0..LAYERS {
+        let y = TOP - GAP * k as f32;
+        for i in 0..PER_LAYER {
+            let z = SPACING * (i as f32 + 0.25 * k as f32) - 0.5 * SPACING * PER_LAYER as f32;
+            let points: Vec<Vec3> = (0..=8)
+                .map(|s| Vec3::new(HALF_LENGTH * (s as f32 / 4.0 - 1.0), y, z))
+                .collect();
+            out.extend(strand(&points, WIDTH, (k * PER_LAYER + i) as u32));
+        }
+    }
+    out
+}
+
+/// Below k of the slab's layers (between layers k-1 and k, half a gap from
+/// each; k = 0 above the slab), the mean count over 4,096 points spread
+/// over the interior (z by the golden ratio, so no beat with the spacing)
+/// is k · WIDTH / SPACING within 5 %, the tolerance of
+/// tests/strand_count.rs; above the slab it is 0.
+#[test]
+fn the_slab_counts_k_layers_as_the_closed_form() {
+    let to_light = Vec3::new(0.3, 1.0, 0.0).normalize();
+    let n = 4096;
+    let mut points = Vec::new();
+    for k in 0..=LAYERS {
+        let y = TOP + GAP * 0.5 - GAP * k as f32;
+        for j in 0..n {
+            let x = -0.2 + 0.4 * (j as f32 + 0.5) / n as f32;
+            let z = -0.2 + 0.4 * (j as f32 * 0.618_034).fract();
+            points.push(Vec3::new(x, y, z));
+        }
+    }
+    let found = counts(&slab(), &points, to_light, BIAS);
+    let per_layer = f64::from(WIDTH / SPACING);
+    let means: Vec<f64> = found
+        .chunks(n)
+        .map(|c| c.iter().map(|&v| f64::from(v)).sum::<f64>() / n as f64)
+        .collect();
+    eprintln!(
+        "ray_traced mean counts below k = 0..={LAYERS} layers: {means:?} (closed form k · {per_layer})"
+    );
+    assert_eq!(means[0], 0.0, "above the slab: {means:?}");
+    for (k, mean) in means.iter().enumerate().skip(1) {
+        let ratio = mean / (k as f64 * per_layer);
+        assert!(
+            (ratio - 1.0).abs() <= 0.05,
+            "k = {k}: ratio {ratio} ({means:?})"
+        );
+    }
+}
+
+/// More segments than the adapter's BLAS primitive limit, or no ray
+/// queries at all: refused with the numbers, before anything is created.
+#[test]
+fn too_many_segments_are_refused_with_the_numbers() {
+    let mut caps = plait_gpu::Capabilities::of_compile(&Default::default());
+    caps.ray_query = true;
+    caps.max_blas_primitives = 16_777_215;
+    assert_eq!(check_segments(16_777_215, &caps, "`lavapipe`"), Ok(()));
+    let e = check_segments(16_777_216, &caps, "`lavapipe`").expect_err("refused");
+    assert_eq!(
+        e,
+        StructureError::TooManySegments {
+            segments: 16_777_216,
+            limit: 16_777_215,
+            adapter: "`lavapipe`".into()
+        }
+    );
+    let text = e.to_string();
+    assert!(
+        text.contains("16777216 segments, more than the 16777215 primitives"),
+        "{text}"
+    );
+    caps.ray_query = false;
+    let text = check_segments(1, &caps, "`old`")
+        .expect_err("refused")
+        .to_string();
+    assert!(text.contains("`bash scripts/ensure-vulkan.sh`"), "{text}");
+}
