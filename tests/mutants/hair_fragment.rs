@@ -149,3 +149,42 @@ fn wisps_in_strand_space_match_fragment_shading_without_specular() {
         "wisps in strand space are {rmse:.5} from per-fragment shading, above {WISP_MARGIN}"
     );
 }
+
+/// A multiple-scattering technique adds light to the hair and takes none
+/// away: the default pipeline with Chiang's fibre and Karis's provider
+/// (whose term is ≥ 0 by its formula: √base, a mix of two saturated
+/// non-negative terms, a positive tint) is at least as bright as the same
+/// without multiple scattering at every pixel and channel, within 1e-3 of
+/// the pixel (rgba16float), and brighter by > 1e-3 somewhere. No other test
+/// of the hair-fragment stage renders with a multiple-scattering technique
+/// (the gallery's is `none`, a term of 0). Kills, in
+/// `shaders/lib/hair_radiance.wgsl`, the term dropped from the sum and added
+/// → subtracted.
+#[test]
+fn multiple_scattering_adds_light_to_the_hair() {
+    let (_lock, gpu) = open_gpu();
+    let scene = SceneData::load(Some(&repo_root().join("examples/scenes/small.toml")))
+        .expect("the small scene loads");
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    let render = |ms: &str| {
+        let sets = [
+            "techniques.shading=chiang".to_owned(),
+            format!("techniques.multiple_scattering={ms}"),
+        ];
+        let prepared = prepare(&gpu, &pipeline, &sets, &scene, (64, 48)).expect("prepares");
+        prepared.render().expect("renders");
+        prepared.radiance().expect("reads back")
+    };
+    let (with, without) = (render("karis"), render("none"));
+    let (mut most, mut least) = (0.0_f32, 0.0_f32);
+    for (p, q) in with.pixels().zip(without.pixels()) {
+        for c in 0..3 {
+            let d = p.0[c] - q.0[c];
+            most = most.max(d);
+            least = least.min(d + 1e-3 * q.0[c].abs());
+        }
+    }
+    eprintln!("Karis − none: largest {most:e}, least (with the tolerance) {least:e}");
+    assert!(most > 1e-3, "multiple scattering adds nothing: {most}");
+    assert!(least >= 0.0, "multiple scattering darkens a pixel: {least}");
+}

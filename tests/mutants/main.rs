@@ -9,6 +9,7 @@ mod dual_scattering;
 mod exact;
 mod hair_fragment;
 mod kajiya_kay;
+mod linked_list;
 mod marschner;
 mod occupancy;
 
