@@ -49,6 +49,23 @@ fn check_contract(
             Some((i + 1, at + 1))
         })
         .unwrap_or((1, 1));
+    let missing = |detail: String| ShaderError {
+        path: path.to_owned(),
+        message: format!(
+            "{}:{line}:{column}: {} provider `{name}` must define `{}` (the contract in {}):\n{detail}",
+            path.display(),
+            point.point,
+            point.signature(),
+            point.file,
+        ),
+    };
+    // No such function in the text: refused before composing. naga_oil
+    // panics (naga's GLSL writer, unreachable) composing a module that
+    // declares an acceleration structure and no function — a ray-traced
+    // provider cut short — where it should report the missing function.
+    if !source.contains(&format!("fn {}(", point.function)) {
+        return Err(missing(format!("no `fn {}(` in the file", point.function)));
+    }
     composer
         .make_naga_module(NagaModuleDescriptor {
             source: &probe,
@@ -58,17 +75,7 @@ fn check_contract(
             additional_imports: &[],
         })
         .map(|_| ())
-        .map_err(|e| ShaderError {
-            path: path.to_owned(),
-            message: format!(
-                "{}:{line}:{column}: {} provider `{name}` must define `{}` (the contract in {}):\n{}",
-                path.display(),
-                point.point,
-                point.signature(),
-                point.file,
-                e.emit_to_string(composer)
-            ),
-        })
+        .map_err(|e| missing(e.emit_to_string(composer)))
 }
 
 /// The text of a library file (a pass type's shader,

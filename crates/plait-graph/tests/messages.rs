@@ -82,7 +82,9 @@ fn a_suggestion_ends_its_clause_before_the_list() {
     );
     let message = texts(&errors_of(&text, &[]));
     assert!(
-        message.contains("did you mean `texture`? (accepted: texture, buffer)"),
+        message.contains(
+            "did you mean `texture`? (accepted: texture, buffer, acceleration_structure)"
+        ),
         "{message}"
     );
 }
