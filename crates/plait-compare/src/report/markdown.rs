@@ -44,7 +44,16 @@ pub fn markdown(report: &Report) -> String {
             .iter()
             .find(|r| report.variant(&r.variant).is_some_and(|v| v.is_reference))
             .map(|r| cost_ms(&r.timing));
-        let _ = writeln!(out, "\n**{}**\n\n{}\n", scene.name, scene.metrics_note());
+        let color = scene
+            .hair_color
+            .map(|c| format!(" (every strand's colour {c:?})"))
+            .unwrap_or_default();
+        let _ = writeln!(
+            out,
+            "\n**{}**{color}\n\n{}\n",
+            scene.name,
+            scene.metrics_note()
+        );
         let apart = report.timed_apart(scene);
         if let Some(note) = report.timed_apart_note(scene) {
             let _ = writeln!(out, "{note}\n");
