@@ -552,7 +552,12 @@ mod tests {
         let names: Vec<&str> = plan.scenes.iter().map(|s| s.name.as_str()).collect();
         assert_eq!(
             names,
-            ["small@blond@d1", "small@blond@d2", "small@black@d1", "small@black@d2"]
+            [
+                "small@blond@d1",
+                "small@blond@d2",
+                "small@black@d1",
+                "small@black@d2"
+            ]
         );
         let own = SceneData::load(Some(&plan.scenes[0].path.clone().unwrap())).unwrap();
         for (scene, color) in plan.scenes.iter().zip([&blond, &blond, &black, &black]) {

@@ -156,10 +156,7 @@ pub struct MitsubaScene {
     pub hair: Vec<HairGroup>,
     pub meshes: Vec<MitsubaMesh>,
     pub camera: MitsubaCamera,
-    /// Direction the light travels (unit), and its irradiance on a surface
-    /// facing it (`intensity × color`).
-    pub light_direction: Vec3,
-    pub irradiance: Vec3,
+    pub light: MitsubaLight,
     /// Radiance of the uniform environment (`ambient`), none when 0.
     pub ambient: Vec3,
     /// Radiance seen where a camera ray hits nothing.
@@ -169,13 +166,75 @@ pub struct MitsubaScene {
     pub notes: Vec<String>,
 }
 
+/// The scene's key light as a Mitsuba emitter.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MitsubaLight {
+    /// `directional`: the direction the light travels (unit), and its
+    /// irradiance on a surface facing it (`intensity × color`).
+    Directional { direction: Vec3, irradiance: Vec3 },
+    /// `point`: a spot light's position and radiant intensity
+    /// (`intensity × color`). plait's spot light has no angular falloff —
+    /// a surface at distance d receives I / d² (docs/formats.md, "Light and
+    /// units") — and its cone bounds only the light's shadow frustum, so it
+    /// is Mitsuba's point light exactly when every occluder lies inside that
+    /// frustum ([`spot_as_point`] checks it).
+    Point { position: Vec3, intensity: Vec3 },
+}
+
+/// A spot light as Mitsuba's `point` emitter, or why not: plait shadows
+/// only inside the light's frustum (fitted to the hair, at most the cone),
+/// so a strand point or an occluding mesh vertex outside it would cast a
+/// shadow in Mitsuba that plait does not have. The ground, below
+/// everything, occludes nothing and may reach past the cone.
+fn spot_as_point(data: &SceneData, position: Vec3) -> Result<MitsubaLight, ExportError> {
+    let scene = &data.scene;
+    let frame = data.frame((1, 1), 0);
+    let light = Mat4::from_cols_array_2d(&frame.light_view_proj);
+    let head = scene.head_model(0.0);
+    let inside = |p: Vec3| {
+        let c = light * p.extend(1.0);
+        c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w
+    };
+    let outside_hair = data.strands.points.iter().filter(|p| !inside(**p)).count();
+    let mut outside = Vec::new();
+    if outside_hair > 0 {
+        outside.push(format!("{outside_hair} strand points"));
+    }
+    for mesh in &data.meshes {
+        if mesh.name == "ground" && scene.ground.is_some() {
+            continue;
+        }
+        let pose = if mesh.head { head } else { Mat4::IDENTITY };
+        let n = mesh
+            .vertices
+            .iter()
+            .filter(|v| !inside(pose.transform_point3(v.position.into())))
+            .count();
+        if n > 0 {
+            outside.push(format!("{n} vertices of mesh \"{}\"", mesh.name));
+        }
+    }
+    if !outside.is_empty() {
+        return Err(ExportError::Unsupported(format!(
+            "a spot light whose shadow frustum leaves out occluders ({}): plait shadows only inside its cone, Mitsuba's point light everywhere; widen `light.cone_degrees` or use a directional light",
+            outside.join(", ")
+        )));
+    }
+    Ok(MitsubaLight::Point {
+        position,
+        intensity: scene.light.radiance(),
+    })
+}
+
 /// The scene `data` as Mitsuba is to render it at `size` pixels.
 pub fn plan(data: &SceneData, size: (u32, u32), fibre: Fibre) -> Result<MitsubaScene, ExportError> {
     let scene = &data.scene;
-    let LightKind::Directional { .. } = scene.light.kind else {
-        return Err(ExportError::Unsupported(
-            "a spot light (plait's cone falloff has no Mitsuba emitter yet): use a directional light".into(),
-        ));
+    let light = match scene.light.kind {
+        LightKind::Directional { .. } => MitsubaLight::Directional {
+            direction: scene.light.direction_to_light() * -1.0,
+            irradiance: scene.light.radiance(),
+        },
+        LightKind::Spot { position, .. } => spot_as_point(data, Vec3::from(position))?,
     };
     let background = match &scene.background {
         Background::Color(c) => Vec3::from(*c),
@@ -216,8 +275,7 @@ pub fn plan(data: &SceneData, size: (u32, u32), fibre: Fibre) -> Result<MitsubaS
             far: c.far,
             size,
         },
-        light_direction: scene.light.direction_to_light() * -1.0,
-        irradiance: scene.light.radiance(),
+        light,
         ambient: Vec3::splat(scene.ambient),
         background,
         fibre,
