@@ -205,7 +205,7 @@ fn hair_colours_render_every_scene_and_its_reference_in_each_colour() {
     );
     let md = std::fs::read_to_string(dir.path().join("report.md")).expect("md");
     assert!(
-        md.contains("**small@blond** (every strand's colour [0.85, 0.65, 0.4])"),
+        md.contains("**small@blond**\n\nEvery strand's colour [0.85, 0.65, 0.4]. "),
         "{md}"
     );
 }

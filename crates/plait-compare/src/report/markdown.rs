@@ -44,13 +44,14 @@ pub fn markdown(report: &Report) -> String {
             .iter()
             .find(|r| report.variant(&r.variant).is_some_and(|v| v.is_reference))
             .map(|r| cost_ms(&r.timing));
+        // The scene's name alone on its line: the book reads tables by it.
         let color = scene
             .hair_color
-            .map(|c| format!(" (every strand's colour {c:?})"))
+            .map(|c| format!("Every strand's colour {c:?}. "))
             .unwrap_or_default();
         let _ = writeln!(
             out,
-            "\n**{}**{color}\n\n{}\n",
+            "\n**{}**\n\n{color}{}\n",
             scene.name,
             scene.metrics_note()
         );
