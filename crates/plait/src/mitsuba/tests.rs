@@ -310,3 +310,43 @@ fn a_spot_light_holding_the_hair_is_a_point_light() {
     );
     assert!(!xml.contains("directional"), "{xml}");
 }
+
+/// A groom whose every strand has its own alpha (past 64 distinct values)
+/// is exported with alphas rounded to 1/256 — a few groups, each strand
+/// moved by at most half a step — and the note says so; up to 64 distinct
+/// values the export is exact (the test above).
+#[test]
+fn a_groom_of_distinct_alphas_is_rounded_to_few_groups_and_noted() {
+    let mut data = two_strands();
+    let mut s = Strands::new();
+    for i in 0..100 {
+        let x = i as f32 * 0.01;
+        let points = [Vec3::new(x, 0.0, 0.0), Vec3::new(x, -1.0, 0.0)];
+        let alpha = 0.5 + 0.001 * i as f32;
+        s.push_strand(&points, |_| 0.01, |_| alpha, Vec3::new(0.5, 0.5, 0.5));
+    }
+    data.strands = s;
+    let m = plan(&data, (8, 8), standard()).expect("exports");
+    // 0.5 … 0.599 spans 0.099 × 256 ≈ 25 steps.
+    assert!((20..=27).contains(&m.hair.len()), "{} groups", m.hair.len());
+    for (g, strand) in m
+        .hair
+        .iter()
+        .flat_map(|g| g.strands.iter().map(move |s| (g, s)))
+    {
+        let i = (strand[0].0.x / 0.01).round();
+        let exact = (0.5 + 0.001 * i) * data.scene.material.alpha;
+        assert!(
+            (g.alpha - exact).abs() <= 0.5 / 256.0 + 1e-6,
+            "{} vs {exact}",
+            g.alpha
+        );
+    }
+    assert!(
+        m.notes
+            .iter()
+            .any(|n| n.contains("rounded to a multiple of 1/256")),
+        "{:?}",
+        m.notes
+    );
+}
