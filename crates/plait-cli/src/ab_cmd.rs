@@ -58,6 +58,14 @@ pub struct AbArgs {
     /// and frame time against distance.
     #[arg(long, value_name = "F1,F2,...", value_parser = CameraDistances::parse)]
     camera_distance: Option<CameraDistances>,
+    /// Render every scene (variants and reference alike) once per colour,
+    /// every strand recoloured to it: `NAME=R,G,B`, a linear albedo, each
+    /// channel in (0, 1] (repeatable; e.g. `--hair-color
+    /// blond=0.85,0.65,0.40 --hair-color black=0.02,0.02,0.02`). The scene is
+    /// named `SCENE@NAME`; a path-traced reference maps the colour to an
+    /// absorption (Chiang et al. 2016 §4.2).
+    #[arg(long, value_name = "NAME=R,G,B", value_parser = plait::ab::HairColor::parse)]
+    hair_color: Vec<plait::ab::HairColor>,
     /// Timed frames per variant (after one warm-up frame), interleaved A B C A B C ….
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=10000))]
     repeats: u32,
@@ -211,6 +219,7 @@ pub fn run(args: AbArgs) -> Result<()> {
             fps: args.fps,
         }),
         camera_distances: args.camera_distance.map_or_else(Vec::new, |d| d.0),
+        hair_colors: args.hair_color,
     })?;
     let mut plan = plan;
     // A path-traced reference is rendered (or found in the cache) before

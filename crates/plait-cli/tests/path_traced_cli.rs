@@ -253,11 +253,43 @@ fn bad_reference_files_exit_2_at_file_line_col() {
         "a failed render left a cache entry"
     );
 
-    // A spot light has no Mitsuba emitter: named, with its scene, before
-    // any GPU work or Mitsuba.
+    // Mitsuba crashing without a word (a segfault in its native code): the
+    // signal and the seed, exit 2.
+    let crashing = tmp.path().join("crashing-python");
+    std::fs::write(&crashing, "#!/bin/sh\nkill -SEGV $$\n").unwrap();
+    std::fs::set_permissions(&crashing, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let env = [(
+        "PLAIT_MITSUBA_PYTHON".to_string(),
+        crashing.display().to_string(),
+    )];
+    let out = ab(
+        &good_file(tmp.path()),
+        &tmp.path().join("c"),
+        &tmp.path().join("r"),
+        &env,
+    );
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("Mitsuba failed on scene small, seed 0")
+            && stderr.contains("killed by signal 11 (SIGSEGV"),
+        "{stderr}"
+    );
+
+    // A spot light whose cone leaves hair out of plait's shadow frustum
+    // (Mitsuba's point light would shadow with it, plait does not): named,
+    // with its scene, before any GPU work or Mitsuba. stray.toml's own
+    // 50° cone holds its hair and exports as a point light.
+    let stray = std::fs::read_to_string(root().join("examples/scenes/stray.toml")).unwrap();
+    let narrow = tmp.path().join("narrow_spot.toml");
+    std::fs::write(
+        &narrow,
+        stray.replace("cone_degrees = 50.0", "cone_degrees = 5.0"),
+    )
+    .unwrap();
     let good = good_file(tmp.path());
     let out = ab_on(
-        "examples/scenes/stray.toml",
+        narrow.to_str().unwrap(),
         &good,
         &tmp.path().join("c"),
         &tmp.path().join("r"),
@@ -266,7 +298,8 @@ fn bad_reference_files_exit_2_at_file_line_col() {
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(
-        stderr.contains("scene stray") && stderr.contains("spot light"),
+        stderr.contains("scene narrow_spot")
+            && stderr.contains("spot light whose shadow frustum leaves out occluders"),
         "{stderr}"
     );
     assert!(text(&out.stdout).is_empty(), "{}", text(&out.stdout));

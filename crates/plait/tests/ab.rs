@@ -168,6 +168,48 @@ fn two_sweeps_give_every_combination_in_one_report() {
     assert!(html.contains("params.hair_density (rows) × params.light_size (columns)"));
 }
 
+/// `--hair-color`: the reference is rendered once per colour (the same
+/// pipeline as variant and reference: no error in either colour — a
+/// reference left in the scene's own colours would differ), and the colours
+/// reach the pixels (blond hair brighter than black) and the report.
+#[test]
+fn hair_colours_render_every_scene_and_its_reference_in_each_colour() {
+    let mut options = tiny(&["pipelines/forward.toml"], "pipelines/forward.toml");
+    options.hair_colors = vec![
+        plait::ab::HairColor::parse("blond=0.85,0.65,0.40").expect("colour"),
+        plait::ab::HairColor::parse("black=0.02,0.02,0.02").expect("colour"),
+    ];
+    let plan = Plan::new(options).expect("plan");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (_lock, gpu) = open_gpu();
+    let report = run(&plan, &gpu, dir.path(), &mut |_| Ok(())).expect("run");
+    let names: Vec<&str> = report.scenes.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["small@blond", "small@black"]);
+    let mut means = Vec::new();
+    for scene in &report.scenes {
+        for r in &scene.runs {
+            assert_eq!(r.metrics.rmse, 0.0, "{} {}", scene.name, r.variant);
+        }
+        assert!(scene.hair_color.is_some(), "{}", scene.name);
+        let image = image::open(dir.path().join(&scene.reference_image))
+            .expect("reference image")
+            .to_rgb8();
+        let sum: f64 = image.pixels().map(|p| f64::from(p.0[0])).sum();
+        means.push(sum / f64::from(image.width() * image.height()));
+    }
+    assert!(
+        means[0] > means[1] + 1.0,
+        "blond {} not brighter than black {}",
+        means[0],
+        means[1]
+    );
+    let md = std::fs::read_to_string(dir.path().join("report.md")).expect("md");
+    assert!(
+        md.contains("**small@blond**\n\nEvery strand's colour [0.85, 0.65, 0.4]. "),
+        "{md}"
+    );
+}
+
 /// A progress display whose output went away (`| head`) stops the run with
 /// that error, so the CLI can end quietly.
 #[test]

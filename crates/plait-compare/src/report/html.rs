@@ -105,8 +105,12 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     for scene in &report.scenes {
         let _ = write!(
             h,
-            "<h2>Scene {}</h2><p class=note>{}</p>",
+            "<h2>Scene {}</h2><p class=note>{}{}</p>",
             escape(&scene.name),
+            scene
+                .hair_color
+                .map(|c| format!("Every strand's colour {c:?}. "))
+                .unwrap_or_default(),
             escape(&scene.metrics_note())
         );
         if let Some(note) = report.timed_apart_note(scene) {

@@ -44,7 +44,17 @@ pub fn markdown(report: &Report) -> String {
             .iter()
             .find(|r| report.variant(&r.variant).is_some_and(|v| v.is_reference))
             .map(|r| cost_ms(&r.timing));
-        let _ = writeln!(out, "\n**{}**\n\n{}\n", scene.name, scene.metrics_note());
+        // The scene's name alone on its line: the book reads tables by it.
+        let color = scene
+            .hair_color
+            .map(|c| format!("Every strand's colour {c:?}. "))
+            .unwrap_or_default();
+        let _ = writeln!(
+            out,
+            "\n**{}**\n\n{color}{}\n",
+            scene.name,
+            scene.metrics_note()
+        );
         let apart = report.timed_apart(scene);
         if let Some(note) = report.timed_apart_note(scene) {
             let _ = writeln!(out, "{note}\n");

@@ -231,6 +231,9 @@ pub struct SceneResult {
     /// was (every variant and the reference seen from there).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub distance: Option<CameraDistance>,
+    /// With `--hair-color`: the linear RGB albedo every strand was given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hair_color: Option<[f32; 3]>,
     pub reference_image: String,
     /// The reference's linear radiance (OpenEXR), when its pipeline has one.
     #[serde(skip_serializing_if = "Option::is_none")]

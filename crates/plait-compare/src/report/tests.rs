@@ -89,6 +89,7 @@ fn sample() -> Report {
             name: "s".into(),
             path: None,
             distance: None,
+            hair_color: None,
             reference_image: "r.png".into(),
             reference_linear_image: None,
             runs: vec![run("reference", 0.0), run("a@1", 0.2), run("a@2", 0.1)],

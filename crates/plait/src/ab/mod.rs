@@ -27,6 +27,7 @@ pub mod path_traced;
 pub mod plan;
 mod provenance;
 mod run;
+mod scenes;
 pub mod shard;
 mod supersample;
 mod temporal;
@@ -40,6 +41,7 @@ pub use path_traced::{PathTraced, PathTracedError, render_references};
 pub use plan::{AbOptions, CameraDistances, Plan, ScenePlan, Sequence, SweepSpec, VariantPlan};
 pub use provenance::shell_quote;
 pub use run::{Step, run};
+pub use scenes::HairColor;
 pub use shard::{Shard, ShardSyntaxError, run_shard};
 pub use supersample::box_filter;
 
@@ -61,6 +63,8 @@ pub enum AbError {
     TooManySweeps(usize),
     #[error("--sweep {0}: the key is swept twice; give it once with all its values")]
     SweptTwice(String),
+    #[error("--hair-color {0}: the name is given twice; each colour names its scenes' files")]
+    HairColorTwice(String),
     /// A variant (or the reference) does not load or check; `what` says
     /// which (`--sweep k=v`, `--reference`).
     #[error("pipeline {}{what}", path.display())]

@@ -43,11 +43,15 @@ pub enum PathTracedError {
         #[source]
         source: ExportError,
     },
-    #[error("Mitsuba failed on scene {scene} (exported to {}): {stderr}", dir.display())]
+    #[error(
+        "Mitsuba failed on scene {scene}, seed {seed} (exported to {}; re-run it with scripts/mitsuba/render.py DIR OUT.exr --seed {seed}): {why}",
+        dir.display()
+    )]
     Mitsuba {
         scene: String,
         dir: PathBuf,
-        stderr: String,
+        seed: u32,
+        why: String,
     },
     #[error("the path-traced reference of scene {scene} has {count} NaN or Inf values ({})", path.display())]
     NotFinite {

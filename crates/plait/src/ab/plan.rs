@@ -21,7 +21,7 @@ pub struct SweepSpec {
 /// Why a `--sweep` argument is not `KEY=V1,V2,…`.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("{0}")]
-pub struct SweepSyntaxError(String);
+pub struct SweepSyntaxError(pub(super) String);
 
 impl SweepSpec {
     /// `KEY=V1,V2,…`: a key without spaces, then distinct, non-empty values.
@@ -115,6 +115,9 @@ pub struct AbOptions {
     /// `--camera-distance`: each scene at each of these camera distances
     /// (factors of the scene's own), or empty: each scene as it is.
     pub camera_distances: Vec<f64>,
+    /// `--hair-color`: each scene once per colour, every strand recoloured
+    /// (before the camera distances), or empty: each scene's own colours.
+    pub hair_colors: Vec<super::HairColor>,
 }
 
 /// Frames 0..frames of each scene's animation at fps.
@@ -150,6 +153,7 @@ impl AbOptions {
             command: Vec::new(),
             sequence: None,
             camera_distances: Vec::new(),
+            hair_colors: Vec::new(),
         }
     }
 }
@@ -179,6 +183,8 @@ pub struct ScenePlan {
     /// With `--camera-distance`: the scene's name without the distance,
     /// and the factor its camera was moved back by.
     pub distance: Option<(String, f64)>,
+    /// With `--hair-color`: the colour every strand was given.
+    pub hair_color: Option<super::HairColor>,
     pub data: SceneData,
 }
 
@@ -309,48 +315,7 @@ impl Plan {
             })?;
         }
 
-        let paths: Vec<Option<PathBuf>> = if options.scenes.is_empty() {
-            vec![None]
-        } else {
-            options.scenes.iter().cloned().map(Some).collect()
-        };
-        let mut scenes = Vec::new();
-        let mut scene_names = Vec::new();
-        for path in paths {
-            let data = SceneData::load(path.as_deref()).map_err(|source| AbError::Scene {
-                what: match &path {
-                    Some(p) => format!("--scene {}", p.display()),
-                    None => "the built-in scene".into(),
-                },
-                source,
-            })?;
-            let name = path
-                .as_deref()
-                .map(stem)
-                .unwrap_or_else(|| "default".into());
-            let name = unique(sanitize(&name), &mut scene_names);
-            if options.camera_distances.is_empty() {
-                scenes.push(ScenePlan {
-                    name,
-                    path,
-                    distance: None,
-                    data,
-                });
-                continue;
-            }
-            // The same scene, its camera moved: the reference too sees it
-            // from there (unlike a --sweep, which changes only the variants).
-            for &factor in &options.camera_distances {
-                let mut data = data.clone();
-                data.scene.camera = data.scene.camera.dollied(factor as f32);
-                scenes.push(ScenePlan {
-                    name: unique(sanitize(&format!("{name}@d{factor}")), &mut scene_names),
-                    path: path.clone(),
-                    distance: Some((name.clone(), factor)),
-                    data,
-                });
-            }
-        }
+        let scenes = super::scenes::load(&options)?;
         if let Some(spec) = &path_traced {
             super::path_traced::check_scenes(spec, &options, &scenes)?;
         }
@@ -430,7 +395,7 @@ fn grid_points(sweeps: &[SweepSpec]) -> Vec<Vec<(&str, &str)>> {
 }
 
 /// Keep names usable as file names.
-fn sanitize(text: &str) -> String {
+pub(super) fn sanitize(text: &str) -> String {
     text.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_' | '@' | '=') {
@@ -442,7 +407,7 @@ fn sanitize(text: &str) -> String {
         .collect()
 }
 
-fn unique(id: String, taken: &mut Vec<String>) -> String {
+pub(super) fn unique(id: String, taken: &mut Vec<String>) -> String {
     let mut candidate = id.clone();
     let mut n = 2;
     while taken.contains(&candidate) {
@@ -453,7 +418,7 @@ fn unique(id: String, taken: &mut Vec<String>) -> String {
     candidate
 }
 
-fn stem(path: &Path) -> String {
+pub(super) fn stem(path: &Path) -> String {
     path.file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "pipeline".into())
@@ -572,6 +537,37 @@ mod tests {
             assert!((gap(scene) - d * base).abs() < 1e-4 * d, "{}", scene.name);
         }
         assert_eq!(plan.step_count(), 3 * 2 * (4 + 5));
+    }
+
+    /// Each scene once per hair colour (every strand recoloured, opacity
+    /// kept), each of those once per camera distance, named by both.
+    #[test]
+    fn hair_colours_plan_each_scene_in_each_colour() {
+        let mut o = options();
+        let blond = super::super::HairColor::parse("blond=0.85,0.65,0.40").unwrap();
+        let black = super::super::HairColor::parse("black=0.02,0.02,0.02").unwrap();
+        o.hair_colors = vec![blond.clone(), black.clone()];
+        o.camera_distances = vec![1.0, 2.0];
+        let plan = Plan::new(o).expect("plan");
+        let names: Vec<&str> = plan.scenes.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "small@blond@d1",
+                "small@blond@d2",
+                "small@black@d1",
+                "small@black@d2"
+            ]
+        );
+        let own = SceneData::load(Some(&plan.scenes[0].path.clone().unwrap())).unwrap();
+        for (scene, color) in plan.scenes.iter().zip([&blond, &blond, &black, &black]) {
+            assert_eq!(scene.hair_color.as_ref(), Some(color));
+            let strands = &scene.data.strands;
+            assert!(!strands.color.is_empty());
+            assert!(strands.color.iter().all(|c| c.to_array() == color.rgb));
+            assert_eq!(strands.alpha, own.strands.alpha, "opacity kept");
+        }
+        assert_ne!(own.strands.color[0].to_array(), blond.rgb);
     }
 
     #[test]

@@ -577,6 +577,7 @@ fn scene_result(
                 scene: name.clone(),
                 factor: *factor,
             }),
+        hair_color: scene.hair_color.as_ref().map(|c| c.rgb),
         reference_image,
         reference_linear_image,
         runs,

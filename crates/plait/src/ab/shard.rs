@@ -198,6 +198,7 @@ struct Fingerprinted<'a> {
     supersample: u32,
     sequence: Option<(u32, String)>,
     camera_distances: &'a [f64],
+    hair_colors: Vec<(&'a str, [f32; 3])>,
     sweeps: Vec<(&'a str, &'a [String])>,
     sets: &'a [String],
     reference: &'a str,
@@ -217,6 +218,11 @@ pub fn fingerprint(plan: &Plan, p: &Provenance) -> String {
         supersample: o.supersample,
         sequence: o.sequence.map(|s| (s.frames, s.fps.to_string())),
         camera_distances: &o.camera_distances,
+        hair_colors: o
+            .hair_colors
+            .iter()
+            .map(|c| (c.name.as_str(), c.rgb))
+            .collect(),
         sweeps: o
             .sweeps
             .iter()

@@ -156,10 +156,7 @@ pub struct MitsubaScene {
     pub hair: Vec<HairGroup>,
     pub meshes: Vec<MitsubaMesh>,
     pub camera: MitsubaCamera,
-    /// Direction the light travels (unit), and its irradiance on a surface
-    /// facing it (`intensity × color`).
-    pub light_direction: Vec3,
-    pub irradiance: Vec3,
+    pub light: MitsubaLight,
     /// Radiance of the uniform environment (`ambient`), none when 0.
     pub ambient: Vec3,
     /// Radiance seen where a camera ray hits nothing.
@@ -169,13 +166,75 @@ pub struct MitsubaScene {
     pub notes: Vec<String>,
 }
 
+/// The scene's key light as a Mitsuba emitter.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MitsubaLight {
+    /// `directional`: the direction the light travels (unit), and its
+    /// irradiance on a surface facing it (`intensity × color`).
+    Directional { direction: Vec3, irradiance: Vec3 },
+    /// `point`: a spot light's position and radiant intensity
+    /// (`intensity × color`). plait's spot light has no angular falloff —
+    /// a surface at distance d receives I / d² (docs/formats.md, "Light and
+    /// units") — and its cone bounds only the light's shadow frustum, so it
+    /// is Mitsuba's point light exactly when every occluder lies inside that
+    /// frustum ([`spot_as_point`] checks it).
+    Point { position: Vec3, intensity: Vec3 },
+}
+
+/// A spot light as Mitsuba's `point` emitter, or why not: plait shadows
+/// only inside the light's frustum (fitted to the hair, at most the cone),
+/// so a strand point or an occluding mesh vertex outside it would cast a
+/// shadow in Mitsuba that plait does not have. The ground, below
+/// everything, occludes nothing and may reach past the cone.
+fn spot_as_point(data: &SceneData, position: Vec3) -> Result<MitsubaLight, ExportError> {
+    let scene = &data.scene;
+    let frame = data.frame((1, 1), 0);
+    let light = Mat4::from_cols_array_2d(&frame.light_view_proj);
+    let head = scene.head_model(0.0);
+    let inside = |p: Vec3| {
+        let c = light * p.extend(1.0);
+        c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w
+    };
+    let outside_hair = data.strands.points.iter().filter(|p| !inside(**p)).count();
+    let mut outside = Vec::new();
+    if outside_hair > 0 {
+        outside.push(format!("{outside_hair} strand points"));
+    }
+    for mesh in &data.meshes {
+        if mesh.name == "ground" && scene.ground.is_some() {
+            continue;
+        }
+        let pose = if mesh.head { head } else { Mat4::IDENTITY };
+        let n = mesh
+            .vertices
+            .iter()
+            .filter(|v| !inside(pose.transform_point3(v.position.into())))
+            .count();
+        if n > 0 {
+            outside.push(format!("{n} vertices of mesh \"{}\"", mesh.name));
+        }
+    }
+    if !outside.is_empty() {
+        return Err(ExportError::Unsupported(format!(
+            "a spot light whose shadow frustum leaves out occluders ({}): plait shadows only inside its cone, Mitsuba's point light everywhere; widen `light.cone_degrees` or use a directional light",
+            outside.join(", ")
+        )));
+    }
+    Ok(MitsubaLight::Point {
+        position,
+        intensity: scene.light.radiance(),
+    })
+}
+
 /// The scene `data` as Mitsuba is to render it at `size` pixels.
 pub fn plan(data: &SceneData, size: (u32, u32), fibre: Fibre) -> Result<MitsubaScene, ExportError> {
     let scene = &data.scene;
-    let LightKind::Directional { .. } = scene.light.kind else {
-        return Err(ExportError::Unsupported(
-            "a spot light (plait's cone falloff has no Mitsuba emitter yet): use a directional light".into(),
-        ));
+    let light = match scene.light.kind {
+        LightKind::Directional { .. } => MitsubaLight::Directional {
+            direction: scene.light.direction_to_light() * -1.0,
+            irradiance: scene.light.radiance(),
+        },
+        LightKind::Spot { position, .. } => spot_as_point(data, Vec3::from(position))?,
     };
     let background = match &scene.background {
         Background::Color(c) => Vec3::from(*c),
@@ -202,7 +261,16 @@ pub fn plan(data: &SceneData, size: (u32, u32), fibre: Fibre) -> Result<MitsubaS
          plait's Kajiya-Kay material keys (diffuse, specular, specular_exponent, specular_shift) are not used",
         fibre.longitudinal_roughness, fibre.azimuthal_roughness, fibre.scale_tilt_degrees, fibre.eta
     ));
-    let hair = hair_groups(data, head, fibre, &mut notes)?;
+    let mut hair = hair_groups(data, head, fibre, None, &mut notes)?;
+    if hair.len() > MAX_EXACT_GROUPS {
+        // Rebuilt with every value rounded; the notes said of the exact
+        // grouping hold for the rounded one (they count strands).
+        let mut rounded = Quantized::default();
+        let mut again = Vec::new();
+        hair = hair_groups(data, head, fibre, Some(&mut rounded), &mut again)?;
+        notes.extend(again);
+        notes.push(rounded.note(hair.len()));
+    }
     let c = scene.camera.dollied(scene.camera_distance(0.0));
     Ok(MitsubaScene {
         hair,
@@ -216,8 +284,7 @@ pub fn plan(data: &SceneData, size: (u32, u32), fibre: Fibre) -> Result<MitsubaS
             far: c.far,
             size,
         },
-        light_direction: scene.light.direction_to_light() * -1.0,
-        irradiance: scene.light.radiance(),
+        light,
         ambient: Vec3::splat(scene.ambient),
         background,
         fibre,
@@ -225,13 +292,15 @@ pub fn plan(data: &SceneData, size: (u32, u32), fibre: Fibre) -> Result<MitsubaS
     })
 }
 
-/// Strands grouped by (colour, alpha), exactly (the f32 bits), in the order
-/// each group first appears. A strand whose colour or alpha changes along
-/// it takes its root's, and a note counts such strands.
+/// Strands grouped by (colour, alpha), exactly (the f32 bits) or, with
+/// `round`, rounded to multiples of 1 / [`LEVELS`], in the order each group
+/// first appears. A strand whose colour or alpha changes along it takes its
+/// root's, and a note counts such strands.
 fn hair_groups(
     data: &SceneData,
     head: Mat4,
     fibre: Fibre,
+    mut round: Option<&mut Quantized>,
     notes: &mut Vec<String>,
 ) -> Result<Vec<HairGroup>, ExportError> {
     let s = &data.strands;
@@ -244,8 +313,11 @@ fn hair_groups(
         if a == b {
             continue;
         }
-        let color = s.color[a] * Vec3::from(m.color);
-        let alpha = s.alpha[a] * m.alpha;
+        let (color, alpha) = (s.color[a] * Vec3::from(m.color), s.alpha[a] * m.alpha);
+        let (color, alpha) = match round.as_deref_mut() {
+            Some(q) => q.take(color, alpha),
+            None => (color, alpha),
+        };
         if (a..b).any(|i| s.color[i] != s.color[a] || s.alpha[i] != s.alpha[a]) {
             varying += 1;
         }
@@ -284,6 +356,57 @@ fn hair_groups(
         ));
     }
     Ok(groups)
+}
+
+/// Past this many (colour, alpha) groups, colours and opacities are
+/// exported as multiples of 1 / [`LEVELS`]: Mitsuba's LLVM back end
+/// compiles one kernel branch per BSDF, and a groom with a per-strand
+/// colour or alpha (10,000 strands, 10,000 BSDFs) spent over 5 minutes and
+/// 4.7 GB compiling without finishing one seed; rounded, a ±0.1 alpha
+/// variation is ~50 BSDFs. Up to this many, the export is exact.
+const MAX_EXACT_GROUPS: usize = 64;
+const LEVELS: u32 = 256;
+
+/// How many strands [`Quantized::take`] moved, and by how much at most.
+#[derive(Default)]
+struct Quantized {
+    moved: usize,
+    largest: f32,
+}
+
+impl Quantized {
+    /// `color` and `alpha` rounded to multiples of 1 / LEVELS. A value
+    /// below 1 / LEVELS is kept: rounded it could become 0 (a colour
+    /// channel of 0 has no absorption in Chiang 2016 §4.2, an alpha of 0 no
+    /// strand); so is one outside [0, 1], for the checks after to name.
+    fn take(&mut self, color: Vec3, alpha: f32) -> (Vec3, f32) {
+        let levels = LEVELS as f32;
+        let round = |x: f32| {
+            if (1.0 / levels..=1.0).contains(&x) {
+                (x * levels).round() / levels
+            } else {
+                x
+            }
+        };
+        let (c, a) = (color.to_array().map(round), round(alpha));
+        let delta = (Vec3::from(c) - color)
+            .abs()
+            .max_element()
+            .max((a - alpha).abs());
+        if delta > 0.0 {
+            self.moved += 1;
+            self.largest = self.largest.max(delta);
+        }
+        (Vec3::from(c), a)
+    }
+
+    /// What the rounding did, for the export's notes.
+    fn note(&self, groups: usize) -> String {
+        format!(
+            "{} strand(s) had their colour or alpha rounded to a multiple of 1/{LEVELS} (by at most {:.4}), {groups} groups after rounding: past {MAX_EXACT_GROUPS} distinct values Mitsuba would compile one BSDF each",
+            self.moved, self.largest
+        )
+    }
 }
 
 /// The opaque meshes, the head's posed at time 0.

@@ -116,7 +116,9 @@ fn camera_light_ambient_and_background_in_plaits_units() {
     ] {
         assert!(xml.contains(want), "missing {want} in\n{xml}");
     }
-    let d = m.light_direction;
+    let MitsubaLight::Directional { direction: d, .. } = m.light else {
+        panic!("a directional light: {:?}", m.light);
+    };
     assert!(
         (d - Vec3::new(0.0, -1.0, -1.0).normalize()).length() < 1e-6,
         "travel direction {d}"
@@ -191,14 +193,20 @@ fn what_mitsuba_cannot_express_is_an_error() {
     let e = plan(&data, (8, 8), standard()).unwrap_err().to_string();
     assert!(e.contains("background image (sky.png)"), "{e}");
 
+    // A spot whose cone leaves strands out of plait's shadow frustum: those
+    // strands would shadow in Mitsuba and not in plait.
     let mut data = two_strands();
     data.scene.light.kind = plait_hair::LightKind::Spot {
         position: [0.0, 3.0, 0.0],
         direction: [0.0, -1.0, 0.0],
-        cone_degrees: 30.0,
+        cone_degrees: 8.0,
     };
     let e = plan(&data, (8, 8), standard()).unwrap_err().to_string();
-    assert!(e.contains("spot light"), "{e}");
+    assert!(
+        e.contains("spot light whose shadow frustum leaves out occluders")
+            && e.contains("strand points"),
+        "{e}"
+    );
 
     let mut data = two_strands();
     data.scene.material.color = [1.0, 0.0, 1.0];
@@ -274,4 +282,71 @@ fn a_sharp_taper_is_clamped_and_counted() {
     assert_eq!(c.last().unwrap().w, 0.0);
     let even: Vec<(Vec3, f32)> = strand.iter().map(|(p, _)| (*p, 0.01)).collect();
     assert!(!super::write::radius_dips_below_zero(&even));
+}
+
+/// A spot light whose cone holds every occluder is Mitsuba's point light of
+/// the same radiant intensity (plait's spot has no angular falloff).
+#[test]
+fn a_spot_light_holding_the_hair_is_a_point_light() {
+    let mut data = two_strands();
+    data.scene.light.kind = plait_hair::LightKind::Spot {
+        position: [0.0, 3.0, 0.0],
+        direction: [0.0, -1.0, 0.0],
+        cone_degrees: 40.0,
+    };
+    let m = plan(&data, (8, 8), standard()).expect("exports");
+    assert_eq!(
+        m.light,
+        MitsubaLight::Point {
+            position: Vec3::new(0.0, 3.0, 0.0),
+            intensity: data.scene.light.radiance(),
+        }
+    );
+    let xml = m.xml();
+    assert!(xml.contains("<emitter type=\"point\">"), "{xml}");
+    assert!(
+        xml.contains("<point name=\"position\" value=\"0, 3, 0\"/>"),
+        "{xml}"
+    );
+    assert!(!xml.contains("directional"), "{xml}");
+}
+
+/// A groom whose every strand has its own alpha (past 64 distinct values)
+/// is exported with alphas rounded to 1/256 — a few groups, each strand
+/// moved by at most half a step — and the note says so; up to 64 distinct
+/// values the export is exact (the test above).
+#[test]
+fn a_groom_of_distinct_alphas_is_rounded_to_few_groups_and_noted() {
+    let mut data = two_strands();
+    let mut s = Strands::new();
+    for i in 0..100 {
+        let x = i as f32 * 0.01;
+        let points = [Vec3::new(x, 0.0, 0.0), Vec3::new(x, -1.0, 0.0)];
+        let alpha = 0.5 + 0.001 * i as f32;
+        s.push_strand(&points, |_| 0.01, |_| alpha, Vec3::new(0.5, 0.5, 0.5));
+    }
+    data.strands = s;
+    let m = plan(&data, (8, 8), standard()).expect("exports");
+    // 0.5 … 0.599 spans 0.099 × 256 ≈ 25 steps.
+    assert!((20..=27).contains(&m.hair.len()), "{} groups", m.hair.len());
+    for (g, strand) in m
+        .hair
+        .iter()
+        .flat_map(|g| g.strands.iter().map(move |s| (g, s)))
+    {
+        let i = (strand[0].0.x / 0.01).round();
+        let exact = (0.5 + 0.001 * i) * data.scene.material.alpha;
+        assert!(
+            (g.alpha - exact).abs() <= 0.5 / 256.0 + 1e-6,
+            "{} vs {exact}",
+            g.alpha
+        );
+    }
+    assert!(
+        m.notes
+            .iter()
+            .any(|n| n.contains("rounded to a multiple of 1/256")),
+        "{:?}",
+        m.notes
+    );
 }

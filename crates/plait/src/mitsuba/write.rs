@@ -65,12 +65,7 @@ impl MitsubaScene {
         x += "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"$max_depth\"/>\n";
         x += "    <boolean name=\"hide_emitters\" value=\"true\"/>\n  </integrator>\n";
         x += &self.sensor_xml();
-        let _ = writeln!(
-            x,
-            "  <emitter type=\"directional\">\n    <vector name=\"direction\" value=\"{}\"/>\n    {}\n  </emitter>",
-            v3(self.light_direction),
-            rgb("irradiance", self.irradiance)
-        );
+        x += &self.light_xml();
         if self.ambient != Vec3::ZERO {
             let _ = writeln!(
                 x,
@@ -90,6 +85,29 @@ impl MitsubaScene {
             );
         }
         x + "</scene>\n"
+    }
+
+    /// The key light: `directional` (irradiance) or, for a spot light,
+    /// `point` (radiant intensity; [`super::MitsubaLight::Point`]).
+    fn light_xml(&self) -> String {
+        match self.light {
+            super::MitsubaLight::Directional {
+                direction,
+                irradiance,
+            } => format!(
+                "  <emitter type=\"directional\">\n    <vector name=\"direction\" value=\"{}\"/>\n    {}\n  </emitter>\n",
+                v3(direction),
+                rgb("irradiance", irradiance)
+            ),
+            super::MitsubaLight::Point {
+                position,
+                intensity,
+            } => format!(
+                "  <emitter type=\"point\">\n    <point name=\"position\" value=\"{}\"/>\n    {}\n  </emitter>\n",
+                v3(position),
+                rgb("intensity", intensity)
+            ),
+        }
     }
 
     /// The camera: Mitsuba's `look_at` frame, the same vertical field of
