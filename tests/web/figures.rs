@@ -1,0 +1,215 @@
+//! Issue 44's figures, measured for the book (`bash scripts/web.sh
+//! --figures`): the wasm's size, the first frame's time in the page on
+//! SwiftShader beside lavapipe's running the same engine code natively, and
+//! which gallery pipelines pass the adapter check within WebGPU's default
+//! limits. Not `plait ab` runs, so not in docs/figures.toml: the block goes
+//! between markers on the book's browser page with the command and commit.
+
+use std::path::Path;
+use std::process::Command;
+use std::time::Instant;
+
+use plait_tests::{open_gpu, repo_root};
+
+use crate::page::{run_page, site_dir};
+use crate::{SIZE, check_text_at, gallery, with_webgpu_default_limits};
+
+/// The pipelines timed: one fragment-list-free and one multi-pass technique.
+const TIMED: &[&str] = &["occupancy.toml", "depth_peeling.toml"];
+
+/// The page's own default frame size (`state.size` in site/app.js).
+const PAGE_SIZE: (u32, u32) = (480, 360);
+
+const BEGIN: &str = "<!-- web-figures -->";
+const END: &str = "<!-- /web-figures -->";
+
+#[test]
+#[ignore = "figures for the book, CPU-heavy, run by hand: bash scripts/web.sh --figures"]
+fn figures() {
+    let (posted, console, _) = run_page(TIMED);
+    if let Some(fatal) = &posted.fatal {
+        panic!("the page failed: {fatal}");
+    }
+    assert!(
+        console.is_empty(),
+        "console errors:\n{}",
+        console.join("\n")
+    );
+    let (native_adapter, native_ms) = native_first_frames(TIMED);
+    let mut rows = Vec::new();
+    for ((outcome, name), ms) in posted.results.iter().zip(TIMED).zip(&native_ms) {
+        // A failed frame has no time worth publishing.
+        assert_eq!(outcome.error, None, "{name} in the page");
+        rows.push(format!("| `{name}` | {:.0} ms | {ms:.0} ms |", outcome.ms));
+    }
+    assert_eq!(rows.len(), TIMED.len(), "a result per pipeline: {posted:?}");
+    let web_adapter = posted.adapter.unwrap_or_default();
+    let block = [
+        wasm_section(&site_dir().join("plait_web_bg.wasm")),
+        times_section(&web_adapter, &native_adapter, &rows),
+        limits_section(),
+    ]
+    .join("\n");
+    println!("{block}");
+    if let Some(page) = std::env::var_os("PLAIT_WEB_FIGURES_PAGE") {
+        write_between_markers(Path::new(&page), &block);
+    }
+}
+
+/// lavapipe's first frames: plait-web's `Engine` natively (the page's code,
+/// in the same order on one engine), device opened before the clock starts.
+fn native_first_frames(entries: &[&str]) -> (String, Vec<f64>) {
+    // Held so no other GPU test of this process runs meanwhile.
+    let (_lock, gpu) = open_gpu();
+    drop(gpu);
+    let mut engine = plait_gpu::wait::wait_for(plait_web::Engine::open())
+        .expect("wait natively")
+        .unwrap_or_else(|e| panic!("the engine natively: {e}"));
+    let mut times = Vec::new();
+    for name in entries {
+        let request = plait_web::Request {
+            pipeline: (*name).to_owned(),
+            width: SIZE.0,
+            height: SIZE.1,
+            sets: Vec::new(),
+            yaw: 0.0,
+            pitch: 0.0,
+            read: None,
+        };
+        let started = Instant::now();
+        plait_gpu::wait::wait_for(engine.render(&request))
+            .expect("wait natively")
+            .unwrap_or_else(|e| panic!("{name} natively: {e}"));
+        times.push(started.elapsed().as_secs_f64() * 1e3);
+    }
+    (engine.adapter(), times)
+}
+
+/// The wasm the page loads: bytes, gzipped bytes, the cargo profile.
+fn wasm_section(wasm: &Path) -> String {
+    let bytes = std::fs::metadata(wasm)
+        .unwrap_or_else(|e| panic!("{}: {e}", wasm.display()))
+        .len();
+    let gzip = Command::new("gzip")
+        .args(["-9", "-c"])
+        .arg(wasm)
+        .output()
+        .expect("gzip runs");
+    assert!(gzip.status.success(), "gzip failed: {:?}", gzip.status);
+    let profile = std::env::var("PLAIT_WEB_PROFILE").unwrap_or_else(|_| "dev".into());
+    format!(
+        "**The wasm** (`plait_web_bg.wasm` after wasm-bindgen, cargo profile `{profile}`): \
+         {bytes} bytes, {} bytes with `gzip -9`.\n",
+        gzip.stdout.len()
+    )
+}
+
+/// The first frame's time in the page beside lavapipe's, with what each includes.
+fn times_section(web_adapter: &str, native_adapter: &str, rows: &[String]) -> String {
+    let native_profile = if cfg!(debug_assertions) {
+        "dev"
+    } else {
+        "release"
+    };
+    format!(
+        "**The first frame** on the built-in small scene at {}x{}, wall clock, \
+         measured in one run on one machine while it did other work (compare the \
+         columns, not runs). In the page (headless Chromium, WebGPU on `{web_adapter}`): \
+         `performance.now()` around the page's `render()` — compile with the adapter \
+         check, fit to the scene, build, one frame, read-back of the output, drawing it \
+         on the canvas; the device was opened before. Natively (`{native_adapter}`, \
+         Mesa's shader disk cache off): the same engine code (`plait_web::Engine::render`, \
+         cargo profile `{native_profile}`) without the canvas; the device opened before.\n\n\
+         | pipeline | in the page (SwiftShader) | natively (lavapipe) |\n\
+         |---|---|---|\n{}\n",
+        SIZE.0,
+        SIZE.1,
+        rows.join("\n")
+    )
+}
+
+/// Which gallery pipelines pass `plait check --adapter` on lavapipe with
+/// WebGPU's default limits (what the page's device has), at the test's size
+/// and the page's; any refused, with the check's text.
+fn limits_section() -> String {
+    let (_lock, mut gpu) = open_gpu();
+    with_webgpu_default_limits(&mut gpu);
+    let names = gallery();
+    let mut passing = Vec::new();
+    let mut refused = Vec::new();
+    for name in &names {
+        let texts: Vec<String> = [SIZE, PAGE_SIZE]
+            .iter()
+            .filter_map(|&size| {
+                check_text_at(&gpu, name, &[], size)
+                    .map(|e| format!("at {}x{}: {e}", size.0, size.1))
+            })
+            .collect();
+        if texts.is_empty() {
+            passing.push(format!("`{name}`"));
+        } else {
+            refused.push(format!("- `{name}`: {}", texts.join("; ")));
+        }
+    }
+    let refused = if refused.is_empty() {
+        "None is refused.".to_owned()
+    } else {
+        format!("Refused:\n\n{}", refused.join("\n"))
+    };
+    format!(
+        "**Within WebGPU's default limits**: {} of {} gallery pipelines pass \
+         `plait check --adapter`'s check on lavapipe with WebGPU's default limits (the \
+         limits the page's device asks for) at {}x{} and {}x{}: {}. {refused}\n",
+        passing.len(),
+        names.len(),
+        SIZE.0,
+        SIZE.1,
+        PAGE_SIZE.0,
+        PAGE_SIZE.1,
+        passing.join(", ")
+    )
+}
+
+/// `block` between the page's markers, with the command and commit under it.
+fn write_between_markers(page: &Path, block: &str) {
+    let text = std::fs::read_to_string(page).unwrap_or_else(|e| panic!("{}: {e}", page.display()));
+    let (Some(a), Some(b)) = (text.find(BEGIN), text.find(END)) else {
+        panic!("{}: no {BEGIN} … {END} markers", page.display());
+    };
+    let git = |args: &[&str]| {
+        let out = Command::new("git")
+            .args(args)
+            .current_dir(repo_root())
+            .output()
+            .expect("git runs");
+        String::from_utf8_lossy(&out.stdout).trim().to_owned()
+    };
+    // Work not yet committed is said, so the commit is not taken for all of it.
+    let dirty = git(&["status", "--porcelain", "--untracked-files=no"])
+        .lines()
+        .any(|l| !page.ends_with(l[3..].trim()));
+    let commit = format!(
+        "{}{}",
+        git(&["rev-parse", "--short=12", "HEAD"]),
+        if dirty {
+            " with uncommitted changes"
+        } else {
+            ""
+        }
+    );
+    let date = String::from_utf8_lossy(
+        &Command::new("date")
+            .args(["-u", "+%Y-%m-%d %H:%M UTC"])
+            .output()
+            .expect("date runs")
+            .stdout,
+    )
+    .trim()
+    .to_owned();
+    let written = format!(
+        "{BEGIN}\n{block}\n*Written by `bash scripts/web.sh --figures` at commit `{commit}`, \
+         {date}; not typed by hand.*\n"
+    );
+    let text = format!("{}{written}{}", &text[..a], &text[b..]);
+    std::fs::write(page, text).unwrap_or_else(|e| panic!("{}: {e}", page.display()));
+}
