@@ -14,7 +14,7 @@ use plait_tests::{open_gpu, repo_root};
 use crate::page::{run_page, site_dir};
 use crate::{SIZE, check_text_at, gallery, with_webgpu_default_limits};
 
-/// The pipelines timed: one fragment-list-free and one multi-pass technique.
+/// The pipelines timed, each on a fresh page and a fresh engine.
 const TIMED: &[&str] = &["occupancy.toml", "depth_peeling.toml"];
 
 /// The page's own default frame size (`state.size` in site/app.js).
@@ -26,24 +26,15 @@ const END: &str = "<!-- /web-figures -->";
 #[test]
 #[ignore = "figures for the book, CPU-heavy, run by hand: bash scripts/web.sh --figures"]
 fn figures() {
-    let (posted, console, _) = run_page(TIMED);
-    if let Some(fatal) = &posted.fatal {
-        panic!("the page failed: {fatal}");
-    }
-    assert!(
-        console.is_empty(),
-        "console errors:\n{}",
-        console.join("\n")
-    );
-    let (native_adapter, native_ms) = native_first_frames(TIMED);
     let mut rows = Vec::new();
-    for ((outcome, name), ms) in posted.results.iter().zip(TIMED).zip(&native_ms) {
-        // A failed frame has no time worth publishing.
-        assert_eq!(outcome.error, None, "{name} in the page");
-        rows.push(format!("| `{name}` | {:.0} ms | {ms:.0} ms |", outcome.ms));
+    let mut web_adapter = String::new();
+    let mut native_adapter = String::new();
+    for name in TIMED {
+        let (web_ms, adapter) = web_first_frame(name);
+        let (native_ms, native) = native_first_frame(name);
+        rows.push(format!("| `{name}` | {web_ms:.0} ms | {native_ms:.0} ms |"));
+        (web_adapter, native_adapter) = (adapter, native);
     }
-    assert_eq!(rows.len(), TIMED.len(), "a result per pipeline: {posted:?}");
-    let web_adapter = posted.adapter.unwrap_or_default();
     let block = [
         wasm_section(&site_dir().join("plait_web_bg.wasm")),
         times_section(&web_adapter, &native_adapter, &rows),
@@ -56,33 +47,49 @@ fn figures() {
     }
 }
 
-/// lavapipe's first frames: plait-web's `Engine` natively (the page's code,
-/// in the same order on one engine), device opened before the clock starts.
-fn native_first_frames(entries: &[&str]) -> (String, Vec<f64>) {
+/// The page's first frame of `name` (a fresh page, as a reader opening the
+/// live view on it gets), ms, and the adapter the page names.
+fn web_first_frame(name: &str) -> (f64, String) {
+    let (posted, console, _) = run_page(&[name]);
+    if let Some(fatal) = &posted.fatal {
+        panic!("the page failed: {fatal}");
+    }
+    assert!(
+        console.is_empty(),
+        "console errors:\n{}",
+        console.join("\n")
+    );
+    let [outcome] = &posted.results[..] else {
+        panic!("one result: {posted:?}");
+    };
+    // A failed frame has no time worth publishing.
+    assert_eq!(outcome.error, None, "{name} in the page");
+    (outcome.ms, posted.adapter.clone().unwrap_or_default())
+}
+
+/// lavapipe's first frame of `name`, ms: plait-web's `Engine` natively (the
+/// page's code) on a fresh engine, its device opened before the clock starts.
+fn native_first_frame(name: &str) -> (f64, String) {
     // Held so no other GPU test of this process runs meanwhile.
     let (_lock, gpu) = open_gpu();
     drop(gpu);
     let mut engine = plait_gpu::wait::wait_for(plait_web::Engine::open())
         .expect("wait natively")
         .unwrap_or_else(|e| panic!("the engine natively: {e}"));
-    let mut times = Vec::new();
-    for name in entries {
-        let request = plait_web::Request {
-            pipeline: (*name).to_owned(),
-            width: SIZE.0,
-            height: SIZE.1,
-            sets: Vec::new(),
-            yaw: 0.0,
-            pitch: 0.0,
-            read: None,
-        };
-        let started = Instant::now();
-        plait_gpu::wait::wait_for(engine.render(&request))
-            .expect("wait natively")
-            .unwrap_or_else(|e| panic!("{name} natively: {e}"));
-        times.push(started.elapsed().as_secs_f64() * 1e3);
-    }
-    (engine.adapter(), times)
+    let request = plait_web::Request {
+        pipeline: name.to_owned(),
+        width: SIZE.0,
+        height: SIZE.1,
+        sets: Vec::new(),
+        yaw: 0.0,
+        pitch: 0.0,
+        read: None,
+    };
+    let started = Instant::now();
+    plait_gpu::wait::wait_for(engine.render(&request))
+        .expect("wait natively")
+        .unwrap_or_else(|e| panic!("{name} natively: {e}"));
+    (started.elapsed().as_secs_f64() * 1e3, engine.adapter())
 }
 
 /// The wasm the page loads: bytes, gzipped bytes, the cargo profile.
@@ -114,12 +121,15 @@ fn times_section(web_adapter: &str, native_adapter: &str, rows: &[String]) -> St
     format!(
         "**The first frame** on the built-in small scene at {}x{}, wall clock, \
          measured in one run on one machine while it did other work (compare the \
-         columns, not runs). In the page (headless Chromium, WebGPU on `{web_adapter}`): \
-         `performance.now()` around the page's `render()` — compile with the adapter \
-         check, fit to the scene, build, one frame, read-back of the output, drawing it \
-         on the canvas; the device was opened before. Natively (`{native_adapter}`, \
-         Mesa's shader disk cache off): the same engine code (`plait_web::Engine::render`, \
-         cargo profile `{native_profile}`) without the canvas; the device opened before.\n\n\
+         columns, not runs), one sample each, each pipeline the first frame of a fresh \
+         page or engine (as a reader opening the live view on it gets). In the page \
+         (headless Chromium with `--use-webgpu-adapter=swiftshader`; it names its adapter \
+         `{web_adapter}`): `performance.now()` around the page's `render()` — compile \
+         with the adapter check, fit to the scene, build, one frame, read-back of the \
+         output, drawing it on the canvas; the device was opened before. Natively \
+         (`{native_adapter}`, Mesa's shader disk cache off): the same engine code \
+         (`plait_web::Engine::render`, cargo profile `{native_profile}`) without the \
+         canvas; the device opened before.\n\n\
          | pipeline | in the page (SwiftShader) | natively (lavapipe) |\n\
          |---|---|---|\n{}\n",
         SIZE.0,
@@ -138,27 +148,32 @@ fn limits_section() -> String {
     let mut passing = Vec::new();
     let mut refused = Vec::new();
     for name in &names {
+        // The check's text in a code block of the list item: it spans lines.
         let texts: Vec<String> = [SIZE, PAGE_SIZE]
             .iter()
             .filter_map(|&size| {
-                check_text_at(&gpu, name, &[], size)
-                    .map(|e| format!("at {}x{}: {e}", size.0, size.1))
+                check_text_at(&gpu, name, &[], size).map(|e| {
+                    // Paths from the repository, not this checkout's.
+                    let root = format!("{}/", repo_root().display());
+                    let e = e.replace(&root, "").replace('\n', "\n  ");
+                    format!("at {}x{}:\n\n  ```text\n  {e}\n  ```", size.0, size.1)
+                })
             })
             .collect();
         if texts.is_empty() {
             passing.push(format!("`{name}`"));
         } else {
-            refused.push(format!("- `{name}`: {}", texts.join("; ")));
+            refused.push(format!("- `{name}` {}", texts.join("\n\n  and ")));
         }
     }
     let refused = if refused.is_empty() {
         "None is refused.".to_owned()
     } else {
-        format!("Refused:\n\n{}", refused.join("\n"))
+        format!("Refused:\n\n{}\n", refused.join("\n"))
     };
     format!(
         "**Within WebGPU's default limits**: {} of {} gallery pipelines pass \
-         `plait check --adapter`'s check on lavapipe with WebGPU's default limits (the \
+         the check `plait check --adapter` runs, on lavapipe with WebGPU's default limits (the \
          limits the page's device asks for) at {}x{} and {}x{}: {}. {refused}\n",
         passing.len(),
         names.len(),
