@@ -20,6 +20,17 @@ const TIMED: &[&str] = &["occupancy.toml", "depth_peeling.toml"];
 /// The page's own default frame size (`state.size` in site/app.js).
 const PAGE_SIZE: (u32, u32) = (480, 360);
 
+/// Fresh pages and engines per pipeline: one sample is at the mercy of
+/// whatever else the machine runs.
+const REPEATS: usize = 3;
+
+/// `median ms (min–max)` of `times`.
+fn spread(mut times: Vec<f64>) -> String {
+    times.sort_by(f64::total_cmp);
+    let (lo, mid, hi) = (times[0], times[times.len() / 2], times[times.len() - 1]);
+    format!("{mid:.0} ms ({lo:.0}–{hi:.0})")
+}
+
 const BEGIN: &str = "<!-- web-figures -->";
 const END: &str = "<!-- /web-figures -->";
 
@@ -30,10 +41,21 @@ fn figures() {
     let mut web_adapter = String::new();
     let mut native_adapter = String::new();
     for name in TIMED {
-        let (web_ms, adapter) = web_first_frame(name);
-        let (native_ms, native) = native_first_frame(name);
-        rows.push(format!("| `{name}` | {web_ms:.0} ms | {native_ms:.0} ms |"));
-        (web_adapter, native_adapter) = (adapter, native);
+        let (mut web, mut native) = (Vec::new(), Vec::new());
+        // Interleaved, so a burst of other work on the machine hits both.
+        for _ in 0..REPEATS {
+            let (ms, adapter) = web_first_frame(name);
+            web.push(ms);
+            web_adapter = adapter;
+            let (ms, adapter) = native_first_frame(name);
+            native.push(ms);
+            native_adapter = adapter;
+        }
+        rows.push(format!(
+            "| `{name}` | {} | {} |",
+            spread(web),
+            spread(native)
+        ));
     }
     let block = [
         wasm_section(&site_dir().join("plait_web_bg.wasm")),
@@ -121,8 +143,9 @@ fn times_section(web_adapter: &str, native_adapter: &str, rows: &[String]) -> St
     format!(
         "**The first frame** on the built-in small scene at {}x{}, wall clock, \
          measured in one run on one machine while it did other work (compare the \
-         columns, not runs), one sample each, each pipeline the first frame of a fresh \
-         page or engine (as a reader opening the live view on it gets). In the page \
+         columns, not runs): the median (least–most) of {REPEATS} samples, each the \
+         first frame of a fresh page or engine (as a reader opening the live view on \
+         the pipeline gets), page and native interleaved. In the page \
          (headless Chromium with `--use-webgpu-adapter=swiftshader`; it names its adapter \
          `{web_adapter}`): `performance.now()` around the page's `render()` — compile \
          with the adapter check, fit to the scene, build, one frame, read-back of the \
