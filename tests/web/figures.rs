@@ -61,6 +61,7 @@ fn figures() {
         wasm_section(&site_dir().join("plait_web_bg.wasm")),
         times_section(&web_adapter, &native_adapter, &rows),
         limits_section(),
+        page_section(),
     ]
     .join("\n");
     println!("{block}");
@@ -171,16 +172,11 @@ fn limits_section() -> String {
     let mut passing = Vec::new();
     let mut refused = Vec::new();
     for name in &names {
-        // The check's text in a code block of the list item: it spans lines.
         let texts: Vec<String> = [SIZE, PAGE_SIZE]
             .iter()
             .filter_map(|&size| {
-                check_text_at(&gpu, name, &[], size).map(|e| {
-                    // Paths from the repository, not this checkout's.
-                    let root = format!("{}/", repo_root().display());
-                    let e = e.replace(&root, "").replace('\n', "\n  ");
-                    format!("at {}x{}:\n\n  ```text\n  {e}\n  ```", size.0, size.1)
-                })
+                check_text_at(&gpu, name, &[], size)
+                    .map(|e| format!("at {}x{}:{}", size.0, size.1, code_item(&e)))
             })
             .collect();
         if texts.is_empty() {
@@ -205,6 +201,62 @@ fn limits_section() -> String {
         PAGE_SIZE.0,
         PAGE_SIZE.1,
         passing.join(", ")
+    )
+}
+
+/// `text` (a message over several lines) as a code block in a list item,
+/// with paths from the repository rather than this checkout.
+fn code_item(text: &str) -> String {
+    let root = format!("{}/", repo_root().display());
+    let text = text.replace(&root, "").replace('\n', "\n  ");
+    format!("\n\n  ```text\n  {text}\n  ```")
+}
+
+/// Every gallery pipeline rendered in one page at the test's size: which
+/// gave a frame, which an error (the page's text). Not compared with
+/// lavapipe here: the browser test compares the ones it names.
+fn page_section() -> String {
+    let names = gallery();
+    let entries: Vec<&str> = names.iter().map(String::as_str).collect();
+    let (posted, console, _) = run_page(&entries);
+    if let Some(fatal) = &posted.fatal {
+        panic!("the page failed: {fatal}");
+    }
+    assert!(
+        console.is_empty(),
+        "console errors:\n{}",
+        console.join("\n")
+    );
+    assert_eq!(posted.results.len(), names.len(), "a result per pipeline");
+    let (framed, failed): (Vec<_>, Vec<_>) = posted.results.iter().partition(|o| o.error.is_none());
+    let failed: Vec<String> = failed
+        .iter()
+        .map(|o| {
+            format!(
+                "- `{}`:{}",
+                o.pipeline,
+                code_item(o.error.as_deref().unwrap_or(""))
+            )
+        })
+        .collect();
+    let failed = if failed.is_empty() {
+        "None failed.".to_owned()
+    } else {
+        format!("Failed:\n\n{}\n", failed.join("\n"))
+    };
+    format!(
+        "**Rendered in the page** (one page, SwiftShader, {}x{}; a frame, not compared \
+         with lavapipe here — `tests/web.rs` compares {}): {} of {} gallery pipelines \
+         gave a frame. {failed}\n",
+        SIZE.0,
+        SIZE.1,
+        crate::RENDERED
+            .iter()
+            .map(|e| format!("`{e}`"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        framed.len(),
+        names.len()
     )
 }
 
