@@ -8,9 +8,24 @@
 #
 # Serve OUT over HTTP (browsers refuse WebAssembly from file://), e.g.
 # `python3 -m http.server -d OUT -b 127.0.0.1 8000`.
+#
+#   bash scripts/web.sh --figures  # issue 44's figures into the book
+#
+# --figures measures (tests/web/figures.rs; CPU-heavy, minutes): the wasm's
+# size and gzipped size, the first frame of occupancy and depth_peeling in
+# the page on SwiftShader beside lavapipe's, and the gallery pipelines within
+# WebGPU's default limits; it writes them with the commit between the
+# `<!-- web-figures -->` markers of book/src/guide/browser.md.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if [ "${1:-}" = --figures ]; then
+    # Mesa's shader disk cache off: lavapipe's first frame compiles its
+    # shaders as the browser's fresh profile does.
+    export PLAIT_WEB_FIGURES_PAGE="$root/book/src/guide/browser.md" MESA_SHADER_CACHE_DISABLE=true
+    exec cargo test --manifest-path "$root/Cargo.toml" -p plait-tests --test web --locked \
+        -- --ignored --exact figures::figures --nocapture --test-threads=1
+fi
 target="${CARGO_TARGET_DIR:-$root/target}"
 out="${1:-$target/web}"
 # The dev profile (opt-level 1, as the tests build): a release build would be
