@@ -469,6 +469,34 @@ pub(super) fn noise_of_mean(a: &image::Rgba32FImage, b: &image::Rgba32FImage) ->
     (sum / n.max(1) as f64).sqrt() / 2.0
 }
 
+/// What a failed render.py said, or — when it died without a word (a
+/// crash inside Mitsuba's native code) — how it ended.
+fn failure(status: std::process::ExitStatus, stderr: &[u8]) -> String {
+    let text = String::from_utf8_lossy(stderr).trim().to_string();
+    #[cfg(unix)]
+    if let Some(signal) = std::os::unix::process::ExitStatusExt::signal(&status) {
+        let name = match signal {
+            11 => " (SIGSEGV: a crash inside Mitsuba)",
+            9 => " (SIGKILL: out of memory?)",
+            6 => " (SIGABRT)",
+            _ => "",
+        };
+        return format!(
+            "killed by signal {signal}{name}{}",
+            if text.is_empty() {
+                String::new()
+            } else {
+                format!(": {text}")
+            }
+        );
+    }
+    if text.is_empty() {
+        format!("{status} with no message")
+    } else {
+        text
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -499,33 +527,5 @@ mod tests {
     #[test]
     fn the_pinned_version_is_read_from_the_install_script() {
         assert_eq!(mitsuba_version(), "3.9.1");
-    }
-}
-
-/// What a failed render.py said, or — when it died without a word (a
-/// crash inside Mitsuba's native code) — how it ended.
-fn failure(status: std::process::ExitStatus, stderr: &[u8]) -> String {
-    let text = String::from_utf8_lossy(stderr).trim().to_string();
-    #[cfg(unix)]
-    if let Some(signal) = std::os::unix::process::ExitStatusExt::signal(&status) {
-        let name = match signal {
-            11 => " (SIGSEGV: a crash inside Mitsuba)",
-            9 => " (SIGKILL: out of memory?)",
-            6 => " (SIGABRT)",
-            _ => "",
-        };
-        return format!(
-            "killed by signal {signal}{name}{}",
-            if text.is_empty() {
-                String::new()
-            } else {
-                format!(": {text}")
-            }
-        );
-    }
-    if text.is_empty() {
-        format!("{status} with no message")
-    } else {
-        text
     }
 }
