@@ -275,7 +275,7 @@ fn dual_scattering_with_dark_surroundings() {
 /// a claim — a measurement for the book (`--ignored`; its reference takes
 /// Mitsuba about 20 s more on a cold cache).
 #[test]
-#[ignore]
+#[ignore = "a measurement for the book, not a claim, run by hand: cargo test -p plait-tests --test multiple_scattering_claim dense -- --ignored --nocapture"]
 fn dense_groom_against_the_path_tracer() {
     for m in measure(&["blond_dense_dark_surroundings".to_owned()]) {
         let [none, karis, dual, unbounded] = m.ratios;
