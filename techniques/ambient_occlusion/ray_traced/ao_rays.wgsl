@@ -1,0 +1,109 @@
+enable wgpu_ray_query;
+// ambient_occlusion = ray_traced, the per-vertex pass: from every hair vertex
+// `rays` rays over the sphere (a spherical Fibonacci lattice, rotated by a
+// per-vertex random rotation about a random axis so neighbouring vertices do
+// not share their directions' aliasing), each counting the strands it crosses
+// (plait::strand_capsule: each segment's tapered swept sphere, a crossing
+// owned by one segment); the vertex's ambient visibility is the mean of
+// exp(−w · n) (Xing et al. 2012 §4: transmittance averaged over directions).
+// A crossing within one strand width of the vertex is its own strand (the
+// ray starts on its axis): not counted.
+
+#import plait::hair_point::HairPoint
+#import plait::strand_capsule::strand_crossing
+#import plait::loop_budget::loop_budget_spent
+
+@group(1) @binding(0) var strands: acceleration_structure;
+@group(1) @binding(1) var<storage, read> hair_vertices: array<HairPoint>;
+@group(1) @binding(2) var<storage, read_write> vertex_ao: array<f32>;
+// Word 0: vertices vertex_ao could not hold; 1: the hair's vertices; 2:
+// invocations a loop budget cut short (the frame fails on either, naming
+// ao_max_vertices or the pass).
+@group(1) @binding(4) var<storage, read_write> status: array<atomic<u32>>;
+
+struct Params {
+    rays: u32,
+    shadow_weight: f32,
+}
+@group(1) @binding(3) var<uniform> params: Params;
+
+const PI: f32 = 3.14159265358979;
+const GOLDEN_ANGLE: f32 = 2.39996322972865;
+
+// Direction i of n on the sphere: the spherical Fibonacci lattice (uniform
+// in z, the golden angle in azimuth).
+fn fibonacci_direction(i: u32, n: u32) -> vec3<f32> {
+    let z = 1.0 - (2.0 * f32(i) + 1.0) / f32(n);
+    let r = sqrt(max(0.0, 1.0 - z * z));
+    let phi = GOLDEN_ANGLE * f32(i);
+    return vec3<f32>(r * cos(phi), r * sin(phi), z);
+}
+
+// A 32-bit integer hash (PCG's output permutation), for the per-vertex rotation.
+fn hash(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+fn unit_float(v: u32) -> f32 {
+    return f32(hash(v) >> 8u) / 16777216.0;
+}
+
+// Rodrigues' rotation of `v` by `angle` about unit `axis`.
+fn rotate(v: vec3<f32>, axis: vec3<f32>, angle: f32) -> vec3<f32> {
+    let c = cos(angle);
+    let s = sin(angle);
+    return v * c + cross(axis, v) * s + axis * dot(axis, v) * (1.0 - c);
+}
+
+// Strands crossed by the ray from vertex `index` along `dir`. The ray query
+// is declared here, outside any loop: one declared in a loop made naga emit
+// a null constant of the ray-query type, which Mesa rejects (wgpu PR 9945).
+fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, own: f32) -> f32 {
+    var rq: ray_query;
+    rayQueryInitialize(&rq, strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 0xFFu, 0.0, 1e30, origin, dir));
+    var n = 0.0;
+    while (rayQueryProceed(&rq)) {
+        let c = rayQueryGetCandidateIntersection(&rq);
+        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
+            continue;
+        }
+        let a = hair_vertices[c.primitive_index];
+        let b = hair_vertices[c.primitive_index + 1u];
+        if (a.strand != b.strand) {
+            continue;
+        }
+        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        if (t > own) {
+            n += 1.0;
+        }
+    }
+    return n;
+}
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let index = id.x;
+    let vertices = arrayLength(&hair_vertices);
+    if (index == 0u) {
+        atomicStore(&status[0], vertices - min(vertices, arrayLength(&vertex_ao)));
+        atomicStore(&status[1], vertices);
+    }
+    if (index >= vertices || index >= arrayLength(&vertex_ao)) {
+        return;
+    }
+    let v = hair_vertices[index];
+    let axis = fibonacci_direction(hash(index) % 1024u, 1024u);
+    let angle = 2.0 * PI * unit_float(index ^ 0x9e3779b9u);
+    let own = max(v.thickness, 1e-6);
+    var sum = 0.0;
+    for (var i = 0u; i < params.rays; i++) {
+        let dir = rotate(fibonacci_direction(i, params.rays), axis, angle);
+        sum += exp(-params.shadow_weight * strands_crossed(v.position, dir, own));
+    }
+    vertex_ao[index] = sum / f32(params.rays);
+    if (loop_budget_spent(2u + (params.rays & 1u))) {
+        atomicAdd(&status[2], 1u);
+    }
+}
