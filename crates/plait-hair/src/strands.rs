@@ -304,22 +304,16 @@ impl Strands {
         Aabb::from_points(self.points.iter().copied())
     }
 
-    /// Unit tangents per point, central differences inside a strand and
-    /// one-sided differences at its ends; a degenerate strand gets +Y.
+    /// Unit tangents per point: the directions of the natural cubic spline
+    /// through each strand's points at them ([`crate::curve::knot_directions`],
+    /// the curve the Mitsuba export draws), which the shaders bend between
+    /// as that curve does (`shaders/lib/strand_curve.wgsl`); a degenerate
+    /// strand gets +Y.
     pub fn tangents(&self) -> Vec<Vec3> {
         let mut out = vec![Vec3::Y; self.points.len()];
         for r in self.ranges() {
-            let pts = &self.points[r.clone()];
-            let mut last = Vec3::Y;
-            for (k, slot) in out[r].iter_mut().enumerate() {
-                let a = pts[k.saturating_sub(1)];
-                let b = pts[(k + 1).min(pts.len() - 1)];
-                let t = (b - a).normalize_or_zero();
-                if t != Vec3::ZERO {
-                    last = t;
-                }
-                *slot = last;
-            }
+            let t = crate::curve::knot_directions(&self.points[r.clone()]);
+            out[r].copy_from_slice(&t);
         }
         out
     }
@@ -393,11 +387,11 @@ mod tests {
         assert_eq!(v.len(), 5);
         assert_eq!(i, vec![0, 1, 1, 2, 3, 4]);
         assert_eq!(v[3].strand_id, 1);
-        assert_eq!(
-            v[1].tangent,
-            Vec3::new(2.0, 1.0, 0.0).normalize().to_array()
-        );
-        assert_eq!(v[0].tangent, [1.0, 0.0, 0.0]);
+        let t1 = Vec3::from(v[1].tangent) - Vec3::new(2.0, 1.0, 0.0).normalize();
+        assert!(t1.length() < 1e-6, "{:?}", v[1].tangent);
+        // The natural spline's end: D0 = (1, -0.25, 0) (2 D0 + D1 = 3 (p1 - p0)).
+        let t0 = Vec3::from(v[0].tangent) - Vec3::new(1.0, -0.25, 0.0).normalize();
+        assert!(t0.length() < 1e-6, "{:?}", v[0].tangent);
         assert_eq!(v[4].tangent, [0.0, 1.0, 0.0]);
         for x in &v {
             let t = Vec3::from(x.tangent);
