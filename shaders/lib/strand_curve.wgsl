@@ -10,7 +10,7 @@
 //     6u(1 − u) ĉ + (1 − u)(1 − 3u) t0 + u(3u − 2) t1,   ĉ = (p1 − p0)/|p1 − p0|.
 // On the wavy groom at 24 segments this is a median 0.3° (at most 1.5°) from
 // the spline's tangent, where the linear interpolation was 7.2° (docs/
-// formats.md, "What is left against the path tracer"). The CPU twin is
+// formats.md, "Against the path tracer: the shading tangent"). The CPU twin is
 // plait_hair::curve::segment_tangent.
 #define_import_path plait::strand_curve
 

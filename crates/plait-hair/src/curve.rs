@@ -8,8 +8,8 @@
 //! points ([`knot_directions`]), and `shaders/lib/strand_curve.wgsl` bends the
 //! tangent between them as a cubic Hermite piece does. A tangent interpolated
 //! linearly is up to several degrees off inside a segment that turns, which
-//! moves the narrow R and TRT highlights (docs/formats.md, "What is left
-//! against the path tracer").
+//! moves the narrow R and TRT highlights (docs/formats.md, "Against the
+//! path tracer: the shading tangent").
 
 use glam::Vec3;
 

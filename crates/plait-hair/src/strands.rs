@@ -91,7 +91,8 @@ pub struct StrandVertex {
     pub position: [f32; 3],
     /// Strand thickness at this point (model units).
     pub thickness: f32,
-    /// Unit tangent (central differences; one-sided at the ends).
+    /// Unit tangent: the strand's natural cubic spline's direction at the
+    /// point ([`Strands::tangents`]).
     pub tangent: [f32; 3],
     /// Opacity, 1 - transparency.
     pub alpha: f32,
@@ -314,6 +315,29 @@ impl Strands {
         for r in self.ranges() {
             let t = crate::curve::knot_directions(&self.points[r.clone()]);
             out[r].copy_from_slice(&t);
+        }
+        out
+    }
+
+    /// Unit tangents per point as central differences of the points
+    /// (one-sided at a strand's ends; +Y where degenerate): what the
+    /// simulation's per-point GPU interpolation writes for moved points
+    /// (`shaders/passes/sim_interpolate.wgsl`), which cannot solve
+    /// [`Strands::tangents`]'s per-strand system.
+    pub fn central_tangents(&self) -> Vec<Vec3> {
+        let mut out = vec![Vec3::Y; self.points.len()];
+        for r in self.ranges() {
+            let pts = &self.points[r.clone()];
+            let mut last = Vec3::Y;
+            for (k, slot) in out[r].iter_mut().enumerate() {
+                let a = pts[k.saturating_sub(1)];
+                let b = pts[(k + 1).min(pts.len() - 1)];
+                let t = (b - a).normalize_or_zero();
+                if t != Vec3::ZERO {
+                    last = t;
+                }
+                *slot = last;
+            }
         }
         out
     }
