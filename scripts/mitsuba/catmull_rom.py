@@ -4,14 +4,15 @@
     catmull_rom.py SRC_DIR DST_DIR
 
 `plait export mitsuba` writes each strand as the interpolating cubic
-B-spline through plait's points (write.rs). plait itself draws the polyline
-and shades it about its vertex tangents — central differences of the points
-(one-sided at the ends), interpolated along each segment — which are the
-knot tangents of the Catmull-Rom spline through the same points, not the
-B-spline's. This copies SRC_DIR to DST_DIR with every segment of
+B-spline through plait's points (write.rs). plait draws the polyline; it
+used to shade it about its vertex tangents as central differences of the
+points (one-sided at the ends), interpolated along each segment — the knot
+tangents of the Catmull-Rom spline through the same points, not the
+B-spline's (now it shades about the B-spline's directions at the points,
+bent inside a segment: direct_probe.plait_tangents). This copies SRC_DIR to DST_DIR with every segment of
 hair_K.txt written as its own 4-control-point `bsplinecurve` piece that
 traces the Catmull-Rom cubic exactly (the pieces meet with the same position,
-tangent and radius), so Mitsuba shades about plait's tangents at the points
+tangent and radius), so Mitsuba shades about plait's former tangents at the points
 (issue 47's top/bottom residual: scripts/mitsuba/tangent_check.sh). Segment
 order, and so Mitsuba's prim_index, is kept. Radii follow the same spline,
 clamped at 0.

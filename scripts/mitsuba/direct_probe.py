@@ -19,11 +19,12 @@ integrates), the first camera hit's BSDF times the directional emitter:
                              curve's tangent: what plait's shading point
                              computes (shaders/lib/chiang.wgsl)
   OUT_PREFIX_plait_tangent_shadowed.exr, …_plait_tangent_unshadowed.exr
-                             the same about plait's shading tangent (its
-                             vertex tangents, central differences of the
-                             points, interpolated along the segment): the
-                             difference to haverage is issue 47's top/bottom
-                             residual (scripts/mitsuba/tangent_check.sh)
+                             the same about plait's shading tangent
+                             (plait_tangents: the spline's directions at the
+                             points, bent as a Hermite piece); the difference
+                             to haverage was issue 47's top/bottom residual
+                             while plait interpolated central differences
+                             linearly (scripts/mitsuba/tangent_check.sh)
   OUT_PREFIX_coverage.exr    the fraction of each pixel's rays whose first
                              hit is a fibre (as render.py --coverage)
 Why the fibre images: at a `linearcurve` hit Mitsuba 3.9.1 leaves dp_du zero
@@ -79,6 +80,29 @@ def polyline_tangents(path):
         t /= np.maximum(np.linalg.norm(t, axis=1), 1e-30)[:, None]
         out.append(np.stack([t[:-1], t[1:]], axis=1))
     return np.concatenate(out)
+
+
+def plait_tangents(path, k, tl):
+    """plait's shading tangent at tl along segment k (bspline()'s order; rows
+    of k and tl): the unit tangents at the points are the interpolating
+    spline's derivative directions there, (C[i+2] − C[i]) / 2
+    (crates/plait-hair/src/curve.rs), and inside a segment they bend as the
+    cubic Hermite piece whose end derivatives are those tangents times the
+    chord's length (shaders/lib/strand_curve.wgsl). polyline_tangents is
+    what plait shaded about before: its ends interpolated linearly."""
+    rows = []
+    for c in strands(path):
+        c = c[:, :3]
+        p = (c[:-2] + 4 * c[1:-1] + c[2:]) / 6
+        t = (c[2:] - c[:-2]) / 2
+        t /= np.maximum(np.linalg.norm(t, axis=1), 1e-30)[:, None]
+        rows.append(np.stack([p[:-1], p[1:], t[:-1], t[1:]], axis=1))
+    p0, p1, t0, t1 = np.moveaxis(np.concatenate(rows)[k], 1, 0)
+    chord = p1 - p0
+    chord /= np.maximum(np.linalg.norm(chord, axis=1), 1e-30)[:, None]
+    u = tl[:, None]
+    v = 6 * u * (1 - u) * chord + (1 - u) * (1 - 3 * u) * t0 + u * (3 * u - 2) * t1
+    return v / np.maximum(np.linalg.norm(v, axis=1), 1e-30)[:, None]
 
 
 BASIS = lambda t: np.stack([(1 - t) ** 3, 3 * t**3 - 6 * t**2 + 4, -3 * t**3 + 3 * t**2 + 3 * t + 1, t**3], -1) / 6
@@ -160,11 +184,8 @@ def main():
     tan = np.einsum("nk,nkc->nc", DBASIS(tl), seg[k][..., :3])
     tan /= np.maximum(np.linalg.norm(tan, axis=1), 1e-30)[:, None]
     t = mi.Vector3f(*[mi.Float(tan[:, i]) for i in range(3)])
-    # plait's shading tangent at the same place: its vertex tangents
-    # interpolated along the segment (the line's varying), normalized.
-    ends = polyline_tangents(os.path.join(a.scene_dir, "hair_0.txt"))[k]
-    ptan = ends[:, 0] * (1 - tl)[:, None] + ends[:, 1] * tl[:, None]
-    ptan /= np.maximum(np.linalg.norm(ptan, axis=1), 1e-30)[:, None]
+    # plait's shading tangent at the same place (plait_tangents).
+    ptan = plait_tangents(os.path.join(a.scene_dir, "hair_0.txt"), k, tl)
     plait_t = mi.Vector3f(*[mi.Float(ptan[:, i]) for i in range(3)])
     nrm = dr.normalize(si.n - t * dr.dot(si.n, t))
     fibre = mi.SurfaceInteraction3f(si)
@@ -191,8 +212,7 @@ def main():
         val = bsdf.eval(ctx, fibre, fibre.sh_frame.to_local(ds.d)) * em
         write(image(mi, np, val, si.is_valid(), w, h, n, bg), "fibre_" + name)
         # plait's shading point: the same fibre's BSDF averaged over h, about
-        # the curve's tangent, then about plait's interpolated vertex
-        # tangent (the head and the ground as in Mitsuba's own image).
+        # the curve's tangent, then about plait's shading tangent (the head and the ground as in Mitsuba's own image).
         own = bsdf.eval(ctx, si, si.to_local(ds.d))
         for tangent, prefix in ((t, "haverage_"), (plait_t, "plait_tangent_")):
             val = dr.select(hair, h_average(bsdf, ctx, tangent, -ray.d, ds.d, si), own) * em

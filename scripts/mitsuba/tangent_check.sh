@@ -10,7 +10,7 @@
 # direct_probe.py: plait ÷ Mitsuba's BSDF about plait's own shading tangent,
 # and that ÷ the same BSDF about the B-spline's tangent (Mitsuba's); and
 # Mitsuba with the strands as Catmull-Rom pieces (scripts/mitsuba/
-# catmull_rom.py: tangents at the points = plait's) ÷ Mitsuba; and plait
+# catmull_rom.py: tangents at the points = plait's former central differences) ÷ Mitsuba; and plait
 # given the export's B-spline sampled 4 times a segment (resample_curve.py:
 # the curve Mitsuba draws) ÷ Mitsuba.
 # plait uses transparency=linked_list here (exact per-pixel sort, as depth
@@ -45,7 +45,7 @@ for segments in 24 96; do
         "$py" "$root/scripts/mitsuba/render.py" "$out/$name" "$out/${name}_mitsuba_d2.exr" \
             --spp "$spp" --max-depth 2 --seed 0 --coverage "$out/${name}_mask.exr"
         "$py" "$root/scripts/mitsuba/direct_probe.py" "$out/$name" "$out/${name}_probe" --spp "$spp" >/dev/null
-        # The same points as Catmull-Rom pieces (knot tangents = plait's).
+        # The same points as Catmull-Rom pieces (knot tangents = central differences).
         "$py" "$root/scripts/mitsuba/catmull_rom.py" "$out/$name" "$out/${name}_cr" >/dev/null
         "$py" "$root/scripts/mitsuba/render.py" "$out/${name}_cr" "$out/${name}_cr_mitsuba_d2.exr" \
             --spp "$spp" --max-depth 2 --seed 0

@@ -29,6 +29,7 @@
 #import plait::ambient_occlusion::occlusion_at
 #import plait::shading_space::strand_space_radiance
 #import plait::strand_coverage::{strand_coverage, strand_tip_scale}
+#import plait::strand_curve::strand_curve_tangent_lerp
 #import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_alpha, strand_lod_vertex, strand_lod_wisps, strand_lod_fraction, strand_lod_texel}
 
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
@@ -68,6 +69,11 @@ struct HairVaryings {
     // A wisp's strand-texture coordinates (u across, v along, mip level);
     // 0 for strands (plait::strand_lod).
     @location(8) wisp: vec3<f32>,
+    // The segment's first vertex and its tangent (the provoking vertex's,
+    // flat): with `world` and `tangent` interpolated they give the curve's
+    // tangent at the fragment (shading_tangent).
+    @location(9) @interpolate(flat) start: vec3<f32>,
+    @location(10) @interpolate(flat) start_tangent: vec3<f32>,
 }
 
 // A shaded hair fragment: straight (not premultiplied) colour and alpha.
@@ -96,6 +102,8 @@ fn hair_vertex(v: HairVertex) -> HairVaryings {
     out.strand = p.strand;
     out.segment = p.segment;
     out.parity = p.along;
+    out.start = p.world;
+    out.start_tangent = p.tangent;
     return out;
 }
 
@@ -114,7 +122,7 @@ fn shade_hair(in: HairVaryings) -> HairFragment {
     if (shaded.w >= 0.0) {
         return HairFragment(shaded.rgb * texel.rgb, fragment_alpha(in));
     }
-    let rgb = hair_radiance(shadow_map, in.world, in.tangent, in.color * texel.rgb, in.occlusion);
+    let rgb = hair_radiance(shadow_map, in.world, shading_tangent(in), in.color * texel.rgb, in.occlusion);
     return HairFragment(rgb, fragment_alpha(in));
 }
 
@@ -128,4 +136,15 @@ fn segment_fraction(in: HairVaryings) -> f32 {
 // for passes that need how much the fragment hides but not its colour.
 fn fragment_alpha(in: HairVaryings) -> f32 {
     return clamp(in.alpha * strand_lod_texel(in.wisp).a * frame.hair_color.a, 0.0, 1.0);
+}
+
+// The tangent the fragment is shaded about: the smooth curve's through the
+// strand's points at the fragment's place along its segment
+// (plait::strand_curve), not the straight segment's. A wisp's strip spans
+// its whole strand (no segment): its tangent, interpolated.
+fn shading_tangent(in: HairVaryings) -> vec3<f32> {
+    if (strand_lod_wisps()) {
+        return in.tangent;
+    }
+    return strand_curve_tangent_lerp(in.world, in.start, in.start_tangent, in.tangent, segment_fraction(in));
 }

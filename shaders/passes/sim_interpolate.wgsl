@@ -6,8 +6,10 @@
 // (the barycentric blend of its three guides, translated to its own root —
 // moved with the head — and scaled to its length), exactly as plait-hair
 // grows a guided groom (CPU reference: `plait_hair::guides::Guides`).
-// Tangents are recomputed as the CPU computes them: central differences
-// inside the strand, one-sided at its ends. One thread per drawn point;
+// Tangents are recomputed as central differences inside the strand,
+// one-sided at its ends (plait_hair::Strands::central_tangents): the static
+// groom's are the natural spline's directions (Strands::tangents), a
+// per-strand solve this per-point pass does not do. One thread per drawn point;
 // thickness, alpha, colour and strand id are left as they are.
 
 #import plait::frame::frame

@@ -28,6 +28,7 @@
 pub mod animation;
 pub mod asset;
 pub mod camera;
+pub mod curve;
 pub mod environment;
 pub mod follow;
 pub mod groom;

@@ -91,7 +91,8 @@ pub struct StrandVertex {
     pub position: [f32; 3],
     /// Strand thickness at this point (model units).
     pub thickness: f32,
-    /// Unit tangent (central differences; one-sided at the ends).
+    /// Unit tangent: the strand's natural cubic spline's direction at the
+    /// point ([`Strands::tangents`]).
     pub tangent: [f32; 3],
     /// Opacity, 1 - transparency.
     pub alpha: f32,
@@ -304,9 +305,26 @@ impl Strands {
         Aabb::from_points(self.points.iter().copied())
     }
 
-    /// Unit tangents per point, central differences inside a strand and
-    /// one-sided differences at its ends; a degenerate strand gets +Y.
+    /// Unit tangents per point: the directions of the natural cubic spline
+    /// through each strand's points at them ([`crate::curve::knot_directions`],
+    /// the curve the Mitsuba export draws), which the shaders bend between
+    /// as that curve does (`shaders/lib/strand_curve.wgsl`); a degenerate
+    /// strand gets +Y.
     pub fn tangents(&self) -> Vec<Vec3> {
+        let mut out = vec![Vec3::Y; self.points.len()];
+        for r in self.ranges() {
+            let t = crate::curve::knot_directions(&self.points[r.clone()]);
+            out[r].copy_from_slice(&t);
+        }
+        out
+    }
+
+    /// Unit tangents per point as central differences of the points
+    /// (one-sided at a strand's ends; +Y where degenerate): what the
+    /// simulation's per-point GPU interpolation writes for moved points
+    /// (`shaders/passes/sim_interpolate.wgsl`), which cannot solve
+    /// [`Strands::tangents`]'s per-strand system.
+    pub fn central_tangents(&self) -> Vec<Vec3> {
         let mut out = vec![Vec3::Y; self.points.len()];
         for r in self.ranges() {
             let pts = &self.points[r.clone()];
@@ -393,11 +411,11 @@ mod tests {
         assert_eq!(v.len(), 5);
         assert_eq!(i, vec![0, 1, 1, 2, 3, 4]);
         assert_eq!(v[3].strand_id, 1);
-        assert_eq!(
-            v[1].tangent,
-            Vec3::new(2.0, 1.0, 0.0).normalize().to_array()
-        );
-        assert_eq!(v[0].tangent, [1.0, 0.0, 0.0]);
+        let t1 = Vec3::from(v[1].tangent) - Vec3::new(2.0, 1.0, 0.0).normalize();
+        assert!(t1.length() < 1e-6, "{:?}", v[1].tangent);
+        // The natural spline's end: D0 = (1, -0.25, 0) (2 D0 + D1 = 3 (p1 - p0)).
+        let t0 = Vec3::from(v[0].tangent) - Vec3::new(1.0, -0.25, 0.0).normalize();
+        assert!(t0.length() < 1e-6, "{:?}", v[0].tangent);
         assert_eq!(v[4].tangent, [0.0, 1.0, 0.0]);
         for x in &v {
             let t = Vec3::from(x.tangent);

@@ -11,6 +11,7 @@
 #import plait::hair_radiance::hair_radiance
 #import plait::ambient_occlusion::occlusion_at
 #import plait::hair_point::HairPoint
+#import plait::strand_curve::strand_curve_tangent
 
 
 // One drawn strand of `strand_guides` (48 B): ids.w = first vertex, root.w = point count.
@@ -50,7 +51,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let a = hair_vertices[first + i0];
     let b = hair_vertices[first + i1];
     let world = mix(a.position, b.position, f);
-    let tangent = mix(a.tangent, b.tangent, f);
+    // The smooth curve's tangent there, as the fragment path shades about.
+    let tangent = strand_curve_tangent(a.position, b.position, a.tangent, b.tangent, f);
     let color = mix(a.color, b.color, f);
     let occlusion = mix(occlusion_at(first + i0), occlusion_at(first + i1), f);
     strand_radiance[id.x] = vec4<f32>(hair_radiance(shadow_map, world, tangent, color, occlusion), 1.0);

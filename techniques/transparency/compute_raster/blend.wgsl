@@ -44,6 +44,7 @@
 #import plait::strand_coverage::{strand_coverage, strand_tip_scale}
 #import plait::strand_lod::{strand_lod_weight, strand_lod_alpha}
 #import plait::hair_point::{HairPoint, camera_segment}
+#import plait::strand_curve::strand_curve_tangent
 #import plait::loop_budget::loop_budget_spent
 #ifdef GEOMETRY_WISPS
 #import plait::compute_raster::wisp_quad::{wisp_quad, wisp_quad_hit, wisp_vertex, wisp_hair_vertex}
@@ -310,7 +311,8 @@ fn shade_segment(k: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec
     let v0 = hair_vertices[i0];
     let v1 = hair_vertices[i1];
     let world = mix(v0.position, v1.position, along);
-    let tangent = mix(v0.tangent, v1.tangent, along);
+    // The smooth curve's tangent there, as the raster path shades about.
+    let tangent = strand_curve_tangent(v0.position, v1.position, v0.tangent, v1.tangent, along);
     let color = mix(v0.color, v1.color, along);
     let occlusion = mix(occlusion_at(i0), occlusion_at(i1), along);
     return vec4<f32>(hair_radiance(shadow_map, world, tangent, color, occlusion), alpha);
