@@ -8,24 +8,28 @@
 //
 // Written against plait's contract, not copied: (1 - α)^n = exp(-w · n) with
 // w = -ln(1 - α) — the `shadow_weight` every provider and the exact reference
-// use (opacity per hair in front) — and n = Δz / s fibers in front, s = w / k
-// with k = `density`, the same extinction per world unit as the modified
-// shadow map. So TressFX is the modified shadow map (Halén & Wester 2007
-// §3.3.2) with 5×5 PCF and the one-fiber floor. TressFX samples its depth
-// atlas with a linear sampler at 25 offsets; plait reads the 25 texels
-// themselves. "In front of" is the one convention (docs/design.md):
-// `light_lookup`'s depth `in_front_below` = d - ε.
+// use (opacity of a strand covering a whole texel) — and n the fibers in
+// front, each counting its share of the texel (issue 47): Δz / s fibers,
+// s = 1 / `density` (fibers per world unit along the light), each of the
+// groom's mean width over the texel (plait::light_share; TressFX's α is per
+// fiber of whatever width, plait's is per whole texel). So TressFX is the
+// modified shadow map (Halén & Wester 2007 §3.3.2) with 5×5 PCF and the
+// one-fiber floor. TressFX samples its depth atlas with a linear sampler at
+// 25 offsets; plait reads the 25 texels themselves. "In front of" is the one
+// convention (docs/design.md): `light_lookup`'s depth `in_front_below` = d - ε.
 #define_import_path plait::self_shadow::tressfx
 
 #import plait::frame::{frame, light_lookup, light_depth_to_linear, nearest_sampler}
+#import plait::light_share::mean_strand_share
 
 // Nearest hair depth from the light (a `shadow_map` pass drawing hair).
 @group(1) @binding(8) var vis_depth: texture_depth_2d;
 
 struct VisibilityParams {
-    // w = -ln(1 - α): a fiber lets exp(-w) = 1 - α of the light through.
+    // w = -ln(1 - α): a fiber covering a whole texel lets exp(-w) = 1 - α
+    // of the light through.
     shadow_weight: f32,
-    // k = w / s: extinction per world unit of hair behind the first strand.
+    // 1 / s: fibers crossed per world unit along the light.
     density: f32,
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
@@ -40,20 +44,21 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
         return 1.0;
     }
     let w = visibility_params.shadow_weight;
-    // 1 / s: fibers per world unit along the light.
-    let fibers_per_unit = visibility_params.density / max(w, 1e-6);
+    let fibers_per_unit = visibility_params.density;
     let to_world = frame.near_far.w - frame.near_far.z;
     var lit = 0.0;
     for (var j = -KERNEL_LEVEL; j <= KERNEL_LEVEL; j++) {
         for (var i = -KERNEL_LEVEL; i <= KERNEL_LEVEL; i++) {
             // Sampled at texel centres, not loaded: GL cannot textureLoad depth textures.
             let uv = lookup.uv + vec2<f32>(f32(i), f32(j)) / vec2<f32>(size);
-            let first = light_depth_to_linear(textureSampleLevel(vis_depth, nearest_sampler, uv, 0));
-            let behind = (lookup.in_front_below - first) * to_world;
+            let stored = textureSampleLevel(vis_depth, nearest_sampler, uv, 0);
+            let behind = (lookup.in_front_below - light_depth_to_linear(stored)) * to_world;
             if (behind <= 0.0) {
                 lit += 1.0;
             } else {
-                lit += exp(-w * max(behind * fibers_per_unit, 1.0));
+                // Each fiber blocks its share of the texel.
+                let share = mean_strand_share(uv, stored, size);
+                lit += exp(-w * share * max(behind * fibers_per_unit, 1.0));
             }
         }
     }
