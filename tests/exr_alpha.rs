@@ -95,7 +95,9 @@ fn exr_alpha_is_the_coverage_of_the_pixel() {
                 hair.len()
             );
             if background.len() < alphas.len() / 2 || background_alpha != 0.0 {
-                failures.push(format!("{pipeline} {thickness}: background alpha {background_alpha}"));
+                failures.push(format!(
+                    "{pipeline} {thickness}: background alpha {background_alpha}"
+                ));
             }
             if (median / coverage - 1.0).abs() > 0.03 || (sum / area - 1.0).abs() > 0.05 {
                 failures.push(format!(

@@ -117,7 +117,11 @@ fn shadow_integrals(gpu: &Gpu, technique: &str, thickness: f32, extra: &[&str]) 
     sets.extend(extra.iter().map(|s| s.to_string()));
     // `shadow_opaque` and the densities belong to their techniques: the
     // unshadowed frame (self_shadow = none) has no such param.
-    let own = ["params.shadow_opaque", "params.msm_density", "params.tressfx_density"];
+    let own = [
+        "params.shadow_opaque",
+        "params.msm_density",
+        "params.tressfx_density",
+    ];
     let mut none: Vec<String> = sets
         .iter()
         .filter(|s| !own.iter().any(|o| s.starts_with(o)))
@@ -259,13 +263,23 @@ fn depth_only_maps_block_the_share_of_the_groom_width() {
         let sets: Vec<&str> = sets
             .iter()
             .map(String::as_str)
-            .filter(|s| !s.contains(if technique == "tressfx" { "msm" } else { "tressfx" }))
+            .filter(|s| {
+                !s.contains(if technique == "tressfx" {
+                    "msm"
+                } else {
+                    "tressfx"
+                })
+            })
             .collect();
         let measure = |thickness: f32, extra: &[&str]| {
             let mut all = sets.clone();
             all.extend_from_slice(extra);
             let (integral, _, blocked) = shadow_integrals(&gpu, technique, thickness, &all);
-            if technique == "tressfx" { blocked } else { integral }
+            if technique == "tressfx" {
+                blocked
+            } else {
+                integral
+            }
         };
         for thickness in [0.002f32, 0.001] {
             let analytic = kappa * rho * dz * thickness as f64 * LENGTH as f64 / cos_i;
@@ -289,7 +303,10 @@ fn depth_only_maps_block_the_share_of_the_groom_width() {
             off[0] / off[1]
         );
         if (full / half - 2.0).abs() > 0.04 {
-            failures.push(format!("{technique}: halving the width: ratio {:.4}", full / half));
+            failures.push(format!(
+                "{technique}: halving the width: ratio {:.4}",
+                full / half
+            ));
         }
         if (off[0] / off[1] - 1.0).abs() > 0.01 || off[0] < 2.0 * full {
             failures.push(format!(
