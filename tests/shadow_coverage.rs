@@ -244,7 +244,9 @@ fn opaque_fibres_block_their_share_in_the_exact_reference() {
 /// × texel × length ÷ cos i = w · ρ · Δz · width · length ÷ cos i: the
 /// texel cancels, and halving the width halves it. TressFX's 5×5 PCF
 /// averages T, not −ln T: it conserves ∫ (1 − T) dA, which for w · share ·
-/// ρ · Δz ≪ 1 (here ≤ 0.02 at w = 0.05) is the same within 1 %. Before, a
+/// ρ · Δz ≪ 1 (here ≤ 0.033 at w = 0.05) is the same within 2 %. Measured
+/// 0.994–0.995 (MSM) and 0.995–1.002 (TressFX) of the analytic value, and
+/// 2.0016 / 2.0132 for halving the width. Before, a
 /// density constant stood in for ρ · share, and width did not enter (ratio
 /// 1); with coverage off each strand blocks a whole texel (share 1).
 #[test]
@@ -288,7 +290,7 @@ fn depth_only_maps_block_the_share_of_the_groom_width() {
             eprintln!(
                 "{technique}: thickness {thickness}: measured {got:.6}, analytic {analytic:.6}, ratio {ratio:.3}"
             );
-            if (ratio - 1.0).abs() > 0.08 {
+            if (ratio - 1.0).abs() > 0.04 {
                 failures.push(format!("{technique} {thickness}: ratio {ratio:.3}"));
             }
         }
