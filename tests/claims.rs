@@ -143,10 +143,12 @@ fn every_self_shadowing_technique_keeps_its_measured_error() {
 // the exact reference shadows less now (a thin strand blocks its share), so
 // no self-shadowing is nearer it. The depth-only maps carried no share then
 // (MSM 0.1885, TressFX 0.09283, their density a constant k = 0.4); since
-// each strand crossed blocks its share of the light texel (the groom's mean
-// width over the texel, shaders/lib/light_share.wgsl; ρ = 2.67 strands per
-// world unit keeps k = 0.4 with coverage off) they measure 0.1357 and
-// 0.06757 (the density volume's upper bound tightened from 0.063 to 0.0625,
+// each strand crossed blocks its share of a light ray (k = w · ρ · width, ρ
+// strands per unit depth and width, the groom's mean width,
+// shaders/lib/light_share.wgsl; the default ρ = 264.2 gives small at
+// light_size 512 the k of 2.67 strands per texel's column, each blocking its
+// share of the texel, tests/shadow_coverage.rs) they measure 0.1357 and
+// 0.06757 (re-measured after ρ lost the texel: the same values) (the density volume's upper bound tightened from 0.063 to 0.0625,
 // a third of the way to TressFX's new value). The modified shadow map is
 // still further from exact than no self-shadowing: one ρ for every texel
 // cannot tell where the groom is thin.

@@ -3,18 +3,20 @@
 // Halén & Wester 2007 §3.3.2 ("modified shadow map").
 // Cheap (one depth texture), but it cannot tell sparse hair from dense hair.
 //
-// k is not a tuned constant: k = w · ρ · share, the same exp(-w · n) as the
+// k is not a tuned constant: k = w · ρ · width, the same exp(-w · n) as the
 // maps that count (n the shares of the strands in front): ρ strands crossed
-// per world unit along the light in one texel (`density`), each blocking its
-// share of the texel (issue 47) — the groom's mean width over the texel's
-// size where the hair is (plait::light_share), the frustum being fitted per
-// frame — and w the opacity of a strand covering a whole texel
-// (`shadow_weight`). Thinner strands or a coarser map let proportionally more
-// light through.
+// per world unit of depth per world unit of width across the light
+// (`density`), each of the groom's mean width, so a light ray crosses
+// ρ · width of them per world unit of depth (plait::light_share), and w the
+// opacity of a strand covering the whole ray (`shadow_weight`). No light
+// texel in it: a finer or coarser map shadows alike (issue 47); thinner
+// strands let proportionally more light through. With strand coverage off
+// (whole texels) k = w · ρ · texel: each strand crossing the texel's column
+// counts whole.
 #define_import_path plait::self_shadow::modified_shadow_map
 
 #import plait::frame::{frame, light_lookup, light_depth_to_linear, nearest_sampler}
-#import plait::light_share::mean_strand_share
+#import plait::light_share::strands_per_depth
 
 // Nearest hair depth from the light (a `shadow_map` pass drawing hair).
 @group(1) @binding(8) var vis_depth: texture_depth_2d;
@@ -22,7 +24,8 @@
 struct VisibilityParams {
     // w: -ln of what one strand covering a whole texel lets through.
     shadow_weight: f32,
-    // ρ: strands crossed per world unit along the light, behind the first.
+    // ρ: strands crossed per world unit of depth per world unit of width
+    // across the light, behind the first.
     density: f32,
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
@@ -41,7 +44,7 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     if (behind <= 0.0) {
         return 1.0;
     }
-    let share = mean_strand_share(lookup.uv, stored, size);
-    let k = visibility_params.shadow_weight * visibility_params.density * share;
+    let crossed = strands_per_depth(lookup.uv, stored, size, visibility_params.density);
+    let k = visibility_params.shadow_weight * crossed;
     return exp(-k * behind);
 }

@@ -8,19 +8,22 @@
 //
 // Written against plait's contract, not copied: (1 - α)^n = exp(-w · n) with
 // w = -ln(1 - α) — the `shadow_weight` every provider and the exact reference
-// use (opacity of a strand covering a whole texel) — and n the fibers in
-// front, each counting its share of the texel (issue 47): Δz / s fibers,
-// s = 1 / `density` (fibers per world unit along the light), each of the
-// groom's mean width over the texel (plait::light_share; TressFX's α is per
-// fiber of whatever width, plait's is per whole texel). So TressFX is the
-// modified shadow map (Halén & Wester 2007 §3.3.2) with 5×5 PCF and the
-// one-fiber floor. TressFX samples its depth atlas with a linear sampler at
+// use (opacity of a strand covering the whole ray) — and n = Δz / s the
+// fibers a light ray crosses, s = 1 / (ρ · width) the spacing between them
+// along the light: ρ = `density` fibers per world unit of depth per world
+// unit of width across the light, each of the groom's mean width
+// (plait::light_share; no light texel in it, issue 47). The one-fiber floor
+// is the fiber the depth map saw, blocking its share of the texel (its width
+// over the texel, at most 1). With strand coverage off (whole texels) s =
+// 1 / (ρ · texel) and the floor a whole fiber. So TressFX is the modified
+// shadow map (Halén & Wester 2007 §3.3.2) with 5×5 PCF and the one-fiber
+// floor. TressFX samples its depth atlas with a linear sampler at
 // 25 offsets; plait reads the 25 texels themselves. "In front of" is the one
 // convention (docs/design.md): `light_lookup`'s depth `in_front_below` = d - ε.
 #define_import_path plait::self_shadow::tressfx
 
 #import plait::frame::{frame, light_lookup, light_depth_to_linear, nearest_sampler}
-#import plait::light_share::mean_strand_share
+#import plait::light_share::{mean_strand_share, strands_per_depth}
 
 // Nearest hair depth from the light (a `shadow_map` pass drawing hair).
 @group(1) @binding(8) var vis_depth: texture_depth_2d;
@@ -29,7 +32,8 @@ struct VisibilityParams {
     // w = -ln(1 - α): a fiber covering a whole texel lets exp(-w) = 1 - α
     // of the light through.
     shadow_weight: f32,
-    // 1 / s: fibers crossed per world unit along the light.
+    // ρ: fibers crossed per world unit of depth per world unit of width
+    // across the light (1 / s = ρ · width).
     density: f32,
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
@@ -44,7 +48,7 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
         return 1.0;
     }
     let w = visibility_params.shadow_weight;
-    let fibers_per_unit = visibility_params.density;
+    let density = visibility_params.density;
     let to_world = frame.near_far.w - frame.near_far.z;
     var lit = 0.0;
     for (var j = -KERNEL_LEVEL; j <= KERNEL_LEVEL; j++) {
@@ -56,9 +60,9 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
             if (behind <= 0.0) {
                 lit += 1.0;
             } else {
-                // Each fiber blocks its share of the texel.
-                let share = mean_strand_share(uv, stored, size);
-                lit += exp(-w * share * max(behind * fibers_per_unit, 1.0));
+                // Δz / s fibers, at least the one the map saw (its share).
+                let fibers = behind * strands_per_depth(uv, stored, size, density);
+                lit += exp(-w * max(fibers, mean_strand_share(uv, stored, size)));
             }
         }
     }
