@@ -15,5 +15,7 @@ fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
 @fragment
 fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
     let c = textureLoad(scene, vec2<i32>(pixel.xy), 0);
-    return vec4<f32>(c.rgb + (1.0 - c.a) * background_at(pixel.xy), 1.0);
+    // Alpha: the part of the pixel the scene (hair drawn into it included)
+    // covers, 0 where only the background shows (docs/formats.md).
+    return vec4<f32>(c.rgb + (1.0 - c.a) * background_at(pixel.xy), c.a);
 }

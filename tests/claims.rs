@@ -124,9 +124,9 @@ fn every_self_shadowing_technique_keeps_its_measured_error() {
         ("deep_opacity", MEASURED_DOM, (0.0030, 0.0046)),
         ("opacity_shadow_maps", MEASURED_OSM, (0.00030, 0.00040)),
         ("density_clustering", MEASURED_DC, (0.00020, 0.00028)),
-        ("modified_shadow_map", MEASURED_MSM, (0.157, 0.21)),
-        ("tressfx_shadow", MEASURED_TRESSFX, (0.064, 0.096)),
-        ("density_volume", MEASURED_DENSITY_VOLUME, (0.052, 0.063)),
+        ("modified_shadow_map", MEASURED_MSM, (0.124, 0.169)),
+        ("tressfx_shadow", MEASURED_TRESSFX, (0.0651, 0.078)),
+        ("density_volume", MEASURED_DENSITY_VOLUME, (0.052, 0.0625)),
         ("no_self_shadow", MEASURED_NONE, (0.097, 0.12)),
     ];
     let names: Vec<&str> = expected.iter().map(|e| e.0).collect();
@@ -141,15 +141,24 @@ fn every_self_shadowing_technique_keeps_its_measured_error() {
 // (whole texels): occupancy 0.000001148, no slab 0.0005612, DOM-3 0.004802,
 // OSM 0.0003157, DC 0.0002214, MSM 0.1709, TressFX 0.08474, none 0.1269 —
 // the exact reference shadows less now (a thin strand blocks its share), so
-// no self-shadowing is nearer it and the depth-only maps, which carry no
-// share, further.
+// no self-shadowing is nearer it. The depth-only maps carried no share then
+// (MSM 0.1885, TressFX 0.09283, their density a constant k = 0.4); since
+// each strand crossed blocks its share of a light ray (k = w · ρ · width, ρ
+// strands per unit depth and width, the groom's mean width,
+// shaders/lib/light_share.wgsl; the default ρ = 264.2 gives small at
+// light_size 512 the k of 2.67 strands per texel's column, each blocking its
+// share of the texel, tests/shadow_coverage.rs) they measure 0.1357 and
+// 0.06757 (re-measured after ρ lost the texel: the same values) (the density volume's upper bound tightened from 0.063 to 0.0625,
+// a third of the way to TressFX's new value). The modified shadow map is
+// still further from exact than no self-shadowing: one ρ for every texel
+// cannot tell where the groom is thin.
 const MEASURED_OCCUPANCY: f64 = 0.000_126_7;
 const MEASURED_NO_SLAB: f64 = 0.001_038;
 const MEASURED_DOM: f64 = 0.003_699;
 const MEASURED_OSM: f64 = 0.000_344_3;
 const MEASURED_DC: f64 = 0.000_252_5;
-const MEASURED_MSM: f64 = 0.1885;
-const MEASURED_TRESSFX: f64 = 0.09283;
+const MEASURED_MSM: f64 = 0.1357;
+const MEASURED_TRESSFX: f64 = 0.06757;
 const MEASURED_NONE: f64 = 0.09925;
 // The density volume at its default 32³ (issue 43): a voxel spreads a
 // strand's shadow over its cross-section, so a point right behind a strand

@@ -86,29 +86,41 @@ fn inner_outer(scene: &SceneData, ao: &[f32]) -> (f64, f64) {
     )
 }
 
+/// Inner hair darker than outer hair by at least `margin`. With Xing et al.'s
+/// whole-texel counts (`strand_coverage = false`) measured 0.753 / 0.851
+/// (margin 0.05). With strands weighing by their share of a direction's
+/// texel (issue 47, the default) the small groom's 0.01-wide strands block
+/// less, and the two fifths read 0.902 / 0.948: the margin asserted there
+/// is 0.03, re-measured, not the whole-texel 0.05 it no longer reaches.
 #[test]
 fn deep_opacity_directions_visibility_is_in_unit_range_and_deeper_hair_is_darker() {
     let (_lock, gpu) = open_gpu();
     let scene = small_scene();
-    let ao = vertex_ao(&gpu, &scene, DIRECTIONS, &directions(25));
-    assert_eq!(ao.len(), scene.strands.points.len());
-    for (i, &a) in ao.iter().enumerate() {
+    for (coverage, margin, most) in [(false, 0.05, 0.9), (true, 0.03, 0.95)] {
+        let mut sets = directions(25);
+        sets.push(format!("params.strand_coverage={coverage}"));
+        let ao = vertex_ao(&gpu, &scene, DIRECTIONS, &sets);
+        assert_eq!(ao.len(), scene.strands.points.len());
+        for (i, &a) in ao.iter().enumerate() {
+            assert!(
+                (0.0..=1.0).contains(&a),
+                "vertex {i}: visibility {a} outside [0, 1]"
+            );
+        }
+        let (inner, outer) = inner_outer(&scene, &ao);
+        eprintln!(
+            "deep opacity directions (25), coverage {coverage}: inner {inner:.3}, outer {outer:.3}"
+        );
         assert!(
-            (0.0..=1.0).contains(&a),
-            "vertex {i}: visibility {a} outside [0, 1]"
+            outer > inner + margin,
+            "coverage {coverage}: outer hair should see more of the sphere than inner hair by {margin}: outer {outer:.3}, inner {inner:.3}"
+        );
+        let min = ao.iter().copied().fold(f32::INFINITY, f32::min);
+        assert!(
+            min < most,
+            "coverage {coverage}: some hair must be occluded (smallest visibility {min})"
         );
     }
-    let (inner, outer) = inner_outer(&scene, &ao);
-    eprintln!("deep opacity directions (25): inner {inner:.3}, outer {outer:.3}");
-    assert!(
-        outer > inner + 0.05,
-        "outer hair should see more of the sphere than inner hair: outer {outer:.3}, inner {inner:.3}"
-    );
-    let min = ao.iter().copied().fold(f32::INFINITY, f32::min);
-    assert!(
-        min < 0.9,
-        "some hair must be occluded (smallest visibility {min})"
-    );
 }
 
 #[test]

@@ -53,6 +53,10 @@ struct Frame {
     head_model_previous: mat4x4<f32>,
     // The hair's bounding sphere: xyz centre, w radius (world units).
     hair_sphere: vec4<f32>,
+    // x: the strands' mean width (thickness, world units) over every vertex:
+    // what the depth-only self-shadow maps take each strand crossed to be
+    // (plait::light_share); yzw unused.
+    hair_width: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

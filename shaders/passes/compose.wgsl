@@ -44,5 +44,7 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
     }
     let s = textureLoad(scene, vec2<i32>(p), 0);
     let behind = s.rgb + (1.0 - s.a) * background_at(pixel.xy);
-    return vec4<f32>(behind * transmit + hair_rgb, 1.0);
+    // Alpha: the part of the pixel anything covers (hair over the head and
+    // ground; 0 where only the background shows), docs/formats.md.
+    return vec4<f32>(behind * transmit + hair_rgb, 1.0 - transmit * (1.0 - s.a));
 }

@@ -18,5 +18,7 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> @location(0) vec4<f32> {
     let h = textureLoad(hair, p, 0);
     let s = textureLoad(scene, p, 0);
     let behind = s.rgb + (1.0 - s.a) * background_at(pixel.xy);
-    return vec4<f32>(h.rgb + (1.0 - h.a) * behind, 1.0);
+    // Alpha: the part of the pixel anything covers (hair over the head and
+    // ground; 0 where only the background shows), docs/formats.md.
+    return vec4<f32>(h.rgb + (1.0 - h.a) * behind, 1.0 - (1.0 - h.a) * (1.0 - s.a));
 }

@@ -36,11 +36,11 @@ struct HairVertex {
 }
 
 // One direction's frame, padded to 768 bytes so each can be bound as the
-// frame uniform at a 256-byte aligned offset (Frame is 736 bytes since it
-// holds head_model, head_model_previous and hair_sphere).
+// frame uniform at a 256-byte aligned offset (Frame is 752 bytes since it
+// holds head_model, head_model_previous, hair_sphere and hair_width).
 struct DirectionFrame {
     uniforms: Frame,
-    pad: array<vec4<f32>, 2>,
+    pad: vec4<f32>,
 }
 
 struct AoParams {
@@ -106,13 +106,13 @@ fn direction_frame(b: vec3<f32>, center: vec3<f32>, radius: f32) -> Frame {
     f.light_direction = vec4<f32>(b, 0.0);
     f.light_position = vec4<f32>(eye, 0.0);
     f.near_far = vec4<f32>(frame.near_far.xy, near, far);
-    // No lookup jitter: every vertex reads the texel it falls in. Whole
-    // texels (z = 0): the self-shadow maps weigh a strand by its share of a
-    // texel (plait::hair_map), which this pass's maps would take from z = 1;
-    // ambient occlusion keeps Xing et al.'s counts until its own tests say
-    // what shares do to it (measured with shares: small's inner / outer
-    // fifth 0.902 / 0.948, tests/occlusion.rs wants 0.05 between them).
-    f.conventions = vec4<f32>(bias_world / span, 0.0, 0.0, frame.conventions.w);
+    // No lookup jitter: every vertex reads the texel it falls in. Strand
+    // coverage as the scene has it (z): a direction's texel is blocked by
+    // each strand's share of it (plait::hair_map::map_weight, issue 47), as
+    // in the self-shadow maps, so ambient occlusion follows strand width;
+    // with coverage off every fragment blocks a whole texel, Xing et al.'s
+    // counts.
+    f.conventions = vec4<f32>(bias_world / span, 0.0, frame.conventions.z, frame.conventions.w);
     return f;
 }
 

@@ -95,6 +95,15 @@ fn exr_out_holds_float_linear_radiance() {
     assert_eq!(img.dimensions(), (40, 30));
     assert!(img.pixels().all(|p| p.0.iter().all(|v| v.is_finite())));
     assert!(img.pixels().any(|p| p.0[0] > 0.0), "all black");
+    // Alpha is the part of the pixel anything covers (docs/formats.md): 0
+    // where only the background shows, strictly between at the hair's thin
+    // strands (tests/exr_alpha.rs checks the values against coverage).
+    assert!(img.pixels().all(|p| (0.0..=1.0).contains(&p.0[3])));
+    assert!(img.pixels().any(|p| p.0[3] == 0.0), "no background alpha 0");
+    assert!(
+        img.pixels().any(|p| p.0[3] > 0.0 && p.0[3] < 1.0),
+        "no partly covered pixel"
+    );
     // The file itself stores 32-bit floats (pixel type 2 of OpenEXR's
     // chlist), not halves widened by the decoder.
     let bytes = std::fs::read(&out).expect("reads");

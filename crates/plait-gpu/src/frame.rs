@@ -48,6 +48,11 @@ pub struct FrameUniforms {
     /// frame poses it: how big the groom looks from a view
     /// (`plait::geometry::lod` derives its strand count from it).
     pub hair_sphere: [f32; 4],
+    /// x: the strands' mean width (thickness, world units) over every
+    /// vertex — what the depth-only self-shadow maps (modified shadow map,
+    /// TressFX), which keep no strand's width, take each strand crossed to
+    /// be, to block its share of a light texel (issue 47); yzw unused.
+    pub hair_width: [f32; 4],
 }
 
 /// Hair nearer the light than a point by at most this much (world units) is
@@ -157,6 +162,7 @@ impl FrameUniforms {
             head_model: Mat4::IDENTITY.to_cols_array_2d(),
             head_model_previous: Mat4::IDENTITY.to_cols_array_2d(),
             hair_sphere: hair_sphere(hair_bounds),
+            hair_width: [mean_thickness(strands), 0.0, 0.0, 0.0],
         }
     }
 
@@ -331,6 +337,16 @@ fn strand_coverage(
 
 /// The sphere around `bounds` (its centre, half its diagonal); a point for
 /// no hair.
+/// The mean strand thickness over every vertex (summed in f64, as the mean
+/// alpha), 0 without hair.
+fn mean_thickness(strands: &Strands) -> f32 {
+    if strands.thickness.is_empty() {
+        return 0.0;
+    }
+    (strands.thickness.iter().map(|&t| t as f64).sum::<f64>() / strands.thickness.len() as f64)
+        as f32
+}
+
 fn hair_sphere(bounds: Aabb) -> [f32; 4] {
     if !(bounds.min.is_finite() && bounds.max.is_finite()) {
         return [0.0; 4];
@@ -393,6 +409,7 @@ mod tests {
             head_model,
             head_model_previous,
             hair_sphere,
+            hair_width,
         ];
         assert_eq!(wgsl, rust);
         assert_eq!(*span as u64, FRAME_UNIFORMS_SIZE);
