@@ -131,7 +131,7 @@ fn marschner_lobes_against_chiang() {
     let chiang = chiang_lobes();
     let mut failures = Vec::new();
     println!(
-        "| θi | lobe | shift plait | shift Chiang | |φ| plait | |φ| Chiang | energy plait | energy Chiang | ratio |"
+        "| θi | lobe | shift plait | shift Chiang | azimuth plait | azimuth Chiang | energy plait | energy Chiang | ratio |"
     );
     println!("|---:|---|---:|---:|---:|---:|---:|---:|---:|");
     for (k, degrees) in LIGHT_DEGREES.iter().enumerate() {
