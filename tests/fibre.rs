@@ -9,6 +9,9 @@ use std::f64::consts::PI;
 
 use plait_tests::{fixture_texels, repo_root};
 
+#[path = "fibre/lobes.rs"]
+mod lobes;
+
 const AZIMUTHS: usize = 256;
 const ANGLES: usize = 128;
 const LIGHT_DEGREES: [f64; 4] = [0.0, 30.0, 60.0, 80.0];

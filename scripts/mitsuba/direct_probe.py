@@ -59,7 +59,9 @@ def strands(path):
         else:
             cur.append([float(x) for x in f[:4]])
     out.append(np.array(cur))
-    return [c for c in out if len(c) >= 4]
+    # The export ends each file with a segment of radius 0 (write.rs,
+    # `terminator`: a Mitsuba 3.9.1 workaround), no strand of plait's.
+    return [c for c in out if len(c) >= 4 and c[:, 3].any()]
 
 
 def bspline(path):

@@ -261,6 +261,11 @@ pub fn plan(data: &SceneData, size: (u32, u32), fibre: Fibre) -> Result<MitsubaS
          plait's Kajiya-Kay material keys (diffuse, specular, specular_exponent, specular_shift) are not used",
         fibre.longitudinal_roughness, fibre.azimuthal_roughness, fibre.scale_tilt_degrees, fibre.eta
     ));
+    notes.push(
+        "each hair file ends with one segment of radius 0 at its last strand's tip (no surface): \
+         Mitsuba 3.9.1's bsplinecurve reads one segment past the end for a hit at the end of a file's last segment"
+            .to_string(),
+    );
     let mut hair = hair_groups(data, head, fibre, None, &mut notes)?;
     if hair.len() > MAX_EXACT_GROUPS {
         // Rebuilt with every value rounded; the notes said of the exact

@@ -156,13 +156,7 @@ fn the_folder_holds_every_file_the_xml_names() {
     // hair_0.txt: the B-spline's control points, the curve through the
     // strand's points (x y z radius) at its knots.
     let curve = std::fs::read_to_string(dir.path().join("hair_0.txt")).unwrap();
-    let c: Vec<Vec4> = curve
-        .lines()
-        .map(|l| {
-            let f: Vec<f32> = l.split(' ').map(|x| x.parse().unwrap()).collect();
-            Vec4::from_slice(&f)
-        })
-        .collect();
+    let c = &curve_strands(&curve)[0];
     let want = [
         Vec4::new(-0.5, 0.0, 0.0, 0.01),
         Vec4::new(-0.5, -1.0, 0.0, 0.0075),
@@ -349,4 +343,54 @@ fn a_groom_of_distinct_alphas_is_rounded_to_few_groups_and_noted() {
         "{:?}",
         m.notes
     );
+}
+
+/// The strands of a `bsplinecurve` file: control points, blank lines between.
+fn curve_strands(text: &str) -> Vec<Vec<Vec4>> {
+    text.split("\n\n")
+        .map(|strand| {
+            strand
+                .lines()
+                .map(|l| {
+                    let f: Vec<f32> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+                    Vec4::from_slice(&f)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Mitsuba 3.9.1 reads one segment past the end of a curve file for a hit
+/// at the end of its last segment (`write::terminator`): every file the
+/// export writes ends with a segment of radius 0 at the last strand's tip,
+/// after the strands, whose segments keep their indices.
+#[test]
+fn every_curve_file_ends_with_a_segment_no_ray_can_hit() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let m = plan(&two_strands(), (32, 24), standard()).expect("exports");
+    m.write(dir.path()).expect("writes");
+    assert!(
+        m.notes
+            .iter()
+            .any(|n| n.contains("radius 0 at its last strand's tip")),
+        "{:?}",
+        m.notes
+    );
+    for (k, g) in m.hair.iter().enumerate() {
+        let text = std::fs::read_to_string(dir.path().join(format!("hair_{k}.txt"))).unwrap();
+        let strands = curve_strands(&text);
+        assert_eq!(strands.len(), g.strands.len() + 1, "hair_{k}.txt:\n{text}");
+        let tip = *strands[strands.len() - 2].last().unwrap();
+        let last = &strands[strands.len() - 1];
+        assert_eq!(last.len(), 4, "hair_{k}.txt: the terminator is one segment");
+        for c in last {
+            assert_eq!(*c, tip.truncate().extend(0.0), "hair_{k}.txt");
+        }
+        // Every strand before it has a surface: its segments are the ones
+        // Mitsuba's prim_index counts, in plait's order.
+        for (s, points) in strands[..g.strands.len()].iter().zip(&g.strands) {
+            assert_eq!(s.len(), points.len() + 2);
+            assert!(s.iter().all(|c| c.w > 0.0), "hair_{k}.txt: {s:?}");
+        }
+    }
 }

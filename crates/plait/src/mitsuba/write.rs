@@ -192,17 +192,47 @@ impl MitsubaScene {
 /// an axis that ignores the strand. At a `bsplinecurve` hit dp_du runs
 /// around the curve, so the frame's second axis (normal × dp_du) is the
 /// curve's tangent (`scripts/mitsuba/frame_probe.py`).
+///
+/// The file ends with [`terminator`]: one segment of radius 0 after the
+/// last strand, so that no segment with a surface is the file's last.
 fn curve_file(g: &HairGroup) -> String {
     let mut s = String::new();
+    let mut last = None;
     for (i, strand) in g.strands.iter().enumerate() {
         if i > 0 {
             s.push('\n');
         }
         for c in through_points(strand) {
             let _ = writeln!(s, "{} {} {} {}", c.x, c.y, c.z, c.w);
+            last = Some(c);
+        }
+    }
+    if let Some(tip) = last {
+        s.push('\n');
+        for c in terminator(tip) {
+            let _ = writeln!(s, "{} {} {} {}", c.x, c.y, c.z, c.w);
         }
     }
     s
+}
+
+/// Four control points at `tip`'s position with radius 0: a segment with
+/// no surface, which no ray can hit, written after a file's last strand.
+///
+/// Why: Mitsuba 3.9.1's `bsplinecurve` maps a hit to the global curve
+/// parameter v = (segment + u) / segments in f32, and its `partials()`
+/// takes segment = floor(v × segments) without clamping. A hit within
+/// ~3·10⁻⁴ of the end of the file's last segment (the last strand's tip,
+/// with a few thousand segments in the file) rounds v to 1.0 and reads the
+/// segment index one past the end: Dr.Jit's debug mode reports
+/// "out-of-bounds read from position 5984 in an array of size 5984", and
+/// without it `llvm_ad_rgb` segfaults (the built-in scene, 512 spp; the
+/// reproducer is `scripts/mitsuba/tip_crash.py`). With this segment last,
+/// the out-of-range read can happen only on a hit of a radius-0 segment.
+/// The strands' segments keep their indices (`prim_index`) and the scene
+/// its bounding box; the export's notes say it.
+pub(super) fn terminator(tip: Vec4) -> [Vec4; 4] {
+    [tip.truncate().extend(0.0); 4]
 }
 
 /// Control points (position, radius) of the uniform cubic B-spline that
