@@ -10,6 +10,10 @@
 mod figures;
 #[path = "web/page.rs"]
 mod page;
+#[path = "web/shown.rs"]
+mod shown;
+#[path = "web/timing.rs"]
+mod timing;
 
 use image::RgbaImage;
 use page::run_page;
