@@ -81,7 +81,7 @@ with tempfile.TemporaryDirectory() as profile:
          "chromium", "--headless=new", "--no-sandbox", "--enable-unsafe-webgpu",
          "--use-webgpu-adapter=swiftshader", "--enable-unsafe-swiftshader",
          "--disable-background-networking", "--no-first-run",
-         f"--user-data-dir={profile}", "--window-size=1100,560",
+         f"--user-data-dir={profile}", "--window-size=1400,1300",
          "--remote-debugging-pipe", url],
         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
         pass_fds=(cmd_read, res_write))
@@ -96,8 +96,8 @@ with tempfile.TemporaryDirectory() as profile:
                                 flatten=True)["sessionId"]
         # The window's size less the browser's own frame is the viewport:
         # set the page's size itself.
-        devtools.call("Emulation.setDeviceMetricsOverride", session=session, width=1100,
-                      height=560, deviceScaleFactor=1, mobile=False)
+        devtools.call("Emulation.setDeviceMetricsOverride", session=session, width=1400,
+                      height=1300, deviceScaleFactor=1, mobile=False)
         shot = devtools.call("Page.captureScreenshot", session=session, format="png")
         with open(out, "wb") as f:
             f.write(base64.b64decode(shot["data"]))

@@ -12,7 +12,8 @@
 #   bash scripts/web.sh --figures  # issue 44's figures into the book
 #
 # --figures measures (tests/web/figures.rs; CPU-heavy, minutes): the wasm's
-# size and gzipped size, the first frame of occupancy and depth_peeling in
+# size and gzipped size (dev, and release, which it builds first), the
+# first frame of occupancy and depth_peeling in
 # the page on SwiftShader beside lavapipe's, and the gallery pipelines within
 # WebGPU's default limits; it writes them with the commit between the
 # `<!-- web-figures -->` markers of book/src/guide/browser.md.
@@ -20,6 +21,16 @@ set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 if [ "${1:-}" = --figures ]; then
+    # The release profile's wasm too, for its size beside the dev one the
+    # tests load (a second build of wgpu and naga for wasm: long the first
+    # time). PLAIT_WEB_RELEASE_WASM=none leaves it out.
+    if [ -z "${PLAIT_WEB_RELEASE_WASM:-}" ]; then
+        release_site="${CARGO_TARGET_DIR:-$root/target}/web-release"
+        PLAIT_WEB_PROFILE=release bash "$0" "$release_site" >/dev/null
+        export PLAIT_WEB_RELEASE_WASM="$release_site/plait_web_bg.wasm"
+    elif [ "$PLAIT_WEB_RELEASE_WASM" = none ]; then
+        unset PLAIT_WEB_RELEASE_WASM
+    fi
     # Mesa's shader disk cache off: lavapipe's first frame compiles its
     # shaders as the browser's fresh profile does.
     export PLAIT_WEB_FIGURES_PAGE="$root/book/src/guide/browser.md" MESA_SHADER_CACHE_DISABLE=true

@@ -115,8 +115,8 @@ fn native_first_frame(name: &str) -> (f64, String) {
     (started.elapsed().as_secs_f64() * 1e3, engine.adapter())
 }
 
-/// The wasm the page loads: bytes, gzipped bytes, the cargo profile.
-fn wasm_section(wasm: &Path) -> String {
+/// Bytes and `gzip -9` bytes of a file.
+fn sizes(wasm: &Path) -> (u64, usize) {
     let bytes = std::fs::metadata(wasm)
         .unwrap_or_else(|e| panic!("{}: {e}", wasm.display()))
         .len();
@@ -126,11 +126,32 @@ fn wasm_section(wasm: &Path) -> String {
         .output()
         .expect("gzip runs");
     assert!(gzip.status.success(), "gzip failed: {:?}", gzip.status);
-    let profile = std::env::var("PLAIT_WEB_PROFILE").unwrap_or_else(|_| "dev".into());
+    (bytes, gzip.stdout.len())
+}
+
+/// The wasm the page loads (the tests' `dev` profile) and, where
+/// `scripts/web.sh --figures` built one (`PLAIT_WEB_RELEASE_WASM`), the
+/// `release` profile's: bytes and gzipped bytes of each.
+fn wasm_section(wasm: &Path) -> String {
+    let mut rows = vec![("dev", sizes(wasm))];
+    let release = std::env::var_os("PLAIT_WEB_RELEASE_WASM");
+    if let Some(release) = &release {
+        rows.push(("release", sizes(Path::new(release))));
+    }
+    let rows: Vec<String> = rows
+        .iter()
+        .map(|(profile, (bytes, gz))| format!("| `{profile}` | {bytes} | {gz} |"))
+        .collect();
+    let release_note = if release.is_some() {
+        ""
+    } else {
+        " (no release build: `PLAIT_WEB_RELEASE_WASM` unset)"
+    };
     format!(
-        "**The wasm** (`plait_web_bg.wasm` after wasm-bindgen, cargo profile `{profile}`): \
-         {bytes} bytes, {} bytes with `gzip -9`.\n",
-        gzip.stdout.len()
+        "**The wasm** (`plait_web_bg.wasm` after wasm-bindgen, by cargo profile{release_note}; \
+         the tests and the site build `dev`):\n\n\
+         | profile | bytes | with `gzip -9` |\n|---|---|---|\n{}\n",
+        rows.join("\n")
     )
 }
 

@@ -34,6 +34,18 @@ pub struct Outcome {
     /// The frame's report (`FrameReport` as JSON); null when it failed.
     #[serde(default)]
     pub report: Option<serde_json::Value>,
+    /// The GPU-time table's cells as shown, row by row (pass, type,
+    /// technique, GPU ms, note).
+    #[serde(default)]
+    pub table: Vec<Vec<String>>,
+    /// The line naming the missing timestamp feature, when shown.
+    #[serde(default)]
+    pub missing: Option<String>,
+    /// The schedule's SVG as the page put it in, and whether an `<svg>` is drawn.
+    #[serde(default)]
+    pub graph: Option<String>,
+    #[serde(default)]
+    pub graph_drawn: bool,
 }
 
 /// Where [`build_site`] writes the site: `web-test` in the build folder.

@@ -10,7 +10,10 @@ software Vulkan driver (lavapipe): `apt-get install -y mesa-vulkan-drivers` (Deb
 /// Optional capabilities plait uses when the adapter has them.
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct Capabilities {
-    /// Per-pass GPU timings (`TIMESTAMP_QUERY` + `TIMESTAMP_QUERY_INSIDE_ENCODERS`).
+    /// Timestamps written anywhere in an encoder (`TIMESTAMP_QUERY` +
+    /// `TIMESTAMP_QUERY_INSIDE_ENCODERS`), as benchmarks write them. Frames
+    /// also carry per-pass times with `TIMESTAMP_QUERY` alone
+    /// ([`Gpu::timestamp_way`]).
     pub timestamps: bool,
     /// Additive blending into 32-bit float targets (`FLOAT32_BLENDABLE`).
     pub float32_blendable: bool,
@@ -237,6 +240,21 @@ impl Gpu {
             pipelines: Default::default(),
             uncaptured,
         })
+    }
+
+    /// How passes are timed on this device: inside the encoder where the
+    /// adapter allows it (native), through pass descriptors where it has
+    /// `TIMESTAMP_QUERY` alone (a browser's WebGPU), `None` without
+    /// timestamps ([`crate::timing`]).
+    pub fn timestamp_way(&self) -> Option<crate::timing::TimestampWay> {
+        let features = self.device.features();
+        if self.capabilities.timestamps {
+            Some(crate::timing::TimestampWay::InsideEncoders)
+        } else if features.contains(wgpu::Features::TIMESTAMP_QUERY) {
+            Some(crate::timing::TimestampWay::PassDescriptors)
+        } else {
+            None
+        }
     }
 
     /// `llvmpipe (LLVM 15.0.6, 256 bits)`.

@@ -13,7 +13,8 @@ use crate::pass::{
     BuildContext, FrameSamplers, PassLibrary, PreparedPass, RecordContext, frame_layout,
 };
 use crate::pool::ResourcePool;
-use crate::readback::{TexelData, map_buffer, map_buffer_async, read_texture_async};
+use crate::readback::{TexelData, map_buffer, read_texture_async};
+use crate::timing::Timestamps;
 use crate::{Gpu, GpuError};
 
 /// GPU time of one pass.
@@ -37,7 +38,9 @@ pub struct PassTiming {
 pub struct FrameReport {
     pub passes: Vec<PassTiming>,
     /// First timestamp to last: the frame on the GPU (not the sum of passes,
-    /// which double-counts overlap on pipelined GPUs).
+    /// which double-counts overlap on pipelined GPUs). Through pass
+    /// descriptors ([`crate::timing`]) the first pass's begin to the last
+    /// one's end.
     pub total_gpu_ms: Option<f64>,
     /// Every overflow counter the schedule declares, as this frame left it:
     /// what each bounded buffer could not hold ([`Overflow::dropped`]).
@@ -56,13 +59,6 @@ impl FrameReport {
     pub fn incomplete(&self) -> impl Iterator<Item = &Overflow> {
         self.overflow.iter().filter(|o| o.incomplete > 0)
     }
-}
-
-struct Timestamps {
-    queries: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    readback: wgpu::Buffer,
-    period_ns: f32,
 }
 
 /// A schedule ready to render on a device.
@@ -171,30 +167,9 @@ impl<'g> Renderer<'g> {
                 });
             }
         }
-        let timestamps = gpu.capabilities.timestamps.then(|| {
-            let count = (schedule.passes.len() as u32 + 1).max(2);
-            let size = count as u64 * 8;
-            Timestamps {
-                queries: device.create_query_set(&wgpu::QuerySetDescriptor {
-                    label: Some("pass timestamps"),
-                    ty: wgpu::QueryType::Timestamp,
-                    count,
-                }),
-                resolve: device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("timestamp resolve"),
-                    size,
-                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                }),
-                readback: device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("timestamp readback"),
-                    size,
-                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                }),
-                period_ns: gpu.queue.get_timestamp_period(),
-            }
-        });
+        let timestamps = gpu
+            .timestamp_way()
+            .map(|way| Timestamps::new(device, &gpu.queue, way, schedule.passes.len()));
         let overflow = OverflowReadback::new(device, &schedule, &pool);
         Ok(Renderer {
             gpu,
@@ -286,13 +261,17 @@ impl<'g> Renderer<'g> {
             geometry: &self.geometry,
             pool: &self.pool,
             schedule: &self.schedule,
+            timestamps: self.timestamps.as_ref(),
         };
         if let Some(ts) = &self.timestamps {
-            encoder.write_timestamp(&ts.queries, 0);
+            ts.frame_start(&mut encoder);
         }
         let first_frame = self.first_frame();
         let skipped = |i: usize| self.schedule.passes[i].run_once && !first_frame;
         for (i, pass) in self.passes.iter().enumerate() {
+            if let Some(ts) = &self.timestamps {
+                ts.pass_start(i);
+            }
             if !skipped(i) {
                 encoder.push_debug_group(&self.schedule.passes[i].name);
                 pass.record_async(&ctx, &mut encoder).await;
@@ -304,13 +283,11 @@ impl<'g> Renderer<'g> {
                 self.record_history(&mut encoder);
             }
             if let Some(ts) = &self.timestamps {
-                encoder.write_timestamp(&ts.queries, i as u32 + 1);
+                ts.pass_end(i, &mut encoder);
             }
         }
         if let Some(ts) = &self.timestamps {
-            let n = self.passes.len() as u32 + 1;
-            encoder.resolve_query_set(&ts.queries, 0..n, &ts.resolve, 0);
-            encoder.copy_buffer_to_buffer(&ts.resolve, 0, &ts.readback, 0, n as u64 * 8);
+            ts.resolve(&mut encoder);
         }
         encoder.finish()
     }
@@ -338,19 +315,15 @@ impl<'g> Renderer<'g> {
         }
         // The timestamps' and counters' readbacks come before the check of
         // errors raised outside a scope: in a browser those arrive with them.
-        let mut times: Option<Vec<u64>> = None;
+        let mut times = None;
         if let Some(ts) = &self.timestamps {
-            let bytes = map_buffer_async(device, &ts.readback)
-                .await
-                .map_err(|message| GpuError::Readback {
-                    resource: "timestamps".into(),
-                    message,
-                })?;
             times = Some(
-                bytes
-                    .chunks_exact(8)
-                    .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-                    .collect(),
+                ts.read(device)
+                    .await
+                    .map_err(|message| GpuError::Readback {
+                        resource: "timestamps".into(),
+                        message,
+                    })?,
             );
         }
         let overflow = self.overflow.read(device, &self.schedule).await?;
@@ -368,8 +341,6 @@ impl<'g> Renderer<'g> {
                     message,
                 })?;
         }
-        let ms = |a: u64, b: u64, period: f32| b.saturating_sub(a) as f64 * period as f64 / 1e6;
-        let period = self.timestamps.as_ref().map(|t| t.period_ns).unwrap_or(1.0);
         let mut last_ms = self.last_ms.lock().unwrap_or_else(|e| e.into_inner());
         let passes = self
             .schedule
@@ -378,7 +349,7 @@ impl<'g> Renderer<'g> {
             .enumerate()
             .map(|(i, p)| {
                 if !skipped(i) {
-                    last_ms[i] = times.as_ref().map(|t| ms(t[i], t[i + 1], period));
+                    last_ms[i] = times.as_ref().and_then(|t| t.passes[i]);
                 }
                 PassTiming {
                     name: p.name.clone(),
@@ -391,9 +362,7 @@ impl<'g> Renderer<'g> {
             .collect();
         self.frames_rendered
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let total_gpu_ms = times
-            .as_ref()
-            .map(|t| ms(t[0], t[self.passes.len()], period));
+        let total_gpu_ms = times.as_ref().and_then(|t| t.total);
         Ok(FrameReport {
             passes,
             total_gpu_ms,

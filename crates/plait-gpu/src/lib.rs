@@ -20,6 +20,7 @@ pub mod reflect;
 pub mod shader;
 pub mod strand_structure;
 pub mod support;
+pub mod timing;
 pub mod wait;
 
 pub use device::{Capabilities, Gpu, NO_ADAPTER_HELP};
@@ -28,6 +29,7 @@ pub use overflow::Overflow;
 pub use pass::{PassLibrary, PassType};
 pub use shader::{Define, ShaderError, ShaderLibrary};
 pub use support::{AdapterSupport, Unsupported};
+pub use timing::TimestampWay;
 
 /// Failures of the GPU side. Messages name the pass or shader at fault.
 #[derive(Debug, thiserror::Error)]

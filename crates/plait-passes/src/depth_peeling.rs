@@ -277,7 +277,8 @@ impl Peeling {
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: None,
+            // The pass's first wgpu pass: where its time begins in a browser.
+            timestamp_writes: ctx.render_timestamps(),
             occlusion_query_set: None,
             multiview_mask: None,
         });

@@ -29,20 +29,29 @@ function draw(frame) {
   canvas.getContext('2d').putImageData(new ImageData(pixels, frame.width, frame.height), 0, 0);
 }
 
-function showTimings(report, notes) {
+// The table `plait render` prints (the engine builds its rows): pass, type,
+// technique, GPU ms; culled passes with their reason; the frame last. Without
+// timestamp queries the times are `n/a` and the line below names the feature.
+function showTimings(timings, notes) {
   const body = $('timings').tBodies[0];
   body.replaceChildren();
-  for (const p of report.passes) {
+  for (const r of timings.rows) {
     const row = body.insertRow();
-    row.insertCell().textContent = p.name;
-    row.insertCell().textContent = p.gpu_ms == null ? 'no timestamp queries' : p.gpu_ms.toFixed(3) + ' ms';
+    for (const text of [r.pass, r.type_name, r.technique, r.gpu_ms]) row.insertCell().textContent = text;
+    row.insertCell().textContent = r.note || '';
   }
-  if (report.total_gpu_ms != null) {
-    const row = body.insertRow();
-    row.insertCell().textContent = 'frame';
-    row.insertCell().textContent = report.total_gpu_ms.toFixed(3) + ' ms';
-  }
+  $('no-timestamps').textContent = timings.missing ? `(${timings.missing})` : '';
+  $('no-timestamps').hidden = !timings.missing;
   $('notes').replaceChildren(...notes.map((n) => Object.assign(document.createElement('li'), { textContent: n })));
+}
+
+// The schedule as `plait graph --format svg` draws it; redrawn when it changes.
+function showGraph(svg) {
+  const box = $('graph');
+  if (box.dataset.svg !== svg) {
+    box.innerHTML = svg;
+    box.dataset.svg = svg;
+  }
 }
 
 function showControls(controls) {
@@ -68,7 +77,8 @@ function showControls(controls) {
 }
 
 // One frame at a time; a change while one renders asks for one more.
-// Resolves to the frame's report, or null when the engine refused or failed.
+// Resolves to the frame's report and timing table, or null when the engine
+// refused or failed.
 async function render() {
   if (state.busy) { state.again = true; return null; }
   state.busy = true;
@@ -77,11 +87,13 @@ async function render() {
     const frame = await engine.render(request());
     draw(frame);
     const report = JSON.parse(frame.report);
-    showTimings(report, JSON.parse(frame.notes));
+    const timings = JSON.parse(frame.timings);
+    showTimings(timings, JSON.parse(frame.notes));
+    showGraph(frame.graph);
     showControls(JSON.parse(frame.controls));
     $('error').hidden = true;
     $('status').textContent = `${state.pipeline}: ${(performance.now() - started).toFixed(0)} ms`;
-    return report;
+    return { report, timings };
   } catch (e) {
     // The last good frame stays; the error is the CLI's text.
     $('error').textContent = String(e);
@@ -126,12 +138,18 @@ async function test(entries, width, height) {
   for (const entry of entries) {
     choose(entry);
     const started = performance.now();
-    const report = await render();
+    const done = await render();
     const ms = performance.now() - started;
     const canvas = $('view');
     const shown = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
+    // What the page shows beside the picture, as text: the timing table's
+    // cells row by row, the line naming a missing feature, the graph's SVG.
+    const table = Array.from($('timings').tBodies[0].rows, (row) => Array.from(row.cells, (c) => c.textContent));
+    const missing = $('no-timestamps').hidden ? null : $('no-timestamps').textContent;
     results.push({ pipeline: entry, ms, error: $('error').hidden ? null : $('error').textContent,
-      width: canvas.width, height: canvas.height, pixels: Array.from(shown.data), report });
+      width: canvas.width, height: canvas.height, pixels: Array.from(shown.data), report: done && done.report,
+      table, missing, graph: $('graph').dataset.svg || null,
+      graph_drawn: $('graph').querySelector('svg') != null });
   }
   return results;
 }

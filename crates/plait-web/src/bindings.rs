@@ -47,7 +47,8 @@ impl WebEngine {
 
     /// Renders the request (JSON: pipeline, width, height, sets, yaw,
     /// pitch); resolves to `{width, height, pixels, report, notes,
-    /// controls}`, the last three as JSON.
+    /// controls, timings, graph}`: the report, notes, controls and timings
+    /// as JSON, the graph as SVG text.
     pub fn render(&self, request: &str) -> js_sys::Promise {
         let inner = self.inner.clone();
         let request: Result<Request, String> =
@@ -78,6 +79,9 @@ impl WebEngine {
             set(&out, "notes", &notes.into())?;
             let controls = serde_json::to_string(&frame.controls).unwrap_or_default();
             set(&out, "controls", &controls.into())?;
+            let timings = serde_json::to_string(&frame.timings).unwrap_or_default();
+            set(&out, "timings", &timings.into())?;
+            set(&out, "graph", &frame.graph.into())?;
             Ok(out.into())
         })
     }

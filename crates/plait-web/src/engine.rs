@@ -49,6 +49,10 @@ pub struct Frame {
     pub notes: Vec<String>,
     /// The built pipeline's choice points and params, for the page's controls.
     pub controls: Controls,
+    /// The GPU-time table as `plait render` prints it.
+    pub timings: crate::timings::Timings,
+    /// The compiled schedule drawn as `plait graph --format svg` draws it.
+    pub graph: String,
 }
 
 /// A choice point of the built pipeline and what can fill it.
@@ -153,9 +157,10 @@ impl Engine {
         format!("{} ({})", self.gpu.adapter_name(), self.gpu.backend_name())
     }
 
-    /// Whether frames carry per-pass GPU times.
+    /// Whether frames carry per-pass GPU times: in a browser through the
+    /// passes' `timestampWrites` ([`plait_gpu::timing`]).
     pub fn timestamps(&self) -> bool {
-        self.gpu.capabilities.timestamps
+        self.gpu.timestamp_way().is_some()
     }
 
     /// Render `req`; an error is the text the CLI gives for the same
@@ -192,7 +197,11 @@ impl Engine {
             .await
             .map_err(|e| e.to_string())?;
         let image = texels.to_image();
+        let schedule = prepared.schedule();
+        let timed = self.gpu.timestamp_way().is_some();
         Ok(Frame {
+            timings: crate::timings::Timings::of(schedule, &checked.report, timed),
+            graph: plait_graph::to_svg(schedule),
             width: image.width(),
             height: image.height(),
             rgba: image.into_raw(),

@@ -9,6 +9,7 @@
 
 pub mod engine;
 pub mod orbit;
+pub mod timings;
 
 #[cfg(target_arch = "wasm32")]
 pub mod bindings;

@@ -165,6 +165,23 @@ pub struct RecordContext<'a> {
     pub geometry: &'a SceneGeometry,
     pub pool: &'a ResourcePool,
     pub schedule: &'a Schedule,
+    /// The frame's timestamps: a pass that begins wgpu render or compute
+    /// passes itself gives each [`RecordContext::render_timestamps`] or
+    /// [`RecordContext::compute_timestamps`] as its `timestamp_writes`, which
+    /// is how a browser (WebGPU: no timestamps inside encoders) times it.
+    pub timestamps: Option<&'a crate::timing::Timestamps>,
+}
+
+impl<'a> RecordContext<'a> {
+    /// The `timestamp_writes` of a render pass this pass begins.
+    pub fn render_timestamps(&self) -> Option<wgpu::RenderPassTimestampWrites<'a>> {
+        self.timestamps.and_then(|t| t.render_writes())
+    }
+
+    /// The `timestamp_writes` of a compute pass this pass begins.
+    pub fn compute_timestamps(&self) -> Option<wgpu::ComputePassTimestampWrites<'a>> {
+        self.timestamps.and_then(|t| t.compute_writes())
+    }
 }
 
 /// The library of one session: the pass types available to it, by name,

@@ -89,7 +89,7 @@ impl ShaderPass {
             } => {
                 let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some(&self.name),
-                    timestamp_writes: None,
+                    timestamp_writes: ctx.compute_timestamps(),
                 });
                 cpass.set_pipeline(pipeline);
                 cpass.set_bind_group(0, ctx.frame_bind_group, &[]);
@@ -169,7 +169,7 @@ impl ShaderPass {
                     label: Some(&self.name),
                     color_attachments: &color_attachments,
                     depth_stencil_attachment: depth_attachment,
-                    timestamp_writes: None,
+                    timestamp_writes: ctx.render_timestamps(),
                     occlusion_query_set: query.map(|(q, _)| q),
                     multiview_mask: None,
                 });
