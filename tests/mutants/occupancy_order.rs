@@ -45,32 +45,40 @@ fn with_opaque_strands_frame_and_pixel_mean_alpha_agree() {
     assert!(rmse < 1e-4, "RMSE {rmse}");
 }
 
-/// `order_slices` is any multiple of 32 (technique.toml): at 32, one word per
-/// pixel, the order estimate still blends the small scene (paper strands,
-/// alpha 0.8) near the exact order of per-pixel lists: its RMSE against
-/// them within 2× the default 128 slices' (measured 0.000622 and 0.000395,
-/// printed). Kills, in
-/// `techniques/transparency/occupancy_order/hair.wgsl`'s `camera_order`, the
-/// no-maps test `words == 0u` → `1u` (67:40: every fragment's order 0 at one
-/// word) and `max(words, 1u)` → `2u` (50:98: slices read past the pixel's
-/// one word), which the default 128 slices (4 words) never reach.
+/// `order_slices` is any multiple of 32 and `order_slabs` any count of
+/// counters (technique.toml): at 32 slices (one word per pixel) and at one
+/// slab, the order estimate still blends the small scene (paper strands,
+/// alpha 0.8) near the exact order of per-pixel lists: its RMSE against them
+/// within 2× the defaults' (128 slices, 4 slabs; the three printed). Kills,
+/// in `techniques/transparency/occupancy_order/hair.wgsl`'s `camera_order`,
+/// the no-maps test `words == 0u` → `1u` (67:40: every fragment's order 0
+/// at one word), `max(words, 1u)` → `2u` and `max(slabs, 1u)` → `2u` (50:98:
+/// a slice or a counter read past the pixel's own), which the defaults
+/// never reach.
 #[test]
-fn one_word_of_camera_slices_still_orders_the_fragments() {
+fn one_word_of_camera_slices_or_one_slab_still_orders_the_fragments() {
     let (_lock, gpu) = open_gpu();
     let scene = one_alpha(0.8);
     let off = "params.strand_coverage=false";
     let exact = render(&gpu, &scene, &[off, "techniques.transparency=linked_list"]);
-    let rmse = |slices: &str| {
-        let sets = [off, slices];
+    let rmse = |slices: u32, slabs: u32| {
+        let slices = format!("params.order_slices={slices}");
+        let slabs = format!("params.order_slabs={slabs}");
+        let sets = [off, slices.as_str(), slabs.as_str()];
         plait_compare::rmse(&exact, &render(&gpu, &scene, &sets)).expect("same size")
     };
-    let (at_128, at_32) = (
-        rmse("params.order_slices=128"),
-        rmse("params.order_slices=32"),
-    );
-    eprintln!("RMSE against linked lists: 128 slices {at_128:.6}, 32 slices {at_32:.6}");
-    assert!(
-        at_32 <= 2.0 * at_128,
-        "32 slices: RMSE {at_32} against the lists, 128 slices: {at_128}"
-    );
+    let default = rmse(128, 4);
+    let mut failures = Vec::new();
+    for (slices, slabs) in [(32, 4), (128, 1)] {
+        let e = rmse(slices, slabs);
+        eprintln!(
+            "RMSE against linked lists: {slices} slices, {slabs} slabs {e:.6} (128, 4: {default:.6})"
+        );
+        if e > 2.0 * default {
+            failures.push(format!(
+                "{slices} slices, {slabs} slabs: RMSE {e}, defaults {default}"
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
