@@ -14,6 +14,7 @@ mod linked_list;
 mod marschner;
 mod occupancy;
 mod occupancy_order;
+mod tone_mapping;
 
 use plait::session::{SceneData, prepare};
 use plait_tests::{open_gpu, repo_root};
