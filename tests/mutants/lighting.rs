@@ -50,13 +50,13 @@ fn irradiance_maps_at_the_most_intervals_match_the_cpu_sum() {
 }
 
 /// The ambient lighting's hair term as the tangent turns from along the eye
-/// to away from it (`tests/fixtures/ambient_cases.wgsl`): L_a · (kd · base
-/// + ks · sin²(θ′)), θ′ the tangent-to-eye angle plus the scene's shift,
-/// within 1e-4 of the largest term (measured: printed), where the angle
-/// comes from the dot product through acos only in the shader. The gallery's
-/// strands rarely point within 26° of away from the eye. Kills, in
-/// `techniques/lighting/ambient/lighting.wgsl`, the clamp of cos(T, E) at
-/// −1.0 → −0.9 and → −1.1 (15:66: the first binds where cos < −0.9).
+/// to away from it (`tests/fixtures/ambient_cases.wgsl`) is its closed form
+/// L_a · (kd · base + ks · sin²(θ′)), θ′ the tangent-to-eye angle plus the
+/// scene's shift, within 1e-4 of the largest term (measured: printed); the
+/// angle comes from the dot product through acos only in the shader. The
+/// gallery's strands rarely point within 26° of away from the eye. Kills,
+/// in `techniques/lighting/ambient/lighting.wgsl`, the clamp of cos(T, E)
+/// at −1.0 → −0.9 (15:66: it binds where cos < −0.9).
 #[test]
 fn ambient_matches_its_closed_form_as_the_tangent_turns_from_the_eye() {
     let read = plait_tests::fixture_texels("ambient_cases.toml", (64, 2), &["cases"]);
