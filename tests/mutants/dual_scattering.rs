@@ -235,3 +235,32 @@ fn dual_scattering_of_a_grey_fibre_is_grey() {
     failures.truncate(8);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `hair_multiple_scattering` composes the per-channel term at the half
+/// angle θh = (θi + θo)/2 of the light's and the eye's inclinations (Zinke
+/// et al. 2008 §4, Marschner et al. 2003 §4.1's θh): from unit vectors
+/// (fibre along +x, light at θi = 0.4 rad, fully lit, eye over a grid of θo
+/// and φ) it equals `channel` called with that θh, red and blue, within
+/// 1e-4 of the largest term (measured: equal to the bit).
+/// The direction-free fixtures (`dual_scattering_cases`, `ds_lookup`) hand
+/// `channel` its θh and cannot see this. Kills, in
+/// `techniques/multiple_scattering/dual_scattering/multiple_scattering.wgsl`,
+/// `0.5 * (theta_i + theta_o)` → `0.5 * (theta_i)` (θh without θo).
+#[test]
+fn dual_scattering_reads_the_half_angle_of_light_and_eye() {
+    let read = fixture_texels("ds_angles.toml", (16, 48), &["cases"]);
+    let largest = read[0]
+        .iter()
+        .flat_map(|t| [t[1].abs(), t[3].abs()])
+        .fold(0.0_f32, f32::max);
+    let worst = read[0]
+        .iter()
+        .flat_map(|t| [(t[0] - t[1]).abs(), (t[2] - t[3]).abs()])
+        .fold(0.0_f32, f32::max);
+    eprintln!("largest term {largest:e}; composed vs channel at (θi + θo)/2: {worst:e}");
+    assert!(largest > 1e-3, "the terms are empty ({largest})");
+    assert!(
+        worst <= 1e-4 * largest,
+        "hair_multiple_scattering differs from channel at θh = (θi + θo)/2 by {worst} (largest term {largest})"
+    );
+}

@@ -9,9 +9,12 @@ mod dual_scattering;
 mod exact;
 mod hair_fragment;
 mod kajiya_kay;
+mod lighting;
 mod linked_list;
 mod marschner;
 mod occupancy;
+mod occupancy_order;
+mod tone_mapping;
 
 use plait::session::{SceneData, prepare};
 use plait_tests::{open_gpu, repo_root};
