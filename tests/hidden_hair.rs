@@ -54,8 +54,20 @@ fn add_hidden_strands(strands: &mut plait_hair::Strands, count: usize) {
     add_strands(strands, count, Vec3::ZERO);
 }
 
-/// [`add_hidden_strands`]'s strands, moved by `offset`.
+/// [`add_hidden_strands`]'s strands, moved by `offset`. They are as wide as
+/// the groom's mean strand (the mean over its points, as `frame.hair_width`
+/// takes it): the depth-only shadow maps take the whole groom's mean width
+/// (issue 47), so strands of another width would change every strand's
+/// shadow by design, hidden or not. What this file checks is that hidden
+/// hair is never drawn into a map.
 fn add_strands(strands: &mut plait_hair::Strands, count: usize, offset: Vec3) {
+    // (0.01 into an empty groom: these strands are then the whole groom.)
+    let mean = if strands.thickness.is_empty() {
+        0.01
+    } else {
+        (strands.thickness.iter().map(|&t| t as f64).sum::<f64>()
+            / strands.thickness.len() as f64) as f32
+    };
     for i in 0..count {
         let a = i as f32 * 2.399_963; // golden angle: spread without randomness
         let r = 0.15 + 0.3 * ((i * 7 % count) as f32 / count as f32);
@@ -68,7 +80,7 @@ fn add_strands(strands: &mut plait_hair::Strands, count: usize, offset: Vec3) {
         let points: Vec<Vec3> = (0..8)
             .map(|k| start + Vec3::new(0.03 * k as f32, -0.04 * k as f32, 0.02 * k as f32))
             .collect();
-        strands.push_strand(&points, |_| 0.01, |_| 0.8, Vec3::new(0.9, 0.2, 0.1));
+        strands.push_strand(&points, |_| mean, |_| 0.8, Vec3::new(0.9, 0.2, 0.1));
     }
 }
 

@@ -195,8 +195,8 @@ fn viewer_reloads_a_broken_then_fixed_shader_and_its_screenshot_matches_render()
 
     // Fix it differently (half brightness), so the reload is visible in the image.
     let fixed = original.replace(
-        "return vec4<f32>(c.rgb + (1.0 - c.a) * background_at(pixel.xy), 1.0);",
-        "return vec4<f32>(0.5 * (c.rgb + (1.0 - c.a) * background_at(pixel.xy)), 1.0);",
+        "return vec4<f32>(c.rgb + (1.0 - c.a) * background_at(pixel.xy), c.a);",
+        "return vec4<f32>(0.5 * (c.rgb + (1.0 - c.a) * background_at(pixel.xy)), c.a);",
     );
     assert_ne!(
         fixed, original,

@@ -132,7 +132,7 @@ fn provider_params(visibility: &str) -> &'static [&'static str] {
         "occupancy" | "opacity_shadow_maps" | "density_clustering" => &["shadow_weight"],
         "deep_opacity" => &["shadow_weight", "layer_size"],
         "exact" => &["shadow_weight", "shadow_opaque"],
-        "modified_shadow_map" => &["density"],
+        "modified_shadow_map" => &["shadow_weight", "density"],
         _ => &[],
     }
 }

@@ -136,7 +136,11 @@ fn a_tiny_run_reports_every_variant_and_writes_its_files() {
 #[test]
 fn two_sweeps_give_every_combination_in_one_report() {
     let mut options = tiny(&["pipelines/forward.toml"], "pipelines/forward.toml");
-    options.sets = vec!["params.light_size=256".into()];
+    // The reference at one of the sweep's points (forward.toml's own density is 264.2).
+    options.sets = vec![
+        "params.light_size=256".into(),
+        "params.hair_density=40".into(),
+    ];
     options.sweeps = vec![
         SweepSpec::parse("params.hair_density=10,40").expect("sweep"),
         SweepSpec::parse("params.light_size=128,256").expect("sweep"),
