@@ -65,8 +65,8 @@ fn add_strands(strands: &mut plait_hair::Strands, count: usize, offset: Vec3) {
     let mean = if strands.thickness.is_empty() {
         0.01
     } else {
-        (strands.thickness.iter().map(|&t| t as f64).sum::<f64>()
-            / strands.thickness.len() as f64) as f32
+        (strands.thickness.iter().map(|&t| t as f64).sum::<f64>() / strands.thickness.len() as f64)
+            as f32
     };
     for i in 0..count {
         let a = i as f32 * 2.399_963; // golden angle: spread without randomness
