@@ -11,6 +11,7 @@
 
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
+use plait_tests::vertex_ao::{correlation, inner_outer, mean_abs_diff, vertex_ao_report};
 use plait_tests::{open_gpu, repo_root};
 
 const SIZE: (u32, u32) = (64, 48);
@@ -26,64 +27,13 @@ const CYLINDERS: &str = "cylinders";
 /// Per-vertex ambient visibility by the `ambient_occlusion` technique
 /// `technique` with `sets`, one value per hair vertex.
 fn vertex_ao(gpu: &Gpu, scene: &SceneData, technique: &str, sets: &[String]) -> Vec<f32> {
-    let (ao, report) = vertex_ao_report(gpu, scene, technique, sets);
+    let (ao, report) = vertex_ao_report(gpu, scene, technique, sets, SIZE);
     plait::overflow::check_frame(&report).unwrap_or_else(|e| panic!("{technique} {sets:?}: {e}"));
     ao
 }
 
-/// [`vertex_ao`] and the frame's report (its overflow counters).
-fn vertex_ao_report(
-    gpu: &Gpu,
-    scene: &SceneData,
-    technique: &str,
-    sets: &[String],
-) -> (Vec<f32>, plait_gpu::FrameReport) {
-    let pipeline = repo_root().join("tests/fixtures/ambient_occlusion.toml");
-    let mut all = vec![format!("techniques.ambient_occlusion={technique}")];
-    all.extend(sets.iter().cloned());
-    let prepared = prepare(gpu, &pipeline, &all, scene, SIZE)
-        .unwrap_or_else(|e| panic!("{technique} {sets:?}: {e}"));
-    let report = prepared.render_unchecked().expect("renders");
-    let bytes = prepared.read_buffer("ao_vertex").expect("ao_vertex");
-    let n = scene.strands.points.len();
-    let ao = bytes
-        .chunks_exact(4)
-        .take(n)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    (ao, report)
-}
-
 fn directions(n: u32) -> Vec<String> {
     vec![format!("params.ao_directions={n}")]
-}
-
-fn mean_abs_diff(a: &[f32], b: &[f32]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs() as f64)
-        .sum::<f64>()
-        / a.len() as f64
-}
-
-/// Mean visibility of the vertices nearest to and farthest from the hair's
-/// centre (the innermost and outermost fifth).
-fn inner_outer(scene: &SceneData, ao: &[f32]) -> (f64, f64) {
-    let center = scene.strands.bounds().center();
-    let mut by_distance: Vec<(f32, f32)> = scene
-        .strands
-        .points
-        .iter()
-        .zip(ao)
-        .map(|(p, &a)| (p.distance(center), a))
-        .collect();
-    by_distance.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let fifth = by_distance.len() / 5;
-    let mean = |s: &[(f32, f32)]| s.iter().map(|x| x.1 as f64).sum::<f64>() / s.len() as f64;
-    (
-        mean(&by_distance[..fifth]),
-        mean(&by_distance[by_distance.len() - fifth..]),
-    )
 }
 
 /// Inner hair darker than outer hair by at least `margin`. With Xing et al.'s
@@ -392,7 +342,7 @@ fn cylinders_count_the_vertices_a_cut_sum_left_unfinished() {
     let (_lock, gpu) = open_gpu();
     let scene = scene_with_heads(2, 100, 200);
     let incomplete = |sets: &[String]| {
-        let (_, report) = vertex_ao_report(&gpu, &scene, CYLINDERS, sets);
+        let (_, report) = vertex_ao_report(&gpu, &scene, CYLINDERS, sets, SIZE);
         let status = report
             .overflow
             .iter()
@@ -492,21 +442,4 @@ fn density_volume_occlusion_is_in_unit_range_deeper_hair_darker_and_near_directi
         r_dod > DENSITY_AO_MIN_CORRELATION && r_cyl > DENSITY_AO_MIN_CORRELATION,
         "the volume should darken the vertices the other techniques darken: r {r_dod:.3}, {r_cyl:.3}"
     );
-}
-
-/// Pearson's correlation of two per-vertex values.
-fn correlation(a: &[f32], b: &[f32]) -> f64 {
-    let n = a.len() as f64;
-    let (ma, mb) = (
-        a.iter().map(|&x| x as f64).sum::<f64>() / n,
-        b.iter().map(|&x| x as f64).sum::<f64>() / n,
-    );
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (&x, &y) in a.iter().zip(b) {
-        let (x, y) = (x as f64 - ma, y as f64 - mb);
-        ab += x * y;
-        aa += x * x;
-        bb += y * y;
-    }
-    ab / (aa * bb).sqrt().max(1e-30)
 }

@@ -16,8 +16,9 @@
 //!   `ao_max_vertices`.
 
 use glam::Vec3;
-use plait::session::{SceneData, prepare};
+use plait::session::SceneData;
 use plait_gpu::Gpu;
+use plait_tests::vertex_ao::{correlation, inner_outer, mean_abs_diff, vertex_ao_report};
 use plait_tests::{open_gpu, repo_root, strands_subset};
 
 const SIZE: (u32, u32) = (64, 48);
@@ -35,28 +36,13 @@ fn require_ray_queries(gpu: &Gpu) {
     );
 }
 
-/// The frame's per-vertex visibility by `technique` with `sets`, and the
-/// frame's report.
 fn vertex_ao(
     gpu: &Gpu,
     scene: &SceneData,
     technique: &str,
     sets: &[String],
 ) -> (Vec<f32>, plait_gpu::FrameReport) {
-    let pipeline = repo_root().join("tests/fixtures/ambient_occlusion.toml");
-    let mut all = vec![format!("techniques.ambient_occlusion={technique}")];
-    all.extend(sets.iter().cloned());
-    let prepared = prepare(gpu, &pipeline, &all, scene, SIZE)
-        .unwrap_or_else(|e| panic!("{technique} {sets:?}: {e}"));
-    let report = prepared.render_unchecked().expect("renders");
-    let bytes = prepared.read_buffer("ao_vertex").expect("ao_vertex");
-    let n = scene.strands.points.len();
-    let ao = bytes
-        .chunks_exact(4)
-        .take(n)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    (ao, report)
+    vertex_ao_report(gpu, scene, technique, sets, SIZE)
 }
 
 fn traced(gpu: &Gpu, scene: &SceneData, sets: &[&str]) -> Vec<f32> {
@@ -139,49 +125,6 @@ fn a_lone_straight_strand_does_not_hide_its_own_sphere() {
         least > 0.999,
         "a straight strand's own vertices should see the whole sphere: least {least}"
     );
-}
-
-fn mean_abs_diff(a: &[f32], b: &[f32]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs() as f64)
-        .sum::<f64>()
-        / a.len() as f64
-}
-
-/// Pearson's correlation of two per-vertex values.
-fn correlation(a: &[f32], b: &[f32]) -> f64 {
-    let n = a.len() as f64;
-    let mean = |v: &[f32]| v.iter().map(|&x| x as f64).sum::<f64>() / n;
-    let (ma, mb) = (mean(a), mean(b));
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (&x, &y) in a.iter().zip(b) {
-        let (x, y) = (x as f64 - ma, y as f64 - mb);
-        ab += x * y;
-        aa += x * x;
-        bb += y * y;
-    }
-    ab / (aa * bb).sqrt().max(1e-30)
-}
-
-/// Mean visibility of the innermost and outermost fifth of the vertices
-/// (by distance to the hair's centre).
-fn inner_outer(scene: &SceneData, ao: &[f32]) -> (f64, f64) {
-    let center = scene.strands.bounds().center();
-    let mut by_distance: Vec<(f32, f32)> = scene
-        .strands
-        .points
-        .iter()
-        .zip(ao)
-        .map(|(p, &a)| (p.distance(center), a))
-        .collect();
-    by_distance.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let fifth = by_distance.len() / 5;
-    let mean = |s: &[(f32, f32)]| s.iter().map(|x| x.1 as f64).sum::<f64>() / s.len() as f64;
-    (
-        mean(&by_distance[..fifth]),
-        mean(&by_distance[by_distance.len() - fifth..]),
-    )
 }
 
 /// Every other strand of the small scene.
