@@ -193,3 +193,38 @@ fn chiang_at(f: Fibre, sin_i: f32, sin_o: f32, phi: f32, lobes: vec4<f32>, sampl
 fn chiang_radiance(f: Fibre, tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
     return chiang_lobes(f, tangent, to_light, to_eye, vec4<f32>(1.0), CHIANG_SAMPLES);
 }
+
+// The radiance the fibre sends towards the eye per unit radiance of a
+// uniform environment, ∫ (S·cos θi) dωi over every light direction. M_p
+// integrates to 1 over θi (d'Eon's normalization, whatever the tilt does to
+// θo) and each N_p to 1 over φ, so what is left is the mean over h of the
+// lobes' attenuations: ½∫ Σ_p A_p(h, θo) dh, the albedo of the fibre seen
+// from the eye (A_p depend on the eye's θo alone, as pbrt-v3 and Mitsuba
+// evaluate them). tests/chiang_uniform.rs holds it to the brute-force
+// integral of chiang_radiance over the sphere.
+fn chiang_albedo(f: Fibre, sin_o: f32, samples: i32) -> vec3<f32> {
+    let cos_o = sqrt(max(0.0, 1.0 - sin_o * sin_o));
+    let sin_t = sin_o / f.eta;
+    let cos_t = sqrt(max(0.0, 1.0 - sin_t * sin_t));
+    let eta_p = sqrt(f.eta * f.eta - sin_o * sin_o) / cos_o;
+    let step = PI / f32(samples);
+    var sum = vec3<f32>(0.0);
+    for (var k = 0; k < samples; k++) {
+        let gamma_o = -0.5 * PI + (f32(k) + 0.5) * step;
+        let sin_gt = clamp(sin(gamma_o) / eta_p, -1.0, 1.0);
+        let cos_gt = sqrt(max(0.0, 1.0 - sin_gt * sin_gt));
+        let t = exp(-f.sigma_a * (2.0 * cos_gt / cos_t));
+        let fr = fresnel_dielectric(cos_o * cos(gamma_o), f.eta);
+        let a1 = (1.0 - fr) * (1.0 - fr) * t;
+        let a2 = a1 * fr * t;
+        let a3 = a2 * fr * t / (vec3<f32>(1.0) - t * fr);
+        sum += cos(gamma_o) * (vec3<f32>(fr) + a1 + a2 + a3);
+    }
+    return 0.5 * step * sum;
+}
+
+// chiang_albedo along `tangent` (unit) towards `to_eye`, at the shading
+// point's quadrature.
+fn chiang_uniform(f: Fibre, tangent: vec3<f32>, to_eye: vec3<f32>) -> vec3<f32> {
+    return chiang_albedo(f, dot(tangent, to_eye), CHIANG_SAMPLES);
+}

@@ -70,3 +70,16 @@ fn kajiya_kay_radiance(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32
 fn kk_environment_specular_units(exponent: f32, theta_eye: f32) -> f32 {
     return KK_PI * KK_PI * kk_specular_normalization(exponent) * sin(theta_eye);
 }
+
+// The radiance the fibre sends towards the eye per unit radiance of a
+// uniform environment, ∫ S cos θi dωi (docs/formats.md, "Light and units"):
+// the diffuse part kd/π² integrates over the sphere (∫ cos θi dωi = π²) to
+// kd · base exactly; the specular cone to ks · ∫cos^p(θi − θc) cos²θi dθi /
+// ∫cos^p, taken in the narrow-cone limit ks · cos²θc, where the cone's
+// longitudinal angle θc has cos θc = sin θ′ (θ′ the tangent-to-eye angle
+// with the shift).
+fn kajiya_kay_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>, kd: f32, ks: f32, shift: f32) -> vec3<f32> {
+    let theta_eye = acos(clamp(dot(normalize(tangent), to_eye), -1.0, 1.0)) + shift;
+    let cone = sin(theta_eye);
+    return base * kd + vec3<f32>(ks * cone * cone);
+}

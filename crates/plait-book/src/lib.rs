@@ -186,6 +186,18 @@ fn contract_section(c: &plait_graph::techniques::WgslPoint) -> Result<String, Bo
         c.default.value,
         c.doc
     );
+    if let Some(a) = &c.also {
+        md.push_str(&format!(
+            "Each provider also defines `fn {}({}) -> {}`, called as `{}`: {}\n\n",
+            a.function, a.arguments, a.returns, a.call, a.doc
+        ));
+    }
+    if let Some(o) = &c.optional {
+        md.push_str(&format!(
+            "A provider may define `fn {}({}) -> {}` (listed in its `provides`), called as `{}`: {}\n\n",
+            o.function, o.arguments, o.returns, o.call, o.doc
+        ));
+    }
     if let Some(b) = &c.contract.bindings {
         let (first, last) = b.value;
         md.push_str(&format!(

@@ -829,6 +829,38 @@ fn a_provider_that_breaks_the_contract_names_its_file() {
     }
 }
 
+/// The shading point's second function (`[wgsl.also]`, what `lighting =
+/// "ambient"` reflects) is part of every provider's contract: a shading
+/// provider defining `hair_direct` alone is refused naming its file and the
+/// function it lacks.
+#[test]
+fn a_shading_provider_without_its_uniform_response_names_its_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let folder = dir.path().join("techniques/shading/flat");
+    std::fs::create_dir_all(&folder).expect("mkdir");
+    std::fs::write(
+        folder.join("shading.wgsl"),
+        "#define_import_path plait::shading::flat\n\n\
+         fn hair_direct(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {\n    return base;\n}\n",
+    )
+    .expect("write");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_plait"))
+        .current_dir(root())
+        .env("PLAIT_PATH", dir.path())
+        .args(["check", "pipelines/occupancy.toml"])
+        .output()
+        .expect("run plait");
+    assert_fails(
+        "a shading provider without hair_uniform",
+        &o,
+        &[
+            "flat/shading.wgsl",
+            "must define `fn hair_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32>`",
+        ],
+        None,
+    );
+}
+
 /// `plait check` and `plait graph` find a gallery pipeline by name from any
 /// directory, as `plait render` does (the library search path).
 #[test]

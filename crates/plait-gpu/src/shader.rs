@@ -19,9 +19,10 @@ use naga_oil::compose::{
     ShaderType,
 };
 
-/// Checked by composing a call to the provider's function, so a missing
-/// function or a wrong signature is an error that names the provider's file
-/// before any pass uses it.
+/// Checked by composing a call to the provider's function (and to its
+/// `[wgsl.also]` function, when the point has one), so a missing function
+/// or a wrong signature is an error that names the provider's file before
+/// any pass uses it.
 fn check_contract(
     composer: &mut Composer,
     point: &WgslPoint,
@@ -29,15 +30,37 @@ fn check_contract(
     path: &Path,
     source: &str,
 ) -> Result<(), ShaderError> {
+    let main = (
+        point.function.as_str(),
+        point.arguments.as_str(),
+        point.returns.as_str(),
+    );
+    check_function(composer, point, name, path, source, main)?;
+    if let Some(a) = &point.also {
+        let also = (
+            a.function.as_str(),
+            a.arguments.as_str(),
+            a.returns.as_str(),
+        );
+        check_function(composer, point, name, path, source, also)?;
+    }
+    Ok(())
+}
+
+/// One function of a point's contract: `(name, arguments, return type)`.
+fn check_function(
+    composer: &mut Composer,
+    point: &WgslPoint,
+    name: &str,
+    path: &Path,
+    source: &str,
+    (function, arguments, returns): (&str, &str, &str),
+) -> Result<(), ShaderError> {
+    let argument_names = plait_graph::techniques::argument_names(arguments).join(", ");
     let probe = format!(
-        "#import {}::{name}::{}\n\
-         fn plait_contract({}) -> {} {{ return {}({}); }}\n",
+        "#import {}::{name}::{function}\n\
+         fn plait_contract({arguments}) -> {returns} {{ return {function}({argument_names}); }}\n",
         point.providers,
-        point.function,
-        point.arguments,
-        point.returns,
-        point.function,
-        point.argument_names().join(", ")
     );
     // The error points at the provider's function, or at the top of the file
     // when it has none.
@@ -45,17 +68,16 @@ fn check_contract(
         .lines()
         .enumerate()
         .find_map(|(i, l)| {
-            let at = l.find(&format!("fn {}(", point.function))?;
+            let at = l.find(&format!("fn {function}("))?;
             Some((i + 1, at + 1))
         })
         .unwrap_or((1, 1));
     let missing = |detail: String| ShaderError {
         path: path.to_owned(),
         message: format!(
-            "{}:{line}:{column}: {} provider `{name}` must define `{}` (the contract in {}):\n{detail}",
+            "{}:{line}:{column}: {} provider `{name}` must define `fn {function}({arguments}) -> {returns}` (the contract in {}):\n{detail}",
             path.display(),
             point.point,
-            point.signature(),
             point.file,
         ),
     };
@@ -63,8 +85,8 @@ fn check_contract(
     // panics (naga's GLSL writer, unreachable) composing a module that
     // declares an acceleration structure and no function — a ray-traced
     // provider cut short — where it should report the missing function.
-    if !source.contains(&format!("fn {}(", point.function)) {
-        return Err(missing(format!("no `fn {}(` in the file", point.function)));
+    if !source.contains(&format!("fn {function}(")) {
+        return Err(missing(format!("no `fn {function}(` in the file")));
     }
     composer
         .make_naga_module(NagaModuleDescriptor {

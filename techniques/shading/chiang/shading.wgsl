@@ -6,7 +6,7 @@
 // crates/plait-passes/src/shading.rs.
 #define_import_path plait::shading::chiang
 
-#import plait::chiang::{fibre, chiang_radiance}
+#import plait::chiang::{fibre, chiang_radiance, chiang_uniform}
 
 struct ShadingParams {
     chiang_beta_m: f32,
@@ -20,4 +20,15 @@ fn hair_direct(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base:
     let p = shading_params;
     let f = fibre(p.chiang_beta_m, p.chiang_beta_n, p.chiang_tilt, p.chiang_eta, base);
     return chiang_radiance(f, tangent, to_light, to_eye);
+}
+
+// Under a uniform environment (`lighting = "ambient"`): the fibre's albedo
+// seen from the eye (plait::chiang::chiang_albedo), so the ambient light is
+// reflected by the same fibre as the key light's — Kajiya-Kay's closed form
+// here once put the environment's light on a chiang fibre through the
+// scene's kd and ks, which the path tracer's fibre does not have.
+fn hair_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
+    let p = shading_params;
+    let f = fibre(p.chiang_beta_m, p.chiang_beta_n, p.chiang_tilt, p.chiang_eta, base);
+    return chiang_uniform(f, normalize(tangent), to_eye);
 }

@@ -6,9 +6,16 @@
 #define_import_path plait::shading::kajiya_kay
 
 #import plait::frame::frame
-#import plait::kajiya_kay::kajiya_kay_radiance
+#import plait::kajiya_kay::{kajiya_kay_radiance, kajiya_kay_uniform}
 
 fn hair_direct(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
     let s = frame.hair_shading;
     return kajiya_kay_radiance(tangent, to_light, to_eye, base, s.x, s.y, s.z, s.w);
+}
+
+// Under a uniform environment (`lighting = "ambient"`): the closed form of
+// plait::kajiya_kay::kajiya_kay_uniform with the same four numbers.
+fn hair_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
+    let s = frame.hair_shading;
+    return kajiya_kay_uniform(tangent, to_eye, base, s.x, s.y, s.w);
 }

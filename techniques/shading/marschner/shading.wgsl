@@ -9,6 +9,7 @@
 #define_import_path plait::shading::marschner
 
 #import plait::frame::{frame, linear_sampler}
+#import plait::kajiya_kay::kajiya_kay_uniform
 #import plait::marschner::{hair_angles, table_coordinate, combine}
 
 struct ShadingParams {
@@ -31,4 +32,14 @@ fn hair_direct(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base:
     let n_uv = vec2<f32>(table_coordinate(a.z, -1.0, 1.0, n_size), table_coordinate(cos_td, 0.0, 1.0, n_size));
     let n = textureSampleLevel(marschner_n, linear_sampler, n_uv, 0.0);
     return combine(m.rgb * n.rgb, cos_td, a.x, base, frame.hair_shading.x, shading_params.marschner_specular_gain);
+}
+
+// Under a uniform environment: Kajiya-Kay's closed form
+// (plait::kajiya_kay::kajiya_kay_uniform), as Halén & Wester 2007 §5.7 light
+// Marschner-shaded hair by the environment through Kajiya-Kay irradiance
+// maps. The lobes' own integral over the sphere has no closed form; it is
+// not what this model's environment term is (stated in docs/formats.md).
+fn hair_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
+    let s = frame.hair_shading;
+    return kajiya_kay_uniform(tangent, to_eye, base, s.x, s.y, s.w);
 }

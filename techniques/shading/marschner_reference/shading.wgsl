@@ -7,6 +7,7 @@
 #define_import_path plait::shading::marschner_reference
 
 #import plait::frame::frame
+#import plait::kajiya_kay::kajiya_kay_uniform
 #import plait::marschner::{model, hair_angles, longitudinal, azimuthal, cos_theta_d, combine}
 
 // The model's params by the technique's names (techniques/shading/
@@ -38,4 +39,14 @@ fn hair_direct(tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base:
     let cos_td = cos_theta_d(a.x, a.y);
     let lobes = longitudinal(m, a.x, a.y) * azimuthal(m, a.z, cos_td);
     return combine(lobes, cos_td, a.x, base, frame.hair_shading.x, p.marschner_specular_gain);
+}
+
+// Under a uniform environment: Kajiya-Kay's closed form
+// (plait::kajiya_kay::kajiya_kay_uniform), as Halén & Wester 2007 §5.7 light
+// Marschner-shaded hair by the environment through Kajiya-Kay irradiance
+// maps. The lobes' own integral over the sphere has no closed form; it is
+// not what this model's environment term is (stated in docs/formats.md).
+fn hair_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
+    let s = frame.hair_shading;
+    return kajiya_kay_uniform(tangent, to_eye, base, s.x, s.y, s.w);
 }

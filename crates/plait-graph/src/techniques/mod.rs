@@ -77,7 +77,7 @@ pub use param_scope::ENGINE_PARAMS;
 pub(crate) use param_scope::{check_param_names, explain_unchosen_sets};
 pub use point_contract::{PointContract, PointParam};
 pub use point_file::{POINT_FILE, PointFile, WgslPoint, wgsl_points};
-pub use point_optional::OptionalFunction;
+pub use point_optional::{OptionalFunction, argument_names};
 pub use roots::{Located, TECHNIQUE_FILE, TechniqueRoots, located_error};
 pub(crate) use technique_keys::check_param_ranges;
 

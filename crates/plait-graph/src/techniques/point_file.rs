@@ -19,6 +19,11 @@
 //! function = "fn hair_strands_toward_light(world: vec3<f32>) -> f32"
 //! call = "strands_toward_light"         # defined by the selector only for those providers
 //! doc = "Expected number of strands between `world` and the key light."
+//!
+//! [wgsl.also]                           # a second function every provider defines
+//! function = "fn hair_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32>"
+//! call = "shade_uniform"                # the selector's, as for `function`
+//! doc = "Radiance towards the eye per unit radiance of a uniform environment."
 //! ```
 //!
 //! `[point] implicit = true` lets a pass `uses` the point when the pipeline
@@ -83,6 +88,9 @@ pub struct WgslPoint {
     pub contract: PointContract,
     /// The function only some providers define (`[wgsl.optional]`).
     pub optional: Option<OptionalFunction>,
+    /// A second function every provider defines (`[wgsl.also]`): checked
+    /// and selected as `function` is.
+    pub also: Option<OptionalFunction>,
 }
 
 const KEYS: &[&str] = &[
@@ -94,6 +102,7 @@ const KEYS: &[&str] = &[
     "default",
     "doc",
     "optional",
+    "also",
 ];
 
 impl WgslPoint {
@@ -137,6 +146,9 @@ impl WgslPoint {
             {
                 s += &format!("#import {}::{name}::{}\n", self.providers, o.function);
             }
+            if let Some(a) = &self.also {
+                s += &format!("#import {}::{name}::{}\n", self.providers, a.function);
+            }
         }
         if !providers.is_empty() {
             s += "#else\n";
@@ -145,6 +157,12 @@ impl WgslPoint {
             "#import {}::{}::{}\n",
             self.providers, self.default.value, self.function
         );
+        if let Some(a) = &self.also {
+            s += &format!(
+                "#import {}::{}::{}\n",
+                self.providers, self.default.value, a.function
+            );
+        }
         if !providers.is_empty() {
             s += "#endif\n";
         }
@@ -157,6 +175,17 @@ impl WgslPoint {
             self.function,
             self.argument_names().join(", ")
         );
+        if let Some(a) = &self.also {
+            s += &format!(
+                "\n// {}\nfn {}({}) -> {} {{\n    return {}({});\n}}\n",
+                a.doc,
+                a.call,
+                a.arguments,
+                a.returns,
+                a.function,
+                a.argument_names().join(", ")
+            );
+        }
         if let Some(o) = &self.optional {
             s += &self.optional_source(o, with_optional);
         }
@@ -287,7 +316,11 @@ fn read_wgsl(
         field("doc"),
     );
     let optional = match t.get("optional") {
-        Some(e) => Some(read_optional(r, e)?),
+        Some(e) => Some(read_optional(r, e, "optional")?),
+        None => None,
+    };
+    let also = match t.get("also") {
+        Some(e) => Some(read_optional(r, e, "also")?),
         None => None,
     };
     let function = function?;
@@ -318,6 +351,7 @@ fn read_wgsl(
         doc: doc?.value,
         contract: PointContract::default(),
         optional,
+        also,
     })
 }
 

@@ -25,7 +25,7 @@ impl OptionalFunction {
     }
 }
 
-pub(super) fn argument_names(arguments: &str) -> Vec<&str> {
+pub fn argument_names(arguments: &str) -> Vec<&str> {
     arguments
         .split(',')
         .filter_map(|a| a.split(':').next())
@@ -67,19 +67,21 @@ impl WgslPoint {
     }
 }
 
-/// `[wgsl.optional]`: `function`, `call` and `doc`.
+/// `[wgsl.optional]` or `[wgsl.also]` (`table`): `function`, `call` and `doc`.
 pub(super) fn read_optional(
     r: &mut Reader<'_>,
     e: &crate::load::Entry,
+    table: &str,
 ) -> Option<OptionalFunction> {
-    let t = r.table(&e.value, "[wgsl.optional]")?;
-    r.keys(t, &["function", "call", "doc"], "[wgsl.optional]");
+    let label = format!("[wgsl.{table}]");
+    let t = r.table(&e.value, &label)?;
+    r.keys(t, &["function", "call", "doc"], &label);
     let mut field = |key: &str| -> Option<Spanned<String>> {
         let Some(x) = t.get(key) else {
-            r.schema(&e.key, format!("[wgsl.optional] needs `{key}`"));
+            r.schema(&e.key, format!("{label} needs `{key}`"));
             return None;
         };
-        let s = r.string(&x.value, &format!("wgsl.optional.{key}"))?;
+        let s = r.string(&x.value, &format!("wgsl.{table}.{key}"))?;
         Some(Spanned::new(s, x.value.location.clone()))
     };
     let (function, call, doc) = (field("function"), field("call"), field("doc"));
@@ -88,7 +90,7 @@ pub(super) fn read_optional(
         r.schema(
             &function.location,
             format!(
-                "wgsl.optional.function must read `fn NAME(ARGUMENTS) -> TYPE`, not `{}`",
+                "wgsl.{table}.function must read `fn NAME(ARGUMENTS) -> TYPE`, not `{}`",
                 function.value
             ),
         );
@@ -146,5 +148,36 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("wgsl.optional.function must read"), "{e}");
+    }
+
+    #[test]
+    fn a_second_function_is_selected_for_every_provider() {
+        let text = format!(
+            "{GOOD}\n[wgsl.also]\nfunction = \"fn hair_uniform(to_eye: vec3<f32>) -> vec3<f32>\"\ncall = \"shade_uniform\"\ndoc = \"Under a uniform environment.\"\n"
+        );
+        let p = parse("self_shadow", Path::new("point.toml"), &text)
+            .expect("parses")
+            .wgsl
+            .expect("a [wgsl] table");
+        let s = p.selector_source(&["deep_opacity".into(), "none".into()], &[]);
+        for provider in ["deep_opacity", "none"] {
+            assert!(
+                s.contains(&format!(
+                    "#import plait::self_shadow::{provider}::hair_uniform\n"
+                )),
+                "{s}"
+            );
+        }
+        assert!(
+            s.contains(
+                "fn shade_uniform(to_eye: vec3<f32>) -> vec3<f32> {\n    return hair_uniform(to_eye);\n}"
+            ),
+            "{s}"
+        );
+        let bad = text.replace("fn hair_uniform(to_eye: vec3<f32>) -> vec3<f32>", "uniform");
+        let e = parse("self_shadow", Path::new("point.toml"), &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("wgsl.also.function must read"), "{e}");
     }
 }
