@@ -223,12 +223,21 @@ fn a_technique_param_must_be_the_points() {
             "techniques.shading=chiang",
         ],
     );
+    // The point's `[params.chiang_beta_n]` (at its name), by search: the
+    // point file's other entries move it.
+    let point = std::fs::read_to_string(root().join("techniques/shading/point.toml"))
+        .expect("the shading point");
+    let line = 1 + point
+        .lines()
+        .position(|l| l == "[params.chiang_beta_n]")
+        .expect("[params.chiang_beta_n]");
+    let at = format!("techniques/shading/point.toml:{line}:9)");
     assert_refused(
         "default and export",
         &o,
         &[
             "`chiang_beta_n = 0.4` differs from the point's default 0.3 (",
-            "techniques/shading/point.toml:54:9)",
+            &at,
             "exports param `chiang_etta`, which ",
             "techniques/shading/point.toml does not declare; did you mean `chiang_eta`?",
         ],
