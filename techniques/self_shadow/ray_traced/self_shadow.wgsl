@@ -3,7 +3,7 @@ enable wgpu_ray_query;
 // point toward the key light through the strands' acceleration structure
 // (vis_strands, built every frame by the strand_structure pass) and counting
 // the strands it crosses: each candidate box is intersected as the tapered
-// swept sphere of its segment (plait::strand_capsule). A crossing counts when
+// swept sphere of its segment (plait::strand_capsule, walked by plait::strand_rays). A crossing counts when
 // it is farther along the ray than the self-shadow bias ("In front of",
 // docs/design.md), so the point's own strand never counts; n is the count
 // and visibility = exp(−w · n), w = shadow_weight, the convention of every
@@ -16,11 +16,10 @@ enable wgpu_ray_query;
 #define_import_path plait::self_shadow::ray_traced
 
 #import plait::frame::frame
-#import plait::hair_point::HairPoint
-#import plait::strand_capsule::strand_crossing
+#import plait::strand_rays::strands_crossed
 
-@group(1) @binding(8) var vis_strands: acceleration_structure;
-@group(1) @binding(9) var<storage, read> vis_hair: array<HairPoint>;
+// The strands' structure and vertices (vis_strands at binding 8, vis_hair
+// at 9) are plait::strand_rays' globals.
 
 struct VisibilityParams {
     // Opacity added by one strand in front (w of Sintorn & Assarsson 2009 §3.3).
@@ -33,32 +32,6 @@ struct VisibilityParams {
 
 const GOLDEN_ANGLE: f32 = 2.39996322972865;
 const TAU: f32 = 6.28318530717959;
-
-// Strands crossed by the ray from `origin` along unit `dir` farther than
-// `near` and nearer than `far`. The ray query is declared here, outside any
-// loop: one declared in a loop made naga emit a null constant of the
-// ray-query type, which Mesa rejects (wgpu PR 9945).
-fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32) -> f32 {
-    var rq: ray_query;
-    rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 0xFFu, 0.0, far, origin, dir));
-    var n = 0.0;
-    while (rayQueryProceed(&rq)) {
-        let c = rayQueryGetCandidateIntersection(&rq);
-        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
-            continue;
-        }
-        let a = vis_hair[c.primitive_index];
-        let b = vis_hair[c.primitive_index + 1u];
-        if (a.strand != b.strand) {
-            continue;
-        }
-        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
-        if (t > near && t < far) {
-            n += 1.0;
-        }
-    }
-    return n;
-}
 
 // The side of one pixel at `world`'s depth in the camera's view (world
 // units): `world` and the point one pixel above it on screen, unprojected.
