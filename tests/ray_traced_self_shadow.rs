@@ -61,3 +61,156 @@ fn exact_converges_to_ray_traced_as_its_light_map_gets_finer() {
     // … and ray_traced is as near exact@1024 as exact@512 is.
     assert!(to_fine <= 1.1 * exact_step, "{to_fine} vs {exact_step}");
 }
+
+/// A layer of parallel strands over the ground (issue 48's per-pixel
+/// speckle, by hand): `STRANDS` strands along x of width `WIDTH`, `SPACING`
+/// apart in z, at height `LAYER`; the light slanted along x only, so seen
+/// from the light the layer is bands of width WIDTH every SPACING, and a
+/// point below it is behind one strand for a fraction WIDTH / SPACING of the
+/// points (V = e^−w) and behind none for the rest (V = 1).
+mod layer {
+    use plait::session::SceneData;
+    use plait_tests::repo_root;
+
+    pub const STRANDS: usize = 60;
+    pub const SPACING: f32 = 0.02;
+    pub const WIDTH: f32 = 0.005;
+    pub const LAYER: f32 = 0.4;
+    pub const HALF_LENGTH: f32 = 0.6;
+    /// The camera's pixel at the layer is about 0.037 wide (64×48, 35°, 2.8
+    /// away): the jitter disc (one pixel's area) spans about two spacings.
+    pub const SIZE: (u32, u32) = (64, 48);
+
+    pub fn scene() -> SceneData {
+        let text = r#"
+ambient = 0.0
+[hair.procedural]
+strands = 1
+segments = 1
+[ground]
+height = -0.5
+half_size = 3.0
+[camera]
+eye = [0.0, 2.0, 2.0]
+target = [0.0, 0.0, 0.0]
+fov_y_degrees = 35.0
+[light]
+type = "directional"
+direction = [-0.3, -1.0, 0.0]
+intensity = 1.0
+"#;
+        let path = repo_root().join("tests/strand_layer.toml");
+        let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
+        let mut data = SceneData::new(scene).expect("the scene loads");
+        data.strands = plait_hair::Strands::new();
+        for i in 0..STRANDS {
+            let z = SPACING * (i as f32 - 0.5 * STRANDS as f32);
+            let points: Vec<glam::Vec3> = (0..=8)
+                .map(|s| glam::Vec3::new(HALF_LENGTH * (s as f32 / 4.0 - 1.0), LAYER, z))
+                .collect();
+            data.strands
+                .push_strand(&points, |_| WIDTH, |_| 1.0, glam::Vec3::splat(0.5));
+        }
+        data
+    }
+}
+
+/// Mean and variance of the visibility over a 61 × 67 grid of points on a
+/// plane across the light 0.2 below the layer's middle (every point below
+/// the layer's interior), with `rays` rays per point. The grid's step is no
+/// simple fraction of the strands' spacing (a 64-point row put 8 points on
+/// every 3 spacings and read 0.28 of them behind a strand, not 0.25).
+fn below_the_layer(gpu: &plait_gpu::Gpu, scene: &SceneData, rays: u32) -> (f64, f64) {
+    let mut grid = ProbeGrid::through_hair(scene, (61, 67), 1);
+    let (u0, u1) = (grid.uv0, grid.uv1);
+    let inner = |a: f32, b: f32, t: f32| a + (b - a) * t;
+    grid.uv0 = [inner(u0[0], u1[0], 0.3), inner(u0[1], u1[1], 0.3)];
+    grid.uv1 = [inner(u0[0], u1[0], 0.7), inner(u0[1], u1[1], 0.7)];
+    let frame = scene.frame(layer::SIZE, 0);
+    let light = glam::Mat4::from_cols_array_2d(&frame.light_view_proj);
+    let below = light.project_point3(glam::Vec3::new(0.0, layer::LAYER - 0.2, 0.0));
+    grid.depth_range = (below.z, below.z);
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    let sets = vec![
+        "techniques.self_shadow=ray_traced".to_owned(),
+        format!("params.shadow_rays={rays}"),
+    ];
+    let source = PipelineSource::new(&pipeline, &sets);
+    let values = probe_visibility(gpu, &source, scene, layer::SIZE, &grid)
+        .unwrap_or_else(|e| panic!("probing {sets:?}: {e}"))
+        .expect("a self-shadow provider")
+        .values;
+    let n = values.len() as f64;
+    let mean = values.iter().map(|&v| v as f64).sum::<f64>() / n;
+    let var = values
+        .iter()
+        .map(|&v| (v as f64 - mean).powi(2))
+        .sum::<f64>()
+        / n;
+    (mean, var)
+}
+
+/// Jittered rays (`shadow_rays`): below a layer of strands, one ray per
+/// point gives each point e^−w or 1 (the speckle of the
+/// ray-traced-self-shadow figure's ground); rays jittered over the pixel's
+/// footprint average the strands' edges over it, so the point-to-point
+/// variance falls with more rays while the mean — the fraction of the light
+/// the layer lets through — stays, near the closed form
+/// 1 − (WIDTH / SPACING)(1 − e^−w).
+#[test]
+fn jittered_rays_average_the_speckle_and_keep_the_mean() {
+    let (_lock, gpu) = open_gpu();
+    assert!(
+        gpu.capabilities.ray_query,
+        "no ray queries on {}",
+        gpu.support.describe()
+    );
+    let scene = layer::scene();
+    // The pipeline's shadow_weight (occupancy.toml).
+    let w = 0.15f64;
+    let expected = 1.0 - f64::from(layer::WIDTH / layer::SPACING) * (1.0 - (-w).exp());
+    let runs: Vec<(u32, f64, f64)> = [1, 4, 16]
+        .into_iter()
+        .map(|rays| {
+            let (mean, var) = below_the_layer(&gpu, &scene, rays);
+            eprintln!("shadow_rays {rays}: mean V {mean:.5} (closed form {expected:.5}), variance {var:.3e}");
+            (rays, mean, var)
+        })
+        .collect();
+    let (_, mean1, var1) = runs[0];
+    // One ray: the two values e^−w and 1 in the stated proportion.
+    let binary = 0.25 * 0.75 * (1.0 - (-w).exp()).powi(2);
+    assert!(
+        (var1 / binary - 1.0).abs() < 0.2,
+        "one ray's variance {var1:.3e} vs {binary:.3e}"
+    );
+    // One ray's mean samples 4,087 points of two values (σ ≈ 0.001); the
+    // jittered means average 4 or 16 rays per point and hold to 0.001 —
+    // which the light through the mean count, e^(−w · mean n) ≈ 0.9632
+    // instead of the mean of e^(−w · n_i), would miss.
+    assert!(
+        (mean1 - expected).abs() < 0.003,
+        "one ray: mean {mean1} vs {expected}"
+    );
+    for &(rays, mean, _) in &runs[1..] {
+        assert!(
+            (mean - expected).abs() < 0.001,
+            "{rays} rays: mean {mean} vs {expected}"
+        );
+        assert!(
+            (mean - mean1).abs() < 0.003,
+            "{rays} rays: mean {mean} vs one ray's {mean1}"
+        );
+    }
+    // 4 rays at least halve the variance, 16 cut it to a tenth.
+    assert!(
+        runs[1].2 < 0.5 * var1,
+        "4 rays: {:.3e} vs {var1:.3e}",
+        runs[1].2
+    );
+    assert!(
+        runs[2].2 < 0.1 * var1,
+        "16 rays: {:.3e} vs {var1:.3e}",
+        runs[2].2
+    );
+}

@@ -30,16 +30,26 @@ fn strand(points: &[Vec3], width: f32, id: u32) -> Vec<StrandVertex> {
         .collect()
 }
 
-/// The probe shader: the fixture after `enable` and plait::strand_capsule.
+/// The HairPoint struct the fixture and plait::strand_rays read (48 B,
+/// `plait_hair::StrandVertex`; shaders/lib/hair_point.wgsl).
+const HAIR_POINT: &str = "struct HairPoint {\n    position: vec3<f32>,\n    thickness: f32,\n    tangent: vec3<f32>,\n    alpha: f32,\n    color: vec3<f32>,\n    strand: u32,\n}\n";
+
+/// The probe shader: the fixture after `enable`, HairPoint,
+/// plait::strand_capsule and plait::strand_rays, each library file without
+/// its directives (the text is one module).
 fn probe_shader() -> String {
     let read = |p: &str| std::fs::read_to_string(repo_root().join(p)).expect(p);
-    let capsule: String = read("shaders/lib/strand_capsule.wgsl")
-        .lines()
-        .filter(|l| !l.starts_with("#define_import_path"))
-        .map(|l| format!("{l}\n"))
-        .collect();
+    let library = |p: &str| -> String {
+        read(p)
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.starts_with("enable "))
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    let capsule = library("shaders/lib/strand_capsule.wgsl");
+    let rays = library("shaders/lib/strand_rays.wgsl");
     let fixture = read("tests/fixtures/strand_trace_probe.wgsl");
-    format!("enable wgpu_ray_query;\n{capsule}\n{fixture}")
+    format!("enable wgpu_ray_query;\n{HAIR_POINT}\n{capsule}\n{rays}\n{fixture}")
 }
 
 /// Strands crossed from each point toward `to_light`, traced on the GPU.
@@ -102,16 +112,24 @@ fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32)
         compilation_options: Default::default(),
         cache: None,
     });
+    // Group 1, as the passes bind them (plait::strand_rays' vis_strands at 8,
+    // vis_hair at 9);
+    // group 0, the passes' frame, is empty here.
+    let empty = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("strand_trace_probe_empty"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[],
+    });
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("strand_trace_probe"),
-        layout: &pipeline.get_bind_group_layout(0),
+        layout: &pipeline.get_bind_group_layout(1),
         entries: &[
             wgpu::BindGroupEntry {
-                binding: 0,
+                binding: 8,
                 resource: structure.tlas().as_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: 1,
+                binding: 9,
                 resource: hair.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
@@ -133,7 +151,8 @@ fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32)
     {
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_bind_group(0, &empty, &[]);
+        pass.set_bind_group(1, &bind_group, &[]);
         pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
     }
     encoder.copy_buffer_to_buffer(&out, 0, &read, 0, out_size);

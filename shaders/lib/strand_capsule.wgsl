@@ -1,9 +1,10 @@
 // plait::strand_capsule — a ray against one strand segment as a tapered
 // swept sphere (the tapered capsules issue 48 describes for RTX Hair: a sphere swept from one
 // vertex to the next, its radius going linearly from the strand's
-// half-width at one end to that at the other). Used by the ray-traced
-// techniques on each candidate box of the strands' acceleration structure
-// (crates/plait-gpu/src/strand_structure.rs builds one box per segment).
+// half-width at one end to that at the other). Used on each candidate box
+// of the strands' acceleration structure by plait::strand_rays, the one ray
+// loop of the ray-traced techniques (crates/plait-gpu/src/strand_structure.rs
+// builds one box per segment).
 //
 // A ray crosses a strand once where it passes within the strand's radius of
 // its axis. Consecutive segments of a strand share a vertex, so a ray

@@ -23,6 +23,11 @@ pub struct CheckArgs {
     /// formats, downlevel flags, limits) at render's default size, 960x720.
     #[arg(long)]
     adapter: bool,
+    /// With --adapter: the scene whose hair a ray-traced technique puts in an
+    /// acceleration structure, checked against the adapter's BLAS primitive
+    /// limit (default: the built-in scene, as `plait render`).
+    #[arg(long, value_parser = crate::args::parse_scene, requires = "adapter")]
+    scene: Option<PathBuf>,
 }
 
 pub fn check(args: CheckArgs) -> Result<()> {
@@ -40,11 +45,17 @@ pub fn check(args: CheckArgs) -> Result<()> {
     // folders declare one module are an error naming both files.
     let library =
         plait_passes::library_for(&paths.iter().map(PathBuf::as_path).collect::<Vec<_>>());
+    // The scene's hair size, read once and only if a pipeline needs it.
+    let mut hair = None;
     for path in &paths {
         let checked = match &gpu {
             Some(gpu) => {
                 plait::adapter::check_on_adapter(gpu, &library, path, &args.set.sets, (960, 720))
                     .map_err(anyhow::Error::from)
+                    .and_then(|s| {
+                        structure_fits(&s, gpu, &mut hair, args.scene.as_deref())?;
+                        Ok(s)
+                    })
             }
             None => compile_checked_in(&library, path, &args.set.sets, &CompileOptions::default())
                 .map_err(anyhow::Error::from),
@@ -88,6 +99,33 @@ pub fn check(args: CheckArgs) -> Result<()> {
     } else {
         anyhow::bail!("{}", failures.join("\n"))
     }
+}
+
+/// `schedule`'s strand structure, if it has one, against `gpu`'s BLAS
+/// primitive limit for the hair of `scene` (read into `hair` the first time).
+fn structure_fits(
+    schedule: &plait_graph::Schedule,
+    gpu: &plait_gpu::Gpu,
+    hair: &mut Option<plait::structure_limit::HairSize>,
+    scene: Option<&Path>,
+) -> Result<()> {
+    if !schedule
+        .passes
+        .iter()
+        .any(|p| p.type_name == plait::structure_limit::STRUCTURE_PASS)
+    {
+        return Ok(());
+    }
+    let size = match hair {
+        Some(size) => *size,
+        None => {
+            let strands = crate::render_cmd::load_scene(scene)?.load_hair()?;
+            *hair.insert(plait::structure_limit::HairSize::of(&strands))
+        }
+    };
+    let adapter = gpu.support.describe();
+    plait::structure_limit::check(schedule, size, &gpu.capabilities, &adapter)?;
+    Ok(())
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]

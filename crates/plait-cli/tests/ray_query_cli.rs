@@ -108,3 +108,56 @@ fn a_provider_binding_an_acceleration_structure_is_refused_by_check() {
         ],
     );
 }
+
+/// A groom with more segments than one acceleration structure holds
+/// (issue 48, bad input): on the real adapter asked for a device holding
+/// 6,798 primitives (`PLAIT_MAX_BLAS_PRIMITIVES`), the small scene's 6,799
+/// boxes are refused by `plait check --adapter --scene` and by `plait
+/// render` before any GPU work — exit 2, the numbers, the adapter and the
+/// fix, no image — and 6,799 holds them.
+#[test]
+fn a_groom_past_the_blas_limit_is_refused_with_the_numbers() {
+    let limited = |args: &[&str], limit: &str| {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_plait"));
+        cmd.current_dir(root())
+            .args(args)
+            .env("PLAIT_MAX_BLAS_PRIMITIVES", limit);
+        cmd.output().expect("run plait")
+    };
+    let set = "techniques.self_shadow=ray_traced";
+    let scene = "examples/scenes/small.toml";
+    let wanted = [
+        "techniques/self_shadow/ray_traced/technique.toml:",
+        "pass `strand_structure` (technique self_shadow/ray_traced)",
+        "400 strands, 6800 points, 6799 boxes",
+        "more than the 6798 primitives one bottom-level structure holds on adapter `",
+        "draw fewer strands (at most 399 of this groom's 17.0 points each)",
+    ];
+    let check = [
+        "check",
+        "--adapter",
+        "pipelines/occupancy.toml",
+        "--set",
+        set,
+        "--scene",
+        scene,
+    ];
+    assert_refused("check --adapter", &limited(&check, "6798"), &wanted);
+    assert_ok("check --adapter at the limit", &limited(&check, "6799"));
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("x.png");
+    let render = [
+        "render",
+        "pipelines/occupancy.toml",
+        "--set",
+        set,
+        "--scene",
+        scene,
+        "--size",
+        "32x24",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ];
+    assert_refused("render", &limited(&render, "6798"), &wanted);
+    assert!(!out.exists(), "nothing rendered");
+}

@@ -186,7 +186,19 @@ impl Gpu {
         };
         let ray_query = features.contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY);
         let (limits, experimental_features) = if ray_query {
-            let limits = limits.using_acceleration_structure_values(adapter.limits());
+            let mut limits = limits.using_acceleration_structure_values(adapter.limits());
+            // PLAIT_MAX_BLAS_PRIMITIVES=N asks for a device holding at most N
+            // primitives per bottom-level structure (never more than the
+            // adapter's): how the refusal of a groom past the limit is
+            // tested on a real adapter (plait::structure_limit).
+            if let Ok(text) = std::env::var("PLAIT_MAX_BLAS_PRIMITIVES") {
+                let n: u32 = text.trim().parse().map_err(|_| {
+                    GpuError::Device(format!(
+                        "PLAIT_MAX_BLAS_PRIMITIVES: `{text}` is not a primitive count"
+                    ))
+                })?;
+                limits.max_blas_primitive_count = limits.max_blas_primitive_count.min(n);
+            }
             (limits, experimental_features())
         } else {
             (limits, wgpu::ExperimentalFeatures::disabled())

@@ -6,8 +6,8 @@
 //! structure built from the boxes and a top-level one holding it once.
 //! Both are built again every frame ([`StrandStructure::encode`]): the hair
 //! moves. Ray-traced techniques trace through [`StrandStructure::tlas`] and
-//! intersect each candidate box as a capsule in WGSL
-//! (`shaders/lib/strand_capsule.wgsl`).
+//! intersect each candidate box as a capsule in WGSL, all with the one loop
+//! of `shaders/lib/strand_rays.wgsl` (`shaders/lib/strand_capsule.wgsl`).
 
 use crate::{Capabilities, Gpu};
 

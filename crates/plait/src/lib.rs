@@ -10,6 +10,7 @@
 //! - [`passes`]: the pass library;
 //! - [`overflow`]: bounded buffers sized to hold every frame's data;
 //! - [`size_limit`]: a `--size` too large for the adapter, named as the flag;
+//! - [`structure_limit`]: more strand segments than the adapter's acceleration structure holds;
 //! - [`frames`]: sequences of frames (time, head animation, medians);
 //! - [`mitsuba`]: a scene exported for the Mitsuba 3 path tracer;
 //! - [`linear`]: the linear radiance image before the display transform, as OpenEXR;
@@ -34,4 +35,5 @@ pub mod session;
 pub mod size_limit;
 pub mod source;
 pub mod strand_lod;
+pub mod structure_limit;
 pub mod wisps;

@@ -32,6 +32,10 @@ pub enum SessionError {
     /// has points), naming the param and the `--set` flag that gave it.
     #[error("{0}")]
     SceneFit(String),
+    /// More strand segments than one acceleration structure of the adapter
+    /// holds, with the numbers and the fix ([`crate::structure_limit`]).
+    #[error("{0}")]
+    StructureLimit(String),
     /// A bounded buffer the session sizes dropped data it cannot hold
     /// ([`crate::overflow`]); each counter says what `--set` would hold it.
     #[error("{}; {message}", crate::overflow::list(.overflow))]
@@ -492,6 +496,13 @@ pub fn build<'g>(
         .first()
         .map(|&id| schedule.resources[id].name.clone())
         .ok_or(SessionError::NoOutput)?;
+    // Before any GPU resource: a structure the adapter cannot hold.
+    crate::structure_limit::check(
+        &schedule,
+        crate::structure_limit::HairSize::of(&scene.strands),
+        &gpu.capabilities,
+        &gpu.support.describe(),
+    )?;
     let frame = frame_uniforms(&schedule, scene, size, 0);
     // A pass that writes the drawn hair (guide interpolation) moves it itself.
     let hair_written = schedule.passes.iter().any(|p| {

@@ -3,18 +3,17 @@ enable wgpu_ray_query;
 // `rays` rays over the sphere (a spherical Fibonacci lattice, rotated by a
 // per-vertex random rotation about a random axis so neighbouring vertices do
 // not share their directions' aliasing), each counting the strands it crosses
-// (plait::strand_capsule: each segment's tapered swept sphere, a crossing
+// (plait::strand_rays: each segment's tapered swept sphere, a crossing
 // owned by one segment); the vertex's ambient visibility is the mean of
 // exp(−w · n) (Xing et al. 2012 §4: transmittance averaged over directions).
 // A crossing within one strand width of the vertex is its own strand (the
 // ray starts on its axis): not counted.
 
-#import plait::hair_point::HairPoint
-#import plait::strand_capsule::strand_crossing
+#import plait::strand_rays::{strands_crossed, vis_hair}
 #import plait::loop_budget::loop_budget_spent
 
-@group(1) @binding(0) var strands: acceleration_structure;
-@group(1) @binding(1) var<storage, read> hair_vertices: array<HairPoint>;
+// The strands' structure and the hair's vertices: plait::strand_rays'
+// vis_strands and vis_hair (group 1, bindings 8 and 9).
 @group(1) @binding(2) var<storage, read_write> vertex_ao: array<f32>;
 // Word 0: vertices vertex_ao could not hold; 1: the hair's vertices; 2:
 // invocations a loop budget cut short (the frame fails on either, naming
@@ -57,35 +56,10 @@ fn rotate(v: vec3<f32>, axis: vec3<f32>, angle: f32) -> vec3<f32> {
     return v * c + cross(axis, v) * s + axis * dot(axis, v) * (1.0 - c);
 }
 
-// Strands crossed by the ray from vertex `index` along `dir`. The ray query
-// is declared here, outside any loop: one declared in a loop made naga emit
-// a null constant of the ray-query type, which Mesa rejects (wgpu PR 9945).
-fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, own: f32) -> f32 {
-    var rq: ray_query;
-    rayQueryInitialize(&rq, strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 0xFFu, 0.0, 1e30, origin, dir));
-    var n = 0.0;
-    while (rayQueryProceed(&rq)) {
-        let c = rayQueryGetCandidateIntersection(&rq);
-        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
-            continue;
-        }
-        let a = hair_vertices[c.primitive_index];
-        let b = hair_vertices[c.primitive_index + 1u];
-        if (a.strand != b.strand) {
-            continue;
-        }
-        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
-        if (t > own) {
-            n += 1.0;
-        }
-    }
-    return n;
-}
-
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = id.x;
-    let vertices = arrayLength(&hair_vertices);
+    let vertices = arrayLength(&vis_hair);
     if (index == 0u) {
         atomicStore(&status[0], vertices - min(vertices, arrayLength(&vertex_ao)));
         atomicStore(&status[1], vertices);
@@ -93,14 +67,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (index >= vertices || index >= arrayLength(&vertex_ao)) {
         return;
     }
-    let v = hair_vertices[index];
+    let v = vis_hair[index];
     let axis = fibonacci_direction(hash(index) % 1024u, 1024u);
     let angle = 2.0 * PI * unit_float(index ^ 0x9e3779b9u);
     let own = max(v.thickness, 1e-6);
     var sum = 0.0;
     for (var i = 0u; i < params.rays; i++) {
         let dir = rotate(fibonacci_direction(i, params.rays), axis, angle);
-        sum += exp(-params.shadow_weight * strands_crossed(v.position, dir, own));
+        sum += exp(-params.shadow_weight * strands_crossed(v.position, dir, own, 1e30));
     }
     vertex_ao[index] = sum / f32(params.rays);
     if (loop_budget_spent(2u + (params.rays & 1u))) {

@@ -3,57 +3,121 @@ enable wgpu_ray_query;
 // point toward the key light through the strands' acceleration structure
 // (vis_strands, built every frame by the strand_structure pass) and counting
 // the strands it crosses: each candidate box is intersected as the tapered
-// swept sphere of its segment (plait::strand_capsule). A crossing counts when
+// swept sphere of its segment (plait::strand_capsule, walked by plait::strand_rays). A crossing counts when
 // it is farther along the ray than the self-shadow bias ("In front of",
 // docs/design.md), so the point's own strand never counts; n is the count
 // and visibility = exp(−w · n), w = shadow_weight, the convention of every
 // estimator (exact's n is Σ share of the fragments in front: a ray through a
 // strand's width counts it once, and over the points a texel covers the
-// mean count is that share).
+// mean count is that share). With `shadow_rays` > 1 the rays' origins are
+// jittered over a disc of one pixel's area across the light (the pixel's
+// footprint at the point's depth), so a strand edge's hard shadow is averaged
+// over the pixel instead of sampled at its centre.
 #define_import_path plait::self_shadow::ray_traced
 
 #import plait::frame::frame
-#import plait::hair_point::HairPoint
-#import plait::strand_capsule::strand_crossing
+#import plait::strand_rays::strands_crossed
 
-@group(1) @binding(8) var vis_strands: acceleration_structure;
-@group(1) @binding(9) var<storage, read> vis_hair: array<HairPoint>;
+// The strands' structure and vertices (vis_strands at binding 8, vis_hair
+// at 9) are plait::strand_rays' globals.
 
 struct VisibilityParams {
     // Opacity added by one strand in front (w of Sintorn & Assarsson 2009 §3.3).
     shadow_weight: f32,
+    // Rays per shading point (1–64, checked at load): 1 traces the point's
+    // own ray; more jitter the origin over the pixel's footprint.
+    shadow_rays: u32,
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
 
-// Strands crossed between `world` and the key light. The ray query is
-// declared here, outside any loop: one declared in a loop made naga emit a
-// null constant of the ray-query type, which Mesa rejects (wgpu PR 9945).
-fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
-    let point_light = frame.light_direction.w > 0.5;
-    let to_light = select(frame.light_direction.xyz, normalize(frame.light_position.xyz - world), point_light);
-    let far = select(1e30, distance(frame.light_position.xyz, world), point_light);
-    let bias = frame.conventions.x * (frame.near_far.w - frame.near_far.z);
-    var rq: ray_query;
-    rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 0xFFu, 0.0, far, world, to_light));
-    var n = 0.0;
-    while (rayQueryProceed(&rq)) {
-        let c = rayQueryGetCandidateIntersection(&rq);
-        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
-            continue;
-        }
-        let a = vis_hair[c.primitive_index];
-        let b = vis_hair[c.primitive_index + 1u];
-        if (a.strand != b.strand) {
-            continue;
-        }
-        let t = strand_crossing(world, to_light, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
-        if (t > bias && t < far) {
-            n += 1.0;
-        }
-    }
-    return n;
+const GOLDEN_ANGLE: f32 = 2.39996322972865;
+const TAU: f32 = 6.28318530717959;
+
+// The side of one pixel at `world`'s depth in the camera's view (world
+// units): `world` and the point one pixel above it on screen, unprojected.
+fn pixel_footprint(world: vec3<f32>) -> f32 {
+    let clip = frame.camera_view_proj * vec4<f32>(world, 1.0);
+    let ndc = clip.xyz / clip.w;
+    let up = ndc + vec3<f32>(0.0, 2.0 * frame.screen_size.w, 0.0);
+    let a = frame.camera_inv_view_proj * vec4<f32>(ndc, 1.0);
+    let b = frame.camera_inv_view_proj * vec4<f32>(up, 1.0);
+    return distance(a.xyz / a.w, b.xyz / b.w);
 }
 
+// A 32-bit integer hash (PCG's output permutation): the per-point rotation
+// of the ray pattern, from the point's position bits.
+fn hash(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+struct Rays {
+    origin: vec3<f32>,
+    to_light: vec3<f32>,
+    far: f32,
+    bias: f32,
+    // Two unit vectors perpendicular to to_light, spanning the jitter disc.
+    u: vec3<f32>,
+    v: vec3<f32>,
+    // The disc's radius: that of a disc of one pixel's area (side / √π).
+    radius: f32,
+    // The pattern's rotation about to_light (radians), per point.
+    turn: f32,
+}
+
+fn rays_from(world: vec3<f32>) -> Rays {
+    var r: Rays;
+    let point_light = frame.light_direction.w > 0.5;
+    r.origin = world;
+    r.to_light = select(frame.light_direction.xyz, normalize(frame.light_position.xyz - world), point_light);
+    r.far = select(1e30, distance(frame.light_position.xyz, world), point_light);
+    r.bias = frame.conventions.x * (frame.near_far.w - frame.near_far.z);
+    let helper = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(r.to_light.x) > 0.9);
+    r.u = normalize(cross(r.to_light, helper));
+    r.v = cross(r.to_light, r.u);
+    r.radius = pixel_footprint(world) * 0.5641895835;
+    let bits = bitcast<vec3<u32>>(world);
+    r.turn = TAU * f32(hash(bits.x ^ hash(bits.y ^ hash(bits.z))) >> 8u) / 16777216.0;
+    return r;
+}
+
+// Origin of ray i of `count`: the point itself for one ray; else point i of
+// a Vogel spiral (radius ∝ √((i + ½) / count), golden-angle turns) over the
+// disc, rotated per point, so the rays cover the footprint evenly and
+// neighbouring points do not share the pattern's aliasing. The origin moves
+// across the light only: the light's direction, hence a hard shadow's mean
+// over the footprint, stays.
+fn ray_origin(r: Rays, i: u32, count: u32) -> vec3<f32> {
+    if (count <= 1u) {
+        return r.origin;
+    }
+    let rho = r.radius * sqrt((f32(i) + 0.5) / f32(count));
+    let phi = r.turn + GOLDEN_ANGLE * f32(i);
+    return r.origin + rho * (cos(phi) * r.u + sin(phi) * r.v);
+}
+
+// Strands crossed between `world` and the key light, the mean over the
+// point's rays. A crossing counts beyond the bias ("in front of").
+fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+    let r = rays_from(world);
+    let count = max(visibility_params.shadow_rays, 1u);
+    var n = 0.0;
+    for (var i = 0u; i < count; i++) {
+        n += strands_crossed(ray_origin(r, i, count), r.to_light, r.bias, r.far);
+    }
+    return n / f32(count);
+}
+
+// The mean of the rays' transmittances exp(−w · n_i): the light reaching
+// the pixel's footprint, not the light through its mean count.
 fn hair_visibility(world: vec3<f32>) -> f32 {
-    return exp(-visibility_params.shadow_weight * hair_strands_toward_light(world));
+    let r = rays_from(world);
+    let count = max(visibility_params.shadow_rays, 1u);
+    var sum = 0.0;
+    for (var i = 0u; i < count; i++) {
+        let n = strands_crossed(ray_origin(r, i, count), r.to_light, r.bias, r.far);
+        sum += exp(-visibility_params.shadow_weight * n);
+    }
+    return sum / f32(count);
 }

@@ -1,0 +1,71 @@
+//! More strand segments than one acceleration structure of the adapter
+//! holds (issue 48, bad input) is refused before any GPU work, with the
+//! numbers and the fix: the check takes the adapter's capabilities as a
+//! value, so it is tested here with a BLAS primitive limit made small enough
+//! for the small scene (400 strands × 17 points: 6,799 boxes).
+
+use plait::session::{SceneData, compile_checked, repo_root};
+use plait::structure_limit::{HairSize, check};
+use plait_gpu::Capabilities;
+use plait_graph::{CompileOptions, Schedule};
+
+fn caps(max_blas_primitives: u32) -> Capabilities {
+    Capabilities {
+        timestamps: false,
+        float32_blendable: true,
+        early_depth_test: true,
+        max_texture_dimension: 8192,
+        max_storage_buffer_binding_size: 1 << 30,
+        ray_query: true,
+        max_blas_primitives,
+    }
+}
+
+fn schedule(sets: &[&str]) -> Schedule {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let opts = CompileOptions {
+        screen: (64, 48),
+        ..CompileOptions::default()
+    };
+    compile_checked(&repo_root().join("pipelines/occupancy.toml"), &sets, &opts)
+        .expect("the pipeline checks")
+}
+
+fn small_hair() -> HairSize {
+    let path = repo_root().join("examples/scenes/small.toml");
+    let scene = SceneData::load(Some(&path)).expect("small scene");
+    HairSize::of(&scene.strands)
+}
+
+#[test]
+fn more_segments_than_the_blas_limit_are_refused_with_the_numbers_and_the_fix() {
+    let hair = small_hair();
+    assert_eq!((hair.strands, hair.points), (400, 6800));
+    for point in ["self_shadow", "ambient_occlusion"] {
+        let s = schedule(&[&format!("techniques.{point}=ray_traced")]);
+        // One box per pair of consecutive points: 6,799. A limit of 6,799 holds them…
+        check(&s, hair, &caps(6799), "`small` (test)").expect("6,799 boxes fit a limit of 6,799");
+        // …one fewer does not.
+        let err = check(&s, hair, &caps(6798), "`small` (test)")
+            .expect_err("6,799 boxes past a limit of 6,798")
+            .to_string();
+        for wanted in [
+            &format!("technique {point}/ray_traced"),
+            &format!("techniques/{point}/ray_traced/technique.toml:"),
+            "400 strands, 6800 points, 6799 boxes",
+            "more than the 6798 primitives one bottom-level structure holds on adapter `small` (test) (max_blas_primitive_count)",
+            // 6,799 primitives / 17 points per strand: 399 strands fit.
+            "draw fewer strands (at most 399 of this groom's 17.0 points each)",
+            "[hair.procedural] strands or segments",
+        ] {
+            assert!(err.contains(wanted), "{point}: `{wanted}` not in: {err}");
+        }
+    }
+}
+
+#[test]
+fn a_pipeline_without_a_structure_is_not_limited() {
+    let s = schedule(&[]);
+    assert!(s.passes.iter().all(|p| p.type_name != "strand_structure"));
+    check(&s, small_hair(), &caps(1), "test").expect("no structure, no limit");
+}

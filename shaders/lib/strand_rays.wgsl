@@ -1,0 +1,54 @@
+enable wgpu_ray_query;
+// plait::strand_rays — the one loop every ray-traced technique walks a ray
+// through the strands' acceleration structure with (self_shadow =
+// ray_traced, ambient_occlusion = ray_traced, tests/ray_traced_strands.rs):
+// each candidate box (one per segment, crates/plait-gpu/src/strand_structure.rs)
+// is intersected as its segment's tapered swept sphere
+// (plait::strand_capsule), and the crossings between `near` and `far` are
+// counted. A box of two vertices of different strands is no segment.
+//
+// Why the structure and the hair's vertices are this module's globals, not
+// arguments: naga 30 takes neither a pointer to a `ray_query` ("Ray Query is
+// not a local variable") nor a pointer to a storage buffer ("can't be passed
+// into functions"); it takes an `acceleration_structure` argument, but then
+// the caller's module declares one, and naga_oil, checking an imported
+// module that declares one and traces no ray itself, panics in naga's GLSL
+// writer (as plait_gpu::shader notes). So every user binds the two at this
+// module's bindings, under the self_shadow point's slot names (vis_strands,
+// vis_hair: techniques/self_shadow/point.toml), and calls strands_crossed.
+#define_import_path plait::strand_rays
+
+#import plait::hair_point::HairPoint
+#import plait::strand_capsule::strand_crossing
+
+// The strands' acceleration structure (the strand_structure pass's output).
+@group(1) @binding(8) var vis_strands: acceleration_structure;
+// The hair's vertices as the structure was built from them (hair_vertices).
+@group(1) @binding(9) var<storage, read> vis_hair: array<HairPoint>;
+
+// Strands crossed by the ray from `origin` along unit `dir` farther than
+// `near` and nearer than `far` (1e30: no end). The ray query is declared
+// here, in a function and outside any loop: one declared in a loop made naga
+// emit a null constant of the ray-query type, which Mesa rejects and the
+// device is lost (wgpu PR 9945).
+fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32) -> f32 {
+    var rq: ray_query;
+    rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 0xFFu, 0.0, far, origin, dir));
+    var n = 0.0;
+    while (rayQueryProceed(&rq)) {
+        let c = rayQueryGetCandidateIntersection(&rq);
+        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
+            continue;
+        }
+        let a = vis_hair[c.primitive_index];
+        let b = vis_hair[c.primitive_index + 1u];
+        if (a.strand != b.strand) {
+            continue;
+        }
+        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        if (t > near && t < far) {
+            n += 1.0;
+        }
+    }
+    return n;
+}
