@@ -370,7 +370,7 @@ impl ChiangSphere {
 /// R's peak on the other side of the mirror direction, they were 0.992,
 /// 0.915, 0.733 — which lobes the pole cuts depends on the tilt's sign). plait's ρ(θi) = ∫ (S·cos θi) cos θo dωo / cos θi,
 /// the other models' furnace above, is printed beside it: Chiang's fibre is
-/// normalized for a path tracer's measure, not for ρ (1.35 at θi 80°). The
+/// normalized for a path tracer's measure, not for ρ (1.66 at θi 80°). The
 /// 64-point mean over h against 512 points, direction by direction where
 /// the lobe is above 1 % of its peak: measured 0.8–1.3 % at β_n 0.3 and
 /// 2.4–6.4 % at β_n 0.15 (the param's lower bound), held within 2 % and 7 %.
