@@ -184,8 +184,14 @@ fn every_lobe_leaves_on_its_cuticles_side() {
     let mut failures = Vec::new();
     for (p, name) in LOBES.iter().enumerate() {
         let shifts = [
-            ("marschner", lobe_statistics(|j, i| marschner.at(1, 0, j, i)[p] as f64, 0.0).shift),
-            ("chiang (WGSL)", lobe_statistics(|j, i| chiang_wgsl.at(p + 1, 0, j, i)[3] as f64, 0.0).shift),
+            (
+                "marschner",
+                lobe_statistics(|j, i| marschner.at(1, 0, j, i)[p] as f64, 0.0).shift,
+            ),
+            (
+                "chiang (WGSL)",
+                lobe_statistics(|j, i| chiang_wgsl.at(p + 1, 0, j, i)[3] as f64, 0.0).shift,
+            ),
             ("Chiang (Mitsuba, the export's tilt)", chiang[0][p].shift),
         ];
         for (model, shift) in shifts {

@@ -404,9 +404,7 @@ fn every_curve_file_ends_with_a_segment_no_ray_can_hit() {
 fn the_cuticle_tilt_reaches_mitsuba_negated_for_curves_written_root_first() {
     let fibre = standard();
     assert!(fibre.scale_tilt_degrees > 0.0, "{fibre:?}");
-    let xml = plan(&two_strands(), (8, 8), fibre)
-        .expect("exports")
-        .xml();
+    let xml = plan(&two_strands(), (8, 8), fibre).expect("exports").xml();
     let want = format!(
         "<float name=\"scale_tilt\" value=\"{}\"/>",
         -fibre.scale_tilt_degrees
