@@ -87,7 +87,8 @@ mod chiang_cpu {
     pub fn at(f: &Fibre, sin_i: f64, sin_o: f64, phi: f64, samples: usize) -> f64 {
         let cos_i = (1.0 - sin_i * sin_i).max(0.0).sqrt();
         let cos_o = (1.0 - sin_o * sin_o).max(0.0).sqrt();
-        let tilt = [-2.0 * f.alpha, f.alpha, 4.0 * f.alpha];
+        // chiang.wgsl's signs (issue 42: R towards the root).
+        let tilt = [2.0 * f.alpha, -f.alpha, -4.0 * f.alpha];
         let var = [f.v, 0.25 * f.v, 4.0 * f.v];
         let mut m = [0.0; 4];
         for p in 0..3 {

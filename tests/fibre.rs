@@ -364,11 +364,13 @@ impl ChiangSphere {
 /// Chiang's white furnace (σ_a = 0): ∫ (S·cos θi) dωo. d'Eon's M_p is
 /// normalized over cos θo dθo and the A_p sum to 1, so it is 1 but for the
 /// tilted lobes cut at the pole: within pbrt-v3's [0.95, 1.05] up to θi 30°,
-/// measured 1.013 / 0.992; at θi 60° 0.914 and 80° 0.732, as Mitsuba's own
-/// BSDF (0.915, 0.733: scripts/mitsuba/fibre_table.py's furnace rows, held
-/// here within 1 % at every θi). plait's ρ(θi) = ∫ (S·cos θi) cos θo dωo / cos θi,
+/// measured 1.013 / 1.044; at θi 60° 1.043 and 80° 0.861, as Mitsuba's own
+/// BSDF at the export's scale_tilt −2 (1.045, 0.862: scripts/mitsuba/
+/// fibre_table.py's furnace rows, held here within 1 % at every θi; at +2,
+/// R's peak on the other side of the mirror direction, they were 0.992,
+/// 0.915, 0.733 — which lobes the pole cuts depends on the tilt's sign). plait's ρ(θi) = ∫ (S·cos θi) cos θo dωo / cos θi,
 /// the other models' furnace above, is printed beside it: Chiang's fibre is
-/// normalized for a path tracer's measure, not for ρ (1.35 at θi 80°). The
+/// normalized for a path tracer's measure, not for ρ (1.66 at θi 80°). The
 /// 64-point mean over h against 512 points, direction by direction where
 /// the lobe is above 1 % of its peak: measured 0.8–1.3 % at β_n 0.3 and
 /// 2.4–6.4 % at β_n 0.15 (the param's lower bound), held within 2 % and 7 %.

@@ -9,7 +9,7 @@
 # in γ = asin h), as
 # a pixel covering the fibre sees it; fibre_probe.py documents the frame.
 # The fibre is plait::mitsuba::Fibre::standard (the shading point's defaults: β_m 0.3, β_n 0.3, tilt 2°,
-# η 1.55); σ_a from the colour by Chiang 2016 §4.2, the same formula as
+# η 1.55), the tilt given to Mitsuba as the export gives it (scale_tilt −2); σ_a from the colour by Chiang 2016 §4.2, the same formula as
 # plait::mitsuba::sigma_a_from_color.
 # Usage: eval "$(bash scripts/ensure-mitsuba.sh)";
 #   $PLAIT_MITSUBA_PYTHON scripts/mitsuba/fibre_table.py > tests/fixtures/chiang_mitsuba.txt
@@ -21,6 +21,9 @@ LIGHTS = [0.0, 30.0, 60.0, 80.0]
 COLOURS = {'white': (1.0, 1.0, 1.0), 'blond': (0.85, 0.65, 0.40),
            'dark_brown': (0.32, 0.20, 0.11), 'black': (0.02, 0.02, 0.02)}
 BETA_M, BETA_N, TILT, ETA = 0.3, 0.3, 2.0, 1.55
+# Mitsuba's scale_tilt for plait's α: −α, as the export writes it (issue 42;
+# crates/plait/src/mitsuba/write.rs, scripts/mitsuba/tilt_side.py).
+MITSUBA_TILT = -TILT
 
 def sigma_a(c, b=BETA_N):
     d = 5.969 - 0.215*b + 2.532*b**2 - 10.73*b**3 + 5.574*b**4 + 0.245*b**5
@@ -28,7 +31,7 @@ def sigma_a(c, b=BETA_N):
 
 def bsdf(sig):
     return mi.load_dict({'type': 'hair', 'longitudinal_roughness': BETA_M, 'azimuthal_roughness': BETA_N,
-                         'scale_tilt': TILT, 'int_ior': ETA, 'sigma_a': mi.ScalarColor3f(*sig)})
+                         'scale_tilt': MITSUBA_TILT, 'int_ior': ETA, 'sigma_a': mi.ScalarColor3f(*sig)})
 
 si = dr.zeros(mi.SurfaceInteraction3f)
 si.sh_frame = mi.Frame3f([1, 0, 0], [0, 1, 0], [0, 0, 1]); si.n = [0, 0, 1]; si.dp_du = [0, 1, 0]
@@ -47,7 +50,8 @@ def mean_over_h(b, th_e, th_l, phi, n=4000):
         acc += np.cos(g)*np.array([v[0], v[1], v[2]])
     return acc*PI/(2*n)
 
-print(f"# Mitsuba {mi.__version__} hair BSDF, beta_m {BETA_M} beta_n {BETA_N} tilt {TILT} eta {ETA}; "
+print(f"# Mitsuba {mi.__version__} hair BSDF, beta_m {BETA_M} beta_n {BETA_N} tilt {TILT} eta {ETA} "
+      f"(scale_tilt {MITSUBA_TILT}); "
       "scripts/mitsuba/fibre_table.py")
 print("# colour light_k row_j column_i theta_i_deg theta_o_deg phi_deg r g b")
 for name, c in COLOURS.items():

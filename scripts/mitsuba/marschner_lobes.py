@@ -24,8 +24,8 @@
 #   azimuth: |φo| (degrees, folded to [0, 180]) at the peak of the
 #            azimuthal profile Σ_j f cos θo;
 #   energy:  Σ f cos θo Δθ Δφ, the lobe's ∫ f dωo.
-# The fibre: plait::mitsuba::Fibre::standard (β_m 0.3, β_n 0.3, tilt 2°,
-# η 1.55) with a grey σ_a = 0.1, the absorption of plait's Marschner in
+# The fibre: plait::mitsuba::Fibre::standard (β_m 0.3, β_n 0.3, tilt 2°:
+# Mitsuba's scale_tilt −2, as the export writes it; η 1.55) with a grey σ_a = 0.1, the absorption of plait's Marschner in
 # tests/fixtures/fibre_cases.wgsl.
 # Usage: eval "$(bash scripts/ensure-mitsuba.sh)";
 #   $PLAIT_MITSUBA_PYTHON scripts/mitsuba/marschner_lobes.py > tests/fixtures/marschner_mitsuba.txt
@@ -36,6 +36,10 @@ PI = np.pi
 ANGLES, AZIMUTHS = 128, 256
 LIGHTS = [0.0, 30.0, 60.0, 80.0]
 BETA_M, BETA_N, TILT, ETA, SIGMA_A = 0.3, 0.3, 2.0, 1.55, 0.1
+# Mitsuba's scale_tilt (and the port's α) for plait's α: −α, as the export
+# writes it for curves written root first (issue 42: with +α, R would sit on
+# the tip's side; crates/plait/src/mitsuba/write.rs, tilt_side.py).
+MITSUBA_TILT = -TILT
 H_POINTS = 256
 
 
@@ -84,7 +88,7 @@ def chiang_lobes(wo, wi, h, sigma_a):
     v0 = (0.726 * BETA_M + 0.812 * BETA_M ** 2 + 3.7 * BETA_M ** 20) ** 2
     v = [v0, 0.25 * v0, 4 * v0, 4 * v0]
     s = 0.626657069 * (0.265 * BETA_N + 1.194 * BETA_N ** 2 + 5.372 * BETA_N ** 22)
-    sin2k, cos2k = [np.sin(np.radians(TILT))], []
+    sin2k, cos2k = [np.sin(np.radians(MITSUBA_TILT))], []
     cos2k.append(np.sqrt(1 - sin2k[0] ** 2))
     for i in range(1, 3):
         sin2k.append(2 * cos2k[i - 1] * sin2k[i - 1])
@@ -135,7 +139,7 @@ def check_port():
     worst = {}
     for label, sig in [('sum', SIGMA_A), ('R', 1e4)]:
         b = mi.load_dict({'type': 'hair', 'longitudinal_roughness': BETA_M, 'azimuthal_roughness': BETA_N,
-                          'scale_tilt': TILT, 'int_ior': ETA, 'sigma_a': mi.ScalarColor3f(sig, sig, sig)})
+                          'scale_tilt': MITSUBA_TILT, 'int_ior': ETA, 'sigma_a': mi.ScalarColor3f(sig, sig, sig)})
         err, ref = [], []
         for _ in range(3000):
             te, tl = rng.uniform(-1.4, 1.4, 2)
@@ -204,7 +208,8 @@ def main():
     # the largest differences (~1 %) are at grazing eye offsets |h| > 0.98.
     if any(v[0] > 1e-4 or v[2] > 5e-3 for v in worst.values()):
         sys.exit(f"error: the port departs from Mitsuba: {worst}")
-    print(f"# beta_m {BETA_M} beta_n {BETA_N} tilt {TILT} eta {ETA} sigma_a {SIGMA_A}; h-averaged over {H_POINTS} points")
+    print(f"# beta_m {BETA_M} beta_n {BETA_N} tilt {TILT} (scale_tilt {MITSUBA_TILT}) eta {ETA} sigma_a {SIGMA_A}; "
+          f"h-averaged over {H_POINTS} points")
     print("# lobe light_k theta_i_deg shift_deg azimuth_deg energy")
     for k, ti in enumerate(LIGHTS):
         lobes = grid_lobes(k)

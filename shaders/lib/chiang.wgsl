@@ -1,15 +1,16 @@
 // plait::chiang — the fibre model of Chiang, Bitterli, Tappan & Burley 2016
 // ("A Practical and Controllable Hair and Fur Model for Production Path
 // Tracing", EGSR / CGF 35(2)), §3–4, in the form pbrt-v3 and Mitsuba 3's
-// `hair` BSDF evaluate it (their sign conventions, so the two agree point
-// for point; tests/fibre.rs holds this file to Mitsuba's values).
+// `hair` BSDF evaluate it, the cuticle tilt's sign turned for plait's
+// root-to-tip tangent (tests/fibre.rs holds this file to Mitsuba's values at
+// scale_tilt −α, as plait's export writes it).
 //
 // For an eye ray entering the fibre at offset h (sin γo = h):
 //   S·cos θi = Σ_{p=0..2} M_p(θi, θo^p) A_p(h) N_p(φ − Φ(p, h)) + M_3 A_3 / 2π
 // - M_p: d'Eon et al. 2011's longitudinal lobe with variance v_p from β_m
 //   (§4.1: v = (0.726 β_m + 0.812 β_m² + 3.7 β_m²⁰)², v_1 = v/4, v_2 = v_3 = 4v),
-//   θo shifted by the cuticle tilt α (−2α for R, α for TT, 4α for TRT: §5,
-//   pbrt-v3's rotation by 2^k α);
+//   θo rotated by the cuticle tilt α (+2α for R, −α for TT, −4α for TRT,
+//   pbrt-v3's rotation by 2^k α with its sign turned: see `longitudinal_lobes`);
 // - A_p: Fresnel at entry f, A_0 = f, A_1 = (1 − f)² T, A_2 = A_1 f T, and the
 //   p ≥ 3 remainder A_3 = A_2 f T / (1 − f T), with T = exp(−σ_a · 2 cos γt
 //   / cos θt) (§4);
@@ -130,11 +131,19 @@ fn trimmed_logistic(f: Fibre, x_in: f32) -> f32 {
     return f.trim * e / (f.s * (1.0 + e) * (1.0 + e));
 }
 
-// M_0..M_3 at (θi, θo): θo rotated by −2α (R), α (TT), 4α (TRT), not for p ≥ 3.
+// M_0..M_3 at (θi, θo): θo rotated by +2α (R), −α (TT), −4α (TRT), not for
+// p ≥ 3. M_p peaks where the rotated θo is −θi, so R peaks at θo + θi = −2α:
+// towards the root, with θ measured towards the tip along plait's tangent
+// (root to tip). α > 0 is a cuticle whose scales point to the tip, whose
+// surface leans towards the root: Marschner et al. 2003's shift, and plait's
+// `marschner` (α_R < 0). pbrt-v3/v4 and Mitsuba 3 rotate by −2α, α, 4α about
+// their fibre axis, the curve's parametric direction: for curves written
+// root first that is the other side, so plait's export hands Mitsuba −α
+// (crates/plait/src/mitsuba/write.rs, scripts/mitsuba/tilt_side.py).
 fn longitudinal_lobes(f: Fibre, sin_i: f32, sin_o: f32) -> vec4<f32> {
     let cos_i = sqrt(max(0.0, 1.0 - sin_i * sin_i));
     let cos_o = sqrt(max(0.0, 1.0 - sin_o * sin_o));
-    let tilt = vec3<f32>(-2.0, 1.0, 4.0) * f.alpha;
+    let tilt = vec3<f32>(2.0, -1.0, -4.0) * f.alpha;
     let sin_op = sin_o * cos(tilt) + cos_o * sin(tilt);
     let cos_op = abs(cos_o * cos(tilt) - sin_o * sin(tilt));
     return vec4<f32>(

@@ -394,3 +394,22 @@ fn every_curve_file_ends_with_a_segment_no_ray_can_hit() {
         }
     }
 }
+
+/// Issue 42: Mitsuba's `scale_tilt` is −α. Its hair BSDF moves R by +2·
+/// scale_tilt towards the curve's last control point, and the export writes
+/// each strand root first; plait's α > 0 (scales pointing to the tip) puts
+/// R towards the root. A positive `scale_tilt` here would put Mitsuba's
+/// highlight on the other side of plait's (`scripts/mitsuba/tilt_side.py`).
+#[test]
+fn the_cuticle_tilt_reaches_mitsuba_negated_for_curves_written_root_first() {
+    let fibre = standard();
+    assert!(fibre.scale_tilt_degrees > 0.0, "{fibre:?}");
+    let xml = plan(&two_strands(), (8, 8), fibre).expect("exports").xml();
+    let want = format!(
+        "<float name=\"scale_tilt\" value=\"{}\"/>",
+        -fibre.scale_tilt_degrees
+    );
+    assert_eq!(xml.matches(&want).count(), 2, "{want} in\n{xml}");
+    // Root first: `the_folder_holds_every_file_the_xml_names` holds the
+    // curve file's first knot to the strand's root.
+}

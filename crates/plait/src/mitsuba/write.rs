@@ -134,7 +134,7 @@ impl MitsubaScene {
             "<bsdf type=\"hair\">\n      <float name=\"longitudinal_roughness\" value=\"{}\"/>\n      <float name=\"azimuthal_roughness\" value=\"{}\"/>\n      <float name=\"scale_tilt\" value=\"{}\"/>\n      <float name=\"int_ior\" value=\"{}\"/>\n      <float name=\"ext_ior\" value=\"1\"/>\n      {}\n    </bsdf>",
             f.longitudinal_roughness,
             f.azimuthal_roughness,
-            f.scale_tilt_degrees,
+            mitsuba_scale_tilt(f.scale_tilt_degrees),
             f.eta,
             rgb("sigma_a", g.sigma_a)
         );
@@ -179,6 +179,21 @@ impl MitsubaScene {
         });
         serde_json::to_string_pretty(&json).unwrap_or_default() + "\n"
     }
+}
+
+/// Mitsuba's `scale_tilt` for plait's cuticle tilt α (degrees, > 0: the
+/// scales point to the tip, so R leaves towards the root — Marschner et al.
+/// 2003's shift, plait's `marschner` and `chiang`): −α.
+///
+/// Why negated: Mitsuba 3's `hair` BSDF (as pbrt-v3's and pbrt-v4's hair
+/// code) rotates the eye's θ by −2α for R, which moves the R lobe by +2α
+/// towards the fibre's local y axis, and at a `bsplinecurve` hit that axis
+/// runs from the curve's first control point to its last — the root to the
+/// tip, as [`curve_file`] writes a strand. So a positive `scale_tilt` there
+/// puts R on the tip's side (`scripts/mitsuba/tilt_side.py` measures it:
+/// +9.8° at +4, −13.3° at −4).
+pub(super) fn mitsuba_scale_tilt(alpha_degrees: f32) -> f32 {
+    -alpha_degrees
 }
 
 /// A curve file for `bsplinecurve`: `x y z radius` per control point (`{}`
