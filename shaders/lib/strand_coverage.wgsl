@@ -130,8 +130,14 @@ fn quad_place(world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec
     }
     let normal = normalize(vec2<f32>(-dir.y, dir.x));
     // Half a pixel beyond the edge: every pixel centre the box-filtered
-    // edge reaches is inside the quad.
+    // edge reaches is inside the quad. Under MSAA whose samples the strand's
+    // alpha picks (QUAD_EDGES_SAMPLES: alpha_to_coverage) the quad is the
+    // band itself and the samples it covers are its edges' antialiasing.
+#ifdef QUAD_EDGES_SAMPLES
+    let reach = side * half;
+#else
     let reach = side * (half + 0.5);
+#endif
     clip = vec4<f32>(clip.xy + normal * reach * 2.0 * frame.screen_size.zw * clip.w, clip.zw);
     return QuadPlace(clip, vec2<f32>(reach, half));
 }
@@ -141,6 +147,9 @@ fn quad_place(world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec
 // pixel wide across the band, so over a row of pixels the parts sum to the
 // band's width.
 fn quad_coverage(across: vec2<f32>) -> f32 {
+#ifdef QUAD_EDGES_SAMPLES
+    return 1.0;
+#endif
     let d = abs(across.x);
     return clamp(min(d + 0.5, across.y) - max(d - 0.5, -across.y), 0.0, 1.0);
 }
