@@ -298,14 +298,29 @@ fn a_four_pixel_strand_is_four_pixels_wide() {
     // Columns well inside the strand's length (40 px about the centre).
     let columns = (w / 2 - 12)..(w / 2 + 12);
     let rows: Vec<f64> = (0..h)
-        .map(|y| columns.clone().map(|x| image[y * w + x] / full).sum::<f64>() / columns.len() as f64)
+        .map(|y| {
+            columns
+                .clone()
+                .map(|x| image[y * w + x] / full)
+                .sum::<f64>()
+                / columns.len() as f64
+        })
         .collect();
-    let lit: Vec<(usize, f64)> = rows.iter().copied().enumerate().filter(|r| r.1 > 1e-6).collect();
+    let lit: Vec<(usize, f64)> = rows
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|r| r.1 > 1e-6)
+        .collect();
     eprintln!("4 px strand, mean α per row: {lit:.3?}");
     let solid = lit.iter().filter(|r| r.1 > 0.5).count();
     let sum: f64 = lit.iter().map(|r| r.1).sum();
     assert!((sum / 4.0 - 1.0).abs() < 0.02, "Σα across {sum:.3}, not 4");
-    assert!(solid >= 3 && lit.len() <= 5, "{} rows lit, {solid} above 0.5", lit.len());
+    assert!(
+        solid >= 3 && lit.len() <= 5,
+        "{} rows lit, {solid} above 0.5",
+        lit.len()
+    );
 }
 
 /// Issue 47's groom (`plait hair generate --style wavy --strands 3000

@@ -130,10 +130,12 @@ fn quad_place(world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec
     }
     let normal = normalize(vec2<f32>(-dir.y, dir.x));
     // Half a pixel beyond the edge: every pixel centre the box-filtered
-    // edge reaches is inside the quad. Under MSAA whose samples the strand's
-    // alpha picks (QUAD_EDGES_SAMPLES: alpha_to_coverage) the quad is the
-    // band itself and the samples it covers are its edges' antialiasing.
-#ifdef QUAD_EDGES_SAMPLES
+    // edge reaches is inside the quad. A pass param quad_edges = "band"
+    // (QUAD_EDGES_BAND) draws the band itself, unfiltered: under MSAA whose
+    // samples the strand's alpha picks (alpha_to_coverage) the samples it
+    // covers are its edges' antialiasing, and `opaque`, which ignores alpha,
+    // draws the strand's width solid rather than its width + 1.
+#ifdef QUAD_EDGES_BAND
     let reach = side * half;
 #else
     let reach = side * (half + 0.5);
@@ -147,7 +149,7 @@ fn quad_place(world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec
 // pixel wide across the band, so over a row of pixels the parts sum to the
 // band's width.
 fn quad_coverage(across: vec2<f32>) -> f32 {
-#ifdef QUAD_EDGES_SAMPLES
+#ifdef QUAD_EDGES_BAND
     return 1.0;
 #endif
     let d = abs(across.x);

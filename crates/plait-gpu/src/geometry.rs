@@ -54,7 +54,9 @@ pub const NEXT_HAIR_VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex
 /// `plait::hair_fragment`'s: each hair vertex with the next one. `Vertex`
 /// steps for the line draw, `Instance` for the quad draw of strands wider
 /// than a pixel (one instance per hair vertex, 6 vertices each).
-pub fn hair_vertex_layouts(step_mode: wgpu::VertexStepMode) -> [wgpu::VertexBufferLayout<'static>; 2] {
+pub fn hair_vertex_layouts(
+    step_mode: wgpu::VertexStepMode,
+) -> [wgpu::VertexBufferLayout<'static>; 2] {
     let array_stride = std::mem::size_of::<StrandVertex>() as u64;
     [
         wgpu::VertexBufferLayout {

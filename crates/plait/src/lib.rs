@@ -34,4 +34,5 @@ pub mod session;
 pub mod size_limit;
 pub mod source;
 pub mod strand_lod;
+pub mod wide_strands;
 pub mod wisps;

@@ -46,7 +46,7 @@ fn fs_main(in: HairVaryings, @builtin(sample_mask) covered: u32) -> HairSamples 
     // expected coverage is α × the line's, whatever part of the pixel it
     // crosses.
     // A wide strand's quad is the strand's band exactly here, without the
-    // apron and the box-filtered edge (QUAD_EDGES_SAMPLES,
+    // apron and the box-filtered edge (QUAD_EDGES_BAND,
     // plait::strand_coverage): the samples it covers are its coverage, as
     // a line's are — a pixel the quad's diagonal crosses has a fragment of
     // each triangle, each with its own samples.
