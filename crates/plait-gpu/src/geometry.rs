@@ -77,6 +77,29 @@ pub fn hair_vertex_layouts(
 /// shared vertex stage tells a quad corner from a line's vertex.
 pub const WIDE_FIRST_VERTEX: u32 = 1 << 30;
 
+/// Whether the module's vertex stage reads the next hair vertex (location
+/// 11, `HairVertex.next_strand_id` of `plait::hair_fragment`): then its hair
+/// draw binds the hair vertices twice and has the quad draw.
+pub fn reads_next_vertex(module: &naga::Module) -> bool {
+    let reads = |binding: &Option<naga::Binding>| {
+        matches!(binding, Some(naga::Binding::Location { location: 11, .. }))
+    };
+    module
+        .entry_points
+        .iter()
+        .filter(|e| e.stage == naga::ShaderStage::Vertex)
+        .flat_map(|e| &e.function.arguments)
+        .any(|a| {
+            reads(&a.binding)
+                || match &module.types[a.ty].inner {
+                    naga::TypeInner::Struct { members, .. } => {
+                        members.iter().any(|m| reads(&m.binding))
+                    }
+                    _ => false,
+                }
+        })
+}
+
 pub fn opaque_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     wgpu::VertexBufferLayout {
         array_stride: std::mem::size_of::<OpaqueVertex>() as u64,

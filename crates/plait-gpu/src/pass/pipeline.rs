@@ -14,7 +14,9 @@ use super::plan::BindingPlan;
 use super::record::{ColorAttachment, DepthAttachment, DrawWhat, ShaderPassKind};
 use super::state::{DepthMode, RasterState};
 use crate::GpuError;
-use crate::geometry::{hair_vertex_layout, hair_vertex_layouts, opaque_vertex_layout};
+use crate::geometry::{
+    hair_vertex_layout, hair_vertex_layouts, opaque_vertex_layout, reads_next_vertex,
+};
 use crate::pool::texture_format;
 
 /// What every pipeline of a draw shares: the laid-out module, its layout,
@@ -75,7 +77,7 @@ impl PipelineParts<'_> {
 
     /// A raster or fullscreen draw into the plan's attachments. A hair draw
     /// whose vertex stage is `plait::hair_fragment`'s (it reads the next hair
-    /// vertex, [`reads_next_vertex`]) gets a second pipeline: the quad draw
+    /// vertex, [`reads_next_vertex`](crate::geometry::reads_next_vertex)) gets a second pipeline: the quad draw
     /// of strands wider than a pixel (`plait::strand_coverage`).
     pub fn raster(&self, plan: &BindingPlan) -> Result<ShaderPassKind, GpuError> {
         let state = &self.draw.state;
@@ -271,27 +273,4 @@ fn depth_attachment(plan: &BindingPlan, state: &RasterState) -> Option<DepthAtta
         clear: d.clear.map(|c| c[0] as f32),
         writes: depth_write_compare(state, d.written).0,
     })
-}
-
-/// Whether the module's vertex stage reads the next hair vertex (location
-/// 11, `HairVertex.next_strand_id` of `plait::hair_fragment`): then its hair
-/// draw binds the hair vertices twice and has the quad draw.
-fn reads_next_vertex(module: &naga::Module) -> bool {
-    let reads = |binding: &Option<naga::Binding>| {
-        matches!(binding, Some(naga::Binding::Location { location: 11, .. }))
-    };
-    module
-        .entry_points
-        .iter()
-        .filter(|e| e.stage == naga::ShaderStage::Vertex)
-        .flat_map(|e| &e.function.arguments)
-        .any(|a| {
-            reads(&a.binding)
-                || match &module.types[a.ty].inner {
-                    naga::TypeInner::Struct { members, .. } => {
-                        members.iter().any(|m| reads(&m.binding))
-                    }
-                    _ => false,
-                }
-        })
 }
