@@ -28,7 +28,7 @@
 #import plait::hair_radiance::hair_radiance
 #import plait::ambient_occlusion::occlusion_at
 #import plait::shading_space::strand_space_radiance
-#import plait::strand_coverage::{strand_coverage, strand_tip_scale}
+#import plait::strand_coverage::{strand_coverage, strand_tip_scale, is_quad_vertex, quad_corner, segment_is_wide, quad_place, quad_coverage, QuadPlace}
 #import plait::strand_curve::strand_curve_tangent_lerp
 #import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_alpha, strand_lod_vertex, strand_lod_wisps, strand_lod_fraction, strand_lod_texel}
 
@@ -43,9 +43,20 @@ struct HairVertex {
     @location(4) color: vec3<f32>,
     // Which strand it belongs to (the `geometry` point drops or widens it).
     @location(5) strand_id: u32,
+    // The next hair vertex (the second vertex buffer, one vertex on): the
+    // other end of the segment this vertex starts, for the quad draw of
+    // strands wider than a pixel (plait::strand_coverage, "the quad draw").
+    @location(6) next_position: vec3<f32>,
+    @location(7) next_thickness: f32,
+    @location(8) next_tangent: vec3<f32>,
+    @location(9) next_alpha: f32,
+    @location(10) next_color: vec3<f32>,
+    @location(11) next_strand_id: u32,
     // The vertex's index in the hair vertex buffer: per-vertex resources
-    // (ambient occlusion) are indexed by it.
+    // (ambient occlusion) are indexed by it. In the quad draw it is
+    // WIDE_FIRST_VERTEX + the corner, and the instance is the hair vertex.
     @builtin(vertex_index) index: u32,
+    @builtin(instance_index) instance: u32,
 }
 
 struct HairVaryings {
@@ -74,6 +85,12 @@ struct HairVaryings {
     // tangent at the fragment (shading_tangent).
     @location(9) @interpolate(flat) start: vec3<f32>,
     @location(10) @interpolate(flat) start_tangent: vec3<f32>,
+    // 0: a line of a segment no wider than a pixel; 1: the line of a wider
+    // one, discarded (the quad draw draws it); 2: the quad of a wider one.
+    @location(11) @interpolate(flat) mode: u32,
+    // In a quad: the distance from the strand's centre line and its half
+    // width, in pixels, interpolated in screen space (quad_coverage).
+    @location(12) @interpolate(linear) across: vec2<f32>,
 }
 
 // A shaded hair fragment: straight (not premultiplied) colour and alpha.
@@ -83,10 +100,56 @@ struct HairFragment {
 }
 
 fn hair_vertex(v: HairVertex) -> HairVaryings {
+    if (is_quad_vertex(v.index)) {
+        return quad_vertex(v);
+    }
+    var out = hair_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index, true);
+    // A line's flat varyings are its first vertex's, whose next vertex is the
+    // line's other end: the line of a wide segment is dropped.
+    let wide = !strand_lod_wisps() && segment_is_wide(v.position, v.tangent, v.thickness, v.strand_id, v.next_position, v.next_tangent, v.next_thickness, v.next_strand_id);
+    out.mode = select(0u, 1u, wide);
+    return out;
+}
+
+// A vertex of the quad draw: the corner of segment (instance, instance + 1)
+// it stands for, or a point outside the view (no fragment) when the segment
+// is a line.
+fn quad_vertex(v: HairVertex) -> HairVaryings {
+    let corner = quad_corner(v.index);
+    var out: HairVaryings;
+    if (corner.end) {
+        out = hair_vertex_at(v.next_position, v.next_thickness, v.next_tangent, v.next_alpha, v.next_color, v.next_strand_id, v.instance + 1u, false);
+    } else {
+        out = hair_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.instance, false);
+    }
+    let wide = !strand_lod_wisps() && segment_is_wide(v.position, v.tangent, v.thickness, v.strand_id, v.next_position, v.next_tangent, v.next_thickness, v.next_strand_id);
+    if (!wide) {
+        out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+        out.mode = 1u;
+        return out;
+    }
+    let segment = v.next_position - v.position;
+    var q: QuadPlace;
+    if (corner.end) {
+        q = quad_place(v.next_position, v.next_tangent, v.next_thickness, segment, corner.side);
+    } else {
+        q = quad_place(v.position, v.tangent, v.thickness, segment, corner.side);
+    }
+    let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.instance);
+    out.clip = strand_lod_clip(q.clip, p.weight);
+    out.across = q.across;
+    out.mode = 2u;
+    return out;
+}
+
+// The vertex stage for hair vertex `index`; `line`: as a line's vertex,
+// whose alpha is weighed by its coverage — a quad's coverage is per pixel
+// instead (quad_coverage in fragment_alpha).
+fn hair_vertex_at(position: vec3<f32>, thickness: f32, tangent: vec3<f32>, alpha: f32, color: vec3<f32>, strand_id: u32, index: u32, line: bool) -> HairVaryings {
     var out: HairVaryings;
     // Where the geometry draws the vertex: itself, or a wisp vertex's strip
     // corner, following the hair vertex it stands for.
-    let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+    let p = strand_lod_place(position, thickness, tangent, alpha, color, strand_id, index);
     out.clip = strand_lod_clip(view_proj() * vec4<f32>(p.world, 1.0), p.weight);
     out.world = p.world;
     out.tangent = p.tangent;
@@ -94,20 +157,26 @@ fn hair_vertex(v: HairVertex) -> HairVaryings {
     // A strand thinner than a pixel covers only part of it: its coverage
     // weighs its alpha in every blending technique (and sets the sample mask
     // of alpha to coverage). A wisp's coverage is its texture's alpha.
-    let coverage = select(strand_coverage(v.position, v.tangent, v.thickness), 1.0, strand_lod_wisps());
+    let coverage = select(strand_coverage(position, tangent, thickness), 1.0, strand_lod_wisps() || !line);
     let tip = strand_tip_scale(p.strand, p.segment, strand_lod_fraction(p.segment, p.along));
     out.alpha = strand_lod_alpha(p.alpha * coverage * tip, p.weight);
     out.wisp = p.texture;
-    out.occlusion = occlusion_at(strand_lod_vertex(v.index, v.strand_id));
+    out.occlusion = occlusion_at(strand_lod_vertex(index, strand_id));
     out.strand = p.strand;
     out.segment = p.segment;
     out.parity = p.along;
     out.start = p.world;
     out.start_tangent = p.tangent;
+    out.mode = 0u;
+    out.across = vec2<f32>(0.0, 1.0);
     return out;
 }
 
 fn shade_hair(in: HairVaryings) -> HairFragment {
+    // Before the shading: the quad draw draws this line's segment.
+    if (in.mode == 1u) {
+        discard;
+    }
     let texel = strand_lod_texel(in.wisp);
     // Strand space: the radiance a compute pass shaded along the strand this
     // frame, interpolated; w < 0 when the colour is shaded here. w is a
@@ -134,8 +203,14 @@ fn segment_fraction(in: HairVaryings) -> f32 {
 
 // The fragment's alpha alone (coverage × strand alpha × hair colour alpha),
 // for passes that need how much the fragment hides but not its colour.
+// The line of a segment the quad draw draws (mode 1) is discarded here, so
+// every pass that reads a hair fragment's alpha or colour drops it.
 fn fragment_alpha(in: HairVaryings) -> f32 {
-    return clamp(in.alpha * strand_lod_texel(in.wisp).a * frame.hair_color.a, 0.0, 1.0);
+    if (in.mode == 1u) {
+        discard;
+    }
+    let quad = select(1.0, quad_coverage(in.across), in.mode == 2u);
+    return clamp(in.alpha * quad * strand_lod_texel(in.wisp).a * frame.hair_color.a, 0.0, 1.0);
 }
 
 // The tangent the fragment is shaded about: the smooth curve's through the

@@ -10,6 +10,9 @@
 #import plait::frame::{frame, view_proj, view_linear_depth}
 #import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_wisps}
 #import plait::map_share::MAP_SHARE_SCALE
+#ifndef LIGHT_VIEW
+#import plait::strand_coverage::{is_quad_vertex, quad_corner, segment_is_wide, quad_place}
+#endif
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
@@ -20,6 +23,19 @@ struct MapVertex {
     @location(4) color: vec3<f32>,
     // The `geometry` point drops the strands the shaded draws drop.
     @location(5) strand_id: u32,
+#ifndef LIGHT_VIEW
+    // Camera views: the next hair vertex, for the quad draw of strands wider
+    // than a pixel (plait::strand_coverage) — the maps hold the fragments
+    // the shaded hair pass draws. Light views draw lines only: a light texel
+    // is blocked by the strand's share of it, at most the whole texel.
+    @location(6) next_position: vec3<f32>,
+    @location(7) next_thickness: f32,
+    @location(8) next_tangent: vec3<f32>,
+    @location(9) next_alpha: f32,
+    @location(10) next_color: vec3<f32>,
+    @location(11) next_strand_id: u32,
+    @builtin(instance_index) instance: u32,
+#endif
     @builtin(vertex_index) index: u32,
 }
 
@@ -30,16 +46,67 @@ struct MapFragment {
     // The strand's width across the light in map coordinates (0..1 over
     // the map); a negative value: it blocks whole texels (see map_share).
     @location(1) width: f32,
+    // As plait::hair_fragment's: 1 for the line of a segment the quad draw
+    // draws (discarded by map_texel and map_kept), 0 otherwise.
+    @location(2) @interpolate(flat) mode: u32,
 }
 
 
 fn map_vertex(v: MapVertex) -> MapFragment {
+#ifndef LIGHT_VIEW
+    let wide = !strand_lod_wisps() && segment_is_wide(v.position, v.tangent, v.thickness, v.strand_id, v.next_position, v.next_tangent, v.next_thickness, v.next_strand_id);
+    if (is_quad_vertex(v.index)) {
+        return map_quad_vertex(v, wide);
+    }
+    var out = map_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+    out.mode = select(0u, 1u, wide);
+    return out;
+#else
+    return map_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+#endif
+}
+
+fn map_vertex_at(position: vec3<f32>, thickness: f32, tangent: vec3<f32>, alpha: f32, color: vec3<f32>, strand_id: u32, index: u32) -> MapFragment {
     var out: MapFragment;
-    let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+    let p = strand_lod_place(position, thickness, tangent, alpha, color, strand_id, index);
     out.clip = strand_lod_clip(view_proj() * vec4<f32>(p.world, 1.0), p.weight);
     out.depth = view_linear_depth(p.world);
-    out.width = map_width(v.position, v.tangent, v.thickness);
+    out.width = map_width(position, tangent, thickness);
+    out.mode = 0u;
     return out;
+}
+
+#ifndef LIGHT_VIEW
+// A corner of the quad of segment (instance, instance + 1) in a camera
+// view, as plait::hair_fragment's quad_vertex places it; outside the view
+// when the segment is a line.
+fn map_quad_vertex(v: MapVertex, wide: bool) -> MapFragment {
+    let corner = quad_corner(v.index);
+    var out: MapFragment;
+    if (corner.end) {
+        out = map_vertex_at(v.next_position, v.next_thickness, v.next_tangent, v.next_alpha, v.next_color, v.next_strand_id, v.instance + 1u);
+    } else {
+        out = map_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.instance);
+    }
+    if (!wide) {
+        out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+        return out;
+    }
+    let segment = v.next_position - v.position;
+    let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.instance);
+    if (corner.end) {
+        out.clip = strand_lod_clip(quad_place(v.next_position, v.next_tangent, v.next_thickness, segment, corner.side).clip, p.weight);
+    } else {
+        out.clip = strand_lod_clip(quad_place(v.position, v.tangent, v.thickness, segment, corner.side).clip, p.weight);
+    }
+    return out;
+}
+#endif
+
+// False for the line of a segment the quad draw draws: the fragment
+// shader discards it (map_texel does).
+fn map_kept(in: MapFragment) -> bool {
+    return in.mode != 1u;
 }
 
 // The strand's width across the light, in light-map coordinates, for light
@@ -91,6 +158,9 @@ struct MapTexel {
 }
 
 fn map_texel(in: MapFragment, range: texture_2d<f32>) -> MapTexel {
+    if (!map_kept(in)) {
+        discard;
+    }
     var m: MapTexel;
     m.size = textureDimensions(range);
     m.texel = min(vec2<u32>(in.clip.xy), m.size - 1u);

@@ -13,15 +13,9 @@
 #import plait::shading_space::strand::strand_tip
 #endif
 
-// The fraction of a pixel's width a strand of `thickness` (world units, its
-// diameter) at `world` along `tangent` covers: its width across the view,
-// projected to pixels, at most 1 — lines are drawn one pixel wide, so a thin
-// strand must weigh by its true width (as AMD TressFX and vkhr do for their
-// lines and strips). frame.conventions.z = 0 turns it off (coverage 1).
-fn strand_coverage(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
-    if (frame.conventions.z < 0.5) {
-        return 1.0;
-    }
+// The strand's width across the view in pixels at `world` along `tangent`
+// (`thickness`: world units, its diameter); −1 behind the eye.
+fn strand_width_pixels(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
     let to_eye = normalize(frame.camera_position.xyz - world);
     // Across the strand and the view ray: the direction its width is seen in.
     var side = cross(tangent, to_eye);
@@ -32,10 +26,134 @@ fn strand_coverage(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 
     let a = frame.camera_view_proj * vec4<f32>(world, 1.0);
     let b = frame.camera_view_proj * vec4<f32>(world + side * thickness, 1.0);
     if (a.w <= 0.0 || b.w <= 0.0) {
-        return 1.0;
+        return -1.0;
     }
     let pixels = (b.xy / b.w - a.xy / a.w) * 0.5 * frame.screen_size.xy;
-    return min(length(pixels), 1.0);
+    return length(pixels);
+}
+
+// The fraction of a pixel's width a strand of `thickness` (world units, its
+// diameter) at `world` along `tangent` covers when it is drawn as a line:
+// its width across the view in pixels, at most 1 — lines are one pixel wide,
+// so a thin strand must weigh by its true width (as AMD TressFX and vkhr do
+// for their lines and strips). A segment wider than a pixel is not drawn as
+// a line where the pass has the quad draw (`segment_is_wide`), so the 1 here
+// only holds for passes without it. frame.conventions.z = 0 turns coverage
+// off (coverage 1).
+fn strand_coverage(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
+    if (frame.conventions.z < 0.5) {
+        return 1.0;
+    }
+    let width = strand_width_pixels(world, tangent, thickness);
+    // Behind the eye the line is clipped anyway; 1 as before.
+    return select(min(width, 1.0), 1.0, width < 0.0);
+}
+
+// ---- Strands wider than a pixel: the quad draw (issue 47) ----
+//
+// A hair pass whose vertex stage is plait::hair_fragment's draws the hair
+// twice: the indexed line list (every vertex i with the next one, i + 1, in
+// its second vertex buffer) and a non-indexed triangle draw of 6 vertices per
+// hair vertex i, instanced, both buffers stepped per instance, whose vertex
+// indices start at WIDE_FIRST_VERTEX. A segment (i, i + 1) of one strand is
+// "wide" when either end is wider than a pixel across the view: the line draw
+// drops it (its fragments are discarded by the flat flag of the line's first
+// vertex) and the quad draw draws it as a screen-aligned quad of its width
+// plus half a pixel on each side; every other segment is a line as before and
+// a degenerate quad. Vertex indices of the line draw are hair vertex indices,
+// far below WIDE_FIRST_VERTEX.
+const WIDE_FIRST_VERTEX: u32 = 1073741824u;
+
+// A quad-draw vertex's place in its segment's quad: two triangles
+// (s−, s+, e−) and (s+, e+, e−), each starting at a start corner so the flat
+// varyings are the segment's first vertex's, as for its line.
+struct QuadCorner {
+    end: bool,
+    side: f32,
+}
+
+fn quad_corner(vertex_index: u32) -> QuadCorner {
+    let c = vertex_index - WIDE_FIRST_VERTEX;
+    let end = c == 2u || c == 4u || c == 5u;
+    let plus = c == 1u || c == 3u || c == 4u;
+    return QuadCorner(end, select(-1.0, 1.0, plus));
+}
+
+fn is_quad_vertex(vertex_index: u32) -> bool {
+    return vertex_index >= WIDE_FIRST_VERTEX;
+}
+
+// Whether the segment from hair vertex a to b (strands `strand_a`,
+// `strand_b`) is drawn as a quad: coverage on, one strand, and either end
+// wider than a pixel.
+fn segment_is_wide(a: vec3<f32>, tangent_a: vec3<f32>, thickness_a: f32, strand_a: u32, b: vec3<f32>, tangent_b: vec3<f32>, thickness_b: f32, strand_b: u32) -> bool {
+    if (frame.conventions.z < 0.5 || strand_a != strand_b) {
+        return false;
+    }
+    let wa = strand_width_pixels(a, tangent_a, thickness_a);
+    let wb = strand_width_pixels(b, tangent_b, thickness_b);
+    return wa >= 0.0 && wb >= 0.0 && max(wa, wb) > 1.0;
+}
+
+// A quad corner placed: clip position, and (distance from the centre line,
+// half width) in pixels, for the fragment's box-filtered coverage.
+struct QuadPlace {
+    clip: vec4<f32>,
+    across: vec2<f32>,
+}
+
+fn clip_pixels(clip: vec4<f32>) -> vec2<f32> {
+    return clip.xy / clip.w * 0.5 * frame.screen_size.xy;
+}
+
+// The corner on `side` (±1) of the quad at hair vertex `world` (tangent,
+// thickness) of the segment running `segment` (end − start, world units).
+// Across is perpendicular to the strand's tangent on screen, so two
+// segments meeting at a vertex share its corners (no gap, no overlap); the
+// segment's own direction where the tangent is nearly across it.
+fn quad_place(world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec3<f32>, side: f32) -> QuadPlace {
+    var clip = frame.camera_view_proj * vec4<f32>(world, 1.0);
+    let half = 0.5 * max(strand_width_pixels(world, tangent, thickness), 0.0);
+    let length_ = length(segment);
+    let along = dot(tangent, segment);
+    var ahead_world = world + segment;
+    if (abs(along) > 0.1 * length_) {
+        ahead_world = world + tangent * (sign(along) * length_);
+    }
+    let ahead = frame.camera_view_proj * vec4<f32>(ahead_world, 1.0);
+    if (clip.w <= 0.0 || ahead.w <= 0.0) {
+        return QuadPlace(vec4<f32>(2.0, 2.0, 2.0, 1.0), vec2<f32>(0.0));
+    }
+    var dir = clip_pixels(ahead) - clip_pixels(clip);
+    if (dot(dir, dir) < 1e-12) {
+        dir = vec2<f32>(1.0, 0.0);
+    }
+    let normal = normalize(vec2<f32>(-dir.y, dir.x));
+    // Half a pixel beyond the edge: every pixel centre the box-filtered
+    // edge reaches is inside the quad. A pass param quad_edges = "band"
+    // (QUAD_EDGES_BAND) draws the band itself, unfiltered: under MSAA whose
+    // samples the strand's alpha picks (alpha_to_coverage) the samples it
+    // covers are its edges' antialiasing, and `opaque`, which ignores alpha,
+    // draws the strand's width solid rather than its width + 1.
+#ifdef QUAD_EDGES_BAND
+    let reach = side * half;
+#else
+    let reach = side * (half + 0.5);
+#endif
+    clip = vec4<f32>(clip.xy + normal * reach * 2.0 * frame.screen_size.zw * clip.w, clip.zw);
+    return QuadPlace(clip, vec2<f32>(reach, half));
+}
+
+// The part of a pixel a band of half width `across.y` covers at distance
+// `across.x` (pixels) from its centre line: the pixel taken as a box one
+// pixel wide across the band, so over a row of pixels the parts sum to the
+// band's width.
+fn quad_coverage(across: vec2<f32>) -> f32 {
+#ifdef QUAD_EDGES_BAND
+    return 1.0;
+#endif
+    let d = abs(across.x);
+    return clamp(min(d + 0.5, across.y) - max(d - 0.5, -across.y), 0.0, 1.0);
 }
 
 // The strand's tip fading at a place along it (strand `strand`, hair vertex

@@ -3,7 +3,7 @@
 // Drawn twice by the pass (near: depth test Less, writing red; far: depth
 // test Greater, writing green), the paper's faster choice over one min/max
 // blended pass — and one that needs no FLOAT32_BLENDABLE.
-#import plait::hair_map::{MapVertex, MapFragment, map_vertex}
+#import plait::hair_map::{MapVertex, MapFragment, map_vertex, map_kept}
 
 // Depth of opaque geometry from the same view (the opaque shadow map for the
 // light, the camera depth for the camera): hair behind it is not recorded (§3.5).
@@ -24,7 +24,7 @@ fn behind_opaque(in: MapFragment) -> bool {
 
 @fragment
 fn fs_main(in: MapFragment) -> @location(0) vec4<f32> {
-    if (behind_opaque(in)) {
+    if (behind_opaque(in) || !map_kept(in)) {
         discard;
     }
     // The pass's colour write mask keeps red (near) or green (far).

@@ -43,6 +43,63 @@ pub fn hair_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     }
 }
 
+/// The hair vertex attributes again at locations 6–11: the next hair vertex
+/// (`plait::hair_fragment`'s `HairVertex.next_*`), read from the hair vertex
+/// buffer bound a second time one vertex further on.
+pub const NEXT_HAIR_VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
+    6 => Float32x3, 7 => Float32, 8 => Float32x3, 9 => Float32, 10 => Float32x3, 11 => Uint32
+];
+
+/// The vertex buffers of a hair pass whose vertex stage is
+/// `plait::hair_fragment`'s: each hair vertex with the next one. `Vertex`
+/// steps for the line draw, `Instance` for the quad draw of strands wider
+/// than a pixel (one instance per hair vertex, 6 vertices each).
+pub fn hair_vertex_layouts(
+    step_mode: wgpu::VertexStepMode,
+) -> [wgpu::VertexBufferLayout<'static>; 2] {
+    let array_stride = std::mem::size_of::<StrandVertex>() as u64;
+    [
+        wgpu::VertexBufferLayout {
+            array_stride,
+            step_mode,
+            attributes: &HAIR_VERTEX_ATTRIBUTES,
+        },
+        wgpu::VertexBufferLayout {
+            array_stride,
+            step_mode,
+            attributes: &NEXT_HAIR_VERTEX_ATTRIBUTES,
+        },
+    ]
+}
+
+/// The first vertex index of the quad draw (`WIDE_FIRST_VERTEX` in
+/// `shaders/lib/strand_coverage.wgsl`): above any hair vertex index, so the
+/// shared vertex stage tells a quad corner from a line's vertex.
+pub const WIDE_FIRST_VERTEX: u32 = 1 << 30;
+
+/// Whether the module's vertex stage reads the next hair vertex (location
+/// 11, `HairVertex.next_strand_id` of `plait::hair_fragment`): then its hair
+/// draw binds the hair vertices twice and has the quad draw.
+pub fn reads_next_vertex(module: &naga::Module) -> bool {
+    let reads = |binding: &Option<naga::Binding>| {
+        matches!(binding, Some(naga::Binding::Location { location: 11, .. }))
+    };
+    module
+        .entry_points
+        .iter()
+        .filter(|e| e.stage == naga::ShaderStage::Vertex)
+        .flat_map(|e| &e.function.arguments)
+        .any(|a| {
+            reads(&a.binding)
+                || match &module.types[a.ty].inner {
+                    naga::TypeInner::Struct { members, .. } => {
+                        members.iter().any(|m| reads(&m.binding))
+                    }
+                    _ => false,
+                }
+        })
+}
+
 pub fn opaque_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     wgpu::VertexBufferLayout {
         array_stride: std::mem::size_of::<OpaqueVertex>() as u64,
@@ -335,6 +392,19 @@ impl SceneGeometry {
             Some(w) => (Some(w), wgpu::PrimitiveTopology::TriangleList),
             None => (self.hair.as_ref(), wgpu::PrimitiveTopology::LineList),
         }
+    }
+
+    /// The hair's vertices for the quad draw of strands wider than a pixel,
+    /// with how many there are; `None` with wisps (their triangles are drawn
+    /// at their width already) or without hair.
+    pub fn hair_quads(&self) -> Option<(&wgpu::Buffer, u32)> {
+        if self.wisps.is_some() {
+            return None;
+        }
+        let hair = self.hair.as_ref()?;
+        let stride = std::mem::size_of::<StrandVertex>() as u64;
+        let count = (hair.vertices.size() / stride) as u32;
+        (count >= 2).then_some((&hair.vertices, count))
     }
 
     /// The buffer of scene resource `name` (`plait_graph::scene_resources`);

@@ -45,6 +45,11 @@ fn fs_main(in: HairVaryings, @builtin(sample_mask) covered: u32) -> HairSamples 
     // Of the samples the line covers here, α of them (dithered): the
     // expected coverage is α × the line's, whatever part of the pixel it
     // crosses.
+    // A wide strand's quad is the strand's band exactly here, without the
+    // apron and the box-filtered edge (QUAD_EDGES_BAND,
+    // plait::strand_coverage): the samples it covers are its coverage, as
+    // a line's are — a pixel the quad's diagonal crosses has a fragment of
+    // each triangle, each with its own samples.
     let c = countOneBits(covered);
     let k = min(u32(floor(f.alpha * f32(c) + xi)), c);
     let r = pcg(pcg(pixel.x + pcg(pixel.y)) ^ pcg(in.strand)) % max(c, 1u);

@@ -14,7 +14,9 @@ use super::plan::BindingPlan;
 use super::record::{ColorAttachment, DepthAttachment, DrawWhat, ShaderPassKind};
 use super::state::{DepthMode, RasterState};
 use crate::GpuError;
-use crate::geometry::{hair_vertex_layout, opaque_vertex_layout};
+use crate::geometry::{
+    hair_vertex_layout, hair_vertex_layouts, opaque_vertex_layout, reads_next_vertex,
+};
 use crate::pool::texture_format;
 
 /// What every pipeline of a draw shares: the laid-out module, its layout,
@@ -73,29 +75,69 @@ impl PipelineParts<'_> {
         })
     }
 
-    /// A raster or fullscreen draw into the plan's attachments.
+    /// A raster or fullscreen draw into the plan's attachments. A hair draw
+    /// whose vertex stage is `plait::hair_fragment`'s (it reads the next hair
+    /// vertex, [`reads_next_vertex`](crate::geometry::reads_next_vertex)) gets a second pipeline: the quad draw
+    /// of strands wider than a pixel (`plait::strand_coverage`).
     pub fn raster(&self, plan: &BindingPlan) -> Result<ShaderPassKind, GpuError> {
         let state = &self.draw.state;
         let what = self.draw_what()?;
-        let color_states = color_states(plan, state);
-        let depth_stencil = depth_stencil(plan, state);
+        let next = what == DrawWhat::Hair && reads_next_vertex(&self.module);
         let vertex_layouts = match what {
+            DrawWhat::Hair if next => hair_vertex_layouts(wgpu::VertexStepMode::Vertex)
+                .into_iter()
+                .map(Some)
+                .collect(),
             DrawWhat::Hair => vec![Some(hair_vertex_layout())],
             DrawWhat::Opaque => vec![Some(opaque_vertex_layout())],
             DrawWhat::Fullscreen => vec![],
         };
+        let topology = if what == DrawWhat::Hair {
+            self.ctx.geometry.hair_draw().1
+        } else {
+            wgpu::PrimitiveTopology::TriangleList
+        };
+        let pipeline = self.render_pipeline(plan, topology, state.cull_mode, &vertex_layouts);
+        // Only over hair lines: wisps are triangles of their own width.
+        let quads = (next && topology == wgpu::PrimitiveTopology::LineList).then(|| {
+            let layouts: Vec<_> = hair_vertex_layouts(wgpu::VertexStepMode::Instance)
+                .into_iter()
+                .map(Some)
+                .collect();
+            // The corners' winding follows the strand's direction on screen.
+            self.render_pipeline(plan, wgpu::PrimitiveTopology::TriangleList, None, &layouts)
+        });
+        Ok(ShaderPassKind::Raster {
+            pipeline,
+            quads,
+            next,
+            colors: color_attachments(plan, state),
+            depth: depth_attachment(plan, state),
+            state: state.clone(),
+            draw: what,
+        })
+    }
+
+    /// The (cached) render pipeline of the draw for this topology, culling
+    /// and vertex buffers.
+    fn render_pipeline(
+        &self,
+        plan: &BindingPlan,
+        topology: wgpu::PrimitiveTopology,
+        cull_mode: Option<wgpu::Face>,
+        vertex_layouts: &[Option<wgpu::VertexBufferLayout<'static>>],
+    ) -> wgpu::RenderPipeline {
+        let state = &self.draw.state;
+        let color_states = color_states(plan, state);
+        let depth_stencil = depth_stencil(plan, state);
         let has_fragment = self
             .module
             .entry_points
             .iter()
             .any(|e| e.stage == naga::ShaderStage::Fragment);
         let primitive = wgpu::PrimitiveState {
-            topology: if what == DrawWhat::Hair {
-                self.ctx.geometry.hair_draw().1
-            } else {
-                wgpu::PrimitiveTopology::TriangleList
-            },
-            cull_mode: state.cull_mode,
+            topology,
+            cull_mode,
             front_face: wgpu::FrontFace::Ccw,
             ..Default::default()
         };
@@ -113,7 +155,7 @@ impl PipelineParts<'_> {
             &vertex_layouts,
             &has_fragment,
         ]);
-        let pipeline = self.ctx.pipelines.render(key, || {
+        self.ctx.pipelines.render(key, || {
             self.ctx
                 .device
                 .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -123,7 +165,7 @@ impl PipelineParts<'_> {
                         module: self.shader(),
                         entry_point: None,
                         compilation_options: Default::default(),
-                        buffers: &vertex_layouts,
+                        buffers: vertex_layouts,
                     },
                     primitive,
                     depth_stencil: depth_stencil.clone(),
@@ -137,13 +179,6 @@ impl PipelineParts<'_> {
                     multiview_mask: None,
                     cache: None,
                 })
-        });
-        Ok(ShaderPassKind::Raster {
-            pipeline,
-            colors: color_attachments(plan, state),
-            depth: depth_attachment(plan, state),
-            state: state.clone(),
-            draw: what,
         })
     }
 

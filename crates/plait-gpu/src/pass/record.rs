@@ -2,6 +2,7 @@
 
 use super::pass_type::{PreparedPass, RecordContext};
 use super::state::RasterState;
+use crate::geometry::WIDE_FIRST_VERTEX;
 
 /// A pass built from one shader with bindings by name.
 pub struct ShaderPass {
@@ -15,6 +16,11 @@ pub struct ShaderPass {
 pub enum ShaderPassKind {
     Raster {
         pipeline: wgpu::RenderPipeline,
+        /// The quad draw of hair segments wider than a pixel, for a hair
+        /// draw through `plait::hair_fragment` (`None` otherwise).
+        quads: Option<wgpu::RenderPipeline>,
+        /// The pipeline reads the next hair vertex from vertex buffer 1.
+        next: bool,
         colors: Vec<ColorAttachment>,
         depth: Option<DepthAttachment>,
         state: RasterState,
@@ -100,6 +106,8 @@ impl ShaderPass {
             }
             ShaderPassKind::Raster {
                 pipeline,
+                quads,
+                next,
                 colors,
                 depth,
                 state,
@@ -191,13 +199,38 @@ impl ShaderPass {
                 };
                 if let Some(b) = buffers {
                     rpass.set_vertex_buffer(0, b.vertices.slice(..));
+                    if *next {
+                        // The next vertex (ignored by wisps, whose vertices are not
+                        // the hair's): the buffer one vertex on, or itself when
+                        // it holds one vertex (no segment).
+                        rpass.set_vertex_buffer(1, next_vertices(&b.vertices));
+                    }
                     rpass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
                     rpass.draw_indexed(0..b.index_count, 0, 0..1);
+                }
+                if let (Some(quads), Some((vertices, count))) = (quads, ctx.geometry.hair_quads()) {
+                    // One instance per hair vertex but the last: the segment it
+                    // starts (degenerate across strands and for narrow ones).
+                    rpass.set_pipeline(quads);
+                    rpass.set_vertex_buffer(0, vertices.slice(..));
+                    rpass.set_vertex_buffer(1, next_vertices(vertices));
+                    rpass.draw(WIDE_FIRST_VERTEX..WIDE_FIRST_VERTEX + 6, 0..count - 1);
                 }
                 if query.is_some() {
                     rpass.end_occlusion_query();
                 }
             }
         }
+    }
+}
+
+/// The hair vertex buffer one vertex on (the next vertex of each), or whole
+/// when it holds no more than one vertex.
+fn next_vertices(vertices: &wgpu::Buffer) -> wgpu::BufferSlice<'_> {
+    let stride = std::mem::size_of::<plait_hair::StrandVertex>() as u64;
+    if vertices.size() > stride {
+        vertices.slice(stride..)
+    } else {
+        vertices.slice(..)
     }
 }

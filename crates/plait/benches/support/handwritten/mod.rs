@@ -15,7 +15,10 @@ use std::path::Path;
 
 use plait::gpu::Gpu;
 use plait::gpu::frame::FrameUniforms;
-use plait::gpu::geometry::{SceneGeometry, hair_vertex_layout, opaque_vertex_layout};
+use plait::gpu::geometry::{
+    SceneGeometry, WIDE_FIRST_VERTEX, hair_vertex_layout, hair_vertex_layouts,
+    opaque_vertex_layout, reads_next_vertex,
+};
 use plait::gpu::shader::Define;
 use plait::session::{SceneData, repo_root};
 use wgpu::util::DeviceExt;
@@ -35,6 +38,9 @@ const SLABS: u64 = 4;
 struct BuiltPass {
     desc: PassDesc,
     pipeline: wgpu::RenderPipeline,
+    /// The quad draw of hair segments wider than a pixel, for shaders that
+    /// read the next hair vertex (`plait_gpu::geometry::reads_next_vertex`).
+    quads: Option<wgpu::RenderPipeline>,
     group: wgpu::BindGroup,
 }
 
@@ -121,11 +127,12 @@ impl<'g> HandWritten<'g> {
         let shaders = plait::gpu::modules::Shaders::read(&[]);
         let mut built = Vec::new();
         for desc in passes() {
-            let (pipeline, group) =
+            let (pipeline, quads, group) =
                 build_pass(gpu, &shaders, &desc, &frame_layout, &textures, &buffers)?;
             built.push(BuiltPass {
                 desc,
                 pipeline,
+                quads,
                 group,
             });
         }
@@ -239,10 +246,22 @@ impl<'g> HandWritten<'g> {
                 None
             }
         };
+        let stride = std::mem::size_of::<plait_hair::StrandVertex>() as u64;
         if let Some(b) = buffers {
             rpass.set_vertex_buffer(0, b.vertices.slice(..));
+            if pass.quads.is_some() {
+                rpass.set_vertex_buffer(1, b.vertices.slice(stride..));
+            }
             rpass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
             rpass.draw_indexed(0..b.index_count, 0, 0..1);
+        }
+        // As plait's executor: each hair vertex's segment as a quad where it
+        // is wider than a pixel.
+        if let (Some(quads), Some((vertices, count))) = (&pass.quads, self.geometry.hair_quads()) {
+            rpass.set_pipeline(quads);
+            rpass.set_vertex_buffer(0, vertices.slice(..));
+            rpass.set_vertex_buffer(1, vertices.slice(stride..));
+            rpass.draw(WIDE_FIRST_VERTEX..WIDE_FIRST_VERTEX + 6, 0..count - 1);
         }
     }
 }
@@ -365,7 +384,14 @@ fn build_pass(
     frame_layout: &wgpu::BindGroupLayout,
     textures: &HashMap<&'static str, (wgpu::Texture, wgpu::TextureView)>,
     buffers: &HashMap<&'static str, wgpu::Buffer>,
-) -> Result<(wgpu::RenderPipeline, wgpu::BindGroup), String> {
+) -> Result<
+    (
+        wgpu::RenderPipeline,
+        Option<wgpu::RenderPipeline>,
+        wgpu::BindGroup,
+    ),
+    String,
+> {
     let device = &gpu.device;
     // The copy plait itself would read (the library search path, `PLAIT_PATH`
     // first), so a shader variant there applies to both programs alike.
@@ -385,6 +411,7 @@ fn build_pass(
         .compose(Path::new(d.shader), &source, &defines)
         .map_err(|e| format!("{}: {}", d.shader, e.message))?;
     let mut module = (*module).clone();
+    let next = matches!(d.geometry, Geometry::Hair) && reads_next_vertex(&module);
     if d.early_depth_test {
         for ep in module
             .entry_points
@@ -441,7 +468,11 @@ fn build_pass(
         bind_group_layouts: &[Some(frame_layout), Some(&layout)],
         immediate_size: 0,
     });
-    let vertex_buffers = match d.geometry {
+    let vertex_buffers: Vec<_> = match d.geometry {
+        Geometry::Hair if next => hair_vertex_layouts(wgpu::VertexStepMode::Vertex)
+            .into_iter()
+            .map(Some)
+            .collect(),
         Geometry::Hair => vec![Some(hair_vertex_layout())],
         Geometry::Opaque => vec![Some(opaque_vertex_layout())],
         Geometry::Fullscreen => vec![],
@@ -458,40 +489,51 @@ fn build_pass(
         })
         .collect();
     let has_fragment = !d.colors.is_empty() || d.early_depth_test;
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(d.name),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &shader,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &vertex_buffers,
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: match d.geometry {
-                Geometry::Hair => wgpu::PrimitiveTopology::LineList,
-                _ => wgpu::PrimitiveTopology::TriangleList,
+    let make = |topology, vertex_buffers: &[Option<wgpu::VertexBufferLayout<'static>>]| {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(d.name),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: vertex_buffers,
             },
-            ..Default::default()
-        },
-        depth_stencil: d
-            .depth
-            .map(|(_, compare, write, _)| wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(write),
-                depth_compare: Some(compare),
-                stencil: Default::default(),
-                bias: Default::default(),
+            primitive: wgpu::PrimitiveState {
+                topology,
+                ..Default::default()
+            },
+            depth_stencil: d
+                .depth
+                .map(|(_, compare, write, _)| wgpu::DepthStencilState {
+                    format: wgpu::TextureFormat::Depth32Float,
+                    depth_write_enabled: Some(write),
+                    depth_compare: Some(compare),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+            multisample: Default::default(),
+            fragment: has_fragment.then(|| wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &targets,
             }),
-        multisample: Default::default(),
-        fragment: has_fragment.then(|| wgpu::FragmentState {
-            module: &shader,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &targets,
-        }),
-        multiview_mask: None,
-        cache: None,
+            multiview_mask: None,
+            cache: None,
+        })
+    };
+    let topology = match d.geometry {
+        Geometry::Hair => wgpu::PrimitiveTopology::LineList,
+        _ => wgpu::PrimitiveTopology::TriangleList,
+    };
+    let pipeline = make(topology, &vertex_buffers);
+    let quads = next.then(|| {
+        let layouts: Vec<_> = hair_vertex_layouts(wgpu::VertexStepMode::Instance)
+            .into_iter()
+            .map(Some)
+            .collect();
+        make(wgpu::PrimitiveTopology::TriangleList, &layouts)
     });
-    Ok((pipeline, group))
+    Ok((pipeline, quads, group))
 }
