@@ -343,6 +343,9 @@ pub const PUBLISHED_PAGE: &str = "guide/published.md";
 /// marker.
 pub const DEFAULT_FRAME_PAGE: &str = "guide/first-render.md";
 const DEFAULT_FRAME_MARKER: &str = "<!-- generated:default-frame -->";
+/// The pipeline `scripts/render.sh` renders (issue 43), not `plait
+/// render`'s own default (`pipelines/occupancy.toml`).
+pub const DEFAULT_FRAME_PIPELINE: &str = "pipelines/default.toml";
 
 /// Puts the per-pass table of `plait render` (the default pipeline on the
 /// built-in scene, as `scripts/render.sh` runs it) at its marker: measured
@@ -359,12 +362,17 @@ fn fill_default_frame(src: &Path, stage: &Path, plait: &Plait) -> Result<(), Boo
     }
     // Outside `src/`, so mdBook does not copy the picture into the site.
     let png = stage.join("default-frame.png");
-    let table = plait.run(&["render".into(), "--out".into(), png.display().to_string()])?;
+    let table = plait.run(&[
+        "render".into(),
+        DEFAULT_FRAME_PIPELINE.into(),
+        "--out".into(),
+        png.display().to_string(),
+    ])?;
     // Its last line names the picture, a path of this machine's stage.
     let table: Vec<&str> = table.lines().filter(|l| !l.starts_with("wrote ")).collect();
     let table = table.join("\n");
     let block = format!(
-        "```text\n$ plait render   # what bash scripts/render.sh runs\n{}\n```",
+        "```text\n$ plait render {DEFAULT_FRAME_PIPELINE}   # what bash scripts/render.sh runs\n{}\n```",
         table.trim_end()
     );
     write(&path, &text.replace(DEFAULT_FRAME_MARKER, &block))

@@ -90,7 +90,7 @@ fn the_book_has_a_page_per_technique_and_pipeline_and_opens_cleanly_in_chromium(
         .join(Path::new(plait_book::DEFAULT_FRAME_PAGE).with_extension("html"));
     let first = std::fs::read_to_string(&first).expect("the first-render page");
     for row in [
-        "$ plait render   # what bash scripts/render.sh runs",
+        "$ plait render pipelines/default.toml   # what bash scripts/render.sh runs",
         "light_occupancy",
         "GPU ms",
         "frame",

@@ -492,7 +492,13 @@ fn render_script_keeps_the_users_directory_and_shows_the_build() {
         run.contains(&"--quiet"),
         "the run mixes cargo's lines in: {run:?}"
     );
-    assert!(run.ends_with(&["render", "--out", "mine.png"]), "{run:?}");
+    // Flags alone: the script names pipelines/default.toml (issue 43).
+    let default = root().join("pipelines/default.toml");
+    let default = default.to_str().expect("utf-8");
+    assert!(
+        run.ends_with(&["render", default, "--out", "mine.png"]),
+        "{run:?}"
+    );
 }
 
 #[test]
