@@ -160,3 +160,56 @@ fn a_groom_of_one_segment_is_drawn() {
         "compute_raster's Σα {compute:.3} against linked_list's {raster:.3}"
     );
 }
+
+fn word(bytes: &[u8], i: usize) -> u32 {
+    u32::from_le_bytes(bytes[4 * i..4 * i + 4].try_into().expect("4 bytes"))
+}
+
+/// More tiles than 65,538 — 2-pixel tiles over 666 × 392, the buffer's
+/// (666 / 2 + 1) × (392 / 2 + 1) = 65,798 — with a strand along the
+/// image's bottom rows: the tile scan's
+/// `needed` (raster_counter[1]) is the sum of the tiles' counts. Kills, in
+/// `techniques/transparency/compute_raster/scan.wgsl`, the tiles per thread
+/// `(tiles + THREADS - 1u) / THREADS` → `* THREADS` (26:38): one thread
+/// then scans all tiles, the same sums, unless `lid · per` wraps past 2³²
+/// to below the tile count — at this count thread 254's, which scans the
+/// last 2,822 tiles (the bottom rows) a second time (a count found on the
+/// CPU; most counts above 65,538 wrap past it).
+#[test]
+fn the_tile_scan_counts_every_tile_once_past_65538_tiles() {
+    let (_lock, gpu) = open_gpu();
+    let mut scene = scene();
+    scene.strands = plait_hair::Strands::new();
+    // The camera sees y from −1.61 to 1.61 at z = 0: the bottom 4 % of
+    // the image, the last tiles, from y = −1.47 down.
+    let ends = [Vec3::new(-1.8, -1.55, 0.0), Vec3::new(1.8, -1.52, 0.0)];
+    scene
+        .strands
+        .push_strand(&ends, |_| 0.005, |_| 1.0, Vec3::splat(0.8));
+    let size = (666u32, 392u32);
+    let tiles = ((size.0 / 2 + 1) * (size.1 / 2 + 1)) as usize;
+    let sets = [
+        "params.tile_size=2".to_owned(),
+        "params.shading_points=2".to_owned(),
+        "pipeline.outputs=[\"final\", \"tile_ranges\", \"raster_counter\"]".to_owned(),
+    ];
+    let pipeline = repo_root().join("pipelines/compute_raster.toml");
+    let prepared =
+        prepare(&gpu, &pipeline, &sets, &scene, size).unwrap_or_else(|e| panic!("prepares: {e}"));
+    prepared.render().expect("renders");
+    let ranges = prepared.read_buffer("tile_ranges").expect("tile_ranges");
+    let counter = prepared
+        .read_buffer("raster_counter")
+        .expect("raster_counter");
+    let counts: Vec<u32> = (0..tiles).map(|i| word(&ranges, 2 * i)).collect();
+    let sum: u64 = counts.iter().map(|&c| u64::from(c)).sum();
+    let last: u64 = counts[62_976..].iter().map(|&c| u64::from(c)).sum();
+    let needed = word(&counter, 1);
+    println!("{tiles} tiles: Σ counts {sum} ({last} in the last 2,822 tiles), needed {needed}");
+    assert!(last > 0, "the strand reaches the last tiles");
+    assert_eq!(
+        u64::from(needed),
+        sum,
+        "the scan's total against the tiles' counts"
+    );
+}
