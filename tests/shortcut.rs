@@ -561,3 +561,99 @@ fn fragments_shaded_by_the_fill_pass() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A strand lying on the ground, seen from straight above, and a second
+/// one 0.2 above it: the camera's view is the ground's normal, so the
+/// ground's depth is one value over the image and the lower strand's, on
+/// the plane, the same to the bit (the depth of a point depends on its
+/// height alone here, and both draws project it by the same matrix). With
+/// the ground at `ground`; strand coverage off in the renders.
+fn on_ground_scene(ground: f32) -> SceneData {
+    let text = format!(
+        r#"
+ambient = 0.3
+[hair.procedural]
+strands = 1
+segments = 1
+[ground]
+height = {ground:?}
+half_size = 3.0
+[camera]
+eye = [0.0, 4.0, 0.0]
+target = [0.0, 0.0, 0.0]
+up = [0.0, 0.0, -1.0]
+fov_y_degrees = 30.0
+[light]
+type = "directional"
+direction = [-0.3, -1.0, -0.5]
+intensity = 2.0
+[background]
+color = [0.0, 0.0, 0.0]
+"#
+    );
+    let path = repo_root().join("tests/shortcut_on_ground.toml");
+    let scene = plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses");
+    let mut data = SceneData::new(scene).expect("the scene loads");
+    data.strands = plait_hair::Strands::new();
+    for (height, z) in [(0.0, -0.3), (0.2, 0.3)] {
+        let ends = [
+            glam::Vec3::new(-0.6, height, z),
+            glam::Vec3::new(0.6, height, z),
+        ];
+        data.strands
+            .push_strand(&ends, |_| 0.01, |_| 0.6, glam::Vec3::new(0.9, 0.6, 0.3));
+    }
+    data
+}
+
+/// Where a pixel has fewer than k fragments, ShortCut's second draw tests
+/// against the opaque depth one float step nearer (`kth.wgsl`), so with
+/// `less_equal` it passes what the first draw's `less` passes: a hair
+/// fragment exactly at the opaque depth — a strand lying on the ground,
+/// drawn by the first draw nowhere — is not summed either. Positive
+/// control: with the ground 0.05 lower the same strand is in the lists.
+/// Kills, in `techniques/transparency/shortcut/kth.wgsl`, the opaque depth
+/// written as is (27:54, `- 1u` dropped) or one step farther (27:55).
+#[test]
+fn a_strand_at_the_opaque_depth_is_neither_counted_nor_summed() {
+    let (_lock, gpu) = open_gpu();
+    let off = vec!["params.strand_coverage=false".to_owned()];
+    let size = (64, 48);
+    let pixels_of =
+        |lists: &[Vec<Fragment>]| -> usize { lists.iter().filter(|l| !l.is_empty()).count() };
+    let below = fragment_lists(&gpu, &on_ground_scene(-0.05), size, &off);
+    let scene = on_ground_scene(0.0);
+    let lists = fragment_lists(&gpu, &scene, size, &off);
+    let (seen, hidden) = (pixels_of(&below), pixels_of(&lists));
+    eprintln!(
+        "pixels with hair: ground below the strands {seen}, ground under the lower one {hidden}"
+    );
+    // The lower strand drawn: about as many pixels again as the upper one's
+    // (about 27 each).
+    assert!(
+        seen >= hidden + 20 && hidden >= 20,
+        "the lower strand is drawn over the lower ground: {seen} pixels, {hidden} without it"
+    );
+    let mut failures = Vec::new();
+    for k in 1..=3 {
+        let shortcut = shortcut_hair(&gpu, &scene, size, k, &off);
+        let summed = shortcut
+            .1
+            .iter()
+            .zip(&lists)
+            .filter(|(s, l)| l.is_empty() && **s != 0.0)
+            .count();
+        let (err, p, n, got, want) = worst_pixel(&lists, &shortcut, k);
+        let line = format!(
+            "k={k}: {summed} pixels without a listed fragment summed; worst pixel ({}, {}) n={n}: \
+             error {err:.5}; rgb·c, c, Σα {got:.4?}, analytic {want:.4?}",
+            p % size.0 as usize,
+            p / size.0 as usize
+        );
+        eprintln!("{line}");
+        if summed > 0 || err > 0.01 {
+            failures.push(line);
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -72,3 +72,40 @@ fn ambient_matches_its_closed_form_as_the_tangent_turns_from_the_eye() {
         "ambient differs from its closed form by {worst} (largest {largest})"
     );
 }
+
+/// The ambient term with the tangent along the eye and against it
+/// (`tests/fixtures/ambient_rounding.wgsl`), where the dot of the two unit
+/// vectors rounds past ±1 in f32 in some of 256 cases (counted, and
+/// required): finite, and its closed form at θ = 0 and π within 1e-3 of
+/// the largest term (acos of a clamped ±1). acos past ±1 is undefined
+/// (NaN on lavapipe). Kills, in `techniques/lighting/ambient/lighting.wgsl`,
+/// the clamp of cos(T, E) widened to 1.1 (15:71) and to −1.1 (15:66).
+#[test]
+fn ambient_is_finite_where_the_tangents_dot_with_the_eye_rounds_past_one() {
+    let read = plait_tests::fixture_texels("ambient_rounding.toml", (256, 2), &["cases"]);
+    let cases = &read[0];
+    let (along, against) = cases.split_at(256);
+    let past_one = along.iter().filter(|t| t[2] > 1.0).count();
+    let past_minus_one = against.iter().filter(|t| t[2] < -1.0).count();
+    let largest = cases.iter().map(|t| t[1].abs()).fold(0.0f32, f32::max);
+    let not_finite = cases.iter().filter(|t| !t[0].is_finite()).count();
+    let worst = cases
+        .iter()
+        .filter(|t| t[0].is_finite())
+        .map(|t| (t[0] - t[1]).abs())
+        .fold(0.0f32, f32::max);
+    eprintln!(
+        "ambient along/against the eye: dot > 1 in {past_one}, < −1 in {past_minus_one} of 256 each; \
+         {not_finite} terms not finite; largest term {largest:e}, largest difference {worst:e}"
+    );
+    assert!(
+        past_one > 0 && past_minus_one > 0,
+        "no case rounds past ±1: the test tests nothing"
+    );
+    assert!(largest > 1e-3, "the terms are empty ({largest})");
+    assert_eq!(not_finite, 0, "terms not finite");
+    assert!(
+        worst <= 1e-3 * largest,
+        "ambient differs from its closed form by {worst} (largest {largest})"
+    );
+}

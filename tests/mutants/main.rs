@@ -4,7 +4,9 @@
 //! technique where it has more than one such test.
 
 mod chiang;
+mod compute_raster;
 mod cylinders;
+mod depth_only;
 mod dual_scattering;
 mod exact;
 mod hair_fragment;
