@@ -195,13 +195,15 @@ fn dual_scattering_is_closer_than_single_scattering_on_blond_and_the_gap_shrinks
 /// every run.
 const NOISE_BOUND: f64 = 0.06;
 
-/// The blond gap |none − 1| − |dual − 1| asserted: 0.069 (dark brown
-/// 0.060, black 0.013) / 1.25, as measured before shading followed the
-/// curve's tangent; 0.067 / 0.060 / 0.014 since. It was 0.218 with Zinke's A_b
-/// as published (unbounded hair behind every point); most of that was
+/// The blond gap |none − 1| − |dual − 1| asserted: 0.048 (dark brown
+/// 0.046, black 0.012) / 1.25, measured after the cuticle tilt's sign fix
+/// (issue 42: R towards the root in `chiang` and in the Mitsuba export);
+/// 0.067 / 0.060 / 0.014 before it, 0.069 / 0.060 / 0.013 before shading
+/// followed the curve's tangent. It was 0.218 with Zinke's A_b as
+/// published (unbounded hair behind every point); most of that was
 /// back-scattering by hair the groom does not have (issue 43, the
 /// dark-surroundings test below).
-const BLOND_MARGIN: f64 = 0.055;
+const BLOND_MARGIN: f64 = 0.038;
 
 /// Per colour (blond, dark brown, black), each variant's mean hair
 /// luminance ÷ the path tracer's, measured on lavapipe with this test
@@ -209,34 +211,37 @@ const BLOND_MARGIN: f64 = 0.055;
 /// ± a third of the way to the nearest other variant's value, at most
 /// ± 0.02 (4.5 times the bound on the mean's standard error; lavapipe and
 /// the seeded reference are deterministic — black's dual scattering lies
-/// 0.0059 from the unbounded A_b's, so its band is ± 0.0019). Re-measured
+/// 0.0050 from the unbounded A_b's, so its band is ± 0.0017). Re-measured
 /// after shading began to follow the curve's tangent (issue 47): every value
-/// moved by at most 0.039 (karis on dark brown, dark surroundings); the claim held.
-/// Dual scattering undershoots the path tracer on every colour (0.48 on
-/// blond), Karis's wrap term lands nearest in mean luminance (1.05) with
-/// no error bound; on black even `none` is 0.78: the path tracer's light
+/// moved by at most 0.039 (karis on dark brown, dark surroundings); the claim
+/// held. Re-measured again after the cuticle tilt's sign fix (issue 42): the
+/// published A_b moved most (blond 0.622 → 0.534; 1.375 → 1.130 with dark
+/// surroundings), karis with dark surroundings 3.248 → 3.659; the claim
+/// holds by less (BLOND_MARGIN). Dual scattering undershoots the path
+/// tracer on every colour (0.45 on blond), Karis's wrap term lands nearest
+/// in mean luminance (1.05) with no error bound; on black even `none` is 0.78: the path tracer's light
 /// from the lit ground and head onto the hair, which no real-time method
 /// here models (issue 47's residual), not multiple scattering in the hair.
 // Black's `none` measured 0.7853, which clippy takes for π/4: a ratio, not π.
 #[allow(clippy::approx_constant)]
 const BANDS: [[Row; 4]; 3] = [
     [
-        ("none", 0.4104, (0.3904, 0.4304)),
-        ("karis", 1.057, (1.037, 1.077)),
-        ("dual_scattering", 0.4778, (0.4578, 0.4978)),
-        ("dual_scattering_unbounded", 0.6218, (0.6018, 0.6418)),
+        ("none", 0.4009, (0.3848, 0.417)),
+        ("karis", 1.05, (1.03, 1.07)),
+        ("dual_scattering", 0.4492, (0.4331, 0.4653)),
+        ("dual_scattering_unbounded", 0.5341, (0.5141, 0.5541)),
     ],
     [
-        ("none", 0.4915, (0.4716, 0.5114)),
-        ("karis", 0.9501, (0.9301, 0.9701)),
-        ("dual_scattering", 0.5513, (0.5314, 0.5712)),
-        ("dual_scattering_unbounded", 0.6465, (0.6265, 0.6665)),
+        ("none", 0.4811, (0.4659, 0.4963)),
+        ("karis", 0.9395, (0.9195, 0.9595)),
+        ("dual_scattering", 0.5267, (0.5115, 0.5419)),
+        ("dual_scattering_unbounded", 0.588, (0.568, 0.608)),
     ],
     [
-        ("none", 0.7853, (0.7807, 0.7899)),
-        ("karis", 1.04, (1.02, 1.06)),
-        ("dual_scattering", 0.7991, (0.7972, 0.801)),
-        ("dual_scattering_unbounded", 0.805, (0.8031, 0.8069)),
+        ("none", 0.7804, (0.7762, 0.7846)),
+        ("karis", 1.034, (1.014, 1.054)),
+        ("dual_scattering", 0.7929, (0.7912, 0.7946)),
+        ("dual_scattering_unbounded", 0.7979, (0.7962, 0.7996)),
     ],
 ];
 
@@ -300,22 +305,22 @@ fn dense_groom_against_the_path_tracer() {
 /// (0.46 / 0.58 / 0.95) below both.
 const DARK_BANDS: [[Row; 4]; 3] = [
     [
-        ("none", 0.4641, (0.4441, 0.4841)),
-        ("karis", 3.248, (3.228, 3.268)),
-        ("dual_scattering", 0.7543, (0.7343, 0.7743)),
-        ("dual_scattering_unbounded", 1.375, (1.355, 1.395)),
+        ("none", 0.4766, (0.4566, 0.4966)),
+        ("karis", 3.659, (3.639, 3.679)),
+        ("dual_scattering", 0.7135, (0.6935, 0.7335)),
+        ("dual_scattering_unbounded", 1.13, (1.11, 1.15)),
     ],
     [
-        ("none", 0.5792, (0.5592, 0.5992)),
-        ("karis", 2.941, (2.921, 2.961)),
-        ("dual_scattering", 0.8871, (0.8671, 0.9071)),
-        ("dual_scattering_unbounded", 1.377, (1.357, 1.397)),
+        ("none", 0.59, (0.57, 0.61)),
+        ("karis", 3.233, (3.213, 3.253)),
+        ("dual_scattering", 0.853, (0.833, 0.873)),
+        ("dual_scattering_unbounded", 1.206, (1.186, 1.226)),
     ],
     [
-        ("none", 0.95, (0.93, 0.97)),
-        ("karis", 3.485, (3.465, 3.505)),
-        ("dual_scattering", 1.088, (1.0684, 1.1076)),
-        ("dual_scattering_unbounded", 1.147, (1.1274, 1.1666)),
+        ("none", 0.971, (0.951, 0.991)),
+        ("karis", 3.55, (3.53, 3.57)),
+        ("dual_scattering", 1.098, (1.081, 1.115)),
+        ("dual_scattering_unbounded", 1.149, (1.132, 1.166)),
     ],
 ];
 
@@ -323,12 +328,14 @@ const DARK_BANDS: [[Row; 4]; 3] = [
 /// the self-shadow technique's strand count at a point beyond the hair,
 /// which every provider must answer as "all the hair on this light ray":
 /// on the blond dark-surroundings scene, the whole image's mean luminance
-/// with `m` counted ÷ with Zinke's unbounded hair is measured 0.544
-/// (exact) to 0.579 (deep_opacity) across the six providers (this test).
-/// With m = 0 everywhere (the count beyond the hair read at the point
-/// instead) every provider measured 0.390–0.396. Held: every provider within
-/// 0.05 of exact's ratio and in [0.47, 0.66] — above m = 0's, below the
-/// unbounded form's 1 (a provider answering 0 beyond the hair gives m = 0).
+/// with `m` counted ÷ with Zinke's unbounded hair is measured 0.630
+/// (exact) to 0.668 (deep_opacity) across the six providers (this test;
+/// 0.544 to 0.579 before the cuticle tilt's sign fix, issue 42). With m = 0
+/// everywhere (the count beyond the hair read at the point instead) every
+/// provider measured 0.390–0.396 before that fix. Held: every provider
+/// within 0.05 of exact's ratio and in [0.47, 0.80] — above m = 0's, below
+/// the unbounded form's 1 (a provider answering 0 beyond the hair gives
+/// m = 0).
 #[test]
 fn strands_behind_agree_across_strand_count_providers() {
     let root = repo_root();
@@ -370,7 +377,7 @@ fn strands_behind_agree_across_strand_count_providers() {
     let failures: Vec<String> = providers
         .iter()
         .zip(&ratios)
-        .filter(|(_, r)| (**r - ratios[0]).abs() > 0.05 || !(0.47..=0.66).contains(*r))
+        .filter(|(_, r)| (**r - ratios[0]).abs() > 0.05 || !(0.47..=0.80).contains(*r))
         .map(|(p, r)| format!("{p}: {r:.3} (exact {:.3})", ratios[0]))
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
