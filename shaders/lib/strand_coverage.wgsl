@@ -120,9 +120,17 @@ fn quad_place(world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec
     if (abs(along) > 0.1 * length_) {
         ahead_world = world + tangent * (sign(along) * length_);
     }
-    let ahead = frame.camera_view_proj * vec4<f32>(ahead_world, 1.0);
-    if (clip.w <= 0.0 || ahead.w <= 0.0) {
+    var ahead = frame.camera_view_proj * vec4<f32>(ahead_world, 1.0);
+    if (clip.w <= 0.0) {
         return QuadPlace(vec4<f32>(2.0, 2.0, 2.0, 1.0), vec2<f32>(0.0));
+    }
+    // A segment running past the eye: the point ahead lies behind it, where
+    // its projection flips. Any point of the same line in front of the eye
+    // gives the same direction on screen: take the one halfway to the eye
+    // plane (w linear along the line).
+    if (ahead.w <= 0.0) {
+        let t = 0.5 * clip.w / (clip.w - ahead.w);
+        ahead = frame.camera_view_proj * vec4<f32>(world + (ahead_world - world) * t, 1.0);
     }
     var dir = clip_pixels(ahead) - clip_pixels(clip);
     if (dot(dir, dir) < 1e-12) {
