@@ -315,6 +315,20 @@ fn strand_coverage(
     eye: Vec3,
     half: glam::Vec2,
 ) -> f32 {
+    strand_width_pixels(p, tangent, thickness, view_proj, eye, half).map_or(1.0, |w| w.min(1.0))
+}
+
+/// `strand_width_pixels` of `shaders/lib/strand_coverage.wgsl` on the CPU:
+/// the width across the view, in pixels (`half` = half the screen size), of
+/// a strand of `thickness` at `p` along `tangent`; `None` behind the eye.
+pub fn strand_width_pixels(
+    p: Vec3,
+    tangent: Vec3,
+    thickness: f32,
+    view_proj: Mat4,
+    eye: Vec3,
+    half: glam::Vec2,
+) -> Option<f32> {
     let to_eye = (eye - p).normalize_or_zero();
     let mut side = tangent.cross(to_eye);
     if side.length_squared() < 1e-12 {
@@ -329,10 +343,9 @@ fn strand_coverage(
     let a = view_proj * p.extend(1.0);
     let b = view_proj * (p + side * thickness).extend(1.0);
     if a.w <= 0.0 || b.w <= 0.0 {
-        return 1.0;
+        return None;
     }
-    let pixels = (b.truncate().truncate() / b.w - a.truncate().truncate() / a.w) * half;
-    pixels.length().min(1.0)
+    Some(((b.truncate().truncate() / b.w - a.truncate().truncate() / a.w) * half).length())
 }
 
 /// The sphere around `bounds` (its centre, half its diagonal); a point for

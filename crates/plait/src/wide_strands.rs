@@ -8,7 +8,7 @@
 //! segments it drew narrower than they are, never silently.
 
 use glam::{Mat4, Vec3, Vec4};
-use plait_gpu::frame::FrameUniforms;
+use plait_gpu::frame::{FrameUniforms, strand_width_pixels};
 use plait_graph::Schedule;
 use plait_hair::Strands;
 
@@ -72,27 +72,12 @@ impl WideCount {
     }
 }
 
-/// `strand_width_pixels` of `shaders/lib/strand_coverage.wgsl`: the
-/// strand's width across the view in pixels; −1 behind the eye.
+/// The strand's width across the frame's view in pixels
+/// (`plait_gpu::frame::strand_width_pixels`, the shader's on the CPU); −1
+/// behind the eye.
 pub fn width_pixels(frame: &FrameUniforms, world: Vec3, tangent: Vec3, thickness: f32) -> f32 {
     let view_proj = Mat4::from_cols_array_2d(&frame.camera_view_proj);
     let eye = Vec4::from(frame.camera_position).truncate();
-    let to_eye = (eye - world).normalize();
-    let mut side = tangent.cross(to_eye);
-    if side.length_squared() < 1e-12 {
-        let up = if to_eye.y.abs() > 0.9 {
-            Vec3::X
-        } else {
-            Vec3::Y
-        };
-        side = up.cross(to_eye);
-    }
-    let side = side.normalize();
-    let a = view_proj * world.extend(1.0);
-    let b = view_proj * (world + side * thickness).extend(1.0);
-    if a.w <= 0.0 || b.w <= 0.0 {
-        return -1.0;
-    }
     let half = glam::Vec2::new(frame.screen_size[0], frame.screen_size[1]) * 0.5;
-    ((b.truncate().truncate() / b.w - a.truncate().truncate() / a.w) * half).length()
+    strand_width_pixels(world, tangent, thickness, view_proj, eye, half).unwrap_or(-1.0)
 }
