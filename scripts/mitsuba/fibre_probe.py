@@ -15,8 +15,12 @@
 # latter averaged over the fibre's width (h uniform, as a pixel sees it).
 import mitsuba as mi, drjit as dr, numpy as np
 mi.set_variant('scalar_rgb')
+# Mitsuba's scale_tilt for plait's tilt of 2°: −2, as `plait export mitsuba`
+# writes it (issue 42: Mitsuba rotates R by −2α about an axis that runs
+# root to tip here, which puts R on the tip's side for α > 0).
+MITSUBA_TILT = -2.0
 PI=np.pi; D=PI/180
-def mbsdf(sig): return mi.load_dict({'type':'hair','longitudinal_roughness':0.3,'azimuthal_roughness':0.3,'scale_tilt':2.0,'int_ior':1.55,'sigma_a':mi.ScalarColor3f(*sig)})
+def mbsdf(sig): return mi.load_dict({'type':'hair','longitudinal_roughness':0.3,'azimuthal_roughness':0.3,'scale_tilt':MITSUBA_TILT,'int_ior':1.55,'sigma_a':mi.ScalarColor3f(*sig)})
 si = dr.zeros(mi.SurfaceInteraction3f)
 si.sh_frame = mi.Frame3f([1,0,0],[0,1,0],[0,0,1]); si.n=[0,0,1]; si.dp_du=[0,1,0]
 ctx = mi.BSDFContext()
@@ -74,7 +78,7 @@ def plait_energy(ti, nt=30, npf=36):
     for tr in ths:
         for ph in phs: acc+=plait(ti,tr,abs(ph),sig=0.0,caustic=1e9)[0]*np.cos(tr)*dA
     return acc
-print("mitsuba", mi.__version__, "hair: beta_m 0.3 beta_n 0.3 scale_tilt 2 eta 1.55; plait: marschner_model.toml")
+print("mitsuba", mi.__version__, "hair: beta_m 0.3 beta_n 0.3 scale_tilt -2 eta 1.55; plait: marschner_model.toml")
 print("-- point values, sigma_a 0 (Mitsuba) / 0 (plait), plait caustic clamp 0.25")
 for name,ti,tr,phi in [('back near-specular',20,-20,10),('side',20,-20,90),('forward',20,-20,180),('scene-like',52,5,20),('scene-like',52,-5,20),('scene-like',-52,5,20)]:
     lob,M,N=plait(ti*D,tr*D,phi*D,sig=0.0)
@@ -85,7 +89,7 @@ for t in (0,20,60):
     pe=plait_energy(t*D)
     print(f"θi {t}: plait R {pe[0]:.4f} TT {pe[1]:.4f} TRT {pe[2]:.4f} sum {pe.sum():.4f} | mitsuba R only {energy(t*D,[1e4]*3):.4f} all {energy(t*D,[0.0]*3):.4f}")
 print("-- scene-like points, Mitsuba's roughness varied (sigma_a 0): (beta_m, beta_n)")
-def mb(bm,bn): return mi.load_dict({'type':'hair','longitudinal_roughness':bm,'azimuthal_roughness':bn,'scale_tilt':2.0,'int_ior':1.55,'sigma_a':mi.ScalarColor3f(0.0,0.0,0.0)})
+def mb(bm,bn): return mi.load_dict({'type':'hair','longitudinal_roughness':bm,'azimuthal_roughness':bn,'scale_tilt':MITSUBA_TILT,'int_ior':1.55,'sigma_a':mi.ScalarColor3f(0.0,0.0,0.0)})
 for ti,tr,phi in [(52,5,20),(52,-5,20),(-52,5,20)]:
     r=[mitsuba_mean(mb(bm,bn),tr*D,ti*D,phi*D)[0] for bm,bn in [(0.3,0.3),(0.3,0.02),(0.1,0.3),(0.1,0.02)]]
     print(f"θi {ti} θr {tr} φ {phi}: (.3,.3) {r[0]:.5f} (.3,.02) {r[1]:.5f} (.1,.3) {r[2]:.5f} (.1,.02) {r[3]:.5f}")
