@@ -224,7 +224,7 @@ fn frame_notes(gpu: &Gpu, technique: &str, thickness: f32) -> Vec<String> {
 /// each frame's note says how many segments the light maps hold narrower
 /// than they are (plait::wide_strands). At 0.02 (≈ 2 texels of the 64² map)
 /// occupancy's ∫ −ln T is about half of κ · width × length ÷ cos i
-/// (measured 0.52) and the note counts all 9 segments of the two strands; at
+/// (measured 0.49; 0.97 at 0.004) and the note counts all 9 segments of the two strands; at
 /// 0.004 (≈ 0.4 texel) the integral is right and there is no note.
 #[test]
 fn a_strand_wider_than_a_light_texel_is_counted_in_a_note() {
