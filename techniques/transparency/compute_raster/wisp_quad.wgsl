@@ -9,7 +9,8 @@
 // plait::geometry::wisps::wisp_point (the strip facing the view, widened and
 // dropped by the wisps' level of detail), one sample at each pixel centre.
 // Here a "segment" of the binning and of tile_blend is one such quad: a wide
-// segment whose tiles are those its two triangles reach (wisp_quad_meets),
+// segment whose tiles are those its two triangles reach
+// (plait::compute_raster::triangles, quad_meets),
 // and whose coverage at a pixel centre is the triangles' — inside one of
 // them, with the strand texture's alpha at the (u across, v along, mip
 // level) interpolated there as the rasterizer interpolates them
