@@ -11,6 +11,8 @@
 //! so only the light maps need this count: each frame says how many segments
 //! its light maps hold narrower than they are, never silently.
 
+use std::sync::Mutex;
+
 use glam::{Mat4, Vec3, Vec4};
 use plait_gpu::frame::FrameUniforms;
 use plait_graph::{ResourceDesc, Schedule, View};
@@ -23,11 +25,25 @@ const RANGE_SLOT: &str = "range";
 
 /// The hair as the frame's count needs it: per vertex its position, tangent
 /// and thickness, per segment its first vertex, and the light maps' texels
-/// across.
+/// across; and the last count with the light it was made for (the light
+/// rarely moves between frames, and a count walks every hair vertex).
 pub struct WideCount {
     points: Vec<(Vec3, Vec3, f32)>,
     segments: Vec<u32>,
     texels: u32,
+    last: Mutex<Option<(LightKey, (usize, usize))>>,
+}
+
+/// What a count depends on besides the hair: the light's matrix, direction
+/// and position.
+type LightKey = ([[f32; 4]; 4], [f32; 4], [f32; 4]);
+
+fn light_key(frame: &FrameUniforms) -> LightKey {
+    (
+        frame.light_view_proj,
+        frame.light_direction,
+        frame.light_position,
+    )
 }
 
 impl WideCount {
@@ -49,25 +65,37 @@ impl WideCount {
             points,
             segments,
             texels,
+            last: Mutex::new(None),
         })
     }
 
     /// How many segments are wider than a light texel from the frame's
     /// light (either end, as `segment_is_wide` asks of a pixel), of how many.
     pub fn count(&self, frame: &FrameUniforms) -> (usize, usize) {
-        let width = |i: u32| {
-            let (p, t, w) = self.points[i as usize];
-            light_width_texels(frame, p, t, w, self.texels)
-        };
+        let key = light_key(frame);
+        let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((k, counted)) = *last
+            && k == key
+        {
+            return counted;
+        }
+        // Each vertex once: most end one segment and start the next.
+        let widths: Vec<f32> = self
+            .points
+            .iter()
+            .map(|&(p, t, w)| light_width_texels(frame, p, t, w, self.texels))
+            .collect();
         let wide = self
             .segments
             .iter()
             .filter(|&&i| {
-                let (a, b) = (width(i), width(i + 1));
+                let (a, b) = (widths[i as usize], widths[i as usize + 1]);
                 a >= 0.0 && b >= 0.0 && a.max(b) > 1.0
             })
             .count();
-        (wide, self.segments.len())
+        let counted = (wide, self.segments.len());
+        *last = Some((key, counted));
+        counted
     }
 
     /// The frame's note, when any segment is wider than a light texel.
