@@ -135,6 +135,50 @@ fn wide_strands_are_the_raster_quads() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// A wide segment takes a slot in every tile its quad reaches: the
+/// hand-built strands at ≈ 4.4 pixels need more (tile, segment) pairs than
+/// at 0.2 pixel, and a pool capped below them counts what it dropped and
+/// what would hold everything, as for lines (none of the binning walks or
+/// tile_blend's invocations cut short).
+#[test]
+fn wide_segments_fill_the_pool_and_its_counters() {
+    let (_lock, gpu) = open_gpu();
+    let counters = |thickness: f32, extra: &[&str]| {
+        let mut sets: Vec<String> = extra.iter().map(|s| s.to_string()).collect();
+        sets.push("techniques.shading_space=fragment".into());
+        let path = repo_root().join("pipelines/compute_raster.toml");
+        let prepared = prepare(&gpu, &path, &sets, &hand_built(thickness), SIZE).expect("prepares");
+        let report = prepared.render_unchecked().expect("renders");
+        let find = |name: &str| {
+            report
+                .overflow
+                .iter()
+                .find(|o| o.counter == name)
+                .unwrap_or_else(|| panic!("{name} is read back"))
+                .clone()
+        };
+        (find("raster_counter"), find("bin_status"))
+    };
+    let (thin, _) = counters(0.01, &[]);
+    let (wide, status) = counters(0.2, &[]);
+    println!(
+        "pairs needed: 0.01 → {}, 0.2 → {}",
+        thin.needed, wide.needed
+    );
+    assert_eq!(
+        (wide.dropped, wide.incomplete, status.incomplete),
+        (0, 0, 0),
+        "{wide:?}"
+    );
+    assert!(wide.needed > thin.needed, "{wide:?} against {thin:?}");
+    let (capped, status) = counters(0.2, &["params.binned_segments=20"]);
+    assert_eq!((capped.incomplete, status.incomplete), (0, 0));
+    assert!(
+        capped.dropped > 0 && capped.needed == capped.dropped + 20 && capped.needed == wide.needed,
+        "the capped pool's drops are counted: {capped:?}"
+    );
+}
+
 /// The small scene with one strand only, running past its camera: along
 /// the view (eye (2, 0.5, 7.6) toward (0, -0.6, 0)), 0.15 beside the axis,
 /// from 4 in front of the eye to 2 behind it: the segment across the eye
