@@ -42,8 +42,13 @@ fn project_clip(c: vec4<f32>) -> vec4<f32> {
 }
 
 fn camera_segment(p0: vec3<f32>, p1: vec3<f32>) -> CameraSegment {
-    let c0 = frame.camera_view_proj * vec4<f32>(p0, 1.0);
-    let c1 = frame.camera_view_proj * vec4<f32>(p1, 1.0);
+    return clip_segment(frame.camera_view_proj * vec4<f32>(p0, 1.0), frame.camera_view_proj * vec4<f32>(p1, 1.0));
+}
+
+// camera_segment of the segment between two clip-space points (a quad's
+// side edge: the compute rasterizer clips a wide strand's quad, as the
+// wisps', side edge by side edge).
+fn clip_segment(c0: vec4<f32>, c1: vec4<f32>) -> CameraSegment {
     var seg: CameraSegment;
     seg.t_start = 0.0;
     seg.t_stop = 1.0;

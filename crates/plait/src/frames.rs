@@ -88,8 +88,8 @@ pub struct Frame {
     pub dropped: Vec<String>,
     /// Level-of-detail notes of this frame's camera: strands or wisps left
     /// out on purpose ([`crate::strand_lod::note`], [`crate::wisps::lod_note`]),
-    /// and segments wider than a pixel the compute rasterizer draws as
-    /// one-pixel lines ([`crate::wide_strands`]).
+    /// and segments wider than a light texel the self-shadow maps hold as
+    /// one-texel lines ([`crate::wide_strands`]).
     pub notes: Vec<String>,
 }
 
@@ -137,7 +137,7 @@ impl Prepared<'_> {
                 count,
             ));
         }
-        // Segments the compute rasterizer draws narrower than they are.
+        // Segments the light maps hold narrower than they are.
         notes.extend(
             self.wide_count
                 .as_ref()

@@ -342,9 +342,9 @@ pub struct Prepared<'g> {
     /// The frame inputs set last ([`Prepared::set_frame`]): a frame's
     /// level-of-detail notes are about the camera it was rendered from.
     pub(crate) uniforms: FrameUniforms,
-    /// With the compute rasterizer: the hair, to count each frame the
-    /// segments wider than a pixel it draws as one-pixel lines
-    /// ([`crate::wide_strands`]).
+    /// With light maps that weigh strands by their share of a light texel:
+    /// the hair, to count each frame the segments wider than a light texel
+    /// they hold as one-texel lines ([`crate::wide_strands`]).
     pub(crate) wide_count: Option<crate::wide_strands::WideCount>,
 }
 

@@ -19,9 +19,13 @@
 //    vertices as the rasterizer interpolates it) times the pixel's
 //    analytic coverage of the one-pixel-wide line: 1 − |distance across
 //    the line| (a tent: over each column the line crosses it sums to the
-//    band's area there, as a rasterized one-pixel-wide line covers it). Only
-//    where the segment's depth is in front of the opaque depth ("less", as
-//    every hair draw tests it).
+//    band's area there, as a rasterized one-pixel-wide line covers it). A
+//    segment wider than a pixel is the quad the hair draws' quad draw draws
+//    for it instead (plait::compute_raster::strand_quad: its two triangles,
+//    the box-filtered coverage of plait::strand_coverage::quad_coverage,
+//    the fragment alpha without the line's width factor), so it covers its
+//    width. Only where the segment's depth is in front of the opaque depth
+//    ("less", as every hair draw tests it).
 // 3. A pixel whose A reaches `opacity_threshold` stops; when every pixel of
 //    the tile has, the tile stops (the early out of Unity HDRP's High
 //    Quality Lines and Frostbite).
@@ -46,9 +50,12 @@
 #import plait::hair_point::{HairPoint, camera_segment}
 #import plait::strand_curve::strand_curve_tangent
 #import plait::loop_budget::loop_budget_spent
+#import plait::compute_raster::triangles::quad_depth
 #ifdef GEOMETRY_WISPS
 #import plait::compute_raster::wisp_quad::{wisp_quad, wisp_quad_hit, wisp_vertex, wisp_hair_vertex}
 #import plait::geometry::wisps::wisp_texel
+#else
+#import plait::compute_raster::strand_quad::{strand_quad, strand_quad_hit, strand_segment_is_wide}
 #endif
 
 struct Params {
@@ -99,14 +106,24 @@ var<workgroup> chunk_alpha: array<vec2<f32>, CHUNK>;
 // The part of the segment drawn: its parameters at the near-plane clip (0, 1
 // when it is not clipped).
 var<workgroup> chunk_range: array<vec2<f32>, CHUNK>;
-#ifdef GEOMETRY_WISPS
-// A wisp quad's (plait::compute_raster::wisp_quad) other two corners (a, b
-// in chunk_a, chunk_b), its corners' places between its spine points, and
-// per spine point the strand texture's v and mip level (x, y: v; z, w:
-// level); chunk_alpha holds the spine points' hair alpha × tip fading.
+// A quad's (a wisp's, plait::compute_raster::wisp_quad; a wide strand
+// segment's, plait::compute_raster::strand_quad) other two corners (a, b in
+// chunk_a, chunk_b) and its corners' places along its segment (between its
+// spine points).
 var<workgroup> chunk_c: array<vec4<f32>, CHUNK>;
 var<workgroup> chunk_d: array<vec4<f32>, CHUNK>;
 var<workgroup> chunk_along: array<vec4<f32>, CHUNK>;
+#ifndef GEOMETRY_WISPS
+// A strand segment drawn as a quad (1; 0: a line), and its corners' signed
+// distances from the centre line and half widths (StrandQuad's across, half).
+var<workgroup> chunk_wide: array<u32, CHUNK>;
+var<workgroup> chunk_across: array<vec4<f32>, CHUNK>;
+var<workgroup> chunk_half: array<vec4<f32>, CHUNK>;
+#endif
+#ifdef GEOMETRY_WISPS
+// Per spine point of a wisp quad the strand texture's v and mip level (x, y:
+// v; z, w: level); chunk_alpha holds the spine points' hair alpha × tip
+// fading.
 var<workgroup> chunk_texture: array<vec4<f32>, CHUNK>;
 // Where the quad lies along the strand its wisp follows, for strand-space
 // shading: that strand's first hair vertex, and its spine points' indices
@@ -220,23 +237,24 @@ fn cover_pixels(k: u32, a: vec2<f32>, b: vec2<f32>, origin: vec2<f32>) {
 }
 
 // The fragment alpha at hair vertex `index` (before the material alpha), as
-// plait::hair_fragment's vertex stage computes it.
-fn vertex_alpha(v: HairPoint, index: u32) -> f32 {
+// plait::hair_fragment's vertex stage computes it: a line's weighed by the
+// strand's width when it is thinner than a pixel (strand_coverage), a
+// quad's not (its coverage is per pixel, quad_coverage).
+fn vertex_alpha(v: HairPoint, index: u32, line: bool) -> f32 {
     let tip = strand_tip_scale(v.strand, index, 0.0);
-    return strand_lod_alpha(v.alpha * strand_coverage(v.position, v.tangent, v.thickness) * tip, strand_lod_weight(v.strand));
+    let coverage = select(1.0, strand_coverage(v.position, v.tangent, v.thickness), line);
+    return strand_lod_alpha(v.alpha * coverage * tip, strand_lod_weight(v.strand));
 }
 
-#ifdef GEOMETRY_WISPS
-// Marks chunk quad `k` (plait::compute_raster::wisp_quad, its corners in
-// chunk_a … chunk_d) at every pixel of the tile at `origin` whose centre it
-// covers (wisp_quad_hit, the test the pixel repeats): the pixels of its
-// corners' box within the tile.
+// Marks chunk quad `k` (its corners in chunk_a … chunk_d) at every pixel of
+// the tile at `origin` whose centre it covers (quad_depth, the inside test
+// the pixel repeats): the pixels of its corners' box within the tile.
 fn cover_quad(k: u32, origin: vec2<f32>) {
-    let a = chunk_a[k];
-    let b = chunk_b[k];
-    let c = chunk_c[k];
-    let d = chunk_d[k];
-    let along = chunk_along[k];
+    let corners = array<vec4<f32>, 4>(chunk_a[k], chunk_b[k], chunk_c[k], chunk_d[k]);
+    let a = corners[0];
+    let b = corners[1];
+    let c = corners[2];
+    let d = corners[3];
     let box_lo = min(min(a.xy, b.xy), min(c.xy, d.xy)) - origin;
     let box_hi = max(max(a.xy, b.xy), max(c.xy, d.xy)) - origin;
     // Pixel centres x + 0.5 within the box, clamped to the tile before the
@@ -247,7 +265,7 @@ fn cover_quad(k: u32, origin: vec2<f32>) {
     let bit = 1u << (k % 32u);
     for (var y = lo.y; y <= hi.y; y += 1.0) {
         for (var x = lo.x; x <= hi.x; x += 1.0) {
-            if (wisp_quad_hit(origin + vec2<f32>(x, y) + 0.5, a, b, c, d, along).x > 0.0) {
+            if (quad_depth(origin + vec2<f32>(x, y) + 0.5, corners).x > 0.0) {
                 let pixel = u32(y) * TILE + u32(x);
                 atomicOr(&pixel_segments[pixel * WORDS + word], bit);
             }
@@ -255,6 +273,7 @@ fn cover_quad(k: u32, origin: vec2<f32>) {
     }
 }
 
+#ifdef GEOMETRY_WISPS
 // Straight colour and alpha of chunk quad k at (u across, `along` between
 // its spine points), as plait::hair_fragment shades a wisp fragment there:
 // the strand texture's texel at (u, v, level) gives the alpha (× the hair
@@ -290,14 +309,20 @@ fn shade_wisp(k: u32, u: f32, along: f32) -> vec4<f32> {
     return vec4<f32>(hair_radiance(shadow_map, world, tangent, color, occlusion), alpha);
 }
 #else
-// Straight colour and alpha of chunk segment k at screen fraction t,
-// weighed by `weight`. The fragment alphas at the segment's two vertices
-// (chunk_alpha) are the chunk loader's, once per segment, not once per pixel.
+// Straight colour and alpha of chunk line k at screen fraction t, weighed by
+// `weight`.
 fn shade_segment(k: u32, t: f32, a: vec4<f32>, b: vec4<f32>, weight: f32) -> vec4<f32> {
     // Perspective-correct fraction along the drawn (clipped) part (1/w is
     // linear on screen), then along the whole segment.
     let clipped = chunk_range[k];
-    let along = mix(clipped.x, clipped.y, (t / b.w) / ((1.0 - t) / a.w + t / b.w));
+    return shade_along(k, mix(clipped.x, clipped.y, (t / b.w) / ((1.0 - t) / a.w + t / b.w)), weight);
+}
+
+// Straight colour and alpha of chunk segment k at `along` it (0 at its
+// first vertex), weighed by `weight`. The fragment alphas at the segment's
+// two vertices (chunk_alpha) are the chunk loader's, once per segment, not
+// once per pixel.
+fn shade_along(k: u32, along: f32, weight: f32) -> vec4<f32> {
     let i0 = chunk_segment[k];
     let i1 = i0 + 1u;
     let ends = chunk_alpha[k];
@@ -466,10 +491,28 @@ fn main(
             chunk_range[lid] = vec2<f32>(seg.t_start, seg.t_stop);
             chunk_segment[lid] = s;
             chunk_strand[lid] = v0.strand;
-            chunk_alpha[lid] = vec2<f32>(vertex_alpha(v0, s), vertex_alpha(v1, s + 1u));
-            chunk_a[lid] = a;
-            chunk_b[lid] = e;
-            cover_pixels(lid, a.xy, e.xy, vec2<f32>(group.xy * TILE));
+            // Wider than a pixel: the quad (the binning's test, so a binned
+            // wide segment is a kept quad).
+            let wide = strand_segment_is_wide(v0, v1);
+            chunk_wide[lid] = select(0u, 1u, wide);
+            chunk_alpha[lid] = vec2<f32>(vertex_alpha(v0, s, !wide), vertex_alpha(v1, s + 1u, !wide));
+            if (wide) {
+                let q = strand_quad(v0, v1);
+                chunk_a[lid] = q.corner[0];
+                chunk_b[lid] = q.corner[1];
+                chunk_c[lid] = q.corner[2];
+                chunk_d[lid] = q.corner[3];
+                chunk_along[lid] = q.along;
+                chunk_across[lid] = q.across;
+                chunk_half[lid] = q.half;
+                if (q.kept) {
+                    cover_quad(lid, vec2<f32>(group.xy * TILE));
+                }
+            } else {
+                chunk_a[lid] = a;
+                chunk_b[lid] = e;
+                cover_pixels(lid, a.xy, e.xy, vec2<f32>(group.xy * TILE));
+            }
 #endif
         }
         workgroupBarrier();
@@ -489,14 +532,24 @@ fn main(
                 }
                 let f = shade_wisp(k, hit.z, hit.w);
 #else
-                let a = chunk_a[k];
-                let e = chunk_b[k];
-                let cover = line_coverage(centre, a.xy, e.xy);
-                let z = mix(a.z, e.z, cover.y);
-                if (cover.x <= 0.0 || z < 0.0 || z >= opaque) {
-                    continue;
+                var f: vec4<f32>;
+                if (chunk_wide[k] != 0u) {
+                    // x: coverage, y: NDC z, z: along the segment.
+                    let hit = strand_quad_hit(centre, chunk_a[k], chunk_b[k], chunk_c[k], chunk_d[k], chunk_along[k], chunk_across[k], chunk_half[k]);
+                    if (hit.x <= 0.0 || hit.y < 0.0 || hit.y >= opaque) {
+                        continue;
+                    }
+                    f = shade_along(k, hit.z, hit.x);
+                } else {
+                    let a = chunk_a[k];
+                    let e = chunk_b[k];
+                    let cover = line_coverage(centre, a.xy, e.xy);
+                    let z = mix(a.z, e.z, cover.y);
+                    if (cover.x <= 0.0 || z < 0.0 || z >= opaque) {
+                        continue;
+                    }
+                    f = shade_segment(k, cover.y, a, e, cover.x);
                 }
-                let f = shade_segment(k, cover.y, a, e, cover.x);
 #endif
                 color += (1.0 - alpha) * f.a * f.rgb;
                 alpha += (1.0 - alpha) * f.a;

@@ -14,19 +14,23 @@
 // that tile_blend would draw it in — so hair hidden behind the head takes
 // no slot, is never counted, and the image is the same as without it. The
 // `geometry` point's answer is honoured as every hair draw honours it
-// (plait::strand_lod): a strand of weight 0 lands nowhere. With `geometry =
-// wisps` the segments are the quads of the wisps' strips
-// (plait::compute_raster::wisp_quad), wide segments: the tiles of their
-// corners' box where their triangles cover a pixel centre in front of the
-// opaque depth (quad_visible_in_tile).
+// (plait::strand_lod): a strand of weight 0 lands nowhere. A quad lands in
+// the tiles of its corners' box where its triangles cover a pixel centre in
+// front of the opaque depth (quad_visible_in_tile): with `geometry = wisps`
+// every segment is one, a quad of a wisp's strip
+// (plait::compute_raster::wisp_quad); else a segment wider than a pixel is
+// (plait::compute_raster::strand_quad, the quad the hair draws draw for it),
+// so it takes a slot in every tile its width reaches.
 #define_import_path plait::compute_raster::tiles
 
 #import plait::frame::frame
 #import plait::strand_lod::strand_lod_weight
 #import plait::hair_point::{HairPoint, camera_segment}
+#import plait::compute_raster::triangles::{quad_meets, quad_depth}
 #ifdef GEOMETRY_WISPS
-#import plait::compute_raster::wisp_quad::{WispQuad, wisp_quad, wisp_quad_first, wisp_quad_meets, wisp_quad_hit, NO_QUAD}
+#import plait::compute_raster::wisp_quad::{wisp_quad, wisp_quad_first, NO_QUAD}
 #else
+#import plait::compute_raster::strand_quad::{strand_quad, strand_segment_is_wide}
 @group(1) @binding(1) var<storage, read> hair_vertices: array<HairPoint>;
 @group(1) @binding(2) var<storage, read> hair_indices: array<u32>;
 #endif
@@ -35,10 +39,11 @@
 
 // A segment on the screen: its ends (screen xy, NDC z, clip w), the tiles
 // its grown bounding box covers (inclusive; none when first > last), the
-// line's unit normal, its nearest depth, and the vertex a tile stores. With
-// `geometry = wisps` a segment is one quad of a wisp's strip
-// (plait::compute_raster::wisp_quad), a wide segment: `quad` is its
-// corners, `vertex` its first wisp vertex, and a and b are unused.
+// line's unit normal, its nearest depth, and the vertex a tile stores. A
+// quad (`quad`: every segment with `geometry = wisps`, a quad of a wisp's
+// strip whose `vertex` is its first wisp vertex; a strand's segment wider
+// than a pixel) has its corners in `corner` (screen xy, NDC z, clip w), and
+// its a, b and normal are unused.
 struct Span {
     a: vec4<f32>,
     b: vec4<f32>,
@@ -47,9 +52,8 @@ struct Span {
     normal: vec2<f32>,
     near_z: f32,
     vertex: u32,
-#ifdef GEOMETRY_WISPS
-    quad: WispQuad,
-#endif
+    quad: bool,
+    corner: array<vec4<f32>, 4>,
 }
 
 // Tiles across the screen (the row length of every per-tile buffer).
@@ -88,6 +92,14 @@ fn segment_span(s: u32, t: i32) -> Span {
     }
     span.a = seg.a;
     span.b = seg.b;
+    // Wider than a pixel: the quad the hair draws draw for it.
+    if (strand_segment_is_wide(v0, v1)) {
+        let q = strand_quad(v0, v1);
+        if (!q.kept) {
+            return span;
+        }
+        return quad_span(span, q.corner, t);
+    }
     span.near_z = min(span.a.z, span.b.z);
     if (span.near_z >= 1.0 || max(span.a.z, span.b.z) < 0.0) {
         return span;
@@ -108,10 +120,8 @@ fn segment_span(s: u32, t: i32) -> Span {
 }
 
 #ifdef GEOMETRY_WISPS
-// Quad `s` of the wisps (`none`: a span of no tiles): the tiles its corners'
-// bounding box, grown by a pixel, covers — the box of its two triangles —,
-// unless the level of detail drops it or it lies wholly before the near
-// plane or beyond the far one.
+// Quad `s` of the wisps (`none`: a span of no tiles), unless the level of
+// detail drops it (quad_span).
 fn wisp_span(none: Span, s: u32, t: i32) -> Span {
     var span = none;
     let first = wisp_quad_first(s);
@@ -123,8 +133,18 @@ fn wisp_span(none: Span, s: u32, t: i32) -> Span {
         return span;
     }
     span.vertex = first;
-    span.quad = q;
-    let c = q.corner;
+    return quad_span(span, q.corner, t);
+}
+#endif
+
+// A quad of corners `c` (`none`: the span so far, of no tiles): the tiles its
+// corners' bounding box, grown by a pixel, covers — the box of its two
+// triangles —, unless it lies wholly before the near plane or beyond the
+// far one.
+fn quad_span(none: Span, c: array<vec4<f32>, 4>, t: i32) -> Span {
+    var span = none;
+    span.quad = true;
+    span.corner = c;
     span.near_z = min(min(c[0].z, c[1].z), min(c[2].z, c[3].z));
     let far_z = max(max(c[0].z, c[1].z), max(c[2].z, c[3].z));
     if (span.near_z >= 1.0 || far_z < 0.0) {
@@ -145,29 +165,25 @@ fn wisp_span(none: Span, s: u32, t: i32) -> Span {
     span.last_tile = hi / t;
     return span;
 }
-#endif
 
 // Whether the segment lands in tile (tx, ty) (the header's rules).
 fn lands_in(span: Span, tx: i32, ty: i32, t: i32) -> bool {
-#ifndef GEOMETRY_WISPS
     // Half the tile's diagonal plus the one pixel the coverage reaches.
     let reach = f32(t) * 0.70710678 + 1.5;
     let centre = (vec2<f32>(f32(tx), f32(ty)) + 0.5) * f32(t);
-    if (abs(dot(centre - span.a.xy, span.normal)) > reach) {
+    if (!span.quad && abs(dot(centre - span.a.xy, span.normal)) > reach) {
         return false;
     }
-#endif
     if (span.near_z >= bitcast<f32>(tile_far[u32(ty * tiles_across(t) + tx)])) {
         return false;
     }
     let size = vec2<i32>(frame.screen_size.xy);
     let tile_lo = vec2<i32>(tx, ty) * t;
     let tile_hi = min(tile_lo + vec2<i32>(t - 1), size - vec2<i32>(1));
-#ifdef GEOMETRY_WISPS
-    return quad_visible_in_tile(span.quad, tile_lo, tile_hi);
-#else
+    if (span.quad) {
+        return quad_visible_in_tile(span.corner, tile_lo, tile_hi);
+    }
     return visible_in_tile(span.a, span.b, tile_lo, tile_hi);
-#endif
 }
 
 // Whether segment a → b (screen xy, NDC z) is in front of the opaque depth
@@ -214,16 +230,14 @@ fn visible_in_tile(a: vec4<f32>, b: vec4<f32>, lo: vec2<i32>, hi: vec2<i32>) -> 
     return false;
 }
 
-#ifdef GEOMETRY_WISPS
-// Whether wisp quad `q` covers a pixel centre of the tile from `lo` to `hi`
-// (inclusive) in front of the opaque depth there: the pixels tile_blend
-// draws it in (wisp_quad_hit, the same test), as visible_in_tile asks of a
-// strand's segment. A quick rejection first: its triangles miss the tile.
-fn quad_visible_in_tile(q: WispQuad, lo: vec2<i32>, hi: vec2<i32>) -> bool {
-    if (!wisp_quad_meets(q, vec2<f32>(lo) + 0.5, vec2<f32>(hi) + 0.5)) {
+// Whether the quad of corners `c` covers a pixel centre of the tile from
+// `lo` to `hi` (inclusive) in front of the opaque depth there: the pixels
+// tile_blend draws it in (the same triangles), as visible_in_tile asks of a
+// line. A quick rejection first: its triangles miss the tile.
+fn quad_visible_in_tile(c: array<vec4<f32>, 4>, lo: vec2<i32>, hi: vec2<i32>) -> bool {
+    if (!quad_meets(c, vec2<f32>(lo) + 0.5, vec2<f32>(hi) + 0.5)) {
         return false;
     }
-    let c = q.corner;
     // The pixels of the tile whose centres lie in the corners' box (clamped
     // to the tile before the conversion).
     let box_lo = min(min(c[0].xy, c[1].xy), min(c[2].xy, c[3].xy));
@@ -232,7 +246,7 @@ fn quad_visible_in_tile(q: WispQuad, lo: vec2<i32>, hi: vec2<i32>) -> bool {
     let last = vec2<i32>(min(floor(box_hi - 0.5), vec2<f32>(hi)));
     for (var y = first.y; y <= last.y; y++) {
         for (var x = first.x; x <= last.x; x++) {
-            let hit = wisp_quad_hit(vec2<f32>(f32(x), f32(y)) + 0.5, c[0], c[1], c[2], c[3], q.along);
+            let hit = quad_depth(vec2<f32>(f32(x), f32(y)) + 0.5, c);
             if (hit.x > 0.0 && hit.y >= 0.0 && hit.y < textureLoad(opaque_depth, vec2<i32>(x, y), 0)) {
                 return true;
             }
@@ -240,4 +254,3 @@ fn quad_visible_in_tile(q: WispQuad, lo: vec2<i32>, hi: vec2<i32>) -> bool {
     }
     return false;
 }
-#endif

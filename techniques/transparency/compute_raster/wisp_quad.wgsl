@@ -9,7 +9,8 @@
 // plait::geometry::wisps::wisp_point (the strip facing the view, widened and
 // dropped by the wisps' level of detail), one sample at each pixel centre.
 // Here a "segment" of the binning and of tile_blend is one such quad: a wide
-// segment whose tiles are those its two triangles reach (wisp_quad_meets),
+// segment whose tiles are those its two triangles reach
+// (plait::compute_raster::triangles, quad_meets),
 // and whose coverage at a pixel centre is the triangles' — inside one of
 // them, with the strand texture's alpha at the (u across, v along, mip
 // level) interpolated there as the rasterizer interpolates them
@@ -27,6 +28,7 @@
 
 #import plait::hair_point::{HairPoint, camera_segment}
 #import plait::geometry::wisps::{WispPoint, wisp_point}
+#import plait::compute_raster::triangles::{quad_weights, quad_perspective}
 
 // The wisp mesh as storage (scene bindings, bound by name like
 // hair_vertices): its vertices in the hair vertex layout's slots
@@ -89,73 +91,17 @@ fn wisp_quad(first: u32) -> WispQuad {
     return q;
 }
 
-fn cross2(a: vec2<f32>, b: vec2<f32>) -> f32 {
-    return a.x * b.y - a.y * b.x;
-}
-
-// Pixel centre `p` in triangle a b c (screen xy, NDC z, clip w), whose
-// corners carry (u, along) `ua`, `ub`, `uc`: x = 1 when inside (edges
-// included), y = NDC z there, zw = (u, along) interpolated perspective-
-// correctly (the screen barycentrics over w, renormalized); all 0 outside.
-fn triangle_hit(p: vec2<f32>, a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, ua: vec2<f32>, ub: vec2<f32>, uc: vec2<f32>) -> vec4<f32> {
-    let area = cross2(b.xy - a.xy, c.xy - a.xy);
-    if (abs(area) < 1e-12) {
-        return vec4<f32>(0.0);
-    }
-    let la = cross2(b.xy - p, c.xy - p) / area;
-    let lb = cross2(c.xy - p, a.xy - p) / area;
-    let l = vec3<f32>(la, lb, 1.0 - la - lb);
-    if (min(l.x, min(l.y, l.z)) < 0.0) {
-        return vec4<f32>(0.0);
-    }
-    let w = l / vec3<f32>(a.w, b.w, c.w);
-    let attributes = (w.x * ua + w.y * ub + w.z * uc) / (w.x + w.y + w.z);
-    return vec4<f32>(1.0, dot(l, vec3<f32>(a.z, b.z, c.z)), attributes);
-}
-
 // Pixel centre `p` on quad a b c d (corners as WispQuad's, `along` theirs):
-// triangle_hit of a b c, else of b d c (so a centre on their shared edge is
-// counted once).
+// x = 1 when inside one of its triangles (plait::compute_raster::triangles,
+// a b c, else b d c, so a centre on their shared edge is counted once), y =
+// NDC z there, zw = (u across, along) interpolated perspective-correctly;
+// all 0 outside.
 fn wisp_quad_hit(p: vec2<f32>, a: vec4<f32>, b: vec4<f32>, c: vec4<f32>, d: vec4<f32>, along: vec4<f32>) -> vec4<f32> {
-    let first = triangle_hit(p, a, b, c, vec2<f32>(0.0, along.x), vec2<f32>(1.0, along.y), vec2<f32>(0.0, along.z));
-    if (first.x > 0.0) {
-        return first;
+    let q = quad_weights(p, a.xy, b.xy, c.xy, d.xy);
+    if (!q.inside) {
+        return vec4<f32>(0.0);
     }
-    return triangle_hit(p, b, d, c, vec2<f32>(1.0, along.y), vec2<f32>(1.0, along.w), vec2<f32>(0.0, along.z));
-}
-
-// Whether the edge from e0 to e1 of a triangle of signed area sign `s` has
-// some point of the box lo … hi on its inner side.
-fn edge_reaches(e0: vec2<f32>, e1: vec2<f32>, s: f32, lo: vec2<f32>, hi: vec2<f32>) -> bool {
-    let d = e1 - e0;
-    // cross2(d, p − e0) · s grows along g: the box's corner farthest along it.
-    let g = vec2<f32>(-d.y, d.x) * s;
-    let corner = select(lo, hi, g > vec2<f32>(0.0));
-    return dot(g, corner - e0) >= 0.0;
-}
-
-// Whether triangle a b c (screen xy) may hold a point of the box lo … hi:
-// the boxes overlap and no edge has the whole box outside (a separating
-// axis test, conservative only at the box's corners).
-fn triangle_meets(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> bool {
-    if (any(max(max(a, b), c) < lo) || any(min(min(a, b), c) > hi)) {
-        return false;
-    }
-    let area = cross2(b - a, c - a);
-    if (abs(area) < 1e-12) {
-        return false;
-    }
-    let s = sign(area);
-    return edge_reaches(a, b, s, lo, hi) && edge_reaches(b, c, s, lo, hi) && edge_reaches(c, a, s, lo, hi);
-}
-
-// Whether quad `q` may cover a pixel centre in the box lo … hi (screen
-// pixels; the box grown by 1/64 pixel so rounding never loses a centre
-// wisp_quad_hit would keep).
-fn wisp_quad_meets(q: WispQuad, lo: vec2<f32>, hi: vec2<f32>) -> bool {
-    let margin = vec2<f32>(1.0 / 64.0);
-    let l = lo - margin;
-    let h = hi + margin;
-    let c = q.corner;
-    return triangle_meets(c[0].xy, c[1].xy, c[2].xy, l, h) || triangle_meets(c[1].xy, c[3].xy, c[2].xy, l, h);
+    let w = vec4<f32>(a.w, b.w, c.w, d.w);
+    let z = dot(q.l, vec4<f32>(a.z, b.z, c.z, d.z));
+    return vec4<f32>(1.0, z, quad_perspective(q.l, w, vec4<f32>(0.0, 1.0, 0.0, 1.0)), quad_perspective(q.l, w, along));
 }
