@@ -204,7 +204,11 @@ fn every_combination_of_techniques_checks_and_renders() {
     // choice the row is rendered with instead: transparency = ray_traced
     // traces strands, not the wisps' triangles (geometry = strands).
     let repairs = [
-        ("techniques/multiple_scattering/", "multiple_scattering", "none"),
+        (
+            "techniques/multiple_scattering/",
+            "multiple_scattering",
+            "none",
+        ),
         ("techniques/transparency/ray_traced/", "geometry", "strands"),
     ];
     for sets in &combos {
@@ -212,12 +216,10 @@ fn every_combination_of_techniques_checks_and_renders() {
         let mut sets = sets.clone();
         while let Err(e) = &result
             && e.to_string().contains("; declared at ")
-            && let Some((_, point, choice)) = repairs
-                .iter()
-                .find(|(at, point, choice)| {
-                    let set = format!("techniques.{point}={choice}");
-                    e.to_string().contains(at) && !sets.contains(&set)
-                })
+            && let Some((_, point, choice)) = repairs.iter().find(|(at, point, choice)| {
+                let set = format!("techniques.{point}={choice}");
+                e.to_string().contains(at) && !sets.contains(&set)
+            })
         {
             refused += 1;
             let key = format!("techniques.{point}=");
