@@ -239,7 +239,7 @@ fn every_combination_of_techniques_checks_and_renders() {
         }
     }
     println!(
-        "{refused} of {} combinations refused as declared, rendered with multiple_scattering = none",
+        "{refused} refusals as declared in {} combinations, each row rendered with the refused choice repaired",
         combos.len()
     );
     assert!(
