@@ -115,6 +115,27 @@ fn occupancy_on_stray_strands_matches_its_golden_image() {
     check_golden("occupancy_stray", &image, &mask).unwrap_or_else(|e| panic!("{e}"));
 }
 
+/// Ray-traced transparency (issue 48) is not a gallery pipeline (it needs
+/// ray queries): depth_peeling.toml with `transparency = ray_traced` has a
+/// golden image of its own, made after looking at it beside
+/// depth_peeling's (the same hair, its strands' edges box-filtered where
+/// the rasterized lines are aliased). Where the adapter lacks ray queries
+/// the technique is refused at load (crates/plait-cli/tests/ray_query_cli.rs)
+/// and this test has nothing to render.
+#[test]
+fn ray_traced_transparency_matches_its_golden_image() {
+    let (_lock, gpu) = gpu();
+    if !gpu.capabilities.ray_query {
+        return;
+    }
+    let scene = load_scene(SCENE);
+    let mask = no_hair(&gpu, load_scene(SCENE), "no_hair");
+    let pipeline = repo_root().join("pipelines/depth_peeling.toml");
+    let sets = ["techniques.transparency=ray_traced".to_string()];
+    let image = render_with(&gpu, &pipeline, &sets, &scene);
+    check_golden("transparency_ray_traced", &image, &mask).unwrap_or_else(|e| panic!("{e}"));
+}
+
 /// The golden scene lit mostly by its ambient light (the key light dimmed),
 /// so the environment term the `ambient_occlusion` techniques darken shows.
 fn ambient_scene() -> SceneData {

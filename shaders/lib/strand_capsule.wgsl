@@ -41,3 +41,29 @@ fn strand_crossing(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, ra: f32, b: vec3<f3
     }
     return t;
 }
+
+// The ray's closest approach to segment a → b: x = its ray distance t,
+// y = the place s along the segment, in the segment's own half-open [0, 1)
+// as strand_crossing takes it, z = the distance between the two (the ray to
+// the axis); x = −1 when the approach is outside the segment or the ray
+// runs (nearly) along it. What strand_crossing tests against the radius,
+// for a caller that weighs a hit by how near the axis the ray passes
+// (transparency = ray_traced: the part of a pixel the strand covers).
+fn strand_approach(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
+    let e = b - a;
+    let w = o - a;
+    let ee = dot(e, e);
+    let de = dot(d, e);
+    let denom = ee - de * de;
+    if (ee <= 0.0 || denom <= 1e-8 * ee) {
+        return vec3<f32>(-1.0, 0.0, 0.0);
+    }
+    let dw = dot(d, w);
+    let ew = dot(e, w);
+    let t = (de * ew - ee * dw) / denom;
+    let s = (ew - de * dw) / denom;
+    if (s < 0.0 || s >= 1.0) {
+        return vec3<f32>(-1.0, 0.0, 0.0);
+    }
+    return vec3<f32>(t, s, length(w + t * d - s * e));
+}

@@ -161,3 +161,31 @@ fn a_groom_past_the_blas_limit_is_refused_with_the_numbers() {
     assert_refused("render", &limited(&render, "6798"), &wanted);
     assert!(!out.exists(), "nothing rendered");
 }
+
+/// `transparency = ray_traced` (issue 48) on the real adapter with its ray
+/// queries hidden: refused by `plait check --adapter` at its technique
+/// file's `adapter` line, naming the adapter, the feature and the fix; on
+/// the adapter as it is, it runs.
+#[test]
+fn ray_traced_transparency_is_refused_without_ray_queries() {
+    let set = "techniques.transparency=ray_traced";
+    let check = [
+        "check",
+        "--adapter",
+        "pipelines/reference.toml",
+        "--set",
+        set,
+    ];
+    let wanted = [
+        "cannot run pipeline `reference`",
+        "techniques/transparency/ray_traced/technique.toml:",
+        "technique transparency/ray_traced traces rays",
+        "the adapter lacks ray queries (wgpu's EXPERIMENTAL_RAY_QUERY, Vulkan's VK_KHR_ray_query)",
+        "`bash scripts/ensure-vulkan.sh`",
+    ];
+    assert_refused("check --adapter", &plait_env(&check, true), &wanted);
+    assert_ok(
+        "check --adapter with ray queries",
+        &plait_env(&check, false),
+    );
+}

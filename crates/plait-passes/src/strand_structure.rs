@@ -3,7 +3,9 @@
 //! segment enclosing its tapered swept sphere, from the scene's
 //! `hair_vertices` as they are when the pass runs (after simulation and
 //! interpolation, which write them), then the bottom- and top-level
-//! structures, rebuilt every frame. Its output slot is the resource a
+//! structures, rebuilt every frame. `hair_vertices` may be bound to a
+//! technique's buffer of the same layout instead of the scene's (a widened
+//! copy, `techniques/transparency/ray_traced`). Its output slot is the resource a
 //! ray-traced technique binds (`kind = "acceleration_structure"`). The
 //! pass's shader declares the slots for `plait check`; the boxes are
 //! written by the structure's own compute pass
@@ -84,10 +86,23 @@ impl PassType for StrandStructurePass {
             .pool
             .strands(id)
             .ok_or_else(|| fail(format!("`{name}` is no acceleration structure")))?;
+        // The buffer bound to `hair_vertices`: the scene's, or a technique's
+        // copy of it (transparency = ray_traced widens each vertex to the
+        // pixel's footprint there, so a primary ray through a pixel centre
+        // finds every strand covering part of the pixel). Only its first
+        // point_count vertices are boxed; a copy too small for them counts
+        // that in its own overflow counter (the boxes past it stay empty).
+        let vertices = pass
+            .reads
+            .iter()
+            .find(|b| b.slot == "hair_vertices")
+            .and_then(|b| b.resource)
+            .and_then(|id| ctx.pool.buffer(id))
+            .unwrap_or(&hair.vertices);
         let structure = StrandStructure::on(
             ctx.device,
             (ctx.capabilities, ctx.adapter_name),
-            &hair.vertices,
+            vertices,
             ctx.geometry.point_count,
         )
         .map_err(|e| fail(e.to_string()))?;
