@@ -82,7 +82,8 @@ const HEAD_SHIFT: f32 = 1.5;
 fn behind_the_head(gpu: &Gpu, data: &SceneData, sets: &[&str], n: u32) -> Vec<(f32, f32)> {
     let frame = data.frame(SIZE, 0);
     let light = glam::Mat4::from_cols_array_2d(&frame.light_view_proj);
-    let l = Vec3::from_slice(&frame.light_direction[..3]).normalize();
+    // The frame holds the direction toward the light; L is the way it travels.
+    let l = -Vec3::from_slice(&frame.light_direction[..3]).normalize();
     assert!(l.x.abs() < 1e-6, "the light must have no x: {l}");
     let centre = Vec3::new(HEAD_SHIFT, 0.0, 0.0);
     let point = |s: f32| centre + 2.0 * l + (s - HEAD_SHIFT) * Vec3::X;
@@ -93,8 +94,14 @@ fn behind_the_head(gpu: &Gpu, data: &SceneData, sets: &[&str], n: u32) -> Vec<(f
     let (uv0, z0) = uv(point(-3.0));
     let (uv1, z1) = uv(point(3.0));
     assert!((z0 - z1).abs() < 1e-5, "one light depth: {z0} vs {z1}");
-    for c in uv0.iter().chain(&uv1) {
-        assert!((0.0..=1.0).contains(c), "a probe point outside the light's map: {uv0:?} {uv1:?}");
+    // The light's frustum is fitted to the hair (one short strand here), so
+    // the points lie outside its map; the probe's mapping from light NDC to
+    // the world is affine (a directional light) and holds there: checked.
+    let inverse = glam::Mat4::from_cols_array_2d(&frame.light_inv_view_proj);
+    let back = |uv: [f32; 2]| inverse.project_point3(Vec3::new(2.0 * uv[0] - 1.0, 1.0 - 2.0 * uv[1], z0));
+    for (s, uv) in [(-3.0, uv0), (3.0, uv1)] {
+        let (got, want) = (back(uv), point(s));
+        assert!(got.distance(want) < 1e-3, "s = {s}: the probe reads {got}, not {want}");
     }
     // The grid puts ray i at the centre of cell i of n over [uv0, uv1];
     // widened by half a cell each side, the centres are s = −3 … 3.
@@ -187,7 +194,8 @@ fn strand_through(centre: Vec3) -> Vec<Vec3> {
 /// down meets it), a share (1 − h/D)/2 of uniform directions meets the
 /// plane within D: those whose downward cosine exceeds h/D, uniform in the
 /// cosine. The ray-traced visibility is 1 − that share (a mesh is opaque);
-/// the Fibonacci lattice of 1024 directions holds it to 0.005. Fails with
+/// the Fibonacci lattice of 1024 directions, rotated per vertex, holds it
+/// to 0.008 (measured: within 0.005). Fails with
 /// the ground's instance dropped (1), with `mesh_distance` ignored (0.5),
 /// with a mesh hit weighed as one strand crossed (1 − share·(1 − e^−w)).
 #[test]
@@ -202,7 +210,7 @@ fn a_vertex_above_the_ground_loses_the_planes_share_of_the_sphere() {
         let expected = 1.0 - 0.5 * (1.0 - f64::from(h / d));
         eprintln!("h {h}, D {d}: visibility {got:.4}, plane {expected:.4}");
         assert!(
-            (got - expected).abs() < 0.005,
+            (got - expected).abs() < 0.008,
             "h {h}, D {d}: visibility {got:.4}, the plane's share gives {expected:.4}"
         );
     }
