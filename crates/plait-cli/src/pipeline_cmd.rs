@@ -123,7 +123,7 @@ fn structure_fits(
     let (size, meshes) = match hair {
         Some(size) => size,
         None => {
-            let scene = crate::render_cmd::load_scene(scene)?;
+            let mut scene = crate::render_cmd::load_scene(scene)?;
             let strands = scene.load_hair()?;
             let meshes = plait::structure_limit::mesh_sizes(&scene.opaque_meshes());
             hair.insert((plait::structure_limit::HairSize::of(&strands), meshes))
