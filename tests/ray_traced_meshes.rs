@@ -98,10 +98,14 @@ fn behind_the_head(gpu: &Gpu, data: &SceneData, sets: &[&str], n: u32) -> Vec<(f
     // the points lie outside its map; the probe's mapping from light NDC to
     // the world is affine (a directional light) and holds there: checked.
     let inverse = glam::Mat4::from_cols_array_2d(&frame.light_inv_view_proj);
-    let back = |uv: [f32; 2]| inverse.project_point3(Vec3::new(2.0 * uv[0] - 1.0, 1.0 - 2.0 * uv[1], z0));
+    let back =
+        |uv: [f32; 2]| inverse.project_point3(Vec3::new(2.0 * uv[0] - 1.0, 1.0 - 2.0 * uv[1], z0));
     for (s, uv) in [(-3.0, uv0), (3.0, uv1)] {
         let (got, want) = (back(uv), point(s));
-        assert!(got.distance(want) < 1e-3, "s = {s}: the probe reads {got}, not {want}");
+        assert!(
+            got.distance(want) < 1e-3,
+            "s = {s}: the probe reads {got}, not {want}"
+        );
     }
     // The grid puts ray i at the centre of cell i of n over [uv0, uv1];
     // widened by half a cell each side, the centres are s = −3 … 3.
@@ -163,7 +167,10 @@ fn the_moved_head_blocks_the_shadow_rays_behind_it() {
             checked.1 += 1;
         }
     }
-    eprintln!("behind the moved head: {} points at 0, {} at 1", checked.0, checked.1);
+    eprintln!(
+        "behind the moved head: {} points at 0, {} at 1",
+        checked.0, checked.1
+    );
     assert!(checked.0 >= 15 && checked.1 >= 30, "{checked:?}");
     // The strands alone: the head casts nothing here.
     let alone = behind_the_head(&gpu, &data, &["params.shadow_meshes=0"], n);

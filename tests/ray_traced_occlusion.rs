@@ -145,7 +145,11 @@ fn touching_share(near: f64) -> f64 {
             let rho = (1.0 - z * z).sqrt();
             let k = 10.0 * rho * near;
             // P(sin φ > k) for φ uniform.
-            if k >= 1.0 { 0.0 } else { (pi - 2.0 * k.asin()) / (2.0 * pi) }
+            if k >= 1.0 {
+                0.0
+            } else {
+                (pi - 2.0 * k.asin()) / (2.0 * pi)
+            }
         })
         .sum::<f64>()
         / steps as f64
@@ -166,7 +170,12 @@ fn a_strand_within_the_vertex_width_is_cut_off() {
     let along = |axis: Vec3, at: Vec3| -> Vec<Vec3> {
         (0..21).map(|k| at + (k as f32 - 10.0) * axis).collect()
     };
-    strands.push_strand(&along(Vec3::X, Vec3::ZERO), |_| 0.2, |_| 1.0, Vec3::splat(0.5));
+    strands.push_strand(
+        &along(Vec3::X, Vec3::ZERO),
+        |_| 0.2,
+        |_| 1.0,
+        Vec3::splat(0.5),
+    );
     strands.push_strand(
         &along(Vec3::Z, Vec3::new(0.0, 0.1, 0.0)),
         |_| 0.2,

@@ -56,7 +56,10 @@ fn exact_converges_to_ray_traced_as_its_light_map_gets_finer() {
         &gpu,
         &scene,
         &grid,
-        &["techniques.self_shadow=ray_traced", "params.shadow_meshes=0"],
+        &[
+            "techniques.self_shadow=ray_traced",
+            "params.shadow_meshes=0",
+        ],
     );
     let error = |reference: &Probed, variant: &Probed| {
         visibility_error(&grid, reference, variant).mean_abs_error
@@ -263,8 +266,12 @@ intensity = 1.0
         let points: Vec<glam::Vec3> = (0..=12)
             .map(|s| glam::Vec3::new(0.0, HEIGHT, 0.1 * s as f32 - 0.6))
             .collect();
-        data.strands
-            .push_strand(&points, |_| 2.0 * EDGE_RADIUS, |_| 1.0, glam::Vec3::splat(0.5));
+        data.strands.push_strand(
+            &points,
+            |_| 2.0 * EDGE_RADIUS,
+            |_| 1.0,
+            glam::Vec3::splat(0.5),
+        );
         data
     }
 }

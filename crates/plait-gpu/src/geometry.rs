@@ -291,7 +291,13 @@ fn upload<V: bytemuck::Pod>(
     vertices: &[V],
     indices: &[u32],
 ) -> Option<DrawBuffers> {
-    upload_as(device, label, vertices, indices, wgpu::BufferUsages::empty())
+    upload_as(
+        device,
+        label,
+        vertices,
+        indices,
+        wgpu::BufferUsages::empty(),
+    )
 }
 
 /// [`upload`] with `extra` usages on both buffers.

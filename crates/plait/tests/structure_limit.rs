@@ -49,7 +49,8 @@ fn more_segments_than_the_blas_limit_are_refused_with_the_numbers_and_the_fix() 
     for point in ["self_shadow", "ambient_occlusion"] {
         let s = schedule(&[&format!("techniques.{point}=ray_traced")]);
         // One box per pair of consecutive points: 6,799. A limit of 6,799 holds them…
-        check(&s, hair, &[], &caps(6799), "`small` (test)").expect("6,799 boxes fit a limit of 6,799");
+        check(&s, hair, &[], &caps(6799), "`small` (test)")
+            .expect("6,799 boxes fit a limit of 6,799");
         // …one fewer does not.
         let err = check(&s, hair, &[], &caps(6798), "`small` (test)")
             .expect_err("6,799 boxes past a limit of 6,798")
@@ -102,7 +103,8 @@ fn meshes_past_the_structure_limits_are_refused_naming_the_mesh() {
     };
     for point in ["self_shadow", "ambient_occlusion"] {
         let s = schedule(&[&format!("techniques.{point}=ray_traced")]);
-        check(&s, hair, &meshes, &caps_with(3968, 3), "t").expect("the head, the ground and the strands fit");
+        check(&s, hair, &meshes, &caps_with(3968, 3), "t")
+            .expect("the head, the ground and the strands fit");
         let err = check(&s, hair, &meshes, &caps_with(3967, 3), "t")
             .expect_err("3,968 triangles past a limit of 3,967")
             .to_string();
