@@ -65,6 +65,9 @@ fn two_strands(d: f32, r: f32) -> SceneData {
     strands.push_strand(&line(0.0), |_| 0.01, |_| 1.0, Vec3::splat(0.5));
     strands.push_strand(&line(d), |_| 2.0 * r, |_| 1.0, Vec3::splat(0.5));
     scene.strands = strands;
+    // The strands run through the small scene's head and ground, which
+    // the structure holds too (tests/ray_traced_meshes.rs): strands alone.
+    scene.meshes.clear();
     scene
 }
 
@@ -104,6 +107,102 @@ fn an_opaque_strand_beside_hides_the_share_of_the_sphere_a_cylinder_does() {
     );
 }
 
+/// The same strand half opaque (w = 0.5): a ray crosses the cylinder once,
+/// so the vertex keeps 1 − share · (1 − e^−w), 0.9348 at d 1, r 0.5 — where
+/// a crossing counted twice gives 1 − share · (1 − e^−2w), 0.8952, which
+/// the opaque strand above (e^−10 ≈ e^−20 ≈ 0) cannot tell apart.
+#[test]
+fn a_half_opaque_strand_beside_is_crossed_once_per_ray() {
+    let (_lock, gpu) = open_gpu();
+    require_ray_queries(&gpu);
+    let w = 0.5f64;
+    let sets = ["params.ao_rays=1024", "params.ao_shadow_weight=0.5"];
+    for (d, r) in [(1.0f32, 0.5f32), (2.0, 0.5)] {
+        let ao = traced(&gpu, &two_strands(d, r), &sets);
+        let share = cylinder_share(d as f64, r as f64);
+        let expected = 1.0 - (1.0 - (-w).exp()) * share;
+        let got = ao[10] as f64;
+        eprintln!("d {d}, r {r}, w {w}: visibility {got:.4}, once per ray {expected:.4}");
+        assert!(
+            (got - expected).abs() < 0.006,
+            "d {d}, r {r}, w {w}: visibility {got:.4}, one crossing per ray gives {expected:.4}"
+        );
+    }
+}
+
+/// Share of uniform directions from the origin whose ray crosses the axis
+/// of a strand along z at height 0.1 (radius 0.1: the ray always passes
+/// within it) farther than `near` along the ray: the closest approach is
+/// at t = 0.1 · sin φ / ρ (ρ = √(1 − z²) the direction's distance from the
+/// z axis, φ its azimuth from x), so the share is that of sin φ > 10 ρ near
+/// at uniform z — integrated over z here.
+fn touching_share(near: f64) -> f64 {
+    let steps = 200_000;
+    let pi = std::f64::consts::PI;
+    (0..steps)
+        .map(|i| {
+            let z = -1.0 + 2.0 * (i as f64 + 0.5) / steps as f64;
+            let rho = (1.0 - z * z).sqrt();
+            let k = 10.0 * rho * near;
+            // P(sin φ > k) for φ uniform.
+            if k >= 1.0 {
+                0.0
+            } else {
+                (pi - 2.0 * k.asin()) / (2.0 * pi)
+            }
+        })
+        .sum::<f64>()
+        / steps as f64
+}
+
+/// A strand touching the vertex (across it, its axis 0.1 above the vertex,
+/// radius 0.1; the vertex's own strand 0.2 wide): every ray into it passes
+/// within its radius, but the vertex's own width is the cutoff — crossings
+/// nearer than it are taken for its own strand — so only the rays whose
+/// closest approach lies beyond 0.2 count: 0.040 of the sphere, where a
+/// cutoff of 0 counts half the sphere's rays (0.5 of it).
+#[test]
+fn a_strand_within_the_vertex_width_is_cut_off() {
+    let (_lock, gpu) = open_gpu();
+    require_ray_queries(&gpu);
+    let mut scene = small_scene();
+    let mut strands = plait_hair::Strands::new();
+    let along = |axis: Vec3, at: Vec3| -> Vec<Vec3> {
+        (0..21).map(|k| at + (k as f32 - 10.0) * axis).collect()
+    };
+    strands.push_strand(
+        &along(Vec3::X, Vec3::ZERO),
+        |_| 0.2,
+        |_| 1.0,
+        Vec3::splat(0.5),
+    );
+    strands.push_strand(
+        &along(Vec3::Z, Vec3::new(0.0, 0.1, 0.0)),
+        |_| 0.2,
+        |_| 1.0,
+        Vec3::splat(0.5),
+    );
+    scene.strands = strands;
+    scene.meshes.clear();
+    let ao = traced(
+        &gpu,
+        &scene,
+        &["params.ao_rays=1024", "params.ao_shadow_weight=10"],
+    );
+    let opaque = 1.0 - (-10.0f64).exp();
+    let (share, none) = (touching_share(0.2), touching_share(0.0));
+    let expected = 1.0 - opaque * share;
+    let got = ao[10] as f64;
+    eprintln!(
+        "touching strand: visibility {got:.4}, beyond the cutoff {expected:.4} (share {share:.4}; with no cutoff {:.4})",
+        1.0 - opaque * none
+    );
+    assert!(
+        (got - expected).abs() < 0.01,
+        "visibility {got:.4}, the crossings beyond the vertex's width give {expected:.4}"
+    );
+}
+
 #[test]
 fn a_lone_straight_strand_does_not_hide_its_own_sphere() {
     let (_lock, gpu) = open_gpu();
@@ -115,6 +214,7 @@ fn a_lone_straight_strand_does_not_hide_its_own_sphere() {
         .collect();
     strands.push_strand(&points, |_| 0.2, |_| 1.0, Vec3::splat(0.5));
     scene.strands = strands;
+    scene.meshes.clear();
     let ao = traced(
         &gpu,
         &scene,
@@ -139,7 +239,10 @@ fn on_the_small_scene_it_converges_and_darkens_what_deep_opacity_maps_darken() {
     let (_lock, gpu) = open_gpu();
     require_ray_queries(&gpu);
     let scene = half_scene();
-    let reference = traced(&gpu, &scene, &["params.ao_rays=256"]);
+    // Hair alone, as deep opacity maps see it ("only hair occludes"): the
+    // head's and the ground's share is tests/ray_traced_meshes.rs'.
+    let alone = "params.ao_mesh_distance=0";
+    let reference = traced(&gpu, &scene, &["params.ao_rays=256", alone]);
     assert!(
         reference.iter().all(|v| (0.0..=1.0).contains(v)),
         "visibility outside [0, 1]"
@@ -156,7 +259,7 @@ fn on_the_small_scene_it_converges_and_darkens_what_deep_opacity_maps_darken() {
         .iter()
         .map(|n| {
             mean_abs_diff(
-                &traced(&gpu, &scene, &[&format!("params.ao_rays={n}")]),
+                &traced(&gpu, &scene, &[&format!("params.ao_rays={n}"), alone]),
                 &reference,
             )
         })

@@ -75,7 +75,7 @@ fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32)
         wgpu::BufferUsages::empty(),
     );
     let structure =
-        StrandStructure::new(&gpu, &hair, vertices.len() as u32).expect("the structure");
+        StrandStructure::new(&gpu, &hair, vertices.len() as u32, None).expect("the structure");
     let p4: Vec<[f32; 4]> = points.iter().map(|p| [p.x, p.y, p.z, 0.0]).collect();
     let probe_points = storage(
         "points",
@@ -147,7 +147,7 @@ fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32)
         ],
     });
     let mut encoder = device.create_command_encoder(&Default::default());
-    structure.encode(&mut encoder);
+    structure.encode(&mut encoder, glam::Mat4::IDENTITY.to_cols_array_2d());
     {
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline);

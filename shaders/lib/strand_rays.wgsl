@@ -5,7 +5,9 @@ enable wgpu_ray_query;
 // each candidate box (one per segment, crates/plait-gpu/src/strand_structure.rs)
 // is intersected as its segment's tapered swept sphere
 // (plait::strand_capsule), and the crossings between `near` and `far` are
-// counted. A box of two vertices of different strands is no segment.
+// counted. A box of two vertices of different strands is no segment. The
+// scene's meshes are triangle instances of the same structure, asked for by
+// mask (`ray_hits`' mesh_far): a mesh hit is opaque.
 //
 // Why the structure and the hair's vertices are this module's globals, not
 // arguments: naga 30 takes neither a pointer to a `ray_query` ("Ray Query is
@@ -26,17 +28,41 @@ enable wgpu_ray_query;
 // The hair's vertices as the structure was built from them (hair_vertices).
 @group(1) @binding(9) var<storage, read> vis_hair: array<HairPoint>;
 
+// The top-level instances' masks (crates/plait-gpu/src/strand_structure.rs,
+// STRAND_MASK and MESH_MASK): the strands' boxes, and the scene's meshes
+// (head, ground, [[meshes]]) as triangle instances.
+const STRAND_INSTANCES: u32 = 1u;
+const MESH_INSTANCES: u32 = 2u;
+
+// What one ray meets: the strands it crosses, and whether a mesh stops it.
+struct RayHits {
+    strands: f32,
+    // A mesh between `near` and `mesh_far` (opaque: nothing beyond it
+    // counts, and the walk stops there, so `strands` is then partial).
+    blocked: bool,
+}
+
 // Strands crossed by the ray from `origin` along unit `dir` farther than
-// `near` and nearer than `far` (1e30: no end). The ray query is declared
-// here, in a function and outside any loop: one declared in a loop made naga
-// emit a null constant of the ray-query type, which Mesa rejects and the
-// device is lost (wgpu PR 9945).
-fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32) -> f32 {
+// `near` and nearer than `far` (1e30: no end), and whether a mesh lies
+// farther than `near` and nearer than `mesh_far` (≤ near: meshes are not
+// asked for). The ray query is declared here, in a function and outside
+// any loop: one declared in a loop made naga emit a null constant of the
+// ray-query type, which Mesa rejects and the device is lost (wgpu PR 9945).
+fn ray_hits(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, mesh_far: f32) -> RayHits {
     var rq: ray_query;
-    rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 0xFFu, 0.0, far, origin, dir));
-    var n = 0.0;
+    let meshes = mesh_far > near;
+    let mask = select(STRAND_INSTANCES, STRAND_INSTANCES | MESH_INSTANCES, meshes);
+    rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, mask, 0.0, max(far, select(0.0, mesh_far, meshes)), origin, dir));
+    var hits = RayHits(0.0, false);
     while (rayQueryProceed(&rq)) {
         let c = rayQueryGetCandidateIntersection(&rq);
+        if (c.kind == RAY_QUERY_INTERSECTION_TRIANGLE) {
+            if (c.t > near && c.t < mesh_far) {
+                hits.blocked = true;
+                break;
+            }
+            continue;
+        }
         if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
             continue;
         }
@@ -47,8 +73,15 @@ fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32) -> f3
         }
         let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
         if (t > near && t < far) {
-            n += 1.0;
+            hits.strands += 1.0;
         }
     }
-    return n;
+    return hits;
+}
+
+// Strands crossed by the ray from `origin` along unit `dir` farther than
+// `near` and nearer than `far`, through the strands only (the meshes'
+// instances are masked out).
+fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32) -> f32 {
+    return ray_hits(origin, dir, near, far, 0.0).strands;
 }

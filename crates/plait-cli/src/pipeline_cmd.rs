@@ -101,12 +101,16 @@ pub fn check(args: CheckArgs) -> Result<()> {
     }
 }
 
+/// The scene's hair and meshes as a strand structure holds them.
+type StructureSize = (plait::structure_limit::HairSize, Vec<(String, u64)>);
+
 /// `schedule`'s strand structure, if it has one, against `gpu`'s BLAS
-/// primitive limit for the hair of `scene` (read into `hair` the first time).
+/// primitive and TLAS instance limits for the hair and meshes of `scene`
+/// (read into `hair` the first time).
 fn structure_fits(
     schedule: &plait_graph::Schedule,
     gpu: &plait_gpu::Gpu,
-    hair: &mut Option<plait::structure_limit::HairSize>,
+    hair: &mut Option<StructureSize>,
     scene: Option<&Path>,
 ) -> Result<()> {
     if !schedule
@@ -116,15 +120,17 @@ fn structure_fits(
     {
         return Ok(());
     }
-    let size = match hair {
-        Some(size) => *size,
+    let (size, meshes) = match hair {
+        Some(size) => size,
         None => {
-            let strands = crate::render_cmd::load_scene(scene)?.load_hair()?;
-            *hair.insert(plait::structure_limit::HairSize::of(&strands))
+            let mut scene = crate::render_cmd::load_scene(scene)?;
+            let strands = scene.load_hair()?;
+            let meshes = plait::structure_limit::mesh_sizes(&scene.opaque_meshes());
+            hair.insert((plait::structure_limit::HairSize::of(&strands), meshes))
         }
     };
     let adapter = gpu.support.describe();
-    plait::structure_limit::check(schedule, size, &gpu.capabilities, &adapter)?;
+    plait::structure_limit::check(schedule, *size, meshes, &gpu.capabilities, &adapter)?;
     Ok(())
 }
 

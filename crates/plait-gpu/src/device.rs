@@ -33,6 +33,10 @@ pub struct Capabilities {
     /// `max_blas_primitive_count`: the most primitives (strand segments) one
     /// bottom-level acceleration structure holds; 0 without ray queries.
     pub max_blas_primitives: u32,
+    /// `max_tlas_instance_count`: the most instances (the strands, each
+    /// mesh) one top-level acceleration structure holds; 0 without ray
+    /// queries.
+    pub max_tlas_instances: u32,
 }
 
 impl Capabilities {
@@ -48,6 +52,7 @@ impl Capabilities {
             max_storage_buffer_binding_size: opts.max_buffer_binding_size,
             ray_query: false,
             max_blas_primitives: 0,
+            max_tlas_instances: 0,
         }
     }
 
@@ -237,6 +242,11 @@ impl Gpu {
             ray_query,
             max_blas_primitives: if ray_query {
                 limits.max_blas_primitive_count
+            } else {
+                0
+            },
+            max_tlas_instances: if ray_query {
+                limits.max_tlas_instance_count
             } else {
                 0
             },

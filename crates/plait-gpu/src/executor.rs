@@ -79,6 +79,9 @@ pub struct Renderer<'g> {
     /// GPU time of each pass on the frame it last ran (what a cached
     /// `run = "once"` pass reports).
     last_ms: std::sync::Mutex<Vec<Option<f64>>>,
+    /// The last frame's `head_model` ([`Renderer::set_frame`]), for the
+    /// passes that place the head on the CPU (`RecordContext::head_model`).
+    head_model: std::sync::Mutex<[[f32; 4]; 4]>,
 }
 
 impl<'g> Renderer<'g> {
@@ -181,6 +184,7 @@ impl<'g> Renderer<'g> {
             frame_group,
             frame_bind_group,
             last_ms: std::sync::Mutex::new(vec![None; passes.len()]),
+            head_model: std::sync::Mutex::new(frame.head_model),
             frames_rendered: std::sync::atomic::AtomicU64::new(0),
             passes,
             timestamps,
@@ -226,6 +230,7 @@ impl<'g> Renderer<'g> {
 
     /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
     pub fn set_frame(&self, frame: &FrameUniforms) {
+        *self.head_model.lock().unwrap_or_else(|e| e.into_inner()) = frame.head_model;
         self.gpu
             .queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
@@ -262,6 +267,7 @@ impl<'g> Renderer<'g> {
             pool: &self.pool,
             schedule: &self.schedule,
             timestamps: self.timestamps.as_ref(),
+            head_model: *self.head_model.lock().unwrap_or_else(|e| e.into_inner()),
         };
         if let Some(ts) = &self.timestamps {
             ts.frame_start(&mut encoder);

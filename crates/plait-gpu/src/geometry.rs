@@ -122,6 +122,10 @@ pub struct SceneGeometry {
     /// draw draws instead of the hair's lines ([`SceneGeometry::set_wisps`]).
     pub wisps: Option<DrawBuffers>,
     pub opaque: Option<DrawBuffers>,
+    /// Each mesh's triangles in `opaque`, in the scene's order: what the
+    /// strands' acceleration structure holds as one triangle instance per
+    /// mesh (`crate::strand_structure`).
+    pub opaque_meshes: Vec<OpaqueMesh>,
     /// The hair's vertices as a storage buffer too, for compute passes.
     pub strand_count: u32,
     pub segment_count: u32,
@@ -132,6 +136,17 @@ pub struct SceneGeometry {
     pub point_count: u32,
     /// The scene resources of simulation and guide interpolation.
     pub guides: GuideBuffers,
+}
+
+/// One mesh's stretch of the opaque index buffer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OpaqueMesh {
+    /// The mesh's name ("head", "ground", a file's), for messages.
+    pub name: String,
+    pub first_index: u32,
+    pub index_count: u32,
+    /// Moves with `frame.head_model` (its vertices are at rest).
+    pub head: bool,
 }
 
 /// An ellipsoid the hair collides with, at rest (the head moves it).
@@ -276,6 +291,23 @@ fn upload<V: bytemuck::Pod>(
     vertices: &[V],
     indices: &[u32],
 ) -> Option<DrawBuffers> {
+    upload_as(
+        device,
+        label,
+        vertices,
+        indices,
+        wgpu::BufferUsages::empty(),
+    )
+}
+
+/// [`upload`] with `extra` usages on both buffers.
+fn upload_as<V: bytemuck::Pod>(
+    device: &wgpu::Device,
+    label: &str,
+    vertices: &[V],
+    indices: &[u32],
+    extra: wgpu::BufferUsages,
+) -> Option<DrawBuffers> {
     if indices.is_empty() {
         return None;
     }
@@ -287,12 +319,13 @@ fn upload<V: bytemuck::Pod>(
         usage: wgpu::BufferUsages::VERTEX
             | wgpu::BufferUsages::STORAGE
             | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST,
+            | wgpu::BufferUsages::COPY_DST
+            | extra,
     });
     let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(&format!("{label} indices")),
         contents: bytemuck::cast_slice(indices),
-        usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
+        usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE | extra,
     });
     Some(DrawBuffers {
         vertices,
@@ -356,8 +389,17 @@ impl SceneGeometry {
         let hair = upload(device, "hair", &hair_vertices, &hair_indices);
         let mut vertices = Vec::new();
         let mut indices = Vec::new();
+        let mut opaque_meshes = Vec::new();
         for mesh in meshes {
             let base = vertices.len() as u32;
+            if !mesh.indices.is_empty() {
+                opaque_meshes.push(OpaqueMesh {
+                    name: mesh.name.clone(),
+                    first_index: indices.len() as u32,
+                    index_count: mesh.indices.len() as u32,
+                    head: mesh.head,
+                });
+            }
             vertices.extend(mesh.vertices.iter().map(|v| OpaqueVertex {
                 position: v.position,
                 normal: v.normal,
@@ -366,11 +408,23 @@ impl SceneGeometry {
             }));
             indices.extend(mesh.indices.iter().map(|i| i + base));
         }
-        let opaque = upload(device, "opaque", &vertices, &indices);
+        // With ray queries the meshes are also the triangle instances of the
+        // strands' acceleration structure, built from these buffers (a
+        // buffer without BLAS_INPUT cannot be; the usage needs the feature).
+        let ray_input = if device
+            .features()
+            .contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY)
+        {
+            wgpu::BufferUsages::BLAS_INPUT
+        } else {
+            wgpu::BufferUsages::empty()
+        };
+        let opaque = upload_as(device, "opaque", &vertices, &indices, ray_input);
         SceneGeometry {
             hair,
             wisps: None,
             opaque,
+            opaque_meshes,
             strand_count: strands.strand_count() as u32,
             segment_count: strands.segment_count() as u32,
             environment: None,

@@ -205,11 +205,31 @@ impl ResourcePool {
     /// What a bind group binds for `id`; `None` for a structure its pass
     /// has not built (a pass binding it is then ordered before its builder,
     /// which the schedule never does).
-    pub fn binding_resource(&self, id: ResourceId) -> Option<wgpu::BindingResource<'_>> {
+    pub fn binding_resource(&self, id: ResourceId) -> Option<Bound<'_>> {
         Some(match self.get(id) {
-            GpuResource::Texture { view, .. } => wgpu::BindingResource::TextureView(view),
-            GpuResource::Buffer(b) => b.as_entire_binding(),
-            GpuResource::Strands(s) => s.get()?.tlas().as_binding(),
+            GpuResource::Texture { view, .. } => {
+                Bound::Resource(wgpu::BindingResource::TextureView(view))
+            }
+            GpuResource::Buffer(b) => Bound::Resource(b.as_entire_binding()),
+            GpuResource::Strands(s) => Bound::Structure(s.get()?.tlas()),
         })
+    }
+}
+
+/// A resource as a bind group takes it. The structure's top-level part is
+/// held locked while the bind group is made: its builds set the head's
+/// instance transforms through the same lock.
+pub enum Bound<'a> {
+    Resource(wgpu::BindingResource<'a>),
+    Structure(std::sync::MutexGuard<'a, wgpu::Tlas>),
+}
+
+impl Bound<'_> {
+    /// The binding resource of a bind group entry.
+    pub fn resource(&self) -> wgpu::BindingResource<'_> {
+        match self {
+            Bound::Resource(r) => r.clone(),
+            Bound::Structure(tlas) => tlas.as_binding(),
+        }
     }
 }

@@ -8,11 +8,32 @@
 //! moves. Ray-traced techniques trace through [`StrandStructure::tlas`] and
 //! intersect each candidate box as a capsule in WGSL, all with the one loop
 //! of `shaders/lib/strand_rays.wgsl` (`shaders/lib/strand_capsule.wgsl`).
+//!
+//! The scene's meshes (head, ground, `[[meshes]]`) are in the top-level
+//! structure too: one triangle bottom-level structure per mesh, built once
+//! (meshes do not deform), each an instance whose transform is the frame's
+//! `head_model` for the head's meshes (their vertices are at rest, as the
+//! opaque passes draw them) and the identity for the rest, set on every
+//! build. Instance masks tell them apart: [`STRAND_MASK`] for the strands'
+//! boxes, [`MESH_MASK`] for the meshes, so a ray asks for either or both
+//! (`plait::strand_rays`); a mesh hit is opaque.
 
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use crate::geometry::{OpaqueMesh, OpaqueVertex, SceneGeometry};
 use crate::{Capabilities, Gpu};
 
 /// Bytes per box: min.xyz, max.xyz (wgpu's smallest AABB stride).
 pub const BOX_STRIDE: u64 = wgpu::AABB_GEOMETRY_MIN_STRIDE;
+
+/// The strands' instance mask (`STRAND_INSTANCES` in `shaders/lib/strand_rays.wgsl`).
+pub const STRAND_MASK: u8 = 0x01;
+/// The meshes' instance mask (`MESH_INSTANCES` in `shaders/lib/strand_rays.wgsl`).
+pub const MESH_MASK: u8 = 0x02;
+
+/// The identity as a 3×4 row-major instance transform.
+const IDENTITY: [f32; 12] = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
 
 /// Why the strands cannot be put in a structure on this adapter.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -27,6 +48,24 @@ pub enum StructureError {
     )]
     TooManySegments {
         segments: u64,
+        limit: u32,
+        adapter: String,
+    },
+    #[error(
+        "mesh `{mesh}` has {triangles} triangles, more than the {limit} primitives one acceleration structure of adapter {adapter} holds (max_blas_primitive_count): simplify the mesh"
+    )]
+    TooManyTriangles {
+        mesh: String,
+        triangles: u64,
+        limit: u32,
+        adapter: String,
+    },
+    #[error(
+        "the structure needs {instances} instances (the strands and {} meshes), more than the {limit} one top-level structure of adapter {adapter} holds (max_tlas_instance_count): merge meshes",
+        instances - 1
+    )]
+    TooManyInstances {
+        instances: u64,
         limit: u32,
         adapter: String,
     },
@@ -57,12 +96,84 @@ pub fn check_segments(
     Ok(())
 }
 
-/// The structure of one hair vertex buffer, rebuilt by each [`encode`](Self::encode).
+/// Whether an adapter with `caps` holds the meshes, `(name, triangles)`
+/// each, as one bottom-level structure each and one instance each beside
+/// the strands' in the top-level structure.
+pub fn check_meshes<'a>(
+    meshes: impl ExactSizeIterator<Item = (&'a str, u64)>,
+    caps: &Capabilities,
+    adapter: &str,
+) -> Result<(), StructureError> {
+    let instances = 1 + meshes.len() as u64;
+    for (mesh, triangles) in meshes {
+        if triangles > u64::from(caps.max_blas_primitives) {
+            return Err(StructureError::TooManyTriangles {
+                mesh: mesh.to_owned(),
+                triangles,
+                limit: caps.max_blas_primitives,
+                adapter: adapter.to_owned(),
+            });
+        }
+    }
+    if instances > u64::from(caps.max_tlas_instances) {
+        return Err(StructureError::TooManyInstances {
+            instances,
+            limit: caps.max_tlas_instances,
+            adapter: adapter.to_owned(),
+        });
+    }
+    Ok(())
+}
+
+/// The scene's opaque meshes as the structure takes them: the one vertex
+/// and index buffer every mesh is drawn from (`SceneGeometry::opaque`,
+/// which has `BLAS_INPUT` on a device with ray queries) and each mesh's
+/// stretch of it.
+#[derive(Clone, Copy)]
+pub struct MeshInput<'a> {
+    pub vertices: &'a wgpu::Buffer,
+    pub indices: &'a wgpu::Buffer,
+    pub meshes: &'a [OpaqueMesh],
+}
+
+impl<'a> MeshInput<'a> {
+    /// The geometry's meshes; `None` without any.
+    pub fn of(geometry: &'a SceneGeometry) -> Option<Self> {
+        let opaque = geometry.opaque.as_ref()?;
+        (!geometry.opaque_meshes.is_empty()).then_some(MeshInput {
+            vertices: &opaque.vertices,
+            indices: &opaque.indices,
+            meshes: &geometry.opaque_meshes,
+        })
+    }
+}
+
+/// One mesh's bottom-level structure.
+struct MeshBlas {
+    blas: wgpu::Blas,
+    size: wgpu::BlasTriangleGeometrySizeDescriptor,
+    first_index: u32,
+    head: bool,
+}
+
+/// The meshes' structures and the buffers they are built from.
+struct Meshes {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    blas: Vec<MeshBlas>,
+    /// Whether `blas` are built (once, by the first [`StrandStructure::encode`]).
+    built: AtomicBool,
+}
+
+/// The structure of one hair vertex buffer and the scene's meshes, rebuilt
+/// by each [`encode`](StrandStructure::encode).
 pub struct StrandStructure {
     boxes: wgpu::Buffer,
     size: wgpu::BlasAABBGeometrySizeDescriptor,
     blas: wgpu::Blas,
-    tlas: wgpu::Tlas,
+    meshes: Option<Meshes>,
+    /// Locked to set the head's instance transforms before each build.
+    tlas: Mutex<wgpu::Tlas>,
     pipeline: wgpu::ComputePipeline,
     bind_group: wgpu::BindGroup,
     segments: u32,
@@ -70,19 +181,20 @@ pub struct StrandStructure {
 
 impl StrandStructure {
     /// A structure for `points` vertices of `hair_vertices` (48 B each,
-    /// `plait_hair::StrandVertex`), refused with the numbers when the
-    /// adapter cannot hold it.
+    /// `plait_hair::StrandVertex`) and `meshes`, refused with the numbers
+    /// when the adapter cannot hold it.
     pub fn new(
         gpu: &Gpu,
         hair_vertices: &wgpu::Buffer,
         points: u32,
+        meshes: Option<MeshInput<'_>>,
     ) -> Result<Self, StructureError> {
         let adapter = gpu.support.describe();
         Self::on(
             &gpu.device,
             (&gpu.capabilities, &adapter),
-            hair_vertices,
-            points,
+            (hair_vertices, points),
+            meshes,
         )
     }
 
@@ -91,11 +203,19 @@ impl StrandStructure {
     pub fn on(
         device: &wgpu::Device,
         (caps, adapter): (&Capabilities, &str),
-        hair_vertices: &wgpu::Buffer,
-        points: u32,
+        (hair_vertices, points): (&wgpu::Buffer, u32),
+        meshes: Option<MeshInput<'_>>,
     ) -> Result<Self, StructureError> {
         let segments = segment_count(points).max(1);
         check_segments(segments, caps, adapter)?;
+        let mesh_list = meshes.map_or(&[][..], |m| m.meshes);
+        check_meshes(
+            mesh_list
+                .iter()
+                .map(|m| (m.name.as_str(), u64::from(m.index_count / 3))),
+            caps,
+            adapter,
+        )?;
         let segments = segments as u32;
         let boxes = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("strand_boxes"),
@@ -120,29 +240,56 @@ impl StrandStructure {
                 descriptors: vec![size.clone()],
             },
         );
-        let mut tlas = device.create_tlas(&wgpu::CreateTlasDescriptor {
+        let meshes = meshes.map(|m| mesh_structures(device, m));
+        let instances = 1 + meshes.as_ref().map_or(0, |m| m.blas.len());
+        let tlas = device.create_tlas(&wgpu::CreateTlasDescriptor {
             label: Some("strands"),
-            max_instances: 1,
+            max_instances: instances as u32,
             flags: wgpu::AccelerationStructureFlags::PREFER_FAST_BUILD,
             update_mode: wgpu::AccelerationStructureUpdateMode::Build,
         });
-        // The hair's vertices are in world space: the identity, 3×4 row-major.
-        let identity = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
-        tlas[0] = Some(wgpu::TlasInstance::new(&blas, identity, 0, 0xff));
         let (pipeline, bind_group) = box_pass(device, hair_vertices, &boxes);
-        Ok(StrandStructure {
+        let structure = StrandStructure {
             boxes,
             size,
             blas,
-            tlas,
+            meshes,
+            tlas: Mutex::new(tlas),
             pipeline,
             bind_group,
             segments,
-        })
+        };
+        structure.place_instances(IDENTITY);
+        Ok(structure)
     }
 
-    /// The boxes from this frame's vertices, then both structures built.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// The top-level instances: the strands (their vertices are in world
+    /// space: the identity), then each mesh, the head's moved by `head`.
+    fn place_instances(&self, head: [f32; 12]) {
+        let mut tlas = self.tlas.lock().unwrap_or_else(|e| e.into_inner());
+        tlas[0] = Some(wgpu::TlasInstance::new(
+            &self.blas,
+            IDENTITY,
+            0,
+            STRAND_MASK,
+        ));
+        let meshes = self.meshes.iter().flat_map(|m| &m.blas);
+        for (i, mesh) in meshes.enumerate() {
+            let transform = if mesh.head { head } else { IDENTITY };
+            tlas[1 + i] = Some(wgpu::TlasInstance::new(
+                &mesh.blas,
+                transform,
+                1 + i as u32,
+                MESH_MASK,
+            ));
+        }
+    }
+
+    /// The boxes from this frame's vertices, the meshes' structures the
+    /// first time, the head's instances moved by `head_model` (the frame's,
+    /// column-major as `FrameUniforms` holds it), then the strands' and the
+    /// top-level structures built.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, head_model: [[f32; 4]; 4]) {
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("strand_boxes"),
@@ -154,7 +301,8 @@ impl StrandStructure {
             let (x, y) = (groups.min(65_535), groups.div_ceil(65_535));
             pass.dispatch_workgroups(x, y, 1);
         }
-        let entry = wgpu::BlasBuildEntry {
+        self.place_instances(row_major_3x4(head_model));
+        let mut entries = vec![wgpu::BlasBuildEntry {
             blas: &self.blas,
             geometry: wgpu::BlasGeometries::AabbGeometries(vec![wgpu::BlasAabbGeometry {
                 size: &self.size,
@@ -162,13 +310,34 @@ impl StrandStructure {
                 aabb_buffer: &self.boxes,
                 primitive_offset: 0,
             }]),
-        };
-        encoder.build_acceleration_structures(std::iter::once(&entry), std::iter::once(&self.tlas));
+        }];
+        if let Some(m) = &self.meshes
+            && !m.built.swap(true, Ordering::Relaxed)
+        {
+            entries.extend(m.blas.iter().map(|b| wgpu::BlasBuildEntry {
+                blas: &b.blas,
+                geometry: wgpu::BlasGeometries::TriangleGeometries(vec![
+                    wgpu::BlasTriangleGeometry {
+                        size: &b.size,
+                        vertex_buffer: &m.vertices,
+                        first_vertex: 0,
+                        vertex_stride: std::mem::size_of::<OpaqueVertex>() as u64,
+                        index_buffer: Some(&m.indices),
+                        first_index: Some(b.first_index),
+                        transform_buffer: None,
+                        transform_buffer_offset: None,
+                    },
+                ]),
+            }));
+        }
+        let tlas = self.tlas.lock().unwrap_or_else(|e| e.into_inner());
+        encoder.build_acceleration_structures(entries.iter(), std::iter::once(&*tlas));
     }
 
-    /// The top-level structure, for a bind group's acceleration structure.
-    pub fn tlas(&self) -> &wgpu::Tlas {
-        &self.tlas
+    /// The top-level structure, for a bind group's acceleration structure
+    /// (locked: each build sets the head's instances first).
+    pub fn tlas(&self) -> std::sync::MutexGuard<'_, wgpu::Tlas> {
+        self.tlas.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// Segments (boxes) in the structure.
@@ -176,10 +345,71 @@ impl StrandStructure {
         self.segments
     }
 
+    /// Meshes (triangle instances) in the structure.
+    pub fn mesh_count(&self) -> usize {
+        self.meshes.as_ref().map_or(0, |m| m.blas.len())
+    }
+
     /// Bytes of the boxes plait allocates. The structures' own sizes are
     /// the driver's and wgpu 30 does not report them.
     pub fn box_bytes(&self) -> u64 {
         self.boxes.size()
+    }
+}
+
+/// A column-major 4×4 matrix's top three rows, row-major (an instance's
+/// transform).
+fn row_major_3x4(m: [[f32; 4]; 4]) -> [f32; 12] {
+    let mut out = [0.0; 12];
+    for row in 0..3 {
+        for col in 0..4 {
+            out[4 * row + col] = m[col][row];
+        }
+    }
+    out
+}
+
+/// One triangle bottom-level structure per mesh, unbuilt: every mesh
+/// indexes the one opaque vertex buffer (its indices already offset), so
+/// each structure takes the whole buffer and its own stretch of indices.
+fn mesh_structures(device: &wgpu::Device, input: MeshInput<'_>) -> Meshes {
+    let stride = std::mem::size_of::<OpaqueVertex>() as u64;
+    let vertex_count = (input.vertices.size() / stride) as u32;
+    let blas = input
+        .meshes
+        .iter()
+        .map(|mesh| {
+            let size = wgpu::BlasTriangleGeometrySizeDescriptor {
+                vertex_format: wgpu::VertexFormat::Float32x3,
+                vertex_count,
+                index_format: Some(wgpu::IndexFormat::Uint32),
+                index_count: Some(mesh.index_count),
+                flags: wgpu::AccelerationStructureGeometryFlags::OPAQUE,
+            };
+            // Built once and traced by every ray: a fast trace.
+            let blas = device.create_blas(
+                &wgpu::CreateBlasDescriptor {
+                    label: Some(&mesh.name),
+                    flags: wgpu::AccelerationStructureFlags::PREFER_FAST_TRACE,
+                    update_mode: wgpu::AccelerationStructureUpdateMode::Build,
+                },
+                wgpu::BlasGeometrySizeDescriptors::Triangles {
+                    descriptors: vec![size.clone()],
+                },
+            );
+            MeshBlas {
+                blas,
+                size,
+                first_index: mesh.first_index,
+                head: mesh.head,
+            }
+        })
+        .collect();
+    Meshes {
+        vertices: input.vertices.clone(),
+        indices: input.indices.clone(),
+        blas,
+        built: AtomicBool::new(false),
     }
 }
 

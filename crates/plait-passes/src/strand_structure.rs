@@ -3,16 +3,18 @@
 //! segment enclosing its tapered swept sphere, from the scene's
 //! `hair_vertices` as they are when the pass runs (after simulation and
 //! interpolation, which write them), then the bottom- and top-level
-//! structures, rebuilt every frame. `hair_vertices` may be bound to a
-//! technique's buffer of the same layout instead of the scene's (a widened
-//! copy, `techniques/transparency/ray_traced`). Its output slot is the resource a
+//! structures, rebuilt every frame; the scene's meshes as triangle
+//! instances beside them (built once, the head's instances moved by the
+//! frame's `head_model`). `hair_vertices` may be bound to a technique's
+//! buffer of the same layout instead of the scene's (a widened copy,
+//! `techniques/transparency/ray_traced`). Its output slot is the resource a
 //! ray-traced technique binds (`kind = "acceleration_structure"`). The
 //! pass's shader declares the slots for `plait check`; the boxes are
 //! written by the structure's own compute pass
 //! (`shaders/passes/strand_boxes.wgsl`).
 
 use plait_gpu::pass::{BuildContext, PassType, PreparedPass, RecordContext};
-use plait_gpu::strand_structure::StrandStructure;
+use plait_gpu::strand_structure::{MeshInput, StrandStructure};
 use plait_gpu::{Define, GpuError};
 use plait_graph::{
     Access, Formats, PassShape, PassTypeSpec, ResourceKind, ScheduledPass, SlotSpec,
@@ -49,7 +51,7 @@ fn spec() -> PassTypeSpec {
             "strand_structure",
             PassShape::Compute,
             "issue 48 (RTX Hair's tapered capsules as procedural boxes)",
-            "The strands in an acceleration structure: a box per segment around its tapered swept sphere, BLAS + TLAS rebuilt every frame.",
+            "The strands in an acceleration structure: a box per segment around its tapered swept sphere, BLAS + TLAS rebuilt every frame; the scene's meshes as triangle instances (built once, the head moved by head_model).",
         )
     }
 }
@@ -102,8 +104,8 @@ impl PassType for StrandStructurePass {
         let structure = StrandStructure::on(
             ctx.device,
             (ctx.capabilities, ctx.adapter_name),
-            vertices,
-            ctx.geometry.point_count,
+            (vertices, ctx.geometry.point_count),
+            MeshInput::of(ctx.geometry),
         )
         .map_err(|e| fail(e.to_string()))?;
         if cell.set(structure).is_err() {
@@ -120,7 +122,7 @@ struct Prepared {
 impl PreparedPass for Prepared {
     fn record(&self, ctx: &RecordContext<'_>, encoder: &mut wgpu::CommandEncoder) {
         if let Some(s) = ctx.pool.strands(self.id).and_then(|c| c.get()) {
-            s.encode(encoder);
+            s.encode(encoder, ctx.head_model);
         }
     }
 

@@ -504,6 +504,7 @@ pub fn build<'g>(
     crate::structure_limit::check(
         &schedule,
         crate::structure_limit::HairSize::of(&scene.strands),
+        &crate::structure_limit::mesh_sizes(&scene.meshes),
         &gpu.capabilities,
         &gpu.support.describe(),
     )?;

@@ -6,10 +6,13 @@
 //! `max_blas_primitive_count` the build would fail. Until this check the
 //! build found it, after the device, the geometry and every other pass had
 //! been made; now `plait render`, `view`, `ab` and `check --adapter` refuse
-//! it with the numbers and the fix (exit 2).
+//! it with the numbers and the fix (exit 2). The scene's meshes are in the
+//! structure too, one triangle bottom-level structure and one top-level
+//! instance each: a mesh past `max_blas_primitive_count` triangles, or more
+//! instances than `max_tlas_instance_count`, is refused the same way.
 
 use plait_gpu::Capabilities;
-use plait_gpu::strand_structure::segment_count;
+use plait_gpu::strand_structure::{StructureError, check_meshes, segment_count};
 use plait_graph::Schedule;
 
 use crate::session::SessionError;
@@ -33,14 +36,26 @@ impl HairSize {
     }
 }
 
+/// Each opaque mesh as the structure holds it: its name and triangles.
+pub fn mesh_sizes(meshes: &[plait_hair::mesh::Mesh]) -> Vec<(String, u64)> {
+    meshes
+        .iter()
+        .filter(|m| !m.indices.is_empty())
+        .map(|m| (m.name.clone(), (m.indices.len() / 3) as u64))
+        .collect()
+}
+
 /// `Err` naming the first `strand_structure` pass of `schedule` whose boxes
 /// for `hair` outnumber what one bottom-level structure of the adapter
-/// (`caps`, named `adapter`) holds; `Ok` when there is none or it fits.
-/// Without ray queries the technique is refused before this, by its
-/// `adapter = ["ray_query"]` ([`crate::adapter`]).
+/// (`caps`, named `adapter`) holds, or one of whose `meshes` (name,
+/// triangles: [`mesh_sizes`]) does, or whose instances (the strands and
+/// each mesh) outnumber what one top-level structure holds; `Ok` when there
+/// is none or it fits. Without ray queries the technique is refused before
+/// this, by its `adapter = ["ray_query"]` ([`crate::adapter`]).
 pub fn check(
     schedule: &Schedule,
     hair: HairSize,
+    meshes: &[(String, u64)],
     caps: &Capabilities,
     adapter: &str,
 ) -> Result<(), SessionError> {
@@ -58,13 +73,25 @@ pub fn check(
     // past every adapter's limit too.
     let boxes = segment_count(u32::try_from(hair.points).unwrap_or(u32::MAX)).max(1);
     let limit = u64::from(caps.max_blas_primitives);
-    if boxes <= limit {
-        return Ok(());
-    }
     let technique = pass
         .technique
         .as_deref()
         .map_or(String::new(), |t| format!(" (technique {t})"));
+    if boxes <= limit {
+        let sizes = meshes.iter().map(|(name, n)| (name.as_str(), *n));
+        return check_meshes(sizes, caps, adapter).map_err(|e| {
+            let fix = match e {
+                StructureError::TooManyTriangles { .. } => {
+                    "simplify the mesh (fewer triangles), or leave it out of the scene"
+                }
+                _ => "merge the scene's [[meshes]] into fewer files",
+            };
+            SessionError::StructureLimit(format!(
+                "{}: pass `{}`{technique} puts the scene's meshes in its acceleration structure: {e}; {fix}",
+                pass.location, pass.name,
+            ))
+        });
+    }
     // Strands at the scene's mean points per strand that fit the limit.
     let per_strand = hair.points as f64 / hair.strands.max(1) as f64;
     let strands_fitting = ((limit + 1) as f64 / per_strand).floor() as u64;

@@ -43,6 +43,7 @@ fn caps() -> Capabilities {
         max_storage_buffer_binding_size: 1 << 30,
         ray_query: true,
         max_blas_primitives: (1 << 24) - 1,
+        max_tlas_instances: (1 << 24) - 1,
     }
 }
 

@@ -38,6 +38,7 @@ fn caps(ray_query: bool) -> Capabilities {
         max_storage_buffer_binding_size: 1 << 30,
         ray_query,
         max_blas_primitives: if ray_query { (1 << 24) - 1 } else { 0 },
+        max_tlas_instances: if ray_query { (1 << 24) - 1 } else { 0 },
     }
 }
 

@@ -5,11 +5,15 @@
 //! for the small scene (400 strands × 17 points: 6,799 boxes).
 
 use plait::session::{SceneData, compile_checked, repo_root};
-use plait::structure_limit::{HairSize, check};
+use plait::structure_limit::{HairSize, check, mesh_sizes};
 use plait_gpu::Capabilities;
 use plait_graph::{CompileOptions, Schedule};
 
 fn caps(max_blas_primitives: u32) -> Capabilities {
+    caps_with(max_blas_primitives, (1 << 24) - 1)
+}
+
+fn caps_with(max_blas_primitives: u32, max_tlas_instances: u32) -> Capabilities {
     Capabilities {
         timestamps: false,
         float32_blendable: true,
@@ -18,6 +22,7 @@ fn caps(max_blas_primitives: u32) -> Capabilities {
         max_storage_buffer_binding_size: 1 << 30,
         ray_query: true,
         max_blas_primitives,
+        max_tlas_instances,
     }
 }
 
@@ -44,9 +49,10 @@ fn more_segments_than_the_blas_limit_are_refused_with_the_numbers_and_the_fix() 
     for point in ["self_shadow", "ambient_occlusion"] {
         let s = schedule(&[&format!("techniques.{point}=ray_traced")]);
         // One box per pair of consecutive points: 6,799. A limit of 6,799 holds them…
-        check(&s, hair, &caps(6799), "`small` (test)").expect("6,799 boxes fit a limit of 6,799");
+        check(&s, hair, &[], &caps(6799), "`small` (test)")
+            .expect("6,799 boxes fit a limit of 6,799");
         // …one fewer does not.
-        let err = check(&s, hair, &caps(6798), "`small` (test)")
+        let err = check(&s, hair, &[], &caps(6798), "`small` (test)")
             .expect_err("6,799 boxes past a limit of 6,798")
             .to_string();
         for wanted in [
@@ -67,5 +73,54 @@ fn more_segments_than_the_blas_limit_are_refused_with_the_numbers_and_the_fix() 
 fn a_pipeline_without_a_structure_is_not_limited() {
     let s = schedule(&[]);
     assert!(s.passes.iter().all(|p| p.type_name != "strand_structure"));
-    check(&s, small_hair(), &caps(1), "test").expect("no structure, no limit");
+    check(&s, small_hair(), &[], &caps(1), "test").expect("no structure, no limit");
+}
+
+/// The small scene's meshes: the head ellipsoid (32 × 64 quads, one
+/// triangle each in the two rings at the poles: 3,968 triangles) and the
+/// ground (2).
+fn small_meshes() -> Vec<(String, u64)> {
+    let path = repo_root().join("examples/scenes/small.toml");
+    let scene = SceneData::load(Some(&path)).expect("small scene");
+    mesh_sizes(&scene.meshes)
+}
+
+/// The meshes are in the structure too, one bottom-level structure and one
+/// top-level instance each: a mesh of more triangles than one bottom-level
+/// structure holds, or more instances than the top-level one holds, is
+/// refused naming the mesh, the numbers and the limit.
+#[test]
+fn meshes_past_the_structure_limits_are_refused_naming_the_mesh() {
+    let meshes = small_meshes();
+    assert_eq!(
+        meshes,
+        vec![("head".to_owned(), 3968), ("ground".to_owned(), 2)]
+    );
+    // Few strands, so their boxes fit every limit here.
+    let hair = HairSize {
+        strands: 10,
+        points: 170,
+    };
+    for point in ["self_shadow", "ambient_occlusion"] {
+        let s = schedule(&[&format!("techniques.{point}=ray_traced")]);
+        check(&s, hair, &meshes, &caps_with(3968, 3), "t")
+            .expect("the head, the ground and the strands fit");
+        let err = check(&s, hair, &meshes, &caps_with(3967, 3), "t")
+            .expect_err("3,968 triangles past a limit of 3,967")
+            .to_string();
+        for wanted in [
+            &format!("techniques/{point}/ray_traced/technique.toml:"),
+            "mesh `head` has 3968 triangles, more than the 3967 primitives",
+            "simplify the mesh",
+        ] {
+            assert!(err.contains(wanted), "{point}: `{wanted}` not in: {err}");
+        }
+        let err = check(&s, hair, &meshes, &caps_with(3968, 2), "t")
+            .expect_err("3 instances past a limit of 2")
+            .to_string();
+        assert!(
+            err.contains("needs 3 instances (the strands and 2 meshes), more than the 2 one top-level structure of adapter t holds (max_tlas_instance_count)"),
+            "{point}: {err}"
+        );
+    }
 }

@@ -7,9 +7,13 @@ enable wgpu_ray_query;
 // owned by one segment); the vertex's ambient visibility is the mean of
 // exp(−w · n) (Xing et al. 2012 §4: transmittance averaged over directions).
 // A crossing within one strand width of the vertex is its own strand (the
-// ray starts on its axis): not counted.
+// ray starts on its axis): not counted. A ray that meets one of the scene's
+// meshes (head, ground: triangle instances of the same structure) within
+// `mesh_distance` of the vertex is occluded (transmittance 0): near a plane
+// at height h a share (1 − h/D)/2 of the sphere's rays is lost
+// (tests/ray_traced_meshes.rs).
 
-#import plait::strand_rays::{strands_crossed, vis_hair}
+#import plait::strand_rays::{ray_hits, vis_hair}
 #import plait::loop_budget::loop_budget_spent
 
 // The strands' structure and the hair's vertices: plait::strand_rays'
@@ -23,6 +27,8 @@ enable wgpu_ray_query;
 struct Params {
     rays: u32,
     shadow_weight: f32,
+    // How far a mesh occludes (world units; 0: meshes do not).
+    mesh_distance: f32,
 }
 @group(1) @binding(3) var<uniform> params: Params;
 
@@ -74,7 +80,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var sum = 0.0;
     for (var i = 0u; i < params.rays; i++) {
         let dir = rotate(fibonacci_direction(i, params.rays), axis, angle);
-        sum += exp(-params.shadow_weight * strands_crossed(v.position, dir, own, 1e30));
+        let hits = ray_hits(v.position, dir, own, 1e30, params.mesh_distance);
+        sum += select(exp(-params.shadow_weight * hits.strands), 0.0, hits.blocked);
     }
     vertex_ao[index] = sum / f32(params.rays);
     if (loop_budget_spent(2u + (params.rays & 1u))) {

@@ -12,11 +12,15 @@ enable wgpu_ray_query;
 // mean count is that share). With `shadow_rays` > 1 the rays' origins are
 // jittered over a disc of one pixel's area across the light (the pixel's
 // footprint at the point's depth), so a strand edge's hard shadow is averaged
-// over the pixel instead of sampled at its centre.
+// over the pixel instead of sampled at its centre. The scene's meshes (head,
+// ground) are in the structure too: with `shadow_meshes` = 1 a ray that
+// meets one beyond the bias carries no light (visibility 0), so the head
+// shadows the hair per pixel; the strand count
+// (hair_strands_toward_light) is the strands' alone.
 #define_import_path plait::self_shadow::ray_traced
 
 #import plait::frame::frame
-#import plait::strand_rays::strands_crossed
+#import plait::strand_rays::{ray_hits, strands_crossed}
 
 // The strands' structure and vertices (vis_strands at binding 8, vis_hair
 // at 9) are plait::strand_rays' globals.
@@ -27,6 +31,9 @@ struct VisibilityParams {
     // Rays per shading point (1–64, checked at load): 1 traces the point's
     // own ray; more jitter the origin over the pixel's footprint.
     shadow_rays: u32,
+    // 1: a mesh between the point and the light blocks the ray; 0: the
+    // strands alone, as exact's lists (the head is the opaque shadow map's).
+    shadow_meshes: u32,
 }
 @group(1) @binding(15) var<uniform> visibility_params: VisibilityParams;
 
@@ -114,10 +121,11 @@ fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
 fn hair_visibility(world: vec3<f32>) -> f32 {
     let r = rays_from(world);
     let count = max(visibility_params.shadow_rays, 1u);
+    let mesh_far = select(0.0, r.far, visibility_params.shadow_meshes != 0u);
     var sum = 0.0;
     for (var i = 0u; i < count; i++) {
-        let n = strands_crossed(ray_origin(r, i, count), r.to_light, r.bias, r.far);
-        sum += exp(-visibility_params.shadow_weight * n);
+        let hits = ray_hits(ray_origin(r, i, count), r.to_light, r.bias, r.far, mesh_far);
+        sum += select(exp(-visibility_params.shadow_weight * hits.strands), 0.0, hits.blocked);
     }
     return sum / f32(count);
 }

@@ -126,7 +126,10 @@ var<private> met: u32;
 // null constant of the ray-query type, which Mesa rejects: wgpu PR 9945).
 fn collect(origin: vec3<f32>, dir: vec3<f32>, base: u32, opaque: f32) -> u32 {
     var rq: ray_query;
-    rayQueryInitialize(&rq, primary_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 0xFFu, 0.0, 1e30, origin, dir));
+    // Mask 1: the strands' instances only (STRAND_INSTANCES in
+    // plait::strand_rays); the structure also holds the scene's meshes as
+    // triangle instances (mask 2), which the opaque depth already stands for.
+    rayQueryInitialize(&rq, primary_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, 1u, 0.0, 1e30, origin, dir));
     let layers = params.layers;
     var held = 0u;
     met = 0u;

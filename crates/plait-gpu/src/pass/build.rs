@@ -357,6 +357,11 @@ fn bind_group<'a>(
         if empty {
             return None;
         }
+        // Checked above when the plan was read.
+        let bound = resources
+            .iter()
+            .map(|(binding, id)| Some((*binding, ctx.pool.binding_resource(*id)?)))
+            .collect::<Option<Vec<_>>>()?;
         let mut entries: Vec<wgpu::BindGroupEntry> = Vec::new();
         for (binding, buf) in &owned {
             entries.push(wgpu::BindGroupEntry {
@@ -364,11 +369,10 @@ fn bind_group<'a>(
                 resource: buf.as_entire_binding(),
             });
         }
-        for (binding, id) in &resources {
+        for (binding, resource) in &bound {
             entries.push(wgpu::BindGroupEntry {
                 binding: *binding,
-                // Checked above when the plan was read.
-                resource: ctx.pool.binding_resource(*id)?,
+                resource: resource.resource(),
             });
         }
         for (binding, resource) in &scene {

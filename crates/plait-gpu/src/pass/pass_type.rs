@@ -170,6 +170,10 @@ pub struct RecordContext<'a> {
     /// [`RecordContext::compute_timestamps`] as its `timestamp_writes`, which
     /// is how a browser (WebGPU: no timestamps inside encoders) times it.
     pub timestamps: Option<&'a crate::timing::Timestamps>,
+    /// The frame's `head_model` (`FrameUniforms`, column-major): where the
+    /// head's meshes are, for a structure's instance transforms
+    /// (`strand_structure`), which are the CPU's, not a shader's.
+    pub head_model: [[f32; 4]; 4],
 }
 
 impl<'a> RecordContext<'a> {
