@@ -109,3 +109,51 @@ fn ambient_is_finite_where_the_tangents_dot_with_the_eye_rounds_past_one() {
         "ambient differs from its closed form by {worst} (largest {largest})"
     );
 }
+
+/// The brute-force environment term (`lighting/environment_reference`)
+/// beside the same sum over the cube's texels at the tangent-to-eye angle
+/// as the case sets it (`tests/fixtures/env_reference_cases.wgsl`): as the
+/// tangent turns from along the eye to away from it (row 0), and along and
+/// against it where the dot of the two unit vectors rounds past ±1 in f32
+/// (rows 1, 2; counted, and required) — finite, and within 1e-3 of the
+/// largest term (measured: printed). The gallery's strands rarely point
+/// within 26° of away from the eye. Kills, in
+/// `techniques/lighting/environment_reference/lighting.wgsl`, the clamp of
+/// cos(T, E) at −1.0 → −0.9 (19:55: it binds where cos < −0.9), at −1.0 →
+/// −1.1 and 1.0 → 1.1 (19:55, 19:60: acos past ±1 is NaN on lavapipe).
+#[test]
+fn environment_reference_matches_its_sum_at_the_exact_eye_angle() {
+    const WIDTH: usize = 256;
+    let read =
+        plait_tests::fixture_texels("env_reference_cases.toml", (WIDTH as u32, 3), &["cases"]);
+    let cases = &read[0];
+    let along = &cases[WIDTH..2 * WIDTH];
+    let against = &cases[2 * WIDTH..];
+    let past_one = along.iter().filter(|t| t[2] > 1.0).count();
+    let past_minus_one = against.iter().filter(|t| t[2] < -1.0).count();
+    let largest = cases.iter().map(|t| t[1].abs()).fold(0.0f32, f32::max);
+    let not_finite = cases.iter().filter(|t| !t[0].is_finite()).count();
+    let worst_of = |rows: &[[f32; 4]]| {
+        rows.iter()
+            .filter(|t| t[0].is_finite())
+            .map(|t| (t[0] - t[1]).abs())
+            .fold(0.0f32, f32::max)
+    };
+    let (turning, rounding) = (worst_of(&cases[..WIDTH]), worst_of(&cases[WIDTH..]));
+    eprintln!(
+        "environment_reference: dot > 1 in {past_one}, < −1 in {past_minus_one} of {WIDTH} each; \
+         {not_finite} terms not finite; largest term {largest:e}, largest difference turning \
+         {turning:e}, along/against {rounding:e}"
+    );
+    assert!(
+        past_one > 0 && past_minus_one > 0,
+        "no case rounds past ±1: the test tests nothing"
+    );
+    assert!(largest > 1e-3, "the terms are empty ({largest})");
+    assert_eq!(not_finite, 0, "terms not finite");
+    assert!(
+        turning.max(rounding) <= 1e-3 * largest,
+        "environment_reference differs from its sum at the exact angle by {} (largest {largest})",
+        turning.max(rounding)
+    );
+}
