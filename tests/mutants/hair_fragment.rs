@@ -1,4 +1,5 @@
-//! `shared/hair_fragment`: the fragment alpha of `shaders/lib/hair_fragment.wgsl`.
+//! `shared/hair_fragment`: the fragment alpha of `shaders/lib/hair_fragment.wgsl`,
+//! and the opaque shadow `shaders/lib/hair_radiance.wgsl` applies.
 
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
@@ -187,4 +188,54 @@ fn multiple_scattering_adds_light_to_the_hair() {
     eprintln!("Karis − none: largest {most:e}, least (with the tolerance) {least:e}");
     assert!(most > 1e-3, "multiple scattering adds nothing: {most}");
     assert!(least >= 0.0, "multiple scattering darkens a pixel: {least}");
+}
+
+/// The opaque shadow the hair-fragment stage applies (`plait::hair_radiance`)
+/// at points swept in light depth through the opaque surface at the centre
+/// texel of the light's map (`tests/fixtures/opaque_bias.wgsl`, the small
+/// scene): the shaded term over the unshadowed one is the 3×3 comparison
+/// at the bias 0.002 the stage states, within 1e-3, at every point not
+/// within 1e-6 of a tie; the sweep runs from 1.6e-3 in front of the stored
+/// depth to 4.8e-3 behind it in steps of 5e-5, so the centre texel's own
+/// comparison turns at δ = 0.002 (required: the PCF falls there). Kills, in `shaders/lib/hair_radiance.wgsl`, the opaque
+/// shadow's bias 0.002 → 0.0022 (31:51: points 2.05e-3…2.15e-3 behind the
+/// surface lit) and → 0.0018.
+#[test]
+fn the_opaque_shadow_turns_at_its_bias_behind_the_surface() {
+    const WIDTH: usize = 128;
+    let read = plait_tests::fixture_texels("opaque_bias.toml", (WIDTH as u32, 2), &["cases"]);
+    let stored = read[0][WIDTH][0];
+    let cases = &read[0][..WIDTH];
+    assert!(
+        stored < 0.99,
+        "the light map's centre texel holds no opaque surface (depth {stored})"
+    );
+    let mut failures = Vec::new();
+    for (x, t) in cases.iter().enumerate() {
+        let [shadow, want, delta, tie] = *t;
+        if tie >= 1e-6 && (!shadow.is_finite() || (shadow - want).abs() > 1e-3) {
+            failures.push(format!(
+                "column {x}, δ {delta:.5}: shadow {shadow:.4}, the PCF at bias 0.002 {want:.4}"
+            ));
+        }
+    }
+    // The centre texel's own comparison turns at δ = 0.002: the PCF just
+    // past it is below the PCF just before it, or the test tests nothing.
+    let pcf_at = |d: f32| {
+        cases
+            .iter()
+            .min_by(|a, b| (a[2] - d).abs().total_cmp(&(b[2] - d).abs()))
+            .map(|t| t[1])
+            .expect("cases")
+    };
+    let (before, past) = (pcf_at(0.00195), pcf_at(0.0021));
+    eprintln!(
+        "opaque bias: stored depth {stored}; PCF {before:.3} at δ 0.00195, {past:.3} at 0.0021; {} columns off",
+        failures.len()
+    );
+    assert!(
+        past < before,
+        "the centre texel must turn at δ = 0.002: PCF {before} before, {past} past"
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
