@@ -517,7 +517,7 @@ fn undefined_combinations_are_refused_naming_one_that_works() {
                 "techniques.self_shadow=none",
             ],
             &[
-                "multiple_scattering `dual_scattering` needs a self_shadow technique that provides `hair_strands_toward_light`",
+                "multiple_scattering `dual_scattering` needs a self_shadow technique that provides `hair_strands_along_light`",
                 "`none` does not",
                 "techniques.self_shadow = \"deep_opacity\"",
                 "occupancy",

@@ -202,3 +202,20 @@ fn light_lookup(world: vec3<f32>, size: vec2<u32>) -> LightLookup {
     out.in_front_below = light_linear_depth(world) - frame.conventions.x;
     return out;
 }
+
+// The light linear depths between which hair lies behind `world` along the
+// light's ray (the self_shadow contract's `hair_strands_along_light` y;
+// docs/design.md, "In front of"): x, past the point's own strand — what is
+// in front of the point two self-shadow biases farther from the light; y,
+// beyond the hair's bounding sphere, what is in front of the point two
+// biases past the sphere's diameter farther on (every strand behind). A
+// provider counts the hair in front of y less that in front of x, in the
+// texel of `world`'s own `light_lookup`: the same ray (along it the light
+// maps' texel does not change), read once.
+fn light_behind(world: vec3<f32>) -> vec2<f32> {
+    let bias = frame.conventions.x * (frame.near_far.w - frame.near_far.z);
+    let away = -to_light(world);
+    let past_own = light_linear_depth(world + away * (2.0 * bias)) - frame.conventions.x;
+    let beyond = light_linear_depth(world + away * (2.0 * frame.hair_sphere.w + 2.0 * bias)) - frame.conventions.x;
+    return vec2<f32>(past_own, beyond);
+}

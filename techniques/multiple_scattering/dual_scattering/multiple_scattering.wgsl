@@ -14,10 +14,10 @@
 // behind the point; a groom is a shell of a few strands on a head).
 #define_import_path plait::multiple_scattering::dual_scattering
 
-#import plait::frame::{frame, linear_sampler}
+#import plait::frame::linear_sampler
 #import plait::chiang::sigma_a_from_color
 #import plait::marschner::hair_angles
-#import plait::self_shadow::strands_toward_light
+#import plait::self_shadow::strands_along_light
 #import plait::dual_scattering::{absorption_coordinate, back_scattering, behind_fraction, lobe}
 
 struct MultipleScatteringParams {
@@ -55,18 +55,6 @@ fn channel(sin_i: f32, sigma_a: f32, theta_h: f32, cos_o: f32, backward: f32, n:
     return v * local + global;
 }
 
-// m: the strands behind `world` along the light's ray, before an opaque
-// object (the light-view maps are depth-tested against the head): every
-// strand toward the light from beyond the hair's bounding sphere, less
-// those up to just behind the point — the point's own strand included, by
-// two self-shadow biases past it (docs/design.md, "In front of").
-fn strands_behind(world: vec3<f32>, to_light: vec3<f32>) -> f32 {
-    let bias = frame.conventions.x * (frame.near_far.w - frame.near_far.z);
-    let total = strands_toward_light(world - to_light * (2.0 * frame.hair_sphere.w + 2.0 * bias));
-    let through = strands_toward_light(world - to_light * (2.0 * bias));
-    return max(total - through, 0.0);
-}
-
 fn hair_multiple_scattering(world: vec3<f32>, tangent: vec3<f32>, to_light: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>, hair_visibility: f32) -> vec3<f32> {
     let angles = hair_angles(tangent, to_light, to_eye);
     let theta_i = asin(angles.x);
@@ -75,13 +63,15 @@ fn hair_multiple_scattering(world: vec3<f32>, tangent: vec3<f32>, to_light: vec3
     let cos_o = cos(theta_o);
     // |φ| < π/2: the backward half, where back-scattered light leaves.
     let backward = select(0.0, 1.0, angles.z > 0.0);
-    let n = strands_toward_light(world);
-    // count_behind 0: Zinke's unbounded hair (10⁶ strands: ā_f^2m is 0),
-    // without the two lookups (a uniform branch: skipped, not masked).
-    var m = 1e6;
-    if (multiple_scattering_params.dual_scattering_count_behind > 0.5) {
-        m = strands_behind(world, to_light);
-    }
+    // n, the strands toward the light, and m, those behind `world` along
+    // the light's ray before an opaque object (the light-view maps are
+    // depth-tested against the head) — past the point's own strand — from
+    // one read of the self-shadow technique's light texel (point.toml,
+    // `hair_strands_along_light`).
+    let counts = strands_along_light(world);
+    let n = counts.x;
+    // count_behind 0: Zinke's unbounded hair (10⁶ strands: ā_f^2m is 0).
+    let m = select(1e6, counts.y, multiple_scattering_params.dual_scattering_count_behind > 0.5);
     let sigma = sigma_a_from_color(base, multiple_scattering_params.chiang_beta_n);
     let v = hair_visibility;
     return vec3<f32>(

@@ -45,7 +45,7 @@ fn toward_trilinear(b: DensityBox, g: vec3<f32>) -> f32 {
 }
 
 // Expected number of strands between `world` and the key light.
-fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+fn strands_toward(world: vec3<f32>) -> f32 {
     let b = density_box_from(vis_box);
     if (b.res == 0u) {
         return 0.0;
@@ -64,5 +64,18 @@ fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
 }
 
 fn hair_visibility(world: vec3<f32>) -> f32 {
-    return exp(-visibility_params.shadow_weight * hair_strands_toward_light(world));
+    return exp(-visibility_params.shadow_weight * strands_toward(world));
+}
+
+// The strands in front of and behind the point (the self_shadow point's
+// optional function): the volume's count at the point, and its count from beyond the hair
+// less that from just past the point's own strand (two biases behind it), along the
+// light's ray — `plait::frame::light_behind`'s span, as a count toward the
+// light from both ends.
+fn hair_strands_along_light(world: vec3<f32>) -> vec2<f32> {
+    let bias = frame.conventions.x * (frame.near_far.w - frame.near_far.z);
+    let away = -density_to_light(world, frame.light_direction, frame.light_position);
+    let through = strands_toward(world + away * (2.0 * bias));
+    let beyond = strands_toward(world + away * (2.0 * frame.hair_sphere.w + 2.0 * bias));
+    return vec2<f32>(strands_toward(world), max(beyond - through, 0.0));
 }

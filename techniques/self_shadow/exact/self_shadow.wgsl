@@ -9,7 +9,7 @@
 // ones (the pass's `overflow` buffer says whether that happened).
 #define_import_path plait::self_shadow::exact
 
-#import plait::frame::light_lookup
+#import plait::frame::{light_behind, light_lookup}
 #import plait::map_share::{list_depth, list_share}
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
@@ -70,14 +70,34 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     return mix(soft, front.open, visibility_params.shadow_opaque);
 }
 
-// The strand count toward the light (the self_shadow point's optional
-// function): the stored fragments in front of the point, in strands (scaled
-// up when the list overflowed, as the visibility is).
-fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+// The strands in front of and behind the point (the self_shadow point's
+// optional function), in one pass over the point's list: Σ share of the
+// stored fragments nearer the light than `in_front_below` (the count the
+// visibility attenuates by) and of those in [past_own, beyond)
+// (`plait::frame::light_behind`), both scaled up when the list overflowed,
+// as the visibility is.
+fn hair_strands_along_light(world: vec3<f32>) -> vec2<f32> {
     let size = textureDimensions(vis_range);
     let lookup = light_lookup(world, size);
     if (!lookup.inside) {
-        return 0.0;
+        return vec2<f32>(0.0);
     }
-    return exact_in_front(lookup.texel, size, lookup.in_front_below).count;
+    let behind = light_behind(world);
+    let index = lookup.texel.y * size.x + lookup.texel.x;
+    let capacity = arrayLength(&vis_lists) / (size.x * size.y);
+    let total = vis_counts[index];
+    let stored = min(total, capacity);
+    var counts = vec2<f32>(0.0);
+    for (var i = 0u; i < stored; i++) {
+        let entry = vis_lists[index * capacity + i];
+        let depth = list_depth(entry);
+        let share = list_share(entry);
+        counts.x += select(0.0, share, depth < lookup.in_front_below);
+        counts.y += select(0.0, share, depth >= behind.x && depth < behind.y);
+    }
+    if (stored < total) {
+        // The dropped fragments, distributed like the stored ones.
+        counts *= f32(total) / f32(stored);
+    }
+    return counts;
 }

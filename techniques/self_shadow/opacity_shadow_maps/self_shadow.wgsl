@@ -8,7 +8,7 @@
 // the opacity of one fragment, as in occupancy).
 #define_import_path plait::self_shadow::opacity_shadow_maps
 
-#import plait::frame::light_lookup
+#import plait::frame::{light_behind, light_lookup}
 #import plait::map_share::MAP_SHARE_SCALE
 
 @group(1) @binding(9) var vis_range: texture_2d<f32>;
@@ -52,13 +52,19 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
     return exp(-visibility_params.shadow_weight * sigma);
 }
 
-// The strand count toward the light (the self_shadow point's optional
-// function): the slices' fragment count in front of the point, in strands.
-fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+// The strands in front of and behind the point (the self_shadow point's
+// optional function): the slices' fragment counts in front of the point, and beyond
+// the hair less up to just past the point's own strand
+// (`plait::frame::light_behind`), in strands, in the point's own texel.
+fn hair_strands_along_light(world: vec3<f32>) -> vec2<f32> {
     let size = textureDimensions(vis_range);
     let lookup = light_lookup(world, size);
     if (!lookup.inside) {
-        return 0.0;
+        return vec2<f32>(0.0);
     }
-    return opacity_thickness(lookup.texel, size, lookup.in_front_below) / MAP_SHARE_SCALE;
+    let behind = light_behind(world);
+    let n = opacity_thickness(lookup.texel, size, lookup.in_front_below);
+    let through = opacity_thickness(lookup.texel, size, behind.x);
+    let beyond = opacity_thickness(lookup.texel, size, behind.y);
+    return vec2<f32>(n, max(beyond - through, 0.0)) / MAP_SHARE_SCALE;
 }

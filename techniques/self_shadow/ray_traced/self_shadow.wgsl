@@ -16,7 +16,7 @@ enable wgpu_ray_query;
 // ground) are in the structure too: with `shadow_meshes` = 1 a ray that
 // meets one beyond the bias carries no light (visibility 0), so the head
 // shadows the hair per pixel; the strand count
-// (hair_strands_toward_light) is the strands' alone.
+// (hair_strands_along_light) is the strands' alone.
 #define_import_path plait::self_shadow::ray_traced
 
 #import plait::frame::frame
@@ -106,7 +106,7 @@ fn ray_origin(r: Rays, i: u32, count: u32) -> vec3<f32> {
 
 // Strands crossed between `world` and the key light, the mean over the
 // point's rays. A crossing counts beyond the bias ("in front of").
-fn hair_strands_toward_light(world: vec3<f32>) -> f32 {
+fn strands_toward(world: vec3<f32>) -> f32 {
     let r = rays_from(world);
     let count = max(visibility_params.shadow_rays, 1u);
     var n = 0.0;
@@ -128,4 +128,17 @@ fn hair_visibility(world: vec3<f32>) -> f32 {
         sum += select(exp(-visibility_params.shadow_weight * hits.strands), 0.0, hits.blocked);
     }
     return sum / f32(count);
+}
+
+// The strands in front of and behind the point (the self_shadow point's
+// optional function): the rays' mean count from the point, and from beyond the hair
+// less from just past the point's own strand (two biases behind it), along the
+// light's ray — `plait::frame::light_behind`'s span, as a count toward the
+// light from both ends.
+fn hair_strands_along_light(world: vec3<f32>) -> vec2<f32> {
+    let bias = frame.conventions.x * (frame.near_far.w - frame.near_far.z);
+    let away = -rays_from(world).to_light;
+    let through = strands_toward(world + away * (2.0 * bias));
+    let beyond = strands_toward(world + away * (2.0 * frame.hair_sphere.w + 2.0 * bias));
+    return vec2<f32>(strands_toward(world), max(beyond - through, 0.0));
 }

@@ -16,9 +16,9 @@
 //! doc = "Fraction of the light reaching `world` through the hair."
 //!
 //! [wgsl.optional]                       # a second function only some providers define
-//! function = "fn hair_strands_toward_light(world: vec3<f32>) -> f32"
-//! call = "strands_toward_light"         # defined by the selector only for those providers
-//! doc = "Expected number of strands between `world` and the key light."
+//! function = "fn hair_strands_along_light(world: vec3<f32>) -> vec2<f32>"
+//! call = "strands_along_light"          # defined by the selector only for those providers
+//! doc = "Strands between `world` and the key light (x) and behind it along the light's ray (y)."
 //!
 //! [wgsl.also]                           # a second function every provider defines
 //! function = "fn hair_uniform(tangent: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32>"

@@ -1,5 +1,5 @@
 //! `[wgsl.optional]` of a point file: a function only some providers
-//! define (the self_shadow point's `hair_strands_toward_light`), and the part
+//! define (the self_shadow point's `hair_strands_along_light`), and the part
 //! of the generated selector that defines its `call` (see
 //! [`super::point_file`]'s module docs).
 
@@ -36,7 +36,8 @@ pub fn argument_names(arguments: &str) -> Vec<&str> {
 
 impl WgslPoint {
     /// `call` of the optional function: the provider's when the chosen
-    /// provider defines it, else −1 ("no count"), so a module that calls it
+    /// provider defines it, else −1 in every component ("no count":
+    /// `TYPE(-1.0)`, a splat for a vector), so a module that calls it
     /// composes with any provider (the contract check composes each with no
     /// defines). A pipeline never reaches the −1: a technique that reads the
     /// function requires a provider that defines it (`[technique.requires]`,
@@ -58,7 +59,7 @@ impl WgslPoint {
         if !with_optional.is_empty() {
             s += "#else\n";
         }
-        s += "    return -1.0;\n";
+        s += &format!("    return {}(-1.0);\n", o.returns);
         if !with_optional.is_empty() {
             s += "#endif\n";
         }
@@ -116,7 +117,7 @@ mod tests {
     #[test]
     fn an_optional_function_is_defined_for_the_providers_that_have_it() {
         let text = format!(
-            "{GOOD}\n[wgsl.optional]\nfunction = \"fn hair_strands_toward_light(world: vec3<f32>) -> f32\"\ncall = \"strands_toward_light\"\ndoc = \"Strands toward the light.\"\n"
+            "{GOOD}\n[wgsl.optional]\nfunction = \"fn hair_strands_along_light(world: vec3<f32>) -> vec2<f32>\"\ncall = \"strands_along_light\"\ndoc = \"Strands in front of and behind the point.\"\n"
         );
         let p = parse("self_shadow", Path::new("point.toml"), &text)
             .expect("parses")
@@ -128,20 +129,20 @@ mod tests {
         );
         assert!(
             s.contains(
-                "#ifdef SELF_SHADOW_DEEP_OPACITY\n#import plait::self_shadow::deep_opacity::hair_visibility\n#import plait::self_shadow::deep_opacity::hair_strands_toward_light\n"
+                "#ifdef SELF_SHADOW_DEEP_OPACITY\n#import plait::self_shadow::deep_opacity::hair_visibility\n#import plait::self_shadow::deep_opacity::hair_strands_along_light\n"
             ),
             "{s}"
         );
         assert!(
             s.contains(
-                "fn strands_toward_light(world: vec3<f32>) -> f32 {\n#ifdef SELF_SHADOW_DEEP_OPACITY\n    return hair_strands_toward_light(world);\n#else\n    return -1.0;\n#endif\n}"
+                "fn strands_along_light(world: vec3<f32>) -> vec2<f32> {\n#ifdef SELF_SHADOW_DEEP_OPACITY\n    return hair_strands_along_light(world);\n#else\n    return vec2<f32>(-1.0);\n#endif\n}"
             ),
             "{s}"
         );
         // `none` lacks it: no import of it anywhere.
-        assert!(!s.contains("none::hair_strands_toward_light"), "{s}");
+        assert!(!s.contains("none::hair_strands_along_light"), "{s}");
         let bad = text.replace(
-            "fn hair_strands_toward_light(world: vec3<f32>) -> f32",
+            "fn hair_strands_along_light(world: vec3<f32>) -> vec2<f32>",
             "strands",
         );
         let e = parse("self_shadow", Path::new("point.toml"), &bad)

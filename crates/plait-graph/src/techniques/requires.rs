@@ -3,11 +3,11 @@
 //!
 //! ```toml
 //! [technique]
-//! provides = ["hair_strands_toward_light"]   # optional functions it defines
+//! provides = ["hair_strands_along_light"]    # optional functions it defines
 //!
 //! [technique.requires.self_shadow]           # of the technique chosen there
-//! provides = "hair_strands_toward_light"
-//! why = "Zinke et al. 2008 §4: the strand count toward the light"
+//! provides = "hair_strands_along_light"
+//! why = "Zinke et al. 2008 §4: the strands in front of and behind the point"
 //!
 //! [technique.requires.shading]
 //! one_of = ["chiang"]
