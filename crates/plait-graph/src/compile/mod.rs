@@ -11,6 +11,7 @@
 //! dependency graph and the execution order, `schedule` culls, renumbers and
 //! sets lifetimes, and `memory` shares allocations between resources.
 
+mod bind;
 pub mod fit;
 mod memory;
 mod order;
