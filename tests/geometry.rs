@@ -1,7 +1,8 @@
 //! GPU tier: the `geometry` choice point. `lod` (coverage-preserving strand
 //! reduction, `techniques/geometry/lod/technique.toml`) has a golden image at
 //! a near and a far camera, each of which fails against `strands` at the
-//! same camera; its widening brings the image closer to every strand than
+//! same camera, and where the groom fills the fraction it is the strands
+//! image to the bit; its widening brings the image closer to every strand than
 //! the same strands dropped without it; a screen fraction out of range is an
 //! error naming the param. `wisps` has goldens too, follows the hair as it
 //! moves, takes strand-space shading, and draws fewer, wider wisps far away.
@@ -123,6 +124,37 @@ fn widening_the_kept_strands_keeps_the_hair_closer_to_every_strand_than_dropping
         "widening must bring the hair closer to every strand: {} vs {}",
         widened.summary(),
         thinned.summary()
+    );
+}
+
+/// Where the groom on screen is at least the screen fraction, lod keeps every
+/// strand at weight 1: its image is the strands image to the bit (near
+/// camera, fraction 0.5 of a groom ~0.7 of the screen). A kept fraction
+/// capped below 1 (`geometry.wgsl`'s clamp to 0.9) drops a tenth of the
+/// strands there and widens the rest, and fails this.
+#[test]
+fn a_groom_larger_than_the_fraction_is_drawn_whole() {
+    let (_lock, gpu) = open_gpu();
+    let scene = load_scene("tests/fixtures/golden_near.toml");
+    let k = kept_fraction(&scene, 0.5);
+    assert!(
+        k >= 1.0,
+        "the near groom must fill 0.5 of the screen (kept fraction {k})"
+    );
+    let lod = render(
+        &gpu,
+        &["techniques.geometry=lod", "params.lod_screen_fraction=0.5"],
+        &scene,
+    );
+    let strands = render(&gpu, &[], &scene);
+    let differing = lod
+        .pixels()
+        .zip(strands.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing, 0,
+        "{differing} pixels differ from every strand's image"
     );
 }
 
