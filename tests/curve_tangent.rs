@@ -22,10 +22,16 @@ const SIZE: (u32, u32) = (160, 120);
 const TOLERANCE_DEGREES: f64 = 3.0;
 
 /// The wave's points (world units; the camera sees about 4.3 × 3.2 of the
-/// plane z = 0).
+/// plane z = 0). Out of that plane by up to 0.3, so that no chord from a
+/// segment's first point has a zero component: in the plane, a mutant
+/// testing `all(chord != 0)` where the shader tests `all(chord == 0)`
+/// (strand_curve.wgsl 42:15) never took the other branch.
 fn wave() -> Vec<Vec3> {
     (0..9)
-        .map(|i| Vec3::new(-1.6 + i as f32 * 0.4, (i as f32 * 1.1).sin() * 0.4, 0.0))
+        .map(|i| {
+            let x = i as f32;
+            Vec3::new(-1.6 + x * 0.4, (x * 1.1).sin() * 0.4, 0.3 * (x * 0.9).cos())
+        })
         .collect()
 }
 

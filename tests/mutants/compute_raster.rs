@@ -47,8 +47,14 @@ color = [0.0, 0.0, 0.0]
     let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
     let mut data = SceneData::new(scene).expect("the scene loads");
     data.strands = plait_hair::Strands::new();
+    // Out of the image plane too (z), so that no chord has a zero component:
+    // in the plane, a mutant testing `all(chord != 0)` where the shader tests
+    // `all(chord == 0)` never took the other branch (strand_curve.wgsl 27:15).
     let wave: Vec<Vec3> = (0..9)
-        .map(|i| Vec3::new(-1.6 + i as f32 * 0.4, (i as f32 * 1.1).sin() * 0.4, 0.0))
+        .map(|i| {
+            let x = i as f32;
+            Vec3::new(-1.6 + x * 0.4, (x * 1.1).sin() * 0.4, 0.3 * (x * 0.9).cos())
+        })
         .collect();
     data.strands
         .push_strand(&wave, |_| 0.02, |_| 1.0, Vec3::splat(0.8));
@@ -109,9 +115,11 @@ fn compute_raster_shades_fragments_about_the_curves_tangent() {
 }
 
 /// Mean |Δ radiance| / mean radiance allowed between the two draws:
-/// measured 0.0047 (153 pixels); with `strand_curve_tangent` returning
-/// `curve_unit(mix(t0, t1, u))` (the tangents interpolated linearly, edited
-/// in by hand) 0.0996, and the test fails.
+/// measured 0.0031 (145 pixels, the wave out of the plane, at c51ef42);
+/// with `strand_curve_tangent`'s zero-chord test inverted (strand_curve.wgsl
+/// 27:15, which then interpolates the ends' tangents linearly on every
+/// chord) 0.0865, and the test fails. (In the plane: 0.0047, and 0.0996
+/// with the linear interpolation edited in by hand.)
 const TOLERANCE: f64 = 0.01;
 
 /// Σα of the premultiplied `hair` image of `pipeline` with `extra` on
