@@ -239,3 +239,123 @@ fn the_opaque_shadow_turns_at_its_bias_behind_the_surface() {
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// One straight strand along x in the plane facing the camera, two pixels
+/// wide (the quad draw: whole pixels along its middle), grey, under a
+/// directional light; no ambient, no self-shadow, no meshes.
+fn straight_strand_scene() -> SceneData {
+    let text = r#"
+ambient = 0.0
+[hair.procedural]
+strands = 1
+segments = 1
+[camera]
+eye = [0.0, 0.0, 6.0]
+target = [0.0, 0.0, 0.0]
+fov_y_degrees = 30.0
+[light]
+type = "directional"
+direction = [-1.0, -0.15, -0.2]
+intensity = 2.0
+[background]
+color = [0.0, 0.0, 0.0]
+"#;
+    let path = repo_root().join("tests/multiple_scattering_stage.toml");
+    let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
+    let mut data = SceneData::new(scene).expect("the scene loads");
+    data.strands = plait_hair::Strands::new();
+    let points: Vec<glam::Vec3> = (0..9)
+        .map(|i| glam::Vec3::new(-1.6 + 0.4 * i as f32, 0.0, 0.0))
+        .collect();
+    // 0.08 world units: 2.2 px at 160×120 (4.3 units across the view's height).
+    data.strands
+        .push_strand(&points, |_| 0.08, |_| 1.0, glam::Vec3::splat(0.8));
+    data
+}
+
+/// Karis 2016's term per unit irradiance, unshadowed (v = 1: tint 1), in f64
+/// (`techniques/multiple_scattering/karis`, as `tests/karis.rs` states it).
+fn karis_unshadowed(
+    t: glam::DVec3,
+    l: glam::DVec3,
+    e: glam::DVec3,
+    base: glam::DVec3,
+    scatter: f64,
+) -> glam::DVec3 {
+    let kajiya = 1.0 - t.dot(l).abs();
+    let n = (e - t * e.dot(t)).normalize();
+    let wrap = ((n.dot(l) + 1.0) / 4.0).clamp(0.0, 1.0);
+    let diffuse = (1.0 / std::f64::consts::PI) * (wrap + (kajiya - wrap) * 0.33) * scatter;
+    glam::DVec3::new(base.x.sqrt(), base.y.sqrt(), base.z.sqrt()) * diffuse
+}
+
+/// The hair-fragment stage hands the multiple-scattering provider the
+/// fragment's tangent, the direction to the light and the direction to the
+/// eye, in that order: on a straight strand along x (T known), Karis's
+/// provider against `none`, the added radiance of every pixel the strand
+/// covers at least half (premultiplied colour ÷ alpha) is the light's
+/// irradiance × Karis's formula at T, L and the eye direction from the
+/// pixel centre's point on the strand, within 1e-4 relative (measured at
+/// 7ec7aa6: 1.1e-7, f32 rounding). Swapped, the formula's terms move by 30 % (T ↔ L: the
+/// eye projected normal to L instead of T) to 3× (L ↔ E: 1 − |T·E| for
+/// 1 − |T·L|). Kills, in `shaders/lib/hair_radiance.wgsl`, 38:47 and 38:56
+/// (the provider's tangent ↔ light and light ↔ eye), which the test above,
+/// whose term is only ≥ 0, let through.
+#[test]
+fn the_stage_gives_multiple_scattering_its_tangent_light_and_eye() {
+    const SIZE: (u32, u32) = (160, 120);
+    let (_lock, gpu) = open_gpu();
+    let scene = straight_strand_scene();
+    let pipeline = repo_root().join("pipelines/occupancy.toml");
+    let render = |ms: &str| {
+        let sets = [
+            "techniques.shading=chiang".to_owned(),
+            "techniques.shading_space=fragment".to_owned(),
+            "techniques.self_shadow=none".to_owned(),
+            format!("techniques.multiple_scattering={ms}"),
+            "pipeline.outputs=[\"final\", \"hair\"]".to_owned(),
+        ];
+        let prepared = prepare(&gpu, &pipeline, &sets, &scene, SIZE).expect("prepares");
+        prepared.render().expect("renders");
+        let hair = prepared.read_resource("hair").expect("hair");
+        (0..(hair.width * hair.height) as usize)
+            .map(|i| hair.texel(i))
+            .collect::<Vec<[f32; 4]>>()
+    };
+    let (with, without) = (render("karis"), render("none"));
+    let frame = scene.frame(SIZE, 0);
+    let l = glam::Vec4::from(frame.light_direction)
+        .truncate()
+        .as_dvec3();
+    let irradiance = glam::Vec4::from(frame.light_color).truncate().as_dvec3();
+    let base = glam::Vec4::from(frame.hair_color).truncate().as_dvec3() * 0.8;
+    let eye = glam::DVec3::new(0.0, 0.0, 6.0);
+    let focal = f64::from(SIZE.1) / 2.0 / 15f64.to_radians().tan();
+    let (mut pixels, mut worst) = (0usize, 0.0f64);
+    for (i, (k, n)) in with.iter().zip(&without).enumerate() {
+        if k[3] < 0.5 || n[3] < 0.5 {
+            continue;
+        }
+        // The pixel centre's point on the strand (y = 0, z = 0).
+        let column = (i % SIZE.0 as usize) as f64 + 0.5;
+        let x = (column - f64::from(SIZE.0) / 2.0) / focal * 6.0;
+        let e = (eye - glam::DVec3::new(x, 0.0, 0.0)).normalize();
+        let want = irradiance * karis_unshadowed(glam::DVec3::X, l, e, base, 1.0);
+        for c in 0..3 {
+            let got = f64::from(k[c] / k[3] - n[c] / n[3]);
+            worst = worst.max((got / want[c] - 1.0).abs());
+        }
+        pixels += 1;
+    }
+    eprintln!(
+        "{pixels} pixels: Karis's added radiance against its formula at T, L, E: largest relative error {worst:.2e}"
+    );
+    assert!(
+        pixels >= 100,
+        "the strand covers {pixels} pixels at least half"
+    );
+    assert!(
+        worst < 1e-4,
+        "the added radiance is {worst:.4} from Karis's formula at T, L, E"
+    );
+}
