@@ -38,7 +38,9 @@ fn log_i0_asymptotic(x: f64) -> f64 {
 /// form within 1e-5 (the term in 1/(8x) is 5e-3 at x = 12.5). Kills, in
 /// `shaders/lib/chiang.wgsl`, `+ 5.372 · pow(β_n, 22)` → `−`, the trim's
 /// `1 + exp(−π/s)` → `−` and π → 1.1π in it (s ≈ 2.7 at β 0.9, where the
-/// trim is 1.6; at β 0.3 it is 1 + 2e-11), and `1/(8x)` → `0.9/(8x)`.
+/// trim is 1.6; at β 0.3 it is 1 + 2e-11), `1/(8x)` → `0.9/(8x)`, and the
+/// floor 1e-6 on a colour channel before its logarithm ×0.9 / ×1.1 (66:40:
+/// σ_a of a black channel 1.5 % off).
 #[test]
 fn chiang_fibre_constants_match_the_paper_at_high_roughness() {
     let (_lock, gpu) = open_gpu();
@@ -69,6 +71,19 @@ fn chiang_fibre_constants_match_the_paper_at_high_roughness() {
         let (g, w) = (got[16 + k] as f64, log_i0_asymptotic(x));
         if (g - w).abs() > 1e-5 * w.max(1.0) {
             failures.push(format!("ln I0({x}) {g}, pbrt-v3 {w}"));
+        }
+    }
+    // σ_a of a channel outside (0, 1]: 0 and 1e-7 as 1e-6 (the floor the
+    // shader's comment states), 2 as 1 (no absorption); 1.05e-6 as itself.
+    for (k, colour) in [0.0f64, 1e-7, 2.0, 1.05e-6].into_iter().enumerate() {
+        let (g, w) = (
+            got[24 + k] as f64,
+            closed_form(0.3, colour.clamp(1e-6, 1.0))[3],
+        );
+        if (g - w).abs() > 1e-4 * w.max(1e-9) {
+            failures.push(format!(
+                "σ_a of colour {colour}: {g}, the floored closed form {w}"
+            ));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
