@@ -97,6 +97,41 @@ pub fn small_scene_with_head(head: &str) -> plait_hair::Scene {
     plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses")
 }
 
+/// A coarse wave of 9 points, mostly in the plane z = 0 facing a camera
+/// at (0, 0, 6) (it sees about 4.3 × 3.2 of that plane): each segment turns
+/// by tens of degrees, through inflections. Out of the plane by up to 0.3,
+/// so that no chord has a zero component: in the plane, a mutant testing
+/// `all(chord != 0)` where the shader tests `all(chord == 0)`
+/// (strand_curve.wgsl 27:15 and 42:15) never took the other branch.
+pub fn coarse_wave() -> Vec<glam::Vec3> {
+    (0..9)
+        .map(|i| {
+            let x = i as f32;
+            glam::Vec3::new(-1.6 + x * 0.4, (x * 1.1).sin() * 0.4, 0.3 * (x * 0.9).cos())
+        })
+        .collect()
+}
+
+/// A test scene written inline: `text` parsed as if it were the file
+/// `tests/<name>` (its errors name that place), its procedural hair replaced
+/// by one strand through `points`, of `thickness` (world units), alpha 1 and
+/// one `colour`.
+pub fn one_strand_scene(
+    name: &str,
+    text: &str,
+    points: &[glam::Vec3],
+    thickness: f32,
+    colour: f32,
+) -> plait::session::SceneData {
+    let path = repo_root().join("tests").join(name);
+    let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
+    let mut data = plait::session::SceneData::new(scene).expect("the scene loads");
+    data.strands = plait_hair::Strands::new();
+    data.strands
+        .push_strand(points, |_| thickness, |_| 1.0, glam::Vec3::splat(colour));
+    data
+}
+
 /// `PLAIT_BLESS=1` (re)writes snapshots and golden images instead of comparing.
 pub fn bless() -> bool {
     std::env::var("PLAIT_BLESS").is_ok_and(|v| !v.is_empty() && v != "0")

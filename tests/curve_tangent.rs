@@ -3,7 +3,7 @@
 //! cubic spline through them, `plait export mitsuba`), not the segment's end
 //! tangents interpolated linearly.
 //!
-//! One strand, a coarse wave in the plane facing the camera (each segment
+//! One strand, a coarse wave facing the camera (`plait_tests::coarse_wave`) (each segment
 //! turns by tens of degrees, through inflections), drawn by
 //! `tests/fixtures/curve_tangent.toml`, which writes each fragment's
 //! `shading_tangent` and its place along the strand. At every covered pixel
@@ -13,27 +13,13 @@
 use glam::Vec3;
 use plait::session::{SceneData, prepare};
 use plait_hair::curve::{knot_derivatives, knot_directions};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{coarse_wave, one_strand_scene, open_gpu, repo_root};
 
 const SIZE: (u32, u32) = (160, 120);
 /// Allowed angle between the fragment's tangent and the spline's: the
 /// stored tangents lack the spline's lengths (plait_hair::curve::
 /// segment_tangent), 2.5° at worst on this wave on the CPU.
 const TOLERANCE_DEGREES: f64 = 3.0;
-
-/// The wave's points (world units; the camera sees about 4.3 × 3.2 of the
-/// plane z = 0). Out of that plane by up to 0.3, so that no chord from a
-/// segment's first point has a zero component: in the plane, a mutant
-/// testing `all(chord != 0)` where the shader tests `all(chord == 0)`
-/// (strand_curve.wgsl 42:15) never took the other branch.
-fn wave() -> Vec<Vec3> {
-    (0..9)
-        .map(|i| {
-            let x = i as f32;
-            Vec3::new(-1.6 + x * 0.4, (x * 1.1).sin() * 0.4, 0.3 * (x * 0.9).cos())
-        })
-        .collect()
-}
 
 fn scene() -> SceneData {
     let text = r#"
@@ -51,13 +37,7 @@ intensity = 1.0
 [background]
 color = [0.0, 0.0, 0.0]
 "#;
-    let path = repo_root().join("tests/curve_tangent.toml");
-    let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
-    let mut data = SceneData::new(scene).expect("the scene loads");
-    data.strands = plait_hair::Strands::new();
-    data.strands
-        .push_strand(&wave(), |_| 0.005, |_| 1.0, Vec3::splat(0.9));
-    data
+    one_strand_scene("curve_tangent.toml", text, &coarse_wave(), 0.005, 0.9)
 }
 
 /// The spline's unit tangent at `u` along segment `j` (its Hermite piece).
@@ -78,7 +58,7 @@ fn fragments_shade_about_the_curves_tangent() {
     let prepared = prepare(&gpu, &pipeline, &[], &scene(), SIZE).expect("the probe prepares");
     prepared.render_unchecked().expect("renders");
     let read = prepared.read_resource("tangent").expect("tangent");
-    let p = wave();
+    let p = coarse_wave();
     let (d, t) = (knot_derivatives(&p), knot_directions(&p));
     let (mut angles, mut lerp, mut segments) = (vec![], vec![], [0usize; 8]);
     for texel in read.bytes.chunks_exact(16) {

@@ -19,46 +19,23 @@
 use glam::Vec3;
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{coarse_wave, one_strand_scene, open_gpu, repo_root};
+
+use crate::SIDE_LIT;
 
 const SIZE: (u32, u32) = (160, 120);
 
-/// The wave of `tests/curve_tangent.rs`, wider (about a pixel: the camera
-/// sees 4.3 world units over 160 pixels) so that most of its pixels are
-/// well covered.
+/// The wave of `tests/curve_tangent.rs` (`plait_tests::coarse_wave`), wider
+/// (about a pixel: the camera sees 4.3 world units over 160 pixels) so that
+/// most of its pixels are well covered, lit from nearly along the image plane.
 fn scene() -> SceneData {
-    let text = r#"
-ambient = 0.0
-[hair.procedural]
-strands = 1
-segments = 1
-[camera]
-eye = [0.0, 0.0, 6.0]
-target = [0.0, 0.0, 0.0]
-fov_y_degrees = 30.0
-[light]
-type = "directional"
-direction = [-1.0, -0.15, -0.2]
-intensity = 2.0
-[background]
-color = [0.0, 0.0, 0.0]
-"#;
-    let path = repo_root().join("tests/compute_raster_tangent.toml");
-    let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
-    let mut data = SceneData::new(scene).expect("the scene loads");
-    data.strands = plait_hair::Strands::new();
-    // Out of the image plane too (z), so that no chord has a zero component:
-    // in the plane, a mutant testing `all(chord != 0)` where the shader tests
-    // `all(chord == 0)` never took the other branch (strand_curve.wgsl 27:15).
-    let wave: Vec<Vec3> = (0..9)
-        .map(|i| {
-            let x = i as f32;
-            Vec3::new(-1.6 + x * 0.4, (x * 1.1).sin() * 0.4, 0.3 * (x * 0.9).cos())
-        })
-        .collect();
-    data.strands
-        .push_strand(&wave, |_| 0.02, |_| 1.0, Vec3::splat(0.8));
-    data
+    one_strand_scene(
+        "compute_raster_tangent.toml",
+        SIDE_LIT,
+        &coarse_wave(),
+        0.02,
+        0.8,
+    )
 }
 
 /// The premultiplied `hair` image of `pipeline` shaded per fragment, with

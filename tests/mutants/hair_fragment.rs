@@ -3,7 +3,9 @@
 
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{one_strand_scene, open_gpu, repo_root};
+
+use crate::SIDE_LIT;
 
 /// The default pipeline's image of `scene` with sorted lists blended over
 /// (`linked_list`: occupancy order's weights are normalised, so a common
@@ -241,36 +243,19 @@ fn the_opaque_shadow_turns_at_its_bias_behind_the_surface() {
 }
 
 /// One straight strand along x in the plane facing the camera, two pixels
-/// wide (the quad draw: whole pixels along its middle), grey, under a
-/// directional light; no ambient, no self-shadow, no meshes.
+/// wide (0.08 world units: 2.2 px at 160×120; the quad draw, whole pixels
+/// along its middle), grey, under `SIDE_LIT`'s light; no self-shadow.
 fn straight_strand_scene() -> SceneData {
-    let text = r#"
-ambient = 0.0
-[hair.procedural]
-strands = 1
-segments = 1
-[camera]
-eye = [0.0, 0.0, 6.0]
-target = [0.0, 0.0, 0.0]
-fov_y_degrees = 30.0
-[light]
-type = "directional"
-direction = [-1.0, -0.15, -0.2]
-intensity = 2.0
-[background]
-color = [0.0, 0.0, 0.0]
-"#;
-    let path = repo_root().join("tests/multiple_scattering_stage.toml");
-    let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
-    let mut data = SceneData::new(scene).expect("the scene loads");
-    data.strands = plait_hair::Strands::new();
     let points: Vec<glam::Vec3> = (0..9)
         .map(|i| glam::Vec3::new(-1.6 + 0.4 * i as f32, 0.0, 0.0))
         .collect();
-    // 0.08 world units: 2.2 px at 160×120 (4.3 units across the view's height).
-    data.strands
-        .push_strand(&points, |_| 0.08, |_| 1.0, glam::Vec3::splat(0.8));
-    data
+    one_strand_scene(
+        "multiple_scattering_stage.toml",
+        SIDE_LIT,
+        &points,
+        0.08,
+        0.8,
+    )
 }
 
 /// Karis 2016's term per unit irradiance, unshadowed (v = 1: tint 1), in f64

@@ -20,6 +20,27 @@ mod occupancy_order;
 mod tone_mapping;
 
 use plait::session::{SceneData, prepare};
+
+/// A one-strand test scene's settings (`plait_tests::one_strand_scene`): a
+/// camera at (0, 0, 6) facing the plane z = 0, a white directional light from
+/// nearly along that plane (so that the diffuse term sin(T, L) follows the
+/// tangent steeply), no ambient, a black background.
+const SIDE_LIT: &str = r#"
+ambient = 0.0
+[hair.procedural]
+strands = 1
+segments = 1
+[camera]
+eye = [0.0, 0.0, 6.0]
+target = [0.0, 0.0, 0.0]
+fov_y_degrees = 30.0
+[light]
+type = "directional"
+direction = [-1.0, -0.15, -0.2]
+intensity = 2.0
+[background]
+color = [0.0, 0.0, 0.0]
+"#;
 use plait_tests::{open_gpu, repo_root};
 
 /// The cases of `tests/fixtures/wa_cases.wgsl` and `wa_count.wgsl`, one per
