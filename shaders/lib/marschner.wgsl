@@ -350,10 +350,9 @@ fn combine(m: vec3<f32>, n_r: f32, n_tt: vec3<f32>, n_trt: vec3<f32>, cos_td: f3
 }
 
 // ½ ∫ A(p, h) dh over the fibre's width in the slice s, per channel: what
-// N_p integrates to over φ (16 midpoints in γ = asin h, weight cos γ). No
-// caustic clamp: the clamp moves a caustic's light, the integral keeps it.
-fn mean_attenuation(p: f32, s: Slice, sigma_a: vec3<f32>) -> vec3<f32> {
-    let steps = 16;
+// N_p integrates to over φ (`steps` midpoints in γ = asin h, weight cos γ).
+// No caustic clamp: the clamp moves a caustic's light, the integral keeps it.
+fn mean_attenuation(p: f32, s: Slice, sigma_a: vec3<f32>, steps: i32) -> vec3<f32> {
     let step = PI / f32(steps);
     var sum = vec3<f32>(0.0);
     for (var k = 0; k < steps; k++) {
@@ -365,39 +364,42 @@ fn mean_attenuation(p: f32, s: Slice, sigma_a: vec3<f32>) -> vec3<f32> {
     return 0.5 * step * sum;
 }
 
+// Quadrature of `uniform_response`: nodes over each lobe's θh, and over h
+// for Ā_p at each node.
+const UNIFORM_NODES: i32 = 8;
+
 // The fibre's response to a uniform environment of unit radiance, seen from
 // the eye at sin θo: ∫ S(ωi, ωo) cos θi dωi (the shading point's
 // `hair_uniform`). N_p integrates over φ to its mean attenuation Ā_p(θd), so
 //   Σ_p ∫ cos²θi · g(θh − α_p) / 2 · Ā_p(θd) / cos²θd dθi,
-// θh = (θi + θo)/2, θd = (θo − θi)/2. With θi = 2θh − θo the Gaussian is
-// integrated over θh (16 midpoints over α_p ± 4β_p, light directions past
-// the poles dropped); Ā_p is taken at the lobe's centre θh = α_p, where the
-// lobe is (widths ≤ 15°: Ā_p moves little across one). Form 1 adds its
-// diffuse kd · base (the integral of kd · base / π² · cos θi) and tints TT
-// and TRT. tests/fibre.rs holds it to the sphere integral of `combine`.
+// θh = (θi + θo)/2, θd = (θo − θi)/2 = θo − θh. With θi = 2θh − θo the
+// Gaussian is integrated over θh (8 midpoints over α_p ± 4β_p, light
+// directions past the poles dropped), Ā_p at each node by 8 midpoints in γ:
+// Ā_p moves with θd across a wide lobe near grazing (taken once at the
+// lobe's centre it read 9 % high at θo 60°). Form 1 adds its diffuse
+// kd · base (the integral of kd · base / π² · cos θi) and tints TT and TRT.
+// tests/fibre.rs holds it to the sphere integral of `combine`.
 fn uniform_response(m: Model, sin_o: f32, sigma_a: vec3<f32>, base: vec3<f32>, kd: f32, form: i32, specular_gain: f32) -> vec3<f32> {
     let theta_o = asin(clamp(sin_o, -1.0, 1.0));
     var lobes = array<vec3<f32>, 3>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
-    let steps = 16;
     for (var p = 0; p < 3; p++) {
         let shift = m.shift[p];
         let width = m.width[p];
-        let centre_td = theta_o - shift;
-        let a = mean_attenuation(f32(p), slice(m.ior, cos(centre_td)), sigma_a);
-        let step = 8.0 * width / f32(steps);
-        var weight = 0.0;
-        for (var k = 0; k < steps; k++) {
+        let step = 8.0 * width / f32(UNIFORM_NODES);
+        var sum = vec3<f32>(0.0);
+        for (var k = 0; k < UNIFORM_NODES; k++) {
             let theta_h = shift - 4.0 * width + (f32(k) + 0.5) * step;
             let theta_i = 2.0 * theta_h - theta_o;
             if (abs(theta_i) < 0.5 * PI) {
                 let d = theta_h - shift;
                 let g = exp(-d * d / (2.0 * width * width)) / (width * sqrt(2.0 * PI));
                 let cos_i = cos(theta_i);
-                let cos_d = cos(0.5 * (theta_o - theta_i));
-                weight += g * cos_i * cos_i / max(cos_d * cos_d, 1e-4) * step;
+                let cos_d = cos(theta_o - theta_h);
+                let a = mean_attenuation(f32(p), slice(m.ior, cos_d), sigma_a, UNIFORM_NODES);
+                sum += g * cos_i * cos_i / max(cos_d * cos_d, 1e-4) * step * a;
             }
         }
-        lobes[p] = weight * a;
+        lobes[p] = sum;
     }
     var transmitted = lobes[1] + lobes[2];
     var diffuse = vec3<f32>(0.0);
