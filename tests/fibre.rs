@@ -213,7 +213,7 @@ fn mean_attenuation(theta_d: f64, p: u32) -> f64 {
 /// ≤ 1.10: up to 9 % over 1 where the wide TRT lobe's 1/cos²θd outgrows the
 /// outgoing measure (the model's own, below). Halén & Wester's form
 /// (plait's before issue 47's norm47) added the diffuse kd·base/π² to the
-/// lobes: 1.75–1.89 here, and the test fails. With no absorption and no
+/// lobes: 1.58–1.89 here, and the test fails (checked by reverting). With no absorption and no
 /// caustic clamp, Marschner's R + TT + TRT carries 0.75–1.12 × the model's
 /// own energy Σ_p mean A_p (at θd = θi, where the lobes peak): Marschner et
 /// al. 2003's form is not exactly energy-conserving — the 1/cos²θd matches
