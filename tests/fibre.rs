@@ -277,7 +277,12 @@ fn marschner_uniform_response_is_its_sphere_integral() {
         let low = if *degrees <= 60.0 { 0.97 } else { 0.90 };
         for (name, value, low, high) in [
             ("uniform / sphere, clear", u_clear / clear, low, 1.03),
-            ("uniform / sphere, as shaded", u_shaded / shaded, low - 0.01, 1.04),
+            (
+                "uniform / sphere, as shaded",
+                u_shaded / shaded,
+                low - 0.01,
+                1.04,
+            ),
             ("form 1 diffuse", u_diffuse, 0.995, 1.005),
         ] {
             failures.extend(outside(*degrees, name, value, low, high));

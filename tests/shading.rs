@@ -124,7 +124,10 @@ fn lookup_tables_match_the_model_where_it_has_a_closed_form() {
     let tt = n.at(0, last)[0];
     assert!(close(tt, want_tt, 2e-3), "N_TT(π) = {tt}, want {want_tt}");
     let length_tt = n.at(0, last)[2];
-    assert!(close(length_tt, 2.0, 2e-3), "TT's path length at φ = π: {length_tt}");
+    assert!(
+        close(length_tt, 2.0, 2e-3),
+        "TT's path length at φ = π: {length_tt}"
+    );
     // TRT's length is the mean of its roots' 4 cos γt: in (0, 4] wherever
     // it leaves.
     for x in 0..n.size {
