@@ -16,7 +16,10 @@
 # by hand, with Mitsuba's frame and with one rebuilt from the curve's tangent
 # (C_probe_fibre_shadowed; equal since the export is bsplinecurve: see that
 # script), which scripts/mitsuba/ratio_map.py holds plait_chiang_opaque to,
-# by region. Mitsuba images kept by MITSUBA_REUSE=1 from before the switch to
+# by region. Likewise marschner_opaque (marschner_reference), marschner_lut_opaque
+# (the tables) and default_opaque (the default shading, Kajiya-Kay): compare.py's
+# second table holds every shading to Mitsuba at depth 2 like with like.
+# Mitsuba images kept by MITSUBA_REUSE=1 from before the switch to
 # bsplinecurve shade about the wrong axis: render them again. The
 # depth-16 comparison and compare.py's tables are unchanged.
 # Usage: bash scripts/physical-check.sh [OUT_DIR]   (default target/physical-check)
@@ -63,11 +66,14 @@ for c in blond dark_brown black; do
     fi
     echo "$c: Mitsuba (2 x ${spp_d2} spp depth 2 + coverage, 2 x ${spp_full} spp depth 16) took $((SECONDS - start)) s" >&2
     "$py" "$root/scripts/mitsuba/direct_probe.py" "$out/$c" "$out/${c}_probe" --spp "$spp_d2"
-    for shading in default marschner chiang chiang_opaque; do
+    for shading in default marschner chiang chiang_opaque marschner_opaque marschner_lut_opaque default_opaque; do
         sets=()
         [ "$shading" = marschner ] && sets=(--set techniques.shading=marschner_reference)
         [ "$shading" = chiang ] && sets=(--set techniques.shading=chiang)
         [ "$shading" = chiang_opaque ] && sets=(--set techniques.shading=chiang --set params.shadow_opaque=1)
+        [ "$shading" = marschner_opaque ] && sets=(--set techniques.shading=marschner_reference --set params.shadow_opaque=1)
+        [ "$shading" = marschner_lut_opaque ] && sets=(--set techniques.shading=marschner --set params.shadow_opaque=1)
+        [ "$shading" = default_opaque ] && sets=(--set params.shadow_opaque=1)
         rm -f "$out/${c}_plait_$shading.exr"
         # shellcheck disable=SC2086
         if ! "$plait" render "$root/pipelines/reference.toml" --scene "$scene" --size "$size" \

@@ -16,7 +16,7 @@ const AZIMUTHS: usize = 256;
 const ANGLES: usize = 128;
 const LIGHT_DEGREES: [f64; 4] = [0.0, 30.0, 60.0, 80.0];
 
-/// The fixture's image: `[left half, right half]` per pixel, 4 channels each.
+/// The fixture's image: `[left, middle, right third]` per pixel, 4 channels each.
 struct Sphere {
     texels: Vec<[f32; 4]>,
 }
@@ -30,16 +30,17 @@ fn render_fibre(fixture: &str, size: (u32, u32)) -> Vec<[f32; 4]> {
 
 impl Sphere {
     fn render() -> Sphere {
-        let size = ((2 * AZIMUTHS) as u32, (4 * ANGLES) as u32);
+        let size = ((3 * AZIMUTHS) as u32, (4 * ANGLES) as u32);
         Sphere {
             texels: render_fibre("fibre.toml", size),
         }
     }
 
-    /// Half `half` (0 left, 1 right), light `k`, outgoing (θo row j, φo column i).
+    /// Third `half` (0 left, 1 middle, 2 right), light `k`, outgoing (θo row
+    /// j, φo column i).
     fn at(&self, half: usize, k: usize, j: usize, i: usize) -> [f32; 4] {
         let (x, y) = (half * AZIMUTHS + i, k * ANGLES + j);
-        self.texels[y * 2 * AZIMUTHS + x]
+        self.texels[y * 3 * AZIMUTHS + x]
     }
 
     /// ρ(θi) of every channel of a half under light k: the midpoint rule over
@@ -205,15 +206,21 @@ fn mean_attenuation(theta_d: f64, p: u32) -> f64 {
 /// The fibre furnace of every model, and Marschner's against its own
 /// energy. A white fibre reflects no more than it receives: ρ(θi) ≤ 1 for
 /// Kajiya-Kay's diffuse (exactly 1: kd/π² integrates to kd), its specular
-/// cone (ks = 1), Marschner at its defaults and Halén & Wester's diffuse
-/// (1). With no absorption and no caustic clamp, Marschner's R + TT + TRT
-/// carries 0.75–1.12 × the model's own energy Σ_p mean A_p (at θd = θi, where
-/// the lobes peak): Marschner et al. 2003's form is not exactly
-/// energy-conserving — the 1/cos²θd matches the outgoing measure only at a
-/// lobe's peak (over 1 for the wide TRT lobe at θi = 60°), and lobes past
-/// the pole are cut at θi = 80°. Without the ½ of M_p over θr every
-/// Marschner figure doubles (0.79 → 1.59 at θi = 0) and the test fails;
-/// without the 1/π² of the diffuse terms they read π².
+/// cone (ks = 1), Halén & Wester's diffuse (1), and Marschner as the
+/// technique shades a white fibre at its defaults (form 0: σa of white is 0,
+/// a lossless fibre; the scene's default kd 0.8, which form 0 does not add):
+/// measured 0.948 / 1.008 / 1.086 / 0.778 at θi 0° / 30° / 60° / 80°, held
+/// ≤ 1.10: up to 9 % over 1 where the wide TRT lobe's 1/cos²θd outgrows the
+/// outgoing measure (the model's own, below). Halén & Wester's form
+/// (plait's before issue 47's norm47) added the diffuse kd·base/π² to the
+/// lobes: 1.58–1.89 here, and the test fails (checked by reverting). With no absorption and no
+/// caustic clamp, Marschner's R + TT + TRT carries 0.75–1.12 × the model's
+/// own energy Σ_p mean A_p (at θd = θi, where the lobes peak): Marschner et
+/// al. 2003's form is not exactly energy-conserving — the 1/cos²θd matches
+/// the outgoing measure only at a lobe's peak (over 1 for the wide TRT lobe
+/// at θi = 60°), and lobes past the pole are cut at θi = 80°. Without the ½
+/// of M_p over θr every Marschner figure doubles (0.79 → 1.59 at θi = 0)
+/// and the test fails; without the 1/π² of the diffuse terms they read π².
 #[test]
 fn a_white_fibre_reflects_no_more_than_it_receives() {
     let sphere = Sphere::render();
@@ -225,16 +232,58 @@ fn a_white_fibre_reflects_no_more_than_it_receives() {
             .map(|p| mean_attenuation(degrees.to_radians(), p))
             .sum();
         println!(
-            "θi {degrees:>2}°: Kajiya-Kay diffuse {kk_d:.4}, specular {kk_s:.4}; Marschner {marschner:.4}, \
+            "θi {degrees:>2}°: Kajiya-Kay diffuse {kk_d:.4}, specular {kk_s:.4}; Marschner as shaded {marschner:.4}, \
              clear {clear:.4} (model's own {own:.4}, ratio {:.3}); H&W diffuse {hw_diffuse:.4}",
             clear / own
         );
         for (name, value, low, high) in [
             ("Kajiya-Kay diffuse", kk_d, 0.995, 1.005),
             ("Kajiya-Kay specular", kk_s, 0.0, 1.0),
-            ("Marschner", marschner, 0.0, 1.0),
+            ("Marschner as shaded, white lossless", marschner, 0.0, 1.10),
             ("Halén & Wester diffuse", hw_diffuse, 0.995, 1.005),
             ("clear Marschner / own energy", clear / own, 0.75, 1.12),
+        ] {
+            failures.extend(outside(*degrees, name, value, low, high));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Marschner's response to a uniform environment (`hair_uniform`,
+/// plait::marschner::uniform_response) against the sphere integral it
+/// stands for. S is symmetric in its two directions (M_p of θh, N_p of φ
+/// and θd, 1/cos²θd), so ∫ S(ωi, ωo) cos θi dωi seen from θo is the
+/// furnace albedo ρ(θi = θo) of `a_white_fibre_reflects_no_more_than_it_receives`:
+/// the clear fibre (no absorption, no clamp) measured 1.005 / 1.005 /
+/// 0.987 / 0.920 at θo 0° / 30° / 60° / 80°, held within 3 % up to 60° and
+/// 10 % at 80° (8 nodes per lobe: near grazing the R lobe's 1/cos²θd
+/// steepens towards θd = 90° between them); the technique's white fibre
+/// (caustic clamp 0.25, which the uniform response does not apply) likewise
+/// with 1 % more; form 1's diffuse alone (kd 1, lobes off) within 0.5 % of
+/// its closed form kd · base = 1.
+#[test]
+fn marschner_uniform_response_is_its_sphere_integral() {
+    let sphere = Sphere::render();
+    let mut failures = Vec::new();
+    for (k, degrees) in LIGHT_DEGREES.iter().enumerate() {
+        let [_, _, shaded, clear] = sphere.albedo(0, k);
+        let [u_clear, u_shaded, u_diffuse, _] = sphere.at(2, k, 0, 0).map(f64::from);
+        println!(
+            "θo {degrees:>2}°: uniform clear {u_clear:.4} (sphere {clear:.4}, ratio {:.3}); \
+             white as shaded {u_shaded:.4} (sphere {shaded:.4}, ratio {:.3}); form 1 diffuse {u_diffuse:.4}",
+            u_clear / clear,
+            u_shaded / shaded
+        );
+        let low = if *degrees <= 60.0 { 0.97 } else { 0.90 };
+        for (name, value, low, high) in [
+            ("uniform / sphere, clear", u_clear / clear, low, 1.03),
+            (
+                "uniform / sphere, as shaded",
+                u_shaded / shaded,
+                low - 0.01,
+                1.04,
+            ),
+            ("form 1 diffuse", u_diffuse, 0.995, 1.005),
         ] {
             failures.extend(outside(*degrees, name, value, low, high));
         }

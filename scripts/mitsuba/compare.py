@@ -8,6 +8,11 @@ DIR holds, per hair colour C (C_mask.exr is Mitsuba's hair coverage):
   C_mitsuba_full_s0.exr, C_mitsuba_full_s1.exr Mitsuba, full depth, seeds 0, 1
   C_plait_default.exr, C_plait_marschner.exr, C_plait_chiang.exr
                                               plait (absent: "n/a")
+  C_plait_{chiang,marschner,marschner_lut,default}_opaque.exr
+                                              plait with fibres opaque to
+                                              light (params.shadow_opaque=1):
+                                              the second table, like with
+                                              like against depth 2
 
 Hair mask, defined once: the pixels where at least T (default 0.9) of the
 camera rays through the pixel's square first hit a hair curve in Mitsuba's
@@ -106,6 +111,21 @@ def hair_row(d, colour, threshold):
     ]
 
 
+OPAQUE = ["chiang_opaque", "marschner_opaque", "marschner_lut_opaque", "default_opaque"]
+
+
+def opaque_row(d, colour, threshold):
+    """Every shading with opaque fibres (Mitsuba's depth-2 shadows) ÷ Mitsuba d2."""
+    mask = load(os.path.join(d, f"{colour}_mask.exr"))[..., 0] >= threshold
+
+    def mean(name):
+        img = load(os.path.join(d, f"{colour}_{name}.exr"))
+        return None if img is None else float(luminance(img)[mask].mean())
+
+    d2 = mean("mitsuba_d2_s0")
+    return [colour, fmt(d2)] + [f"{fmt(mean('plait_' + n))} ({fmt(ratio(mean('plait_' + n), d2), 3)}x)" for n in OPAQUE]
+
+
 def side_by_side(d, colour, threshold):
     """C_side_by_side.png: Mitsuba depth 2 | plait chiang | plait Marschner |
     plait default, one exposure for all four (Mitsuba's 99th percentile of
@@ -140,6 +160,13 @@ def main():
     print("|---" * len(head) + "|")
     for c in colours:
         print("| " + " | ".join(hair_row(a.dir, c, a.threshold)) + " |")
+    print()
+    print("Like with like at depth 2: plait with fibres opaque to light (params.shadow_opaque=1) / Mitsuba d2")
+    head = ["hair", "Mitsuba d2", "chiang", "marschner_reference", "marschner (tables)", "default (Kajiya-Kay)"]
+    print("| " + " | ".join(head) + " |")
+    print("|---" * len(head) + "|")
+    for c in colours:
+        print("| " + " | ".join(opaque_row(a.dir, c, a.threshold)) + " |")
     for c in colours if a.png else []:
         print(f"{c}: {side_by_side(a.dir, c, a.threshold) or 'side-by-side skipped (an image is missing)'}")
 

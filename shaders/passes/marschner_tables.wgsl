@@ -6,8 +6,13 @@
 // - `m_table` at (sin θi, sin θr), both −1 … 1: M_R, M_TT, M_TRT and, in
 //   alpha, cos θd ("a function of θi, θr", §5.8), so the shader needs no
 //   inverse trigonometry.
-// - `n_table` at (cos φ, cos θd), −1 … 1 and 0 … 1: N_R, N_TT, N_TRT, one
-//   channel each (one absorption for all colours, §5.8); alpha unused.
+// - `n_table` at (cos φ, cos θd), −1 … 1 and 0 … 1: N_TT and N_TRT with no
+//   absorption (N_TRT's caustics clamped), and their path lengths per unit
+//   σa (plait::marschner::Transmitted), so the lookup applies any hair
+//   colour's absorption per channel, exp(−σa · length): exact for TT (one
+//   root), the roots' weighted mean length for TRT. N_R needs no table: the
+//   lookup evaluates it exactly (plait::marschner::reflection, square roots
+//   only).
 // Texel centres sit on both ends of each axis (plait::marschner::
 // table_coordinate), so a table is exact at its texels. One fragment per
 // texel of both tables (colour targets 0 and 1, `table_size`² each). The
@@ -57,6 +62,7 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> Tables {
     let cos_td = table_value(texel.y, 0.0, 1.0, size);
     var out: Tables;
     out.m_table = vec4<f32>(longitudinal(m, sin_i, sin_r), cos_theta_d(sin_i, sin_r));
-    out.n_table = vec4<f32>(azimuthal(m, cos_phi, cos_td), 0.0);
+    let n = azimuthal(m, cos_phi, cos_td, vec3<f32>(0.0));
+    out.n_table = vec4<f32>(n.clear, n.length);
     return out;
 }
