@@ -37,12 +37,19 @@
 
 @group(1) @binding(31) var light_maps: texture_2d<f32>;
 
-// Xing et al.'s lookup: Kajiya-Kay's diffuse and specular environment light.
+// Xing et al.'s lookup: Kajiya-Kay's diffuse and specular environment light,
+// on the key light's cone. The maps hold the paper's mirror cone,
+// cos^p(π − θ − θ′) (eq. 6); plait::kajiya_kay (the shading provider) has
+// Halén & Wester 2007's printed (t·l)(t·e′) + sin sin = cos^p(θ − θ′), the
+// cone through the light (docs/design.md, "Which Kajiya-Kay cone"). Map
+// π − θ′ holds cos^p(θ − θ′), so reading the maps there lights the fibre
+// with the response the key light has, and environment_reference (which
+// sums that response) is the maps' ground truth.
 fn kajiya_kay_maps(t: vec3<f32>, to_eye: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
     let dims = textureDimensions(light_maps);
     let intervals = dims.y / (dims.x / 6u) - 2u;
     let theta_eye = clamp(acos(clamp(dot(t, to_eye), -1.0, 1.0)) + frame.hair_shading.w, 0.0, PI);
-    let f = theta_eye / PI * f32(intervals);
+    let f = (PI - theta_eye) / PI * f32(intervals);
     let m0 = min(u32(floor(f)), intervals);
     let m1 = min(m0 + 1u, intervals);
     let a = f - f32(m0);
