@@ -16,7 +16,11 @@ use plait_tests::{open_gpu, repo_root};
 const GRID: (u32, u32) = (32, 8);
 
 const SHADINGS: [&str; 3] = ["kajiya_kay", "chiang", "marschner"];
-const LIGHTINGS: [&str; 3] = ["environment_reference", "irradiance_maps", "sh_irradiance_maps"];
+const LIGHTINGS: [&str; 3] = [
+    "environment_reference",
+    "irradiance_maps",
+    "sh_irradiance_maps",
+];
 
 /// The environment term and the fibre's uniform response × the cube's first
 /// texel, per grid point (rgb).
@@ -198,15 +202,20 @@ fn on_a_studio_environment_the_maps_light_chiang_within_their_measured_error() {
 #[test]
 fn the_maps_lookup_names_every_fibre_but_kajiya_kay() {
     let root = repo_root();
-    let lookup = std::fs::read_to_string(root.join("techniques/lighting/irradiance_maps/lighting.wgsl"))
-        .expect("the lookup reads");
+    let lookup =
+        std::fs::read_to_string(root.join("techniques/lighting/irradiance_maps/lighting.wgsl"))
+            .expect("the lookup reads");
     let mut missing = Vec::new();
     for entry in std::fs::read_dir(root.join("techniques/shading")).expect("techniques/shading") {
         let path = entry.expect("an entry").path();
         if !path.join("technique.toml").is_file() {
             continue;
         }
-        let name = path.file_name().expect("a name").to_string_lossy().to_string();
+        let name = path
+            .file_name()
+            .expect("a name")
+            .to_string_lossy()
+            .to_string();
         if name == "kajiya_kay" {
             continue;
         }
