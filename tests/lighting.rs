@@ -146,9 +146,13 @@ fn render_lighting(gpu: &plait_gpu::Gpu, scene: &SceneData, lighting: &str) -> i
 
 // Image RMSE (8-bit sRGB, 0..1) against the brute-force reference on
 // env.toml at 128×96 (a third of its strands, strand coverage off),
-// measured on lavapipe:
-// irradiance maps 0.0063, SH maps 0.0065, the constant ambient light 0.0368
-// (most pixels are background, equal in all). Before the environment's
+// measured on lavapipe (Mesa 25.0.7):
+// irradiance maps 0.0055, SH maps 0.0059, the constant ambient light 0.0496
+// (most pixels are background, equal in all). Since issue 47 the reference
+// sums the shading point's own Kajiya-Kay (the key light's cone,
+// cos^p(θ − θ′), and its exact cos θi per light) and the maps are read at
+// π − θ′ to match it; against the old reference (the paper's mirror cone)
+// they were 0.0063, 0.0065 and 0.0368. Before the environment's
 // specular was put in the units of the key light's energy-normalized cone
 // (plait::kajiya_kay::kk_environment_specular_units, π/(2∫cos^p)·sin θ′ ≈
 // 4.9·sin θ′ at p = 60) they were 0.0020, 0.0020 and 0.0280: the maps'

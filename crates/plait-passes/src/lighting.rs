@@ -31,7 +31,14 @@ pub fn params(library: &plait_gpu::PassLibrary) -> Vec<ParamSpec> {
 /// fragment: s · (6s + 1) + s + 1 loop laps (24,705 at 64). lavapipe ends
 /// every loop of a group of 8 fragments after 65,535 laps in all (docs/
 /// design.md, "Loop budgets"; measured: s = 105 cut), and the fragment's
-/// other providers loop too, so the cap leaves them ~40,000.
+/// other providers loop too, so the cap leaves them ~40,000. Each lap
+/// evaluates the chosen fibre's response to one texel (issue 47): counted
+/// as one lap, which holds for `kajiya_kay` and `marschner` (closed form,
+/// tables) but not for `chiang` (a 64-lap mean over the width per texel) or
+/// `marschner_reference` (bisections): on a lavapipe with the budget (Mesa
+/// 22.3) those sums would be cut from small sizes on. Mesa 25.0.7, the
+/// driver the scripts install, has none (`Gpu::loop_budget`); a check by
+/// the fibre is not made here.
 pub const MAX_REFERENCE_ENVIRONMENT: u32 = 64;
 
 /// A pass binding a `light_environment` cube larger than
