@@ -96,7 +96,9 @@ fn map_vertex(v: MapVertex, size: vec2<u32>) -> MapFragment {
     return out;
 }
 
-// A vertex of a line-only draw (MapLineVertex): every segment one texel wide.
+// A vertex of a line-only draw (MapLineVertex): every segment one texel
+// wide. Such a draw (depth only) reads no share, so no map size is needed:
+// 1 stands in for it.
 fn map_line_vertex(v: MapLineVertex) -> MapFragment {
     return map_vertex_at(map_view(vec2<u32>(1u)), v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
 }
