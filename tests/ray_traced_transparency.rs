@@ -11,6 +11,8 @@
 //!   what the raster techniques' lines and quads cover);
 //! - the same stack with `ray_layers` capped: the hits past the cap are
 //!   counted, exactly, and the image is the blend of the front layers;
+//! - the stack's structure as DOTS (two crossed quads per segment) finds
+//!   the swept spheres' hits, each segment once;
 //! - the small scene against depth peeling at 4 × 4 supersampling (the
 //!   pixel as a box, the convention ray_traced's coverage follows): closer
 //!   than every other transparency technique, depth peeling at the same
@@ -194,6 +196,32 @@ fn a_stack_of_strands_is_blended_front_to_back() {
         // rgba16float: 2⁻¹¹ relative.
         assert!(worst < 2e-3, "{label}: largest |Δ| {worst}");
         assert!(order > 0.05, "{label}: the order does not show ({order})");
+    }
+}
+
+/// With `ray_strand_primitive = "dots"` the primary rays' candidates are
+/// each segment's two crossed quads (four triangles) of the widened
+/// vertices, widened √2 more, and a segment's hit is taken once however
+/// many of its triangles the ray meets (plait::strand_dots): the hits, hence
+/// the image, are the swept spheres', for the stack of strands narrower and
+/// wider than a pixel. Kills taking every reported triangle (a strand
+/// blended twice where the ray crosses both quads) and the missing √2
+/// (the wide strands' edges lost where the ray passes between the quads).
+#[test]
+fn dots_find_the_hits_swept_spheres_find() {
+    let (_lock, gpu) = open_gpu();
+    for (label, width) in [
+        ("0.46 px", WIDTH_PER_DEPTH),
+        ("2.7 px", 6.0 * WIDTH_PER_DEPTH),
+    ] {
+        let scene = stack_scene(&[0, 1, 2, 3], width);
+        let (spheres, _) = hair(&gpu, PIPELINE, &sets(&[]), &scene, SIZE);
+        let dots = sets(&["params.ray_strand_primitive=\"dots\""]);
+        let (quads, _) = hair(&gpu, PIPELINE, &dots, &scene, SIZE);
+        let (worst, covered) = largest_difference(&quads, &spheres);
+        println!("{label}: {covered} pixels covered, largest |Δ| dots vs swept spheres {worst:.5}");
+        assert!(covered > 20, "{label}: the stack covers {covered} pixels");
+        assert!(worst < 2e-3, "{label}: largest |Δ| {worst}");
     }
 }
 
