@@ -55,12 +55,21 @@ const WIDTH_PER_DEPTH: f32 = 0.004;
 /// eye + λ_j (ahead + side · τ), so every strand lies on the same rays from
 /// the eye and projects onto the same pixels.
 fn stack_strand(depth: f32) -> Vec<Vec3> {
+    stack_strand_tilted(depth, 0.0)
+}
+
+/// `stack_strand` running `tilt` units of depth per unit across (still on
+/// the same rays from the eye for every depth): at tilt 1 a strand's DOTS
+/// quads (plait::strand_dots, spanning the directions across it from the
+/// world's y axis) stand near 45° to the view, where a ray between them
+/// meets the crossed quads only within 1/√2 of their half-width.
+fn stack_strand_tilted(depth: f32, tilt: f32) -> Vec<Vec3> {
     let eye = Vec3::new(2.0, 0.5, 7.6);
     let ahead = (Vec3::new(0.0, -0.6, 0.0) - eye).normalize();
     let side = ahead.cross(Vec3::Y).normalize();
     let up = side.cross(ahead);
     // Tilted, so the line crosses pixel rows rather than running along one.
-    let across = (side + 0.35 * up).normalize();
+    let across = (side + 0.35 * up).normalize() + tilt * ahead;
     // Three segments of ~23 px each at 96×72: a rasterized line list draws
     // the pixel at a joint once per segment, which on segments of a few
     // pixels would add several per cent to the raster's Σα.
@@ -74,12 +83,17 @@ fn stack_strand(depth: f32) -> Vec<Vec3> {
 /// corners of the whole stack's bounds keep the light's frustum (fitted to
 /// the hair) the same whichever strands are drawn.
 fn stack_scene(which: &[usize], width_per_depth: f32) -> SceneData {
+    stack_scene_tilted(which, width_per_depth, 0.0)
+}
+
+/// `stack_scene` of [`stack_strand_tilted`] strands.
+fn stack_scene_tilted(which: &[usize], width_per_depth: f32, tilt: f32) -> SceneData {
     let path = repo_root().join("examples/scenes/small.toml");
     let mut scene = SceneData::load(Some(&path)).expect("examples/scenes/small.toml loads");
     let mut strands = plait_hair::Strands::new();
     let all: Vec<Vec3> = STACK
         .iter()
-        .flat_map(|&(depth, _, _)| stack_strand(depth))
+        .flat_map(|&(depth, _, _)| stack_strand_tilted(depth, tilt))
         .collect();
     let (lo, hi) = all.iter().fold(
         (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
@@ -92,7 +106,7 @@ fn stack_scene(which: &[usize], width_per_depth: f32) -> SceneData {
         let (depth, alpha, color) = STACK[j];
         let width = width_per_depth * depth;
         strands.push_strand(
-            &stack_strand(depth),
+            &stack_strand_tilted(depth, tilt),
             |_| width,
             |_| alpha,
             Vec3::from(color),
@@ -204,17 +218,21 @@ fn a_stack_of_strands_is_blended_front_to_back() {
 /// vertices, widened √2 more, and a segment's hit is taken once however
 /// many of its triangles the ray meets (plait::strand_dots): the hits, hence
 /// the image, are the swept spheres', for the stack of strands narrower and
-/// wider than a pixel. Kills taking every reported triangle (a strand
-/// blended twice where the ray crosses both quads) and the missing √2
-/// (the wide strands' edges lost where the ray passes between the quads).
+/// wider than a pixel, in the image plane (one quad faces the eye) and
+/// tilted 45° in depth (both quads near 45° to the view). Kills taking
+/// every reported triangle (a strand blended twice where the ray crosses
+/// both quads) and the missing √2 (the tilted wide strands' edges lost
+/// where the ray passes between the quads).
 #[test]
 fn dots_find_the_hits_swept_spheres_find() {
     let (_lock, gpu) = open_gpu();
-    for (label, width) in [
-        ("0.46 px", WIDTH_PER_DEPTH),
-        ("2.7 px", 6.0 * WIDTH_PER_DEPTH),
+    for (label, width, tilt) in [
+        ("0.46 px", WIDTH_PER_DEPTH, 0.0),
+        ("2.7 px", 6.0 * WIDTH_PER_DEPTH, 0.0),
+        ("0.46 px tilted", WIDTH_PER_DEPTH, 1.0),
+        ("2.7 px tilted", 6.0 * WIDTH_PER_DEPTH, 1.0),
     ] {
-        let scene = stack_scene(&[0, 1, 2, 3], width);
+        let scene = stack_scene_tilted(&[0, 1, 2, 3], width, tilt);
         let (spheres, _) = hair(&gpu, PIPELINE, &sets(&[]), &scene, SIZE);
         let dots = sets(&["params.ray_strand_primitive=\"dots\""]);
         let (quads, _) = hair(&gpu, PIPELINE, &dots, &scene, SIZE);

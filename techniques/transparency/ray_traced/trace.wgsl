@@ -122,6 +122,42 @@ fn hit_segment(origin: vec3<f32>, dir: vec3<f32>, s: u32, opaque: f32) -> Hit {
     return Hit(approach.x, along, a);
 }
 
+// Whether the ray crosses the DOTS quads of segment `s` (of the widened
+// vertices), which the structure then reports itself.
+fn dots_crossed(origin: vec3<f32>, dir: vec3<f32>, s: u32) -> bool {
+    let w0 = primary_vertices[s];
+    let w1 = primary_vertices[s + 1u];
+    return w0.strand == w1.strand
+        && dots_crossing(origin, dir, w0.position, 0.5 * w0.thickness, w1.position, 0.5 * w1.thickness).y >= 0.0;
+}
+
+// The segment a DOTS crossing of segment `s` is a hit of: `s`, or the
+// neighbour of the same strand whose stretch of the axis holds the ray's
+// closest approach (hit_segment's owner, plait::strand_capsule) when the
+// ray, oblique to the strand near a joint, crosses `s`'s quads but passes
+// nearest the neighbour's axis — unless the ray crosses the neighbour's own
+// quads, which are reported and counted themselves.
+fn dots_owner(origin: vec3<f32>, dir: vec3<f32>, s: u32) -> u32 {
+    let a = primary_vertices[s].position;
+    let e = primary_vertices[s + 1u].position - a;
+    let w = origin - a;
+    let de = dot(dir, e);
+    let denom = dot(e, e) - de * de;
+    if (denom <= 1e-8 * dot(e, e)) {
+        return s;
+    }
+    let along = (dot(e, w) - de * dot(dir, w)) / denom;
+    let strand = primary_vertices[s].strand;
+    if (along < 0.0 && s > 0u && primary_vertices[s - 1u].strand == strand && !dots_crossed(origin, dir, s - 1u)) {
+        return s - 1u;
+    }
+    let next = s + 2u < arrayLength(&primary_vertices) && primary_vertices[s + 2u].strand == strand;
+    if (along >= 1.0 && next && !dots_crossed(origin, dir, s + 1u)) {
+        return s + 1u;
+    }
+    return s;
+}
+
 // Hits the ray met (held or not), for the overflow count.
 var<private> met: u32;
 
@@ -147,7 +183,7 @@ fn collect(origin: vec3<f32>, dir: vec3<f32>, base: u32, opaque: f32) -> u32 {
         if (c.kind != RAY_QUERY_INTERSECTION_AABB && !dots) {
             continue;
         }
-        let s = select(c.primitive_index, c.primitive_index / 4u, dots);
+        var s = select(c.primitive_index, c.primitive_index / 4u, dots);
         if (dots) {
             let w0 = primary_vertices[s];
             let w1 = primary_vertices[s + 1u];
@@ -155,6 +191,7 @@ fn collect(origin: vec3<f32>, dir: vec3<f32>, base: u32, opaque: f32) -> u32 {
             if (w0.strand != w1.strand || first.y != f32(c.primitive_index % 4u)) {
                 continue;
             }
+            s = dots_owner(origin, dir, s);
         }
         let h = hit_segment(origin, dir, s, opaque);
         if (h.t <= 0.0) {
