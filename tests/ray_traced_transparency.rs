@@ -54,12 +54,8 @@ const WIDTH_PER_DEPTH: f32 = 0.004;
 /// The small scene's camera: strand j of the stack is the points
 /// eye + λ_j (ahead + side · τ), so every strand lies on the same rays from
 /// the eye and projects onto the same pixels.
-fn stack_strand(depth: f32) -> Vec<Vec3> {
-    stack_strand_tilted(depth, 0.0)
-}
-
-/// `stack_strand` running `tilt` units of depth per unit across (still on
-/// the same rays from the eye for every depth): at tilt 1 a strand's DOTS
+/// With `tilt`, the strand runs `tilt` units of depth per unit across
+/// (still on the same rays from the eye for every depth): at tilt 1 a strand's DOTS
 /// quads (plait::strand_dots, spanning the directions across it from the
 /// world's y axis) stand near 45° to the view, where a ray between them
 /// meets the crossed quads only within 1/√2 of their half-width.
@@ -86,7 +82,7 @@ fn stack_scene(which: &[usize], width_per_depth: f32) -> SceneData {
     stack_scene_tilted(which, width_per_depth, 0.0)
 }
 
-/// `stack_scene` of [`stack_strand_tilted`] strands.
+/// `stack_scene` of strands tilted in depth ([`stack_strand_tilted`]).
 fn stack_scene_tilted(which: &[usize], width_per_depth: f32, tilt: f32) -> SceneData {
     let path = repo_root().join("examples/scenes/small.toml");
     let mut scene = SceneData::load(Some(&path)).expect("examples/scenes/small.toml loads");
