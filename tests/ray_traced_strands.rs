@@ -2,12 +2,18 @@
 //! the ray-traced strand count through it (issue 48): a ray from a point
 //! toward the light counts the strands it crosses beyond the self-shadow
 //! bias, each candidate box intersected as a tapered swept sphere
-//! (`shaders/lib/strand_capsule.wgsl`). Checked on one strand (its own
-//! strand never counts, one strand across the ray counts once) and on the
+//! (`shaders/lib/strand_capsule.wgsl`), or each segment's DOTS triangles
+//! counted once (`shaders/lib/strand_dots.wgsl`). Checked on one strand
+//! (its own strand never counts, one strand across the ray counts once), on
+//! one segment from many directions (DOTS: one crossing however many of its
+//! four triangles the ray meets, and the crossed quads' width), and on the
 //! slab of tests/strand_count.rs against its closed form k · WIDTH / SPACING.
 
 use glam::Vec3;
-use plait_gpu::strand_structure::{StrandStructure, StructureError, check_segments};
+use plait_gpu::strand_structure::{
+    StrandPrimitive, StrandStructure, StructureError, StructureOptions, check_primitives,
+    check_segments,
+};
 use plait_hair::StrandVertex;
 use plait_tests::{open_gpu, repo_root};
 use wgpu::util::DeviceExt;
@@ -35,8 +41,8 @@ fn strand(points: &[Vec3], width: f32, id: u32) -> Vec<StrandVertex> {
 const HAIR_POINT: &str = "struct HairPoint {\n    position: vec3<f32>,\n    thickness: f32,\n    tangent: vec3<f32>,\n    alpha: f32,\n    color: vec3<f32>,\n    strand: u32,\n}\n";
 
 /// The probe shader: the fixture after `enable`, HairPoint,
-/// plait::strand_capsule and plait::strand_rays, each library file without
-/// its directives (the text is one module).
+/// plait::strand_capsule, plait::strand_dots and plait::strand_rays, each
+/// library file without its directives (the text is one module).
 fn probe_shader() -> String {
     let read = |p: &str| std::fs::read_to_string(repo_root().join(p)).expect(p);
     let library = |p: &str| -> String {
@@ -47,13 +53,21 @@ fn probe_shader() -> String {
             .collect()
     };
     let capsule = library("shaders/lib/strand_capsule.wgsl");
+    let dots = library("shaders/lib/strand_dots.wgsl");
     let rays = library("shaders/lib/strand_rays.wgsl");
     let fixture = read("tests/fixtures/strand_trace_probe.wgsl");
-    format!("enable wgpu_ray_query;\n{HAIR_POINT}\n{capsule}\n{rays}\n{fixture}")
+    format!("enable wgpu_ray_query;\n{HAIR_POINT}\n{capsule}\n{dots}\n{rays}\n{fixture}")
 }
 
-/// Strands crossed from each point toward `to_light`, traced on the GPU.
-fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32) -> Vec<f32> {
+/// Strands crossed from each point toward `to_light`, traced on the GPU
+/// through a structure of `primitive`s.
+fn counts(
+    primitive: StrandPrimitive,
+    vertices: &[StrandVertex],
+    points: &[Vec3],
+    to_light: Vec3,
+    bias: f32,
+) -> Vec<f32> {
     let (_lock, gpu) = open_gpu();
     assert!(
         gpu.capabilities.ray_query,
@@ -74,8 +88,13 @@ fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32)
         bytemuck::cast_slice(vertices),
         wgpu::BufferUsages::empty(),
     );
-    let structure =
-        StrandStructure::new(&gpu, &hair, vertices.len() as u32, None).expect("the structure");
+    let options = StructureOptions {
+        primitive,
+        meshes: None,
+    };
+    let structure = StrandStructure::with(&gpu, (&hair, vertices.len() as u32), options)
+        .expect("the structure");
+    assert_eq!(structure.primitive(), primitive);
     let p4: Vec<[f32; 4]> = points.iter().map(|p| [p.x, p.y, p.z, 0.0]).collect();
     let probe_points = storage(
         "points",
@@ -167,9 +186,17 @@ fn counts(vertices: &[StrandVertex], points: &[Vec3], to_light: Vec3, bias: f32)
 /// slanted in the x-y plane. Points on its axis (its own strand, behind no
 /// other) count 0; points 0.05 below it along the light count 1 when the
 /// ray passes within half the width of the axis, 0 when just outside; a
-/// point through a joint between two segments counts 1, not 2.
+/// point through a joint between two segments counts 1, not 2. As swept
+/// spheres and as DOTS (the strand along x: quad 0 spans z, which the light
+/// in the x-y plane crosses square on, quad 1 lies in the light's plane).
 #[test]
 fn one_strand_counts_once_and_never_itself() {
+    for primitive in [StrandPrimitive::SweptSphere, StrandPrimitive::Dots] {
+        one_strand(primitive);
+    }
+}
+
+fn one_strand(primitive: StrandPrimitive) {
     let width = 0.005;
     let axis: Vec<Vec3> = (0..=4)
         .map(|i| Vec3::new(0.25 * i as f32 - 0.5, 0.0, 0.0))
@@ -188,13 +215,78 @@ fn one_strand_counts_once_and_never_itself() {
         ("above it", Vec3::new(0.1, 0.0, 0.0) + 0.05 * to_light, 0.0),
     ];
     let points: Vec<Vec3> = cases.iter().map(|c| c.1).collect();
-    let found = counts(&vertices, &points, to_light, BIAS);
+    let found = counts(primitive, &vertices, &points, to_light, BIAS);
     let wrong: Vec<String> = cases
         .iter()
         .zip(&found)
         .filter(|((_, _, want), got)| *got != want)
         .map(|((what, _, want), got)| format!("{what}: {got}, expected {want}"))
         .collect();
+    assert!(wrong.is_empty(), "{primitive:?}: {wrong:#?}");
+}
+
+/// One segment along x (width 0.01, so half-width r = 0.005; DOTS quad 0
+/// spans z, quad 1 y) and rays toward it from 24 directions around its axis
+/// (every 15°, so some square to a quad, some along one, some between the
+/// two) and tilted 0° and 40° out of the plane across it, each from a point
+/// 0.1 before the axis point 0.3 along it (off the middle, where a ray
+/// through the axis would also run through both quads' diagonals: a
+/// triangle's edge, where which triangle the driver reports and which
+/// plait::strand_dots picks may differ): passing at ρ from the axis, 0 and 0.3 r
+/// aside, the ray crosses both of DOTS' quads (or one, along the other)
+/// and counts 1; 0.9 r aside it meets DOTS only where a quad reaches it —
+/// where ρ ≤ r · max(|cos φ|, |sin φ|), φ the offset's angle to quad 0 —
+/// and the swept sphere always. Kills counting each reported triangle
+/// (2 through the axis) and counting one quad only (0 along quad 0).
+#[test]
+fn one_segment_counts_once_from_every_direction() {
+    let width = 0.01;
+    let r = 0.5 * width;
+    let vertices = strand(
+        &[Vec3::new(-0.1, 0.0, 0.0), Vec3::new(0.1, 0.0, 0.0)],
+        width,
+        0,
+    );
+    let mut wrong = Vec::new();
+    for primitive in [StrandPrimitive::SweptSphere, StrandPrimitive::Dots] {
+        for tilt in [0.0f32, 40.0] {
+            for step in 0..24 {
+                let theta = (15.0 * step as f32).to_radians();
+                // The ray's direction: across the axis at theta from +z
+                // (toward +y), tilted along x.
+                let across = Vec3::new(0.0, theta.sin(), theta.cos());
+                let dir = (across * tilt.to_radians().cos() + Vec3::X * tilt.to_radians().sin())
+                    .normalize();
+                // The offset: perpendicular to the axis and to the ray.
+                let side = Vec3::X.cross(across).normalize();
+                let cases = [(0.0, true), (0.3, true), (0.9, false)];
+                let points: Vec<Vec3> = cases
+                    .iter()
+                    .map(|(k, _)| Vec3::new(-0.04, 0.0, 0.0) + side * (k * r) - 0.1 * dir)
+                    .collect();
+                let found = counts(primitive, &vertices, &points, dir, 0.0);
+                // The offset's angle to quad 0 (z): side is across rotated by 90°.
+                let phi = theta + std::f32::consts::FRAC_PI_2;
+                let reach = phi.cos().abs().max(phi.sin().abs());
+                for ((k, always), got) in cases.iter().zip(&found) {
+                    let want = match primitive {
+                        StrandPrimitive::SweptSphere => 1.0,
+                        StrandPrimitive::Dots if *always => 1.0,
+                        // Clear of the edge by 2 %: no ray within rounding of it.
+                        StrandPrimitive::Dots if k * 1.02 < reach => 1.0,
+                        StrandPrimitive::Dots if *k > reach * 1.02 => 0.0,
+                        StrandPrimitive::Dots => continue,
+                    };
+                    if *got != want {
+                        wrong.push(format!(
+                            "{primitive:?}, {:.0}° around, {tilt}° tilted, {k} r aside: {got}, expected {want}",
+                            theta.to_degrees()
+                        ));
+                    }
+                }
+            }
+        }
+    }
     assert!(wrong.is_empty(), "{wrong:#?}");
 }
 
@@ -230,6 +322,14 @@ fn slab() -> Vec<StrandVertex> {
 /// tests/strand_count.rs; above the slab it is 0.
 #[test]
 fn the_slab_counts_k_layers_as_the_closed_form() {
+    for primitive in [StrandPrimitive::SweptSphere, StrandPrimitive::Dots] {
+        slab_counts(primitive);
+    }
+}
+
+/// The slab as `primitive`: the light crosses quad 0 square on (it spans z,
+/// across every strand along x), so DOTS' crossed width is the strand's.
+fn slab_counts(primitive: StrandPrimitive) {
     let to_light = Vec3::new(0.3, 1.0, 0.0).normalize();
     let n = 4096;
     let mut points = Vec::new();
@@ -241,21 +341,21 @@ fn the_slab_counts_k_layers_as_the_closed_form() {
             points.push(Vec3::new(x, y, z));
         }
     }
-    let found = counts(&slab(), &points, to_light, BIAS);
+    let found = counts(primitive, &slab(), &points, to_light, BIAS);
     let per_layer = f64::from(WIDTH / SPACING);
     let means: Vec<f64> = found
         .chunks(n)
         .map(|c| c.iter().map(|&v| f64::from(v)).sum::<f64>() / n as f64)
         .collect();
     eprintln!(
-        "ray_traced mean counts below k = 0..={LAYERS} layers: {means:?} (closed form k · {per_layer})"
+        "{primitive:?}: mean counts below k = 0..={LAYERS} layers: {means:?} (closed form k · {per_layer})"
     );
     assert_eq!(means[0], 0.0, "above the slab: {means:?}");
     for (k, mean) in means.iter().enumerate().skip(1) {
         let ratio = mean / (k as f64 * per_layer);
         assert!(
             (ratio - 1.0).abs() <= 0.05,
-            "k = {k}: ratio {ratio} ({means:?})"
+            "{primitive:?}, k = {k}: ratio {ratio} ({means:?})"
         );
     }
 }
@@ -273,13 +373,29 @@ fn too_many_segments_are_refused_with_the_numbers() {
         e,
         StructureError::TooManySegments {
             segments: 16_777_216,
+            primitives: 16_777_216,
+            primitive: StrandPrimitive::SweptSphere,
             limit: 16_777_215,
             adapter: "`lavapipe`".into()
         }
     );
+    // DOTS: four triangles per segment, so a quarter of the segments fit.
+    let dots = StrandPrimitive::Dots;
+    assert_eq!(
+        check_primitives(4_194_303, dots, &caps, "`lavapipe`"),
+        Ok(())
+    );
+    let text = check_primitives(4_194_304, dots, &caps, "`lavapipe`")
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        text.contains("4194304 segments, 16777216 primitives as dots (4 per segment), more than the 16777215 primitives"),
+        "{text}"
+    );
+    assert!(text.contains("primitive = \"swept_sphere\""), "{text}");
     let text = e.to_string();
     assert!(
-        text.contains("16777216 segments, more than the 16777215 primitives"),
+        text.contains("16777216 segments, 16777216 primitives as swept_sphere (1 per segment), more than the 16777215 primitives"),
         "{text}"
     );
     caps.ray_query = false;

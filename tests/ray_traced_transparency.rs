@@ -11,6 +11,8 @@
 //!   what the raster techniques' lines and quads cover);
 //! - the same stack with `ray_layers` capped: the hits past the cap are
 //!   counted, exactly, and the image is the blend of the front layers;
+//! - the stack's structure as DOTS (two crossed quads per segment) finds
+//!   the swept spheres' hits, each segment once;
 //! - the small scene against depth peeling at 4 × 4 supersampling (the
 //!   pixel as a box, the convention ray_traced's coverage follows): closer
 //!   than every other transparency technique, depth peeling at the same
@@ -52,13 +54,18 @@ const WIDTH_PER_DEPTH: f32 = 0.004;
 /// The small scene's camera: strand j of the stack is the points
 /// eye + λ_j (ahead + side · τ), so every strand lies on the same rays from
 /// the eye and projects onto the same pixels.
-fn stack_strand(depth: f32) -> Vec<Vec3> {
+/// With `tilt`, the strand runs `tilt` units of depth per unit across
+/// (still on the same rays from the eye for every depth): at tilt 1 a strand's DOTS
+/// quads (plait::strand_dots, spanning the directions across it from the
+/// world's y axis) stand near 45° to the view, where a ray between them
+/// meets the crossed quads only within 1/√2 of their half-width.
+fn stack_strand_tilted(depth: f32, tilt: f32) -> Vec<Vec3> {
     let eye = Vec3::new(2.0, 0.5, 7.6);
     let ahead = (Vec3::new(0.0, -0.6, 0.0) - eye).normalize();
     let side = ahead.cross(Vec3::Y).normalize();
     let up = side.cross(ahead);
     // Tilted, so the line crosses pixel rows rather than running along one.
-    let across = (side + 0.35 * up).normalize();
+    let across = (side + 0.35 * up).normalize() + tilt * ahead;
     // Three segments of ~23 px each at 96×72. The rasterized lines'
     // (linked_list's) Σα on this one strand depends on the line's phase
     // against the pixel grid, not on its segments: at 3ae2d01 (0.46 px wide)
@@ -77,12 +84,17 @@ fn stack_strand(depth: f32) -> Vec<Vec3> {
 /// corners of the whole stack's bounds keep the light's frustum (fitted to
 /// the hair) the same whichever strands are drawn.
 fn stack_scene(which: &[usize], width_per_depth: f32) -> SceneData {
+    stack_scene_tilted(which, width_per_depth, 0.0)
+}
+
+/// `stack_scene` of strands tilted in depth ([`stack_strand_tilted`]).
+fn stack_scene_tilted(which: &[usize], width_per_depth: f32, tilt: f32) -> SceneData {
     let path = repo_root().join("examples/scenes/small.toml");
     let mut scene = SceneData::load(Some(&path)).expect("examples/scenes/small.toml loads");
     let mut strands = plait_hair::Strands::new();
     let all: Vec<Vec3> = STACK
         .iter()
-        .flat_map(|&(depth, _, _)| stack_strand(depth))
+        .flat_map(|&(depth, _, _)| stack_strand_tilted(depth, tilt))
         .collect();
     let (lo, hi) = all.iter().fold(
         (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
@@ -95,7 +107,7 @@ fn stack_scene(which: &[usize], width_per_depth: f32) -> SceneData {
         let (depth, alpha, color) = STACK[j];
         let width = width_per_depth * depth;
         strands.push_strand(
-            &stack_strand(depth),
+            &stack_strand_tilted(depth, tilt),
             |_| width,
             |_| alpha,
             Vec3::from(color),
@@ -199,6 +211,36 @@ fn a_stack_of_strands_is_blended_front_to_back() {
         // rgba16float: 2⁻¹¹ relative.
         assert!(worst < 2e-3, "{label}: largest |Δ| {worst}");
         assert!(order > 0.05, "{label}: the order does not show ({order})");
+    }
+}
+
+/// With `ray_strand_primitive = "dots"` the primary rays' candidates are
+/// each segment's two crossed quads (four triangles) of the widened
+/// vertices, widened √2 more, and a segment's hit is taken once however
+/// many of its triangles the ray meets (plait::strand_dots): the hits, hence
+/// the image, are the swept spheres', for the stack of strands narrower and
+/// wider than a pixel, in the image plane (one quad faces the eye) and
+/// tilted 45° in depth (both quads near 45° to the view). Kills taking
+/// every reported triangle (a strand blended twice where the ray crosses
+/// both quads) and the missing √2 (the tilted wide strands' edges lost
+/// where the ray passes between the quads).
+#[test]
+fn dots_find_the_hits_swept_spheres_find() {
+    let (_lock, gpu) = open_gpu();
+    for (label, width, tilt) in [
+        ("0.46 px", WIDTH_PER_DEPTH, 0.0),
+        ("2.7 px", 6.0 * WIDTH_PER_DEPTH, 0.0),
+        ("0.46 px tilted", WIDTH_PER_DEPTH, 1.0),
+        ("2.7 px tilted", 6.0 * WIDTH_PER_DEPTH, 1.0),
+    ] {
+        let scene = stack_scene_tilted(&[0, 1, 2, 3], width, tilt);
+        let (spheres, _) = hair(&gpu, PIPELINE, &sets(&[]), &scene, SIZE);
+        let dots = sets(&["params.ray_strand_primitive=\"dots\""]);
+        let (quads, _) = hair(&gpu, PIPELINE, &dots, &scene, SIZE);
+        let (worst, covered) = largest_difference(&quads, &spheres);
+        println!("{label}: {covered} pixels covered, largest |Δ| dots vs swept spheres {worst:.5}");
+        assert!(covered > 20, "{label}: the stack covers {covered} pixels");
+        assert!(worst < 2e-3, "{label}: largest |Δ| {worst}");
     }
 }
 

@@ -1,11 +1,13 @@
 enable wgpu_ray_query;
 // plait::strand_rays — the one loop every ray-traced technique walks a ray
 // through the strands' acceleration structure with (self_shadow =
-// ray_traced, ambient_occlusion = ray_traced, tests/ray_traced_strands.rs):
-// each candidate box (one per segment, crates/plait-gpu/src/strand_structure.rs)
-// is intersected as its segment's tapered swept sphere
-// (plait::strand_capsule), and the crossings between `near` and `far` are
-// counted. A box of two vertices of different strands is no segment. The
+// ray_traced, ambient_occlusion = ray_traced, tests/ray_traced_strands.rs).
+// The structure holds each segment (crates/plait-gpu/src/strand_structure.rs,
+// its `primitive`) either as a box, each candidate box intersected as its
+// segment's tapered swept sphere (plait::strand_capsule), or as DOTS, four
+// triangles whose reports count the segment once (plait::strand_dots); the
+// crossings between `near` and `far` are counted. A candidate of two
+// vertices of different strands is no segment. The
 // scene's meshes are triangle instances of the same structure, asked for by
 // mask (`ray_hits`' mesh_far): a mesh hit is opaque.
 //
@@ -22,6 +24,7 @@ enable wgpu_ray_query;
 
 #import plait::hair_point::HairPoint
 #import plait::strand_capsule::strand_crossing
+#import plait::strand_dots::dots_candidate
 
 // The strands' acceleration structure (the strand_structure pass's output).
 @group(1) @binding(8) var vis_strands: acceleration_structure;
@@ -33,6 +36,9 @@ enable wgpu_ray_query;
 // (head, ground, [[meshes]]) as triangle instances.
 const STRAND_INSTANCES: u32 = 1u;
 const MESH_INSTANCES: u32 = 2u;
+// The strands' instance's custom data (the meshes' are 1, 2, …): what tells a
+// DOTS triangle of a strand from a mesh's triangle.
+const STRAND_INSTANCE_DATA: u32 = 0u;
 
 // What one ray meets: the strands it crosses, and whether a mesh stops it.
 struct RayHits {
@@ -56,22 +62,30 @@ fn ray_hits(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, mesh_far: f3
     var hits = RayHits(0.0, false);
     while (rayQueryProceed(&rq)) {
         let c = rayQueryGetCandidateIntersection(&rq);
-        if (c.kind == RAY_QUERY_INTERSECTION_TRIANGLE) {
+        let dots = c.kind == RAY_QUERY_INTERSECTION_TRIANGLE && c.instance_custom_data == STRAND_INSTANCE_DATA;
+        if (c.kind == RAY_QUERY_INTERSECTION_TRIANGLE && !dots) {
             if (c.t > near && c.t < mesh_far) {
                 hits.blocked = true;
                 break;
             }
             continue;
         }
-        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
+        if (c.kind != RAY_QUERY_INTERSECTION_AABB && !dots) {
             continue;
         }
-        let a = vis_hair[c.primitive_index];
-        let b = vis_hair[c.primitive_index + 1u];
+        // A box is segment i; DOTS triangles 4i … 4i + 3 are.
+        let segment = select(c.primitive_index, c.primitive_index / 4u, dots);
+        let a = vis_hair[segment];
+        let b = vis_hair[segment + 1u];
         if (a.strand != b.strand) {
             continue;
         }
-        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        var t: f32;
+        if (dots) {
+            t = dots_candidate(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness, c.primitive_index % 4u);
+        } else {
+            t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        }
         if (t > near && t < far) {
             hits.strands += 1.0;
         }

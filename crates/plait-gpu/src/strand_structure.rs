@@ -1,28 +1,45 @@
-//! The frame's strands in an acceleration structure (issue 48): one
-//! procedural box per segment enclosing its tapered swept sphere (the
-//! tapered capsules issue 48 describes for RTX Hair; the radius is half the strand's thickness at each
-//! end), written by a compute pass from the hair's vertex buffer as it is
+//! The frame's strands in an acceleration structure (issue 48), each
+//! segment (a pair of consecutive vertices of one strand) as its
+//! [`StrandPrimitive`]: one procedural box enclosing its tapered swept
+//! sphere (the tapered capsules issue 48 describes for RTX Hair; the radius
+//! is half the strand's thickness at each end), or DOTS — two quads crossed
+//! along its axis, four triangles of the same half-widths, NVIDIA's
+//! representation before linear swept spheres. A compute pass writes the
+//! boxes or the triangles' corners from the hair's vertex buffer as it is
 //! this frame (after simulation and level of detail), then a bottom-level
-//! structure built from the boxes and a top-level one holding it once.
-//! Both are built again every frame ([`StrandStructure::encode`]): the hair
-//! moves. Ray-traced techniques trace through [`StrandStructure::tlas`] and
-//! intersect each candidate box as a capsule in WGSL, all with the one loop
-//! of `shaders/lib/strand_rays.wgsl` (`shaders/lib/strand_capsule.wgsl`).
+//! structure is built from them and a top-level one holding it once. Both
+//! are built again every frame ([`StrandStructure::encode`]): the hair
+//! moves. Ray-traced techniques trace through [`StrandStructure::tlas`] with
+//! the one loop of `shaders/lib/strand_rays.wgsl`, which intersects each
+//! candidate box as a capsule (`shaders/lib/strand_capsule.wgsl`) and counts
+//! each segment's DOTS triangles once (`shaders/lib/strand_dots.wgsl`).
 //!
 //! The scene's meshes (head, ground, `[[meshes]]`) are in the top-level
-//! structure too: one triangle bottom-level structure per mesh, built once
-//! (meshes do not deform), each an instance whose transform is the frame's
-//! `head_model` for the head's meshes (their vertices are at rest, as the
-//! opaque passes draw them) and the identity for the rest, set on every
-//! build. Instance masks tell them apart: [`STRAND_MASK`] for the strands'
-//! boxes, [`MESH_MASK`] for the meshes, so a ray asks for either or both
-//! (`plait::strand_rays`); a mesh hit is opaque.
+//! structure too, unless left out (a structure whose rays mask them out):
+//! one triangle bottom-level structure per mesh, built once (meshes do not
+//! deform; [`StrandStructure::build_meshes`]), each an instance whose
+//! transform is the frame's `head_model` for the head's meshes (their
+//! vertices are at rest, as the opaque passes draw them) and the identity
+//! for the rest, set on every build. Instance masks tell them apart:
+//! [`STRAND_MASK`] for the strands, [`MESH_MASK`] for the meshes, so a ray
+//! asks for either or both (`plait::strand_rays`); a mesh hit is opaque. The
+//! strands' instance has custom data 0, the meshes' 1, 2, …: what tells a
+//! strand's DOTS triangle from a mesh's.
+
+mod limits;
+mod meshes;
+mod sizes;
 
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, Ordering};
 
-use crate::geometry::{OpaqueMesh, OpaqueVertex, SceneGeometry};
+pub use limits::{
+    StrandPrimitive, StructureError, check_meshes, check_primitives, check_segments, segment_count,
+};
+pub use meshes::MeshInput;
+pub use sizes::{BuildSize, DriverSizes};
+
 use crate::{Capabilities, Gpu};
+use meshes::Meshes;
 
 /// Bytes per box: min.xyz, max.xyz (wgpu's smallest AABB stride).
 pub const BOX_STRIDE: u64 = wgpu::AABB_GEOMETRY_MIN_STRIDE;
@@ -35,141 +52,35 @@ pub const MESH_MASK: u8 = 0x02;
 /// The identity as a 3×4 row-major instance transform.
 const IDENTITY: [f32; 12] = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
 
-/// Why the strands cannot be put in a structure on this adapter.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum StructureError {
-    #[error(
-        "adapter {adapter} has no ray queries (wgpu's EXPERIMENTAL_RAY_QUERY, Vulkan's VK_KHR_ray_query); {}",
-        crate::support::RAY_QUERY_FIX
-    )]
-    NoRayQueries { adapter: String },
-    #[error(
-        "the hair has {segments} segments, more than the {limit} primitives one acceleration structure of adapter {adapter} holds (max_blas_primitive_count): draw fewer strands or fewer points per strand"
-    )]
-    TooManySegments {
-        segments: u64,
-        limit: u32,
-        adapter: String,
-    },
-    #[error(
-        "mesh `{mesh}` has {triangles} triangles, more than the {limit} primitives one acceleration structure of adapter {adapter} holds (max_blas_primitive_count): simplify the mesh"
-    )]
-    TooManyTriangles {
-        mesh: String,
-        triangles: u64,
-        limit: u32,
-        adapter: String,
-    },
-    #[error(
-        "the structure needs {instances} instances (the strands and {} meshes), more than the {limit} one top-level structure of adapter {adapter} holds (max_tlas_instance_count): merge meshes",
-        instances - 1
-    )]
-    TooManyInstances {
-        instances: u64,
-        limit: u32,
-        adapter: String,
-    },
+/// The strands' geometry as the bottom-level build takes it.
+enum StrandGeometry {
+    Boxes(wgpu::BlasAABBGeometrySizeDescriptor),
+    Dots(wgpu::BlasTriangleGeometrySizeDescriptor),
 }
 
-/// Boxes (one per pair of consecutive vertices) for `points` hair vertices.
-pub fn segment_count(points: u32) -> u64 {
-    u64::from(points.saturating_sub(1))
-}
+/// Rebuilt every frame, traced a few times per shaded point: a fast build.
+const STRAND_FLAGS: wgpu::AccelerationStructureFlags =
+    wgpu::AccelerationStructureFlags::PREFER_FAST_BUILD;
+const TOP_FLAGS: wgpu::AccelerationStructureFlags =
+    wgpu::AccelerationStructureFlags::PREFER_FAST_BUILD;
 
-/// Whether an adapter with `caps` holds `segments` boxes in one structure.
-pub fn check_segments(
-    segments: u64,
-    caps: &Capabilities,
-    adapter: &str,
-) -> Result<(), StructureError> {
-    let adapter = adapter.to_owned();
-    if !caps.ray_query {
-        return Err(StructureError::NoRayQueries { adapter });
-    }
-    if segments > u64::from(caps.max_blas_primitives) {
-        return Err(StructureError::TooManySegments {
-            segments,
-            limit: caps.max_blas_primitives,
-            adapter,
-        });
-    }
-    Ok(())
-}
-
-/// Whether an adapter with `caps` holds the meshes, `(name, triangles)`
-/// each, as one bottom-level structure each and one instance each beside
-/// the strands' in the top-level structure.
-pub fn check_meshes<'a>(
-    meshes: impl ExactSizeIterator<Item = (&'a str, u64)>,
-    caps: &Capabilities,
-    adapter: &str,
-) -> Result<(), StructureError> {
-    let instances = 1 + meshes.len() as u64;
-    for (mesh, triangles) in meshes {
-        if triangles > u64::from(caps.max_blas_primitives) {
-            return Err(StructureError::TooManyTriangles {
-                mesh: mesh.to_owned(),
-                triangles,
-                limit: caps.max_blas_primitives,
-                adapter: adapter.to_owned(),
-            });
-        }
-    }
-    if instances > u64::from(caps.max_tlas_instances) {
-        return Err(StructureError::TooManyInstances {
-            instances,
-            limit: caps.max_tlas_instances,
-            adapter: adapter.to_owned(),
-        });
-    }
-    Ok(())
-}
-
-/// The scene's opaque meshes as the structure takes them: the one vertex
-/// and index buffer every mesh is drawn from (`SceneGeometry::opaque`,
-/// which has `BLAS_INPUT` on a device with ray queries) and each mesh's
-/// stretch of it.
-#[derive(Clone, Copy)]
-pub struct MeshInput<'a> {
-    pub vertices: &'a wgpu::Buffer,
-    pub indices: &'a wgpu::Buffer,
-    pub meshes: &'a [OpaqueMesh],
-}
-
-impl<'a> MeshInput<'a> {
-    /// The geometry's meshes; `None` without any.
-    pub fn of(geometry: &'a SceneGeometry) -> Option<Self> {
-        let opaque = geometry.opaque.as_ref()?;
-        (!geometry.opaque_meshes.is_empty()).then_some(MeshInput {
-            vertices: &opaque.vertices,
-            indices: &opaque.indices,
-            meshes: &geometry.opaque_meshes,
-        })
-    }
-}
-
-/// One mesh's bottom-level structure.
-struct MeshBlas {
-    blas: wgpu::Blas,
-    size: wgpu::BlasTriangleGeometrySizeDescriptor,
-    first_index: u32,
-    head: bool,
-}
-
-/// The meshes' structures and the buffers they are built from.
-struct Meshes {
-    vertices: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    blas: Vec<MeshBlas>,
-    /// Whether `blas` are built (once, by the first [`StrandStructure::encode`]).
-    built: AtomicBool,
+/// How a structure is made: its strands' primitive, and whether the
+/// scene's meshes are in it.
+#[derive(Clone, Copy, Default)]
+pub struct StructureOptions<'a> {
+    pub primitive: StrandPrimitive,
+    /// `None`: no meshes (a scene without any, or a structure whose rays
+    /// mask them out).
+    pub meshes: Option<MeshInput<'a>>,
 }
 
 /// The structure of one hair vertex buffer and the scene's meshes, rebuilt
 /// by each [`encode`](StrandStructure::encode).
 pub struct StrandStructure {
-    boxes: wgpu::Buffer,
-    size: wgpu::BlasAABBGeometrySizeDescriptor,
+    primitive: StrandPrimitive,
+    /// Boxes (swept spheres) or triangle corners (DOTS), written each frame.
+    input: wgpu::Buffer,
+    geometry: StrandGeometry,
     blas: wgpu::Blas,
     meshes: Option<Meshes>,
     /// Locked to set the head's instance transforms before each build.
@@ -177,37 +88,63 @@ pub struct StrandStructure {
     pipeline: wgpu::ComputePipeline,
     bind_group: wgpu::BindGroup,
     segments: u32,
+    driver: Option<DriverSizes>,
 }
 
 impl StrandStructure {
-    /// A structure for `points` vertices of `hair_vertices` (48 B each,
-    /// `plait_hair::StrandVertex`) and `meshes`, refused with the numbers
-    /// when the adapter cannot hold it.
+    /// A structure of swept spheres for `points` vertices of `hair_vertices`
+    /// (48 B each, `plait_hair::StrandVertex`) and `meshes`, refused with the
+    /// numbers when the adapter cannot hold it.
     pub fn new(
         gpu: &Gpu,
         hair_vertices: &wgpu::Buffer,
         points: u32,
         meshes: Option<MeshInput<'_>>,
     ) -> Result<Self, StructureError> {
-        let adapter = gpu.support.describe();
-        Self::on(
-            &gpu.device,
-            (&gpu.capabilities, &adapter),
+        Self::with(
+            gpu,
             (hair_vertices, points),
-            meshes,
+            StructureOptions {
+                primitive: StrandPrimitive::SweptSphere,
+                meshes,
+            },
         )
+    }
+
+    /// [`StrandStructure::new`] with the strands as `options.primitive`.
+    pub fn with(
+        gpu: &Gpu,
+        hair: (&wgpu::Buffer, u32),
+        options: StructureOptions<'_>,
+    ) -> Result<Self, StructureError> {
+        let adapter = gpu.support.describe();
+        Self::on_with(&gpu.device, (&gpu.capabilities, &adapter), hair, options)
     }
 
     /// [`StrandStructure::new`] on `device`, whose adapter is described by
     /// its capabilities and name.
     pub fn on(
         device: &wgpu::Device,
-        (caps, adapter): (&Capabilities, &str),
-        (hair_vertices, points): (&wgpu::Buffer, u32),
+        adapter: (&Capabilities, &str),
+        hair: (&wgpu::Buffer, u32),
         meshes: Option<MeshInput<'_>>,
     ) -> Result<Self, StructureError> {
+        let options = StructureOptions {
+            primitive: StrandPrimitive::SweptSphere,
+            meshes,
+        };
+        Self::on_with(device, adapter, hair, options)
+    }
+
+    /// [`StrandStructure::with`] on `device`.
+    pub fn on_with(
+        device: &wgpu::Device,
+        (caps, adapter): (&Capabilities, &str),
+        (hair_vertices, points): (&wgpu::Buffer, u32),
+        StructureOptions { primitive, meshes }: StructureOptions<'_>,
+    ) -> Result<Self, StructureError> {
         let segments = segment_count(points).max(1);
-        check_segments(segments, caps, adapter)?;
+        check_primitives(segments, primitive, caps, adapter)?;
         let mesh_list = meshes.map_or(&[][..], |m| m.meshes);
         check_meshes(
             mesh_list
@@ -217,54 +154,94 @@ impl StrandStructure {
             adapter,
         )?;
         let segments = segments as u32;
-        let boxes = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("strand_boxes"),
-            size: u64::from(segments) * BOX_STRIDE,
+        let input = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(match primitive {
+                StrandPrimitive::SweptSphere => "strand_boxes",
+                StrandPrimitive::Dots => "strand_dots",
+            }),
+            size: u64::from(segments) * primitive.input_bytes(),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::BLAS_INPUT,
             mapped_at_creation: false,
         });
-        // Rebuilt every frame, traced a few times per shaded point: a fast
-        // build. Each box is reported to the shader at most once per ray, so
-        // a crossing is counted once.
-        let size = wgpu::BlasAABBGeometrySizeDescriptor {
-            primitive_count: segments,
-            flags: wgpu::AccelerationStructureGeometryFlags::NO_DUPLICATE_ANY_HIT_INVOCATION,
+        // Each primitive is reported to the shader at most once per ray, so
+        // a box's crossing is counted once (and a DOTS triangle's report
+        // once before plait::strand_dots picks one per segment).
+        let flags = wgpu::AccelerationStructureGeometryFlags::NO_DUPLICATE_ANY_HIT_INVOCATION;
+        let (geometry, sizes) = match primitive {
+            StrandPrimitive::SweptSphere => {
+                let size = wgpu::BlasAABBGeometrySizeDescriptor {
+                    primitive_count: segments,
+                    flags,
+                };
+                let sizes = wgpu::BlasGeometrySizeDescriptors::AABBs {
+                    descriptors: vec![size.clone()],
+                };
+                (StrandGeometry::Boxes(size), sizes)
+            }
+            StrandPrimitive::Dots => {
+                let size = wgpu::BlasTriangleGeometrySizeDescriptor {
+                    vertex_format: wgpu::VertexFormat::Float32x3,
+                    vertex_count: 12 * segments,
+                    index_format: None,
+                    index_count: None,
+                    flags,
+                };
+                let sizes = wgpu::BlasGeometrySizeDescriptors::Triangles {
+                    descriptors: vec![size.clone()],
+                };
+                (StrandGeometry::Dots(size), sizes)
+            }
         };
         let blas = device.create_blas(
             &wgpu::CreateBlasDescriptor {
                 label: Some("strands"),
-                flags: wgpu::AccelerationStructureFlags::PREFER_FAST_BUILD,
+                flags: STRAND_FLAGS,
                 update_mode: wgpu::AccelerationStructureUpdateMode::Build,
             },
-            wgpu::BlasGeometrySizeDescriptors::AABBs {
-                descriptors: vec![size.clone()],
+            sizes,
+        );
+        let mesh_indices: Vec<u32> = mesh_list.iter().map(|m| m.index_count).collect();
+        let instances = 1 + mesh_list.len() as u32;
+        let driver = sizes::driver_sizes(
+            device,
+            &sizes::Sizing {
+                primitive,
+                segments,
+                strand_flags: STRAND_FLAGS,
+                mesh_vertices: meshes.map_or(0, |m| m.vertex_count()),
+                mesh_indices: &mesh_indices,
+                mesh_flags: meshes::MESH_FLAGS,
+                instances,
+                top_flags: TOP_FLAGS,
             },
         );
-        let meshes = meshes.map(|m| mesh_structures(device, m));
-        let instances = 1 + meshes.as_ref().map_or(0, |m| m.blas.len());
+        let meshes = meshes.map(|m| Meshes::new(device, m));
         let tlas = device.create_tlas(&wgpu::CreateTlasDescriptor {
             label: Some("strands"),
-            max_instances: instances as u32,
-            flags: wgpu::AccelerationStructureFlags::PREFER_FAST_BUILD,
+            max_instances: instances,
+            flags: TOP_FLAGS,
             update_mode: wgpu::AccelerationStructureUpdateMode::Build,
         });
-        let (pipeline, bind_group) = box_pass(device, hair_vertices, &boxes);
+        let (pipeline, bind_group) = input_pass(device, primitive, hair_vertices, &input);
         let structure = StrandStructure {
-            boxes,
-            size,
+            primitive,
+            input,
+            geometry,
             blas,
             meshes,
             tlas: Mutex::new(tlas),
             pipeline,
             bind_group,
             segments,
+            driver,
         };
         structure.place_instances(IDENTITY);
         Ok(structure)
     }
 
     /// The top-level instances: the strands (their vertices are in world
-    /// space: the identity), then each mesh, the head's moved by `head`.
+    /// space: the identity; custom data 0), then each mesh (custom data 1,
+    /// 2, …), the head's moved by `head`.
     fn place_instances(&self, head: [f32; 12]) {
         let mut tlas = self.tlas.lock().unwrap_or_else(|e| e.into_inner());
         tlas[0] = Some(wgpu::TlasInstance::new(
@@ -285,10 +262,22 @@ impl StrandStructure {
         }
     }
 
-    /// The boxes from this frame's vertices, the meshes' structures the
-    /// first time, the head's instances moved by `head_model` (the frame's,
-    /// column-major as `FrameUniforms` holds it), then the strands' and the
-    /// top-level structures built.
+    /// The meshes' structures built by a submission of their own on `queue`,
+    /// the first time (nothing after): call before the frame's
+    /// [`encode`](Self::encode), whose encoder then leaves them out. Without
+    /// it every `encode` builds them again, so a frame whose encoder is
+    /// dropped unsubmitted never leaves the next one tracing unbuilt meshes.
+    pub fn build_meshes(&self, device: &wgpu::Device, queue: &wgpu::Queue) {
+        if let Some(m) = &self.meshes {
+            m.build_on(device, queue);
+        }
+    }
+
+    /// The boxes or triangles from this frame's vertices, the meshes'
+    /// structures unless [`build_meshes`](Self::build_meshes) submitted them,
+    /// the head's instances moved by `head_model` (the frame's, column-major
+    /// as `FrameUniforms` holds it), then the strands' and the top-level
+    /// structures built.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, head_model: [[f32; 4]; 4]) {
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -302,33 +291,34 @@ impl StrandStructure {
             pass.dispatch_workgroups(x, y, 1);
         }
         self.place_instances(row_major_3x4(head_model));
+        let geometry = match &self.geometry {
+            StrandGeometry::Boxes(size) => {
+                wgpu::BlasGeometries::AabbGeometries(vec![wgpu::BlasAabbGeometry {
+                    size,
+                    stride: BOX_STRIDE,
+                    aabb_buffer: &self.input,
+                    primitive_offset: 0,
+                }])
+            }
+            StrandGeometry::Dots(size) => {
+                wgpu::BlasGeometries::TriangleGeometries(vec![wgpu::BlasTriangleGeometry {
+                    size,
+                    vertex_buffer: &self.input,
+                    first_vertex: 0,
+                    vertex_stride: 12,
+                    index_buffer: None,
+                    first_index: None,
+                    transform_buffer: None,
+                    transform_buffer_offset: None,
+                }])
+            }
+        };
         let mut entries = vec![wgpu::BlasBuildEntry {
             blas: &self.blas,
-            geometry: wgpu::BlasGeometries::AabbGeometries(vec![wgpu::BlasAabbGeometry {
-                size: &self.size,
-                stride: BOX_STRIDE,
-                aabb_buffer: &self.boxes,
-                primitive_offset: 0,
-            }]),
+            geometry,
         }];
-        if let Some(m) = &self.meshes
-            && !m.built.swap(true, Ordering::Relaxed)
-        {
-            entries.extend(m.blas.iter().map(|b| wgpu::BlasBuildEntry {
-                blas: &b.blas,
-                geometry: wgpu::BlasGeometries::TriangleGeometries(vec![
-                    wgpu::BlasTriangleGeometry {
-                        size: &b.size,
-                        vertex_buffer: &m.vertices,
-                        first_vertex: 0,
-                        vertex_stride: std::mem::size_of::<OpaqueVertex>() as u64,
-                        index_buffer: Some(&m.indices),
-                        first_index: Some(b.first_index),
-                        transform_buffer: None,
-                        transform_buffer_offset: None,
-                    },
-                ]),
-            }));
+        if let Some(m) = &self.meshes {
+            entries.extend(m.entries());
         }
         let tlas = self.tlas.lock().unwrap_or_else(|e| e.into_inner());
         encoder.build_acceleration_structures(entries.iter(), std::iter::once(&*tlas));
@@ -340,7 +330,12 @@ impl StrandStructure {
         self.tlas.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Segments (boxes) in the structure.
+    /// How the strands' segments are in the structure.
+    pub fn primitive(&self) -> StrandPrimitive {
+        self.primitive
+    }
+
+    /// Segments in the structure.
     pub fn segments(&self) -> u32 {
         self.segments
     }
@@ -350,10 +345,16 @@ impl StrandStructure {
         self.meshes.as_ref().map_or(0, |m| m.blas.len())
     }
 
-    /// Bytes of the boxes plait allocates. The structures' own sizes are
-    /// the driver's and wgpu 30 does not report them.
+    /// Bytes plait allocates and writes each frame for the strands' build:
+    /// the boxes, or the DOTS triangles' corners.
     pub fn box_bytes(&self) -> u64 {
-        self.boxes.size()
+        self.input.size()
+    }
+
+    /// The driver's sizes of the structures (Vulkan's build sizes, what
+    /// wgpu allocates them with); `None` on a backend that does not say.
+    pub fn driver_sizes(&self) -> Option<DriverSizes> {
+        self.driver
     }
 }
 
@@ -369,63 +370,40 @@ fn row_major_3x4(m: [[f32; 4]; 4]) -> [f32; 12] {
     out
 }
 
-/// One triangle bottom-level structure per mesh, unbuilt: every mesh
-/// indexes the one opaque vertex buffer (its indices already offset), so
-/// each structure takes the whole buffer and its own stretch of indices.
-fn mesh_structures(device: &wgpu::Device, input: MeshInput<'_>) -> Meshes {
-    let stride = std::mem::size_of::<OpaqueVertex>() as u64;
-    let vertex_count = (input.vertices.size() / stride) as u32;
-    let blas = input
-        .meshes
-        .iter()
-        .map(|mesh| {
-            let size = wgpu::BlasTriangleGeometrySizeDescriptor {
-                vertex_format: wgpu::VertexFormat::Float32x3,
-                vertex_count,
-                index_format: Some(wgpu::IndexFormat::Uint32),
-                index_count: Some(mesh.index_count),
-                flags: wgpu::AccelerationStructureGeometryFlags::OPAQUE,
-            };
-            // Built once and traced by every ray: a fast trace.
-            let blas = device.create_blas(
-                &wgpu::CreateBlasDescriptor {
-                    label: Some(&mesh.name),
-                    flags: wgpu::AccelerationStructureFlags::PREFER_FAST_TRACE,
-                    update_mode: wgpu::AccelerationStructureUpdateMode::Build,
-                },
-                wgpu::BlasGeometrySizeDescriptors::Triangles {
-                    descriptors: vec![size.clone()],
-                },
-            );
-            MeshBlas {
-                blas,
-                size,
-                first_index: mesh.first_index,
-                head: mesh.head,
-            }
-        })
-        .collect();
-    Meshes {
-        vertices: input.vertices.clone(),
-        indices: input.indices.clone(),
-        blas,
-        built: AtomicBool::new(false),
-    }
-}
-
-fn box_pass(
+/// The compute pass that writes the strands' build input: a box per segment
+/// (`shaders/passes/strand_boxes.wgsl`) or the DOTS triangles' corners
+/// (`shaders/passes/strand_dots.wgsl` after `plait::strand_dots`, the
+/// functions the tracers call, so both see the same quads; the builder is
+/// not composed by naga_oil, so the library's directives are left out).
+fn input_pass(
     device: &wgpu::Device,
+    primitive: StrandPrimitive,
     hair_vertices: &wgpu::Buffer,
-    boxes: &wgpu::Buffer,
+    input: &wgpu::Buffer,
 ) -> (wgpu::ComputePipeline, wgpu::BindGroup) {
+    let source = match primitive {
+        StrandPrimitive::SweptSphere => {
+            include_str!("../../../shaders/passes/strand_boxes.wgsl").to_owned()
+        }
+        StrandPrimitive::Dots => {
+            let library: String = include_str!("../../../shaders/lib/strand_dots.wgsl")
+                .lines()
+                .filter(|l| !l.starts_with('#'))
+                .map(|l| format!("{l}\n"))
+                .collect();
+            library + include_str!("../../../shaders/passes/strand_dots.wgsl")
+        }
+    };
+    let label = Some(match primitive {
+        StrandPrimitive::SweptSphere => "strand_boxes",
+        StrandPrimitive::Dots => "strand_dots",
+    });
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("strand_boxes"),
-        source: wgpu::ShaderSource::Wgsl(
-            include_str!("../../../shaders/passes/strand_boxes.wgsl").into(),
-        ),
+        label,
+        source: wgpu::ShaderSource::Wgsl(source.into()),
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("strand_boxes"),
+        label,
         layout: None,
         module: &module,
         entry_point: Some("main"),
@@ -433,7 +411,7 @@ fn box_pass(
         cache: None,
     });
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("strand_boxes"),
+        label,
         layout: &pipeline.get_bind_group_layout(0),
         entries: &[
             wgpu::BindGroupEntry {
@@ -442,7 +420,7 @@ fn box_pass(
             },
             wgpu::BindGroupEntry {
                 binding: 1,
-                resource: boxes.as_entire_binding(),
+                resource: input.as_entire_binding(),
             },
         ],
     });

@@ -69,6 +69,29 @@ fn more_segments_than_the_blas_limit_are_refused_with_the_numbers_and_the_fix() 
     }
 }
 
+/// As DOTS (`strand_primitive = "dots"`) each segment is four triangles:
+/// the 6,799 segments are 27,196 primitives, checked at load with that
+/// count, and the message names the swept spheres' one box per segment.
+#[test]
+fn dots_are_checked_at_four_triangles_per_segment() {
+    let hair = small_hair();
+    let s = schedule(&[
+        "techniques.self_shadow=ray_traced",
+        "params.strand_primitive=\"dots\"",
+    ]);
+    check(&s, hair, &[], &caps(27_196), "`small` (test)").expect("27,196 triangles fit");
+    let err = check(&s, hair, &[], &caps(27_195), "`small` (test)")
+        .expect_err("27,196 triangles past a limit of 27,195")
+        .to_string();
+    for wanted in [
+        "6799 segments as DOTS, 27196 triangles",
+        "more than the 27195 primitives",
+        "primitive = \"swept_sphere\" (one box per segment: 6799 primitives, which fit)",
+    ] {
+        assert!(err.contains(wanted), "`{wanted}` not in: {err}");
+    }
+}
+
 #[test]
 fn a_pipeline_without_a_structure_is_not_limited() {
     let s = schedule(&[]);

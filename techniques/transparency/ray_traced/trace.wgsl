@@ -38,6 +38,7 @@ enable wgpu_ray_query;
 #import plait::hair_point::HairPoint
 #import plait::strand_curve::strand_curve_tangent
 #import plait::strand_capsule::strand_approach
+#import plait::strand_dots::dots_crossing
 #import plait::loop_budget::loop_budget_spent
 
 struct Params {
@@ -59,6 +60,10 @@ struct Params {
 @group(1) @binding(64) var<storage, read_write> ray_counter: array<atomic<u32>>;
 @group(1) @binding(65) var opaque_depth: texture_depth_2d;
 @group(1) @binding(66) var hair: texture_storage_2d<rgba16float, write>;
+// The widened vertices primary_strands was built from (widen.wgsl): with
+// `ray_strand_primitive = "dots"` a segment is four triangles, and which of
+// its reported triangles counts it is decided on the quads as built.
+@group(1) @binding(67) var<storage, read> primary_vertices: array<HairPoint>;
 
 // A candidate segment where the ray meets it: its place along the segment
 // and its fragment alpha there (0: no hit), at ray distance t (−1: none).
@@ -117,6 +122,42 @@ fn hit_segment(origin: vec3<f32>, dir: vec3<f32>, s: u32, opaque: f32) -> Hit {
     return Hit(approach.x, along, a);
 }
 
+// Whether the ray crosses the DOTS quads of segment `s` (of the widened
+// vertices), which the structure then reports itself.
+fn dots_crossed(origin: vec3<f32>, dir: vec3<f32>, s: u32) -> bool {
+    let w0 = primary_vertices[s];
+    let w1 = primary_vertices[s + 1u];
+    return w0.strand == w1.strand
+        && dots_crossing(origin, dir, w0.position, 0.5 * w0.thickness, w1.position, 0.5 * w1.thickness).y >= 0.0;
+}
+
+// The segment a DOTS crossing of segment `s` is a hit of: `s`, or the
+// neighbour of the same strand whose stretch of the axis holds the ray's
+// closest approach (hit_segment's owner, plait::strand_capsule) when the
+// ray, oblique to the strand near a joint, crosses `s`'s quads but passes
+// nearest the neighbour's axis — unless the ray crosses the neighbour's own
+// quads, which are reported and counted themselves.
+fn dots_owner(origin: vec3<f32>, dir: vec3<f32>, s: u32) -> u32 {
+    let a = primary_vertices[s].position;
+    let e = primary_vertices[s + 1u].position - a;
+    let w = origin - a;
+    let de = dot(dir, e);
+    let denom = dot(e, e) - de * de;
+    if (denom <= 1e-8 * dot(e, e)) {
+        return s;
+    }
+    let along = (dot(e, w) - de * dot(dir, w)) / denom;
+    let strand = primary_vertices[s].strand;
+    if (along < 0.0 && s > 0u && primary_vertices[s - 1u].strand == strand && !dots_crossed(origin, dir, s - 1u)) {
+        return s - 1u;
+    }
+    let next = s + 2u < arrayLength(&primary_vertices) && primary_vertices[s + 2u].strand == strand;
+    if (along >= 1.0 && next && !dots_crossed(origin, dir, s + 1u)) {
+        return s + 1u;
+    }
+    return s;
+}
+
 // Hits the ray met (held or not), for the overflow count.
 var<private> met: u32;
 
@@ -135,10 +176,23 @@ fn collect(origin: vec3<f32>, dir: vec3<f32>, base: u32, opaque: f32) -> u32 {
     met = 0u;
     while (rayQueryProceed(&rq)) {
         let c = rayQueryGetCandidateIntersection(&rq);
-        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
+        // A box is segment i (swept spheres); with DOTS, triangles
+        // 4i … 4i + 3 are, and only the first the ray crosses counts it
+        // (plait::strand_dots: one hit per segment, as one box gives).
+        let dots = c.kind == RAY_QUERY_INTERSECTION_TRIANGLE;
+        if (c.kind != RAY_QUERY_INTERSECTION_AABB && !dots) {
             continue;
         }
-        let s = c.primitive_index;
+        var s = select(c.primitive_index, c.primitive_index / 4u, dots);
+        if (dots) {
+            let w0 = primary_vertices[s];
+            let w1 = primary_vertices[s + 1u];
+            let first = dots_crossing(origin, dir, w0.position, 0.5 * w0.thickness, w1.position, 0.5 * w1.thickness);
+            if (w0.strand != w1.strand || first.y != f32(c.primitive_index % 4u)) {
+                continue;
+            }
+            s = dots_owner(origin, dir, s);
+        }
         let h = hit_segment(origin, dir, s, opaque);
         if (h.t <= 0.0) {
             continue;

@@ -29,6 +29,7 @@
 // Pixels the copy's width exceeds the strand's: 1 for the pixel the trace
 // accepts (half on each side) and 0.5 margin.
 const WIDEN_PIXELS: f32 = 1.5;
+const SQRT2: f32 = 1.41421356237;
 
 @compute @workgroup_size(256)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -49,6 +50,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixels = strand_width_pixels(v.position, v.tangent, probe);
     if (pixels > 0.0) {
         v.thickness += WIDEN_PIXELS * probe / pixels;
+#ifdef PRIMITIVE_DOTS
+        // DOTS: a ray passing ρ from the axis meets one of the two crossed
+        // quads of half-width r when ρ ≤ r · max(|cos φ|, |sin φ|) (φ its
+        // angle to the quads), at least r / √2: widened √2 more, the quads
+        // reach every strand the swept sphere of the width above reaches.
+        v.thickness *= SQRT2;
+#endif
     }
     if (strand_lod_weight(v.strand) <= 0.0) {
         v.strand = 0x80000000u | index;
