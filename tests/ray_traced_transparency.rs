@@ -69,8 +69,8 @@ fn stack_strand_tilted(depth: f32, tilt: f32) -> Vec<Vec3> {
     // Three segments of ~23 px each at 96×72. The rasterized lines'
     // (linked_list's) Σα on this one strand depends on the line's phase
     // against the pixel grid, not on its segments: at 3ae2d01 (0.46 px wide)
-    // 1, 3 and 12 segments gave the same Σα; tilts 0.2 / 0.35 / 0.7 gave
-    // 0.993 / 1.051 / 0.964 × the analytic value, where compute_raster and
+    // 1, 3 and 12 segments gave the same Σα; 0.2 / 0.35 / 0.7 of `up` here
+    // gave 0.993 / 1.051 / 0.964 × the analytic value, where compute_raster and
     // the rays gave 0.99–1.02. Averaged over phases the lines are right
     // (tests/coverage_analytic.rs: eight strands at offsets, 1.000–1.010),
     // so a one-strand test holds the analytic techniques only.
