@@ -27,11 +27,11 @@ enable wgpu_ray_query;
 // - max_depth as Mitsuba's: a path has at most max_depth vertices after the
 //   camera, the last the light or the environment (2: single scattering);
 //   no Russian roulette (the depth bounds the loop).
-// The fibre is sampled uniformly over the sphere (pdf 1/4π: unbiased, noisier
-// than Chiang's own importance sampling); a mesh by cosine.
+// The fibre is importance-sampled as Chiang et al. 2016 §4.3 describe
+// (sample_fibre); a mesh by cosine.
 #import plait::frame::{frame, background_at}
 #import plait::strand_rays::{vis_hair, nearest_hit, ray_blocked, NearestHit}
-#import plait::chiang::{Fibre, fibre, longitudinal_lobes, offset_term}
+#import plait::chiang::{Fibre, fibre, longitudinal_lobes, offset_term, fresnel_dielectric, trimmed_logistic}
 #import plait::loop_budget::loop_budget_spent
 
 struct PathParams {
@@ -47,7 +47,9 @@ struct PathParams {
 
 @group(1) @binding(0) var<uniform> path_params: PathParams;
 // Per pixel two vec4: (radiance sum, camera rays that met something), then
-// (samples so far, 0, 0, 0). Cleared once a frame, before the first sample.
+// (samples so far, camera rays whose first hit is a strand, 0, 0): the
+// hair's coverage, which tests/path_traced_gpu.rs reads back to find the
+// hair's pixels. Cleared once a frame, before the first sample.
 @group(1) @binding(1) var<storage, read_write> pt_sum: array<vec4<f32>>;
 // [0]: invocations lavapipe's loop budget cut short (`incomplete`).
 @group(1) @binding(2) var<storage, read_write> pt_status: array<atomic<u32>>;
@@ -76,13 +78,6 @@ fn pcg(v: u32) -> u32 {
 fn random() -> f32 {
     rng = pcg(rng);
     return f32(rng >> 8u) * (1.0 / 16777216.0);
-}
-
-fn uniform_sphere() -> vec3<f32> {
-    let z = 1.0 - 2.0 * random();
-    let r = sqrt(max(0.0, 1.0 - z * z));
-    let a = 2.0 * PI * random();
-    return vec3<f32>(r * cos(a), r * sin(a), z);
 }
 
 fn cosine_about(n: vec3<f32>) -> vec3<f32> {
@@ -126,6 +121,109 @@ fn fibre_term(f: Fibre, tangent: vec3<f32>, h: f32, wo: vec3<f32>, wi: vec3<f32>
     let phi = atan2(dot(i_perp, cross(tangent, o_perp)), dot(i_perp, o_perp));
     let m = longitudinal_lobes(f, sin_i, sin_o);
     return offset_term(f, m, vec4<f32>(1.0), sin_o, phi, asin(clamp(h, -1.0, 1.0)));
+}
+
+// The fibre's importance sampling, after Chiang et al. 2016 §4.3 (as
+// pbrt-v3's HairBSDF::Sample_f samples it): a lobe p by its attenuation
+// A_p(h) (the channels' mean), θi from d'Eon et al. 2011's M_p about θo
+// rotated by the lobe's tilt (exactly: M_p is a von Mises–Fisher lobe seen
+// along θ), φ from the trimmed logistic N_p about Φ(p, h); p ≥ 3 uniform in
+// φ. Angles about the tangent in the frame (e1 = wo across the fibre, e2 =
+// tangent × e1), where φ is fibre_term's φi − φo.
+struct FibreFrame {
+    tangent: vec3<f32>,
+    e1: vec3<f32>,
+    e2: vec3<f32>,
+}
+
+fn fibre_frame(tangent: vec3<f32>, wo: vec3<f32>) -> FibreFrame {
+    var e1 = wo - dot(wo, tangent) * tangent;
+    if (dot(e1, e1) < 1e-12) {
+        let up = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(tangent.x) > 0.5);
+        e1 = cross(up, tangent);
+    }
+    e1 = normalize(e1);
+    return FibreFrame(tangent, e1, cross(tangent, e1));
+}
+
+// A_0 … A_3 at h for the eye at sin θo: each channel's mean, and the
+// azimuthal centres Φ(p, h) of N_0 … N_2 (w unused).
+struct Lobes {
+    weights: vec4<f32>,
+    centres: vec4<f32>,
+}
+
+fn fibre_lobes(f: Fibre, sin_o: f32, h: f32) -> Lobes {
+    let cos_o = sqrt(max(0.0, 1.0 - sin_o * sin_o));
+    let sin_t = sin_o / f.eta;
+    let cos_t = sqrt(max(0.0, 1.0 - sin_t * sin_t));
+    let eta_p = sqrt(f.eta * f.eta - sin_o * sin_o) / max(cos_o, 1e-6);
+    let gamma_o = asin(clamp(h, -1.0, 1.0));
+    let sin_gt = clamp(h / eta_p, -1.0, 1.0);
+    let gamma_t = asin(sin_gt);
+    let t = exp(-f.sigma_a * (2.0 * cos(gamma_t) / max(cos_t, 1e-6)));
+    let fr = fresnel_dielectric(cos_o * cos(gamma_o), f.eta);
+    let a1 = (1.0 - fr) * (1.0 - fr) * t;
+    let a2 = a1 * fr * t;
+    let a3 = a2 * fr * t / (vec3<f32>(1.0) - t * fr);
+    let mean = vec4<f32>(fr, dot(a1, vec3<f32>(1.0 / 3.0)), dot(a2, vec3<f32>(1.0 / 3.0)), dot(a3, vec3<f32>(1.0 / 3.0)));
+    let centres = vec4<f32>(-2.0 * gamma_o, 2.0 * gamma_t - 2.0 * gamma_o + PI, 4.0 * gamma_t - 2.0 * gamma_o + 2.0 * PI, 0.0);
+    return Lobes(mean / max(mean.x + mean.y + mean.z + mean.w, 1e-12), centres);
+}
+
+// The density of sample_fibre's direction wi (per solid angle).
+fn fibre_pdf(f: Fibre, frame_: FibreFrame, lobes: Lobes, sin_o: f32, wi: vec3<f32>) -> f32 {
+    let sin_i = clamp(dot(wi, frame_.tangent), -1.0, 1.0);
+    let phi = atan2(dot(wi, frame_.e2), dot(wi, frame_.e1));
+    let m = longitudinal_lobes(f, sin_i, sin_o);
+    var pdf = m.w * lobes.weights.w / (2.0 * PI);
+    pdf += m.x * lobes.weights.x * trimmed_logistic(f, phi - lobes.centres.x);
+    pdf += m.y * lobes.weights.y * trimmed_logistic(f, phi - lobes.centres.y);
+    pdf += m.z * lobes.weights.z * trimmed_logistic(f, phi - lobes.centres.z);
+    return pdf;
+}
+
+fn sample_fibre(f: Fibre, frame_: FibreFrame, lobes: Lobes, sin_o: f32) -> vec3<f32> {
+    let cos_o = sqrt(max(0.0, 1.0 - sin_o * sin_o));
+    let u = random();
+    var p = 3u;
+    var tilt = 0.0;
+    var variance = 4.0 * f.v;
+    var centre = 0.0;
+    if (u < lobes.weights.x) {
+        p = 0u;
+        tilt = 2.0 * f.alpha;
+        variance = f.v;
+        centre = lobes.centres.x;
+    } else if (u < lobes.weights.x + lobes.weights.y) {
+        p = 1u;
+        tilt = -f.alpha;
+        variance = 0.25 * f.v;
+        centre = lobes.centres.y;
+    } else if (u < lobes.weights.x + lobes.weights.y + lobes.weights.z) {
+        p = 2u;
+        tilt = -4.0 * f.alpha;
+        centre = lobes.centres.z;
+    }
+    // θo as the lobe sees it (chiang.wgsl's longitudinal_lobes' rotation).
+    let sin_op = sin_o * cos(tilt) + cos_o * sin(tilt);
+    let cos_op = abs(cos_o * cos(tilt) - sin_o * sin(tilt));
+    // d'Eon's lobe about −θo': its angle from the centre, and its azimuth.
+    let u1 = max(random(), 1e-7);
+    let cos_lobe = 1.0 + variance * log(u1 + (1.0 - u1) * exp(-2.0 / variance));
+    let sin_lobe = sqrt(max(0.0, 1.0 - cos_lobe * cos_lobe));
+    let around = cos(2.0 * PI * random());
+    let sin_i = clamp(-cos_lobe * sin_op + sin_lobe * around * cos_op, -1.0, 1.0);
+    let cos_i = sqrt(max(0.0, 1.0 - sin_i * sin_i));
+    var phi = 2.0 * PI * random();
+    if (p < 3u) {
+        // The logistic of scale s trimmed to [−π, π], by its inverse CDF.
+        let lo = 1.0 / (1.0 + exp(PI / f.s));
+        let hi = 1.0 / (1.0 + exp(-PI / f.s));
+        let c = clamp(lo + random() * (hi - lo), 1e-7, 1.0 - 1e-7);
+        phi = centre - f.s * log(1.0 / c - 1.0);
+    }
+    return normalize(sin_i * frame_.tangent + cos_i * (cos(phi) * frame_.e1 + sin(phi) * frame_.e2));
 }
 
 // One opaque vertex's float `k` of 10.
@@ -175,8 +273,8 @@ fn camera_ray(pixel: vec2<f32>) -> Ray {
     return Ray(a, normalize(far.xyz / far.w - a));
 }
 
-// The radiance one path brings to `pixel`, and whether its camera ray met
-// anything (w: 1 or 0).
+// The radiance one path brings to `pixel`, and what its camera ray met
+// first (w: 0 nothing, 1 a mesh, 2 a strand).
 fn trace_path(pixel: vec2<f32>) -> vec4<f32> {
     var ray = camera_ray(pixel);
     var near = 0.0;
@@ -187,8 +285,8 @@ fn trace_path(pixel: vec2<f32>) -> vec4<f32> {
     let max_depth = path_params.max_depth;
     for (var depth = 1u; depth <= max_depth; depth++) {
         let hit = nearest_hit(ray.origin, ray.dir, near, 1e30, skip);
-        if (depth == 1u && hit.kind != 0u) {
-            covered = 1.0;
+        if (depth == 1u) {
+            covered = select(f32(hit.kind), 3.0 - f32(hit.kind), hit.kind != 0u);
         }
         if (hit.kind == 0u) {
             if (depth == 1u) {
@@ -226,8 +324,15 @@ fn trace_path(pixel: vec2<f32>) -> vec4<f32> {
             skip = hit.primitive;
             near = 0.0;
             if (random() < alpha) {
-                let wi = uniform_sphere();
-                throughput *= 4.0 * PI * fibre_term(f, tangent, h, wo, wi);
+                let sin_o = clamp(dot(wo, tangent), -1.0, 1.0);
+                let frame_ = fibre_frame(tangent, wo);
+                let lobes = fibre_lobes(f, sin_o, h);
+                let wi = sample_fibre(f, frame_, lobes, sin_o);
+                let pdf = fibre_pdf(f, frame_, lobes, sin_o, wi);
+                if (pdf <= 0.0) {
+                    break;
+                }
+                throughput *= fibre_term(f, tangent, h, wo, wi) / pdf;
                 ray = Ray(p, wi);
             } else {
                 // Mitsuba's mask: straight through, a vertex of the path.
@@ -249,6 +354,16 @@ fn trace_path(pixel: vec2<f32>) -> vec4<f32> {
             skip = NONE;
             near = 0.0;
         }
+        // Russian roulette from the fifth vertex on, as Mitsuba's path
+        // integrator (rr_depth 5): unbiased, and long paths of light hair
+        // cost less.
+        if (depth >= 5u) {
+            let q = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
+            if (random() >= q) {
+                break;
+            }
+            throughput /= q;
+        }
         if (all(throughput <= vec3<f32>(0.0))) {
             break;
         }
@@ -264,13 +379,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (i >= pixels || 2u * i + 1u >= arrayLength(&pt_sum)) {
         return;
     }
-    let count = pt_sum[2u * i + 1u].x;
+    let counts = pt_sum[2u * i + 1u];
+    let count = counts.x;
     // A fresh stream per pixel, sample, seed and frame.
     rng = pcg(i ^ pcg(u32(count) ^ pcg(path_params.seed ^ pcg(u32(frame.jitter.w)))));
     let pixel = vec2<f32>(f32(i % width) + random(), f32(i / width) + random());
     let sample = trace_path(pixel);
-    pt_sum[2u * i] += sample;
-    pt_sum[2u * i + 1u] = vec4<f32>(count + 1.0, 0.0, 0.0, 0.0);
+    pt_sum[2u * i] += vec4<f32>(sample.rgb, min(sample.w, 1.0));
+    pt_sum[2u * i + 1u] = vec4<f32>(count + 1.0, counts.y + select(0.0, 1.0, sample.w > 1.5), 0.0, 0.0);
     if (loop_budget_spent(path_params.max_depth + 2u)) {
         atomicAdd(&pt_status[0], 1u);
     }
