@@ -308,7 +308,11 @@ fn trace_path(pixel: vec2<f32>) -> vec4<f32> {
             let a = vis_hair[hit.primitive];
             let b = vis_hair[hit.primitive + 1u];
             let axis = b.position - a.position;
-            let tangent = normalize(axis);
+            // The strand's own tangent (root to tip, the curve's direction
+            // at the points, as plait's shading and the export's B-spline
+            // take it), not the chord: the cuticle tilt's side depends on it.
+            let s_axis = clamp(dot(ray.origin + hit.t * ray.dir - a.position, axis) / dot(axis, axis), 0.0, 1.0);
+            let tangent = normalize(mix(a.tangent, b.tangent, s_axis));
             // Where along the segment the ray passes the axis, and on which
             // side: h = the signed distance over the radius there.
             let s = clamp(dot(p - a.position, axis) / dot(axis, axis), 0.0, 1.0);
