@@ -14,6 +14,7 @@
 //!   two images' combined noise (√(σ_plait² + σ_mitsuba²)), each side's
 //!   noise estimated from its two seeds as `plait ab` does (half their RMSE
 //!   difference).
+//!
 //! Mitsuba's images are cached by content key in the build folder
 //! (`plait::ab::default_cache`, as `plait ab` caches them): the depth-16
 //! ones are tests/multiple_scattering_claim.rs's
