@@ -1,4 +1,4 @@
-//! plait's own path tracer (`pipelines/path_traced.toml`, issue 48) held
+//! plait's own path tracer (`pipelines/physical/path_traced.toml`, issue 48) held
 //! against Mitsuba 3's (issue 42's reference: the export of the same scene,
 //! Chiang et al. 2016's fibre in both) on issue 47's measurement groom,
 //! opaque strands of one colour each — blond, dark brown, black — a
@@ -67,7 +67,7 @@ fn scene_path(colour: &str) -> PathBuf {
 fn mitsuba(fixture: &str) -> Plan {
     let root = repo_root();
     let mut options = AbOptions::new(
-        vec![root.join("pipelines/path_traced.toml")],
+        vec![root.join("pipelines/physical/path_traced.toml")],
         root.join(fixture),
     );
     options.scenes = COLOURS.iter().map(|c| scene_path(c)).collect();
@@ -101,7 +101,7 @@ fn plait_render(
         format!("params.spp={spp}"),
         format!("params.seed={seed}"),
     ];
-    let pipeline = repo_root().join("pipelines/path_traced.toml");
+    let pipeline = repo_root().join("pipelines/physical/path_traced.toml");
     let prepared = prepare(gpu, &pipeline, &sets, scene, SIZE).expect("prepares");
     prepared.render().expect("renders, no invocation cut short");
     let texels = prepared

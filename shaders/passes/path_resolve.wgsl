@@ -1,4 +1,4 @@
-// The path tracer's image (pipelines/path_traced.toml): each pixel's mean
+// The path tracer's image (pipelines/physical/path_traced.toml): each pixel's mean
 // over its samples (shaders/passes/path_trace.wgsl's `pt_sum`), linear
 // radiance; alpha the part of its camera rays that met the hair or a mesh
 // (docs/formats.md, "The display transform and linear images": the EXR's

@@ -1,5 +1,5 @@
 enable wgpu_ray_query;
-// plait's own path tracer (issue 48; pipelines/path_traced.toml): one path
+// plait's own path tracer (issue 48; pipelines/physical/path_traced.toml): one path
 // per pixel per dispatch (the `path_trace` pass type dispatches this `spp`
 // times a frame), added to `pt_sum`.
 //

@@ -1,4 +1,4 @@
-//! `path_trace`: plait's own path tracer (issue 48, `pipelines/path_traced.toml`),
+//! `path_trace`: plait's own path tracer (issue 48, `pipelines/physical/path_traced.toml`),
 //! a data-only compute shader (the pass's `shader`, slots its bindings)
 //! dispatched `spp` times per frame, each dispatch adding one path per pixel
 //! to the storage buffers it writes.

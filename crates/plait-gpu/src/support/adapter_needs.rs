@@ -40,7 +40,7 @@ pub(super) fn technique_problems(schedule: &Schedule, caps: &Capabilities, out: 
 }
 
 /// A pipeline's own passes that trace rays (an `acceleration_structure`
-/// resource declared outside any technique, as `pipelines/path_traced.toml`
+/// resource declared outside any technique, as `pipelines/physical/path_traced.toml`
 /// does): refused at the resource's declaration on an adapter without ray
 /// queries, unless a technique's own need already said so.
 pub(super) fn structure_problems(schedule: &Schedule, caps: &Capabilities, out: &mut Vec<Problem>) {
