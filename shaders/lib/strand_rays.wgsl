@@ -99,3 +99,110 @@ fn ray_hits(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, mesh_far: f3
 fn strands_crossed(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32) -> f32 {
     return ray_hits(origin, dir, near, far, 0.0).strands;
 }
+
+// What a path's ray meets first (plait's path tracer,
+// shaders/passes/path_trace.wgsl): a strand segment or a mesh triangle.
+struct NearestHit {
+    // 0: nothing; 1: a strand; 2: a mesh.
+    kind: u32,
+    // Ray distance of the hit: for a strand the ray's closest approach to
+    // the segment's axis (strand_crossing's t).
+    t: f32,
+    // Strand: the segment's first vertex in vis_hair. Mesh: the triangle
+    // in its mesh's stretch of indices.
+    primitive: u32,
+    // Mesh: the instance's custom index (1 + the mesh's index in the scene's
+    // order, crates/plait-gpu/src/strand_structure.rs).
+    instance: u32,
+    // Mesh: the hit's barycentrics (of vertices 1 and 2).
+    barycentrics: vec2<f32>,
+    // Mesh: the instance's object-to-world transform (the head's moves).
+    object_to_world: mat4x3<f32>,
+}
+
+const NO_HIT: NearestHit = NearestHit(0u, -1.0, 0u, 0u, vec2<f32>(0.0), mat4x3<f32>());
+
+// The nearest strand or mesh along the ray from `origin` along unit `dir`
+// farther than `near` and nearer than `far`, skipping segment `skip` and its
+// neighbours along the same strand (the segment a path leaves from: a ray
+// starting on its axis would meet it again at once); skip = 0xffffffff
+// skips none. Each nearer hit is committed, so traversal drops boxes past it.
+fn nearest_hit(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, skip: u32) -> NearestHit {
+    var rq: ray_query;
+    rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, STRAND_INSTANCES | MESH_INSTANCES, near, far, origin, dir));
+    var best = NO_HIT;
+    var nearest = far;
+    var skip_strand = 0xffffffffu;
+    if (skip != 0xffffffffu) {
+        skip_strand = vis_hair[skip].strand;
+    }
+    while (rayQueryProceed(&rq)) {
+        let c = rayQueryGetCandidateIntersection(&rq);
+        if (c.kind == RAY_QUERY_INTERSECTION_TRIANGLE) {
+            if (c.t > near && c.t < nearest) {
+                nearest = c.t;
+                best = NearestHit(2u, c.t, c.primitive_index, c.instance_custom_data, c.barycentrics, c.object_to_world);
+                rayQueryConfirmIntersection(&rq);
+            }
+            continue;
+        }
+        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
+            continue;
+        }
+        let i = c.primitive_index;
+        let a = vis_hair[i];
+        let b = vis_hair[i + 1u];
+        if (a.strand != b.strand) {
+            continue;
+        }
+        if (a.strand == skip_strand && i + 1u >= skip && i <= skip + 1u) {
+            continue;
+        }
+        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        if (t > near && t < nearest) {
+            nearest = t;
+            best = NearestHit(1u, t, i, 0u, vec2<f32>(0.0), mat4x3<f32>());
+            rayQueryGenerateIntersection(&rq, t);
+        }
+    }
+    return best;
+}
+
+// Whether anything — a strand (opaque, as Mitsuba's fibres are to shadow
+// rays) or a mesh — lies along the ray from `origin` along unit `dir`
+// farther than `near` and nearer than `far`, skipping segment `skip` and
+// its neighbours as nearest_hit does. Stops at the first blocker.
+fn ray_blocked(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, skip: u32) -> bool {
+    var rq: ray_query;
+    rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, STRAND_INSTANCES | MESH_INSTANCES, near, far, origin, dir));
+    var skip_strand = 0xffffffffu;
+    if (skip != 0xffffffffu) {
+        skip_strand = vis_hair[skip].strand;
+    }
+    var blocked = false;
+    while (rayQueryProceed(&rq)) {
+        let c = rayQueryGetCandidateIntersection(&rq);
+        if (c.kind == RAY_QUERY_INTERSECTION_TRIANGLE) {
+            if (c.t > near && c.t < far) {
+                blocked = true;
+                break;
+            }
+            continue;
+        }
+        if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
+            continue;
+        }
+        let i = c.primitive_index;
+        let a = vis_hair[i];
+        let b = vis_hair[i + 1u];
+        if (a.strand != b.strand || (a.strand == skip_strand && i + 1u >= skip && i <= skip + 1u)) {
+            continue;
+        }
+        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        if (t > near && t < far) {
+            blocked = true;
+            break;
+        }
+    }
+    return blocked;
+}

@@ -136,6 +136,10 @@ pub struct SceneGeometry {
     pub point_count: u32,
     /// The scene resources of simulation and guide interpolation.
     pub guides: GuideBuffers,
+    /// `opaque_meshes`: per mesh of `opaque_meshes`, vec4<u32>(first index,
+    /// index count, head, 0), so a ray query's triangle hit (instance 1 + i,
+    /// a primitive of mesh i's stretch) finds its vertices.
+    pub opaque_table: wgpu::Buffer,
 }
 
 /// One mesh's stretch of the opaque index buffer.
@@ -420,6 +424,11 @@ impl SceneGeometry {
             wgpu::BufferUsages::empty()
         };
         let opaque = upload_as(device, "opaque", &vertices, &indices, ray_input);
+        let table: Vec<[u32; 4]> = opaque_meshes
+            .iter()
+            .map(|m| [m.first_index, m.index_count, u32::from(m.head), 0])
+            .collect();
+        let opaque_table = storage(device, "opaque_meshes", bytemuck::cast_slice(&table));
         SceneGeometry {
             hair,
             wisps: None,
@@ -430,6 +439,7 @@ impl SceneGeometry {
             environment: None,
             point_count: strands.point_count() as u32,
             guides: GuideBuffers::upload(device, guides, strands, colliders, head_sdf, pose),
+            opaque_table,
         }
     }
 
@@ -475,6 +485,9 @@ impl SceneGeometry {
             "strand_guides" => Some(&g.strand_guides),
             "head_colliders" => Some(&g.colliders),
             "head_sdf" => Some(&g.head_sdf),
+            "opaque_vertices" => self.opaque.as_ref().map(|o| &o.vertices),
+            "opaque_indices" => self.opaque.as_ref().map(|o| &o.indices),
+            "opaque_meshes" => Some(&self.opaque_table),
             _ => None,
         }
     }

@@ -69,6 +69,21 @@ pub const SCENE_RESOURCES: &[SceneResource] = &[
         writable: false,
         doc: "the head mesh's signed distance field at rest, f32s: origin xyz, cell, dims xyz (u32 bits), 1 if present (0: no head mesh), then the distances, x fastest",
     },
+    SceneResource {
+        name: "opaque_vertices",
+        writable: false,
+        doc: "the meshes' vertices (head at rest, ground, [[meshes]]): 10 f32 each (40 B: position, normal, albedo, 1 for the head's), what the acceleration structure's triangles index",
+    },
+    SceneResource {
+        name: "opaque_indices",
+        writable: false,
+        doc: "the meshes' triangle indices into opaque_vertices, three u32 per triangle, mesh after mesh",
+    },
+    SceneResource {
+        name: "opaque_meshes",
+        writable: false,
+        doc: "per mesh, in the structure's instance order: vec4<u32>(first index in opaque_indices, index count, 1 for the head, 0)",
+    },
 ];
 
 /// The scene resources a `draw = "hair"` pass reads without naming them.

@@ -24,6 +24,7 @@ pub mod occlusion_cylinders;
 pub mod occlusion_directions;
 pub mod occupancy;
 pub mod opaque_shade;
+pub mod path_trace;
 pub mod points;
 pub mod shading;
 pub mod shading_space;

@@ -42,6 +42,7 @@ pub fn problems(
 ) -> Vec<Problem> {
     let mut out = Vec::new();
     super::adapter_needs::technique_problems(schedule, caps, &mut out);
+    super::adapter_needs::structure_problems(schedule, caps, &mut out);
     super::textures::resource_problems(schedule, support, &mut out);
     for pass in &schedule.passes {
         super::textures::usage_problems(pass, schedule, support, &mut out);

@@ -188,10 +188,12 @@ fn check_params(
     let takes_shared = spec.dynamic_slots || draws_hair;
     for (name, value) in &decl.params {
         let shared = registry.shared_params.iter().find(|p| &p.name == name);
-        if spec.dynamic_slots && shared.is_none() {
+        let declared = spec.params.iter().any(|p| &p.name == name);
+        if spec.dynamic_slots && shared.is_none() && !declared {
             // Data-only passes: params are whatever the shader reads (a
             // `params` uniform member or a define), checked against
-            // naga's reflection and the shader's text later.
+            // naga's reflection and the shader's text later; one the type
+            // declares (`path_trace`'s spp) is held to its range below.
             params.insert(name.clone(), value.value.clone());
             continue;
         }
