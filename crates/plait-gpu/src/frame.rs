@@ -240,17 +240,25 @@ impl LightFrustum {
         // Anything nearer the light than the hair can shadow it, opaque objects
         // included: the near plane takes every receiver too, or an opaque
         // occluder in front of the hair would be clipped out of the shadow map.
-        let near = occ
+        // Both planes stand a thousandth of the scene's size beyond the
+        // nearest and farthest point: a face square to the light (the ground
+        // under a light straight down) lies wholly at one depth, and on the
+        // far plane itself rounding put it outside the map, unshadowed
+        // (tests/light_frustum.rs).
+        let margin = 1e-3 * radius;
+        let near = (occ
             .iter()
             .chain(rec.iter())
             .map(|p| -p.z)
             .fold(f32::INFINITY, f32::min)
+            - margin)
             .max(1e-3);
-        let far = rec
+        let far = (rec
             .iter()
             .chain(occ.iter())
             .map(|p| -p.z)
             .fold(0.0, f32::max)
+            + margin)
             .max(near + 1e-3);
         let projection = match &scene.light.kind {
             LightKind::Directional { .. } => {
