@@ -11,7 +11,7 @@
 
 @vertex
 fn vs_main(v: MapVertex) -> MapFragment {
-    return map_vertex(v, textureDimensions(opaque_depth));
+    return map_vertex(v);
 }
 
 // True where the fragment lies behind opaque geometry of this view: the
