@@ -7,7 +7,11 @@
 // to this text (the tracers call the same functions). A pair of vertices of
 // two different strands, or of one place, is no segment: its corners are
 // all vertex i, triangles of no area that no ray's test accepts (the
-// tracing shaders check the strand ids too).
+// tracing shaders check the strand ids too). The import is for the shader
+// library's checks (tests/shaders.rs composes this file through it); the
+// Rust side drops `#` lines as it prepends the module's text.
+#import plait::strand_dots::dots_corner
+
 struct HairPoint {
     position: vec3<f32>,
     thickness: f32,

@@ -386,12 +386,17 @@ fn input_pass(
             include_str!("../../../shaders/passes/strand_boxes.wgsl").to_owned()
         }
         StrandPrimitive::Dots => {
-            let library: String = include_str!("../../../shaders/lib/strand_dots.wgsl")
-                .lines()
-                .filter(|l| !l.starts_with('#'))
-                .map(|l| format!("{l}\n"))
-                .collect();
-            library + include_str!("../../../shaders/passes/strand_dots.wgsl")
+            // The module's text, then the pass's, each without its
+            // naga_oil directives (`#define_import_path`, the pass's
+            // `#import` of this module): plain WGSL for the device.
+            let plain = |text: &str| -> String {
+                text.lines()
+                    .filter(|l| !l.starts_with('#'))
+                    .map(|l| format!("{l}\n"))
+                    .collect()
+            };
+            plain(include_str!("../../../shaders/lib/strand_dots.wgsl"))
+                + &plain(include_str!("../../../shaders/passes/strand_dots.wgsl"))
         }
     };
     let label = Some(match primitive {
