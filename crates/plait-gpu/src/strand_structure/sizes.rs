@@ -36,7 +36,9 @@ pub struct DriverSizes {
 }
 
 /// What is sized: the strands' geometry, each mesh's (vertices, indices),
-/// the top-level instances.
+/// the top-level instances. Only the Vulkan query reads it: a browser's
+/// build (wasm32) has none, and its fields go unread there.
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 pub(super) struct Sizing<'a> {
     pub primitive: StrandPrimitive,
     pub segments: u32,
