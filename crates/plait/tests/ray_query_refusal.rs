@@ -109,6 +109,37 @@ fn a_technique_needing_ray_queries_is_refused_without_them_at_its_line() {
     }
 }
 
+/// A pipeline whose own passes trace rays (an acceleration structure it
+/// declares itself, outside any technique: plait's path tracer) is refused
+/// the same way, at the structure's declaration.
+#[test]
+fn the_path_tracer_is_refused_without_ray_queries_at_its_structure() {
+    let root = plait::session::repo_root();
+    let pipeline = root.join("pipelines/physical/path_traced.toml");
+    let with = caps(true);
+    assert!(check(&compiled(&pipeline, &with), &with).is_ok());
+
+    let without = caps(false);
+    let refused = check(&compiled(&pipeline, &without), &without).expect_err("refused");
+    assert_eq!(refused.problems.len(), 1, "{refused}");
+    let p = &refused.problems[0];
+    assert_eq!(p.resource.as_deref(), Some("pt_strands"), "{p}");
+    match &p.location {
+        Location::File { path, .. } => {
+            assert!(path.ends_with("physical/path_traced.toml"), "{p}");
+        }
+        other => panic!("not at a line of the pipeline file: {other:?}"),
+    }
+    let text = refused.to_string();
+    for wanted in [
+        "`pt_strands` is an acceleration structure the pipeline traces rays through",
+        "the adapter lacks ray queries",
+        "`bash scripts/ensure-vulkan.sh`",
+    ] {
+        assert!(text.contains(wanted), "no `{wanted}` in\n{text}");
+    }
+}
+
 #[test]
 fn an_unknown_adapter_capability_is_an_error_at_its_line() {
     let dir = tempfile::tempdir().expect("tempdir");
