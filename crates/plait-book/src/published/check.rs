@@ -315,7 +315,10 @@ mod tests {
             reference("path_traced (noise RMSE 0.0105 on small)"),
         ]);
         let rows = compare(&figure(), &published, &today);
-        assert_eq!(rows.iter().filter(|r| r.quantity == "row present").count(), 2);
+        assert_eq!(
+            rows.iter().filter(|r| r.quantity == "row present").count(),
+            2
+        );
     }
 
     #[test]
