@@ -335,9 +335,10 @@ const DARK_BANDS: [[Row; 4]; 3] = [
 /// the self-shadow technique's strand count at a point beyond the hair,
 /// which every provider must answer as "all the hair on this light ray":
 /// on the blond dark-surroundings scene, the whole image's mean luminance
-/// with `m` counted ÷ with Zinke's unbounded hair is measured 0.630
-/// (exact) to 0.668 (deep_opacity) across the six providers (this test;
-/// 0.544 to 0.579 before the cuticle tilt's sign fix, issue 42). With m = 0
+/// with `m` counted ÷ with Zinke's unbounded hair is measured 0.494
+/// (exact) to 0.536 (deep_opacity) across the six providers (this test,
+/// after the tables' rows began at the clear fibre, ds43: 0.630 to 0.668
+/// before it; 0.544 to 0.579 before the cuticle tilt's sign fix, issue 42). With m = 0
 /// everywhere (the count beyond the hair read at the point instead) every
 /// provider measured 0.390–0.396 before that fix. Held: every provider
 /// within 0.05 of exact's ratio and in [0.47, 0.80] — above m = 0's, below
