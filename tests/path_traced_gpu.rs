@@ -7,8 +7,9 @@
 //!
 //! Per colour and depth:
 //! - the mean Rec. 709 luminance over the hair's pixels (where every camera
-//!   ray of plait's first meets a strand) is within 3 % of Mitsuba's over
-//!   the same pixels;
+//!   ray of a separate plait render — `hair_mask`: its own seed, 32 rays a
+//!   pixel, not the compared renders' — first meets a strand) is within 3 %
+//!   of Mitsuba's over the same pixels;
 //! - the per-pixel differences are within the two renderers' noise: the RMSE
 //!   of plait's mean image against Mitsuba's is at most NOISE_FACTOR × the
 //!   two images' combined noise (√(σ_plait² + σ_mitsuba²)), each side's
@@ -22,18 +23,35 @@
 //! tests/fixtures/pt_depth2.toml's; the first run renders what is missing
 //! (Mitsuba installed by scripts/ensure-mitsuba.sh).
 //!
-//! Status (commit after 6796eae, lavapipe, 2 × 8 spp): at max depth 2 the
-//! per-pixel check holds (RMSE 1.05–1.06× the combined noise) but the mean
-//! light over fully covered hair pixels is 0.934 / 0.928 / 0.893 of
-//! Mitsuba's (blond / dark brown / black; over pixels at least half
-//! covered 0.95 / 0.94 / 0.91, over Mitsuba's own hair mask 1.04 on blond
-//! at 4 spp): plait is darker inside the hair, most on black, where R
-//! dominates — a bias not yet found (suspects: the shadow ray's origin at
-//! the closest approach to the axis rather than on the fibre's surface;
-//! the same strand's segments skipped only next to the hit). So both tests
-//! are `#[ignore]`d until it is; run them with `-- --ignored`. At full
-//! depth one blond render (16 spp) read 1.010 / 1.015 of Mitsuba's two
-//! 256-spp seeds over Mitsuba's hair mask.
+//! Status (issue 48's pt48 session, lavapipe, 2 × 8 spp). The 0.934 /
+//! 0.928 / 0.893 of Mitsuba's (blond / dark brown / black) read before were
+//! the mask's doing, not the renderer's: the hair's pixels were those where
+//! all 16 rays of the compared renders met a strand, so a pixel the hair
+//! covers only in part (the lit head behind it, many times the hair's
+//! light)
+//! entered exactly when plait's rays there missed the head, while
+//! Mitsuba's pixel kept its share of it. The same images over `hair_mask`
+//! read 0.969 / 0.971 / 0.982 (both are printed). What else was isolated:
+//! one straight unshadowed strand, where the geometry cannot differ
+//! (scripts/mitsuba/depth2_one_strand.sh), reads 0.994 of Mitsuba, every
+//! row (one offset h each) within 1.2 %, so the fibre's lobes, h, the
+//! radius (width = diameter), the light's units and max depth 2 agree;
+//! plait's shadow-ray origin (the closest approach to the axis, the hit's
+//! segment and its neighbours skipped) against Mitsuba's (the tube's
+//! surface), inside Mitsuba's own scene (scripts/mitsuba/
+//! shadow_origin_probe.py), moves its hair mean by −0.4 % to +1 %
+//! (3 seeds, blond and black); plait's capsules cover 0.4 % less of the
+//! image than the export's B-spline (Mitsuba `linearcurve` through plait's
+//! points against `bsplinecurve`, 128 rays a pixel). What is left, −3 %
+//! to −2 %, is not yet told from noise: the mean over ~1000 pixels is
+//! ~2 % noisy (one σ, relative) at 2 × 8 spp, and `plait render` at 32
+//! spp over a mask of another seed read blond 0.991 and 0.999 (seeds 0,
+//! 3) but black 1.036 (16 spp) and 1.051 — plait brighter, by more than
+//! that noise; not resolved. So the depth-2 test stays `#[ignore]`d until
+//! it runs at enough samples for its 3 % bound (2 × 32 spp or more, ~4×
+//! this test's 7 minutes here) and black is understood; run it with
+//! `-- --ignored`. At full depth one blond render (16 spp) read 1.010 /
+//! 1.015 of Mitsuba's two 256-spp seeds over Mitsuba's hair mask.
 //!
 //! What runs in CI meanwhile: the lit ground at depth 2 against its
 //! closed-form Lambert radiance (no noise: a delta light; 3e-4 measured,
@@ -134,15 +152,47 @@ fn rmse(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
     (sum / (3 * a.len()) as f64).sqrt()
 }
 
-/// One colour at one depth: (mean hair luminance ratio, RMSE of the
-/// difference, combined noise, hair pixels).
+/// Samples per pixel of the render that picks the hair's pixels (max depth
+/// 1: camera rays only), and its seed: not one of the compared renders'.
+const MASK_SPP: u32 = 32;
+const MASK_SEED: u32 = 2;
+
+/// The pixels every camera ray of which first meets a strand, from a render
+/// of its own (MASK_SEED, MASK_SPP samples).
+///
+/// Why not the compared renders' own rays: a pixel the hair only partly
+/// covers (the lit head behind it, many times the hair's light) enters that mask
+/// when all of plait's few rays there happen to meet hair, so on it plait's
+/// image holds hair only while Mitsuba's holds its share of the head: the
+/// mask picks plait's dark outliers. With the compared renders' 2 × 8 rays
+/// that read 0.934 / 0.928 / 0.893 of Mitsuba's (blond / dark brown /
+/// black); the same images over this mask read the ratio printed beside it.
+fn hair_mask(gpu: &plait_gpu::Gpu, scene: &SceneData) -> Vec<bool> {
+    let image = plait_render(gpu, scene, 1, MASK_SPP, MASK_SEED);
+    image.hair.iter().map(|&c| c >= 1.0).collect()
+}
+
+/// What one colour at one depth measured.
+struct Measured {
+    /// Mean hair luminance, plait ÷ Mitsuba, over `hair_mask`'s pixels.
+    ratio: f64,
+    /// The same over the pixels the compared renders' own rays all saw hair
+    /// in (the selection `hair_mask` avoids), for the report.
+    own_mask_ratio: f64,
+    /// RMSE of plait's mean image against Mitsuba's.
+    difference: f64,
+    /// plait's noise (half the RMSE between its two seeds).
+    plait_noise: f64,
+    pixels: usize,
+}
+
 fn compare(
     gpu: &plait_gpu::Gpu,
-    (colour, scene): (&str, &SceneData),
+    scene: &SceneData,
     depth: u32,
     spp: u32,
     reference: &image::Rgba32FImage,
-) -> (f64, f64, f64, usize) {
+) -> Measured {
     let a = plait_render(gpu, scene, depth, spp, 0);
     let b = plait_render(gpu, scene, depth, spp, 1);
     let mean: Vec<[f32; 4]> = a
@@ -152,21 +202,26 @@ fn compare(
         .map(|(x, y)| std::array::from_fn(|c| 0.5 * (x[c] + y[c])))
         .collect();
     let reference: Vec<[f32; 4]> = reference.pixels().map(|p| p.0).collect();
-    // Pixels all of whose camera rays (both seeds) first meet a strand: the
-    // hair is darker than the head and the ground behind it, so a pixel
-    // at the hair's edge weighs the two renderers' small differences in
-    // where the strands are (Mitsuba's B-spline, plait's capsules) by that
-    // contrast; a pixel covered by hair in both is the hair's own light.
-    let hair: Vec<usize> = (0..mean.len())
+    // Pixels the hair covers whole: the hair is darker than the head behind
+    // it, so a partly covered pixel weighs the renderers' small differences
+    // in where the strands are (Mitsuba's B-spline, plait's capsules) by
+    // that contrast.
+    let mask = hair_mask(gpu, scene);
+    let hair: Vec<usize> = (0..mean.len()).filter(|&i| mask[i]).collect();
+    let own: Vec<usize> = (0..mean.len())
         .filter(|&i| a.hair[i] >= 1.0 && b.hair[i] >= 1.0)
         .collect();
-    assert!(hair.len() > 300, "{colour}: {} hair pixels", hair.len());
-    let mean_of = |img: &[[f32; 4]]| {
-        hair.iter().map(|&i| luminance(&img[i])).sum::<f64>() / hair.len() as f64
+    assert!(hair.len() > 300, "{} hair pixels", hair.len());
+    let mean_of = |img: &[[f32; 4]], pixels: &[usize]| {
+        pixels.iter().map(|&i| luminance(&img[i])).sum::<f64>() / pixels.len() as f64
     };
-    let ratio = mean_of(&mean) / mean_of(&reference);
-    let plait_noise = 0.5 * rmse(&a.texels, &b.texels);
-    (ratio, rmse(&mean, &reference), plait_noise, hair.len())
+    Measured {
+        ratio: mean_of(&mean, &hair) / mean_of(&reference, &hair),
+        own_mask_ratio: mean_of(&mean, &own) / mean_of(&reference, &own),
+        difference: rmse(&mean, &reference),
+        plait_noise: 0.5 * rmse(&a.texels, &b.texels),
+        pixels: hair.len(),
+    }
 }
 
 fn check_depth(depth: u32, spp: u32, fixture: &str) {
@@ -177,13 +232,16 @@ fn check_depth(depth: u32, spp: u32, fixture: &str) {
     let mut failures = Vec::new();
     let scenes = COLOURS.iter().zip(&plan.scenes);
     for ((colour, scene), reference) in scenes.zip(&plan.path_traced_images) {
-        let (ratio, difference, plait_noise, pixels) =
-            compare(&gpu, (colour, &scene.data), depth, spp, &reference.linear);
-        let combined = (plait_noise.powi(2) + reference.noise_rmse.powi(2)).sqrt();
+        let m = compare(&gpu, &scene.data, depth, spp, &reference.linear);
+        let combined = (m.plait_noise.powi(2) + reference.noise_rmse.powi(2)).sqrt();
+        let (ratio, difference) = (m.ratio, m.difference);
         report.push(format!(
-            "depth {depth}, {colour}: {pixels} hair pixels; mean hair luminance plait ÷ Mitsuba {ratio:.4}; \
-             RMSE plait − Mitsuba {difference:.4}, noise plait {plait_noise:.4} (2 × {spp} spp), \
-             Mitsuba {:.4}, combined {combined:.4} ({:.2}×)",
+            "depth {depth}, {colour}: {} hair pixels; mean hair luminance plait ÷ Mitsuba {ratio:.4} \
+             (over the compared renders' own hair pixels {:.4}); RMSE plait − Mitsuba {difference:.4}, \
+             noise plait {:.4} (2 × {spp} spp), Mitsuba {:.4}, combined {combined:.4} ({:.2}×)",
+            m.pixels,
+            m.own_mask_ratio,
+            m.plait_noise,
             reference.noise_rmse,
             difference / combined
         ));
@@ -204,13 +262,13 @@ fn check_depth(depth: u32, spp: u32, fixture: &str) {
 }
 
 #[test]
-#[ignore = "plait reads 0.93 (blond), 0.93 (dark brown), 0.89 (black) of Mitsuba's mean light over fully covered hair pixels at max depth 2 (per-pixel RMSE within 1.06x the combined noise): a bias not yet found; see the module docs"]
+#[ignore = "at 2 x 8 spp the mean over the hair's pixels is as noisy (~2 %) as its 3 % bound: read 0.969 / 0.971 / 0.982 (blond / dark brown / black); see the module docs"]
 fn single_scattering_matches_mitsuba_at_max_depth_2() {
     check_depth(2, SPP_DEPTH_2, "tests/fixtures/pt_depth2.toml");
 }
 
 #[test]
-#[ignore = "not run to the end yet (minutes of lavapipe per render on the shared machine); depth 2 is not yet within its bound"]
+#[ignore = "not run to the end yet (minutes of lavapipe per render on the shared machine); depth 2 not yet held to its bound at enough samples"]
 fn multiple_scattering_matches_mitsuba_at_max_depth_16() {
     check_depth(16, SPP_FULL, "tests/fixtures/ms_path_traced.toml");
 }
