@@ -17,11 +17,11 @@
 
 use std::path::{Path, PathBuf};
 
-use plait::ab::{AbOptions, Plan, default_cache, render_references};
+use plait::ab::default_cache;
 use plait::session::prepare;
 use plait_hair::HairFile;
 use plait_hair::rng::SplitMix64;
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{open_gpu, path_traced_plan, repo_root};
 
 const SIZE: (u32, u32) = (160, 120);
 /// Fibre width: 0.01 model units; the slab is 6 × 6 wide along x and z.
@@ -102,20 +102,13 @@ fn mean_luminance(image: &image::Rgba32FImage) -> f64 {
 /// Per scene: the path tracer's mean luminance over the whole image (all
 /// slab) at the reference's depth.
 fn path_traced(scenes: &[PathBuf], reference: PathBuf) -> Vec<f64> {
-    let mut options = AbOptions::new(
-        vec![repo_root().join("pipelines/occupancy.toml")],
+    let plan = path_traced_plan(
+        repo_root().join("pipelines/occupancy.toml"),
         reference,
+        scenes.to_vec(),
+        &["techniques.shading=chiang"],
+        SIZE,
     );
-    options.scenes = scenes.to_vec();
-    options.sets = vec!["techniques.shading=chiang".to_owned()];
-    options.size = SIZE;
-    options.repeats = 1;
-    let mut plan = Plan::new(options).unwrap_or_else(|e| panic!("the plan: {e}"));
-    render_references(&mut plan, &default_cache(), &mut |line| {
-        eprintln!("{line}");
-        Ok(())
-    })
-    .unwrap_or_else(|e| panic!("the path-traced references: {e}"));
     plan.path_traced_images
         .iter()
         .map(|r| mean_luminance(&r.linear))

@@ -29,12 +29,9 @@
 //! and the standard error it implies on a mean over the hair pixels is
 //! printed beside the bands it must stay under.
 
-use std::path::PathBuf;
-
-use plait::ab::{AbOptions, Plan, default_cache, render_references};
 use plait::session::prepare;
 use plait_tests::bands::{Row, band_failures};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{open_gpu, path_traced_plan, repo_root};
 
 const SIZE: (u32, u32) = (160, 120);
 const COLOURS: [&str; 3] = ["blond", "dark_brown", "black"];
@@ -79,23 +76,16 @@ struct Measured {
 /// Per scene `tests/scenes/ms_<name>.toml`, in order.
 fn measure(names: &[String]) -> Vec<Measured> {
     let root = repo_root();
-    let mut options = AbOptions::new(
-        vec![root.join("pipelines/occupancy.toml")],
+    let plan = path_traced_plan(
+        root.join("pipelines/occupancy.toml"),
         root.join("tests/fixtures/ms_path_traced.toml"),
+        names
+            .iter()
+            .map(|c| root.join(format!("tests/scenes/ms_{c}.toml")))
+            .collect(),
+        &["techniques.shading=chiang"],
+        SIZE,
     );
-    options.scenes = names
-        .iter()
-        .map(|c| root.join(format!("tests/scenes/ms_{c}.toml")))
-        .collect::<Vec<PathBuf>>();
-    options.sets = vec!["techniques.shading=chiang".to_owned()];
-    options.size = SIZE;
-    options.repeats = 1;
-    let mut plan = Plan::new(options).unwrap_or_else(|e| panic!("the plan: {e}"));
-    render_references(&mut plan, &default_cache(), &mut |line| {
-        eprintln!("{line}");
-        Ok(())
-    })
-    .unwrap_or_else(|e| panic!("the path-traced references: {e}"));
     let (_lock, gpu) = open_gpu();
     let pipeline = root.join("pipelines/occupancy.toml");
     plan.scenes
