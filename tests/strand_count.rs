@@ -186,6 +186,11 @@ fn providers() -> Vec<Provider> {
         // One ray per point through the strands' acceleration structure
         // (tests/ray_traced_strands.rs holds one strand and the mutations).
         provider("ray_traced", vec![], true),
+        // Four rays per point, jittered over the pixel's footprint: their
+        // mean count, the same in the mean over the probe points (issue 40:
+        // the sum not divided by the ray count, ray_traced's
+        // self_shadow.wgsl 116:14, read 4 × 4 = 16 times the closed form).
+        provider("ray_traced", vec!["params.shadow_rays=4".to_owned()], true),
         // The volume converges with its resolution (the trilinear lookup
         // smears the count over a voxel either side: at 8³, voxels wider
         // than the layers' gap, 0.78 below the first layer): at 64³ it

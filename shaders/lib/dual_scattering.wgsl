@@ -22,14 +22,21 @@
 
 const PI: f32 = 3.14159265358979;
 
-// Table axes: x = sin θi over [−1, 1], y = σ_a/(1 + σ_a) over [0, 1), at
-// texel centres.
-fn absorption_coordinate(sigma_a: f32) -> f32 {
-    return sigma_a / (1.0 + sigma_a);
-}
-
+// Table axes: x = sin θi over [−1, 1] at texel centres; y: row j of N
+// holds v = σ_a/(1 + σ_a) = j/N, so row 0 is the clear fibre (σ_a = 0)
+// and the top row σ_a = N − 1 (15 at 16 rows; black hair is 0.44). Rows
+// at texel centres, v = (j + ½)/N, put the first at σ_a = 0.032: every
+// lighter σ_a (blond's 0.0008 / 0.005 / 0.024) read that row's averages,
+// and A_b, which grows as 1/(1 − ā_f²), came out 2–3× too small (ds43).
 fn absorption_at(v: f32) -> f32 {
     return v / (1.0 - v);
+}
+
+// The texture coordinate of σ_a on the y axis of a table of `rows` rows.
+// Beyond the top row (σ_a > rows − 1, a fibre that transmits nothing)
+// the sampler clamps to it.
+fn absorption_uv(sigma_a: f32, rows: f32) -> f32 {
+    return (sigma_a / (1.0 + sigma_a) * rows + 0.5) / rows;
 }
 
 struct BackScattering {

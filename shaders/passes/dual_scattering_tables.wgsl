@@ -69,7 +69,8 @@ fn fs_main(@builtin(position) pixel: vec4<f32>) -> Tables {
     let size = vec2<f32>(f32(max(params.sin_steps, 2)), f32(max(params.absorption_steps, 2)));
     let uv = pixel.xy / size;
     let sin_i = -1.0 + 2.0 * uv.x;
-    let sigma = absorption_at(uv.y);
+    // Row j holds σ_a/(1 + σ_a) = j/N (plait::dual_scattering).
+    let sigma = absorption_at((pixel.y - 0.5) / size.y);
     var f = fibre(params.beta_m, params.beta_n, params.tilt, params.eta, vec3<f32>(1.0));
     f.sigma_a = vec3<f32>(sigma);
     let s = integrate(f, sin_i);

@@ -198,3 +198,55 @@ fn the_tile_scan_counts_every_tile_once_past_65538_tiles() {
         "the scan's total against the tiles' counts"
     );
 }
+
+/// Four wide segments (one each, 0.4 thick: ≈ 15 px at 160×120; 1.0 long:
+/// ≈ 37 px) running along the four diagonals of the screen, one from each
+/// quadrant. A quad's corners are (start −, start +, end −, end +): along
+/// one of the four directions the first corner alone is the lowest in y,
+/// along another the lowest in x, by min(L sin 45°, 2r cos 45°) ≈ 11 px
+/// beyond the next corner, more than an 8-pixel tile. The tiles below or
+/// left of the others' box reach only that corner's part of the quad.
+/// compute_raster draws them as linked_list's quads: Σ|Δα| / Σα within
+/// 0.005, as `tests/compute_raster.rs` holds its wide strands. Kills, in
+/// `techniques/transparency/compute_raster/tiles.wgsl`, the box's low
+/// corner taken from corners 1–3 (`c[0]` → `c[1]`, 157:34; 137:34 when
+/// issue 40 named it): the first corner's tiles lose its triangle's tip.
+#[test]
+fn a_wide_quads_first_corner_alone_reaches_its_tiles() {
+    let (_lock, gpu) = open_gpu();
+    let mut scene = scene();
+    scene.strands = plait_hair::Strands::new();
+    for (centre, direction) in [
+        (Vec3::new(-1.0, 0.75, 0.0), Vec3::new(1.0, 1.0, 0.0)),
+        (Vec3::new(1.0, 0.75, 0.0), Vec3::new(-1.0, 1.0, 0.0)),
+        (Vec3::new(-1.0, -0.75, 0.0), Vec3::new(1.0, -1.0, 0.0)),
+        (Vec3::new(1.0, -0.75, 0.0), Vec3::new(-1.0, -1.0, 0.0)),
+    ] {
+        let half = direction.normalize() * 0.5;
+        scene.strands.push_strand(
+            &[centre - half, centre + half],
+            |_| 0.4,
+            |_| 1.0,
+            Vec3::splat(0.8),
+        );
+    }
+    let raster = hair(&gpu, "pipelines/linked_list.toml", &scene);
+    let compute = hair(&gpu, "pipelines/compute_raster.toml", &scene);
+    let raster_sum: f64 = raster.iter().map(|p| f64::from(p[3])).sum();
+    let compute_sum: f64 = compute.iter().map(|p| f64::from(p[3])).sum();
+    let difference: f64 = raster
+        .iter()
+        .zip(&compute)
+        .map(|(r, c)| f64::from((r[3] - c[3]).abs()))
+        .sum::<f64>()
+        / raster_sum;
+    println!(
+        "four wide diagonal quads: Σα linked_list {raster_sum:.2}, compute_raster \
+         {compute_sum:.2}, Σ|Δα| / Σα {difference:.5}"
+    );
+    assert!(raster_sum > 1000.0, "the quads are drawn: Σα {raster_sum}");
+    assert!(
+        difference < 0.005,
+        "compute_raster's quads are {difference:.5} of linked_list's away (Σ|Δα| / Σα)"
+    );
+}

@@ -17,6 +17,8 @@ mod linked_list;
 mod marschner;
 mod occupancy;
 mod occupancy_order;
+mod path_traced;
+mod strand_coverage;
 mod tone_mapping;
 
 use plait::session::{SceneData, prepare};

@@ -36,7 +36,7 @@ fn a_hand_edited_table_is_caught() {
     for figure in &registry.figures {
         copy(&figure.page);
         copy(&format!("{}/{}.json", published::RECORDS, figure.id));
-        for m in &figure.measures {
+        for m in figure.measures.iter().chain(&figure.except) {
             std::fs::create_dir_all(dir.path().join(m)).unwrap();
         }
     }

@@ -18,7 +18,7 @@
 #import plait::chiang::sigma_a_from_color
 #import plait::marschner::hair_angles
 #import plait::self_shadow::strands_along_light
-#import plait::dual_scattering::{absorption_coordinate, back_scattering, behind_fraction, lobe}
+#import plait::dual_scattering::{absorption_uv, back_scattering, behind_fraction, lobe}
 
 struct MultipleScatteringParams {
     dual_scattering_front_density: f32,
@@ -38,8 +38,9 @@ const PI: f32 = 3.14159265358979;
 // are the shading point's (S·cos θi integrated), so no further cos θi.
 fn channel(sin_i: f32, sigma_a: f32, theta_h: f32, cos_o: f32, backward: f32, n: f32, m: f32, v: f32) -> f32 {
     let size = vec2<f32>(textureDimensions(dual_scattering_a));
-    // Texel centres span [0.5, size − 0.5]: x = sin θi over [−1, 1].
-    let uv = vec2<f32>(0.5 + 0.5 * sin_i, absorption_coordinate(sigma_a));
+    // Texel centres span [0.5, size − 0.5]: x = sin θi over [−1, 1]; y by
+    // plait::dual_scattering's rows (row 0 the clear fibre).
+    let uv = vec2<f32>(0.5 + 0.5 * sin_i, absorption_uv(sigma_a, size.y));
     let a = textureSampleLevel(dual_scattering_a, linear_sampler, uv, 0.0);
     let b = textureSampleLevel(dual_scattering_b, linear_sampler, uv, 0.0).xy;
     let p = multiple_scattering_params;

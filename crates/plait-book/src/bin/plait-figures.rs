@@ -245,8 +245,9 @@ fn made(repo: &Path, figure: &Figure) -> Result<published::Made> {
     Ok(published::Made {
         commit: git(&["rev-parse", "HEAD"])?,
         dirty: {
+            let specs = figure.pathspecs();
             let mut args = vec!["status", "--porcelain", "--untracked-files=no", "--"];
-            args.extend(figure.measures.iter().map(String::as_str));
+            args.extend(specs.iter().map(String::as_str));
             !git(&args)?.is_empty()
         },
         date: published::today(),

@@ -63,15 +63,20 @@ pub fn compare(figure: &Figure, published: &Record, today: &Record) -> Vec<Compa
         // (a path-traced reference's CPU wall time) has no speed figure.
         let base = |rows: &[&Row]| rows.first().filter(|r| r.gpu_timed).map(|r| r.ms);
         let (was_base, now_base) = (base(&was), base(&now));
-        let mut variants: Vec<&str> = was.iter().map(|r| r.variant.as_str()).collect();
+        // A scene's reference is one row on each side, whatever its label
+        // says: a path-traced reference's label carries its own noise
+        // ("… noise RMSE 0.0108 on small"), a measurement, not a name.
+        let same = |a: &Row, b: &Row| a.variant == b.variant || (a.reference && b.reference);
+        let mut variants: Vec<&Row> = was.clone();
         for r in &now {
-            if !variants.contains(&r.variant.as_str()) {
-                variants.push(&r.variant);
+            if !variants.iter().any(|v| same(v, r)) {
+                variants.push(r);
             }
         }
-        for (i, variant) in variants.into_iter().enumerate() {
-            let p = was.iter().find(|r| r.variant == variant);
-            let t = now.iter().find(|r| r.variant == variant);
+        for (i, key) in variants.into_iter().enumerate() {
+            let variant = key.variant.as_str();
+            let p = was.iter().find(|r| same(r, key));
+            let t = now.iter().find(|r| same(r, key));
             let row =
                 |quantity: &str, published: Option<f64>, today: Option<f64>, lo, hi, moved| {
                     Comparison {
@@ -192,6 +197,7 @@ mod tests {
             key: vec![],
             columns: Default::default(),
             measures: vec![],
+            except: vec![],
             speed_tolerance: 0.10,
         }
     }
@@ -283,6 +289,35 @@ mod tests {
         assert!(
             rows.iter().any(|r| r.moved && r.quantity == "RMSE"),
             "{rows:?}"
+        );
+    }
+
+    #[test]
+    fn a_reference_whose_label_carries_its_noise_is_the_same_row() {
+        let reference = |label: &str| Row {
+            reference: true,
+            ..row(label, (60.0, 60.0, 60.0), 0.0)
+        };
+        let published = record(vec![
+            row("a", (10.0, 10.0, 10.0), 0.02),
+            reference("path_traced (noise RMSE 0.0108 on small)"),
+        ]);
+        let today = record(vec![
+            row("a", (10.0, 10.0, 10.0), 0.02),
+            reference("path_traced (noise RMSE 0.0105 on small)"),
+        ]);
+        let rows = compare(&figure(), &published, &today);
+        assert!(rows.iter().all(|r| !r.moved), "{rows:?}");
+        assert!(rows.iter().all(|r| r.quantity != "row present"), "{rows:?}");
+        // A non-reference row renamed is still another row.
+        let today = record(vec![
+            row("b", (10.0, 10.0, 10.0), 0.02),
+            reference("path_traced (noise RMSE 0.0105 on small)"),
+        ]);
+        let rows = compare(&figure(), &published, &today);
+        assert_eq!(
+            rows.iter().filter(|r| r.quantity == "row present").count(),
+            2
         );
     }
 

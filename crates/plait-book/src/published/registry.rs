@@ -40,11 +40,24 @@ pub struct Figure {
     /// Files and folders whose change can move the figure: a commit touching
     /// one after the figure's own commit makes it stale.
     pub measures: Vec<String>,
+    /// Files inside `measures` that the figure's command never runs (the
+    /// path tracer's shaders under `shaders`, for a rasterized figure): a
+    /// commit touching only these leaves the figure fresh.
+    #[serde(default)]
+    pub except: Vec<String>,
     /// Relative change of a frame-time ratio still within the machine's noise
     /// beyond the run's own spread (default 0.10: lavapipe on a 2-core
     /// machine repeats to about ±10 %, book → Performance).
     #[serde(default = "default_speed_tolerance")]
     pub speed_tolerance: f64,
+}
+
+impl Figure {
+    /// What it measures as git pathspecs: `measures`, less `except`.
+    pub fn pathspecs(&self) -> Vec<String> {
+        let excluded = self.except.iter().map(|e| format!(":(exclude){e}"));
+        self.measures.iter().cloned().chain(excluded).collect()
+    }
 }
 
 /// How a figure is measured.
@@ -122,13 +135,28 @@ impl Registry {
                     ),
                 ));
             }
-            for m in &f.measures {
+            for m in f.measures.iter().chain(&f.except) {
                 if !repo.join(m).exists() {
                     return Err(BookError::content(
                         &path,
                         format!("figure `{}`: measures `{m}`, which does not exist", f.id),
                     ));
                 }
+            }
+            // An exception outside every measured path would hide nothing and
+            // say something false about the figure.
+            if let Some(e) = f.except.iter().find(|e| {
+                !f.measures
+                    .iter()
+                    .any(|m| Path::new(e.as_str()).starts_with(m.as_str()))
+            }) {
+                return Err(BookError::content(
+                    &path,
+                    format!(
+                        "figure `{}`: except `{e}` lies outside everything it measures",
+                        f.id
+                    ),
+                ));
             }
         }
         Ok(registry)

@@ -51,7 +51,7 @@ pub fn freshness(repo: &Path) -> Result<Vec<Freshness>, BookError> {
             format!("{}..HEAD", record.commit),
             "--".to_string(),
         ];
-        args.extend(figure.measures.iter().cloned());
+        args.extend(figure.pathspecs());
         let (changed_since, unknown) =
             match Command::new("git").args(&args).current_dir(repo).output() {
                 Ok(o) if o.status.success() => (

@@ -205,6 +205,7 @@ mod tests {
             key: vec!["segments".into()],
             columns: columns.iter().map(|(n, c)| (n.to_string(), *c)).collect(),
             measures: vec![],
+            except: vec![],
             speed_tolerance: 0.10,
         }
     }
