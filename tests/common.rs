@@ -133,22 +133,11 @@ pub fn one_strand_scene(
 }
 
 /// `PLAIT_BLESS=1` (re)writes snapshots and golden images instead of comparing.
-/// A `plait ab` plan of `pipeline` with the path-traced `reference` over
-/// `scenes` at `size` (one repeat, `sets` applied), its Mitsuba images
-/// rendered or taken from the build folder's cache
-/// (`plait::ab::default_cache`, as `plait ab` caches them):
+/// The `plait ab` plan of `options` (one repeat) with its path-traced
+/// reference's Mitsuba images rendered or taken from the build folder's
+/// cache (`plait::ab::default_cache`, as `plait ab` caches them):
 /// `plan.path_traced_images` holds one per scene.
-pub fn path_traced_plan(
-    pipeline: PathBuf,
-    reference: PathBuf,
-    scenes: Vec<PathBuf>,
-    sets: &[&str],
-    size: (u32, u32),
-) -> plait::ab::Plan {
-    let mut options = plait::ab::AbOptions::new(vec![pipeline], reference);
-    options.scenes = scenes;
-    options.sets = sets.iter().map(|s| s.to_string()).collect();
-    options.size = size;
+pub fn path_traced_plan(mut options: plait::ab::AbOptions) -> plait::ab::Plan {
     options.repeats = 1;
     let mut plan = plait::ab::Plan::new(options).unwrap_or_else(|e| panic!("the plan: {e}"));
     plait::ab::render_references(&mut plan, &plait::ab::default_cache(), &mut |line| {

@@ -17,7 +17,7 @@
 
 use std::path::{Path, PathBuf};
 
-use plait::ab::default_cache;
+use plait::ab::{AbOptions, default_cache};
 use plait::session::prepare;
 use plait_hair::HairFile;
 use plait_hair::rng::SplitMix64;
@@ -102,13 +102,14 @@ fn mean_luminance(image: &image::Rgba32FImage) -> f64 {
 /// Per scene: the path tracer's mean luminance over the whole image (all
 /// slab) at the reference's depth.
 fn path_traced(scenes: &[PathBuf], reference: PathBuf) -> Vec<f64> {
-    let plan = path_traced_plan(
-        repo_root().join("pipelines/occupancy.toml"),
+    let mut options = AbOptions::new(
+        vec![repo_root().join("pipelines/occupancy.toml")],
         reference,
-        scenes.to_vec(),
-        &["techniques.shading=chiang"],
-        SIZE,
     );
+    options.scenes = scenes.to_vec();
+    options.sets = vec!["techniques.shading=chiang".to_owned()];
+    options.size = SIZE;
+    let plan = path_traced_plan(options);
     plan.path_traced_images
         .iter()
         .map(|r| mean_luminance(&r.linear))

@@ -29,6 +29,7 @@
 //! and the standard error it implies on a mean over the hair pixels is
 //! printed beside the bands it must stay under.
 
+use plait::ab::AbOptions;
 use plait::session::prepare;
 use plait_tests::bands::{Row, band_failures};
 use plait_tests::{open_gpu, path_traced_plan, repo_root};
@@ -76,16 +77,17 @@ struct Measured {
 /// Per scene `tests/scenes/ms_<name>.toml`, in order.
 fn measure(names: &[String]) -> Vec<Measured> {
     let root = repo_root();
-    let plan = path_traced_plan(
-        root.join("pipelines/occupancy.toml"),
+    let mut options = AbOptions::new(
+        vec![root.join("pipelines/occupancy.toml")],
         root.join("tests/fixtures/ms_path_traced.toml"),
-        names
-            .iter()
-            .map(|c| root.join(format!("tests/scenes/ms_{c}.toml")))
-            .collect(),
-        &["techniques.shading=chiang"],
-        SIZE,
     );
+    options.scenes = names
+        .iter()
+        .map(|c| root.join(format!("tests/scenes/ms_{c}.toml")))
+        .collect();
+    options.sets = vec!["techniques.shading=chiang".to_owned()];
+    options.size = SIZE;
+    let plan = path_traced_plan(options);
     let (_lock, gpu) = open_gpu();
     let pipeline = root.join("pipelines/occupancy.toml");
     plan.scenes

@@ -89,9 +89,9 @@
 
 use std::path::PathBuf;
 
-use plait::ab::{AbOptions, Plan, default_cache, render_references};
+use plait::ab::{AbOptions, Plan};
 use plait::session::{SceneData, prepare};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{open_gpu, path_traced_plan, repo_root};
 
 const SIZE: (u32, u32) = (160, 120);
 const COLOURS: [&str; 3] = ["blond", "dark_brown", "black"];
@@ -124,14 +124,7 @@ fn mitsuba(fixture: &str) -> Plan {
     );
     options.scenes = COLOURS.iter().map(|c| scene_path(c)).collect();
     options.size = SIZE;
-    options.repeats = 1;
-    let mut plan = Plan::new(options).unwrap_or_else(|e| panic!("the plan: {e}"));
-    render_references(&mut plan, &default_cache(), &mut |line| {
-        eprintln!("{line}");
-        Ok(())
-    })
-    .unwrap_or_else(|e| panic!("the path-traced references: {e}"));
-    plan
+    path_traced_plan(options)
 }
 
 /// plait's image (linear RGBA) and each pixel's hair coverage (the part of

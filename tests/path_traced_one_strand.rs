@@ -32,9 +32,9 @@
 //! (`plait::ab::default_cache`); the first run renders them (Mitsuba
 //! installed by scripts/ensure-mitsuba.sh, as scripts/test.sh does).
 
-use plait::ab::{AbOptions, HairColor, Plan, default_cache, render_references};
+use plait::ab::{AbOptions, HairColor};
 use plait::session::{SceneData, prepare};
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{open_gpu, path_traced_plan, repo_root};
 
 const SIZE: (u32, u32) = (160, 120);
 /// plait's samples per pixel per seed (two seeds).
@@ -68,13 +68,7 @@ fn mitsuba(colour: &str) -> (SceneData, image::Rgba32FImage) {
     options.scenes = vec![root.join("scripts/mitsuba/thick_strand.toml")];
     options.hair_colors = vec![HairColor::parse(colour).expect("a colour")];
     options.size = SIZE;
-    options.repeats = 1;
-    let mut plan = Plan::new(options).unwrap_or_else(|e| panic!("the plan: {e}"));
-    render_references(&mut plan, &default_cache(), &mut |line| {
-        eprintln!("{line}");
-        Ok(())
-    })
-    .unwrap_or_else(|e| panic!("the path-traced reference: {e}"));
+    let mut plan = path_traced_plan(options);
     let scene = plan.scenes.remove(0).data;
     (scene, plan.path_traced_images.remove(0).linear)
 }
