@@ -79,9 +79,29 @@ pub struct Renderer<'g> {
     /// GPU time of each pass on the frame it last ran (what a cached
     /// `run = "once"` pass reports).
     last_ms: std::sync::Mutex<Vec<Option<f64>>>,
-    /// The last frame's `head_model` ([`Renderer::set_frame`]), for the
-    /// passes that place the head on the CPU (`RecordContext::head_model`).
-    head_model: std::sync::Mutex<[[f32; 4]; 4]>,
+    /// What recording reads of the last frame ([`Renderer::set_frame`]).
+    recorded: std::sync::Mutex<RecordedFrame>,
+    /// A pass writes `hair_vertices` (simulation, interpolation): the hair
+    /// drawn is the GPU's, not the CPU's the frame measured.
+    hair_on_gpu: bool,
+}
+
+/// What recording a frame reads of its [`FrameUniforms`] on the CPU.
+#[derive(Clone, Copy)]
+struct RecordedFrame {
+    /// For the passes that place the head on the CPU (`RecordContext::head_model`).
+    head_model: [[f32; 4]; 4],
+    /// `RecordContext::wide_strands`, before `hair_on_gpu`.
+    wide_strands: bool,
+}
+
+impl RecordedFrame {
+    fn of(frame: &FrameUniforms) -> Self {
+        RecordedFrame {
+            head_model: frame.head_model,
+            wide_strands: frame.draws_wide_strands(),
+        }
+    }
 }
 
 impl<'g> Renderer<'g> {
@@ -174,6 +194,10 @@ impl<'g> Renderer<'g> {
             .timestamp_way()
             .map(|way| Timestamps::new(device, &gpu.queue, way, schedule.passes.len()));
         let overflow = OverflowReadback::new(device, &schedule, &pool);
+        let hair_on_gpu = schedule
+            .passes
+            .iter()
+            .any(|p| p.writes.iter().any(|w| w.resource_name == "hair_vertices"));
         Ok(Renderer {
             gpu,
             overflow,
@@ -184,7 +208,8 @@ impl<'g> Renderer<'g> {
             frame_group,
             frame_bind_group,
             last_ms: std::sync::Mutex::new(vec![None; passes.len()]),
-            head_model: std::sync::Mutex::new(frame.head_model),
+            recorded: std::sync::Mutex::new(RecordedFrame::of(frame)),
+            hair_on_gpu,
             frames_rendered: std::sync::atomic::AtomicU64::new(0),
             passes,
             timestamps,
@@ -230,7 +255,7 @@ impl<'g> Renderer<'g> {
 
     /// Replace the frame's standard inputs (e.g. a new jitter) before `render`.
     pub fn set_frame(&self, frame: &FrameUniforms) {
-        *self.head_model.lock().unwrap_or_else(|e| e.into_inner()) = frame.head_model;
+        *self.recorded.lock().unwrap_or_else(|e| e.into_inner()) = RecordedFrame::of(frame);
         self.gpu
             .queue
             .write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(frame));
@@ -259,6 +284,7 @@ impl<'g> Renderer<'g> {
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some(&self.schedule.name),
         });
+        let recorded = *self.recorded.lock().unwrap_or_else(|e| e.into_inner());
         let ctx = RecordContext {
             device,
             queue: &self.gpu.queue,
@@ -267,7 +293,8 @@ impl<'g> Renderer<'g> {
             pool: &self.pool,
             schedule: &self.schedule,
             timestamps: self.timestamps.as_ref(),
-            head_model: *self.head_model.lock().unwrap_or_else(|e| e.into_inner()),
+            head_model: recorded.head_model,
+            wide_strands: self.hair_on_gpu || recorded.wide_strands,
         };
         if let Some(ts) = &self.timestamps {
             ts.frame_start(&mut encoder);

@@ -51,7 +51,10 @@ pub struct FrameUniforms {
     /// x: the strands' mean width (thickness, world units) over every
     /// vertex — what the depth-only self-shadow maps (modified shadow map,
     /// TressFX), which keep no strand's width, take each strand crossed to
-    /// be, to block its share of a light texel (issue 47); yzw unused.
+    /// be, to block its share of a light texel (issue 47); y: the widest
+    /// strand across the camera's view, in pixels, over every vertex in
+    /// front of the eye (the CPU's strands: [`FrameUniforms::draws_wide_strands`]);
+    /// zw unused.
     pub hair_width: [f32; 4],
 }
 
@@ -110,7 +113,7 @@ impl FrameUniforms {
         let view = camera.view();
         let proj = camera.projection(aspect);
         let view_proj = proj * view;
-        let covered_alpha = mean_covered_alpha(strands, view_proj, Vec3::from(camera.eye), size);
+        let seen = SeenWidths::of(strands, view_proj, Vec3::from(camera.eye), size);
         let light = LightFrustum::fit(scene, hair_bounds, scene_bounds);
         let to_light = scene.light.direction_to_light();
         let (light_dir_w, light_pos) = match &scene.light.kind {
@@ -154,7 +157,7 @@ impl FrameUniforms {
                 0.0,
             ],
             hair_stats: [
-                (covered_alpha * scene.material.alpha).clamp(0.0, 1.0),
+                (seen.covered_alpha * scene.material.alpha).clamp(0.0, 1.0),
                 strands.strand_count() as f32,
                 strands.segment_count() as f32,
                 (mean_alpha * scene.material.alpha).clamp(0.0, 1.0),
@@ -162,7 +165,7 @@ impl FrameUniforms {
             head_model: Mat4::IDENTITY.to_cols_array_2d(),
             head_model_previous: Mat4::IDENTITY.to_cols_array_2d(),
             hair_sphere: hair_sphere(hair_bounds),
-            hair_width: [mean_thickness(strands), 0.0, 0.0, 0.0],
+            hair_width: [mean_thickness(strands), seen.widest, 0.0, 0.0],
         }
     }
 
@@ -193,6 +196,18 @@ impl FrameUniforms {
             self.hair_stats.swap(0, 3);
         }
         self
+    }
+
+    /// Whether a camera hair draw needs its quad draw of strands wider than
+    /// a pixel (`plait::strand_coverage`, "the quad draw") for the hair as
+    /// the CPU holds it: coverage on and some vertex at least
+    /// [`WIDE_MARGIN`] of a pixel wide. The line draw drops a segment the
+    /// GPU finds wider than a pixel whatever the CPU decided, so the margin
+    /// keeps a rounding difference between the two from losing it; hair a
+    /// pass moves or makes on the GPU is not the CPU's, and always draws it
+    /// (`Renderer`).
+    pub fn draws_wide_strands(&self) -> bool {
+        self.conventions[2] > 0.5 && self.hair_width[1] >= WIDE_MARGIN
     }
 
     pub fn camera_view_proj(&self) -> Mat4 {
@@ -291,39 +306,52 @@ impl LightFrustum {
     }
 }
 
-/// The mean strand alpha weighted by strand coverage, the CPU mirror of
-/// `strand_coverage` in `shaders/lib/strand_coverage.wgsl`: the part of
-/// a pixel each vertex's strand covers at `size` (at most 1), times its
-/// alpha, averaged over vertices (summed in f64). Order-based blending's ᾱ
-/// (Sintorn & Assarsson 2009 §3.4) is the alpha fragments actually carry.
-pub fn mean_covered_alpha(strands: &Strands, view_proj: Mat4, eye: Vec3, size: (u32, u32)) -> f32 {
-    if strands.points.is_empty() {
-        return 1.0;
-    }
-    let tangents = strands.tangents();
-    let half = glam::Vec2::new(size.0 as f32, size.1 as f32) * 0.5;
-    let sum: f64 = strands
-        .points
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| {
-            let alpha = strands.alpha.get(i).copied().unwrap_or(1.0) as f64;
-            let thickness = strands.thickness.get(i).copied().unwrap_or(1.0);
-            alpha * strand_coverage(p, tangents[i], thickness, view_proj, eye, half) as f64
-        })
-        .sum();
-    (sum / strands.points.len() as f64) as f32
+/// The strands' widths as the camera sees them at one size, from one walk
+/// over every vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SeenWidths {
+    /// The mean strand alpha weighted by strand coverage, the CPU mirror of
+    /// `strand_coverage` in `shaders/lib/strand_coverage.wgsl`: the part of
+    /// a pixel each vertex's strand covers (at most 1), times its alpha,
+    /// averaged over vertices (summed in f64). Order-based blending's ᾱ
+    /// (Sintorn & Assarsson 2009 §3.4) is the alpha fragments actually carry.
+    pub covered_alpha: f32,
+    /// The widest strand across the view, in pixels, over the vertices in
+    /// front of the eye; 0 without any.
+    pub widest: f32,
 }
 
-fn strand_coverage(
-    p: Vec3,
-    tangent: Vec3,
-    thickness: f32,
-    view_proj: Mat4,
-    eye: Vec3,
-    half: glam::Vec2,
-) -> f32 {
-    strand_width_pixels(p, tangent, thickness, view_proj, eye, half).map_or(1.0, |w| w.min(1.0))
+/// A vertex this much of a pixel wide or wider makes a camera hair draw
+/// draw its quads ([`FrameUniforms::draws_wide_strands`]): the GPU calls a
+/// segment wide above 1, and its f32 arithmetic differs from the CPU's by
+/// far less than this.
+pub const WIDE_MARGIN: f32 = 0.9;
+
+impl SeenWidths {
+    pub fn of(strands: &Strands, view_proj: Mat4, eye: Vec3, size: (u32, u32)) -> Self {
+        if strands.points.is_empty() {
+            return SeenWidths {
+                covered_alpha: 1.0,
+                widest: 0.0,
+            };
+        }
+        let tangents = strands.tangents();
+        let half = glam::Vec2::new(size.0 as f32, size.1 as f32) * 0.5;
+        let mut sum = 0.0f64;
+        let mut widest = 0.0f32;
+        for (i, &p) in strands.points.iter().enumerate() {
+            let alpha = strands.alpha.get(i).copied().unwrap_or(1.0) as f64;
+            let thickness = strands.thickness.get(i).copied().unwrap_or(1.0);
+            let width = strand_width_pixels(p, tangents[i], thickness, view_proj, eye, half);
+            // Behind the eye the line is clipped anyway: coverage 1 as in WGSL.
+            sum += alpha * width.map_or(1.0, |w| w.min(1.0)) as f64;
+            widest = widest.max(width.unwrap_or(0.0));
+        }
+        SeenWidths {
+            covered_alpha: (sum / strands.points.len() as f64) as f32,
+            widest,
+        }
+    }
 }
 
 /// `strand_width_pixels` of `shaders/lib/strand_coverage.wgsl` on the CPU:
@@ -434,5 +462,41 @@ mod tests {
         ];
         assert_eq!(wgsl, rust);
         assert_eq!(*span as u64, FRAME_UNIFORMS_SIZE);
+    }
+
+    /// A strand of thickness t at distance 5 under a 90° camera 100 pixels
+    /// high is 10 t pixels wide: `widest` is the widest vertex, strands behind
+    /// the eye do not count, and the quad draw is wanted from `WIDE_MARGIN`
+    /// of a pixel up, only with coverage on.
+    #[test]
+    fn the_widest_strand_decides_the_quad_draw() {
+        let view = Mat4::look_at_rh(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y);
+        let proj = Mat4::perspective_rh(std::f32::consts::FRAC_PI_2, 1.0, 0.1, 100.0);
+        let eye = Vec3::new(0.0, 0.0, 5.0);
+        let strand = |x: f32, z: f32| [Vec3::new(x, -1.0, z), Vec3::new(x, 1.0, z)];
+        let mut strands = Strands::new();
+        strands.push_strand(&strand(0.0, 0.0), |t| 0.02 + 0.06 * t, |_| 1.0, Vec3::ONE);
+        strands.push_strand(&strand(1.0, 0.0), |_| 0.05, |_| 1.0, Vec3::ONE);
+        // Behind the eye: clipped, whatever its width.
+        strands.push_strand(&strand(0.0, 6.0), |_| 10.0, |_| 1.0, Vec3::ONE);
+        let seen = SeenWidths::of(&strands, proj * view, eye, (100, 100));
+        assert!((seen.widest - 0.8).abs() < 1e-3, "{seen:?}");
+        // Coverage min(width, 1) of each vertex, 1 behind the eye.
+        let mean = (0.2 + 0.8 + 0.5 * 1.0198 + 0.5 * 1.0198 + 2.0) / 6.0;
+        assert!(
+            (seen.covered_alpha - mean).abs() < 2e-3,
+            "{seen:?} against {mean}"
+        );
+        let mut frame: FrameUniforms = bytemuck::Zeroable::zeroed();
+        frame.conventions[2] = 1.0;
+        frame.hair_width[1] = seen.widest;
+        assert!(!frame.draws_wide_strands(), "0.8 px is under the margin");
+        frame.hair_width[1] = WIDE_MARGIN;
+        assert!(frame.draws_wide_strands());
+        frame.conventions[2] = 0.0;
+        assert!(
+            !frame.draws_wide_strands(),
+            "coverage off: no segment is wide"
+        );
     }
 }

@@ -465,6 +465,9 @@ impl PreparedPass for Prepared {
         for group in &self.groups.groups {
             let direction = RecordContext {
                 frame_bind_group: group,
+                // The directions' frames are made on the GPU: the CPU's
+                // measure of the camera's widths says nothing of theirs.
+                wide_strands: true,
                 ..*ctx
             };
             self.near.record(&direction, encoder);

@@ -174,6 +174,12 @@ pub struct RecordContext<'a> {
     /// head's meshes are, for a structure's instance transforms
     /// (`strand_structure`), which are the CPU's, not a shader's.
     pub head_model: [[f32; 4]; 4],
+    /// Camera hair draws draw their quads of strands wider than a pixel:
+    /// some may be ([`crate::frame::FrameUniforms::draws_wide_strands`], or the
+    /// hair is moved on the GPU). Without, the quad draw — six vertices per
+    /// hair vertex, every one degenerate — would cost a camera pass its
+    /// vertex work several times over for nothing.
+    pub wide_strands: bool,
 }
 
 impl<'a> RecordContext<'a> {

@@ -208,7 +208,10 @@ impl ShaderPass {
                     rpass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
                     rpass.draw_indexed(0..b.index_count, 0, 0..1);
                 }
-                if let (Some(quads), Some((vertices, count))) = (quads, ctx.geometry.hair_quads()) {
+                let quad_draw = quads.as_ref().filter(|_| ctx.wide_strands);
+                if let (Some(quads), Some((vertices, count))) =
+                    (quad_draw, ctx.geometry.hair_quads())
+                {
                     // One instance per hair vertex but the last: the segment it
                     // starts (degenerate across strands and for narrow ones).
                     rpass.set_pipeline(quads);

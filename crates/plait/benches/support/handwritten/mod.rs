@@ -53,6 +53,8 @@ pub struct HandWritten<'g> {
     frame_group: wgpu::BindGroup,
     passes: Vec<BuiltPass>,
     timestamps: Option<Timestamps>,
+    /// As plait's executor: the frame has a strand wider than a pixel.
+    wide_strands: bool,
 }
 
 impl<'g> HandWritten<'g> {
@@ -145,6 +147,7 @@ impl<'g> HandWritten<'g> {
             frame_group,
             passes: built,
             timestamps,
+            wide_strands: frame.draws_wide_strands(),
         })
     }
 
@@ -256,8 +259,9 @@ impl<'g> HandWritten<'g> {
             rpass.draw_indexed(0..b.index_count, 0, 0..1);
         }
         // As plait's executor: each hair vertex's segment as a quad where it
-        // is wider than a pixel.
-        if let (Some(quads), Some((vertices, count))) = (&pass.quads, self.geometry.hair_quads()) {
+        // is wider than a pixel, when the frame has any such.
+        let quads = pass.quads.as_ref().filter(|_| self.wide_strands);
+        if let (Some(quads), Some((vertices, count))) = (quads, self.geometry.hair_quads()) {
             rpass.set_pipeline(quads);
             rpass.set_vertex_buffer(0, vertices.slice(..));
             rpass.set_vertex_buffer(1, vertices.slice(stride..));
