@@ -55,7 +55,8 @@ struct Frame {
     hair_sphere: vec4<f32>,
     // x: the strands' mean width (thickness, world units) over every vertex:
     // what the depth-only self-shadow maps take each strand crossed to be
-    // (plait::light_share); yzw unused.
+    // (plait::light_share); y: the widest strand across the camera's view in
+    // pixels (the CPU's, for whether camera draws need their quads); zw unused.
     hair_width: vec4<f32>,
 }
 

@@ -69,6 +69,11 @@ pub struct AbArgs {
     /// Timed frames per variant (after one warm-up frame), interleaved A B C A B C ….
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=10000))]
     repeats: u32,
+    /// Time the reference on only the first N repeats (1 to --repeats): a
+    /// reference far slower than the variants (supersampled depth peeling)
+    /// need not be timed as often; its image is one frame either way.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10000))]
+    reference_repeats: Option<u32>,
     /// Render size, `WIDTHxHEIGHT`.
     #[arg(long, value_parser = parse_size, default_value = "960x720")]
     size: (u32, u32),
@@ -211,6 +216,7 @@ pub fn run(args: AbArgs) -> Result<()> {
         sets: args.set.sets,
         sweeps: args.sweep,
         repeats: args.repeats,
+        reference_repeats: args.reference_repeats,
         size: args.size,
         supersample: args.supersample,
         command: std::env::args().collect(),

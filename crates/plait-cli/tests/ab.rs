@@ -482,6 +482,21 @@ fn bad_input_exits_2_naming_the_flag_or_file() {
             "(--sweep params.light_size=128 --sweep params.light_sise=1)",
         ),
     ];
+    let cases = cases.into_iter().chain([(
+        vec![
+            "ab",
+            "pipelines/forward.toml",
+            "--reference",
+            "pipelines/forward.toml",
+            "--repeats",
+            "2",
+            "--reference-repeats",
+            "3",
+            "--out",
+            out,
+        ],
+        "--reference-repeats 3",
+    )]);
     for (args, needle) in cases {
         let o = plait(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o.stderr));
@@ -577,12 +592,31 @@ fn supersampled_reference_measures_strand_coverage() {
         "--size",
         "64x48",
         "--repeats",
+        "2",
+        "--reference-repeats",
         "1",
         "--out",
         out.to_str().expect("utf-8"),
     ]);
     assert!(o.status.success(), "stderr: {}", text(&o.stderr));
     let v = read_json(&out);
+    // The slow reference is timed once, the variants twice.
+    let timed = |id: &str| {
+        v["scenes"][0]["runs"]
+            .as_array()
+            .expect("runs")
+            .iter()
+            .find(|r| r["variant"] == id)
+            .and_then(|r| r["timing"]["wall_ms"]["samples"].as_array())
+            .map_or(0, Vec::len)
+    };
+    assert_eq!(
+        (timed("reference"), timed("forward@true")),
+        (1, 2),
+        "{}",
+        v["scenes"][0]
+    );
+    assert_eq!(v["provenance"]["reference_repeats"], 1);
     let reference = v["variants"]
         .as_array()
         .expect("variants")

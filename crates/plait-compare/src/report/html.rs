@@ -75,10 +75,13 @@ pub fn html(report: &Report, graphs: &[(String, String)]) -> String {
     );
     let _ = write!(
         h,
-        "<p class=\"note\">{}×{} px, {} timed repeat(s) per variant after {} warm-up frame(s), {} order, on {} ({}). Metrics: {}</p>",
+        "<p class=\"note\">{}×{} px, {} timed repeat(s) per variant{} after {} warm-up frame(s), {} order, on {} ({}). Metrics: {}</p>",
         p.size[0],
         p.size[1],
         p.repeats,
+        p.reference_repeats
+            .map(|n| format!(" ({n} for the reference)"))
+            .unwrap_or_default(),
         p.warmup_frames,
         escape(&p.order),
         escape(&p.adapter.name),

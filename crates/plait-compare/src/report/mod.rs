@@ -142,6 +142,10 @@ pub struct Provenance {
     pub working_directory: String,
     pub size: [u32; 2],
     pub repeats: u32,
+    /// The reference's timed frames when fewer than `repeats`
+    /// (`--reference-repeats`: a slow reference timed once).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_repeats: Option<u32>,
     /// Frames rendered per variant before timing (excluded).
     pub warmup_frames: u32,
     /// `interleaved`: repeat r renders every variant once, in order, before repeat r+1.

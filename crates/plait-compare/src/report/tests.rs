@@ -65,6 +65,7 @@ fn sample() -> Report {
             working_directory: ".".into(),
             size: [4, 4],
             repeats: 2,
+            reference_repeats: None,
             warmup_frames: 1,
             order: "interleaved".into(),
             sets: vec![],

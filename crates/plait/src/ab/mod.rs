@@ -59,6 +59,8 @@ pub enum AbError {
     MissingReference(PathBuf),
     #[error("--repeats must be at least 1")]
     NoRepeats,
+    #[error("--reference-repeats {reference}: must be from 1 to --repeats ({repeats})")]
+    ReferenceRepeats { reference: u32, repeats: u32 },
     #[error("--sweep given {0} times; at most two sweeps (a grid of every combination)")]
     TooManySweeps(usize),
     #[error("--sweep {0}: the key is swept twice; give it once with all its values")]

@@ -103,6 +103,11 @@ pub struct AbOptions {
     pub sweeps: Vec<SweepSpec>,
     /// Timed frames per variant after one warm-up frame.
     pub repeats: u32,
+    /// Timed frames of the reference, when fewer than `repeats`: the first
+    /// that many repeats render it (a reference far slower than the
+    /// variants — supersampled depth peeling — whose own time is only a
+    /// ratio of its own; its image is one frame whatever this says).
+    pub reference_repeats: Option<u32>,
     pub size: (u32, u32),
     /// The reference is rendered this many times larger in each dimension
     /// and box-filtered down to `size` (1 = not supersampled).
@@ -148,6 +153,7 @@ impl AbOptions {
             sets: Vec::new(),
             sweeps: Vec::new(),
             repeats: 5,
+            reference_repeats: None,
             size: (960, 720),
             supersample: 1,
             command: Vec::new(),
@@ -217,6 +223,14 @@ impl Plan {
         }
         if options.repeats == 0 {
             return Err(AbError::NoRepeats);
+        }
+        if let Some(n) = options.reference_repeats
+            && !(1..=options.repeats).contains(&n)
+        {
+            return Err(AbError::ReferenceRepeats {
+                reference: n,
+                repeats: options.repeats,
+            });
         }
         if options.sweeps.len() > 2 {
             return Err(AbError::TooManySweeps(options.sweeps.len()));
@@ -355,7 +369,21 @@ impl Plan {
             Some(_) => (self.variants.len() as u64 - 1, 2),
             None => (self.variants.len() as u64, 0),
         };
-        self.scenes.len() as u64 * (on_gpu * per_variant + path_traced)
+        // The repeats a reference on the GPU skips.
+        let skipped = match self.path_traced {
+            Some(_) => 0,
+            None => (self.options.repeats - self.repeats_of(self.reference_index())) as u64,
+        };
+        self.scenes.len() as u64 * (on_gpu * per_variant + path_traced - skipped)
+    }
+
+    /// The timed repeats of variant `index`: `repeats`, or
+    /// `reference_repeats` for the reference.
+    pub fn repeats_of(&self, index: usize) -> u32 {
+        match self.options.reference_repeats {
+            Some(n) if self.variants[index].is_reference => n,
+            _ => self.options.repeats,
+        }
     }
 }
 

@@ -198,6 +198,7 @@ pub(super) fn provenance(
             .unwrap_or_default(),
         size: [o.size.0, o.size.1],
         repeats: o.repeats,
+        reference_repeats: o.reference_repeats,
         warmup_frames: 1,
         order: "interleaved".into(),
         sets: o.sets.clone(),

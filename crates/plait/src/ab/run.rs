@@ -362,7 +362,16 @@ fn time_interleaved(
     }
     let repeats = plan.options.repeats;
     for r in 0..repeats {
-        for ((v, p), s) in plan.variants.iter().zip(prepared).zip(&mut samples) {
+        for (i, ((v, p), s)) in plan
+            .variants
+            .iter()
+            .zip(prepared)
+            .zip(&mut samples)
+            .enumerate()
+        {
+            if r >= plan.repeats_of(i) {
+                continue;
+            }
             let start = Instant::now();
             let frame = p.render().map_err(render_error(format!(
                 "{} on scene {} (repeat {})",
