@@ -29,6 +29,15 @@ fn main() {
     let root = manifest.join("../..");
     let mut files = Vec::new();
     collect(&root, &root.join("pipelines"), "toml", false, &mut files);
+    // plait's path tracer, a reference's renderer (`renderer = "plait"`):
+    // kept out of `pipelines/*.toml`, which every pipeline test renders.
+    collect(
+        &root,
+        &root.join("pipelines/physical"),
+        "toml",
+        false,
+        &mut files,
+    );
     collect(&root, &root.join("techniques"), "toml", true, &mut files);
     // A technique's own WGSL lives in its folder, next to its TOML.
     collect(&root, &root.join("techniques"), "wgsl", true, &mut files);

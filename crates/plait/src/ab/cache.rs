@@ -422,7 +422,23 @@ fn read(
         }
         images.push(super::supersample::box_filter_linear(&img, supersample));
     }
-    let (a, b) = (&images[0], &images[1]);
+    let meta = std::fs::read_to_string(entry.join("entry.json")).unwrap_or_default();
+    let seconds = serde_json::from_str::<serde_json::Value>(&meta)
+        .ok()
+        .and_then(|v| v["seconds"].as_f64())
+        .unwrap_or(0.0);
+    let [a, b]: [image::Rgba32FImage; 2] = images.try_into().expect("two seeds");
+    Ok(of_seeds(spec, scene, [&a, &b], seconds)?)
+}
+
+/// The reference from its two seeds' images (at the run's `--size`): their
+/// mean, refused when its noise estimate is past the file's bound.
+pub(super) fn of_seeds(
+    spec: &PathTraced,
+    scene: &ScenePlan,
+    [a, b]: [&image::Rgba32FImage; 2],
+    seconds: f64,
+) -> Result<Reference, PathTracedError> {
     let mean = image::Rgba32FImage::from_fn(a.width(), a.height(), |x, y| {
         let (p, q) = (a.get_pixel(x, y).0, b.get_pixel(x, y).0);
         image::Rgba([
@@ -439,14 +455,8 @@ fn read(
             noise: noise_rmse,
             bound: spec.max_noise_rmse,
             file: spec.file.clone(),
-        }
-        .into());
+        });
     }
-    let meta = std::fs::read_to_string(entry.join("entry.json")).unwrap_or_default();
-    let seconds = serde_json::from_str::<serde_json::Value>(&meta)
-        .ok()
-        .and_then(|v| v["seconds"].as_f64())
-        .unwrap_or(0.0);
     Ok(Reference {
         mean,
         noise_rmse,

@@ -42,7 +42,7 @@ pub(super) fn describe(
         });
     }
     // A path-traced reference is no schedule: the report names its renderer.
-    if let Some(v) = super::path_traced::report_variant(plan) {
+    if let Some(v) = super::references::report_variant(plan) {
         variants.push(v);
         merge_provenance(
             &mut pipelines,

@@ -12,7 +12,6 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::Plan;
 use crate::mitsuba::{ExportError, Fibre};
 
 /// Why a path-traced reference could not be read or rendered.
@@ -95,7 +94,8 @@ pub enum PathTracedError {
 #[derive(Debug, Clone, PartialEq)]
 pub struct PathTraced {
     pub file: PathBuf,
-    /// Always "mitsuba" (the only renderer plait drives).
+    /// "mitsuba" (Mitsuba 3, run by `scripts/mitsuba/render.py`, cached) or
+    /// "plait" (plait's own GPU path tracer, `pipelines/physical/path_traced.toml`).
     pub renderer: String,
     /// Samples per pixel of each seed's image.
     pub spp: u32,
@@ -170,13 +170,14 @@ impl PathTraced {
         let file: FileToml =
             toml::from_str(&text).map_err(|e| at(e.span(), e.message().trim().to_string()))?;
         let s = file.path_traced;
-        if s.renderer.get_ref() != "mitsuba" {
+        let renderer = s.renderer.get_ref().as_str();
+        if !RENDERERS.contains(&renderer) {
+            let nearest = plait_graph::suggest::nearest(renderer, RENDERERS.iter().copied())
+                .map(|n| format!(" (did you mean \"{n}\"?)"))
+                .unwrap_or_default();
             return Err(at(
                 Some(s.renderer.span()),
-                format!(
-                    "renderer `{}`: the only one is \"mitsuba\"",
-                    s.renderer.get_ref()
-                ),
+                format!("renderer `{renderer}`: one of \"mitsuba\", \"plait\"{nearest}"),
             ));
         }
         if *s.spp.get_ref() == 0 {
@@ -188,6 +189,9 @@ impl PathTraced {
                 Some(s.max_depth.span()),
                 "max_depth must be at least 1 (2: single scattering), or -1: unbounded".into(),
             ));
+        }
+        if renderer == "plait" {
+            super::plait_reference::check(&s.spp, &s.max_depth, &s.seeds, &at)?;
         }
         let seeds: [u32; 2] = match s.seeds.get_ref().as_slice() {
             &[a, b] if a != b => [a, b],
@@ -229,15 +233,21 @@ impl PathTraced {
                 f.longitudinal_roughness, f.azimuthal_roughness, f.scale_tilt_degrees, f.eta
             )
         };
+        let renderer = match self.renderer.as_str() {
+            "plait" => "plait's GPU path tracer, Chiang fibre".to_string(),
+            _ => format!("Mitsuba {} hair BSDF", super::cache::mitsuba_version()),
+        };
         format!(
-            "path-traced, Mitsuba {} hair BSDF, {} × {} spp, max_depth {}{fibre}",
-            super::cache::mitsuba_version(),
+            "path-traced, {renderer}, {} × {} spp, max_depth {}{fibre}",
             self.seeds.len(),
             self.spp,
             self.max_depth
         )
     }
 }
+
+/// The renderers a path-traced reference names.
+const RENDERERS: [&str; 2] = ["mitsuba", "plait"];
 
 type Check = fn(f32) -> bool;
 
@@ -417,120 +427,6 @@ pub(super) fn display_exposure(sets: &[String]) -> Result<f32, PathTracedError> 
         }
     }
     Ok(exposure)
-}
-
-/// Render (or find in `cache`) the path-traced reference of every scene of
-/// `plan`, before any GPU work; `progress` hears a line per reference.
-/// Does nothing for a pipeline reference.
-pub fn render_references(
-    plan: &mut Plan,
-    cache: &Path,
-    progress: &mut dyn FnMut(&str) -> std::io::Result<()>,
-) -> Result<(), super::AbError> {
-    let Some(spec) = plan.path_traced.clone() else {
-        return Ok(());
-    };
-    let exposure = display_exposure(&plan.options.sets)?;
-    let ignored = sets_not_followed(&plan.options.sets);
-    if !ignored.is_empty() {
-        progress(&format!(
-            "note: the path-traced reference does not follow --set {} (it renders the scene and its fibre; it follows params.exposure and params.chiang_*)",
-            ignored.join(", --set ")
-        ))
-        .map_err(super::AbError::Progress)?;
-    }
-    let size = plan.options.render_size(true);
-    let k = plan.options.supersample.max(1);
-    let mut rendered = Vec::new();
-    for scene in &plan.scenes {
-        let r = super::cache::reference(&spec, scene, (size, k), cache, progress)?;
-        let linear = r.mean;
-        let display = super::agx::display(&linear, exposure);
-        rendered.push(Rendered {
-            linear,
-            display,
-            noise_rmse: r.noise_rmse,
-            seconds: r.seconds,
-        });
-    }
-    let notes: Vec<String> = plan
-        .scenes
-        .iter()
-        .zip(&rendered)
-        .map(|(s, r)| format!("noise RMSE {:.4} on {}", r.noise_rmse, s.name))
-        .collect();
-    let index = plan.reference_index();
-    plan.variants[index].label = format!(
-        "{} (reference: {}, {})",
-        stem(&spec.file),
-        spec.describe(),
-        notes.join(", ")
-    );
-    plan.path_traced_images = rendered;
-    Ok(())
-}
-
-/// One scene's path-traced reference, at the run's `--size`.
-#[derive(Clone, Debug)]
-pub struct Rendered {
-    pub linear: image::Rgba32FImage,
-    /// Through the default display (AgX at the run's exposure).
-    pub display: image::RgbaImage,
-    /// Estimated RMSE of `linear` against the converged image.
-    pub noise_rmse: f64,
-    /// Mitsuba's wall time for both seeds (as recorded when first rendered).
-    pub seconds: f64,
-}
-
-/// The report's entry for a path-traced reference: no schedule, no GPU
-/// memory; its "schedule" names the renderer.
-pub(super) fn report_variant(plan: &Plan) -> Option<plait_compare::report::Variant> {
-    let spec = plan.path_traced.as_ref()?;
-    let v = &plan.variants[plan.reference_index()];
-    Some(plait_compare::report::Variant {
-        id: v.id.clone(),
-        label: v.label.clone(),
-        pipeline: spec.file.display().to_string(),
-        is_reference: true,
-        sweep_values: v.sweep_values.clone(),
-        sets: v.sets.clone(),
-        schedule_name: format!("mitsuba {}", super::cache::mitsuba_version()),
-        memory: plait_compare::report::Memory {
-            peak_bytes: 0,
-            unpooled_bytes: 0,
-            allocations: 0,
-            resources: Vec::new(),
-        },
-        graph_svg: None,
-    })
-}
-
-/// A path-traced reference's "frame time": Mitsuba's wall time for the
-/// scene's reference (both seeds, when it was rendered; cached runs report
-/// the time of the run that rendered it), in ms, one sample.
-pub(super) fn timing(plan: &Plan, scene: usize) -> plait_compare::report::Timing {
-    let ms = plan
-        .path_traced_images
-        .get(scene)
-        .map_or(0.0, |r| r.seconds * 1e3);
-    plait_compare::report::Timing {
-        total_gpu_ms: None,
-        wall_ms: plait_compare::Stats {
-            median: ms,
-            min: ms,
-            max: ms,
-            q1: ms,
-            q3: ms,
-            samples: vec![ms],
-        },
-        passes: Vec::new(),
-    }
-}
-
-fn stem(path: &Path) -> String {
-    path.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "path_traced".into())
 }
 
 #[cfg(test)]

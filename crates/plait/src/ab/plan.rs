@@ -206,7 +206,7 @@ pub struct Plan {
     /// `[path_traced]` table); its images, one per scene, are filled in by
     /// [`render_references`](super::render_references) before the run.
     pub path_traced: Option<super::PathTraced>,
-    pub path_traced_images: Vec<super::path_traced::Rendered>,
+    pub path_traced_images: Vec<super::references::Rendered>,
     /// The run's one library, read with every variant's own `techniques/`:
     /// two pipelines whose folders declare one module are an error naming
     /// both files, and every variant compiles and builds with it.
@@ -330,8 +330,29 @@ impl Plan {
         }
 
         let scenes = super::scenes::load(&options)?;
-        if let Some(spec) = &path_traced {
-            super::path_traced::check_scenes(spec, &options, &scenes)?;
+        match &path_traced {
+            // plait's own path tracer: its pipeline, with the file's values,
+            // checked like every variant before any GPU work.
+            Some(spec) if spec.renderer == "plait" => {
+                let pipeline = super::plait_reference::pipeline();
+                let sets = super::plait_reference::sets(spec, spec.seeds[0]);
+                let compile = CompileOptions {
+                    screen: options.render_size(true),
+                    ..compile
+                };
+                compile_checked_in(&library, &pipeline, &sets, &compile).map_err(|source| {
+                    AbError::Pipeline {
+                        path: pipeline.clone(),
+                        what: format!(
+                            " (the path-traced reference {}: renderer = \"plait\")",
+                            spec.file.display()
+                        ),
+                        source,
+                    }
+                })?;
+            }
+            Some(spec) => super::path_traced::check_scenes(spec, &options, &scenes)?,
+            None => {}
         }
         Ok(Plan {
             options,

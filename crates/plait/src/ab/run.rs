@@ -567,7 +567,7 @@ fn scene_result(
             flip_image,
             timing: match (samples.get(i), prepared.get(i)) {
                 (Some(s), Some(p)) => s.timing(p.schedule()),
-                _ => super::path_traced::timing(plan, scene_index(plan, scene)),
+                _ => super::references::timing(plan, scene_index(plan, scene)),
             },
             metrics: c.metrics,
             visibility,
