@@ -55,15 +55,25 @@ fn traced(gpu: &Gpu, scene: &SceneData, sets: &[&str]) -> Vec<f32> {
 /// Two vertical strands 21 units long, `d` apart: `a` thin, `b` of radius
 /// `r`. Vertex 10 is `a`'s middle.
 fn two_strands(d: f32, r: f32) -> SceneData {
+    two_strands_at(d, r, 0.0)
+}
+
+/// [`two_strands`] with `b` at `azimuth` radians from +x about the strands'
+/// axis (y), toward +z.
+fn two_strands_at(d: f32, r: f32, azimuth: f32) -> SceneData {
     let mut scene = small_scene();
     let mut strands = plait_hair::Strands::new();
-    let line = |x: f32| -> Vec<Vec3> {
-        (0..21)
-            .map(|k| Vec3::new(x, k as f32 - 10.0, 0.0))
-            .collect()
+    let line = |x: f32, z: f32| -> Vec<Vec3> {
+        (0..21).map(|k| Vec3::new(x, k as f32 - 10.0, z)).collect()
     };
-    strands.push_strand(&line(0.0), |_| 0.01, |_| 1.0, Vec3::splat(0.5));
-    strands.push_strand(&line(d), |_| 2.0 * r, |_| 1.0, Vec3::splat(0.5));
+    let (sin, cos) = azimuth.sin_cos();
+    strands.push_strand(&line(0.0, 0.0), |_| 0.01, |_| 1.0, Vec3::splat(0.5));
+    strands.push_strand(
+        &line(d * cos, d * sin),
+        |_| 2.0 * r,
+        |_| 1.0,
+        Vec3::splat(0.5),
+    );
     scene.strands = strands;
     // The strands run through the small scene's head and ground, which
     // the structure holds too (tests/ray_traced_meshes.rs): strands alone.
@@ -128,6 +138,47 @@ fn a_half_opaque_strand_beside_is_crossed_once_per_ray() {
             "d {d}, r {r}, w {w}: visibility {got:.4}, one crossing per ray gives {expected:.4}"
         );
     }
+}
+
+/// The strand beside as DOTS (`ao_strand_primitive = "dots"`, two crossed
+/// quads, four triangles a segment; issue 48). The same 1024 lattice rays
+/// meet it whatever its opacity, so a ray that counts the segment once
+/// keeps 1 − share · (1 − e^−w) for every w: the half-opaque strand's loss
+/// over the opaque one's is (1 − e^−0.5)/(1 − e^−10) = 0.3935, for any
+/// share. A ray counted once per quad crossed (up to twice) gives between
+/// that and (1 − e^−1)/(1 − e^−10) = 0.632. The strand beside stands at 45°
+/// from the quads' planes (a vertical segment's quads span x and z): from
+/// +x, the vertex would lie in one quad's plane, and no ray could cross
+/// both. Its share is the crossed quads', not the cylinder's: held only to
+/// lie near it (they stand for it).
+#[test]
+fn dots_beside_are_crossed_once_per_ray() {
+    let (_lock, gpu) = open_gpu();
+    require_ray_queries(&gpu);
+    let dots = "params.ao_strand_primitive=dots";
+    let (d, r) = (1.0f32, 0.5f32);
+    let loss = |weight: &str| {
+        let scene = two_strands_at(d, r, std::f32::consts::FRAC_PI_4);
+        let ao = traced(&gpu, &scene, &["params.ao_rays=1024", weight, dots]);
+        1.0 - ao[10] as f64
+    };
+    let opaque = loss("params.ao_shadow_weight=10");
+    let half = loss("params.ao_shadow_weight=0.5");
+    let once = (1.0 - (-0.5f64).exp()) / (1.0 - (-10.0f64).exp());
+    let cylinder = cylinder_share(d as f64, r as f64);
+    eprintln!(
+        "DOTS beside: loss {opaque:.4} opaque, {half:.4} half; ratio {:.4} (once {once:.4}); cylinder share {cylinder:.4}",
+        half / opaque
+    );
+    assert!(
+        (half / opaque - once).abs() < 0.005,
+        "half-opaque loss {half:.4} over opaque {opaque:.4} = {:.4}: one crossing per ray gives {once:.4}",
+        half / opaque
+    );
+    assert!(
+        (opaque / cylinder - 1.0).abs() < 0.25,
+        "DOTS hide {opaque:.4} of the sphere, the cylinder {cylinder:.4}"
+    );
 }
 
 /// Share of uniform directions from the origin whose ray crosses the axis

@@ -20,10 +20,12 @@
 // its triangles the traversal reports and in whatever order. (The
 // first-triangle test is this file's, the reports the driver's: they can
 // disagree only for a ray within rounding of a triangle's edge.) Two
-// consecutive segments are separate quads ("disjoint"): a ray through a
-// bent strand's joint may cross both, as it may cross two swept spheres'
-// end caps there; unlike plait::strand_capsule, the crossing is not given to
-// one of them.
+// consecutive segments are separate quads ("disjoint"): a ray oblique to
+// the strand near a joint may cross one quad of each, straight strand or
+// not. The tracers give such a pass to one segment, as plait::strand_capsule
+// does a swept sphere's: plait::strand_rays by the first plane crossed
+// (dots_plane, dots_owns), the primary rays by the closest approach
+// (techniques/transparency/ray_traced/trace.wgsl, dots_owner).
 #define_import_path plait::strand_dots
 
 // Unit vectors across segment direction `e` (not zero): column 0 is u, the
@@ -77,6 +79,29 @@ fn dots_quad(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, ra: f32, b: vec3<f32>, rb
     // Which side of the diagonal from (s, x) = (0, ra) to (1, −rb).
     let second = x > ra - s * (ra + rb);
     return vec2<f32>(t, f32(2u * q + select(0u, 1u, second)));
+}
+
+// Ray o + t d (|d| = 1) against the plane of quad q of segment a → b taken
+// past the segment's ends, as a straight strand's neighbours continue it:
+// x = the ray distance, y = the place along the axis (0 at a, 1 at b, any
+// value), where the ray crosses it within the half-width (ra before a, rb
+// past b, mixed between); x = −1 when it crosses outside it or runs along
+// the plane. Which segment of a strand a crossing belongs to
+// (plait::strand_rays, dots_owns).
+fn dots_plane(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, ra: f32, b: vec3<f32>, rb: f32, q: u32) -> vec2<f32> {
+    let e = b - a;
+    let across = dots_across(e);
+    let facing = dot(d, across[1u - q]);
+    if (abs(facing) <= 1e-7) {
+        return vec2<f32>(-1.0, 0.0);
+    }
+    let t = dot(a - o, across[1u - q]) / facing;
+    let p = o + t * d - a;
+    let s = dot(p, e) / dot(e, e);
+    if (abs(dot(p, across[q])) > mix(ra, rb, clamp(s, 0.0, 1.0))) {
+        return vec2<f32>(-1.0, s);
+    }
+    return vec2<f32>(t, s);
 }
 
 // The segment's crossing by ray o + t d (|d| = 1): x = its ray distance,

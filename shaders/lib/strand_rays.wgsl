@@ -24,7 +24,7 @@ enable wgpu_ray_query;
 
 #import plait::hair_point::HairPoint
 #import plait::strand_capsule::strand_crossing
-#import plait::strand_dots::dots_candidate
+#import plait::strand_dots::{dots_candidate, dots_plane}
 
 // The strands' acceleration structure (the strand_structure pass's output).
 @group(1) @binding(8) var vis_strands: acceleration_structure;
@@ -83,6 +83,9 @@ fn ray_hits(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, mesh_far: f3
         var t: f32;
         if (dots) {
             t = dots_candidate(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness, c.primitive_index % 4u);
+            if (t > near && t < far && !dots_owns(origin, dir, segment)) {
+                continue;
+            }
         } else {
             t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
         }
@@ -91,6 +94,45 @@ fn ray_hits(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, mesh_far: f3
         }
     }
     return hits;
+}
+
+// Whether segment s + k exists: two vertices of `strand` in vis_hair.
+fn strand_segment(s: u32, k: i32, strand: u32) -> bool {
+    let i = i32(s) + k;
+    return i >= 0 && u32(i) + 1u < arrayLength(&vis_hair) && vis_hair[i].strand == strand && vis_hair[i + 1].strand == strand;
+}
+
+// Whether segment `s`, whose DOTS the ray crosses, counts the crossing. A
+// ray oblique to a strand near a joint can cross one quad of `s` and the
+// other quad of a neighbour — two segments for one pass through a straight
+// strand (1.06× the loss of one crossing per ray beside a thick strand at
+// 45° to its quads: tests/ray_traced_occlusion.rs). So the pass belongs to
+// the segment where the ray first crosses a quad's plane, the planes taken
+// along the strand past `s`'s ends (dots_plane; exact for a straight
+// strand, whose segments' quads share the planes), among the crossings
+// that lie on a segment of the strand; `s` counts it only when that is `s`
+// — as plait::strand_capsule gives a swept sphere's crossing to one
+// segment.
+fn dots_owns(origin: vec3<f32>, dir: vec3<f32>, s: u32) -> bool {
+    let a = vis_hair[s];
+    let b = vis_hair[s + 1u];
+    var first = 1e30;
+    var owner = 0;
+    // Quads 0 and 1, unrolled (no loop: plait::loop_budget).
+    let planes = array<vec2<f32>, 2>(
+        dots_plane(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness, 0u),
+        dots_plane(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness, 1u),
+    );
+    let k0 = i32(floor(planes[0].y));
+    if (planes[0].x > 0.0 && (k0 == 0 || strand_segment(s, k0, a.strand))) {
+        first = planes[0].x;
+        owner = k0;
+    }
+    let k1 = i32(floor(planes[1].y));
+    if (planes[1].x > 0.0 && planes[1].x < first && (k1 == 0 || strand_segment(s, k1, a.strand))) {
+        owner = k1;
+    }
+    return owner == 0;
 }
 
 // Strands crossed by the ray from `origin` along unit `dir` farther than
