@@ -164,6 +164,29 @@ struct NearestHit {
 
 const NO_HIT: NearestHit = NearestHit(0u, -1.0, 0u, 0u, vec2<f32>(0.0), mat4x3<f32>());
 
+// The strand of segment `skip` (0xffffffff: none, and then none is).
+fn skipped_strand(skip: u32) -> u32 {
+    if (skip == 0xffffffffu) {
+        return 0xffffffffu;
+    }
+    return vis_hair[skip].strand;
+}
+
+// Ray distance of box candidate `i` for a path's rays (nearest_hit,
+// ray_blocked): its segment's swept sphere crossed (strand_crossing), or −1
+// for a pair of two strands' vertices and for segment `skip` of
+// `skip_strand` and its neighbours. The one test both walks share: their
+// ray-query loops cannot be one function (naga takes no pointer to a
+// ray_query, above).
+fn box_crossing(origin: vec3<f32>, dir: vec3<f32>, i: u32, skip: u32, skip_strand: u32) -> f32 {
+    let a = vis_hair[i];
+    let b = vis_hair[i + 1u];
+    if (a.strand != b.strand || (a.strand == skip_strand && i + 1u >= skip && i <= skip + 1u)) {
+        return -1.0;
+    }
+    return strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+}
+
 // The nearest strand or mesh along the ray from `origin` along unit `dir`
 // farther than `near` and nearer than `far`, skipping segment `skip` and its
 // neighbours along the same strand (the segment a path leaves from: a ray
@@ -174,10 +197,7 @@ fn nearest_hit(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, skip: u32
     rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, STRAND_INSTANCES | MESH_INSTANCES, near, far, origin, dir));
     var best = NO_HIT;
     var nearest = far;
-    var skip_strand = 0xffffffffu;
-    if (skip != 0xffffffffu) {
-        skip_strand = vis_hair[skip].strand;
-    }
+    let skip_strand = skipped_strand(skip);
     while (rayQueryProceed(&rq)) {
         let c = rayQueryGetCandidateIntersection(&rq);
         if (c.kind == RAY_QUERY_INTERSECTION_TRIANGLE) {
@@ -192,15 +212,7 @@ fn nearest_hit(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, skip: u32
             continue;
         }
         let i = c.primitive_index;
-        let a = vis_hair[i];
-        let b = vis_hair[i + 1u];
-        if (a.strand != b.strand) {
-            continue;
-        }
-        if (a.strand == skip_strand && i + 1u >= skip && i <= skip + 1u) {
-            continue;
-        }
-        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        let t = box_crossing(origin, dir, i, skip, skip_strand);
         if (t > near && t < nearest) {
             nearest = t;
             best = NearestHit(1u, t, i, 0u, vec2<f32>(0.0), mat4x3<f32>());
@@ -217,10 +229,7 @@ fn nearest_hit(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, skip: u32
 fn ray_blocked(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, skip: u32) -> bool {
     var rq: ray_query;
     rayQueryInitialize(&rq, vis_strands, RayDesc(RAY_FLAG_FORCE_NO_OPAQUE, STRAND_INSTANCES | MESH_INSTANCES, near, far, origin, dir));
-    var skip_strand = 0xffffffffu;
-    if (skip != 0xffffffffu) {
-        skip_strand = vis_hair[skip].strand;
-    }
+    let skip_strand = skipped_strand(skip);
     var blocked = false;
     while (rayQueryProceed(&rq)) {
         let c = rayQueryGetCandidateIntersection(&rq);
@@ -234,13 +243,7 @@ fn ray_blocked(origin: vec3<f32>, dir: vec3<f32>, near: f32, far: f32, skip: u32
         if (c.kind != RAY_QUERY_INTERSECTION_AABB) {
             continue;
         }
-        let i = c.primitive_index;
-        let a = vis_hair[i];
-        let b = vis_hair[i + 1u];
-        if (a.strand != b.strand || (a.strand == skip_strand && i + 1u >= skip && i <= skip + 1u)) {
-            continue;
-        }
-        let t = strand_crossing(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness);
+        let t = box_crossing(origin, dir, c.primitive_index, skip, skip_strand);
         if (t > near && t < far) {
             blocked = true;
             break;
