@@ -481,22 +481,22 @@ fn bad_input_exits_2_naming_the_flag_or_file() {
             ],
             "(--sweep params.light_size=128 --sweep params.light_sise=1)",
         ),
+        (
+            vec![
+                "ab",
+                "pipelines/forward.toml",
+                "--reference",
+                "pipelines/forward.toml",
+                "--repeats",
+                "2",
+                "--reference-repeats",
+                "3",
+                "--out",
+                out,
+            ],
+            "--reference-repeats 3",
+        ),
     ];
-    let cases = cases.into_iter().chain([(
-        vec![
-            "ab",
-            "pipelines/forward.toml",
-            "--reference",
-            "pipelines/forward.toml",
-            "--repeats",
-            "2",
-            "--reference-repeats",
-            "3",
-            "--out",
-            out,
-        ],
-        "--reference-repeats 3",
-    )]);
     for (args, needle) in cases {
         let o = plait(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o.stderr));

@@ -407,20 +407,7 @@ fn read(
                 source,
             })?
             .into_rgba32f();
-        let count = img
-            .pixels()
-            .flat_map(|p| &p.0[..3])
-            .filter(|v| !v.is_finite())
-            .count();
-        if count > 0 {
-            return Err(PathTracedError::NotFinite {
-                scene: scene.name.clone(),
-                path,
-                count,
-            }
-            .into());
-        }
-        images.push(super::supersample::box_filter_linear(&img, supersample));
+        images.push(filtered_seed(scene, &path, &img, supersample)?);
     }
     let meta = std::fs::read_to_string(entry.join("entry.json")).unwrap_or_default();
     let seconds = serde_json::from_str::<serde_json::Value>(&meta)
@@ -429,6 +416,29 @@ fn read(
         .unwrap_or(0.0);
     let [a, b]: [image::Rgba32FImage; 2] = images.try_into().expect("two seeds");
     Ok(of_seeds(spec, scene, [&a, &b], seconds)?)
+}
+
+/// One seed's image (read from `path`) filtered down to the run's size;
+/// refused with a NaN or Inf value, which no mean of seeds could hide.
+pub(super) fn filtered_seed(
+    scene: &ScenePlan,
+    path: &Path,
+    img: &image::Rgba32FImage,
+    supersample: u32,
+) -> Result<image::Rgba32FImage, PathTracedError> {
+    let count = img
+        .pixels()
+        .flat_map(|p| &p.0[..3])
+        .filter(|v| !v.is_finite())
+        .count();
+    if count > 0 {
+        return Err(PathTracedError::NotFinite {
+            scene: scene.name.clone(),
+            path: path.to_path_buf(),
+            count,
+        });
+    }
+    Ok(super::supersample::box_filter_linear(img, supersample))
 }
 
 /// The reference from its two seeds' images (at the run's `--size`): their

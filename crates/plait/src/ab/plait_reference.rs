@@ -108,20 +108,12 @@ pub(super) fn reference(
             .read_resource(crate::linear::RADIANCE)
             .map_err(|e| error(e.into()))?;
         let image = crate::linear::to_f32_image(&texels);
-        let count = image
-            .pixels()
-            .flat_map(|p| &p.0[..3])
-            .filter(|v| !v.is_finite())
-            .count();
-        if count > 0 {
-            return Err(PathTracedError::NotFinite {
-                scene: scene.name.clone(),
-                path: pipeline.clone(),
-                count,
-            }
-            .into());
-        }
-        images.push(super::supersample::box_filter_linear(&image, supersample));
+        images.push(super::cache::filtered_seed(
+            scene,
+            &pipeline,
+            &image,
+            supersample,
+        )?);
     }
     let seconds = start.elapsed().as_secs_f64();
     Ok(super::cache::of_seeds(
