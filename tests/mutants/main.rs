@@ -18,6 +18,7 @@ mod marschner;
 mod occupancy;
 mod occupancy_order;
 mod path_traced;
+mod ray_traced;
 mod strand_coverage;
 mod tone_mapping;
 
