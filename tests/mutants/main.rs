@@ -6,6 +6,7 @@
 mod chiang;
 mod compute_raster;
 mod cylinders;
+mod density_clustering;
 mod density_occlusion;
 mod depth_only;
 mod dual_scattering;
