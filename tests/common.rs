@@ -5,6 +5,7 @@ use std::sync::{Mutex, MutexGuard, OnceLock};
 
 pub mod bands;
 pub mod golden_images;
+pub mod strand_trace;
 pub mod vertex_ao;
 
 static GPU_LOCK: Mutex<()> = Mutex::new(());

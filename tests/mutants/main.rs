@@ -6,6 +6,7 @@
 mod chiang;
 mod compute_raster;
 mod cylinders;
+mod density_clustering;
 mod density_occlusion;
 mod depth_only;
 mod dual_scattering;
@@ -18,6 +19,7 @@ mod marschner;
 mod occupancy;
 mod occupancy_order;
 mod path_traced;
+mod ray_traced;
 mod strand_coverage;
 mod tone_mapping;
 
