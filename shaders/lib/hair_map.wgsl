@@ -10,7 +10,7 @@
 #import plait::frame::{frame, view_proj, view_linear_depth}
 #import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_wisps}
 #import plait::map_share::MAP_SHARE_SCALE
-#import plait::strand_coverage::{StrandView, camera_strand_view, is_quad_vertex, quad_corner, view_segment_is_wide, view_quad_place, view_width_pixels, quad_coverage, QuadPlace}
+#import plait::strand_coverage::{StrandView, camera_strand_view, is_quad_vertex, quad_corner, view_segment_is_wide, view_quad_place, view_band_width, quad_coverage, QuadPlace}
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
@@ -55,7 +55,8 @@ struct MapFragment {
     @builtin(position) clip: vec4<f32>,
     // Linear depth in the pass's view (`view_linear_depth`).
     @location(0) depth: f32,
-    // A line's strand width across the light in texels; a negative value:
+    // A line fragment's share: the band's width across the strand in texels
+    // (plait::strand_coverage::view_band_width); a negative value:
     // it blocks whole texels (see map_texel).
     @location(1) width: f32,
     // As plait::hair_fragment's: 1 for the line of a segment the quad draw
@@ -87,13 +88,32 @@ fn map_view(size: vec2<u32>) -> StrandView {
 // draw's, or a corner of the quad draw's).
 fn map_vertex(v: MapVertex, size: vec2<u32>) -> MapFragment {
     let view = map_view(size);
-    let wide = !strand_lod_wisps() && view_segment_is_wide(view, v.position, v.tangent, v.thickness, v.strand_id, v.next_position, v.next_tangent, v.next_thickness, v.next_strand_id);
+    let wide = !strand_lod_wisps() && map_segment_is_wide(view, v);
     if (is_quad_vertex(v.index)) {
         return map_quad_vertex(v, view, wide);
     }
     var out = map_vertex_at(view, v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
     out.mode = select(0u, 1u, wide);
     return out;
+}
+
+// Whether the segment starting at `v` is drawn as a quad. A camera view
+// asks what the shaded hair asks (plait::strand_coverage::segment_is_wide).
+// A light view asks whether its line can hold the band the strand covers:
+// a line one texel wide holds a band up to a texel wide across the strand
+// (`view_band_width`: on non-square texels not the side's whole image), so
+// a segment wider than that at either end is a quad.
+fn map_segment_is_wide(view: StrandView, v: MapVertex) -> bool {
+#ifdef LIGHT_VIEW
+    if (frame.conventions.z < 0.5 || v.strand_id != v.next_strand_id) {
+        return false;
+    }
+    let a = view_band_width(view, v.position, v.tangent, v.thickness);
+    let b = view_band_width(view, v.next_position, v.next_tangent, v.next_thickness);
+    return a >= 0.0 && b >= 0.0 && max(a, b) > 1.0;
+#else
+    return view_segment_is_wide(view, v.position, v.tangent, v.thickness, v.strand_id, v.next_position, v.next_tangent, v.next_thickness, v.next_strand_id);
+#endif
 }
 
 // A vertex of a line-only draw (MapLineVertex): every segment one texel
@@ -154,17 +174,19 @@ fn map_kept(in: MapFragment) -> bool {
     return in.mode != 1u;
 }
 
-// A line's strand width across the light in texels, for light views with
-// strand coverage on (below one texel: wider segments are quads); −1
-// (whole texels) for camera views (their counts are fragment orders,
-// weighed by the fragments' own alpha where they are used), for wisps (a
-// strip's texels are its own) and with coverage off.
+// A line fragment's share of its texel, for light views with strand
+// coverage on: the band's width across the strand in texels
+// (`view_band_width`; at most 1: wider segments are quads), so over the
+// line's fragments (its length × 1 texel) the shares sum to the strand's
+// width × length, on non-square texels too; −1 (whole texels) for camera views (their counts
+// are fragment orders, weighed by the fragments' own alpha where they are
+// used), for wisps (a strip's texels are its own) and with coverage off.
 fn map_width(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
 #ifdef LIGHT_VIEW
     if (frame.conventions.z < 0.5 || strand_lod_wisps()) {
         return -1.0;
     }
-    return view_width_pixels(view, world, tangent, thickness);
+    return view_band_width(view, world, tangent, thickness);
 #else
     return -1.0;
 #endif

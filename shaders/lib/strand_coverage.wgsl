@@ -38,6 +38,18 @@ fn strand_width_pixels(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> 
 
 // `strand_width_pixels` from any view.
 fn view_width_pixels(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
+    let side = view_side_pixels(view, world, tangent, thickness);
+    return select(length(side.xy), -1.0, side.z < 0.0);
+}
+
+// The strand's width across the view as it lands on the view's pixels: xy,
+// the image of `thickness` along the side (across the strand and the view
+// ray) at `world`; z = −1 behind the eye, else 1. Its length is the width
+// where pixels are square; on a light map's texels, which need not be (the
+// map's frustum follows the hair's bounds, plait::frame::LightFrustum), the
+// image leans towards the strand's own and the band is only as wide as its
+// part across the strand (`view_quad_place`, `view_band_width`).
+fn view_side_pixels(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> vec3<f32> {
     let to_eye = select(view.eye.xyz, normalize(view.eye.xyz - world), view.eye.w > 0.5);
     // Across the strand and the view ray: the direction its width is seen in.
     var side = cross(tangent, to_eye);
@@ -48,10 +60,39 @@ fn view_width_pixels(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thi
     let a = view.view_proj * vec4<f32>(world, 1.0);
     let b = view.view_proj * vec4<f32>(world + side * thickness, 1.0);
     if (a.w <= 0.0 || b.w <= 0.0) {
+        return vec3<f32>(0.0, 0.0, -1.0);
+    }
+    return vec3<f32>((b.xy / b.w - a.xy / a.w) * 0.5 * view.size.xy, 1.0);
+}
+
+// The unit direction on the view's pixels of the strand through `world`
+// along `toward` (a world offset along it); +x where it has none.
+fn view_pixel_direction(view: StrandView, world: vec3<f32>, toward: vec3<f32>) -> vec2<f32> {
+    let a = view_clip_pixels(view, view.view_proj * vec4<f32>(world, 1.0));
+    let b = view_clip_pixels(view, view.view_proj * vec4<f32>(world + toward, 1.0));
+    let dir = b - a;
+    if (dot(dir, dir) < 1e-12) {
+        return vec2<f32>(1.0, 0.0);
+    }
+    return normalize(dir);
+}
+
+// The strand's width across its own direction on the view's pixels
+// (texels): the side's image across the strand's image at `world` — the
+// band's width, what a line fragment holds of it. A line is drawn as a
+// rectangle one pixel wide across it (lavapipe draws Vulkan's non-strict
+// lines so: at 27° to the rows 1.13 fragments per column, 1 / cos 27° =
+// 1.12), so its fragments cover its length × 1 and each holds the band's
+// width. An adapter drawing parallelograms instead (one fragment per
+// column, which Vulkan also allows and wgpu does not choose) would need
+// the width over the direction's larger component. −1 behind the eye.
+fn view_band_width(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
+    let side = view_side_pixels(view, world, tangent, thickness);
+    if (side.z < 0.0) {
         return -1.0;
     }
-    let pixels = (b.xy / b.w - a.xy / a.w) * 0.5 * view.size.xy;
-    return length(pixels);
+    let dir = view_pixel_direction(view, world, tangent * max(thickness, 1e-6));
+    return abs(side.x * dir.y - side.y * dir.x);
 }
 
 // The fraction of a pixel's width a strand of `thickness` (world units, its
@@ -149,7 +190,7 @@ fn quad_place(world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec
 // `quad_place` in any view (a light map's texels for its pixels).
 fn view_quad_place(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thickness: f32, segment: vec3<f32>, side: f32) -> QuadPlace {
     var clip = view.view_proj * vec4<f32>(world, 1.0);
-    let half = 0.5 * max(view_width_pixels(view, world, tangent, thickness), 0.0);
+    let side_pixels = view_side_pixels(view, world, tangent, thickness);
     let length_ = length(segment);
     let along = dot(tangent, segment);
     var ahead_world = world + segment;
@@ -173,6 +214,10 @@ fn view_quad_place(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thick
         dir = vec2<f32>(1.0, 0.0);
     }
     let normal = normalize(vec2<f32>(-dir.y, dir.x));
+    // The band's width across the quad's own direction: the side's image
+    // along the normal (its whole length on square pixels; on non-square
+    // light texels the image leans along the strand, view_side_pixels).
+    let half = 0.5 * select(abs(dot(side_pixels.xy, normal)), 0.0, side_pixels.z < 0.0);
     // Half a pixel beyond the edge: every pixel centre the box-filtered
     // edge reaches is inside the quad. A pass param quad_edges = "band"
     // (QUAD_EDGES_BAND) draws the band itself, unfiltered: under MSAA whose
