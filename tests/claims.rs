@@ -122,12 +122,12 @@ fn every_self_shadowing_technique_keeps_its_measured_error() {
         ("occupancy", MEASURED_OCCUPANCY, (0.0, 0.00016)),
         ("occupancy_no_slab", MEASURED_NO_SLAB, (0.0009, 0.0013)),
         ("deep_opacity", MEASURED_DOM, (0.0030, 0.0046)),
-        ("opacity_shadow_maps", MEASURED_OSM, (0.00030, 0.00040)),
+        ("opacity_shadow_maps", MEASURED_OSM, (0.00030, 0.00048)),
         ("density_clustering", MEASURED_DC, (0.00020, 0.00028)),
         ("modified_shadow_map", MEASURED_MSM, (0.124, 0.169)),
         ("tressfx_shadow", MEASURED_TRESSFX, (0.0651, 0.078)),
         ("density_volume", MEASURED_DENSITY_VOLUME, (0.052, 0.0625)),
-        ("no_self_shadow", MEASURED_NONE, (0.097, 0.12)),
+        ("no_self_shadow", MEASURED_NONE, (0.088, 0.12)),
     ];
     let names: Vec<&str> = expected.iter().map(|e| e.0).collect();
     let errors = visibility_errors(&gpu, &scene("small"), &names);
@@ -152,14 +152,29 @@ fn every_self_shadowing_technique_keeps_its_measured_error() {
 // a third of the way to TressFX's new value). The modified shadow map is
 // still further from exact than no self-shadowing: one ρ for every texel
 // cannot tell where the groom is thin.
-const MEASURED_OCCUPANCY: f64 = 0.000_126_7;
-const MEASURED_NO_SLAB: f64 = 0.001_038;
-const MEASURED_DOM: f64 = 0.003_699;
-const MEASURED_OSM: f64 = 0.000_344_3;
-const MEASURED_DC: f64 = 0.000_252_5;
-const MEASURED_MSM: f64 = 0.1357;
-const MEASURED_TRESSFX: f64 = 0.06757;
-const MEASURED_NONE: f64 = 0.09925;
+//
+// Since strands wider than a light texel are drawn at their width in the
+// light maps (issue 47 item 4: quads, on small at 512 the strands' roots,
+// 0.01 over a texel of 0.009 × 0.0115), exact's Σ (1 − V) over the probe's
+// samples is the same (127.8 against 128.7 with one-texel lines) but spread
+// over two more of the 256 rays (29 pass through hair, 27 before), each
+// with a strand's edge in its texel: no self-shadowing's mean over those
+// rays falls 0.09925 → 0.09181 (its band's floor 0.097 → 0.088, still above
+// TressFX's band). Opacity shadow maps 0.0003443 → 0.0004078 (band's top
+// 0.00040 → 0.00048, below occupancy_no_slab's floor): more texels hold a
+// strand's share, each a place where its slices' interpolation misplaces it
+// (not isolated further). The others stay in their bands; every value
+// below is that run's (before: occupancy 0.0001267, no slab 0.001038, DOM
+// 0.003699, DC 0.0002525, MSM 0.1357, TressFX 0.06757, density volume
+// 0.06008).
+const MEASURED_OCCUPANCY: f64 = 0.000_142_6;
+const MEASURED_NO_SLAB: f64 = 0.000_976_7;
+const MEASURED_DOM: f64 = 0.003_369;
+const MEASURED_OSM: f64 = 0.000_407_8;
+const MEASURED_DC: f64 = 0.000_260_0;
+const MEASURED_MSM: f64 = 0.1276;
+const MEASURED_TRESSFX: f64 = 0.06867;
+const MEASURED_NONE: f64 = 0.09181;
 // The density volume at its default 32³ (issue 43): a voxel spreads a
 // strand's shadow over its cross-section, so a point right behind a strand
 // reads less than the texel's exact list gives and a point beside it more;
@@ -167,7 +182,7 @@ const MEASURED_NONE: f64 = 0.09925;
 // strands, 0.85× on the default groom, while the total over the light's
 // plane is conserved (tests/shadow_coverage.rs). 0.0570 at 64³ (plait ab on
 // small, 480×360, pipelines extending density_volume.toml with each R).
-const MEASURED_DENSITY_VOLUME: f64 = 0.06008;
+const MEASURED_DENSITY_VOLUME: f64 = 0.05831;
 
 /// The band check fails for a band that admits another technique: the
 /// self-shadowing bands as they were (the modified shadow map's [0.10, 0.25]

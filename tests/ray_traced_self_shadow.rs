@@ -1,14 +1,10 @@
 //! `self_shadow = ray_traced` against `exact` on the small scene, through
-//! the visibility probe `plait ab` uses (`plait::probe`, the same 16×16 rays
-//! × 48 depths). exact counts the fragments of a light texel in front of a
+//! the visibility probe `plait ab` uses (`plait::probe`, its rays × 48
+//! depths). exact counts the fragments of a light texel in front of a
 //! point, so its count is the strands' shares averaged over the texel; the
 //! ray counts the strands the point's own ray crosses. Their difference is
 //! the texel's averaging, so exact converges to ray_traced as its light map
-//! gets finer: measured on lavapipe, mean |ΔV| of ray_traced against exact
-//! 0.0494 at light_size 512 and 0.0252 at 1024, where exact at 512 against
-//! exact at 1024 is 0.0253 (`plait ab … --sweep
-//! techniques.self_shadow=exact,ray_traced --sweep
-//! params.light_size=256,512,1024`, reference exact at 1024). ray_traced
+//! gets finer (one strand at a time: tests/wide_strand_rays.rs). ray_traced
 //! traces the strands alone there (`shadow_meshes = 0`): exact's lists leave
 //! the head to the opaque shadow map.
 
@@ -38,7 +34,9 @@ fn exact_converges_to_ray_traced_as_its_light_map_gets_finer() {
     );
     let path = repo_root().join("examples/scenes/small.toml");
     let scene = SceneData::load(Some(&path)).expect("small scene");
-    let grid = ProbeGrid::through_hair(&scene, (16, 16), 48);
+    // 64² rays: 408 of them pass through hair; 16² gave 26, too few for the
+    // mean to say which way exact moved.
+    let grid = ProbeGrid::through_hair(&scene, (64, 64), 48);
     let exact = |size: &str| {
         let light = format!("params.light_size={size}");
         probed(
@@ -64,14 +62,23 @@ fn exact_converges_to_ray_traced_as_its_light_map_gets_finer() {
     let error = |reference: &Probed, variant: &Probed| {
         visibility_error(&grid, reference, variant).mean_abs_error
     };
-    let (to_coarse, to_fine) = (error(&coarse, &traced), error(&fine, &traced));
+    // The ray is the reference, and so picks the rays through hair the mean
+    // is over: with exact's map picking them, a map that draws less hair
+    // drops the rays it misses — the one-texel lines of strands 2.2 texels
+    // wide at 1024 dropped 151 of 408 and read 0.0258 there, nearer the ray
+    // than at 512, while over the ray's rays they are farther (0.0424 at 512,
+    // 0.0472 at 1024).
+    let (to_coarse, to_fine) = (error(&traced, &coarse), error(&traced, &fine));
     let exact_step = error(&fine, &coarse);
     eprintln!(
-        "mean |ΔV|: ray_traced vs exact@512 {to_coarse:.4}, vs exact@1024 {to_fine:.4}; exact@512 vs exact@1024 {exact_step:.4}"
+        "mean |ΔV|: exact@512 vs ray_traced {to_coarse:.4}, exact@1024 vs ray_traced {to_fine:.4}; exact@512 vs exact@1024 {exact_step:.4}"
     );
-    // Halving the texel halves the difference (0.0494 → 0.0252 measured) …
-    assert!(to_fine < 0.7 * to_coarse, "{to_fine} vs {to_coarse}");
-    // … and ray_traced is as near exact@1024 as exact@512 is.
+    // Halving the texel shrinks the difference (0.0433 → 0.0315 measured
+    // on lavapipe, Mesa 25.0.7): not to half, since the hair behind the head
+    // from the light, which exact's lists depth-test away and the ray counts,
+    // is no texel's averaging …
+    assert!(to_fine < 0.8 * to_coarse, "{to_fine} vs {to_coarse}");
+    // … and ray_traced is as near exact@1024 as exact@512 is (0.0310).
     assert!(to_fine <= 1.1 * exact_step, "{to_fine} vs {exact_step}");
 }
 

@@ -207,57 +207,6 @@ fn a_strand_shadows_its_share_of_every_light_texel() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// The frame notes of the shadow scene at `thickness` with `technique`.
-fn frame_notes(gpu: &Gpu, technique: &str, thickness: f32) -> Vec<String> {
-    let sets = [
-        format!("params.light_size={LIGHT_SIZE}"),
-        format!("techniques.self_shadow={technique}"),
-    ];
-    let pipeline = repo_root().join("pipelines/occupancy.toml");
-    let prepared = prepare(gpu, &pipeline, &sets, &scene(thickness), SIZE)
-        .unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-    prepared.render().expect("renders").notes
-}
-
-/// A strand wider than a light texel blocks one texel across its width (its
-/// share stops at 1, plait::hair_map::map_texel): not widened, but counted —
-/// each frame's note says how many segments the light maps hold narrower
-/// than they are (plait::wide_strands). At 0.02 (≈ 2 texels of the 64² map)
-/// occupancy's ∫ −ln T is about half of κ · width × length ÷ cos i
-/// (measured 0.49; 0.97 at 0.004) and the note counts all 9 segments of the two strands; at
-/// 0.004 (≈ 0.4 texel) the integral is right and there is no note.
-#[test]
-fn a_strand_wider_than_a_light_texel_is_counted_in_a_note() {
-    let (_lock, gpu) = open_gpu();
-    let cos_i = 1.0 / 1.25f64.sqrt();
-    for (thickness, wide) in [(0.004f32, false), (0.02, true)] {
-        let analytic = KAPPA as f64 * thickness as f64 * LENGTH as f64 / cos_i;
-        let (integral, _) = shadow_integral(&gpu, "occupancy", thickness, &[]);
-        let ratio = integral / analytic;
-        let notes = frame_notes(&gpu, "occupancy", thickness);
-        eprintln!("thickness {thickness}: ratio {ratio:.3}; notes {notes:?}");
-        let note = notes.iter().find(|n| n.starts_with("self_shadow:"));
-        if wide {
-            assert!(
-                ratio < 0.7,
-                "a 2-texel strand blocks one texel: ratio {ratio:.3}"
-            );
-            let note = note.expect("the wide segments are noted");
-            assert!(
-                note.contains("9 of 9 hair segments") && note.contains("64-texel"),
-                "{note}"
-            );
-        } else {
-            assert!((ratio - 1.0).abs() < 0.06, "ratio {ratio:.3}");
-            assert!(note.is_none(), "no segment is wider than a texel: {note:?}");
-        }
-    }
-    // Without a light map that weighs shares nothing is counted (the
-    // camera-view draws draw the strand, ≈ 5 pixels wide, at its width).
-    let notes = frame_notes(&gpu, "none", 0.02);
-    assert!(notes.is_empty(), "{notes:?}");
-}
-
 /// The exact reference with opaque fibres (`shadow_opaque = 1`, the
 /// convention of a path tracer at max depth 2, docs/formats.md): each texel
 /// passes 1 − share, so the ground's blocked area ∫ (1 − T) dA is the

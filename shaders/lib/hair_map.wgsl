@@ -10,9 +10,7 @@
 #import plait::frame::{frame, view_proj, view_linear_depth}
 #import plait::strand_lod::{strand_lod_place, strand_lod_clip, strand_lod_wisps}
 #import plait::map_share::MAP_SHARE_SCALE
-#ifndef LIGHT_VIEW
-#import plait::strand_coverage::{is_quad_vertex, quad_corner, segment_is_wide, quad_place}
-#endif
+#import plait::strand_coverage::{StrandView, camera_strand_view, is_quad_vertex, quad_corner, view_segment_is_wide, view_quad_place, view_band_width, quad_coverage, QuadPlace}
 
 struct MapVertex {
     @location(0) position: vec3<f32>,
@@ -23,11 +21,12 @@ struct MapVertex {
     @location(4) color: vec3<f32>,
     // The `geometry` point drops the strands the shaded draws drop.
     @location(5) strand_id: u32,
-#ifndef LIGHT_VIEW
-    // Camera views: the next hair vertex, for the quad draw of strands wider
-    // than a pixel (plait::strand_coverage) — the maps hold the fragments
-    // the shaded hair pass draws. Light views draw lines only: a light texel
-    // is blocked by the strand's share of it, at most the whole texel.
+    // The next hair vertex, for the quad draw of segments wider than a
+    // pixel of the view (plait::strand_coverage; the engine adds the quad
+    // draw to a hair pass whose vertex stage reads it): in a camera view the
+    // maps hold the fragments the shaded hair pass draws; in a light view a
+    // strand wider than a texel blocks every texel it covers, each by the
+    // quad's box-filtered coverage of it (issue 47).
     @location(6) next_position: vec3<f32>,
     @location(7) next_thickness: f32,
     @location(8) next_tangent: vec3<f32>,
@@ -35,7 +34,20 @@ struct MapVertex {
     @location(10) next_color: vec3<f32>,
     @location(11) next_strand_id: u32,
     @builtin(instance_index) instance: u32,
-#endif
+    @builtin(vertex_index) index: u32,
+}
+
+// A hair vertex of a draw of one-texel lines only (no next vertex, so the
+// engine adds no quad draw): the depth-only hair maps (shadow_map), whose
+// providers take each strand crossed at the groom's mean width
+// (plait::light_share), not at its share of the texel.
+struct MapLineVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) thickness: f32,
+    @location(2) tangent: vec3<f32>,
+    @location(3) alpha: f32,
+    @location(4) color: vec3<f32>,
+    @location(5) strand_id: u32,
     @builtin(vertex_index) index: u32,
 }
 
@@ -43,50 +55,98 @@ struct MapFragment {
     @builtin(position) clip: vec4<f32>,
     // Linear depth in the pass's view (`view_linear_depth`).
     @location(0) depth: f32,
-    // The strand's width across the light in map coordinates (0..1 over
-    // the map); a negative value: it blocks whole texels (see map_share).
+    // A line fragment's share: the band's width across the strand in texels
+    // (plait::strand_coverage::view_band_width); a negative value:
+    // it blocks whole texels (see map_texel).
     @location(1) width: f32,
     // As plait::hair_fragment's: 1 for the line of a segment the quad draw
-    // draws (discarded by map_texel and map_kept), 0 otherwise.
+    // draws (discarded by map_texel and map_kept), 0 otherwise; in a light
+    // view 2 for the quad draw's fragments (their share is `across`'s).
     @location(2) @interpolate(flat) mode: u32,
-}
-
-
-fn map_vertex(v: MapVertex) -> MapFragment {
-#ifndef LIGHT_VIEW
-    let wide = !strand_lod_wisps() && segment_is_wide(v.position, v.tangent, v.thickness, v.strand_id, v.next_position, v.next_tangent, v.next_thickness, v.next_strand_id);
-    if (is_quad_vertex(v.index)) {
-        return map_quad_vertex(v, wide);
-    }
-    var out = map_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
-    out.mode = select(0u, 1u, wide);
-    return out;
-#else
-    return map_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+#ifdef LIGHT_VIEW
+    // A quad fragment's (distance from the centre line, half width) in
+    // texels (plait::strand_coverage::QuadPlace).
+    @location(3) across: vec2<f32>,
 #endif
 }
 
-fn map_vertex_at(position: vec3<f32>, thickness: f32, tangent: vec3<f32>, alpha: f32, color: vec3<f32>, strand_id: u32, index: u32) -> MapFragment {
+// The view the pass draws hair from, `size` its map's texels (the size of
+// the per-texel maps it writes: a light map's texels are the light view's
+// pixels). Camera views are the screen's (the shaded hair's quads).
+fn map_view(size: vec2<u32>) -> StrandView {
+#ifdef LIGHT_VIEW
+    let s = vec2<f32>(size);
+    // Towards the light: a directional light's direction, or a spot's position.
+    let eye = select(vec4<f32>(frame.light_direction.xyz, 0.0), vec4<f32>(frame.light_position.xyz, 1.0), frame.light_direction.w > 0.5);
+    return StrandView(frame.light_view_proj, vec4<f32>(s, 1.0 / s), eye);
+#else
+    return camera_strand_view();
+#endif
+}
+
+// A hair vertex of the pass's draw into maps of `size` texels (the line
+// draw's, or a corner of the quad draw's).
+fn map_vertex(v: MapVertex, size: vec2<u32>) -> MapFragment {
+    let view = map_view(size);
+    let wide = !strand_lod_wisps() && map_segment_is_wide(view, v);
+    if (is_quad_vertex(v.index)) {
+        return map_quad_vertex(v, view, wide);
+    }
+    var out = map_vertex_at(view, v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+    out.mode = select(0u, 1u, wide);
+    return out;
+}
+
+// Whether the segment starting at `v` is drawn as a quad. A camera view
+// asks what the shaded hair asks (plait::strand_coverage::segment_is_wide).
+// A light view asks whether its line can hold the band the strand covers:
+// a line one texel wide holds a band up to a texel wide across the strand
+// (`view_band_width`: on non-square texels not the side's whole image), so
+// a segment wider than that at either end is a quad.
+fn map_segment_is_wide(view: StrandView, v: MapVertex) -> bool {
+#ifdef LIGHT_VIEW
+    if (frame.conventions.z < 0.5 || v.strand_id != v.next_strand_id) {
+        return false;
+    }
+    let a = view_band_width(view, v.position, v.tangent, v.thickness);
+    let b = view_band_width(view, v.next_position, v.next_tangent, v.next_thickness);
+    return a >= 0.0 && b >= 0.0 && max(a, b) > 1.0;
+#else
+    return view_segment_is_wide(view, v.position, v.tangent, v.thickness, v.strand_id, v.next_position, v.next_tangent, v.next_thickness, v.next_strand_id);
+#endif
+}
+
+// A vertex of a line-only draw (MapLineVertex): every segment one texel
+// wide. Such a draw (depth only) reads no share, so no map size is needed:
+// 1 stands in for it.
+fn map_line_vertex(v: MapLineVertex) -> MapFragment {
+    return map_vertex_at(map_view(vec2<u32>(1u)), v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.index);
+}
+
+fn map_vertex_at(view: StrandView, position: vec3<f32>, thickness: f32, tangent: vec3<f32>, alpha: f32, color: vec3<f32>, strand_id: u32, index: u32) -> MapFragment {
     var out: MapFragment;
     let p = strand_lod_place(position, thickness, tangent, alpha, color, strand_id, index);
     out.clip = strand_lod_clip(view_proj() * vec4<f32>(p.world, 1.0), p.weight);
     out.depth = view_linear_depth(p.world);
-    out.width = map_width(position, tangent, thickness);
+    out.width = map_width(view, position, tangent, thickness);
     out.mode = 0u;
+#ifdef LIGHT_VIEW
+    out.across = vec2<f32>(0.0);
+#endif
     return out;
 }
 
-#ifndef LIGHT_VIEW
-// A corner of the quad of segment (instance, instance + 1) in a camera
-// view, as plait::hair_fragment's quad_vertex places it; outside the view
-// when the segment is a line.
-fn map_quad_vertex(v: MapVertex, wide: bool) -> MapFragment {
+// A corner of the quad of segment (instance, instance + 1), as
+// plait::hair_fragment's quad_vertex places it (the same
+// plait::strand_coverage quad, in the pass's view); outside the view when
+// the segment is a line.
+fn map_quad_vertex(v: MapVertex, view: StrandView, wide: bool) -> MapFragment {
     let corner = quad_corner(v.index);
     var out: MapFragment;
     if (corner.end) {
-        out = map_vertex_at(v.next_position, v.next_thickness, v.next_tangent, v.next_alpha, v.next_color, v.next_strand_id, v.instance + 1u);
+        out = map_vertex_at(view, v.next_position, v.next_thickness, v.next_tangent, v.next_alpha, v.next_color, v.next_strand_id, v.instance + 1u);
     } else {
-        out = map_vertex_at(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.instance);
+        out = map_vertex_at(view, v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.instance);
     }
     if (!wide) {
         out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
@@ -94,14 +154,19 @@ fn map_quad_vertex(v: MapVertex, wide: bool) -> MapFragment {
     }
     let segment = v.next_position - v.position;
     let p = strand_lod_place(v.position, v.thickness, v.tangent, v.alpha, v.color, v.strand_id, v.instance);
+    var q: QuadPlace;
     if (corner.end) {
-        out.clip = strand_lod_clip(quad_place(v.next_position, v.next_tangent, v.next_thickness, segment, corner.side).clip, p.weight);
+        q = view_quad_place(view, v.next_position, v.next_tangent, v.next_thickness, segment, corner.side);
     } else {
-        out.clip = strand_lod_clip(quad_place(v.position, v.tangent, v.thickness, segment, corner.side).clip, p.weight);
+        q = view_quad_place(view, v.position, v.tangent, v.thickness, segment, corner.side);
     }
+    out.clip = strand_lod_clip(q.clip, p.weight);
+#ifdef LIGHT_VIEW
+    out.across = q.across;
+    out.mode = 2u;
+#endif
     return out;
 }
-#endif
 
 // False for the line of a segment the quad draw draws: the fragment
 // shader discards it (map_texel does).
@@ -109,28 +174,19 @@ fn map_kept(in: MapFragment) -> bool {
     return in.mode != 1u;
 }
 
-// The strand's width across the light, in light-map coordinates, for light
-// views with strand coverage on; −1 (whole texels) for camera views (their
-// counts are fragment orders, weighed by the fragments' own alpha where they
-// are used), for wisps (a strip's texels are its own) and with coverage off.
-fn map_width(world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
+// A line fragment's share of its texel, for light views with strand
+// coverage on: the band's width across the strand in texels
+// (`view_band_width`; at most 1: wider segments are quads), so over the
+// line's fragments (its length × 1 texel) the shares sum to the strand's
+// width × length, on non-square texels too; −1 (whole texels) for camera views (their counts
+// are fragment orders, weighed by the fragments' own alpha where they are
+// used), for wisps (a strip's texels are its own) and with coverage off.
+fn map_width(view: StrandView, world: vec3<f32>, tangent: vec3<f32>, thickness: f32) -> f32 {
 #ifdef LIGHT_VIEW
     if (frame.conventions.z < 0.5 || strand_lod_wisps()) {
         return -1.0;
     }
-    // Towards the light: a directional light's direction, or a spot's position.
-    let to_light = select(frame.light_direction.xyz, normalize(frame.light_position.xyz - world), frame.light_direction.w > 0.5);
-    var side = cross(tangent, to_light);
-    if (dot(side, side) < 1e-12) {
-        side = cross(select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), abs(to_light.y) > 0.9), to_light);
-    }
-    side = normalize(side);
-    let a = frame.light_view_proj * vec4<f32>(world, 1.0);
-    let b = frame.light_view_proj * vec4<f32>(world + side * thickness, 1.0);
-    if (a.w <= 0.0 || b.w <= 0.0) {
-        return -1.0;
-    }
-    return length((b.xy / b.w - a.xy / a.w) * 0.5);
+    return view_band_width(view, world, tangent, thickness);
 #else
     return -1.0;
 #endif
@@ -150,10 +206,11 @@ struct MapTexel {
     // linear depth in the pass's view (`view_linear_depth`)
     depth: f32,
     rel: f32,
-    // The part of the texel the strand covers: its width in texels, at most
-    // 1 (1 for camera views, wisps and with strand coverage off). A light
-    // texel is blocked by the strand's share of it (issue 47): every map
-    // that counts weighs the fragment by it (map_weight).
+    // The part of the texel the strand covers (1 for camera views, wisps
+    // and with strand coverage off): a line's width in texels (at most 1),
+    // a quad fragment's box-filtered coverage of its texel. A light texel is
+    // blocked by the strand's share of it (issue 47): every map that counts
+    // weighs the fragment by it (map_weight).
     share: f32,
 }
 
@@ -170,7 +227,18 @@ fn map_texel(in: MapFragment, range: texture_2d<f32>) -> MapTexel {
     m.far = r.y;
     m.depth = in.depth;
     m.rel = (m.depth - r.x) / max(r.y - r.x, 1e-9);
-    m.share = select(min(in.width * f32(m.size.x), 1.0), 1.0, in.width < 0.0);
+    m.share = select(min(in.width, 1.0), 1.0, in.width < 0.0);
+#ifdef LIGHT_VIEW
+    if (in.mode == 2u) {
+        m.share = quad_coverage(in.across);
+        // The quad reaches half a texel past the strand's edge so that the
+        // box filter sees every texel it touches; a centre beyond it is
+        // not covered at all.
+        if (m.share <= 0.0) {
+            discard;
+        }
+    }
+#endif
     return m;
 }
 

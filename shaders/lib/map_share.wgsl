@@ -1,5 +1,6 @@
 // plait::map_share — how a light map carries the part of a texel a strand
-// covers (its share: its width across the light in texels, at most 1; see
+// covers (its share, at most 1: a line's width across the light in texels,
+// a wide strand's quad's coverage of the texel; see
 // plait::hair_map::map_texel). A light texel is blocked by the strand's share
 // of it (issue 47), so every self-shadow map weighs a fragment by it:
 //   counting maps (slabs, deep opacity layers, opacity slices, density

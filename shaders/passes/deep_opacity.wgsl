@@ -19,7 +19,7 @@ struct DomParams {
 
 @vertex
 fn vs_main(v: MapVertex) -> MapFragment {
-    return map_vertex(v);
+    return map_vertex(v, textureDimensions(range));
 }
 
 @fragment

@@ -15,7 +15,7 @@ const SCALE: f32 = 262144.0; // 2^18
 
 @vertex
 fn vs_main(v: MapVertex) -> MapFragment {
-    return map_vertex(v);
+    return map_vertex(v, textureDimensions(range));
 }
 
 @fragment

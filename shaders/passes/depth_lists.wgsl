@@ -13,7 +13,7 @@
 
 @vertex
 fn vs_main(v: MapVertex) -> MapFragment {
-    return map_vertex(v);
+    return map_vertex(v, textureDimensions(range));
 }
 
 @fragment

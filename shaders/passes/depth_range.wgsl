@@ -11,7 +11,7 @@
 
 @vertex
 fn vs_main(v: MapVertex) -> MapFragment {
-    return map_vertex(v);
+    return map_vertex(v, textureDimensions(opaque_depth));
 }
 
 // True where the fragment lies behind opaque geometry of this view: the

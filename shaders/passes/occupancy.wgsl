@@ -9,7 +9,7 @@
 
 @vertex
 fn vs_main(v: MapVertex) -> MapFragment {
-    return map_vertex(v);
+    return map_vertex(v, textureDimensions(range));
 }
 
 // No colour output: the depth attachment (opaque depth, test only) rejects

@@ -18,10 +18,13 @@ fn vs_main(v: VertexIn) -> @builtin(position) vec4<f32> {
 // Hair goes through the geometry choice like every other map of hair: the
 // strands the `lod` technique drops are dropped here too, and a wisp vertex
 // becomes its strip's corner (drawn as it is, a wisp's strip has no width).
-#import plait::hair_map::{MapVertex, map_vertex}
+// One-texel lines, whatever the strand's width: the nearest hair's depth is
+// all the map holds, and its providers take every strand crossed behind it
+// at the groom's mean width (plait::light_share), not at its texels.
+#import plait::hair_map::{MapLineVertex, map_line_vertex}
 
 @vertex
-fn vs_main(v: MapVertex) -> @builtin(position) vec4<f32> {
-    return map_vertex(v).clip;
+fn vs_main(v: MapLineVertex) -> @builtin(position) vec4<f32> {
+    return map_line_vertex(v).clip;
 }
 #endif

@@ -87,9 +87,7 @@ pub struct Frame {
     /// error instead, [`crate::overflow::check_frame`]).
     pub dropped: Vec<String>,
     /// Level-of-detail notes of this frame's camera: strands or wisps left
-    /// out on purpose ([`crate::strand_lod::note`], [`crate::wisps::lod_note`]),
-    /// and segments wider than a light texel the self-shadow maps hold as
-    /// one-texel lines ([`crate::wide_strands`]).
+    /// out on purpose ([`crate::strand_lod::note`], [`crate::wisps::lod_note`]).
     pub notes: Vec<String>,
 }
 
@@ -137,12 +135,6 @@ impl Prepared<'_> {
                 count,
             ));
         }
-        // Segments the light maps hold narrower than they are.
-        notes.extend(
-            self.wide_count
-                .as_ref()
-                .and_then(|w| w.note(&self.uniforms)),
-        );
         Ok(Frame {
             report,
             dropped,

@@ -36,5 +36,4 @@ pub mod size_limit;
 pub mod source;
 pub mod strand_lod;
 pub mod structure_limit;
-pub mod wide_strands;
 pub mod wisps;

@@ -342,10 +342,6 @@ pub struct Prepared<'g> {
     /// The frame inputs set last ([`Prepared::set_frame`]): a frame's
     /// level-of-detail notes are about the camera it was rendered from.
     pub(crate) uniforms: FrameUniforms,
-    /// With light maps that weigh strands by their share of a light texel:
-    /// the hair, to count each frame the segments wider than a light texel
-    /// they hold as one-texel lines ([`crate::wide_strands`]).
-    pub(crate) wide_count: Option<crate::wide_strands::WideCount>,
 }
 
 impl Prepared<'_> {
@@ -538,7 +534,6 @@ pub fn build<'g>(
         wisp_count = Some(wisps.wisp_count);
         wisp_lod_fraction = crate::wisps::lod_fraction(&schedule, &source.library);
     }
-    let wide_count = crate::wide_strands::WideCount::new(&schedule, hair, wisp_count.is_some());
     let base_dir = pipeline.parent().unwrap_or(Path::new("."));
     let mut renderer = Renderer::new(gpu, schedule, &source.library, geometry, &frame, base_dir)?;
     if let Some(image) = &scene.background {
@@ -552,6 +547,5 @@ pub fn build<'g>(
         wisp_count,
         wisp_lod_fraction,
         uniforms: frame,
-        wide_count,
     })
 }

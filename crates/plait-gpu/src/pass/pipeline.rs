@@ -110,6 +110,7 @@ impl PipelineParts<'_> {
         Ok(ShaderPassKind::Raster {
             pipeline,
             quads,
+            light_view: self.pass.view == Some(plait_graph::View::Light),
             next,
             colors: color_attachments(plan, state),
             depth: depth_attachment(plan, state),

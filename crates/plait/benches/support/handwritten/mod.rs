@@ -259,8 +259,13 @@ impl<'g> HandWritten<'g> {
             rpass.draw_indexed(0..b.index_count, 0, 0..1);
         }
         // As plait's executor: each hair vertex's segment as a quad where it
-        // is wider than a pixel, when the frame has any such.
-        let quads = pass.quads.as_ref().filter(|_| self.wide_strands);
+        // is wider than a pixel (a light texel), when the frame has any such;
+        // always from the light, whose texels the frame does not measure.
+        let light_view = pass.desc.defines.contains(&"LIGHT_VIEW");
+        let quads = pass
+            .quads
+            .as_ref()
+            .filter(|_| light_view || self.wide_strands);
         if let (Some(quads), Some((vertices, count))) = (quads, self.geometry.hair_quads()) {
             rpass.set_pipeline(quads);
             rpass.set_vertex_buffer(0, vertices.slice(..));
