@@ -156,7 +156,8 @@ fn dots_beside_are_crossed_once_per_ray() {
     let (_lock, gpu) = open_gpu();
     require_ray_queries(&gpu);
     let dots = "params.ao_strand_primitive=dots";
-    let (d, r) = (1.0f32, 0.5f32);
+    // r ≠ 0.5: half the width is then not its reciprocal too.
+    let (d, r) = (0.8f32, 0.4f32);
     let loss = |weight: &str| {
         let scene = two_strands_at(d, r, std::f32::consts::FRAC_PI_4);
         let ao = traced(&gpu, &scene, &["params.ao_rays=1024", weight, dots]);
