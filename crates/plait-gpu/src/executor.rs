@@ -84,6 +84,9 @@ pub struct Renderer<'g> {
     /// A pass writes `hair_vertices` (simulation, interpolation): the hair
     /// drawn is the GPU's, not the CPU's the frame measured.
     hair_on_gpu: bool,
+    /// Per pass, for a light-view pass, the most texels across of a
+    /// texture it reads or writes (its maps: [`light_map_texels`]).
+    light_texels: Vec<Option<u32>>,
 }
 
 /// What recording a frame reads of its [`FrameUniforms`] on the CPU.
@@ -93,6 +96,9 @@ struct RecordedFrame {
     head_model: [[f32; 4]; 4],
     /// `RecordContext::wide_strands`, before `hair_on_gpu`.
     wide_strands: bool,
+    /// The frame, for `RecordContext::wide_light_strands`, which each
+    /// light-view pass decides in its own maps' texels.
+    frame: FrameUniforms,
 }
 
 impl RecordedFrame {
@@ -100,8 +106,36 @@ impl RecordedFrame {
         RecordedFrame {
             head_model: frame.head_model,
             wide_strands: frame.draws_wide_strands(),
+            frame: *frame,
         }
     }
+}
+
+/// For a light-view pass of `schedule`, the most texels across of a
+/// texture it reads or writes — its maps (the per-texel maps' size
+/// plait::hair_map's map_view measures a strand in, read from the depth
+/// range texture by the passes that write buffers) — `None` for any other
+/// pass, or a light-view pass that holds none (its quads then always drawn).
+fn light_map_texels(schedule: &Schedule) -> Vec<Option<u32>> {
+    schedule
+        .passes
+        .iter()
+        .map(|pass| {
+            if pass.view != Some(plait_graph::View::Light) {
+                return None;
+            }
+            pass.reads
+                .iter()
+                .chain(&pass.writes)
+                .filter_map(|b| match b.resolved(&schedule.resources).map(|r| &r.desc) {
+                    Some(ResourceDesc::Texture { width, height, .. }) => {
+                        Some((*width).max(*height))
+                    }
+                    _ => None,
+                })
+                .max()
+        })
+        .collect()
 }
 
 impl<'g> Renderer<'g> {
@@ -194,6 +228,7 @@ impl<'g> Renderer<'g> {
             .timestamp_way()
             .map(|way| Timestamps::new(device, &gpu.queue, way, schedule.passes.len()));
         let overflow = OverflowReadback::new(device, &schedule, &pool);
+        let light_texels = light_map_texels(&schedule);
         let hair_on_gpu = schedule
             .passes
             .iter()
@@ -210,6 +245,7 @@ impl<'g> Renderer<'g> {
             last_ms: std::sync::Mutex::new(vec![None; passes.len()]),
             recorded: std::sync::Mutex::new(RecordedFrame::of(frame)),
             hair_on_gpu,
+            light_texels,
             frames_rendered: std::sync::atomic::AtomicU64::new(0),
             passes,
             timestamps,
@@ -295,6 +331,8 @@ impl<'g> Renderer<'g> {
             timestamps: self.timestamps.as_ref(),
             head_model: recorded.head_model,
             wide_strands: self.hair_on_gpu || recorded.wide_strands,
+            // Decided per pass below, in its own maps' texels.
+            wide_light_strands: true,
         };
         if let Some(ts) = &self.timestamps {
             ts.frame_start(&mut encoder);
@@ -307,6 +345,12 @@ impl<'g> Renderer<'g> {
             }
             if !skipped(i) {
                 encoder.push_debug_group(&self.schedule.passes[i].name);
+                let ctx = RecordContext {
+                    wide_light_strands: self.hair_on_gpu
+                        || self.light_texels[i]
+                            .is_none_or(|t| recorded.frame.draws_wide_light_strands(t)),
+                    ..ctx
+                };
                 pass.record_async(&ctx, &mut encoder).await;
                 encoder.pop_debug_group();
                 self.overflow.record(i, &self.pool, &mut encoder);

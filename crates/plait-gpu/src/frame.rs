@@ -54,7 +54,9 @@ pub struct FrameUniforms {
     /// be, to block its share of a light texel (issue 47); y: the widest
     /// strand across the camera's view, in pixels, over every vertex in
     /// front of the eye (the CPU's strands: [`FrameUniforms::draws_wide_strands`]);
-    /// zw unused.
+    /// z: the widest across the light's view, in its normalized device
+    /// units (2 across the map: [`FrameUniforms::draws_wide_light_strands`]);
+    /// w unused.
     pub hair_width: [f32; 4],
 }
 
@@ -120,6 +122,14 @@ impl FrameUniforms {
             LightKind::Directional { .. } => (0.0, Vec3::ZERO),
             LightKind::Spot { position, .. } => (1.0, Vec3::from(*position)),
         };
+        // As plait::hair_map's map_view: towards a directional light, or a
+        // spot's position.
+        let light_eye = if light_dir_w > 0.5 {
+            light_pos.extend(1.0)
+        } else {
+            to_light.extend(0.0)
+        };
+        let widest_light = widest_ndc(strands, light.projection * light.view, light_eye);
         let light_color = Vec3::from(scene.light.color) * scene.light.intensity;
         let m = &scene.material;
         // w tells the shaders to read `background_image` instead of the colour.
@@ -165,7 +175,7 @@ impl FrameUniforms {
             head_model: Mat4::IDENTITY.to_cols_array_2d(),
             head_model_previous: Mat4::IDENTITY.to_cols_array_2d(),
             hair_sphere: hair_sphere(hair_bounds),
-            hair_width: [mean_thickness(strands), seen.widest, 0.0, 0.0],
+            hair_width: [mean_thickness(strands), seen.widest, widest_light, 0.0],
         }
     }
 
@@ -208,6 +218,15 @@ impl FrameUniforms {
     /// (`Renderer`).
     pub fn draws_wide_strands(&self) -> bool {
         self.conventions[2] > 0.5 && self.hair_width[1] >= WIDE_MARGIN
+    }
+
+    /// [`FrameUniforms::draws_wide_strands`] for a light-view hair pass
+    /// whose maps are at most `texels` across (plait::hair_map's map_view:
+    /// a strand is wide past one texel of its map): the widest strand
+    /// across the light, in texels of the larger side, against the same
+    /// margin. Conservative on a map that is not square.
+    pub fn draws_wide_light_strands(&self, texels: u32) -> bool {
+        self.conventions[2] > 0.5 && 0.5 * self.hair_width[2] * texels as f32 >= WIDE_MARGIN
     }
 
     pub fn camera_view_proj(&self) -> Mat4 {
@@ -365,7 +384,42 @@ pub fn strand_width_pixels(
     eye: Vec3,
     half: glam::Vec2,
 ) -> Option<f32> {
-    let to_eye = (eye - p).normalize_or_zero();
+    side_ndc(p, tangent, thickness, view_proj, eye.extend(1.0)).map(|v| (v * half).length())
+}
+
+/// The widest strand over every vertex, in the normalized device units of
+/// `view_proj` seen from `eye` (a position, w = 1, or the unit direction
+/// towards it, w = 0); 0 without hair or with every vertex behind the eye.
+fn widest_ndc(strands: &Strands, view_proj: Mat4, eye: glam::Vec4) -> f32 {
+    let tangents = strands.tangents();
+    strands
+        .points
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &p)| {
+            let thickness = strands.thickness.get(i).copied().unwrap_or(1.0);
+            side_ndc(p, tangents[i], thickness, view_proj, eye)
+        })
+        .map(|v| v.length())
+        .fold(0.0, f32::max)
+}
+
+/// `view_side_pixels` of `shaders/lib/strand_coverage.wgsl` on the CPU, in
+/// normalized device units: the image of the strand's width along the side
+/// across it and the view ray; `None` behind the eye. `eye` as in
+/// [`widest_ndc`].
+fn side_ndc(
+    p: Vec3,
+    tangent: Vec3,
+    thickness: f32,
+    view_proj: Mat4,
+    eye: glam::Vec4,
+) -> Option<glam::Vec2> {
+    let to_eye = if eye.w > 0.5 {
+        (eye.truncate() - p).normalize_or_zero()
+    } else {
+        eye.truncate()
+    };
     let mut side = tangent.cross(to_eye);
     if side.length_squared() < 1e-12 {
         let up = if to_eye.y.abs() > 0.9 {
@@ -381,7 +435,7 @@ pub fn strand_width_pixels(
     if a.w <= 0.0 || b.w <= 0.0 {
         return None;
     }
-    Some(((b.truncate().truncate() / b.w - a.truncate().truncate() / a.w) * half).length())
+    Some(b.truncate().truncate() / b.w - a.truncate().truncate() / a.w)
 }
 
 /// The sphere around `bounds` (its centre, half its diagonal); a point for
@@ -498,5 +552,27 @@ mod tests {
             !frame.draws_wide_strands(),
             "coverage off: no segment is wide"
         );
+    }
+
+    /// From a directional light (w = 0: the direction towards it) through
+    /// an orthographic frustum 4 units across, a strand 0.02 thick is 0.01
+    /// of the normalized device units: 2.56 texels of a 512-texel map (its
+    /// quads drawn), 0.64 of a 128-texel one (not).
+    #[test]
+    fn the_widest_strand_from_the_light_is_measured_in_its_maps_texels() {
+        let view = Mat4::look_at_rh(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y);
+        let proj = Mat4::orthographic_rh(-2.0, 2.0, -2.0, 2.0, 0.1, 10.0);
+        let mut strands = Strands::new();
+        let points = [Vec3::new(0.5, -1.0, 0.0), Vec3::new(0.5, 1.0, 0.0)];
+        strands.push_strand(&points, |_| 0.02, |_| 1.0, Vec3::ONE);
+        let widest = widest_ndc(&strands, proj * view, Vec3::Z.extend(0.0));
+        assert!((widest - 0.01).abs() < 1e-5, "{widest}");
+        let mut frame: FrameUniforms = bytemuck::Zeroable::zeroed();
+        frame.conventions[2] = 1.0;
+        frame.hair_width[2] = widest;
+        assert!(frame.draws_wide_light_strands(512));
+        assert!(!frame.draws_wide_light_strands(128));
+        frame.conventions[2] = 0.0;
+        assert!(!frame.draws_wide_light_strands(512), "coverage off");
     }
 }

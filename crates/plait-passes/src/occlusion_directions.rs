@@ -468,6 +468,7 @@ impl PreparedPass for Prepared {
                 // The directions' frames are made on the GPU: the CPU's
                 // measure of the camera's widths says nothing of theirs.
                 wide_strands: true,
+                wide_light_strands: true,
                 ..*ctx
             };
             self.near.record(&direction, encoder);

@@ -180,6 +180,9 @@ pub struct RecordContext<'a> {
     /// hair vertex, every one degenerate — would cost a camera pass its
     /// vertex work several times over for nothing.
     pub wide_strands: bool,
+    /// [`RecordContext::wide_strands`] for light-view hair draws, in the
+    /// light maps' texels ([`crate::frame::FrameUniforms::draws_wide_light_strands`]).
+    pub wide_light_strands: bool,
 }
 
 impl<'a> RecordContext<'a> {

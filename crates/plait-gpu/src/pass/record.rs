@@ -19,10 +19,10 @@ pub enum ShaderPassKind {
         /// The quad draw of hair segments wider than a pixel, for a hair
         /// draw through `plait::hair_fragment` (`None` otherwise).
         quads: Option<wgpu::RenderPipeline>,
-        /// A light-view pass: its quad draw runs every frame. The frame's
-        /// measure of strands wider than a pixel (`RecordContext::wide_strands`)
-        /// is the camera's; a light texel is another size, and a strand far
-        /// narrower than a pixel can be wider than one (issue 47).
+        /// A light-view pass: its quad draw is decided by the strands' widths
+        /// in light texels (`RecordContext::wide_light_strands`), not the
+        /// camera's pixels — a strand far narrower than a pixel can be wider
+        /// than a texel (issue 47).
         light_view: bool,
         /// The pipeline reads the next hair vertex from vertex buffer 1.
         next: bool,
@@ -214,7 +214,12 @@ impl ShaderPass {
                     rpass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
                     rpass.draw_indexed(0..b.index_count, 0, 0..1);
                 }
-                let quad_draw = quads.as_ref().filter(|_| *light_view || ctx.wide_strands);
+                let wide = if *light_view {
+                    ctx.wide_light_strands
+                } else {
+                    ctx.wide_strands
+                };
+                let quad_draw = quads.as_ref().filter(|_| wide);
                 if let (Some(quads), Some((vertices, count))) =
                     (quad_draw, ctx.geometry.hair_quads())
                 {

@@ -53,8 +53,10 @@ pub struct HandWritten<'g> {
     frame_group: wgpu::BindGroup,
     passes: Vec<BuiltPass>,
     timestamps: Option<Timestamps>,
-    /// As plait's executor: the frame has a strand wider than a pixel.
+    /// As plait's executor: the frame has a strand wider than a pixel, and
+    /// one wider than a texel of the light maps (LIGHT_SIZE across).
     wide_strands: bool,
+    wide_light_strands: bool,
 }
 
 impl<'g> HandWritten<'g> {
@@ -148,6 +150,7 @@ impl<'g> HandWritten<'g> {
             passes: built,
             timestamps,
             wide_strands: frame.draws_wide_strands(),
+            wide_light_strands: frame.draws_wide_light_strands(LIGHT_SIZE),
         })
     }
 
@@ -259,13 +262,14 @@ impl<'g> HandWritten<'g> {
             rpass.draw_indexed(0..b.index_count, 0, 0..1);
         }
         // As plait's executor: each hair vertex's segment as a quad where it
-        // is wider than a pixel (a light texel), when the frame has any such;
-        // always from the light, whose texels the frame does not measure.
+        // is wider than a pixel (a light texel), when the frame has any such.
         let light_view = pass.desc.defines.contains(&"LIGHT_VIEW");
-        let quads = pass
-            .quads
-            .as_ref()
-            .filter(|_| light_view || self.wide_strands);
+        let wide = if light_view {
+            self.wide_light_strands
+        } else {
+            self.wide_strands
+        };
+        let quads = pass.quads.as_ref().filter(|_| wide);
         if let (Some(quads), Some((vertices, count))) = (quads, self.geometry.hair_quads()) {
             rpass.set_pipeline(quads);
             rpass.set_vertex_buffer(0, vertices.slice(..));
