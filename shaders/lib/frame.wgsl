@@ -56,7 +56,8 @@ struct Frame {
     // x: the strands' mean width (thickness, world units) over every vertex:
     // what the depth-only self-shadow maps take each strand crossed to be
     // (plait::light_share); y: the widest strand across the camera's view in
-    // pixels (the CPU's, for whether camera draws need their quads); zw unused.
+    // pixels, z: across the light's in its normalized device units (the
+    // CPU's, for whether the hair draws need their quads); w unused.
     hair_width: vec4<f32>,
 }
 
