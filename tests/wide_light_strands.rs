@@ -21,7 +21,7 @@
 
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{one_strand_scene, open_gpu, repo_root};
 
 const HEIGHT: f32 = 0.3;
 const LENGTH: f32 = 0.6;
@@ -77,18 +77,13 @@ color = [0.0, 0.0, 0.0]
 "#,
         LIGHT[0], LIGHT[1], LIGHT[2]
     );
-    let path = repo_root().join("tests/wide_light_strands.toml");
-    let scene = plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses");
-    let mut data = SceneData::new(scene).expect("the scene loads");
-    data.strands = plait_hair::Strands::new();
     // On the map z shrinks by cos i: the world angle whose map angle it is.
     let (s, c) = (degrees.to_radians().tan() / COS_I).atan().sin_cos();
     let along = glam::Vec3::new(c, 0.0, s);
     let points: Vec<glam::Vec3> = (0..=8)
         .map(|k| glam::Vec3::new(0.0, HEIGHT, 0.0) + along * LENGTH * (k as f32 / 8.0 - 0.5))
         .collect();
-    data.strands
-        .push_strand(&points, |_| thickness, |_| 1.0, glam::Vec3::splat(0.9));
+    let mut data = one_strand_scene("wide_light_strands.toml", &text, &points, thickness, 0.9);
     for corner in [-1.0f32, 1.0] {
         let end = glam::Vec3::new(corner * HALF, HEIGHT, corner * HALF / COS_I);
         let inward = glam::Vec3::new(-corner * 0.05, 0.0, 0.0);

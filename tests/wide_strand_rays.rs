@@ -23,7 +23,7 @@ use glam::{Mat4, Vec2, Vec3};
 use plait::probe::{ProbeGrid, probe_with};
 use plait::session::SceneData;
 use plait::source::PipelineSource;
-use plait_tests::{open_gpu, repo_root};
+use plait_tests::{one_strand_scene, open_gpu, repo_root};
 
 const HEIGHT: f32 = 0.3;
 const LENGTH: f32 = 0.6;
@@ -63,17 +63,12 @@ intensity = 1.0
 "#,
         LIGHT[0], LIGHT[1], LIGHT[2]
     );
-    let path = repo_root().join("tests/wide_strand_rays.toml");
-    let scene = plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses");
-    let mut data = SceneData::new(scene).expect("the scene loads");
-    data.strands = plait_hair::Strands::new();
     let (s, c) = degrees.to_radians().sin_cos();
     let along = Vec3::new(c, 0.0, s);
     let points: Vec<Vec3> = (0..=8)
         .map(|k| Vec3::new(0.0, HEIGHT, 0.0) + along * LENGTH * (k as f32 / 8.0 - 0.5))
         .collect();
-    data.strands
-        .push_strand(&points, |_| thickness, |_| 1.0, Vec3::splat(0.9));
+    let mut data = one_strand_scene("wide_strand_rays.toml", &text, &points, thickness, 0.9);
     for corner in [-1.0f32, 1.0] {
         let end = Vec3::new(corner * HALF, HEIGHT, corner * HALF * aspect / COS_I);
         let inward = Vec3::new(-corner * 0.05, 0.0, 0.0);
