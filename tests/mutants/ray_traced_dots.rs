@@ -49,13 +49,15 @@ fn both_ways(vertices: &[StrandVertex], first: Vec3, second: Vec3) -> [f32; 2] {
 /// 0.002), inside the first segment's quad 0 (s = 0.95). Each segment
 /// reports one quad; the pass belongs to the segment whose quad's plane the
 /// ray crosses first — the second — so the count is 1, and so it is along
-/// the reverse ray (the first's). Kills, in `shaders/lib/strand_dots.wgsl`,
-/// `dots_plane`'s band `clamp(s, 0, 1)` → `clamp(s, 0, 1.1)` (101:60: past
-/// the tapering segment's end the band narrows to 0.9 rb, P1 falls outside
-/// it, and the first segment counts the pass too: 2 forward); in
-/// `shaders/lib/strand_rays.wgsl`, `strand_segment`'s `s + k` → `s − k`
-/// (101:20: the first segment's neighbour looked for at −1, the second's
-/// at 2, neither there: both segments count, 2 each way).
+/// the reverse ray (the first's). Kills, in `shaders/lib/strand_rays.wgsl`,
+/// `strand_segment`'s `s + k` → `s − k` (101:20: the first segment's
+/// neighbour looked for at −1, the second's at 2, neither there: both
+/// segments count, 2 each way) and, before the neighbour's own half-width
+/// held a crossing past an end (`on_segment`), `dots_plane`'s band
+/// `clamp(s, 0, 1)` → `clamp(s, 0, 1.1)` in `shaders/lib/strand_dots.wgsl`
+/// (101:60: the band past the tapering segment's end narrowed to 0.9 rb,
+/// P1 fell outside it, and the first segment counted the pass too: 2
+/// forward).
 #[test]
 fn a_ray_through_a_tapered_joint_counts_once_either_way() {
     let (rb, gap) = (0.005, 0.005);
@@ -67,25 +69,58 @@ fn a_ray_through_a_tapered_joint_counts_once_either_way() {
 }
 
 /// A strand of constant half-width 0.005 whose second segment then tapers
-/// to 0.0025, and a ray that crosses the plane z = 0 at P1 = (−0.005,
-/// 0.002, 0), inside the first segment's quad 1 (s = 0.95), then y = 0 at
-/// P2 = (0.02, 0, 0.00475): within the first segment's band taken past its
-/// end (0.005) but outside the second's quad there (0.0045 wide at
-/// s = 0.2). Only the first segment reports a crossing, and its first
-/// plane crossed is its own: it counts, 1. Kills, in
-/// `shaders/lib/strand_rays.wgsl`, `dots_owns`' second plane taken when
-/// `planes[1].x < first` → `>=` (132:42: the first segment then gives the
-/// pass to the neighbour whose plane the ray crosses later, which reports
-/// nothing: 0). Along two segments that both report (the test above) that
-/// mutant hands the pass from one to the other and the count stays 1.
+/// (to 0.0025) or widens (to 0.01), and a ray through the plane z = 0 at
+/// P1 = (−0.005, 0.002, 0), inside the first segment's quad 1 (s = 0.95),
+/// and through y = 0 at P2 = (0.02, 0, z), past the joint (0.2 along the
+/// second segment): z = 0.00475, outside the narrower second segment's quad
+/// there (0.0045) but within the first's end (0.005); or z = 0.0055, inside
+/// the wider one's (0.006) and past the first's end. Either way along the
+/// ray the strand is crossed once: 1. `dots_owns` holds a crossing past a
+/// segment's end to the neighbour's half-width there (`on_segment`). When it
+/// held it to the segment's own end's, the narrower neighbour's ray from
+/// P2 counted 0 (the first segment gave the pass to the neighbour, which
+/// reports nothing there) and the wider one's 2 (neither segment saw the
+/// other's crossing).
 #[test]
-fn a_ray_past_a_joint_beside_a_narrower_neighbour_counts_the_segment_it_crosses() {
-    let vertices = three_vertices([0.01, 0.01, 0.005]);
+fn a_ray_past_a_joint_counts_once_beside_a_narrower_or_wider_neighbour() {
     let p1 = Vec3::new(-0.005, 0.002, 0.0);
-    let p2 = Vec3::new(0.02, 0.0, 0.00475);
+    let mut wrong = Vec::new();
+    for (end, z) in [(0.005, 0.00475), (0.02, 0.0055)] {
+        let vertices = three_vertices([0.01, 0.01, end]);
+        let found = both_ways(&vertices, p1, Vec3::new(0.02, 0.0, z));
+        if found != [1.0, 1.0] {
+            wrong.push(format!(
+                "second segment's end width {end}, P2 at z = {z}: {found:?} (P1 first, P2 first)"
+            ));
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:#?}");
+}
+
+/// A straight strand of half-width 0.005 and a ray through the joint's two
+/// planes: z = 0 at P1 = (0.005, 0.002, 0), inside the second segment's
+/// quad 1, then y = 0 at P2 = (−0.005, 0, 0.002), inside the first's quad
+/// 0, 0.0104 further. The pass is the second segment's, at P1's ray
+/// distance. With a bias of 0.01 and P1 0.005 from the ray's origin, the
+/// pass lies within the bias and counts 0; from 0.015 before P1, 1. Kills,
+/// in `shaders/lib/strand_rays.wgsl`, `dots_owns`' second plane taken when
+/// `planes[1].x < first` → `>=` (132:42 before `on_segment`: the first
+/// segment, whose crossing lies beyond the bias, keeps the pass, 1). Where
+/// both crossings lie beyond the bias, that mutant hands the pass from one
+/// segment to the other and the count stays 1.
+#[test]
+fn a_pass_whose_first_crossing_lies_within_the_bias_is_not_counted() {
+    let vertices = three_vertices([0.01; 3]);
+    let p1 = Vec3::new(0.005, 0.002, 0.0);
+    let p2 = Vec3::new(-0.005, 0.0, 0.002);
     let d = (p2 - p1).normalize();
-    let found = counts(StrandPrimitive::Dots, &vertices, &[p1 - 0.1 * d], d, 0.0);
-    assert_eq!(found, [1.0], "crossings through P1 then P2");
+    let origins = [p1 - 0.005 * d, p1 - 0.015 * d];
+    let found = counts(StrandPrimitive::Dots, &vertices, &origins, d, 0.01);
+    assert_eq!(
+        found,
+        [0.0, 1.0],
+        "crossings beyond a bias of 0.01, P1 0.005 then 0.015 on"
+    );
 }
 
 /// One segment along x (half-width 0.005) and rays along +x descending
