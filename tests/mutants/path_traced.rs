@@ -6,6 +6,7 @@
 use glam::Vec3;
 use plait::session::{SceneData, prepare};
 use plait_gpu::Gpu;
+use plait_tests::strand_trace::{blocked, strand};
 use plait_tests::{open_gpu, repo_root};
 
 const SIZE: (u32, u32) = (64, 48);
@@ -152,4 +153,40 @@ color = [0.0, 0.0, 0.0]
         dark.is_empty(),
         "rows below the axis under a tenth of the brightest ({brightest:.4}): {dark:.4?}"
     );
+}
+
+/// A straight strand along x (half-width 0.005, five segments 0.1 long from
+/// x = −0.3) and two rays leaving segment 2 (x from −0.1 to 0) from inside
+/// it, as a path's rays leave the segment they hit: from 0.0025 below the
+/// axis at x = −0.095 along (−2, 1, 0), and at x = −0.005 along (2, 1, 0).
+/// Each meets the axis 0.01 along x further on, past the segment's ends:
+/// in segment 1 (x = −0.105) and in segment 3 (x = 0.005). A path's rays
+/// skip the segment they leave and both its neighbours
+/// (`plait::strand_rays::box_crossing`), so leaving segment 2 neither is
+/// blocked; leaving no segment both are (the strand is in their way).
+/// Kills, in `shaders/lib/strand_rays.wgsl`, the skip's first bound
+/// `i + 1u >= skip` → `i >= skip` (198:62: segment 1, the previous
+/// neighbour, no longer skipped: the first ray is blocked).
+#[test]
+fn a_paths_ray_skips_both_neighbours_of_the_segment_it_leaves() {
+    let points: Vec<Vec3> = (0..6)
+        .map(|i| Vec3::new(-0.3 + 0.1 * i as f32, 0.0, 0.0))
+        .collect();
+    let vertices = strand(&points, 0.01, 0);
+    let rays = [
+        (Vec3::new(-0.095, -0.0025, 0.0), Vec3::new(-2.0, 1.0, 0.0)),
+        (Vec3::new(-0.005, -0.0025, 0.0), Vec3::new(2.0, 1.0, 0.0)),
+    ];
+    let mut wrong = Vec::new();
+    for (skip, want) in [(2u32, false), (u32::MAX, true)] {
+        for (origin, dir) in rays {
+            let found = blocked(&vertices, &[origin], dir.normalize(), skip)[0];
+            if found != want {
+                wrong.push(format!(
+                    "leaving segment {skip:#x} from {origin} along {dir}: blocked {found}"
+                ));
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:#?}");
 }

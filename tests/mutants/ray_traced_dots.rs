@@ -5,8 +5,11 @@
 //!
 //! The strands below lie along x, so `dots_across` gives u = ẑ and v = −ŷ
 //! exactly: quad 0 lies in the plane y = 0 (its half-width along z), quad 1
-//! in z = 0 (along y). The rays are hand-made through points chosen on
-//! those planes; every margin to a quad's or band's edge is 5 % of a radius.
+//! in z = 0 (along y), both taken through the strand's joint `JOINT`, away
+//! from the origin (a strand through it would meet the origin's planes).
+//! The rays are hand-made through points chosen on those planes, written
+//! about the joint; every margin to a quad's or band's edge is 3–5 % of a
+//! radius.
 
 use glam::Vec3;
 use plait::session::{SceneData, prepare};
@@ -15,10 +18,20 @@ use plait_hair::StrandVertex;
 use plait_tests::strand_trace::{counts, strand};
 use plait_tests::{open_gpu, repo_root};
 
-/// A strand along x through x = −0.1, 0, 0.1, of widths `widths` at those
-/// vertices (twice the DOTS quads' half-widths ra, rb, rc).
+/// The joint of the strands below (their middle vertex), exact in f32.
+const JOINT: Vec3 = Vec3::new(0.25, 0.5, -0.75);
+
+/// A strand along x through JOINT + x for x = −0.1, 0, 0.1, of widths
+/// `widths` at those vertices (twice the DOTS quads' half-widths ra, rb,
+/// rc).
 fn three_vertices(widths: [f32; 3]) -> Vec<StrandVertex> {
-    let points = [-0.1f32, 0.0, 0.1].map(|x| Vec3::new(x, 0.0, 0.0));
+    along_x([-0.1, 0.0, 0.1], widths)
+}
+
+/// A strand along x through JOINT + x for each of `xs`, of widths `widths`
+/// there.
+fn along_x(xs: [f32; 3], widths: [f32; 3]) -> Vec<StrandVertex> {
+    let points = xs.map(|x| JOINT + Vec3::new(x, 0.0, 0.0));
     let mut vertices = strand(&points, widths[0], 0);
     for (v, w) in vertices.iter_mut().zip(widths) {
         v.thickness = w;
@@ -26,19 +39,15 @@ fn three_vertices(widths: [f32; 3]) -> Vec<StrandVertex> {
     vertices
 }
 
-/// DOTS crossings counted along the ray through `first` then `second`,
-/// and along the reverse ray (through `second` then `first`): from 0.1
-/// before the first point, as the tracers walk them (no bias).
+/// DOTS crossings counted along the ray through JOINT + `first` then
+/// JOINT + `second`, and along the reverse ray: from 0.1 before the first
+/// point, as the tracers walk them (no bias).
 fn both_ways(vertices: &[StrandVertex], first: Vec3, second: Vec3) -> [f32; 2] {
     let d = (second - first).normalize();
-    let forward = counts(StrandPrimitive::Dots, vertices, &[first - 0.1 * d], d, 0.0)[0];
-    let back = counts(
-        StrandPrimitive::Dots,
-        vertices,
-        &[second + 0.1 * d],
-        -d,
-        0.0,
-    )[0];
+    let (first, second) = (JOINT + first, JOINT + second);
+    let dots = StrandPrimitive::Dots;
+    let forward = counts(dots, vertices, &[first - 0.1 * d], d, 0.0)[0];
+    let back = counts(dots, vertices, &[second + 0.1 * d], -d, 0.0)[0];
     [forward, back]
 }
 
@@ -97,6 +106,25 @@ fn a_ray_past_a_joint_counts_once_beside_a_narrower_or_wider_neighbour() {
     assert!(wrong.is_empty(), "{wrong:#?}");
 }
 
+/// A strand of half-width 0.015 whose second segment, 0.02 long, tapers
+/// to 0.005, and a ray through y = 0 at P_A = (0.019, 0, 0.0058), near
+/// the second segment's far end (0.95 along it), just outside its quad
+/// there (0.0055 wide), then z = 0 at P_B = (−0.005, 0.002, 0), inside the
+/// first segment's quad 1. Only the first segment reports, and the pass is
+/// its own: 1, either way along the ray. Kills, in
+/// `shaders/lib/strand_rays.wgsl`, `on_segment`'s place along the
+/// neighbour clamped to 0.9 instead of 1 (120:85: the neighbour taken 0.006
+/// wide at P_A, whose plane the ray from P_A crosses first: the first
+/// segment gives it the pass, 0).
+#[test]
+fn a_ray_just_outside_a_tapering_neighbours_far_end_counts_the_segment_it_crosses() {
+    let vertices = along_x([-0.1, 0.0, 0.02], [0.03, 0.03, 0.01]);
+    let p_a = Vec3::new(0.019, 0.0, 0.0058);
+    let p_b = Vec3::new(-0.005, 0.002, 0.0);
+    let found = both_ways(&vertices, p_a, p_b);
+    assert_eq!(found, [1.0, 1.0], "crossings (P_A first, P_B first)");
+}
+
 /// A straight strand of half-width 0.005 and a ray through the joint's two
 /// planes: z = 0 at P1 = (0.005, 0.002, 0), inside the second segment's
 /// quad 1, then y = 0 at P2 = (−0.005, 0, 0.002), inside the first's quad
@@ -114,7 +142,7 @@ fn a_pass_whose_first_crossing_lies_within_the_bias_is_not_counted() {
     let p1 = Vec3::new(0.005, 0.002, 0.0);
     let p2 = Vec3::new(-0.005, 0.0, 0.002);
     let d = (p2 - p1).normalize();
-    let origins = [p1 - 0.005 * d, p1 - 0.015 * d];
+    let origins = [JOINT + p1 - 0.005 * d, JOINT + p1 - 0.015 * d];
     let found = counts(StrandPrimitive::Dots, &vertices, &origins, d, 0.01);
     assert_eq!(
         found,
