@@ -158,7 +158,7 @@ color = [0.0, 0.0, 0.0]
 /// A straight strand along x (half-width 0.005, five segments 0.1 long from
 /// x = −0.3) and two rays leaving segment 2 (x from −0.1 to 0) from inside
 /// it, as a path's rays leave the segment they hit: from 0.0025 below the
-/// axis at x = −0.095 along (−2, 1, 0), and at x = −0.005 along (2, 1, 0).
+/// axis at x = −0.095 along (−4, 1, 0), and at x = −0.005 along (4, 1, 0).
 /// Each meets the axis 0.01 along x further on, past the segment's ends:
 /// in segment 1 (x = −0.105) and in segment 3 (x = 0.005). A path's rays
 /// skip the segment they leave and both its neighbours
@@ -174,8 +174,8 @@ fn a_paths_ray_skips_both_neighbours_of_the_segment_it_leaves() {
         .collect();
     let vertices = strand(&points, 0.01, 0);
     let rays = [
-        (Vec3::new(-0.095, -0.0025, 0.0), Vec3::new(-2.0, 1.0, 0.0)),
-        (Vec3::new(-0.005, -0.0025, 0.0), Vec3::new(2.0, 1.0, 0.0)),
+        (Vec3::new(-0.095, -0.0025, 0.0), Vec3::new(-4.0, 1.0, 0.0)),
+        (Vec3::new(-0.005, -0.0025, 0.0), Vec3::new(4.0, 1.0, 0.0)),
     ];
     let mut wrong = Vec::new();
     for (skip, want) in [(2u32, false), (u32::MAX, true)] {
