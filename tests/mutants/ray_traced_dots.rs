@@ -125,6 +125,23 @@ fn a_ray_just_outside_a_tapering_neighbours_far_end_counts_the_segment_it_crosse
     assert_eq!(found, [1.0, 1.0], "crossings (P_A first, P_B first)");
 }
 
+/// A strand of one segment (x from −0.1 to 0 about JOINT, half-width
+/// 0.005) and a ray through z = 0 at P1 = (0.005, 0.002, 0), past the
+/// strand's tip, then y = 0 at P2 = (−0.005, 0, 0.002), inside quad 0: no
+/// segment lies where the ray crosses the first plane, so the pass is the
+/// one segment's, 1, either way along the ray. Kills, in
+/// `shaders/lib/strand_rays.wgsl`, `dots_owns`' second plane taken when it
+/// lies on a segment `&&` nearer → `||` (146:57: the plane past the tip,
+/// nearer, gives the pass to a segment that is not there, 0).
+#[test]
+fn a_ray_past_a_strands_tip_counts_its_last_segment() {
+    let vertices = strand(&[JOINT - Vec3::new(0.1, 0.0, 0.0), JOINT], 0.01, 0);
+    let p1 = Vec3::new(0.005, 0.002, 0.0);
+    let p2 = Vec3::new(-0.005, 0.0, 0.002);
+    let found = both_ways(&vertices, p1, p2);
+    assert_eq!(found, [1.0, 1.0], "crossings (P1 first, P2 first)");
+}
+
 /// A straight strand of half-width 0.005 and a ray through the joint's two
 /// planes: z = 0 at P1 = (0.005, 0.002, 0), inside the second segment's
 /// quad 1, then y = 0 at P2 = (−0.005, 0, 0.002), inside the first's quad
