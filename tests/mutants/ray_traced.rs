@@ -62,37 +62,9 @@ const SIZE: (u32, u32) = (64, 48);
 
 /// A scene of the strands `strands` (each a polyline of width `width`), the
 /// camera of tests/ray_traced_self_shadow.rs and a directional light
-/// travelling along `light`.
+/// travelling along `light` (`plait_tests::strands_under_light`).
 fn scene(strands: &[Vec<Vec3>], width: f32, light: Vec3) -> SceneData {
-    let text = format!(
-        r#"
-ambient = 0.0
-[hair.procedural]
-strands = 1
-segments = 1
-[ground]
-height = -0.5
-half_size = 3.0
-[camera]
-eye = [0.0, 2.0, 2.0]
-target = [0.0, 0.0, 0.0]
-fov_y_degrees = 35.0
-[light]
-type = "directional"
-direction = [{}, {}, {}]
-intensity = 1.0
-"#,
-        light.x, light.y, light.z
-    );
-    let path = repo_root().join("tests/ray_pattern.toml");
-    let parsed = plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses");
-    let mut data = SceneData::new(parsed).expect("the scene loads");
-    data.strands = plait_hair::Strands::new();
-    for points in strands {
-        data.strands
-            .push_strand(points, |_| width, |_| 1.0, Vec3::splat(0.5));
-    }
-    data
+    plait_tests::strands_under_light("ray_pattern.toml", strands, width, light)
 }
 
 /// Points on the plane y = `y`: `columns` along x from `x0` by `dx`, `rows`
