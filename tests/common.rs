@@ -124,16 +124,63 @@ pub fn one_strand_scene(
     thickness: f32,
     colour: f32,
 ) -> plait::session::SceneData {
+    strands_scene(name, text, &[points.to_vec()], thickness, colour)
+}
+
+/// [`one_strand_scene`] with its hair replaced by every polyline of
+/// `strands`, each of `thickness`, alpha 1 and one `colour`.
+pub fn strands_scene(
+    name: &str,
+    text: &str,
+    strands: &[Vec<glam::Vec3>],
+    thickness: f32,
+    colour: f32,
+) -> plait::session::SceneData {
     let path = repo_root().join("tests").join(name);
     let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
     let mut data = plait::session::SceneData::new(scene).expect("the scene loads");
     data.strands = plait_hair::Strands::new();
-    data.strands
-        .push_strand(points, |_| thickness, |_| 1.0, glam::Vec3::splat(colour));
+    for points in strands {
+        data.strands
+            .push_strand(points, |_| thickness, |_| 1.0, glam::Vec3::splat(colour));
+    }
     data
 }
 
-/// `PLAIT_BLESS=1` (re)writes snapshots and golden images instead of comparing.
+/// The scene of the self-shadow count tests (`tests/strand_count.rs`,
+/// `tests/mutants/ray_traced.rs`), named `tests/<name>`: no ambient, a ground
+/// 0.5 below the origin, a camera at (0, 2, 2) looking at the origin, a
+/// directional light travelling along `light`, and as its hair `strands`,
+/// each a polyline of width `width`, alpha 1 and grey 0.5.
+pub fn strands_under_light(
+    name: &str,
+    strands: &[Vec<glam::Vec3>],
+    width: f32,
+    light: glam::Vec3,
+) -> plait::session::SceneData {
+    let text = format!(
+        r#"
+ambient = 0.0
+[hair.procedural]
+strands = 1
+segments = 1
+[ground]
+height = -0.5
+half_size = 3.0
+[camera]
+eye = [0.0, 2.0, 2.0]
+target = [0.0, 0.0, 0.0]
+fov_y_degrees = 35.0
+[light]
+type = "directional"
+direction = [{}, {}, {}]
+intensity = 1.0
+"#,
+        light.x, light.y, light.z
+    );
+    strands_scene(name, &text, strands, width, 0.5)
+}
+
 /// The `plait ab` plan of `options` (one repeat) with its path-traced
 /// reference's Mitsuba images rendered or taken from the build folder's
 /// cache (`plait::ab::default_cache`, as `plait ab` caches them):
@@ -149,6 +196,7 @@ pub fn path_traced_plan(mut options: plait::ab::AbOptions) -> plait::ab::Plan {
     plan
 }
 
+/// `PLAIT_BLESS=1` (re)writes snapshots and golden images instead of comparing.
 pub fn bless() -> bool {
     std::env::var("PLAIT_BLESS").is_ok_and(|v| !v.is_empty() && v != "0")
 }

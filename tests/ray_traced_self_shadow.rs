@@ -90,7 +90,6 @@ fn exact_converges_to_ray_traced_as_its_light_map_gets_finer() {
 /// points (V = e^−w) and behind none for the rest (V = 1).
 mod layer {
     use plait::session::SceneData;
-    use plait_tests::repo_root;
 
     pub const STRANDS: usize = 60;
     pub const SPACING: f32 = 0.02;
@@ -102,36 +101,16 @@ mod layer {
     pub const SIZE: (u32, u32) = (64, 48);
 
     pub fn scene() -> SceneData {
-        let text = r#"
-ambient = 0.0
-[hair.procedural]
-strands = 1
-segments = 1
-[ground]
-height = -0.5
-half_size = 3.0
-[camera]
-eye = [0.0, 2.0, 2.0]
-target = [0.0, 0.0, 0.0]
-fov_y_degrees = 35.0
-[light]
-type = "directional"
-direction = [-0.3, -1.0, 0.0]
-intensity = 1.0
-"#;
-        let path = repo_root().join("tests/strand_layer.toml");
-        let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
-        let mut data = SceneData::new(scene).expect("the scene loads");
-        data.strands = plait_hair::Strands::new();
-        for i in 0..STRANDS {
-            let z = SPACING * (i as f32 - 0.5 * STRANDS as f32);
-            let points: Vec<glam::Vec3> = (0..=8)
-                .map(|s| glam::Vec3::new(HALF_LENGTH * (s as f32 / 4.0 - 1.0), LAYER, z))
-                .collect();
-            data.strands
-                .push_strand(&points, |_| WIDTH, |_| 1.0, glam::Vec3::splat(0.5));
-        }
-        data
+        let strands: Vec<Vec<glam::Vec3>> = (0..STRANDS)
+            .map(|i| {
+                let z = SPACING * (i as f32 - 0.5 * STRANDS as f32);
+                (0..=8)
+                    .map(|s| glam::Vec3::new(HALF_LENGTH * (s as f32 / 4.0 - 1.0), LAYER, z))
+                    .collect()
+            })
+            .collect();
+        let light = glam::Vec3::new(-0.3, -1.0, 0.0);
+        plait_tests::strands_under_light("strand_layer.toml", &strands, WIDTH, light)
     }
 }
 
@@ -240,7 +219,6 @@ fn jittered_rays_average_the_speckle_and_keep_the_mean() {
 /// the band |x| < `EDGE_RADIUS`, whatever the depth.
 mod edge {
     use plait::session::SceneData;
-    use plait_tests::repo_root;
 
     pub const EDGE_RADIUS: f32 = 0.05;
     pub const HEIGHT: f32 = 0.4;
@@ -249,37 +227,11 @@ mod edge {
     pub const SIZE: (u32, u32) = (64, 48);
 
     pub fn scene() -> SceneData {
-        let text = r#"
-ambient = 0.0
-[hair.procedural]
-strands = 1
-segments = 1
-[ground]
-height = -0.5
-half_size = 3.0
-[camera]
-eye = [0.0, 2.0, 2.0]
-target = [0.0, 0.0, 0.0]
-fov_y_degrees = 35.0
-[light]
-type = "directional"
-direction = [0.0, -1.0, -0.3]
-intensity = 1.0
-"#;
-        let path = repo_root().join("tests/strand_edge.toml");
-        let scene = plait_hair::Scene::from_toml_str(text, &path).expect("the scene parses");
-        let mut data = SceneData::new(scene).expect("the scene loads");
-        data.strands = plait_hair::Strands::new();
-        let points: Vec<glam::Vec3> = (0..=12)
+        let axis: Vec<glam::Vec3> = (0..=12)
             .map(|s| glam::Vec3::new(0.0, HEIGHT, 0.1 * s as f32 - 0.6))
             .collect();
-        data.strands.push_strand(
-            &points,
-            |_| 2.0 * EDGE_RADIUS,
-            |_| 1.0,
-            glam::Vec3::splat(0.5),
-        );
-        data
+        let light = glam::Vec3::new(0.0, -1.0, -0.3);
+        plait_tests::strands_under_light("strand_edge.toml", &[axis], 2.0 * EDGE_RADIUS, light)
     }
 }
 

@@ -38,44 +38,22 @@ const LIGHT: [f32; 3] = [-0.3, -1.0, 0.0];
 const SIZE: (u32, u32) = (64, 48);
 
 fn slab() -> SceneData {
-    let text = format!(
-        r#"
-ambient = 0.0
-[hair.procedural]
-strands = 1
-segments = 1
-[ground]
-height = -0.5
-half_size = 3.0
-[camera]
-eye = [0.0, 2.0, 2.0]
-target = [0.0, 0.0, 0.0]
-fov_y_degrees = 35.0
-[light]
-type = "directional"
-direction = [{}, {}, {}]
-intensity = 1.0
-"#,
-        LIGHT[0], LIGHT[1], LIGHT[2]
-    );
-    let path = repo_root().join("tests/strand_count.toml");
-    let scene = plait_hair::Scene::from_toml_str(&text, &path).expect("the scene parses");
-    let mut data = SceneData::new(scene).expect("the scene loads");
-    data.strands = plait_hair::Strands::new();
+    let mut strands = Vec::new();
     for k in 0..LAYERS {
         let y = TOP - GAP * k as f32;
         for i in 0..PER_LAYER {
             // Each layer shifted by a quarter spacing: the layers do not
             // line up behind each other (the count is the same either way).
             let z = SPACING * (i as f32 + 0.25 * k as f32) - 0.5 * SPACING * PER_LAYER as f32;
-            let points: Vec<glam::Vec3> = (0..=8)
-                .map(|s| glam::Vec3::new(HALF_LENGTH * (s as f32 / 4.0 - 1.0), y, z))
-                .collect();
-            data.strands
-                .push_strand(&points, |_| WIDTH, |_| 1.0, glam::Vec3::splat(0.5));
+            strands.push(
+                (0..=8)
+                    .map(|s| glam::Vec3::new(HALF_LENGTH * (s as f32 / 4.0 - 1.0), y, z))
+                    .collect(),
+            );
         }
     }
-    data
+    let light = glam::Vec3::from(LIGHT);
+    plait_tests::strands_under_light("strand_count.toml", &strands, WIDTH, light)
 }
 
 /// Per k = 0..=LAYERS (layers above the point): the provider's mean count

@@ -2,8 +2,10 @@
 //! strands' acceleration structure built from hand-made vertices
 //! (`plait_gpu::strand_structure`) with the loop every ray-traced technique
 //! walks (`plait::strand_rays::strands_crossed`, through
-//! `tests/fixtures/strand_trace_probe.wgsl`): `tests/ray_traced_strands.rs`
-//! and the mutants' tests (`tests/mutants/ray_traced.rs`).
+//! `tests/fixtures/strand_trace_probe.wgsl`), and whether a path's ray
+//! leaving a segment is blocked (`ray_blocked`, through
+//! `tests/fixtures/strand_blocked_probe.wgsl`): `tests/ray_traced_strands.rs`
+//! and the mutants' tests (`tests/mutants/`).
 
 use glam::Vec3;
 use plait_gpu::strand_structure::{StrandPrimitive, StrandStructure, StructureOptions};
@@ -31,10 +33,10 @@ pub fn strand(points: &[Vec3], width: f32, id: u32) -> Vec<StrandVertex> {
 /// `plait_hair::StrandVertex`; shaders/lib/hair_point.wgsl).
 const HAIR_POINT: &str = "struct HairPoint {\n    position: vec3<f32>,\n    thickness: f32,\n    tangent: vec3<f32>,\n    alpha: f32,\n    color: vec3<f32>,\n    strand: u32,\n}\n";
 
-/// The probe shader: the fixture after `enable`, HairPoint,
+/// The probe shader: `fixture` after `enable`, HairPoint,
 /// plait::strand_capsule, plait::strand_dots and plait::strand_rays, each
 /// library file without its directives (the text is one module).
-fn probe_shader() -> String {
+fn probe_shader(fixture: &str) -> String {
     let read = |p: &str| std::fs::read_to_string(repo_root().join(p)).expect(p);
     let library = |p: &str| -> String {
         read(p)
@@ -46,8 +48,8 @@ fn probe_shader() -> String {
     let capsule = library("shaders/lib/strand_capsule.wgsl");
     let dots = library("shaders/lib/strand_dots.wgsl");
     let rays = library("shaders/lib/strand_rays.wgsl");
-    let fixture = read("tests/fixtures/strand_trace_probe.wgsl");
-    format!("enable wgpu_ray_query;\n{HAIR_POINT}\n{capsule}\n{dots}\n{rays}\n{fixture}")
+    let text = read(&format!("tests/fixtures/{fixture}"));
+    format!("enable wgpu_ray_query;\n{HAIR_POINT}\n{capsule}\n{dots}\n{rays}\n{text}")
 }
 
 /// Strands crossed from each point toward `to_light`, traced on the GPU
@@ -58,6 +60,46 @@ pub fn counts(
     points: &[Vec3],
     to_light: Vec3,
     bias: f32,
+) -> Vec<f32> {
+    let probe = [to_light.x, to_light.y, to_light.z, bias];
+    trace(
+        "strand_trace_probe.wgsl",
+        primitive,
+        vertices,
+        points,
+        probe,
+    )
+}
+
+/// Whether anything lies along the ray from each point along `dir`, as a
+/// path's ray leaving segment `skip` (0xffffffff: none) meets it
+/// (`plait::strand_rays::ray_blocked`, through
+/// `tests/fixtures/strand_blocked_probe.wgsl`), through a structure of
+/// swept spheres (the path tracer's).
+pub fn blocked(vertices: &[StrandVertex], points: &[Vec3], dir: Vec3, skip: u32) -> Vec<bool> {
+    let probe = [dir.x, dir.y, dir.z, f32::from_bits(skip)];
+    let primitive = StrandPrimitive::SweptSphere;
+    trace(
+        "strand_blocked_probe.wgsl",
+        primitive,
+        vertices,
+        points,
+        probe,
+    )
+    .into_iter()
+    .map(|b| b != 0.0)
+    .collect()
+}
+
+/// One f32 per point from `tests/fixtures/FIXTURE` (after the library, as
+/// [`probe_shader`] composes it), its uniform `probe` the four words given,
+/// traced through a structure of `primitive`s built from `vertices`.
+fn trace(
+    fixture: &str,
+    primitive: StrandPrimitive,
+    vertices: &[StrandVertex],
+    points: &[Vec3],
+    probe: [f32; 4],
 ) -> Vec<f32> {
     let (_lock, gpu) = open_gpu();
     assert!(
@@ -104,15 +146,14 @@ pub fn counts(
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let uniform = [to_light.x, to_light.y, to_light.z, bias];
     let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("probe"),
-        contents: bytemuck::cast_slice(&uniform),
+        contents: bytemuck::cast_slice(&probe),
         usage: wgpu::BufferUsages::UNIFORM,
     });
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("strand_trace_probe"),
-        source: wgpu::ShaderSource::Wgsl(probe_shader().into()),
+        source: wgpu::ShaderSource::Wgsl(probe_shader(fixture).into()),
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("strand_trace_probe"),

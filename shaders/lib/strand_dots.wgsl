@@ -83,25 +83,21 @@ fn dots_quad(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, ra: f32, b: vec3<f32>, rb
 
 // Ray o + t d (|d| = 1) against the plane of quad q of segment a → b taken
 // past the segment's ends, as a straight strand's neighbours continue it:
-// x = the ray distance, y = the place along the axis (0 at a, 1 at b, any
-// value), where the ray crosses it within the half-width (ra before a, rb
-// past b, mixed between); x = −1 when it crosses outside it or runs along
-// the plane. Which segment of a strand a crossing belongs to
-// (plait::strand_rays, dots_owns).
-fn dots_plane(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, ra: f32, b: vec3<f32>, rb: f32, q: u32) -> vec2<f32> {
+// x = the ray distance (−1 when the ray runs along the plane), y = the place
+// along the axis (0 at a, 1 at b, any value), z = the crossing's distance
+// from the axis in the plane. Which segment of a strand a crossing belongs
+// to (plait::strand_rays, dots_owns, which holds z to the half-width of the
+// segment the place lies on: past an end, the neighbour's, not this one's).
+fn dots_plane(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, b: vec3<f32>, q: u32) -> vec3<f32> {
     let e = b - a;
     let across = dots_across(e);
     let facing = dot(d, across[1u - q]);
     if (abs(facing) <= 1e-7) {
-        return vec2<f32>(-1.0, 0.0);
+        return vec3<f32>(-1.0, 0.0, 0.0);
     }
     let t = dot(a - o, across[1u - q]) / facing;
     let p = o + t * d - a;
-    let s = dot(p, e) / dot(e, e);
-    if (abs(dot(p, across[q])) > mix(ra, rb, clamp(s, 0.0, 1.0))) {
-        return vec2<f32>(-1.0, s);
-    }
-    return vec2<f32>(t, s);
+    return vec3<f32>(t, dot(p, e) / dot(e, e), abs(dot(p, across[q])));
 }
 
 // The segment's crossing by ray o + t d (|d| = 1): x = its ray distance,

@@ -102,6 +102,25 @@ fn strand_segment(s: u32, k: i32, strand: u32) -> bool {
     return i >= 0 && u32(i) + 1u < arrayLength(&vis_hair) && vis_hair[i].strand == strand && vis_hair[i + 1].strand == strand;
 }
 
+// Whether a crossing of one of segment s's quads' planes (dots_plane: x its
+// ray distance, y its place along s, z its distance from the axis) lies on
+// segment s + k, k = floor(y), of `strand`: the segment exists and the
+// crossing is within its half-width where it lies along it. Past s's ends
+// that is the neighbour's own width: a tapering strand's neighbour is
+// narrower or wider there than s's end, and its quad is crossed, and
+// reported, exactly where it is that wide.
+fn on_segment(origin: vec3<f32>, dir: vec3<f32>, s: u32, plane: vec3<f32>, strand: u32) -> bool {
+    let k = i32(floor(plane.y));
+    if (plane.x <= 0.0 || (k != 0 && !strand_segment(s, k, strand))) {
+        return false;
+    }
+    let c = vis_hair[u32(i32(s) + k)];
+    let d = vis_hair[u32(i32(s) + k) + 1u];
+    let e = d.position - c.position;
+    let along = clamp(dot(origin + plane.x * dir - c.position, e) / dot(e, e), 0.0, 1.0);
+    return plane.z <= 0.5 * mix(c.thickness, d.thickness, along);
+}
+
 // Whether segment `s`, whose DOTS the ray crosses, counts the crossing. A
 // ray oblique to a strand near a joint can cross one quad of `s` and the
 // other quad of a neighbour — two segments for one pass through a straight
@@ -110,27 +129,22 @@ fn strand_segment(s: u32, k: i32, strand: u32) -> bool {
 // the segment where the ray first crosses a quad's plane, the planes taken
 // along the strand past `s`'s ends (dots_plane; exact for a straight
 // strand, whose segments' quads share the planes), among the crossings
-// that lie on a segment of the strand; `s` counts it only when that is `s`
-// — as plait::strand_capsule gives a swept sphere's crossing to one
-// segment.
+// that lie on a segment of the strand (on_segment); `s` counts it only when
+// that is `s` — as plait::strand_capsule gives a swept sphere's crossing to
+// one segment.
 fn dots_owns(origin: vec3<f32>, dir: vec3<f32>, s: u32) -> bool {
     let a = vis_hair[s];
     let b = vis_hair[s + 1u];
     var first = 1e30;
     var owner = 0;
     // Quads 0 and 1, unrolled (no loop: plait::loop_budget).
-    let planes = array<vec2<f32>, 2>(
-        dots_plane(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness, 0u),
-        dots_plane(origin, dir, a.position, 0.5 * a.thickness, b.position, 0.5 * b.thickness, 1u),
-    );
-    let k0 = i32(floor(planes[0].y));
-    if (planes[0].x > 0.0 && (k0 == 0 || strand_segment(s, k0, a.strand))) {
+    let planes = array<vec3<f32>, 2>(dots_plane(origin, dir, a.position, b.position, 0u), dots_plane(origin, dir, a.position, b.position, 1u));
+    if (on_segment(origin, dir, s, planes[0], a.strand)) {
         first = planes[0].x;
-        owner = k0;
+        owner = i32(floor(planes[0].y));
     }
-    let k1 = i32(floor(planes[1].y));
-    if (planes[1].x > 0.0 && planes[1].x < first && (k1 == 0 || strand_segment(s, k1, a.strand))) {
-        owner = k1;
+    if (on_segment(origin, dir, s, planes[1], a.strand) && planes[1].x < first) {
+        owner = i32(floor(planes[1].y));
     }
     return owner == 0;
 }

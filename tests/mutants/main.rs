@@ -20,6 +20,7 @@ mod occupancy;
 mod occupancy_order;
 mod path_traced;
 mod ray_traced;
+mod ray_traced_dots;
 mod strand_coverage;
 mod tone_mapping;
 
