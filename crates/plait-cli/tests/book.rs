@@ -224,14 +224,20 @@ fn mentions(line: &str) -> Vec<(String, Vec<String>)> {
         let Some(values) = after.strip_prefix('=') else {
             continue;
         };
-        let names: Vec<String> = values
-            .split(|c: char| !(word(c) || c == ','))
-            .next()
-            .unwrap_or("")
+        let end = values
+            .find(|c: char| !(word(c) || c == ','))
+            .unwrap_or(values.len());
+        let mut names: Vec<String> = values[..end]
             .split(',')
             .filter(|n| !n.is_empty())
             .map(str::to_string)
             .collect();
+        // In a benchmark's `--variant KEY=V,KEY=V` a comma also separates
+        // sets: an item followed by `.` is the next set's key (`techniques`,
+        // `params`), not a technique.
+        if values[end..].starts_with('.') {
+            names.pop();
+        }
         if !point.is_empty() && !names.is_empty() {
             out.push((point, names));
         }
@@ -254,4 +260,13 @@ fn mentions_are_read_from_set_flags_and_sweeps() {
         ]
     );
     assert!(mentions("the techniques.toml file").is_empty());
+    assert_eq!(
+        mentions(
+            "--variant techniques.transparency=compute_raster,techniques.shading_space=strand,params.tile_size=8"
+        ),
+        [
+            ("transparency".to_string(), vec!["compute_raster".to_string()]),
+            ("shading_space".to_string(), vec!["strand".to_string()]),
+        ]
+    );
 }
