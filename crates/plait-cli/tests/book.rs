@@ -265,7 +265,10 @@ fn mentions_are_read_from_set_flags_and_sweeps() {
             "--variant techniques.transparency=compute_raster,techniques.shading_space=strand,params.tile_size=8"
         ),
         [
-            ("transparency".to_string(), vec!["compute_raster".to_string()]),
+            (
+                "transparency".to_string(),
+                vec!["compute_raster".to_string()]
+            ),
             ("shading_space".to_string(), vec!["strand".to_string()]),
         ]
     );
