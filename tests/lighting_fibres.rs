@@ -23,10 +23,11 @@ const LIGHTINGS: [&str; 3] = [
 ];
 
 /// The environment term and the fibre's uniform response × the cube's first
-/// texel, per grid point (rgb).
+/// texel, per grid point (rgb), and the point's sin θo.
 struct Read {
     term: Vec<[f32; 3]>,
     uniform: Vec<[f32; 3]>,
+    sin_o: Vec<f32>,
 }
 
 fn run(gpu: &plait_gpu::Gpu, scene: &SceneData, shading: &str, lighting: &str) -> Read {
@@ -40,18 +41,21 @@ fn run(gpu: &plait_gpu::Gpu, scene: &SceneData, shading: &str, lighting: &str) -
     prepared
         .render()
         .unwrap_or_else(|e| panic!("{shading} × {lighting}: {e}"));
-    let read = |name: &str| -> Vec<[f32; 3]> {
+    let read = |name: &str| -> Vec<[f32; 4]> {
         let data = prepared.read_resource(name).expect(name);
         (0..(data.width * data.height) as usize)
             .map(|i| {
                 let t = data.texel(i);
-                [t[0], t[1], t[2]]
+                [t[0], t[1], t[2], t[3]]
             })
             .collect()
     };
+    let rgb = |texels: &[[f32; 4]]| texels.iter().map(|t| [t[0], t[1], t[2]]).collect();
+    let cases = read("cases");
     Read {
-        term: read("cases"),
-        uniform: read("uniform"),
+        term: rgb(&cases),
+        uniform: rgb(&read("uniform")),
+        sin_o: cases.iter().map(|t| t[3]).collect(),
     }
 }
 
@@ -80,6 +84,19 @@ fn studio_scene() -> SceneData {
 /// mean and largest per-point |a − b| / the point's largest channel of b),
 /// points where b is below 1 % of its largest value left out of the last two.
 fn errors(a: &[[f32; 3]], b: &[[f32; 3]]) -> (f64, f64, f64) {
+    errors_where(a, b, |_| true)
+}
+
+/// [`errors`] over the points `keep` accepts (by index).
+fn errors_where(a: &[[f32; 3]], b: &[[f32; 3]], keep: impl Fn(usize) -> bool) -> (f64, f64, f64) {
+    let (a, b): (Vec<[f32; 3]>, Vec<[f32; 3]>) = a
+        .iter()
+        .zip(b)
+        .enumerate()
+        .filter(|(i, _)| keep(*i))
+        .map(|(_, (x, y))| (*x, *y))
+        .unzip();
+    let (a, b) = (a.as_slice(), b.as_slice());
     let total: f64 = b.iter().flatten().map(|&v| f64::from(v.abs())).sum();
     let diff: f64 = a
         .iter()
@@ -114,11 +131,21 @@ fn errors(a: &[[f32; 3]], b: &[[f32; 3]]) -> (f64, f64, f64) {
 //     paper's lookup: interpolation over θ′ and the narrow-cone units),
 //     chiang and marschner 0.0028 / 0.0026 (16-bit maps, and each map's sum
 //     over the cube against its quadrature in cone_uniform).
-// marschner's environment_reference sums Marschner's lobes, while its
-// `hair_uniform` is still Kajiya-Kay's closed form (techniques/shading/
-// marschner: the lobes' own integral is helper norm47's change): they
-// differ by 0.68 mean, 2.0 at most, printed and not held.
+// marschner × environment_reference: the cube's lights through Marschner's
+// lobes against its `hair_uniform`, the lobes' own quadrature (3 lobes × 8
+// θh × 8 γ nodes, shaders/lib/marschner.wgsl), agree within 0.0180 where
+// |sin θo| ≤ 0.9 (mean 0.007), held there to MARSCHNER_UNIFORM_BOUND.
+// Nearer grazing they part, up to 0.32 at sin θo −0.993 (0.08 mean beyond
+// 0.95), printed and not held. Not the cube's discretization: at
+// environment_size 32 that largest error is 0.3065, while chiang's falls
+// 0.0116 → 0.0041. Which side is off at grazing is not isolated (the
+// quadrature's 8 θh nodes are the first suspect). Before 5475337 its
+// `hair_uniform` was Kajiya-Kay's closed form and they differed by 0.68
+// mean, 2.0 at most.
 const UNIFORM_REFERENCE_BOUND: f64 = 0.02;
+const MARSCHNER_UNIFORM_BOUND: f64 = 0.025;
+/// |sin θo| beyond which Marschner's uniform response is not held (θo 64°).
+const MARSCHNER_GRAZING: f32 = 0.9;
 const UNIFORM_KK_MAPS_BOUND: f64 = 0.01;
 const UNIFORM_FIBRE_MAPS_BOUND: f64 = 0.005;
 
@@ -130,12 +157,21 @@ fn a_uniform_environment_lights_every_fibre_as_ambient_does() {
     for shading in SHADINGS {
         for lighting in LIGHTINGS {
             let read = run(&gpu, &scene, shading, lighting);
-            let (summed, mean, max) = errors(&read.term, &read.uniform);
+            let (summed, mean, mut max) = errors(&read.term, &read.uniform);
             eprintln!(
                 "uniform: {shading} × {lighting} against ambient: summed {summed:.5}, mean {mean:.5}, max {max:.5}"
             );
             let bound = match (shading, lighting) {
-                ("marschner", "environment_reference") => continue,
+                ("marschner", "environment_reference") => {
+                    let (_, mean, within) = errors_where(&read.term, &read.uniform, |i| {
+                        read.sin_o[i].abs() <= MARSCHNER_GRAZING
+                    });
+                    eprintln!(
+                        "  within |sin θo| ≤ {MARSCHNER_GRAZING}: mean {mean:.5}, max {within:.5}"
+                    );
+                    max = within;
+                    MARSCHNER_UNIFORM_BOUND
+                }
                 (_, "environment_reference") => UNIFORM_REFERENCE_BOUND,
                 ("kajiya_kay", _) => UNIFORM_KK_MAPS_BOUND,
                 _ => UNIFORM_FIBRE_MAPS_BOUND,
@@ -185,8 +221,8 @@ fn on_a_studio_environment_the_maps_light_chiang_within_their_measured_error() {
             ));
         }
     }
-    // Marschner's, printed: its `hair_uniform` is Kajiya-Kay's on this
-    // branch, so the numbers move when it becomes the lobes' own.
+    // Marschner's, printed and not held: no bound has been measured for
+    // its maps on this environment yet.
     let reference = run(&gpu, &scene, "marschner", "environment_reference");
     for lighting in ["irradiance_maps", "sh_irradiance_maps"] {
         let read = run(&gpu, &scene, "marschner", lighting);
