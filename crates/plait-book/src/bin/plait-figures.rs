@@ -84,6 +84,12 @@ fn run() -> Result<ExitCode> {
                         );
                     }
                 }
+                if !f.comments_only.is_empty() {
+                    say!(
+                        "    (not counted, comments only:\n    {})",
+                        f.comments_only.join("\n    ")
+                    );
+                }
             }
             say!("{stale_count} stale");
             let rest = stale::unregistered(&repo)?;

@@ -10,6 +10,7 @@
 //! figures were measured before the last change to the files they measure.
 
 pub mod check;
+mod comments;
 mod record;
 mod registry;
 pub mod stale;

@@ -1,10 +1,11 @@
 //! Which published figures were measured before the last change to the
-//! files they measure: `git log RECORD_COMMIT..HEAD -- MEASURES`.
+//! files they measure: `git log RECORD_COMMIT..HEAD -- MEASURES`, less the
+//! commits that changed only comments there (`comments.rs`).
 
 use std::path::Path;
 use std::process::Command;
 
-use super::{Record, Registry, record_path};
+use super::{Record, Registry, comments, record_path};
 use crate::error::BookError;
 
 /// One figure's state.
@@ -16,6 +17,9 @@ pub struct Freshness {
     pub date: String,
     /// Commits after the figure's that touch what it measures (`hash subject`).
     pub changed_since: Vec<String>,
+    /// Commits after the figure's that changed only comments in what it
+    /// measures (`hash subject`): listed, not counted as a change.
+    pub comments_only: Vec<String>,
     /// Why staleness could not be told (no git, commit not in this history).
     pub unknown: Option<String>,
 }
@@ -40,6 +44,7 @@ pub fn freshness(repo: &Path) -> Result<Vec<Freshness>, BookError> {
                     commit: String::new(),
                     date: String::new(),
                     changed_since: Vec::new(),
+                    comments_only: Vec::new(),
                     unknown: Some(format!("never published ({e})")),
                 });
                 continue;
@@ -51,28 +56,34 @@ pub fn freshness(repo: &Path) -> Result<Vec<Freshness>, BookError> {
             format!("{}..HEAD", record.commit),
             "--".to_string(),
         ];
-        args.extend(figure.pathspecs());
-        let (changed_since, unknown) =
-            match Command::new("git").args(&args).current_dir(repo).output() {
-                Ok(o) if o.status.success() => (
-                    String::from_utf8_lossy(&o.stdout)
-                        .lines()
-                        .map(str::to_owned)
-                        .collect(),
-                    None,
-                ),
-                Ok(o) => (
-                    Vec::new(),
-                    Some(String::from_utf8_lossy(&o.stderr).trim().to_string()),
-                ),
-                Err(e) => (Vec::new(), Some(format!("git: {e}"))),
-            };
+        let pathspecs = figure.pathspecs();
+        args.extend(pathspecs.iter().cloned());
+        let (touching, unknown) = match Command::new("git").args(&args).current_dir(repo).output() {
+            Ok(o) if o.status.success() => (
+                String::from_utf8_lossy(&o.stdout)
+                    .lines()
+                    .map(str::to_owned)
+                    .collect(),
+                None,
+            ),
+            Ok(o) => (
+                Vec::new(),
+                Some(String::from_utf8_lossy(&o.stderr).trim().to_string()),
+            ),
+            Err(e) => (Vec::new(), Some(format!("git: {e}"))),
+        };
+        let (comments_only, changed_since): (Vec<String>, Vec<String>) =
+            touching.into_iter().partition(|line| {
+                let hash = line.split_whitespace().next().unwrap_or("");
+                comments::comment_only(repo, hash, &pathspecs)
+            });
         out.push(Freshness {
             id: figure.id.clone(),
             page: figure.page.clone(),
             commit: record.commit.clone(),
             date: record.date.clone(),
             changed_since,
+            comments_only,
             unknown,
         });
     }
