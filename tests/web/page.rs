@@ -56,16 +56,22 @@ pub fn site_dir() -> PathBuf {
         .join("web-test")
 }
 
-/// `scripts/web.sh` into the build folder; the site's directory.
+/// `scripts/web.sh` into the build folder, once per test process; the
+/// site's directory. Once: the tests run two at a time, and two builds into
+/// one folder race (one's `cp` met the other's file: "File exists").
 fn build_site() -> PathBuf {
-    let out = site_dir();
-    let status = Command::new("bash")
-        .arg(repo_root().join("scripts/web.sh"))
-        .arg(&out)
-        .status()
-        .expect("bash runs");
-    assert!(status.success(), "scripts/web.sh failed: {status}");
-    out
+    static SITE: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    SITE.get_or_init(|| {
+        let out = site_dir();
+        let status = Command::new("bash")
+            .arg(repo_root().join("scripts/web.sh"))
+            .arg(&out)
+            .status()
+            .expect("bash runs");
+        assert!(status.success(), "scripts/web.sh failed: {status}");
+        out
+    })
+    .clone()
 }
 
 /// Serves `root` on 127.0.0.1; every path asked for goes to `asked`, a
